@@ -1,0 +1,161 @@
+#include "MeshFiles.h"
+
+#include "VtkErrorCapture.h"
+
+#include "vtkAlgorithm.h"
+#include "vtkExecutive.h"
+#include "vtkOBJReader.h"
+#include "vtkPLYReader.h"
+#include "vtkPolyDataReader.h"
+#include "vtkPolyDataWriter.h"
+#include "vtkSTLReader.h"
+#include "vtkXMLPolyDataReader.h"
+#include "vtkXMLPolyDataWriter.h"
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <fstream>
+#include <unistd.h>
+
+namespace fs = std::filesystem;
+
+namespace shadelab::app
+{
+const char* const readableExtensions = ".vtp, .vtk, .ply, .obj, .stl";
+const char* const writableExtensions = ".vtp, .vtk";
+
+namespace
+{
+std::string lowerExtension(const std::string& fileName)
+{
+  std::string extension = fs::path(fileName).extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return extension;
+}
+
+vtkSmartPointer<vtkAlgorithm> readerFor(const std::string& fileName, const std::string& extension)
+{
+  if (extension == ".vtp")
+  {
+    auto reader = vtkSmartPointer<vtkXMLPolyDataReader>::New();
+    reader->SetFileName(fileName.c_str());
+    return reader;
+  }
+  if (extension == ".vtk")
+  {
+    auto reader = vtkSmartPointer<vtkPolyDataReader>::New();
+    reader->SetFileName(fileName.c_str());
+    if (!reader->IsFilePolyData())
+    {
+      throw UserError(fileName + ": not a legacy VTK polydata file (ShadeLab shades surfaces: "
+                                 "extract one first, e.g. with vtkGeometryFilter)");
+    }
+    return reader;
+  }
+  if (extension == ".ply")
+  {
+    auto reader = vtkSmartPointer<vtkPLYReader>::New();
+    reader->SetFileName(fileName.c_str());
+    return reader;
+  }
+  if (extension == ".obj")
+  {
+    auto reader = vtkSmartPointer<vtkOBJReader>::New();
+    reader->SetFileName(fileName.c_str());
+    return reader;
+  }
+  if (extension == ".stl")
+  {
+    auto reader = vtkSmartPointer<vtkSTLReader>::New();
+    reader->SetFileName(fileName.c_str());
+    return reader;
+  }
+  throw UserError(fileName + ": unknown mesh format '" + extension + "'; ShadeLab reads " +
+    readableExtensions);
+}
+}
+
+vtkSmartPointer<vtkPolyData> readMesh(const std::string& fileName)
+{
+  const std::string extension = lowerExtension(fileName);
+  if (!fs::exists(fileName))
+  {
+    throw UserError(fileName + ": no such file");
+  }
+  if (fs::is_directory(fileName) || !std::ifstream(fileName))
+  {
+    throw UserError(fileName + ": cannot be read (is it a readable file?)");
+  }
+  vtkSmartPointer<vtkAlgorithm> reader = readerFor(fileName, extension);
+  vtkNew<VtkErrorCapture> errors;
+  errors->watch(reader);
+  errors->watch(reader->GetExecutive());
+  reader->Update();
+  auto mesh = vtkPolyData::SafeDownCast(reader->GetOutputDataObject(0));
+  if (errors->failed() || !mesh)
+  {
+    throw UserError(fileName + ": cannot be read as " + extension + ": " +
+      (errors->failed() ? errors->message() : "the reader produced no polydata"));
+  }
+  return mesh;
+}
+
+void checkWritable(const std::string& fileName)
+{
+  const std::string extension = lowerExtension(fileName);
+  if (extension != ".vtp" && extension != ".vtk")
+  {
+    throw UserError(fileName + ": cannot write '" + extension + "' files; use " + writableExtensions);
+  }
+  const fs::path folder = fs::absolute(fileName).parent_path();
+  if (!fs::is_directory(folder))
+  {
+    throw UserError(fileName + ": the folder " + folder.string() + " does not exist");
+  }
+}
+
+void writeMesh(vtkPolyData* mesh, const std::string& fileName)
+{
+  checkWritable(fileName);
+  // Same folder as the target, so the final rename cannot cross file systems.
+  const std::string temporary = fileName + ".partial-" + std::to_string(::getpid());
+  vtkNew<VtkErrorCapture> errors;
+  int written = 0;
+  if (lowerExtension(fileName) == ".vtp")
+  {
+    vtkNew<vtkXMLPolyDataWriter> writer;
+    errors->watch(writer);
+    writer->SetInputData(mesh);
+    writer->SetFileName(temporary.c_str());
+    writer->SetDataModeToAppended();
+    writer->EncodeAppendedDataOff(); // raw binary, not base64
+    writer->SetCompressorTypeToZLib();
+    written = writer->Write();
+  }
+  else
+  {
+    vtkNew<vtkPolyDataWriter> writer;
+    errors->watch(writer);
+    writer->SetInputData(mesh);
+    writer->SetFileName(temporary.c_str());
+    writer->SetFileTypeToBinary();
+    written = writer->Write();
+  }
+  std::error_code ignored;
+  if (!written || errors->failed())
+  {
+    fs::remove(temporary, ignored);
+    throw UserError(fileName + ": cannot be written: " +
+      (errors->failed() ? errors->message() : "the writer failed (disk full, or no permission?)"));
+  }
+  std::error_code renameError;
+  fs::rename(temporary, fileName, renameError);
+  if (renameError)
+  {
+    fs::remove(temporary, ignored);
+    throw UserError(fileName + ": cannot be written: " + renameError.message());
+  }
+}
+}

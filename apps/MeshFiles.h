@@ -1,0 +1,32 @@
+#pragma once
+// Reading and writing meshes by file extension, with errors that name the file.
+#include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
+
+#include <stdexcept>
+#include <string>
+
+namespace shadelab::app
+{
+/// A problem the user can fix; what() is the whole message, naming the file.
+class UserError : public std::runtime_error
+{
+public:
+  using std::runtime_error::runtime_error;
+};
+
+/// The extensions readMesh understands, for messages and --help.
+extern const char* const readableExtensions;
+extern const char* const writableExtensions;
+
+/// Reads .vtp, .vtk (legacy polydata), .ply, .obj or .stl. Throws UserError.
+vtkSmartPointer<vtkPolyData> readMesh(const std::string& fileName);
+
+/// Throws UserError unless fileName ends in .vtp or .vtk and its folder exists.
+void checkWritable(const std::string& fileName);
+
+/// Writes .vtp (binary, zlib-compressed) or legacy .vtk (binary). The data go to a temporary
+/// file in the same folder that is renamed over fileName only once complete, so a failed
+/// run never leaves a partial file or spoils an existing one. Throws UserError.
+void writeMesh(vtkPolyData* mesh, const std::string& fileName);
+}

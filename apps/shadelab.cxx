@@ -1,0 +1,248 @@
+// shadelab: the command line over ShadeLab's filters.
+//   shadelab shade MESH --scene SCENE.json -o OUT.vtp   per-vertex lighting arrays
+//   shadelab arrays --scene SCENE.json                  the arrays a scene can produce
+#include "MeshFiles.h"
+#include "VtkErrorCapture.h"
+
+#include "ArrayCatalog.h"
+#include "SceneFile.h"
+#include "ShadingFlags.h"
+#include "vtkLocalReflectanceFilter.h"
+
+#include "vtkCommand.h"
+#include "vtkDataArray.h"
+#include "vtkPointData.h"
+#include "vtkSMPTools.h"
+
+#include <CLI/CLI.hpp>
+
+#include <chrono>
+#include <cstdio>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+namespace
+{
+using namespace shadelab;
+using app::UserError;
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start)
+{
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+std::string modelName(const Scene& scene)
+{
+  return scene.model == ShadingModel::Lecture ? "lecture" : "vtk";
+}
+
+Scene loadScene(const std::string& fileName)
+{
+  try
+  {
+    return readSceneFile(fileName);
+  }
+  catch (const SceneFileError& error)
+  {
+    throw UserError(error.what());
+  }
+}
+
+std::vector<std::string> splitList(const std::string& text)
+{
+  std::vector<std::string> items;
+  std::stringstream stream(text);
+  std::string item;
+  while (std::getline(stream, item, ','))
+  {
+    if (!item.empty())
+    {
+      items.push_back(item);
+    }
+  }
+  return items;
+}
+
+/// Prints what a person wants to see after a run: the arrays and their ranges, the flags.
+void printSummary(vtkPolyData* output, const Scene& scene, const std::string& prefix)
+{
+  std::cout << "  arrays written (min and max over all components):\n";
+  vtkPointData* pointData = output->GetPointData();
+  for (const ArrayDescription& description : availableArrays(scene, prefix))
+  {
+    vtkDataArray* array = pointData->GetArray(description.name.c_str());
+    if (!array || description.name == flagsArrayName(prefix))
+    {
+      continue;
+    }
+    double low = 0, high = 0;
+    for (int c = 0; c < array->GetNumberOfComponents(); ++c)
+    {
+      double range[2];
+      array->GetRange(range, c);
+      low = c == 0 ? range[0] : std::min(low, range[0]);
+      high = c == 0 ? range[1] : std::max(high, range[1]);
+    }
+    std::cout << "    " << std::left << std::setw(28) << description.name << std::right
+              << std::setw(2) << array->GetNumberOfComponents() << "  " << std::setw(12)
+              << std::setprecision(6) << low << std::setw(12) << high << "\n";
+  }
+  if (vtkDataArray* flags = pointData->GetArray(flagsArrayName(prefix).c_str()))
+  {
+    static const std::pair<ShadingFlag, const char*> meanings[] = {
+      { FlagDegenerateNormal, "degenerate normal" },
+      { FlagLightAtMinimumDistance, "a light at its minimum distance" },
+      { FlagLightBelowHorizon, "a light below the horizon" },
+      { FlagHalfVectorUndefined, "half vector undefined" },
+      { FlagNonFiniteInput, "non-finite position or normal" },
+      { FlagNormalFlipped, "normal flipped to face the viewer" },
+    };
+    std::cout << "  " << flagsArrayName(prefix) << ":";
+    for (const auto& [bit, meaning] : meanings)
+    {
+      vtkIdType count = 0;
+      for (vtkIdType i = 0; i < flags->GetNumberOfTuples(); ++i)
+      {
+        count += (static_cast<int>(flags->GetComponent(i, 0)) & bit) ? 1 : 0;
+      }
+      std::cout << (bit == FlagDegenerateNormal ? " " : ", ") << count << " with " << meaning;
+    }
+    std::cout << "\n";
+  }
+}
+
+struct ShadeOptions
+{
+  std::string mesh;
+  std::string scene;
+  std::string output;
+  std::string arrays = "default";
+  std::string precision = "float32";
+  std::string prefix;
+  int threads = 0;
+  bool keepNormals = false;
+};
+
+int runShade(const ShadeOptions& options)
+{
+  // Everything that can be checked before the slow work is checked first.
+  const Scene scene = loadScene(options.scene);
+  const std::vector<std::string> selection = splitList(options.arrays);
+  try
+  {
+    selectArrays(scene, selection);
+  }
+  catch (const std::invalid_argument& error)
+  {
+    throw UserError(std::string("--arrays: ") + error.what());
+  }
+  app::checkWritable(options.output);
+
+  if (options.threads > 0)
+  {
+    vtkSMPTools::Initialize(options.threads);
+  }
+  const Clock::time_point readStart = Clock::now();
+  vtkSmartPointer<vtkPolyData> mesh = app::readMesh(options.mesh);
+  const double readSeconds = secondsSince(readStart);
+
+  vtkNew<vtkLocalReflectanceFilter> filter;
+  filter->SetInputData(mesh);
+  filter->SetScene(scene);
+  filter->SetArraySelection(selection);
+  filter->SetArrayPrefix(options.prefix);
+  filter->SetOutputPrecision(options.precision == "float64" ? vtkAlgorithm::DOUBLE_PRECISION
+                                                            : vtkAlgorithm::SINGLE_PRECISION);
+  filter->SetOrientNormalsOutward(!options.keepNormals);
+  vtkNew<app::VtkErrorCapture> errors;
+  errors->watch(filter);
+  const Clock::time_point shadeStart = Clock::now();
+  filter->Update();
+  const double shadeSeconds = secondsSince(shadeStart);
+  if (errors->failed())
+  {
+    throw UserError(options.mesh + ": " + errors->message());
+  }
+  vtkPolyData* output = filter->GetOutput();
+
+  const Clock::time_point writeStart = Clock::now();
+  app::writeMesh(output, options.output);
+  const double writeSeconds = secondsSince(writeStart);
+
+  std::cout << "shadelab shade: " << options.mesh << " -> " << options.output << "\n"
+            << "  mesh: " << output->GetNumberOfPoints() << " vertices, "
+            << output->GetNumberOfPolys() + output->GetNumberOfStrips() << " polygons and strips\n"
+            << "  scene: " << options.scene << " (" << modelName(scene) << " model, "
+            << scene.lights.size() << " lights)\n"
+            << "  normals: " << filter->GetNormalsReport() << "\n";
+  printSummary(output, scene, options.prefix);
+  std::cout << std::setprecision(3) << "  time: read " << readSeconds << " s, shade "
+            << shadeSeconds << " s (" << vtkSMPTools::GetEstimatedNumberOfThreads() << " threads, "
+            << options.precision << "), write " << writeSeconds << " s\n";
+  return 0;
+}
+
+int runArrays(const std::string& sceneFile)
+{
+  const Scene scene = loadScene(sceneFile);
+  std::cout << "Arrays for " << sceneFile << " (select them with shade --arrays):\n";
+  for (const ArrayDescription& array : availableArrays(scene))
+  {
+    std::cout << "  " << std::left << std::setw(28) << array.name << " " << array.components
+              << "  " << array.description << "\n";
+  }
+  return 0;
+}
+}
+
+int main(int argc, char** argv)
+{
+  vtkOutputWindow::SetInstance(vtkSmartPointer<app::QuietOutputWindow>::New());
+
+  CLI::App cli{ "ShadeLab: per-vertex lighting and reflectance terms as VTK arrays." };
+  cli.require_subcommand(1);
+
+  ShadeOptions shade;
+  CLI::App* shadeCommand = cli.add_subcommand("shade",
+    "Shade a mesh under a scene and write the terms as point-data arrays.\n"
+    "Reads .vtp, .vtk, .ply, .obj, .stl; writes .vtp (binary, compressed) or legacy .vtk.");
+  shadeCommand->add_option("mesh", shade.mesh, "the mesh to shade")->required();
+  shadeCommand->add_option("--scene,-s", shade.scene, "scene file (JSON; schema in README.md)")->required();
+  shadeCommand->add_option("--output,-o", shade.output, "output file, .vtp or .vtk")->required();
+  shadeCommand->add_option("--arrays,-a", shade.arrays,
+    "comma-separated arrays to compute: default (totals and shading_flags), totals, all, "
+    "*_TERM (that term for every light, e.g. *_cos_incidence) or full names (e.g. key_diffuse); "
+    "'shadelab arrays --scene FILE' lists them")
+    ->capture_default_str();
+  shadeCommand->add_option("--precision", shade.precision, "arithmetic and output arrays")
+    ->check(CLI::IsMember({ "float32", "float64" }))
+    ->capture_default_str();
+  shadeCommand->add_option("--threads,-j", shade.threads, "threads (0: all cores)")
+    ->check(CLI::NonNegativeNumber)
+    ->capture_default_str();
+  shadeCommand->add_option("--prefix", shade.prefix,
+    "prepended to every array name written (to keep clear of the input's own arrays)");
+  shadeCommand->add_flag("--keep-normal-orientation", shade.keepNormals,
+    "do not flip normals that point into a closed mesh");
+
+  std::string arraysScene;
+  CLI::App* arraysCommand = cli.add_subcommand("arrays", "List the arrays a scene can produce.");
+  arraysCommand->add_option("--scene,-s", arraysScene, "scene file (JSON)")->required();
+
+  CLI11_PARSE(cli, argc, argv);
+  try
+  {
+    if (shadeCommand->parsed())
+    {
+      return runShade(shade);
+    }
+    return runArrays(arraysScene);
+  }
+  catch (const UserError& error)
+  {
+    std::cerr << "shadelab: " << error.what() << "\n";
+    return 1;
+  }
+}

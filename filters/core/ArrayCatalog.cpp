@@ -1,0 +1,211 @@
+#include "ArrayCatalog.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace shadelab
+{
+namespace
+{
+const std::array<TermInfo, LightTermCount> lightTerms = { {
+  { "to_light", 3, "s: unit vector from the vertex to the light" },
+  { "distance", 1, "d: distance from the vertex to the light" },
+  { "attenuation", 1, "distance attenuation of the light (1 for distant lights)" },
+  { "spot_factor", 1, "spotlight cone factor (1 outside spotlights)" },
+  { "cos_incidence", 1, "n.s, cosine of the angle of incidence (negative below the horizon)" },
+  { "incidence_angle", 1, "theta_i = acos(n.s) in degrees" },
+  { "reflection", 3, "r = 2 (n.s) n - s, mirror direction of s" },
+  { "r_dot_v", 1, "r.v, cosine of the angle between r and the viewer" },
+  { "half_vector", 3, "h = (s + v)/|s + v| (0 where s = -v)" },
+  { "n_dot_h", 1, "n.h" },
+  { "diffuse", 3, "this light's diffuse term, RGB" },
+  { "specular", 3, "this light's specular term, RGB" },
+} };
+
+const std::array<TermInfo, TotalTermCount> totalTerms = { {
+  { "ambient", 3, "ambient term ka La, RGB" },
+  { "diffuse", 3, "diffuse terms summed over lights, RGB" },
+  { "specular", 3, "specular terms summed over lights, RGB" },
+  { "total", 3, "the complete model: ambient + diffuse + specular, RGB" },
+} };
+}
+
+const TermInfo flagsInfo = { "shading_flags", 1,
+  "diagnostic bits: 1 degenerate normal, 2 light at minimum distance, 4 light below horizon, "
+  "8 half vector undefined, 16 non-finite input, 32 normal flipped to face the viewer" };
+
+const TermInfo& termInfo(LightTerm term)
+{
+  return lightTerms[static_cast<int>(term)];
+}
+
+const TermInfo& termInfo(TotalTerm term)
+{
+  return totalTerms[static_cast<int>(term)];
+}
+
+bool lightHasTerm(const LightSource& source, LightTerm term)
+{
+  if (isAmbient(source))
+  {
+    return false;
+  }
+  return term != LightTerm::Distance || isPositional(source);
+}
+
+bool ArrayRequest::any(LightTerm term) const
+{
+  return std::any_of(lights.begin(), lights.end(),
+    [term](const auto& perLight) { return perLight[static_cast<int>(term)]; });
+}
+
+std::string lightArrayName(const std::string& prefix, const std::string& light, LightTerm term)
+{
+  return prefix + light + "_" + termInfo(term).name;
+}
+
+std::string totalArrayName(const std::string& prefix, TotalTerm term)
+{
+  return prefix + termInfo(term).name;
+}
+
+std::string flagsArrayName(const std::string& prefix)
+{
+  return prefix + flagsInfo.name;
+}
+
+std::vector<ArrayDescription> availableArrays(const Scene& scene, const std::string& prefix)
+{
+  std::vector<ArrayDescription> arrays;
+  for (int t = 0; t < TotalTermCount; ++t)
+  {
+    const TermInfo& info = totalTerms[t];
+    arrays.push_back({ totalArrayName(prefix, TotalTerm(t)), info.components, info.description });
+  }
+  arrays.push_back({ flagsArrayName(prefix), flagsInfo.components, flagsInfo.description });
+  for (const NamedLight& light : scene.lights)
+  {
+    for (int t = 0; t < LightTermCount; ++t)
+    {
+      if (lightHasTerm(light.source, LightTerm(t)))
+      {
+        const TermInfo& info = lightTerms[t];
+        arrays.push_back({ lightArrayName(prefix, light.name, LightTerm(t)), info.components,
+          "light '" + light.name + "': " + info.description });
+      }
+    }
+  }
+  return arrays;
+}
+
+namespace
+{
+void requestAll(const Scene& scene, ArrayRequest& request)
+{
+  request.totals.fill(true);
+  request.flags = true;
+  for (std::size_t l = 0; l < scene.lights.size(); ++l)
+  {
+    for (int t = 0; t < LightTermCount; ++t)
+    {
+      request.lights[l][t] = lightHasTerm(scene.lights[l].source, LightTerm(t));
+    }
+  }
+}
+
+// "*_TERM": the term on every light that has it. Returns false if TERM is not a term name.
+bool requestTermOnEveryLight(const Scene& scene, const std::string& term, ArrayRequest& request)
+{
+  for (int t = 0; t < LightTermCount; ++t)
+  {
+    if (term == lightTerms[t].name)
+    {
+      for (std::size_t l = 0; l < scene.lights.size(); ++l)
+      {
+        request.lights[l][t] = request.lights[l][t] || lightHasTerm(scene.lights[l].source, LightTerm(t));
+      }
+      return true;
+    }
+  }
+  return false;
+}
+
+// A full array name. Returns false if no array has that name.
+bool requestByName(const Scene& scene, const std::string& name, ArrayRequest& request)
+{
+  for (int t = 0; t < TotalTermCount; ++t)
+  {
+    if (name == totalTerms[t].name)
+    {
+      request.totals[t] = true;
+      return true;
+    }
+  }
+  if (name == flagsInfo.name)
+  {
+    request.flags = true;
+    return true;
+  }
+  for (std::size_t l = 0; l < scene.lights.size(); ++l)
+  {
+    for (int t = 0; t < LightTermCount; ++t)
+    {
+      if (lightHasTerm(scene.lights[l].source, LightTerm(t)) &&
+        name == lightArrayName("", scene.lights[l].name, LightTerm(t)))
+      {
+        request.lights[l][t] = true;
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
+std::string knownSelections(const Scene& scene)
+{
+  std::string known = "default, totals, all";
+  for (const TermInfo& info : lightTerms)
+  {
+    known += std::string(", *_") + info.name;
+  }
+  for (const ArrayDescription& array : availableArrays(scene))
+  {
+    known += ", " + array.name;
+  }
+  return known;
+}
+}
+
+ArrayRequest selectArrays(const Scene& scene, const std::vector<std::string>& selection)
+{
+  ArrayRequest request;
+  request.lights.resize(scene.lights.size());
+  for (const std::string& entry : selection)
+  {
+    bool known = true;
+    if (entry == "all")
+    {
+      requestAll(scene, request);
+    }
+    else if (entry == "default" || entry == "totals")
+    {
+      request.totals.fill(true);
+      request.flags = request.flags || entry == "default";
+    }
+    else if (entry.rfind("*_", 0) == 0)
+    {
+      known = requestTermOnEveryLight(scene, entry.substr(2), request);
+    }
+    else
+    {
+      known = requestByName(scene, entry, request);
+    }
+    if (!known)
+    {
+      throw std::invalid_argument(
+        "unknown array '" + entry + "'; this scene has: " + knownSelections(scene));
+    }
+  }
+  return request;
+}
+}

@@ -1,0 +1,89 @@
+#pragma once
+// The arrays ShadeLab can write for a scene: their names, sizes and meanings, and the choice
+// of which to compute. One table, so the filter, the command line and the README agree.
+#include "Scene.h"
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace shadelab
+{
+/// Quantities computed for each (non-ambient) light.
+enum class LightTerm
+{
+  ToLight,        // s
+  Distance,       // d, positional lights only
+  Attenuation,    // distance attenuation
+  SpotFactor,     // cone factor (1 outside spotlights)
+  CosIncidence,   // n.s
+  IncidenceAngle, // acos(n.s) in degrees
+  Reflection,     // r
+  RDotV,          // r.v
+  HalfVector,     // h
+  NDotH,          // n.h
+  Diffuse,        // RGB
+  Specular,       // RGB
+};
+constexpr int LightTermCount = 12;
+
+/// Quantities summed over all lights.
+enum class TotalTerm
+{
+  Ambient,
+  Diffuse,
+  Specular,
+  Total,
+};
+constexpr int TotalTermCount = 4;
+
+struct TermInfo
+{
+  const char* name;
+  int components;
+  const char* description;
+};
+
+const TermInfo& termInfo(LightTerm term);
+const TermInfo& termInfo(TotalTerm term);
+extern const TermInfo flagsInfo;
+
+/// Whether a light of this type has this term (distance needs a position; ambient lights
+/// have no per-light terms, their light is in the ambient total).
+bool lightHasTerm(const LightSource& source, LightTerm term);
+
+/// Which arrays to compute. lights[i] follows scene.lights[i].
+struct ArrayRequest
+{
+  std::vector<std::array<bool, LightTermCount>> lights;
+  std::array<bool, TotalTermCount> totals{};
+  bool flags = false;
+
+  bool any(LightTerm term) const;
+};
+
+struct ArrayDescription
+{
+  std::string name;
+  int components;
+  std::string description;
+};
+
+/// Every array the scene can produce, in output order, with names prefixed by prefix.
+std::vector<ArrayDescription> availableArrays(const Scene& scene, const std::string& prefix = "");
+
+/// The array name of a light's term: <prefix><light>_<term>.
+std::string lightArrayName(const std::string& prefix, const std::string& light, LightTerm term);
+/// The array name of a total or the flags: <prefix><name>.
+std::string totalArrayName(const std::string& prefix, TotalTerm term);
+std::string flagsArrayName(const std::string& prefix);
+
+/// The selection the command line documents:
+///   "default"  the totals and shading_flags
+///   "totals"   ambient, diffuse, specular, total
+///   "all"      every array the scene has
+///   "*_TERM"   TERM for every light that has it, e.g. "*_cos_incidence"
+///   NAME       one array by its full name (without the prefix), e.g. "key_diffuse"
+/// Throws std::invalid_argument naming the first unknown entry and listing what exists.
+ArrayRequest selectArrays(const Scene& scene, const std::vector<std::string>& selection);
+}

@@ -1,0 +1,61 @@
+#pragma once
+// The lecture's local reflectance terms (seed/lecture-light-and-reflectance.md, section 11;
+// REFERENCES.md section 1), each a small named function in the manner of Filament's
+// shading code. n, s, v are unit vectors: normal, to-light, to-viewer.
+#include "Vec3.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace shadelab
+{
+// Section 11.2: the angle of incidence theta_i = acos(n.s), in degrees. n.s is clamped to
+// [-1, 1] first because rounding can push a dot product of unit vectors just outside.
+template <typename T>
+T incidenceAngleDegrees(T cosIncidence)
+{
+  constexpr T degreesPerRadian = T(180.0 / 3.14159265358979323846);
+  return std::acos(std::clamp(cosIncidence, T(-1), T(1))) * degreesPerRadian;
+}
+
+// Section 11.2, Lambert: I = Ld kd max(0, n.s). This is the max(0, n.s) factor.
+template <typename T>
+T lambertFactor(T cosIncidence)
+{
+  return std::max(cosIncidence, T(0));
+}
+
+// Section 11.3: r = 2 (n.s) n - s, the mirror direction of s about n.
+template <typename T>
+Vec3<T> reflectAboutNormal(const Vec3<T>& s, const Vec3<T>& n, T cosIncidence)
+{
+  return T(2) * cosIncidence * n - s;
+}
+
+// Section 11.4: h = (s + v) / |s + v|. Undefined when s = -v (REFERENCES.md section 4);
+// then this returns false and leaves h untouched.
+template <typename T>
+bool halfVector(const Vec3<T>& s, const Vec3<T>& v, Vec3<T>& h)
+{
+  const Vec3<T> sum = s + v;
+  const T length2 = glm::dot(sum, sum);
+  // Below this |s + v| is pure rounding noise of two opposite unit vectors.
+  constexpr T undefinedBelow2 = T(1e-12);
+  if (!(length2 > undefinedBelow2))
+  {
+    return false;
+  }
+  h = sum / std::sqrt(length2);
+  return true;
+}
+
+// Sections 11.3 and 11.4: the specular lobe cos^eta, for Phong (cos = r.v) and Blinn-Phong
+// (cos = n.h). Negative cosines are clamped to 0 before pow (REFERENCES.md section 4), and
+// only a lit vertex (n.s > 0) has a lobe. eta = 0 follows C++'s pow(0, 0) = 1: the lobe is
+// the constant 1 on every lit vertex.
+template <typename T>
+T specularLobe(bool lit, T cosine, T eta)
+{
+  return lit ? std::pow(std::max(cosine, T(0)), eta) : T(0);
+}
+}

@@ -1,0 +1,204 @@
+#include "Scene.h"
+
+#include "ArrayCatalog.h"
+
+#include <cmath>
+#include <regex>
+#include <set>
+
+namespace shadelab
+{
+std::string lightTypeName(const LightSource& source)
+{
+  struct Namer
+  {
+    std::string operator()(const DistantLight&) const { return "distant"; }
+    std::string operator()(const Headlight&) const { return "headlight"; }
+    std::string operator()(const PointLight&) const { return "point"; }
+    std::string operator()(const SpotLight&) const { return "spot"; }
+    std::string operator()(const AmbientLight&) const { return "ambient"; }
+  };
+  return std::visit(Namer{}, source);
+}
+
+std::optional<glm::dvec3> Viewer::lineOfSight() const
+{
+  if (!position)
+  {
+    return glm::normalize(viewDirection);
+  }
+  if (!focalPoint || *focalPoint == *position)
+  {
+    return std::nullopt;
+  }
+  return glm::normalize(*focalPoint - *position);
+}
+
+namespace
+{
+bool isFinite(const glm::dvec3& v)
+{
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+bool isNonNegative(const glm::dvec3& v)
+{
+  return isFinite(v) && v.x >= 0 && v.y >= 0 && v.z >= 0;
+}
+
+bool isNonNegative(double x)
+{
+  return std::isfinite(x) && x >= 0;
+}
+
+bool isNonZero(const glm::dvec3& v)
+{
+  return isFinite(v) && glm::dot(v, v) > 0;
+}
+
+class ProblemList
+{
+public:
+  void check(bool ok, const std::string& path, const std::string& message)
+  {
+    if (!ok)
+    {
+      problems.push_back({ path, message });
+    }
+  }
+  std::vector<SceneProblem> problems;
+};
+
+void checkAttenuation(const Attenuation& a, const std::string& at, ShadingModel model, ProblemList& list)
+{
+  const bool vtkCanExpress =
+    a.model == AttenuationModel::None || a.model == AttenuationModel::ConstantLinearQuadratic;
+  list.check(model != ShadingModel::VtkOpenGL2 || vtkCanExpress, at + "/attenuation",
+    "the vtk model has only vtkLight's constant-linear-quadratic attenuation (or none)");
+  list.check(isNonNegative(a.minDistance), at + "/min_distance", "must be a number >= 0");
+  list.check(!divergesAtZero(a) || a.minDistance > 0, at + "/min_distance",
+    "must be > 0: this attenuation is infinite at distance 0");
+  if (a.model == AttenuationModel::ConstantLinearQuadratic)
+  {
+    const bool allNonNegative =
+      isNonNegative(a.constant) && isNonNegative(a.linear) && isNonNegative(a.quadratic);
+    list.check(allNonNegative, at + "/attenuation", "constant, linear and quadratic must be >= 0");
+    list.check(a.constant + a.linear + a.quadratic > 0, at + "/attenuation",
+      "constant, linear and quadratic must not all be 0");
+  }
+  if (a.model == AttenuationModel::GltfRange)
+  {
+    list.check(std::isfinite(a.range) && a.range > 0, at + "/attenuation/range", "must be > 0");
+  }
+}
+
+void checkCone(const SpotCone& cone, const std::string& at, ShadingModel model, ProblemList& list)
+{
+  if (cone.model == ConeModel::Vtk)
+  {
+    list.check(std::isfinite(cone.halfAngleDegrees) && cone.halfAngleDegrees > 0 &&
+        cone.halfAngleDegrees <= 180,
+      at + "/cone/angle", "must be a half-angle in degrees, in (0, 180]");
+    list.check(std::isfinite(cone.exponent) && cone.exponent >= 0 && cone.exponent <= 128,
+      at + "/cone/exponent", "must be in [0, 128], the range vtkLight allows");
+    return;
+  }
+  list.check(model != ShadingModel::VtkOpenGL2, at + "/cone/model",
+    "the vtk model has only vtkLight's cone (model \"vtk\")");
+  list.check(std::isfinite(cone.outerAngleDegrees) && cone.outerAngleDegrees > 0 &&
+      cone.outerAngleDegrees <= 90,
+    at + "/cone/outer_angle", "must be in (0, 90] degrees");
+  list.check(std::isfinite(cone.innerAngleDegrees) && cone.innerAngleDegrees >= 0 &&
+      cone.innerAngleDegrees < cone.outerAngleDegrees,
+    at + "/cone/inner_angle", "must be >= 0 and less than outer_angle");
+}
+
+template <typename Light>
+void checkStrength(const Light& light, const std::string& at, ProblemList& list)
+{
+  list.check(isNonNegative(light.color), at + "/color", "components must be numbers >= 0");
+  list.check(isNonNegative(light.intensity), at + "/intensity", "must be a number >= 0");
+}
+
+void checkLight(const Scene& scene, const NamedLight& light, const std::string& at, ProblemList& list)
+{
+  static const std::regex identifier("[A-Za-z][A-Za-z0-9_]*");
+  list.check(std::regex_match(light.name, identifier), at + "/name",
+    "'" + light.name + "' is not a valid light name: use letters, digits and _, starting with a letter");
+
+  const bool vtk = scene.model == ShadingModel::VtkOpenGL2;
+  std::visit(
+    [&](const auto& source)
+    {
+      using Type = std::decay_t<decltype(source)>;
+      checkStrength(source, at, list);
+      if constexpr (std::is_same_v<Type, DistantLight>)
+      {
+        list.check(isNonZero(source.direction), at + "/direction", "must be a non-zero vector");
+      }
+      if constexpr (std::is_same_v<Type, Headlight>)
+      {
+        list.check(scene.viewer.lineOfSight().has_value(), at,
+          "a headlight shines along the viewer's line of sight: give the viewer a focal_point");
+      }
+      if constexpr (std::is_same_v<Type, PointLight> || std::is_same_v<Type, SpotLight>)
+      {
+        list.check(isFinite(source.position), at + "/position", "must be a finite point");
+        checkAttenuation(source.attenuation, at, scene.model, list);
+      }
+      if constexpr (std::is_same_v<Type, SpotLight>)
+      {
+        list.check(isNonZero(source.axis), at + "/direction", "must be a non-zero vector");
+        checkCone(source.cone, at, scene.model, list);
+      }
+      if constexpr (std::is_same_v<Type, AmbientLight>)
+      {
+        list.check(!vtk, at + "/type",
+          "VTK's renderer has no ambient light: with the vtk model, put the ambient colour in material.ka");
+      }
+    },
+    light.source);
+}
+}
+
+std::vector<SceneProblem> sceneProblems(const Scene& scene)
+{
+  ProblemList list;
+  const Viewer& viewer = scene.viewer;
+  if (viewer.position)
+  {
+    list.check(isFinite(*viewer.position), "/viewer/position", "must be a finite point");
+    list.check(!viewer.focalPoint || *viewer.focalPoint != *viewer.position, "/viewer/focal_point",
+      "must differ from the position");
+  }
+  else
+  {
+    list.check(isNonZero(viewer.viewDirection), "/viewer/direction", "must be a non-zero vector");
+    list.check(scene.model != ShadingModel::VtkOpenGL2, "/viewer/position",
+      "the vtk model needs a camera position (VTK's renderer always has a local viewer)");
+  }
+
+  const Material& m = scene.material;
+  list.check(isNonNegative(m.ka), "/material/ka", "components must be numbers >= 0");
+  list.check(isNonNegative(m.kd), "/material/kd", "components must be numbers >= 0");
+  list.check(isNonNegative(m.ks), "/material/ks", "components must be numbers >= 0");
+  list.check(isNonNegative(m.shininess), "/material/shininess", "must be a number >= 0");
+
+  std::set<std::string> lightNames;
+  for (std::size_t i = 0; i < scene.lights.size(); ++i)
+  {
+    const std::string at = "/lights/" + std::to_string(i);
+    checkLight(scene, scene.lights[i], at, list);
+    list.check(lightNames.insert(scene.lights[i].name).second, at + "/name",
+      "another light is already named '" + scene.lights[i].name + "'");
+  }
+
+  std::set<std::string> names;
+  for (const ArrayDescription& array : availableArrays(scene))
+  {
+    list.check(names.insert(array.name).second, "/lights",
+      "two arrays would both be named '" + array.name + "': rename a light");
+  }
+  return list.problems;
+}
+}

@@ -1,0 +1,81 @@
+#pragma once
+// Everything the local model needs besides the mesh: lights, material and viewer.
+#include "Lights.h"
+#include "Vec3.h"
+
+#include <optional>
+#include <vector>
+
+namespace shadelab
+{
+enum class SpecularModel
+{
+  None,
+  Phong,      // lecture section 11.3: max(0, r.v)^eta
+  BlinnPhong, // lecture section 11.4: max(0, n.h)^eta
+};
+
+/// Lecture section 11 and 12: RGB coefficients and shininess. The defaults follow section 12
+/// ("ambient RGB = diffuse RGB, specular = white").
+struct Material
+{
+  Rgb ka{ 0.8, 0.8, 0.8 };
+  Rgb kd{ 0.8, 0.8, 0.8 };
+  Rgb ks{ 1.0, 1.0, 1.0 };
+  double shininess = 32.0; // eta
+  SpecularModel specular = SpecularModel::BlinnPhong;
+  /// Two-sided: a normal facing away from the viewer is flipped before shading, as VTK's
+  /// renderer does for back faces. One-sided: it is used as it is.
+  bool twoSided = false;
+};
+
+/// Where the viewer is: a camera position (local viewer) or, when position is empty, at
+/// infinity looking along viewDirection.
+struct Viewer
+{
+  std::optional<glm::dvec3> position;
+  /// The point the camera looks at. Needed only for a headlight with a local viewer.
+  std::optional<glm::dvec3> focalPoint;
+  glm::dvec3 viewDirection{ 0, 0, -1 }; // used when position is empty
+
+  /// The direction the viewer looks (unit), which is where a headlight shines.
+  std::optional<glm::dvec3> lineOfSight() const;
+};
+
+enum class ShadingModel
+{
+  /// The lecture's complete model (section 11.5), with the options above.
+  Lecture,
+  /// What VTK 9.1's OpenGL2 renderer computes at a vertex (REFERENCES.md section 2):
+  /// Phong with a local viewer, always two-sided, ambient = ka with no ambient light, and a
+  /// lone headlight shaded as df = max(0, n_z), sf = df^p.
+  VtkOpenGL2,
+};
+
+struct Scene
+{
+  ShadingModel model = ShadingModel::Lecture;
+  std::vector<NamedLight> lights;
+  Material material;
+  Viewer viewer;
+  /// VtkOpenGL2 only: VTK's "lighting complexity 1", the single-headlight shader.
+  /// SceneFromVtk sets it by VTK's own rule; the scene file sets it when the only light is a
+  /// headlight.
+  bool vtkLoneHeadlight = false;
+};
+}
+
+namespace shadelab
+{
+/// One thing wrong with a scene: where (a JSON pointer into the scene file's layout, such as
+/// "/lights/2/min_distance") and what.
+struct SceneProblem
+{
+  std::string path;
+  std::string message;
+};
+
+/// Everything that would make the scene unusable, in file order; empty when it is valid.
+/// The scene file parser and the VTK filter both report these, so the rules live here once.
+std::vector<SceneProblem> sceneProblems(const Scene& scene);
+}

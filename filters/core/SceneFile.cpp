@@ -1,0 +1,442 @@
+#include "SceneFile.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <fstream>
+#include <sstream>
+
+namespace shadelab
+{
+namespace
+{
+using Json = nlohmann::json;
+
+/// A problem at a JSON pointer; turned into a SceneFileError once the file name is known.
+struct JsonError
+{
+  std::string path;
+  std::string message;
+};
+
+std::string describe(const Json& value)
+{
+  std::string text = value.dump();
+  return text.size() > 40 ? text.substr(0, 37) + "..." : text;
+}
+
+/// A value in the document together with its JSON pointer, so every error can say where.
+class Node
+{
+public:
+  Node(const Json& value, std::string path)
+    : value_(value)
+    , path_(std::move(path))
+  {
+  }
+
+  const std::string& path() const { return path_; }
+
+  [[noreturn]] void fail(const std::string& message) const { throw JsonError{ path_, message }; }
+
+  /// Requires an object whose keys are all in allowed (a misspelt key is an error, not a
+  /// silently ignored setting).
+  void expectObject(std::initializer_list<const char*> allowed) const
+  {
+    if (!value_.is_object())
+    {
+      fail("must be an object, got " + describe(value_));
+    }
+    for (const auto& item : value_.items())
+    {
+      const bool known = std::any_of(allowed.begin(), allowed.end(),
+        [&](const char* key) { return item.key() == key; });
+      if (!known)
+      {
+        std::string list;
+        for (const char* key : allowed)
+        {
+          list += (list.empty() ? "" : ", ") + std::string(key);
+        }
+        Node(item.value(), path_ + "/" + item.key()).fail("unknown field; allowed here: " + list);
+      }
+    }
+  }
+
+  bool has(const char* key) const { return value_.contains(key); }
+
+  Node at(const char* key) const
+  {
+    if (!has(key))
+    {
+      Node(value_, path_ + "/" + key).fail("missing");
+    }
+    return Node(value_.at(key), path_ + "/" + key);
+  }
+
+  double number() const
+  {
+    if (!value_.is_number())
+    {
+      fail("must be a number, got " + describe(value_));
+    }
+    return value_.get<double>();
+  }
+
+  bool boolean() const
+  {
+    if (!value_.is_boolean())
+    {
+      fail("must be true or false, got " + describe(value_));
+    }
+    return value_.get<bool>();
+  }
+
+  std::string text() const
+  {
+    if (!value_.is_string())
+    {
+      fail("must be a string, got " + describe(value_));
+    }
+    return value_.get<std::string>();
+  }
+
+  /// One of the listed strings; returns its index.
+  std::size_t choice(std::initializer_list<const char*> options) const
+  {
+    const std::string given = text();
+    std::string list;
+    std::size_t index = 0;
+    for (const char* option : options)
+    {
+      if (given == option)
+      {
+        return index;
+      }
+      list += (list.empty() ? "\"" : ", \"") + std::string(option) + "\"";
+      ++index;
+    }
+    fail("\"" + given + "\" is not one of " + list);
+  }
+
+  glm::dvec3 vector3() const
+  {
+    if (!value_.is_array() || value_.size() != 3 ||
+      !std::all_of(value_.begin(), value_.end(), [](const Json& x) { return x.is_number(); }))
+    {
+      fail("must be an array of 3 numbers, got " + describe(value_));
+    }
+    return { value_[0].get<double>(), value_[1].get<double>(), value_[2].get<double>() };
+  }
+
+  /// An RGB colour: [r, g, b], or one number for grey.
+  Rgb rgb() const
+  {
+    if (value_.is_number())
+    {
+      return Rgb(value_.get<double>());
+    }
+    if (!value_.is_array() || value_.size() != 3 ||
+      !std::all_of(value_.begin(), value_.end(), [](const Json& x) { return x.is_number(); }))
+    {
+      fail("must be [r, g, b] or one number, got " + describe(value_));
+    }
+    return vector3();
+  }
+
+  std::size_t size() const { return value_.size(); }
+  bool isArray() const { return value_.is_array(); }
+  bool isString() const { return value_.is_string(); }
+  Node element(std::size_t i) const { return Node(value_.at(i), path_ + "/" + std::to_string(i)); }
+
+private:
+  const Json& value_;
+  std::string path_;
+};
+
+double numberOr(const Node& object, const char* key, double fallback)
+{
+  return object.has(key) ? object.at(key).number() : fallback;
+}
+
+Rgb rgbOr(const Node& object, const char* key, const Rgb& fallback)
+{
+  return object.has(key) ? object.at(key).rgb() : fallback;
+}
+
+Attenuation readAttenuation(const Node& light)
+{
+  Attenuation a;
+  a.minDistance = numberOr(light, "min_distance", a.minDistance);
+  if (!light.has("attenuation"))
+  {
+    return a;
+  }
+  const Node node = light.at("attenuation");
+  static constexpr std::initializer_list<const char*> models = { "none", "inverse",
+    "inverse_square", "vtk", "gltf_range" };
+  static constexpr AttenuationModel modelOf[] = { AttenuationModel::None, AttenuationModel::Inverse,
+    AttenuationModel::InverseSquare, AttenuationModel::ConstantLinearQuadratic,
+    AttenuationModel::GltfRange };
+  if (node.isString())
+  {
+    a.model = modelOf[node.choice(models)];
+    if (a.model == AttenuationModel::ConstantLinearQuadratic || a.model == AttenuationModel::GltfRange)
+    {
+      node.fail("this model has parameters: write it as an object, e.g. {\"model\": \"" +
+        node.text() + "\", ...}");
+    }
+    return a;
+  }
+  node.expectObject({ "model", "constant", "linear", "quadratic", "range" });
+  a.model = modelOf[node.at("model").choice(models)];
+  if (a.model == AttenuationModel::ConstantLinearQuadratic)
+  {
+    a.constant = numberOr(node, "constant", 1.0);
+    a.linear = numberOr(node, "linear", 0.0);
+    a.quadratic = numberOr(node, "quadratic", 0.0);
+  }
+  if (a.model == AttenuationModel::GltfRange)
+  {
+    a.range = node.at("range").number();
+  }
+  return a;
+}
+
+SpotCone readCone(const Node& light)
+{
+  SpotCone cone;
+  if (!light.has("cone"))
+  {
+    return cone;
+  }
+  const Node node = light.at("cone");
+  node.expectObject({ "model", "angle", "exponent", "inner_angle", "outer_angle" });
+  cone.model = node.at("model").choice({ "vtk", "gltf" }) == 0 ? ConeModel::Vtk : ConeModel::Gltf;
+  if (cone.model == ConeModel::Vtk)
+  {
+    cone.halfAngleDegrees = numberOr(node, "angle", cone.halfAngleDegrees);
+    cone.exponent = numberOr(node, "exponent", cone.exponent);
+  }
+  else
+  {
+    cone.innerAngleDegrees = numberOr(node, "inner_angle", cone.innerAngleDegrees);
+    cone.outerAngleDegrees = numberOr(node, "outer_angle", cone.outerAngleDegrees);
+  }
+  return cone;
+}
+
+template <typename Light>
+void readStrength(const Node& node, Light& light)
+{
+  light.color = rgbOr(node, "color", light.color);
+  light.intensity = numberOr(node, "intensity", light.intensity);
+}
+
+NamedLight readLight(const Node& node, std::size_t index)
+{
+  node.expectObject({ "name", "type", "color", "intensity", "direction", "intensity_from_length",
+    "position", "attenuation", "min_distance", "cone" });
+  const std::size_t type =
+    node.at("type").choice({ "distant", "headlight", "point", "spot", "ambient" });
+  NamedLight light;
+  switch (type)
+  {
+    case 0:
+    {
+      node.expectObject({ "name", "type", "color", "intensity", "direction", "intensity_from_length" });
+      DistantLight distant;
+      readStrength(node, distant);
+      distant.direction = node.at("direction").vector3();
+      if (node.has("intensity_from_length"))
+      {
+        distant.intensityFromLength = node.at("intensity_from_length").boolean();
+      }
+      light.source = distant;
+      break;
+    }
+    case 1:
+    {
+      node.expectObject({ "name", "type", "color", "intensity" });
+      Headlight head;
+      readStrength(node, head);
+      light.source = head;
+      break;
+    }
+    case 2:
+    {
+      node.expectObject({ "name", "type", "color", "intensity", "position", "attenuation", "min_distance" });
+      PointLight point;
+      readStrength(node, point);
+      point.position = node.at("position").vector3();
+      point.attenuation = readAttenuation(node);
+      light.source = point;
+      break;
+    }
+    case 3:
+    {
+      node.expectObject({ "name", "type", "color", "intensity", "position", "direction",
+        "attenuation", "min_distance", "cone" });
+      SpotLight spot;
+      readStrength(node, spot);
+      spot.position = node.at("position").vector3();
+      spot.axis = node.at("direction").vector3();
+      spot.attenuation = readAttenuation(node);
+      spot.cone = readCone(node);
+      light.source = spot;
+      break;
+    }
+    default:
+    {
+      node.expectObject({ "name", "type", "color", "intensity" });
+      AmbientLight ambient;
+      readStrength(node, ambient);
+      light.source = ambient;
+      break;
+    }
+  }
+  light.name = node.has("name") ? node.at("name").text() : lightTypeName(light.source) + std::to_string(index);
+  return light;
+}
+
+Material readMaterial(const Node& node, ShadingModel model)
+{
+  Material m;
+  if (model == ShadingModel::VtkOpenGL2)
+  {
+    // vtkProperty's defaults: Ambient 0, Diffuse 1, Specular 0, SpecularPower 1, white colours.
+    m.ka = Rgb(0.0);
+    m.kd = Rgb(1.0);
+    m.ks = Rgb(0.0);
+    m.shininess = 1.0;
+    node.expectObject({ "ka", "kd", "ks", "shininess" });
+  }
+  else
+  {
+    node.expectObject({ "ka", "kd", "ks", "shininess", "specular", "two_sided" });
+  }
+  m.kd = rgbOr(node, "kd", m.kd);
+  // Lecture section 12: ambient RGB defaults to the diffuse RGB.
+  m.ka = rgbOr(node, "ka", model == ShadingModel::Lecture ? m.kd : m.ka);
+  m.ks = rgbOr(node, "ks", m.ks);
+  m.shininess = numberOr(node, "shininess", m.shininess);
+  if (node.has("specular"))
+  {
+    static constexpr SpecularModel models[] = { SpecularModel::BlinnPhong, SpecularModel::Phong,
+      SpecularModel::None };
+    m.specular = models[node.at("specular").choice({ "blinn-phong", "phong", "none" })];
+  }
+  if (node.has("two_sided"))
+  {
+    m.twoSided = node.at("two_sided").boolean();
+  }
+  return m;
+}
+
+Viewer readViewer(const Node& node)
+{
+  node.expectObject({ "position", "focal_point", "direction" });
+  Viewer viewer;
+  if (node.has("position") == node.has("direction"))
+  {
+    node.fail("give either a position (a local viewer) or a direction (a viewer at infinity)");
+  }
+  if (node.has("position"))
+  {
+    viewer.position = node.at("position").vector3();
+    if (node.has("focal_point"))
+    {
+      viewer.focalPoint = node.at("focal_point").vector3();
+    }
+  }
+  else
+  {
+    if (node.has("focal_point"))
+    {
+      node.at("focal_point").fail("a viewer at infinity has no focal point: give a position instead of a direction");
+    }
+    viewer.viewDirection = node.at("direction").vector3();
+  }
+  return viewer;
+}
+
+Scene readScene(const Json& document)
+{
+  const Node root(document, "");
+  root.expectObject({ "model", "viewer", "material", "lights" });
+  Scene scene;
+  if (root.has("model"))
+  {
+    scene.model = root.at("model").choice({ "lecture", "vtk" }) == 0 ? ShadingModel::Lecture
+                                                                      : ShadingModel::VtkOpenGL2;
+  }
+  if (root.has("viewer"))
+  {
+    scene.viewer = readViewer(root.at("viewer"));
+  }
+  scene.material = readMaterial(root.has("material") ? root.at("material") : Node(Json::object(), "/material"), scene.model);
+  const Node lights = root.at("lights");
+  if (!lights.isArray())
+  {
+    lights.fail("must be an array of lights");
+  }
+  for (std::size_t i = 0; i < lights.size(); ++i)
+  {
+    scene.lights.push_back(readLight(lights.element(i), i));
+  }
+  if (scene.model == ShadingModel::VtkOpenGL2)
+  {
+    // Like vtkRenderer with AutomaticLightCreation: no light means one white headlight.
+    if (scene.lights.empty())
+    {
+      scene.lights.push_back({ "headlight", Headlight{} });
+    }
+    scene.vtkLoneHeadlight =
+      scene.lights.size() == 1 && std::holds_alternative<Headlight>(scene.lights[0].source);
+  }
+  const std::vector<SceneProblem> problems = sceneProblems(scene);
+  if (!problems.empty())
+  {
+    throw JsonError{ problems.front().path, problems.front().message };
+  }
+  return scene;
+}
+}
+
+Scene parseScene(const std::string& text, const std::string& sourceName)
+{
+  Json document;
+  try
+  {
+    document = Json::parse(text);
+  }
+  catch (const Json::parse_error& error)
+  {
+    // nlohmann prefixes "[json.exception.parse_error.101] "; the rest says line and column.
+    std::string message = error.what();
+    const std::size_t end = message.find("] ");
+    throw SceneFileError(sourceName + ": not valid JSON: " +
+      (end == std::string::npos ? message : message.substr(end + 2)));
+  }
+  try
+  {
+    return readScene(document);
+  }
+  catch (const JsonError& error)
+  {
+    throw SceneFileError(sourceName + ": " + (error.path.empty() ? "/" : error.path) + ": " + error.message);
+  }
+}
+
+Scene readSceneFile(const std::string& fileName)
+{
+  std::ifstream file(fileName);
+  if (!file)
+  {
+    throw SceneFileError(fileName + ": cannot open the scene file (does it exist, and is it readable?)");
+  }
+  std::ostringstream text;
+  text << file.rdbuf();
+  return parseScene(text.str(), fileName);
+}
+}

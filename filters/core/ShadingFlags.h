@@ -1,0 +1,26 @@
+#pragma once
+// Bits of the per-vertex diagnostics array. A vertex may carry several.
+#include <cstdint>
+
+namespace shadelab
+{
+using ShadingFlags = std::uint8_t;
+
+enum ShadingFlag : ShadingFlags
+{
+  /// The vertex has no usable normal (missing, zero length): it was shaded with n = 0, so it
+  /// gets ambient light only.
+  FlagDegenerateNormal = 1u << 0,
+  /// A positional light is at or inside its minimum distance: attenuation was evaluated at the
+  /// minimum distance, and at d = 0 the light direction is taken as the normal.
+  FlagLightAtMinimumDistance = 1u << 1,
+  /// A light is at or below the vertex's horizon (n.s <= 0): it adds no diffuse or specular.
+  FlagLightBelowHorizon = 1u << 2,
+  /// s = -v for a light under Blinn-Phong: h is undefined; h = 0, n.h = 0, no specular.
+  FlagHalfVectorUndefined = 1u << 3,
+  /// The position or normal has a NaN or Inf component: every output of the vertex is 0.
+  FlagNonFiniteInput = 1u << 4,
+  /// Two-sided shading flipped the normal to face the viewer.
+  FlagNormalFlipped = 1u << 5,
+};
+}

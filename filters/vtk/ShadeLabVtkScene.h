@@ -1,0 +1,22 @@
+#ifndef ShadeLabVtkScene_h
+#define ShadeLabVtkScene_h
+// A scene built from VTK's own rendering objects, for the VtkOpenGL2 model: what VTK 9.1's
+// OpenGL2 renderer would compute for these lights, this property and this camera.
+#include "ShadeLabFiltersModule.h"
+
+#include "Scene.h"
+
+class vtkCamera;
+class vtkLightCollection;
+class vtkProperty;
+
+namespace shadelab
+{
+/// Lights that are switched off are left out; with none switched on, VTK's renderer creates
+/// a white headlight, and so does this. Light i of the collection is named "light<i>".
+/// Positional lights get minDistance 0 (VTK's exact attenuation) unless their constant
+/// attenuation coefficient is 0, where the 0.01 default keeps d = 0 finite.
+SHADELABFILTERS_EXPORT Scene sceneFromVtk(vtkLightCollection* lights, vtkProperty* property, vtkCamera* camera);
+}
+
+#endif

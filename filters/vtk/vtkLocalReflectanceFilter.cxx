@@ -1,0 +1,343 @@
+#include "vtkLocalReflectanceFilter.h"
+
+#include "ArrayCatalog.h"
+#include "NormalOrientation.h"
+#include "ShadingKernel.h"
+
+#include "vtkArrayDispatch.h"
+#include "vtkCellArray.h"
+#include "vtkCellArrayIterator.h"
+#include "vtkDataArrayRange.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkFloatArray.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkPolyDataNormals.h"
+#include "vtkSMPTools.h"
+#include "vtkSmartPointer.h"
+#include "vtkStringArray.h"
+#include "vtkUnsignedCharArray.h"
+
+#include <sstream>
+#include <stdexcept>
+
+vtkStandardNewMacro(vtkLocalReflectanceFilter);
+
+namespace
+{
+using shadelab::LightTerm;
+using shadelab::TotalTerm;
+
+glm::dvec3 pointAt(vtkPoints* points, vtkIdType id)
+{
+  double p[3];
+  points->GetPoint(id, p);
+  return { p[0], p[1], p[2] };
+}
+
+glm::dvec3 tupleAt(vtkDataArray* array, vtkIdType id)
+{
+  double t[3];
+  array->GetTuple(id, t);
+  return { t[0], t[1], t[2] };
+}
+
+/// Feeds every polygon and strip triangle of the mesh to the orientation test.
+shadelab::NormalOrientation assessOrientation(vtkPolyData* mesh, vtkDataArray* normals)
+{
+  double bounds[6];
+  mesh->GetBounds(bounds);
+  shadelab::NormalOrientationAccumulator accumulator(
+    { 0.5 * (bounds[0] + bounds[1]), 0.5 * (bounds[2] + bounds[3]), 0.5 * (bounds[4] + bounds[5]) });
+  vtkPoints* points = mesh->GetPoints();
+  auto addTriangle = [&](vtkIdType a, vtkIdType b, vtkIdType c)
+  {
+    accumulator.addTriangle(pointAt(points, a), pointAt(points, b), pointAt(points, c),
+      tupleAt(normals, a), tupleAt(normals, b), tupleAt(normals, c));
+  };
+  // Polygons are split into fans, strips into their triangles; winding does not matter here
+  // because the test uses the stored normals, not the triangles' own orientation.
+  auto polys = vtk::TakeSmartPointer(mesh->GetPolys()->NewIterator());
+  for (polys->GoToFirstCell(); !polys->IsDoneWithTraversal(); polys->GoToNextCell())
+  {
+    vtkIdType size;
+    const vtkIdType* ids;
+    polys->GetCurrentCell(size, ids);
+    for (vtkIdType k = 2; k < size; ++k)
+    {
+      addTriangle(ids[0], ids[k - 1], ids[k]);
+    }
+  }
+  auto strips = vtk::TakeSmartPointer(mesh->GetStrips()->NewIterator());
+  for (strips->GoToFirstCell(); !strips->IsDoneWithTraversal(); strips->GoToNextCell())
+  {
+    vtkIdType size;
+    const vtkIdType* ids;
+    strips->GetCurrentCell(size, ids);
+    for (vtkIdType k = 2; k < size; ++k)
+    {
+      addTriangle(ids[k - 2], ids[k - 1], ids[k]);
+    }
+  }
+  return accumulator.result();
+}
+
+vtkSmartPointer<vtkDataArray> flippedCopy(vtkDataArray* normals)
+{
+  vtkSmartPointer<vtkDataArray> copy = vtk::TakeSmartPointer(normals->NewInstance());
+  copy->DeepCopy(normals);
+  for (auto tuple : vtk::DataArrayTupleRange<3>(copy))
+  {
+    tuple[0] = -tuple[0];
+    tuple[1] = -tuple[1];
+    tuple[2] = -tuple[2];
+  }
+  return copy;
+}
+
+/// Allocates the requested arrays of value type T on the output and points the kernel's
+/// outputs at their memory.
+template <typename T>
+class OutputArrays
+{
+public:
+  using ArrayType = vtkAOSDataArrayTemplate<T>;
+
+  OutputArrays(const shadelab::Scene& scene, const shadelab::ArrayRequest& request,
+    const std::string& prefix, vtkIdType count)
+  {
+    outputs.lights.resize(scene.lights.size());
+    for (std::size_t l = 0; l < scene.lights.size(); ++l)
+    {
+      outputs.lights[l].fill(nullptr);
+      for (int t = 0; t < shadelab::LightTermCount; ++t)
+      {
+        if (request.lights[l][t])
+        {
+          outputs.lights[l][t] = add(shadelab::lightArrayName(prefix, scene.lights[l].name, LightTerm(t)),
+            shadelab::termInfo(LightTerm(t)).components, count);
+        }
+      }
+    }
+    for (int t = 0; t < shadelab::TotalTermCount; ++t)
+    {
+      outputs.totals[t] = request.totals[t]
+        ? add(shadelab::totalArrayName(prefix, TotalTerm(t)), 3, count)
+        : nullptr;
+    }
+    if (request.flags)
+    {
+      auto flags = vtkSmartPointer<vtkUnsignedCharArray>::New();
+      flags->SetName(shadelab::flagsArrayName(prefix).c_str());
+      flags->SetNumberOfValues(count);
+      outputs.flags = flags->GetPointer(0);
+      arrays.push_back(flags);
+    }
+  }
+
+  shadelab::ShadingOutputs<T> outputs;
+  std::vector<vtkSmartPointer<vtkDataArray>> arrays;
+
+private:
+  T* add(const std::string& name, int components, vtkIdType count)
+  {
+    auto array = vtkSmartPointer<ArrayType>::New();
+    array->SetName(name.c_str());
+    array->SetNumberOfComponents(components);
+    array->SetNumberOfTuples(count);
+    arrays.push_back(array);
+    return array->GetPointer(0);
+  }
+};
+
+/// Runs the kernel over all points in a vtkSMPTools loop, for any real point and normal
+/// array types (dispatched once, so the loop reads raw memory).
+template <typename T>
+struct ShadeAllPoints
+{
+  const shadelab::ShadingKernel<T>& kernel;
+  vtkAlgorithm* progressOwner;
+
+  template <typename PointArray, typename NormalArray>
+  void operator()(PointArray* points, NormalArray* normals) const
+  {
+    const auto pointRange = vtk::DataArrayTupleRange<3>(points);
+    const auto normalRange = vtk::DataArrayTupleRange<3>(normals);
+    const vtkIdType count = pointRange.size();
+    // Blocks of the SMP loop, so progress can be reported between them.
+    const vtkIdType block = std::max<vtkIdType>(count / 10, 100000);
+    for (vtkIdType first = 0; first < count; first += block)
+    {
+      const vtkIdType last = std::min(count, first + block);
+      vtkSMPTools::For(first, last,
+        [&](vtkIdType begin, vtkIdType end)
+        {
+          for (vtkIdType i = begin; i < end; ++i)
+          {
+            const auto p = pointRange[i];
+            const auto n = normalRange[i];
+            kernel.shadeVertex(static_cast<std::size_t>(i), shadelab::Vec3<T>(T(p[0]), T(p[1]), T(p[2])),
+              shadelab::Vec3<T>(T(n[0]), T(n[1]), T(n[2])));
+          }
+        });
+      progressOwner->UpdateProgress(static_cast<double>(last) / count);
+    }
+  }
+};
+
+template <typename T>
+std::vector<vtkSmartPointer<vtkDataArray>> shade(const shadelab::Scene& scene,
+  const shadelab::ArrayRequest& request, const std::string& prefix, vtkDataArray* points,
+  vtkDataArray* normals, vtkAlgorithm* progressOwner)
+{
+  OutputArrays<T> arrays(scene, request, prefix, points->GetNumberOfTuples());
+  const shadelab::ShadingKernel<T> kernel(scene, arrays.outputs);
+  ShadeAllPoints<T> worker{ kernel, progressOwner };
+  using Reals = vtkArrayDispatch::Reals;
+  if (!vtkArrayDispatch::Dispatch2ByValueType<Reals, Reals>::Execute(points, normals, worker))
+  {
+    worker(points, normals); // other value types, through the generic vtkDataArray API
+  }
+  return arrays.arrays;
+}
+}
+
+vtkLocalReflectanceFilter::vtkLocalReflectanceFilter() = default;
+
+void vtkLocalReflectanceFilter::SetScene(const shadelab::Scene& scene)
+{
+  this->Scene = scene;
+  this->Modified();
+}
+
+void vtkLocalReflectanceFilter::SetArraySelection(const std::vector<std::string>& selection)
+{
+  this->ArraySelection = selection;
+  this->Modified();
+}
+
+int vtkLocalReflectanceFilter::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
+  vtkPolyData* output = vtkPolyData::GetData(outputVector);
+  this->NormalsReport.clear();
+
+  const vtkIdType pointCount = input->GetNumberOfPoints();
+  if (pointCount == 0)
+  {
+    vtkErrorMacro("the mesh has no points");
+    return 0;
+  }
+  if (input->GetNumberOfPolys() + input->GetNumberOfStrips() == 0)
+  {
+    vtkErrorMacro("the mesh has no polygons (" << input->GetNumberOfCells()
+                                                << " vertex or line cells): surface shading needs a surface");
+    return 0;
+  }
+  const std::vector<shadelab::SceneProblem> problems = shadelab::sceneProblems(this->Scene);
+  if (!problems.empty())
+  {
+    vtkErrorMacro("scene " << problems.front().path << ": " << problems.front().message);
+    return 0;
+  }
+  shadelab::ArrayRequest request;
+  try
+  {
+    request = shadelab::selectArrays(this->Scene, this->ArraySelection);
+  }
+  catch (const std::invalid_argument& error)
+  {
+    vtkErrorMacro(<< error.what());
+    return 0;
+  }
+  for (const auto& array : shadelab::availableArrays(this->Scene, this->ArrayPrefix))
+  {
+    if (input->GetPointData()->HasArray(array.name.c_str()))
+    {
+      vtkErrorMacro("the input already has a point array named '"
+        << array.name << "', which this filter would write: set an array prefix to keep both");
+      return 0;
+    }
+  }
+
+  output->ShallowCopy(input);
+
+  // Normals: the input's own, or computed without splitting so point ids stay the same.
+  std::ostringstream report;
+  vtkSmartPointer<vtkDataArray> normals = input->GetPointData()->GetNormals();
+  const bool computed = normals == nullptr;
+  if (computed)
+  {
+    auto normalFilter = vtkSmartPointer<vtkPolyDataNormals>::New();
+    normalFilter->SetInputData(input);
+    normalFilter->SplittingOff();
+    normalFilter->ConsistencyOn();
+    normalFilter->ComputePointNormalsOn();
+    normalFilter->ComputeCellNormalsOff();
+    normalFilter->Update();
+    normals = normalFilter->GetOutput()->GetPointData()->GetNormals();
+    normals->SetName("Normals");
+    report << "The mesh has no point normals: computed them (vtkPolyDataNormals, no splitting) "
+              "and added them as 'Normals'.";
+  }
+  else
+  {
+    report << "Using the mesh's point normals '" << (normals->GetName() ? normals->GetName() : "")
+           << "'.";
+  }
+  const shadelab::NormalOrientation orientation = assessOrientation(input, normals);
+  vtkSmartPointer<vtkDataArray> shadingNormals = normals;
+  if (orientation.pointsInward())
+  {
+    report << " They point into the mesh (closure " << orientation.closure << ", flux "
+           << orientation.flux << ")";
+    if (!this->OrientNormalsOutward)
+    {
+      report << "; kept as they are, because orienting them outward is off.";
+    }
+    else if (computed)
+    {
+      shadingNormals = flippedCopy(normals);
+      normals = shadingNormals;
+      report << "; flipped them outward.";
+    }
+    else
+    {
+      shadingNormals = flippedCopy(normals);
+      report << "; shaded with them flipped outward (the input array is unchanged).";
+    }
+  }
+  if (computed)
+  {
+    output->GetPointData()->SetNormals(normals);
+  }
+  this->NormalsReport = report.str();
+
+  const auto arrays = this->OutputPrecision == DOUBLE_PRECISION
+    ? shade<double>(this->Scene, request, this->ArrayPrefix, input->GetPoints()->GetData(), shadingNormals, this)
+    : shade<float>(this->Scene, request, this->ArrayPrefix, input->GetPoints()->GetData(), shadingNormals, this);
+  for (const auto& array : arrays)
+  {
+    output->GetPointData()->AddArray(array);
+  }
+
+  auto note = vtkSmartPointer<vtkStringArray>::New();
+  note->SetName("shadelab_normals");
+  note->InsertNextValue(this->NormalsReport);
+  output->GetFieldData()->AddArray(note);
+  return 1;
+}
+
+void vtkLocalReflectanceFilter::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Lights: " << this->Scene.lights.size() << "\n";
+  os << indent << "ArrayPrefix: " << this->ArrayPrefix << "\n";
+  os << indent << "OutputPrecision: " << this->OutputPrecision << "\n";
+  os << indent << "OrientNormalsOutward: " << this->OrientNormalsOutward << "\n";
+}

@@ -1,0 +1,75 @@
+/**
+ * @class vtkLocalReflectanceFilter
+ * @brief Per-vertex terms of the local reflectance model (ambient, Lambert, Phong,
+ * Blinn-Phong, or VTK's own renderer) as point-data arrays.
+ *
+ * Reads points and point normals, evaluates a shadelab::Scene at every vertex, and adds the
+ * requested arrays (see shadelab::selectArrays; README.md has the table). Every input array
+ * passes through unchanged. Without point normals, normals are computed without splitting
+ * (point ids and count stay) and added as "Normals". Normals that point into a closed or
+ * nearly closed mesh are used flipped unless OrientNormalsOutward is off; GetNormalsReport()
+ * says what happened, and so does the output's field data array "shadelab_normals".
+ */
+#ifndef vtkLocalReflectanceFilter_h
+#define vtkLocalReflectanceFilter_h
+
+#include "ShadeLabFiltersModule.h"
+#include "vtkPolyDataAlgorithm.h"
+
+#include "Scene.h"
+
+#include <string>
+#include <vector>
+
+class SHADELABFILTERS_EXPORT vtkLocalReflectanceFilter : public vtkPolyDataAlgorithm
+{
+public:
+  static vtkLocalReflectanceFilter* New();
+  vtkTypeMacro(vtkLocalReflectanceFilter, vtkPolyDataAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /// Lights, material and viewer. Checked by shadelab::sceneProblems when the filter runs.
+  void SetScene(const shadelab::Scene& scene);
+  const shadelab::Scene& GetScene() const { return this->Scene; }
+
+  /// Which arrays to compute, as shadelab::selectArrays reads them. Default: {"default"},
+  /// the totals and the flags.
+  void SetArraySelection(const std::vector<std::string>& selection);
+  const std::vector<std::string>& GetArraySelection() const { return this->ArraySelection; }
+
+  /// Prepended to every array name written, to keep clear of names the input already has.
+  vtkSetMacro(ArrayPrefix, std::string);
+  vtkGetMacro(ArrayPrefix, std::string);
+
+  /// Arithmetic and output arrays in float32 (vtkAlgorithm::SINGLE_PRECISION, the default)
+  /// or float64 (vtkAlgorithm::DOUBLE_PRECISION).
+  vtkSetClampMacro(OutputPrecision, int, SINGLE_PRECISION, DOUBLE_PRECISION);
+  vtkGetMacro(OutputPrecision, int);
+
+  /// Flip normals that point into a closed or nearly closed mesh (default on).
+  vtkSetMacro(OrientNormalsOutward, bool);
+  vtkGetMacro(OrientNormalsOutward, bool);
+  vtkBooleanMacro(OrientNormalsOutward, bool);
+
+  /// What the last run did about normals, in one or two sentences.
+  const std::string& GetNormalsReport() const { return this->NormalsReport; }
+
+protected:
+  vtkLocalReflectanceFilter();
+  ~vtkLocalReflectanceFilter() override = default;
+
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+private:
+  vtkLocalReflectanceFilter(const vtkLocalReflectanceFilter&) = delete;
+  void operator=(const vtkLocalReflectanceFilter&) = delete;
+
+  shadelab::Scene Scene;
+  std::vector<std::string> ArraySelection{ "default" };
+  std::string ArrayPrefix;
+  int OutputPrecision = SINGLE_PRECISION;
+  bool OrientNormalsOutward = true;
+  std::string NormalsReport;
+};
+
+#endif
