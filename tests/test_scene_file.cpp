@@ -1,0 +1,189 @@
+// Scene files: what a valid file means, and the exact message for each kind of bad input.
+#include "ArrayCatalog.h"
+#include "SceneFile.h"
+
+#include <gtest/gtest.h>
+
+namespace
+{
+using namespace shadelab;
+
+std::string errorOf(const std::string& text)
+{
+  try
+  {
+    parseScene(text, "scene.json");
+  }
+  catch (const SceneFileError& error)
+  {
+    return error.what();
+  }
+  return "no error";
+}
+
+TEST(SceneFile, ReadsEveryLightType)
+{
+  const Scene scene = parseScene(R"({
+    "viewer": { "position": [0, 0, 5], "focal_point": [0, 0, 0] },
+    "material": { "kd": [0.5, 0.4, 0.3], "ks": 0.2, "shininess": 12, "specular": "phong", "two_sided": true },
+    "lights": [
+      { "name": "sun", "type": "distant", "direction": [0, 0, -2], "intensity_from_length": true },
+      { "name": "head", "type": "headlight", "color": 0.5 },
+      { "name": "bulb", "type": "point", "position": [1, 2, 3], "intensity": 4,
+        "attenuation": { "model": "vtk", "constant": 1, "linear": 0.5 }, "min_distance": 0.1 },
+      { "name": "cone", "type": "spot", "position": [0, 5, 0], "direction": [0, -1, 0],
+        "attenuation": { "model": "gltf_range", "range": 20 },
+        "cone": { "model": "gltf", "inner_angle": 5, "outer_angle": 25 } },
+      { "type": "ambient", "intensity": 0.1 }
+    ]
+  })", "scene.json");
+  ASSERT_EQ(scene.lights.size(), 5u);
+  EXPECT_EQ(scene.model, ShadingModel::Lecture);
+  EXPECT_EQ(scene.material.kd, Rgb(0.5, 0.4, 0.3));
+  EXPECT_EQ(scene.material.ka, Rgb(0.5, 0.4, 0.3)); // lecture section 12: ka defaults to kd
+  EXPECT_EQ(scene.material.ks, Rgb(0.2));
+  EXPECT_EQ(scene.material.specular, SpecularModel::Phong);
+  EXPECT_TRUE(scene.material.twoSided);
+
+  const auto& sun = std::get<DistantLight>(scene.lights[0].source);
+  EXPECT_TRUE(sun.intensityFromLength);
+  EXPECT_EQ(std::get<Headlight>(scene.lights[1].source).color, Rgb(0.5));
+  const auto& bulb = std::get<PointLight>(scene.lights[2].source);
+  EXPECT_EQ(bulb.attenuation.model, AttenuationModel::ConstantLinearQuadratic);
+  EXPECT_EQ(bulb.attenuation.linear, 0.5);
+  EXPECT_EQ(bulb.attenuation.quadratic, 0.0);
+  EXPECT_EQ(bulb.attenuation.minDistance, 0.1);
+  const auto& cone = std::get<SpotLight>(scene.lights[3].source);
+  EXPECT_EQ(cone.attenuation.range, 20.0);
+  EXPECT_EQ(cone.cone.model, ConeModel::Gltf);
+  EXPECT_EQ(cone.cone.outerAngleDegrees, 25.0);
+  EXPECT_EQ(scene.lights[4].name, "ambient4"); // unnamed: type and index
+}
+
+TEST(SceneFile, VtkModelUsesVtkPropertyDefaultsAndDetectsTheLoneHeadlight)
+{
+  const Scene scene = parseScene(R"({ "model": "vtk", "viewer": { "position": [0, 0, 1], "focal_point": [0, 0, 0] },
+    "lights": [ { "type": "headlight" } ] })", "scene.json");
+  EXPECT_EQ(scene.model, ShadingModel::VtkOpenGL2);
+  EXPECT_TRUE(scene.vtkLoneHeadlight);
+  EXPECT_EQ(scene.material.ka, Rgb(0.0));
+  EXPECT_EQ(scene.material.kd, Rgb(1.0));
+  EXPECT_EQ(scene.material.ks, Rgb(0.0));
+  EXPECT_EQ(scene.material.shininess, 1.0);
+
+  const Scene none = parseScene(R"({ "model": "vtk", "viewer": { "position": [0, 0, 1], "focal_point": [0, 0, 0] },
+    "lights": [] })", "scene.json");
+  ASSERT_EQ(none.lights.size(), 1u); // VTK's automatic headlight
+  EXPECT_TRUE(none.vtkLoneHeadlight);
+}
+
+TEST(SceneFile, MalformedJson)
+{
+  EXPECT_EQ(errorOf("{ \"lights\": [ }"),
+    "scene.json: not valid JSON: parse error at line 1, column 15: syntax error while parsing "
+    "value - unexpected '}'; expected '[', '{', or a literal");
+}
+
+TEST(SceneFile, UnknownLightType)
+{
+  EXPECT_EQ(errorOf(R"({ "lights": [ { "type": "distant", "direction": [0, 0, 1] }, { "type": "laser" } ] })"),
+    "scene.json: /lights/1/type: \"laser\" is not one of \"distant\", \"headlight\", \"point\", "
+    "\"spot\", \"ambient\"");
+}
+
+TEST(SceneFile, NegativeField)
+{
+  EXPECT_EQ(errorOf(R"({ "lights": [ { "type": "point", "position": [0, 0, 1], "intensity": -2 } ] })"),
+    "scene.json: /lights/0/intensity: must be a number >= 0");
+  EXPECT_EQ(errorOf(R"({ "material": { "shininess": -1 }, "lights": [] })"),
+    "scene.json: /material/shininess: must be a number >= 0");
+}
+
+TEST(SceneFile, MissingField)
+{
+  EXPECT_EQ(errorOf(R"({ "lights": [ { "type": "distant" } ] })"),
+    "scene.json: /lights/0/direction: missing");
+  EXPECT_EQ(errorOf(R"({ "material": {} })"), "scene.json: /lights: missing");
+  EXPECT_EQ(errorOf(R"({ "lights": [ { "name": "x" } ] })"), "scene.json: /lights/0/type: missing");
+}
+
+TEST(SceneFile, WrongTypesAndUnknownFields)
+{
+  EXPECT_EQ(errorOf(R"({ "lights": [ { "type": "distant", "direction": [0, 1] } ] })"),
+    "scene.json: /lights/0/direction: must be an array of 3 numbers, got [0,1]");
+  EXPECT_EQ(errorOf(R"({ "lights": [ { "type": "point", "position": [0, 0, 1], "cone": {} } ] })"),
+    "scene.json: /lights/0/cone: unknown field; allowed here: name, type, color, intensity, "
+    "position, attenuation, min_distance");
+  EXPECT_EQ(errorOf(R"({ "lights": [], "materail": {} })"),
+    "scene.json: /materail: unknown field; allowed here: model, viewer, material, lights");
+  EXPECT_EQ(errorOf(R"({ "lights": [ { "type": "point", "position": [0, 0, 1], "attenuation": "quadratic" } ] })"),
+    "scene.json: /lights/0/attenuation: \"quadratic\" is not one of \"none\", \"inverse\", "
+    "\"inverse_square\", \"vtk\", \"gltf_range\"");
+}
+
+TEST(SceneFile, RulesOfTheModel)
+{
+  EXPECT_EQ(errorOf(R"({ "lights": [ { "type": "point", "position": [0, 0, 1], "min_distance": 0 } ] })"),
+    "scene.json: /lights/0/min_distance: must be > 0: this attenuation is infinite at distance 0");
+  EXPECT_EQ(errorOf(R"({ "model": "vtk", "viewer": { "position": [0, 0, 1] }, "lights": [ { "type": "ambient" } ] })"),
+    "scene.json: /lights/0/type: VTK's renderer has no ambient light: with the vtk model, put the "
+    "ambient colour in material.ka");
+  EXPECT_EQ(errorOf(R"({ "model": "vtk", "lights": [] })"),
+    "scene.json: /viewer/position: the vtk model needs a camera position (VTK's renderer always "
+    "has a local viewer)");
+  EXPECT_EQ(errorOf(R"({ "lights": [ { "type": "headlight" } ], "viewer": { "position": [0, 0, 1] } })"),
+    "scene.json: /lights/0: a headlight shines along the viewer's line of sight: give the viewer a focal_point");
+  EXPECT_EQ(errorOf(R"({ "lights": [ { "name": "a", "type": "ambient" }, { "name": "a", "type": "ambient" } ] })"),
+    "scene.json: /lights/1/name: another light is already named 'a'");
+  EXPECT_EQ(errorOf(R"({ "lights": [ { "name": "2nd", "type": "ambient" } ] })"),
+    "scene.json: /lights/0/name: '2nd' is not a valid light name: use letters, digits and _, "
+    "starting with a letter");
+}
+
+TEST(SceneFile, MissingFile)
+{
+  try
+  {
+    readSceneFile("no/such/scene.json");
+    FAIL() << "no error";
+  }
+  catch (const SceneFileError& error)
+  {
+    EXPECT_STREQ(error.what(),
+      "no/such/scene.json: cannot open the scene file (does it exist, and is it readable?)");
+  }
+}
+
+TEST(ArraySelection, PatternsAndNames)
+{
+  const Scene scene = parseScene(R"({ "lights": [
+      { "name": "sun", "type": "distant", "direction": [0, 0, -1] },
+      { "name": "bulb", "type": "point", "position": [0, 0, 1] },
+      { "name": "sky", "type": "ambient" } ] })", "scene.json");
+  const ArrayRequest byDefault = selectArrays(scene, { "default" });
+  EXPECT_TRUE(byDefault.flags);
+  EXPECT_FALSE(byDefault.any(LightTerm::CosIncidence));
+
+  const ArrayRequest distances = selectArrays(scene, { "*_distance", "sun_n_dot_h" });
+  EXPECT_FALSE(distances.lights[0][int(LightTerm::Distance)]); // a distant light has none
+  EXPECT_TRUE(distances.lights[1][int(LightTerm::Distance)]);
+  EXPECT_TRUE(distances.lights[0][int(LightTerm::NDotH)]);
+  EXPECT_FALSE(distances.lights[1][int(LightTerm::NDotH)]);
+  EXPECT_FALSE(distances.flags);
+
+  const ArrayRequest all = selectArrays(scene, { "all" });
+  EXPECT_EQ(availableArrays(scene).size(), 5u + 11u + 12u); // totals+flags, sun, bulb
+
+  try
+  {
+    selectArrays(scene, { "total", "sun_distance" });
+    FAIL() << "no error";
+  }
+  catch (const std::invalid_argument& error)
+  {
+    const std::string message = error.what();
+    EXPECT_EQ(message.substr(0, message.find(':')), "unknown array 'sun_distance'; this scene has");
+    EXPECT_NE(message.find(", bulb_distance,"), std::string::npos);
+  }
+}
+}
