@@ -100,11 +100,16 @@ TEST(SpotCone, GltfSmoothFalloff)
 
 TEST(Reflectance, AngleOfIncidence)
 {
-  EXPECT_NEAR(incidenceAngleDegrees(0.5), 60.0, 1e-12);
-  EXPECT_EQ(incidenceAngleDegrees(0.0), 90.0);
-  // Rounding can leave a dot product of unit vectors just above 1: still 0 degrees, not NaN.
-  EXPECT_EQ(incidenceAngleDegrees(1.0 + 1e-12), 0.0);
-  EXPECT_EQ(incidenceAngleDegrees(-1.0 - 1e-12), 180.0);
+  const glm::dvec3 n(0, 0, 1);
+  EXPECT_NEAR(incidenceAngleDegrees(n, glm::dvec3(std::sin(60 * degree), 0, 0.5)), 60.0, 1e-12);
+  EXPECT_EQ(incidenceAngleDegrees(n, glm::dvec3(1, 0, 0)), 90.0);
+  EXPECT_EQ(incidenceAngleDegrees(n, n), 0.0);
+  EXPECT_EQ(incidenceAngleDegrees(n, -n), 180.0);
+  EXPECT_EQ(incidenceAngleDegrees(glm::dvec3(0), n), 90.0); // zero normal: n.s = 0
+  // Near 0 degrees, where acos(n.s) would lose half its digits: 1e-4 degrees in float32.
+  const float small = 1e-4f * float(degree);
+  EXPECT_NEAR(incidenceAngleDegrees(glm::vec3(0, 0, 1), glm::vec3(std::sin(small), 0, std::cos(small))),
+    1e-4f, 1e-9f);
 }
 
 TEST(Reflectance, ReflectionAndHalfVector)

@@ -9,13 +9,22 @@
 
 namespace shadelab
 {
-// Section 11.2: the angle of incidence theta_i = acos(n.s), in degrees. n.s is clamped to
-// [-1, 1] first because rounding can push a dot product of unit vectors just outside.
+// Section 11.2: the angle of incidence theta_i between n and s, in degrees. Computed as
+// atan2(|n x s|, n.s) rather than acos(n.s): acos loses about half the significant digits
+// near 0 and 180 degrees, atan2 of the pair loses none (W. Kahan, "How Futile are Mindless
+// Assessments of Roundoff in Floating-Point Computation?", 2006, section 12). A zero normal,
+// whose n.s is 0, gets 90 degrees.
 template <typename T>
-T incidenceAngleDegrees(T cosIncidence)
+T incidenceAngleDegrees(const Vec3<T>& n, const Vec3<T>& s)
 {
   constexpr T degreesPerRadian = T(180.0 / 3.14159265358979323846);
-  return std::acos(std::clamp(cosIncidence, T(-1), T(1))) * degreesPerRadian;
+  const T sine = glm::length(glm::cross(n, s));
+  const T cosine = glm::dot(n, s);
+  if (sine == T(0) && cosine == T(0))
+  {
+    return T(90);
+  }
+  return std::atan2(sine, cosine) * degreesPerRadian;
 }
 
 // Section 11.2, Lambert: I = Ld kd max(0, n.s). This is the max(0, n.s) factor.

@@ -265,7 +265,7 @@ void ShadingKernel<T>::shadeVertex(std::size_t i, const Vec3<T>& position, const
     store(out[int(LightTerm::CosIncidence)], i, cosIncidence);
     if (out[int(LightTerm::IncidenceAngle)])
     {
-      store(out[int(LightTerm::IncidenceAngle)], i, incidenceAngleDegrees(cosIncidence));
+      store(out[int(LightTerm::IncidenceAngle)], i, incidenceAngleDegrees(n, s));
     }
     store(out[int(LightTerm::Reflection)], i, r);
     store(out[int(LightTerm::RDotV)], i, rDotV);
