@@ -1,0 +1,275 @@
+// The VtkOpenGL2 model against VTK 9.1's shader formulas (vtkOpenGLPolyDataMapper::
+// ReplaceShaderLight, vtkOpenGLRenderer::UpdateLightingUniforms) evaluated by hand here, in
+// view coordinates as the shader does, for several light sets built from vtkLight,
+// vtkProperty and vtkCamera. ShadeLab works in world coordinates; the two must agree.
+#include "TestMeshes.h"
+
+#include "ShadeLabVtkScene.h"
+#include "vtkLocalReflectanceFilter.h"
+
+#include "vtkCamera.h"
+#include "vtkLight.h"
+#include "vtkLightCollection.h"
+#include "vtkMatrix4x4.h"
+#include "vtkNew.h"
+#include "vtkProperty.h"
+
+#include <gtest/gtest.h>
+
+#include <glm/geometric.hpp>
+
+namespace
+{
+using glm::dvec3;
+
+dvec3 toGlm(const double* v)
+{
+  return { v[0], v[1], v[2] };
+}
+
+/// The shader's inputs for one light, as UpdateLightingUniforms sends them (view coords).
+struct ShaderLight
+{
+  dvec3 color;
+  dvec3 directionVC; // normalized FocalPoint - Position
+  dvec3 positionVC;
+  dvec3 attenuation;
+  bool positional;
+  double exponent, coneAngle;
+};
+
+/// VTK 9.1's fragment shader for lighting complexity 1, 2 or 3, transcribed.
+class ShaderReference
+{
+public:
+  ShaderReference(vtkLightCollection* lights, vtkProperty* property, vtkCamera* camera, int complexity)
+    : complexity_(complexity)
+  {
+    vtkMatrix4x4* view = camera->GetModelViewTransformMatrix();
+    for (int r = 0; r < 4; ++r)
+    {
+      for (int c = 0; c < 4; ++c)
+      {
+        view_[r][c] = view->GetElement(r, c);
+      }
+    }
+    ambient_ = property->GetAmbient() * toGlm(property->GetAmbientColor());
+    diffuse_ = property->GetDiffuse() * toGlm(property->GetDiffuseColor());
+    specular_ = property->GetSpecular() * toGlm(property->GetSpecularColor());
+    power_ = property->GetSpecularPower();
+    vtkCollectionSimpleIterator it;
+    vtkLight* light;
+    for (lights->InitTraversal(it); (light = lights->GetNextLight(it));)
+    {
+      if (!light->GetSwitch())
+      {
+        continue;
+      }
+      // The renderer moves headlights to the camera and gives camera lights the inverse view
+      // matrix, so in view coordinates a camera light sits at its own Position.
+      dvec3 position, focal;
+      if (light->LightTypeIsHeadlight())
+      {
+        position = point(toGlm(camera->GetPosition()));
+        focal = point(toGlm(camera->GetFocalPoint()));
+      }
+      else if (light->LightTypeIsCameraLight())
+      {
+        position = toGlm(light->GetPosition());
+        focal = toGlm(light->GetFocalPoint());
+      }
+      else
+      {
+        position = point(toGlm(light->GetPosition()));
+        focal = point(toGlm(light->GetFocalPoint()));
+      }
+      lights_.push_back({ light->GetIntensity() * toGlm(light->GetDiffuseColor()),
+        glm::normalize(focal - position), position, toGlm(light->GetAttenuationValues()),
+        light->GetPositional() != 0, light->GetExponent(), light->GetConeAngle() });
+    }
+  }
+
+  dvec3 total(const dvec3& worldPoint, const dvec3& worldNormal) const
+  {
+    const dvec3 vertexVC = point(worldPoint);
+    dvec3 normal = glm::normalize(direction(worldNormal));
+    // gl_FrontFacing, per vertex: the face is a back face when its normal points away from
+    // the camera (the origin of view coordinates).
+    if (glm::dot(normal, -vertexVC) < 0)
+    {
+      normal = -normal;
+    }
+    if (complexity_ == 1)
+    {
+      const double df = std::max(0.0, normal.z);
+      const double sf = std::pow(df, power_);
+      return ambient_ + df * diffuse_ * lights_[0].color + sf * specular_ * lights_[0].color;
+    }
+    dvec3 diffuse(0), specular(0);
+    for (const ShaderLight& light : lights_)
+    {
+      double attenuation = 1.0;
+      dvec3 vertLightDirectionVC = light.directionVC;
+      if (complexity_ == 3 && light.positional)
+      {
+        vertLightDirectionVC = vertexVC - light.positionVC;
+        const double distanceVC = glm::length(vertLightDirectionVC);
+        vertLightDirectionVC = glm::normalize(vertLightDirectionVC);
+        attenuation = 1.0 /
+          (light.attenuation.x + light.attenuation.y * distanceVC +
+            light.attenuation.z * distanceVC * distanceVC);
+        if (light.coneAngle < 90.0)
+        {
+          const double coneDot = glm::dot(vertLightDirectionVC, light.directionVC);
+          attenuation = coneDot >= std::cos(light.coneAngle * M_PI / 180.0)
+            ? attenuation * std::pow(coneDot, light.exponent)
+            : 0.0;
+        }
+      }
+      const double df = std::max(0.0, attenuation * glm::dot(normal, -vertLightDirectionVC));
+      diffuse += df * light.color;
+      const double sign = df > 0 ? 1.0 : 0.0;
+      const double sf = sign * attenuation *
+        std::pow(std::max(0.0, glm::dot(glm::reflect(vertLightDirectionVC, normal), glm::normalize(-vertexVC))),
+          power_);
+      specular += sf * light.color;
+    }
+    return ambient_ + diffuse * diffuse_ + specular * specular_;
+  }
+
+private:
+  dvec3 point(const dvec3& p) const { return transform(p, 1.0); }
+  // The view matrix is a rotation plus a translation, so its normal matrix is its rotation.
+  dvec3 direction(const dvec3& v) const { return transform(v, 0.0); }
+  dvec3 transform(const dvec3& v, double w) const
+  {
+    dvec3 out;
+    for (int r = 0; r < 3; ++r)
+    {
+      out[r] = view_[r][0] * v.x + view_[r][1] * v.y + view_[r][2] * v.z + view_[r][3] * w;
+    }
+    return out;
+  }
+
+  int complexity_;
+  double view_[4][4];
+  dvec3 ambient_, diffuse_, specular_;
+  double power_;
+  std::vector<ShaderLight> lights_;
+};
+
+class VtkRendererMode : public ::testing::Test
+{
+protected:
+  void SetUp() override
+  {
+    camera->SetPosition(0.5, 2.0, 6.0);
+    camera->SetFocalPoint(0.2, 0.0, 0.0);
+    camera->SetViewUp(0.0, 1.0, 0.2);
+    camera->OrthogonalizeViewUp();
+    property->SetAmbient(0.1);
+    property->SetAmbientColor(1.0, 0.5, 0.25);
+    property->SetDiffuse(0.7);
+    property->SetDiffuseColor(0.2, 0.4, 0.9);
+    property->SetSpecular(0.5);
+    property->SetSpecularColor(1.0, 1.0, 0.5);
+    property->SetSpecularPower(20.0);
+  }
+
+  vtkSmartPointer<vtkLight> addLight(int type, dvec3 position, dvec3 focalPoint)
+  {
+    auto light = vtkSmartPointer<vtkLight>::New();
+    light->SetLightType(type);
+    light->SetPosition(position.x, position.y, position.z);
+    light->SetFocalPoint(focalPoint.x, focalPoint.y, focalPoint.z);
+    lights->AddItem(light);
+    return light;
+  }
+
+  /// Shades an off-centre sphere (so that some vertices face away from the camera and are
+  /// flipped) and compares the total at every vertex with the shader reference.
+  void expectShaderResult(int complexity)
+  {
+    const shadelab::Scene scene = shadelab::sceneFromVtk(lights, property, camera);
+    EXPECT_EQ(scene.vtkLoneHeadlight, complexity == 1);
+    vtkSmartPointer<vtkPolyData> sphere = shadelab::testing::exactSphere(60, { 0.3, -0.2, 0.1 }, 1.2);
+    vtkNew<vtkLocalReflectanceFilter> filter;
+    filter->SetInputData(sphere);
+    filter->SetScene(scene);
+    filter->SetArraySelection({ "total" });
+    filter->SetOutputPrecision(vtkAlgorithm::DOUBLE_PRECISION);
+    filter->Update();
+    vtkDataArray* total = filter->GetOutput()->GetPointData()->GetArray("total");
+    ASSERT_NE(total, nullptr);
+    const ShaderReference shader(lights, property, camera, complexity);
+    vtkDataArray* normals = sphere->GetPointData()->GetNormals();
+    double largest = 0;
+    for (vtkIdType i = 0; i < sphere->GetNumberOfPoints(); ++i)
+    {
+      const dvec3 want = shader.total(toGlm(sphere->GetPoint(i)), toGlm(normals->GetTuple3(i)));
+      for (int c = 0; c < 3; ++c)
+      {
+        EXPECT_NEAR(total->GetComponent(i, c), want[c], 1e-12) << "vertex " << i;
+        largest = std::max(largest, want[c]);
+      }
+    }
+    EXPECT_GT(largest, 0.3); // the light set really lights the sphere
+  }
+
+  vtkNew<vtkLightCollection> lights;
+  vtkNew<vtkProperty> property;
+  vtkNew<vtkCamera> camera;
+};
+
+TEST_F(VtkRendererMode, LoneHeadlight)
+{
+  auto head = addLight(VTK_LIGHT_TYPE_HEADLIGHT, { 0, 0, 1 }, { 0, 0, 0 });
+  head->SetDiffuseColor(1.0, 0.9, 0.8);
+  head->SetIntensity(0.8);
+  expectShaderResult(1);
+}
+
+TEST_F(VtkRendererMode, NoLightSwitchedOnMeansVtksAutomaticHeadlight)
+{
+  addLight(VTK_LIGHT_TYPE_SCENE_LIGHT, { 1, 1, 1 }, { 0, 0, 0 })->SwitchOff();
+  const shadelab::Scene scene = shadelab::sceneFromVtk(lights, property, camera);
+  ASSERT_EQ(scene.lights.size(), 1u);
+  EXPECT_TRUE(std::holds_alternative<shadelab::Headlight>(scene.lights[0].source));
+  EXPECT_TRUE(scene.vtkLoneHeadlight);
+}
+
+TEST_F(VtkRendererMode, LightKitOfDirectionalLights)
+{
+  addLight(VTK_LIGHT_TYPE_HEADLIGHT, { 0, 0, 1 }, { 0, 0, 0 })->SetIntensity(0.5);
+  auto key = addLight(VTK_LIGHT_TYPE_SCENE_LIGHT, { 3, 4, 2 }, { 0, 0, 0 });
+  key->SetDiffuseColor(1.0, 0.8, 0.6);
+  addLight(VTK_LIGHT_TYPE_CAMERA_LIGHT, { 1, 0, 1 }, { 0, 0, 0 })->SetIntensity(0.3);
+  expectShaderResult(2);
+}
+
+TEST_F(VtkRendererMode, SwitchedOffSceneLightStillEndsTheLoneHeadlightShader)
+{
+  // VTK 9.1's UpdateLights checks the light type outside its "switched on" test, so a
+  // switched-off scene light after the headlight selects the general shader.
+  addLight(VTK_LIGHT_TYPE_HEADLIGHT, { 0, 0, 1 }, { 0, 0, 0 });
+  addLight(VTK_LIGHT_TYPE_SCENE_LIGHT, { 3, 4, 2 }, { 0, 0, 0 })->SwitchOff();
+  expectShaderResult(2);
+}
+
+TEST_F(VtkRendererMode, PositionalSpotAndPointLights)
+{
+  auto spot = addLight(VTK_LIGHT_TYPE_SCENE_LIGHT, { 2.5, 3.0, 2.0 }, { 0.3, -0.2, 0.1 });
+  spot->PositionalOn();
+  spot->SetConeAngle(25);
+  spot->SetExponent(3);
+  spot->SetAttenuationValues(1.0, 0.2, 0.05);
+  spot->SetIntensity(2.0);
+  auto bulb = addLight(VTK_LIGHT_TYPE_SCENE_LIGHT, { -2.0, 1.0, 3.0 }, { 0, 0, 0 });
+  bulb->PositionalOn();
+  bulb->SetConeAngle(90); // no cone
+  bulb->SetAttenuationValues(0.5, 0.0, 0.3);
+  bulb->SetDiffuseColor(0.6, 0.8, 1.0);
+  addLight(VTK_LIGHT_TYPE_SCENE_LIGHT, { 0, 5, 0 }, { 0, 0, 0 })->SetIntensity(0.4);
+  expectShaderResult(3);
+}
+}
