@@ -65,24 +65,20 @@ public:
       {
         continue;
       }
-      // The renderer moves headlights to the camera and gives camera lights the inverse view
-      // matrix, so in view coordinates a camera light sits at its own Position.
-      dvec3 position, focal;
+      // What vtkRenderer::UpdateLightsGeometryToFollowCamera does to the lights before a
+      // render; then UpdateLightingUniforms takes the transformed position and focal point
+      // into view coordinates.
       if (light->LightTypeIsHeadlight())
       {
-        position = point(toGlm(camera->GetPosition()));
-        focal = point(toGlm(camera->GetFocalPoint()));
+        light->SetPosition(camera->GetPosition());
+        light->SetFocalPoint(camera->GetFocalPoint());
       }
       else if (light->LightTypeIsCameraLight())
       {
-        position = toGlm(light->GetPosition());
-        focal = toGlm(light->GetFocalPoint());
+        light->SetTransformMatrix(camera->GetCameraLightTransformMatrix());
       }
-      else
-      {
-        position = point(toGlm(light->GetPosition()));
-        focal = point(toGlm(light->GetFocalPoint()));
-      }
+      const dvec3 position = point(toGlm(light->GetTransformedPosition()));
+      const dvec3 focal = point(toGlm(light->GetTransformedFocalPoint()));
       lights_.push_back({ light->GetIntensity() * toGlm(light->GetDiffuseColor()),
         glm::normalize(focal - position), position, toGlm(light->GetAttenuationValues()),
         light->GetPositional() != 0, light->GetExponent(), light->GetConeAngle() });
@@ -231,11 +227,21 @@ TEST_F(VtkRendererMode, LoneHeadlight)
 
 TEST_F(VtkRendererMode, NoLightSwitchedOnMeansVtksAutomaticHeadlight)
 {
+  // vtkOpenGLRenderer::UpdateLights appends a headlight, then takes the shader from the
+  // collection's first light: the lone-headlight shader only if that one is a headlight.
+  auto expectAutomaticHeadlight = [&](bool lone)
+  {
+    const shadelab::Scene scene = shadelab::sceneFromVtk(lights, property, camera);
+    ASSERT_EQ(scene.lights.size(), 1u);
+    EXPECT_TRUE(std::holds_alternative<shadelab::Headlight>(scene.lights[0].source));
+    EXPECT_EQ(scene.vtkLoneHeadlight, lone);
+  };
+  expectAutomaticHeadlight(true); // empty collection
+  addLight(VTK_LIGHT_TYPE_HEADLIGHT, { 0, 0, 1 }, { 0, 0, 0 })->SwitchOff();
+  expectAutomaticHeadlight(true);
+  lights->RemoveAllItems();
   addLight(VTK_LIGHT_TYPE_SCENE_LIGHT, { 1, 1, 1 }, { 0, 0, 0 })->SwitchOff();
-  const shadelab::Scene scene = shadelab::sceneFromVtk(lights, property, camera);
-  ASSERT_EQ(scene.lights.size(), 1u);
-  EXPECT_TRUE(std::holds_alternative<shadelab::Headlight>(scene.lights[0].source));
-  EXPECT_TRUE(scene.vtkLoneHeadlight);
+  expectAutomaticHeadlight(false);
 }
 
 TEST_F(VtkRendererMode, LightKitOfDirectionalLights)
@@ -270,6 +276,12 @@ TEST_F(VtkRendererMode, PositionalSpotAndPointLights)
   bulb->SetAttenuationValues(0.5, 0.0, 0.3);
   bulb->SetDiffuseColor(0.6, 0.8, 1.0);
   addLight(VTK_LIGHT_TYPE_SCENE_LIGHT, { 0, 5, 0 }, { 0, 0, 0 })->SetIntensity(0.4);
+  // A positional camera light: its position is in units of the camera distance, so a wrong
+  // camera-light transform moves it and changes its attenuation and cone.
+  auto lamp = addLight(VTK_LIGHT_TYPE_CAMERA_LIGHT, { 0.2, 0.3, 0.8 }, { 0.0, 0.0, 0.0 });
+  lamp->PositionalOn();
+  lamp->SetConeAngle(20);
+  lamp->SetAttenuationValues(1.0, 0.1, 0.02);
   expectShaderResult(3);
 }
 }

@@ -96,9 +96,9 @@ void checkCone(const SpotCone& cone, const std::string& at, ShadingModel model, 
 {
   if (cone.model == ConeModel::Vtk)
   {
-    list.check(std::isfinite(cone.halfAngleDegrees) && cone.halfAngleDegrees > 0 &&
+    list.check(std::isfinite(cone.halfAngleDegrees) && cone.halfAngleDegrees >= 0 &&
         cone.halfAngleDegrees <= 180,
-      at + "/cone/angle", "must be a half-angle in degrees, in (0, 180]");
+      at + "/cone/angle", "must be a half-angle in degrees, in [0, 180]");
     list.check(std::isfinite(cone.exponent) && cone.exponent >= 0 && cone.exponent <= 128,
       at + "/cone/exponent", "must be in [0, 128], the range vtkLight allows");
     return;

@@ -21,6 +21,12 @@ Rgb scaledColor(double coefficient, const double* color)
   return coefficient * toGlm(color);
 }
 
+// A light is on when its Switch is positive (vtkOpenGLRenderer tests status > 0.0).
+bool isOn(vtkLight* light)
+{
+  return light->GetSwitch() > 0;
+}
+
 // vtkOpenGLRenderer::UpdateLights (VTK 9.1) picks the single-headlight shader ("lighting
 // complexity 1") with this loop. Note that it looks at every light, switched on or not,
 // when it moves on to the general shaders.
@@ -32,7 +38,7 @@ bool usesLoneHeadlightShader(vtkLightCollection* lights)
   vtkLight* light;
   for (lights->InitTraversal(it); (light = lights->GetNextLight(it));)
   {
-    if (light->GetSwitch())
+    if (isOn(light))
     {
       ++switchedOn;
       complexity = complexity == 0 ? 1 : complexity;
@@ -46,36 +52,50 @@ bool usesLoneHeadlightShader(vtkLightCollection* lights)
       complexity = 3;
     }
   }
-  return switchedOn == 0 || complexity == 1; // none on: VTK adds a lone headlight
+  if (switchedOn == 0)
+  {
+    // The renderer appends a headlight and, on that render, takes the complexity from the
+    // collection's first light: 1 if it is a headlight (or the new one), else 2.
+    lights->InitTraversal(it);
+    vtkLight* first = lights->GetNextLight(it);
+    return first == nullptr || first->GetLightType() == VTK_LIGHT_TYPE_HEADLIGHT;
+  }
+  return complexity == 1;
 }
 
-// World-space position and focal point of a light, as the renderer places it: a headlight
-// sits at the camera, a camera light is given in camera coordinates, a scene light in world
-// coordinates (with its own TransformMatrix, if any).
+glm::dvec3 transformedPoint(vtkMatrix4x4* matrix, const double p[3])
+{
+  if (!matrix)
+  {
+    return toGlm(p);
+  }
+  double h[4] = { p[0], p[1], p[2], 1.0 };
+  matrix->MultiplyPoint(h, h);
+  return { h[0] / h[3], h[1] / h[3], h[2] / h[3] };
+}
+
+// World-space position and focal point of a light, as the renderer places it with
+// LightFollowCamera on (the default): vtkRenderer::UpdateLightsGeometryToFollowCamera moves a
+// headlight to the camera and gives a camera light the camera's light transform (camera at
+// (0,0,1), focal point at the origin, units of the camera distance); then
+// vtkLight::GetTransformedPosition applies the light's transform matrix.
 void placeLight(vtkLight* light, vtkCamera* camera, glm::dvec3& position, glm::dvec3& focalPoint)
 {
+  double p[3], f[3];
+  light->GetPosition(p);
+  light->GetFocalPoint(f);
+  vtkMatrix4x4* matrix = light->GetTransformMatrix();
   if (light->LightTypeIsHeadlight())
   {
-    position = toGlm(camera->GetPosition());
-    focalPoint = toGlm(camera->GetFocalPoint());
-    return;
+    camera->GetPosition(p);
+    camera->GetFocalPoint(f);
   }
-  if (light->LightTypeIsCameraLight())
+  else if (light->LightTypeIsCameraLight())
   {
-    vtkNew<vtkMatrix4x4> cameraToWorld;
-    vtkMatrix4x4::Invert(camera->GetModelViewTransformMatrix(), cameraToWorld);
-    double p[4] = { 0, 0, 0, 1 };
-    light->GetPosition(p);
-    cameraToWorld->MultiplyPoint(p, p);
-    double f[4] = { 0, 0, 0, 1 };
-    light->GetFocalPoint(f);
-    cameraToWorld->MultiplyPoint(f, f);
-    position = { p[0] / p[3], p[1] / p[3], p[2] / p[3] };
-    focalPoint = { f[0] / f[3], f[1] / f[3], f[2] / f[3] };
-    return;
+    matrix = camera->GetCameraLightTransformMatrix();
   }
-  position = toGlm(light->GetTransformedPosition());
-  focalPoint = toGlm(light->GetTransformedFocalPoint());
+  position = transformedPoint(matrix, p);
+  focalPoint = transformedPoint(matrix, f);
 }
 
 LightSource lightSource(vtkLight* light, vtkCamera* camera)
@@ -133,7 +153,7 @@ Scene sceneFromVtk(vtkLightCollection* lights, vtkProperty* property, vtkCamera*
   int index = 0;
   for (lights->InitTraversal(it); (light = lights->GetNextLight(it)); ++index)
   {
-    if (light->GetSwitch())
+    if (isOn(light))
     {
       scene.lights.push_back({ "light" + std::to_string(index), lightSource(light, camera) });
     }
