@@ -1,0 +1,309 @@
+// The filter as a VTK user meets it: normals, pass-through of input arrays, errors, thread
+// count, files, and a golden regression on the Stanford bunny.
+#include "MeshFiles.h"
+#include "TestMeshes.h"
+#include "VtkErrorCapture.h"
+
+#include "SceneFile.h"
+#include "vtkLocalReflectanceFilter.h"
+
+#include "vtkCellArray.h"
+#include "vtkCellData.h"
+#include "vtkFloatArray.h"
+#include "vtkIntArray.h"
+#include "vtkPlaneSource.h"
+#include "vtkReverseSense.h"
+#include "vtkSMPTools.h"
+#include "vtkStringArray.h"
+#include "vtkXMLPolyDataReader.h"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <filesystem>
+
+namespace
+{
+using namespace shadelab;
+
+/// A distant light straight down -z, lighting the sphere's top, viewer on +z.
+Scene overheadLight()
+{
+  Scene scene;
+  scene.viewer.viewDirection = { 0, 0, -1 };
+  scene.lights = { { "sun", DistantLight{ { 0, 0, -1 }, Rgb(1.0), 1.0, false } },
+    { "lamp", PointLight{ { 0.5, 0.5, 3.0 }, Rgb(1.0), 4.0, Attenuation{} } },
+    { "sky", AmbientLight{ Rgb(0.5, 0.6, 1.0), 0.2 } } };
+  return scene;
+}
+
+vtkSmartPointer<vtkPolyData> run(vtkPolyData* input, const Scene& scene,
+  const std::vector<std::string>& arrays = { "default" }, bool orient = true)
+{
+  vtkNew<vtkLocalReflectanceFilter> filter;
+  filter->SetInputData(input);
+  filter->SetScene(scene);
+  filter->SetArraySelection(arrays);
+  filter->SetOrientNormalsOutward(orient);
+  filter->Update();
+  auto output = vtkSmartPointer<vtkPolyData>::New();
+  output->ShallowCopy(filter->GetOutput());
+  return output;
+}
+
+std::string normalsReport(vtkPolyData* output)
+{
+  return vtkStringArray::SafeDownCast(output->GetFieldData()->GetAbstractArray("shadelab_normals"))->GetValue(0);
+}
+
+vtkSmartPointer<vtkPolyData> sphereWithoutNormals(bool woundInward)
+{
+  vtkSmartPointer<vtkPolyData> sphere = shadelab::testing::exactSphere(40);
+  sphere->GetPointData()->SetNormals(nullptr);
+  if (!woundInward)
+  {
+    return sphere;
+  }
+  vtkNew<vtkReverseSense> reverse;
+  reverse->SetInputData(sphere);
+  reverse->ReverseCellsOn();
+  reverse->Update();
+  return reverse->GetOutput();
+}
+
+/// The smallest n.(p - centre) over the vertices: > 0 when every normal points outward.
+double smallestOutwardness(vtkPolyData* mesh, vtkDataArray* normals)
+{
+  double smallest = 1e300;
+  for (vtkIdType i = 0; i < mesh->GetNumberOfPoints(); ++i)
+  {
+    double p[3], n[3];
+    mesh->GetPoint(i, p);
+    normals->GetTuple(i, n);
+    smallest = std::min(smallest, n[0] * p[0] + n[1] * p[1] + n[2] * p[2]);
+  }
+  return smallest;
+}
+
+TEST(Normals, ComputedWithoutSplittingAndTurnedOutward)
+{
+  vtkSmartPointer<vtkPolyData> inward = sphereWithoutNormals(true);
+  vtkSmartPointer<vtkPolyData> output = run(inward, overheadLight());
+  EXPECT_EQ(output->GetNumberOfPoints(), inward->GetNumberOfPoints());
+  vtkDataArray* normals = output->GetPointData()->GetNormals();
+  ASSERT_NE(normals, nullptr);
+  EXPECT_STREQ(normals->GetName(), "Normals");
+  EXPECT_GT(smallestOutwardness(output, normals), 0.99);
+  const std::string report = normalsReport(output);
+  EXPECT_NE(report.find("The mesh has no point normals: computed them"), std::string::npos) << report;
+  EXPECT_NE(report.find("They point into the mesh"), std::string::npos) << report;
+  EXPECT_NE(report.find("; flipped them outward."), std::string::npos) << report;
+}
+
+TEST(Normals, OutwardWindingNeedsNoFlip)
+{
+  vtkSmartPointer<vtkPolyData> output = run(sphereWithoutNormals(false), overheadLight());
+  EXPECT_GT(smallestOutwardness(output, output->GetPointData()->GetNormals()), 0.99);
+  EXPECT_EQ(normalsReport(output),
+    "The mesh has no point normals: computed them (vtkPolyDataNormals, no splitting) and added "
+    "them as 'Normals'.");
+}
+
+TEST(Normals, OrientationCanBeLeftAlone)
+{
+  vtkSmartPointer<vtkPolyData> output = run(sphereWithoutNormals(true), overheadLight(), { "default" }, false);
+  EXPECT_LT(smallestOutwardness(output, output->GetPointData()->GetNormals()), -0.99);
+  const std::string report = normalsReport(output);
+  EXPECT_NE(report.find("; kept as they are, because orienting them outward is off."), std::string::npos) << report;
+}
+
+TEST(Normals, InwardInputNormalsAreUsedFlippedButPassThroughUnchanged)
+{
+  vtkSmartPointer<vtkPolyData> sphere = shadelab::testing::exactSphere(40);
+  vtkDataArray* normals = sphere->GetPointData()->GetNormals();
+  for (vtkIdType i = 0; i < normals->GetNumberOfTuples(); ++i)
+  {
+    double n[3];
+    normals->GetTuple(i, n);
+    normals->SetTuple3(i, -n[0], -n[1], -n[2]);
+  }
+  vtkSmartPointer<vtkPolyData> output = run(sphere, overheadLight(), { "sun_cos_incidence" });
+  EXPECT_EQ(output->GetPointData()->GetNormals(), normals); // the same array, untouched
+  EXPECT_LT(smallestOutwardness(output, normals), -0.99);
+  vtkDataArray* cosine = output->GetPointData()->GetArray("sun_cos_incidence");
+  EXPECT_DOUBLE_EQ(cosine->GetComponent(0, 0), 1.0); // vertex 0 is the top of the sphere
+  EXPECT_NE(normalsReport(output).find("; shaded with them flipped outward (the input array is unchanged)."),
+    std::string::npos);
+}
+
+TEST(Normals, OpenSheetIsNeverFlipped)
+{
+  vtkNew<vtkPlaneSource> plane; // normals +z
+  plane->SetResolution(10, 10);
+  plane->Update();
+  vtkSmartPointer<vtkPolyData> output = run(plane->GetOutput(), overheadLight(), { "sun_cos_incidence" });
+  EXPECT_EQ(normalsReport(output), "Using the mesh's point normals 'Normals'.");
+  EXPECT_DOUBLE_EQ(output->GetPointData()->GetArray("sun_cos_incidence")->GetComponent(0, 0), 1.0);
+}
+
+TEST(PassThrough, InputArraysAndAttributesAreUntouched)
+{
+  vtkSmartPointer<vtkPolyData> sphere = shadelab::testing::exactSphere(20);
+  vtkNew<vtkFloatArray> temperature;
+  temperature->SetName("temperature");
+  temperature->SetNumberOfTuples(sphere->GetNumberOfPoints());
+  temperature->FillValue(21.5f);
+  sphere->GetPointData()->SetScalars(temperature);
+  vtkNew<vtkIntArray> region;
+  region->SetName("region");
+  region->SetNumberOfTuples(sphere->GetNumberOfCells());
+  region->FillValue(7);
+  sphere->GetCellData()->AddArray(region);
+
+  vtkSmartPointer<vtkPolyData> output = run(sphere, overheadLight(), { "all" });
+  EXPECT_EQ(output->GetPointData()->GetScalars(), temperature.Get());
+  EXPECT_EQ(output->GetPointData()->GetNormals(), sphere->GetPointData()->GetNormals());
+  EXPECT_EQ(output->GetCellData()->GetArray("region"), region.Get());
+  EXPECT_EQ(output->GetPoints(), sphere->GetPoints());
+  EXPECT_EQ(output->GetPolys(), sphere->GetPolys());
+  EXPECT_EQ(temperature->GetValue(5), 21.5f);
+}
+
+std::string filterError(vtkPolyData* input, const Scene& scene, const std::vector<std::string>& arrays,
+  const std::string& prefix = "")
+{
+  vtkNew<vtkLocalReflectanceFilter> filter;
+  vtkNew<app::VtkErrorCapture> errors;
+  errors->watch(filter);
+  filter->SetInputData(input);
+  filter->SetScene(scene);
+  filter->SetArraySelection(arrays);
+  filter->SetArrayPrefix(prefix);
+  filter->Update();
+  return errors->message();
+}
+
+TEST(FilterErrors, ExactMessages)
+{
+  vtkNew<vtkPolyData> empty;
+  EXPECT_EQ(filterError(empty, overheadLight(), { "default" }), "the mesh has no points");
+
+  vtkNew<vtkPolyData> cloud;
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkCellArray> vertices;
+  for (int i = 0; i < 3; ++i)
+  {
+    vertices->InsertNextCell(1);
+    vertices->InsertCellPoint(points->InsertNextPoint(i, 0, 0));
+  }
+  cloud->SetPoints(points);
+  cloud->SetVerts(vertices);
+  EXPECT_EQ(filterError(cloud, overheadLight(), { "default" }),
+    "the mesh has no polygons (3 vertex or line cells): surface shading needs a surface");
+
+  vtkSmartPointer<vtkPolyData> sphere = shadelab::testing::exactSphere(10);
+  Scene bad = overheadLight();
+  std::get<PointLight>(bad.lights[1].source).intensity = -1;
+  EXPECT_EQ(filterError(sphere, bad, { "default" }), "scene /lights/1/intensity: must be a number >= 0");
+
+  const std::string unknown = filterError(sphere, overheadLight(), { "total", "bogus" });
+  EXPECT_EQ(unknown.substr(0, unknown.find(':')), "unknown array 'bogus'; this scene has");
+
+  vtkNew<vtkFloatArray> clash;
+  clash->SetName("total");
+  clash->SetNumberOfTuples(sphere->GetNumberOfPoints());
+  sphere->GetPointData()->AddArray(clash);
+  EXPECT_EQ(filterError(sphere, overheadLight(), { "default" }),
+    "the input already has a point array named 'total', which this filter would write: set an "
+    "array prefix to keep both");
+  EXPECT_EQ(filterError(sphere, overheadLight(), { "default" }, "shade_"), "");
+}
+
+/// Bitwise equality of two arrays of the same type and shape.
+void expectSameBits(vtkDataArray* a, vtkDataArray* b, const std::string& name)
+{
+  ASSERT_NE(a, nullptr) << name;
+  ASSERT_NE(b, nullptr) << name;
+  ASSERT_EQ(a->GetDataType(), b->GetDataType()) << name;
+  ASSERT_EQ(a->GetNumberOfValues(), b->GetNumberOfValues()) << name;
+  const std::size_t bytes = a->GetNumberOfValues() * a->GetDataTypeSize();
+  EXPECT_EQ(std::memcmp(a->GetVoidPointer(0), b->GetVoidPointer(0), bytes), 0) << name;
+}
+
+void expectSamePointArrays(vtkPolyData* expected, vtkPolyData* actual)
+{
+  vtkPointData* want = expected->GetPointData();
+  ASSERT_EQ(want->GetNumberOfArrays(), actual->GetPointData()->GetNumberOfArrays());
+  for (int a = 0; a < want->GetNumberOfArrays(); ++a)
+  {
+    const std::string name = want->GetArrayName(a);
+    expectSameBits(want->GetArray(a), actual->GetPointData()->GetArray(name.c_str()), name);
+  }
+}
+
+TEST(Threads, OneAndTwoThreadsGiveTheSameBits)
+{
+  vtkSmartPointer<vtkPolyData> sphere = shadelab::testing::exactSphere(400); // 160k points
+  vtkSmartPointer<vtkPolyData> one, two;
+  vtkSMPTools::LocalScope(vtkSMPTools::Config{ 1 }, [&] { one = run(sphere, overheadLight(), { "all" }); });
+  vtkSMPTools::LocalScope(vtkSMPTools::Config{ 2 }, [&] { two = run(sphere, overheadLight(), { "all" }); });
+  expectSamePointArrays(one, two);
+}
+
+TEST(Files, WrittenArraysReadBackBitIdentical)
+{
+  const std::filesystem::path folder = std::filesystem::temp_directory_path() / "shadelab_roundtrip";
+  std::filesystem::create_directories(folder);
+  vtkSmartPointer<vtkPolyData> sphere = shadelab::testing::exactSphere(30);
+  for (int precision : { vtkAlgorithm::SINGLE_PRECISION, vtkAlgorithm::DOUBLE_PRECISION })
+  {
+    vtkNew<vtkLocalReflectanceFilter> filter;
+    filter->SetInputData(sphere);
+    filter->SetScene(overheadLight());
+    filter->SetArraySelection({ "all" });
+    filter->SetOutputPrecision(precision);
+    filter->Update();
+    for (const char* extension : { ".vtp", ".vtk" })
+    {
+      SCOPED_TRACE(std::string(extension) + (precision == vtkAlgorithm::SINGLE_PRECISION ? " float32" : " float64"));
+      const std::string file = (folder / (std::string("sphere") + extension)).string();
+      app::writeMesh(filter->GetOutput(), file);
+      vtkSmartPointer<vtkPolyData> back = app::readMesh(file);
+      expectSamePointArrays(filter->GetOutput(), back);
+    }
+  }
+  std::filesystem::remove_all(folder);
+}
+
+TEST(Golden, StanfordBunnyUnderTheStudioScene)
+{
+  // Regenerate (after a deliberate change) with:
+  //   build/bin/shadelab shade data/meshes/bunny_zipper.ply --scene data/scenes/studio.json \
+  //     --arrays 'default,*_cos_incidence,rim_spot_factor,key_distance' -o data/golden/bunny_studio.vtp
+  const std::string data = SHADELAB_SOURCE_DIR "/data/";
+  vtkSmartPointer<vtkPolyData> bunny = app::readMesh(data + "meshes/bunny_zipper.ply");
+  vtkSmartPointer<vtkPolyData> output = run(bunny, readSceneFile(data + "scenes/studio.json"),
+    { "default", "*_cos_incidence", "rim_spot_factor", "key_distance" });
+  vtkSmartPointer<vtkPolyData> golden = app::readMesh(data + "golden/bunny_studio.vtp");
+
+  // Float32 values of order 1: 1e-6 allows a few units in the last place for another compiler
+  // or CPU; a change of formula moves values by far more.
+  constexpr double tolerance = 1e-6;
+  vtkPointData* want = golden->GetPointData();
+  ASSERT_EQ(want->GetNumberOfArrays(), output->GetPointData()->GetNumberOfArrays());
+  for (int a = 0; a < want->GetNumberOfArrays(); ++a)
+  {
+    const std::string name = want->GetArrayName(a);
+    vtkDataArray* expected = want->GetArray(a);
+    vtkDataArray* actual = output->GetPointData()->GetArray(name.c_str());
+    ASSERT_NE(actual, nullptr) << name;
+    ASSERT_EQ(actual->GetNumberOfValues(), expected->GetNumberOfValues()) << name;
+    double worst = 0;
+    for (vtkIdType v = 0; v < expected->GetNumberOfValues(); ++v)
+    {
+      worst = std::max(worst, std::abs(actual->GetVariantValue(v).ToDouble() - expected->GetVariantValue(v).ToDouble()));
+    }
+    EXPECT_LE(worst, name == "shading_flags" ? 0.0 : tolerance) << name;
+  }
+}
+}
