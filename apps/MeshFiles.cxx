@@ -3,7 +3,7 @@
 #include "VtkErrorCapture.h"
 
 #include "vtkAlgorithm.h"
-#include "vtkExecutive.h"
+#include "vtkErrorCode.h"
 #include "vtkOBJReader.h"
 #include "vtkPLYReader.h"
 #include "vtkPolyDataReader.h"
@@ -40,6 +40,10 @@ vtkSmartPointer<vtkAlgorithm> readerFor(const std::string& fileName, const std::
   if (extension == ".vtp")
   {
     auto reader = vtkSmartPointer<vtkXMLPolyDataReader>::New();
+    if (!reader->CanReadFile(fileName.c_str()))
+    {
+      throw UserError(fileName + ": not a VTK XML PolyData file (a .vtp must be VTK XML of type PolyData)");
+    }
     reader->SetFileName(fileName.c_str());
     return reader;
   }
@@ -56,6 +60,10 @@ vtkSmartPointer<vtkAlgorithm> readerFor(const std::string& fileName, const std::
   }
   if (extension == ".ply")
   {
+    if (!vtkPLYReader::CanReadFile(fileName.c_str()))
+    {
+      throw UserError(fileName + ": not a PLY file (it does not start with a PLY header)");
+    }
     auto reader = vtkSmartPointer<vtkPLYReader>::New();
     reader->SetFileName(fileName.c_str());
     return reader;
@@ -91,13 +99,15 @@ vtkSmartPointer<vtkPolyData> readMesh(const std::string& fileName)
   vtkSmartPointer<vtkAlgorithm> reader = readerFor(fileName, extension);
   vtkNew<VtkErrorCapture> errors;
   errors->watch(reader);
-  errors->watch(reader->GetExecutive());
   reader->Update();
   auto mesh = vtkPolyData::SafeDownCast(reader->GetOutputDataObject(0));
-  if (errors->failed() || !mesh)
+  const unsigned long code = reader->GetErrorCode();
+  if (errors->failed() || code != vtkErrorCode::NoError || !mesh)
   {
-    throw UserError(fileName + ": cannot be read as " + extension + ": " +
-      (errors->failed() ? errors->message() : "the reader produced no polydata"));
+    const std::string reason = errors->failed() ? errors->message()
+      : code != vtkErrorCode::NoError           ? vtkErrorCode::GetStringFromErrorCode(code)
+                                                : "the reader produced no polydata";
+    throw UserError(fileName + ": cannot be read as " + extension + ": " + reason);
   }
   return mesh;
 }
@@ -116,7 +126,7 @@ void checkWritable(const std::string& fileName)
   }
 }
 
-void writeMesh(vtkPolyData* mesh, const std::string& fileName)
+void writeMesh(vtkPolyData* mesh, const std::string& fileName, Compression compression)
 {
   checkWritable(fileName);
   // Same folder as the target, so the final rename cannot cross file systems.
@@ -131,7 +141,9 @@ void writeMesh(vtkPolyData* mesh, const std::string& fileName)
     writer->SetFileName(temporary.c_str());
     writer->SetDataModeToAppended();
     writer->EncodeAppendedDataOff(); // raw binary, not base64
-    writer->SetCompressorTypeToZLib();
+    writer->SetCompressorType(compression == Compression::LZ4 ? vtkXMLWriterBase::LZ4
+        : compression == Compression::ZLib                   ? vtkXMLWriterBase::ZLIB
+                                                             : vtkXMLWriterBase::NONE);
     written = writer->Write();
   }
   else

@@ -1,0 +1,202 @@
+// The shadelab command as a user runs it: exit codes and the exact message for each kind of
+// bad input, and no partial or spoilt output file after a failure.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <sys/wait.h>
+
+namespace
+{
+namespace fs = std::filesystem;
+
+struct Result
+{
+  int exitCode;
+  std::string out;
+  std::string err;
+};
+
+class Cli : public ::testing::Test
+{
+protected:
+  void SetUp() override
+  {
+    folder = fs::temp_directory_path() /
+      ("shadelab_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(folder);
+    fs::create_directories(folder);
+  }
+  void TearDown() override { fs::remove_all(folder); }
+
+  std::string file(const std::string& name, const std::string& content)
+  {
+    const std::string path = (folder / name).string();
+    std::ofstream(path) << content;
+    return path;
+  }
+
+  static std::string slurp(const fs::path& path)
+  {
+    std::ifstream in(path);
+    std::ostringstream text;
+    text << in.rdbuf();
+    return text.str();
+  }
+
+  Result shadelab(const std::string& arguments)
+  {
+    const fs::path out = folder / "stdout.txt", err = folder / "stderr.txt";
+    const std::string command = std::string(SHADELAB_EXECUTABLE) + " " + arguments + " > " +
+      out.string() + " 2> " + err.string();
+    const int status = std::system(command.c_str());
+    Result result{ WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err) };
+    fs::remove(out);
+    fs::remove(err);
+    return result;
+  }
+
+  /// Runs shade with a mesh and scene, expecting failure with exactly this one-line message.
+  void expectError(const std::string& arguments, const std::string& message)
+  {
+    const Result result = shadelab(arguments);
+    EXPECT_EQ(result.exitCode, 1) << arguments;
+    EXPECT_EQ(result.err, "shadelab: " + message + "\n") << arguments;
+    EXPECT_EQ(result.out, "") << arguments;
+  }
+
+  std::string goodScene()
+  {
+    return file("scene.json",
+      R"({ "lights": [ { "name": "sun", "type": "distant", "direction": [0, 0, -1] } ] })");
+  }
+
+  std::string goodMesh() { return SHADELAB_SOURCE_DIR "/data/meshes/bunny_zipper.ply"; }
+
+  fs::path folder;
+};
+
+TEST_F(Cli, MissingOrUnreadableMesh)
+{
+  const std::string scene = goodScene(), out = (folder / "out.vtp").string();
+  const std::string missing = (folder / "nope.ply").string();
+  expectError("shade " + missing + " -s " + scene + " -o " + out, missing + ": no such file");
+  fs::create_directories(folder / "dir.ply");
+  const std::string directory = (folder / "dir.ply").string();
+  expectError("shade " + directory + " -s " + scene + " -o " + out,
+    directory + ": cannot be read (is it a readable file?)");
+  const std::string garbage = file("garbage.ply", "not a mesh\n");
+  expectError("shade " + garbage + " -s " + scene + " -o " + out,
+    garbage + ": not a PLY file (it does not start with a PLY header)");
+  const std::string unknown = file("mesh.xyz", "1 2 3\n");
+  expectError("shade " + unknown + " -s " + scene + " -o " + out,
+    unknown + ": unknown mesh format '.xyz'; ShadeLab reads .vtp, .vtk, .ply, .obj, .stl");
+}
+
+TEST_F(Cli, EmptyMeshAndMeshWithoutPolygons)
+{
+  const std::string scene = goodScene(), out = (folder / "out.vtp").string();
+  const std::string empty = file("empty.vtk", "# vtk DataFile Version 3.0\nempty\nASCII\nDATASET POLYDATA\nPOINTS 0 float\n");
+  expectError("shade " + empty + " -s " + scene + " -o " + out, empty + ": the mesh has no points");
+  const std::string points = file("points.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\np 1 2 3\n");
+  expectError("shade " + points + " -s " + scene + " -o " + out,
+    points + ": the mesh has no polygons (1 vertex or line cells): surface shading needs a surface");
+}
+
+TEST_F(Cli, BadScenes)
+{
+  const std::string mesh = goodMesh(), out = (folder / "out.vtp").string();
+  const std::string malformed = file("malformed.json", "{ \"lights\": [\n  { \"type\": \"distant\" \n");
+  expectError("shade " + mesh + " -s " + malformed + " -o " + out,
+    malformed + ": not valid JSON: parse error at line 3, column 1: syntax error while parsing "
+                "object - unexpected end of input; expected '}'");
+  const std::string laser = file("laser.json", R"({ "lights": [ { "type": "laser" } ] })");
+  expectError("shade " + mesh + " -s " + laser + " -o " + out,
+    laser + ": /lights/0/type: \"laser\" is not one of \"distant\", \"headlight\", \"point\", \"spot\", \"ambient\"");
+  const std::string negative = file("negative.json",
+    R"({ "lights": [ { "type": "point", "position": [0, 0, 1], "intensity": -3 } ] })");
+  expectError("shade " + mesh + " -s " + negative + " -o " + out,
+    negative + ": /lights/0/intensity: must be a number >= 0");
+  const std::string missing = file("missing.json", R"({ "lights": [ { "type": "spot", "direction": [0, 0, -1] } ] })");
+  expectError("shade " + mesh + " -s " + missing + " -o " + out, missing + ": /lights/0/position: missing");
+  const std::string absent = (folder / "absent.json").string();
+  expectError("shade " + mesh + " -s " + absent + " -o " + out,
+    absent + ": cannot open the scene file (does it exist, and is it readable?)");
+}
+
+TEST_F(Cli, UnknownArrayNameAndBadOutput)
+{
+  const std::string mesh = goodMesh(), scene = goodScene();
+  const Result unknown = shadelab("shade " + mesh + " -s " + scene + " -o " + (folder / "o.vtp").string() +
+    " --arrays total,sun_glare");
+  EXPECT_EQ(unknown.exitCode, 1);
+  EXPECT_EQ(unknown.err,
+    "shadelab: --arrays: unknown array 'sun_glare'; this scene has: default, totals, all, "
+    "*_to_light, *_distance, *_attenuation, *_spot_factor, *_cos_incidence, *_incidence_angle, "
+    "*_reflection, *_r_dot_v, *_half_vector, *_n_dot_h, *_diffuse, *_specular, ambient, diffuse, "
+    "specular, total, shading_flags, sun_to_light, sun_attenuation, sun_spot_factor, "
+    "sun_cos_incidence, sun_incidence_angle, sun_reflection, sun_r_dot_v, sun_half_vector, "
+    "sun_n_dot_h, sun_diffuse, sun_specular\n");
+  const std::string png = (folder / "out.png").string();
+  expectError("shade " + mesh + " -s " + scene + " -o " + png, png + ": cannot write '.png' files; use .vtp, .vtk");
+  const std::string nowhere = (folder / "no" / "such" / "out.vtp").string();
+  expectError("shade " + mesh + " -s " + scene + " -o " + nowhere,
+    nowhere + ": the folder " + (folder / "no" / "such").string() + " does not exist");
+}
+
+TEST_F(Cli, FailedWriteLeavesNothingBehind)
+{
+  // The target is a directory: the data are written to a temporary file, the final rename
+  // fails, and the temporary file must be gone.
+  const fs::path target = folder / "taken.vtp";
+  fs::create_directories(target);
+  const Result result = shadelab("shade " + goodMesh() + " -s " + goodScene() + " -o " + target.string());
+  EXPECT_EQ(result.exitCode, 1);
+  EXPECT_EQ(result.err, "shadelab: " + target.string() + ": cannot be written: Is a directory\n");
+  std::vector<std::string> left;
+  for (const auto& entry : fs::directory_iterator(folder))
+  {
+    left.push_back(entry.path().filename().string());
+  }
+  std::sort(left.begin(), left.end());
+  EXPECT_EQ(left, (std::vector<std::string>{ "scene.json", "taken.vtp" }));
+}
+
+TEST_F(Cli, FailedRunKeepsTheExistingOutput)
+{
+  const std::string out = file("out.vtp", "an earlier good result");
+  const std::string bad = file("bad.json", R"({ "lights": [ { "type": "distant" } ] })");
+  EXPECT_EQ(shadelab("shade " + goodMesh() + " -s " + bad + " -o " + out).exitCode, 1);
+  EXPECT_EQ(slurp(out), "an earlier good result");
+}
+
+TEST_F(Cli, ShadesAndSummarises)
+{
+  const std::string out = file("out.vtp", "an earlier result, to be replaced");
+  const Result result = shadelab("shade " + goodMesh() + " -s " + goodScene() + " -o " + out +
+    " --arrays default,sun_cos_incidence --precision float64 --threads 1");
+  EXPECT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_EQ(result.err, "");
+  EXPECT_NE(result.out.find("  mesh: 35947 vertices, 69451 polygons and strips\n"), std::string::npos) << result.out;
+  EXPECT_NE(result.out.find("    sun_cos_incidence            1     "), std::string::npos) << result.out;
+  EXPECT_NE(result.out.find("(1 threads, float64)"), std::string::npos) << result.out;
+  EXPECT_NE(result.out.find("flipped them outward."), std::string::npos) << result.out;
+  EXPECT_EQ(slurp(out).rfind("<VTKFile type=\"PolyData\"", 0), 0u); // replaced by a VTK XML file
+}
+
+TEST_F(Cli, HelpAndUsageErrors)
+{
+  const Result help = shadelab("shade --help");
+  EXPECT_EQ(help.exitCode, 0);
+  EXPECT_NE(help.out.find("--arrays"), std::string::npos);
+  EXPECT_NE(help.out.find("Reads .vtp, .vtk, .ply, .obj, .stl"), std::string::npos);
+  const Result noScene = shadelab("shade " + goodMesh() + " -o out.vtp");
+  EXPECT_NE(noScene.exitCode, 0);
+  EXPECT_EQ(noScene.err, "--scene is required\nRun with --help for more information.\n");
+  const Result arrays = shadelab("arrays --scene " + goodScene());
+  EXPECT_EQ(arrays.exitCode, 0);
+  EXPECT_NE(arrays.out.find("  sun_r_dot_v                  1  light 'sun': r.v"), std::string::npos) << arrays.out;
+}
+}
