@@ -186,6 +186,35 @@ TEST_F(Cli, ShadesAndSummarises)
   EXPECT_EQ(slurp(out).rfind("<VTKFile type=\"PolyData\"", 0), 0u); // replaced by a VTK XML file
 }
 
+TEST_F(Cli, ReadsObjAndStlAndWritesLegacyVtk)
+{
+  // A tetrahedron in both formats: 4 vertices (OBJ) and 12 unshared corners (STL, which
+  // vtkSTLReader merges back to 4).
+  const std::string obj = file("tetra.obj",
+    "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n");
+  std::string stl = "solid tetra\n";
+  for (const char* facet : { "0 0 0  0 1 0  1 0 0", "0 0 0  1 0 0  0 0 1", "0 0 0  0 0 1  0 1 0", "1 0 0  0 1 0  0 0 1" })
+  {
+    std::istringstream corners(facet);
+    stl += "facet normal 0 0 0\nouter loop\n";
+    for (int c = 0; c < 3; ++c)
+    {
+      double x, y, z;
+      corners >> x >> y >> z;
+      stl += "vertex " + std::to_string(x) + " " + std::to_string(y) + " " + std::to_string(z) + "\n";
+    }
+    stl += "endloop\nendfacet\n";
+  }
+  const std::string stlFile = file("tetra.stl", stl + "endsolid tetra\n");
+  for (const std::string& mesh : { obj, stlFile })
+  {
+    const Result result = shadelab("shade " + mesh + " -s " + goodScene() + " -o " + (folder / "tetra.vtk").string());
+    EXPECT_EQ(result.exitCode, 0) << result.err;
+    EXPECT_NE(result.out.find("  mesh: 4 vertices, 4 polygons and strips\n"), std::string::npos) << result.out;
+    EXPECT_EQ(slurp(folder / "tetra.vtk").rfind("# vtk DataFile Version", 0), 0u);
+  }
+}
+
 TEST_F(Cli, HelpAndUsageErrors)
 {
   const Result help = shadelab("shade --help");

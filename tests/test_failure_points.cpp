@@ -170,4 +170,16 @@ TYPED_TEST(FailurePoints, TwoSidedFlipsNormalsFacingAway)
   EXPECT_EQ(run.value("lamp_cos_incidence", 1), T(1));
   EXPECT_EQ(run.flags[1], 0);
 }
+
+TEST(DistantLight, IntensityFromTheDirectionsLength)
+{
+  // Lecture section 6: the strength of a distant light may be the length of its direction.
+  Scene scene = oneLightScene(DistantLight{ { 0, 0, -3 }, Rgb(1.0), 0.5, true }, SpecularModel::None, 1.0);
+  const KernelHarness<double> run(scene, { Vec3<double>(0) }, { Vec3<double>(0, 0, 1) });
+  EXPECT_DOUBLE_EQ(run.value("lamp_diffuse", 0), 0.5 * 0.5 * 3.0); // kd x intensity x |direction|
+  std::get<DistantLight>(scene.lights[0].source).intensityFromLength = false;
+  const KernelHarness<double> plain(scene, { Vec3<double>(0) }, { Vec3<double>(0, 0, 1) });
+  EXPECT_DOUBLE_EQ(plain.value("lamp_diffuse", 0), 0.5 * 0.5);
 }
+}
+
