@@ -3,6 +3,7 @@
 // view coordinates as the shader does, for several light sets built from vtkLight,
 // vtkProperty and vtkCamera. ShadeLab works in world coordinates; the two must agree.
 #include "TestMeshes.h"
+#include "VtkLightSets.h"
 
 #include "ShadeLabVtkScene.h"
 #include "vtkLocalReflectanceFilter.h"
@@ -154,41 +155,17 @@ private:
   std::vector<ShaderLight> lights_;
 };
 
-class VtkRendererMode : public ::testing::Test
+class VtkRendererMode : public shadelab::testing::VtkLightSets
 {
 protected:
-  void SetUp() override
-  {
-    camera->SetPosition(0.5, 2.0, 6.0);
-    camera->SetFocalPoint(0.2, 0.0, 0.0);
-    camera->SetViewUp(0.0, 1.0, 0.2);
-    camera->OrthogonalizeViewUp();
-    property->SetAmbient(0.1);
-    property->SetAmbientColor(1.0, 0.5, 0.25);
-    property->SetDiffuse(0.7);
-    property->SetDiffuseColor(0.2, 0.4, 0.9);
-    property->SetSpecular(0.5);
-    property->SetSpecularColor(1.0, 1.0, 0.5);
-    property->SetSpecularPower(20.0);
-  }
-
-  vtkSmartPointer<vtkLight> addLight(int type, dvec3 position, dvec3 focalPoint)
-  {
-    auto light = vtkSmartPointer<vtkLight>::New();
-    light->SetLightType(type);
-    light->SetPosition(position.x, position.y, position.z);
-    light->SetFocalPoint(focalPoint.x, focalPoint.y, focalPoint.z);
-    lights->AddItem(light);
-    return light;
-  }
-
   /// Shades an off-centre sphere (so that some vertices face away from the camera and are
   /// flipped) and compares the total at every vertex with the shader reference.
   void expectShaderResult(int complexity)
   {
     const shadelab::Scene scene = shadelab::sceneFromVtk(lights, property, camera);
     EXPECT_EQ(scene.vtkLoneHeadlight, complexity == 1);
-    vtkSmartPointer<vtkPolyData> sphere = shadelab::testing::exactSphere(60, { 0.3, -0.2, 0.1 }, 1.2);
+    vtkSmartPointer<vtkPolyData> sphere =
+      shadelab::testing::exactSphere(60, shadelab::testing::litSphereCentre, shadelab::testing::litSphereRadius);
     vtkNew<vtkLocalReflectanceFilter> filter;
     filter->SetInputData(sphere);
     filter->SetScene(scene);
@@ -211,17 +188,11 @@ protected:
     }
     EXPECT_GT(largest, 0.3); // the light set really lights the sphere
   }
-
-  vtkNew<vtkLightCollection> lights;
-  vtkNew<vtkProperty> property;
-  vtkNew<vtkCamera> camera;
 };
 
 TEST_F(VtkRendererMode, LoneHeadlight)
 {
-  auto head = addLight(VTK_LIGHT_TYPE_HEADLIGHT, { 0, 0, 1 }, { 0, 0, 0 });
-  head->SetDiffuseColor(1.0, 0.9, 0.8);
-  head->SetIntensity(0.8);
+  addLoneHeadlight();
   expectShaderResult(1);
 }
 
@@ -246,42 +217,19 @@ TEST_F(VtkRendererMode, NoLightSwitchedOnMeansVtksAutomaticHeadlight)
 
 TEST_F(VtkRendererMode, LightKitOfDirectionalLights)
 {
-  addLight(VTK_LIGHT_TYPE_HEADLIGHT, { 0, 0, 1 }, { 0, 0, 0 })->SetIntensity(0.5);
-  auto key = addLight(VTK_LIGHT_TYPE_SCENE_LIGHT, { 3, 4, 2 }, { 0, 0, 0 });
-  key->SetDiffuseColor(1.0, 0.8, 0.6);
-  addLight(VTK_LIGHT_TYPE_CAMERA_LIGHT, { 1, 0, 1 }, { 0, 0, 0 })->SetIntensity(0.3);
+  addLightKit();
   expectShaderResult(2);
 }
 
 TEST_F(VtkRendererMode, SwitchedOffSceneLightStillEndsTheLoneHeadlightShader)
 {
-  // VTK 9.1's UpdateLights checks the light type outside its "switched on" test, so a
-  // switched-off scene light after the headlight selects the general shader.
-  addLight(VTK_LIGHT_TYPE_HEADLIGHT, { 0, 0, 1 }, { 0, 0, 0 });
-  addLight(VTK_LIGHT_TYPE_SCENE_LIGHT, { 3, 4, 2 }, { 0, 0, 0 })->SwitchOff();
+  addHeadlightAndSwitchedOffSceneLight();
   expectShaderResult(2);
 }
 
 TEST_F(VtkRendererMode, PositionalSpotAndPointLights)
 {
-  auto spot = addLight(VTK_LIGHT_TYPE_SCENE_LIGHT, { 2.5, 3.0, 2.0 }, { 0.3, -0.2, 0.1 });
-  spot->PositionalOn();
-  spot->SetConeAngle(25);
-  spot->SetExponent(3);
-  spot->SetAttenuationValues(1.0, 0.2, 0.05);
-  spot->SetIntensity(2.0);
-  auto bulb = addLight(VTK_LIGHT_TYPE_SCENE_LIGHT, { -2.0, 1.0, 3.0 }, { 0, 0, 0 });
-  bulb->PositionalOn();
-  bulb->SetConeAngle(90); // no cone
-  bulb->SetAttenuationValues(0.5, 0.0, 0.3);
-  bulb->SetDiffuseColor(0.6, 0.8, 1.0);
-  addLight(VTK_LIGHT_TYPE_SCENE_LIGHT, { 0, 5, 0 }, { 0, 0, 0 })->SetIntensity(0.4);
-  // A positional camera light: its position is in units of the camera distance, so a wrong
-  // camera-light transform moves it and changes its attenuation and cone.
-  auto lamp = addLight(VTK_LIGHT_TYPE_CAMERA_LIGHT, { 0.2, 0.3, 0.8 }, { 0.0, 0.0, 0.0 });
-  lamp->PositionalOn();
-  lamp->SetConeAngle(20);
-  lamp->SetAttenuationValues(1.0, 0.1, 0.02);
+  addPositionalLights();
   expectShaderResult(3);
 }
 }

@@ -1,0 +1,147 @@
+// The vtk model against what VTK 9.1's OpenGL2 renderer really draws. Each vertex of a sphere
+// is rendered as a one-pixel point carrying its normal: the shader then lights it with exactly
+// that position and normal, with no interpolation, so the pixel must hold ShadeLab's total,
+// clamped to [0, 1] and quantised to 8 bits. Runs under Xvfb (Mesa's software OpenGL).
+#include "TestMeshes.h"
+#include "VtkLightSets.h"
+
+#include "ShadeLabVtkScene.h"
+#include "vtkLocalReflectanceFilter.h"
+
+#include "vtkActor.h"
+#include "vtkCellArray.h"
+#include "vtkImageData.h"
+#include "vtkPolyDataMapper.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
+#include "vtkUnsignedCharArray.h"
+#include "vtkWindowToImageFilter.h"
+
+#include <cmath>
+#include <map>
+
+namespace
+{
+using shadelab::testing::litSphereCentre;
+using shadelab::testing::litSphereRadius;
+
+constexpr int windowSize = 800;
+
+class RealRender : public shadelab::testing::VtkLightSets
+{
+protected:
+  void expectPixelsMatch(bool lone)
+  {
+    const shadelab::Scene scene = shadelab::sceneFromVtk(lights, property, camera);
+    ASSERT_EQ(scene.vtkLoneHeadlight, lone);
+    vtkSmartPointer<vtkPolyData> sphere = shadelab::testing::exactSphere(120, litSphereCentre, litSphereRadius);
+    vtkNew<vtkLocalReflectanceFilter> filter;
+    filter->SetInputData(sphere);
+    filter->SetScene(scene);
+    filter->SetArraySelection({ "total" });
+    filter->SetOutputPrecision(vtkAlgorithm::DOUBLE_PRECISION);
+    filter->Update();
+    vtkDataArray* total = filter->GetOutput()->GetPointData()->GetArray("total");
+
+    // The same vertices and normals as a cloud of vertex cells.
+    vtkNew<vtkPolyData> cloud;
+    cloud->SetPoints(sphere->GetPoints());
+    cloud->GetPointData()->SetNormals(sphere->GetPointData()->GetNormals());
+    vtkNew<vtkCellArray> vertices;
+    for (vtkIdType i = 0; i < sphere->GetNumberOfPoints(); ++i)
+    {
+      vertices->InsertNextCell(1, &i);
+    }
+    cloud->SetVerts(vertices);
+    vtkNew<vtkPolyDataMapper> mapper;
+    mapper->SetInputData(cloud);
+    mapper->ScalarVisibilityOff();
+    vtkNew<vtkActor> actor;
+    actor->SetMapper(mapper);
+    actor->SetProperty(property);
+    vtkNew<vtkRenderer> renderer;
+    renderer->AddActor(actor);
+    renderer->SetActiveCamera(camera);
+    renderer->SetLightCollection(lights);
+    renderer->ResetCameraClippingRange();
+    vtkNew<vtkRenderWindow> window;
+    window->SetOffScreenRendering(1);
+    window->SetMultiSamples(0);
+    window->SetSize(windowSize, windowSize);
+    window->AddRenderer(renderer);
+    window->Render();
+    vtkNew<vtkWindowToImageFilter> grab;
+    grab->SetInput(window);
+    grab->SetInputBufferTypeToRGB();
+    grab->ReadFrontBufferOff();
+    grab->Update();
+    vtkImageData* image = grab->GetOutput();
+    ASSERT_EQ(image->GetDimensions()[0], windowSize);
+
+    // Where each vertex lands. Only pixels that exactly one vertex lands in, well inside the
+    // pixel, on the side facing the camera, are compared: there the pixel is that vertex.
+    std::map<std::pair<int, int>, std::vector<vtkIdType>> landings;
+    std::map<vtkIdType, bool> clearlyInside;
+    for (vtkIdType i = 0; i < sphere->GetNumberOfPoints(); ++i)
+    {
+      double p[3];
+      sphere->GetPoint(i, p);
+      renderer->SetWorldPoint(p[0], p[1], p[2], 1.0);
+      renderer->WorldToDisplay();
+      const double* d = renderer->GetDisplayPoint();
+      const std::pair<int, int> pixel{ int(std::floor(d[0])), int(std::floor(d[1])) };
+      landings[pixel].push_back(i);
+      const double fx = d[0] - pixel.first, fy = d[1] - pixel.second;
+      double n[3];
+      sphere->GetPointData()->GetNormals()->GetTuple(i, n);
+      const double* eye = camera->GetPosition();
+      const double facing = n[0] * (eye[0] - p[0]) + n[1] * (eye[1] - p[1]) + n[2] * (eye[2] - p[2]);
+      clearlyInside[i] = fx > 0.1 && fx < 0.9 && fy > 0.1 && fy < 0.9 && facing > 0.5;
+    }
+    int compared = 0, worst = 0;
+    for (const auto& [pixel, ids] : landings)
+    {
+      if (ids.size() != 1 || !clearlyInside[ids[0]])
+      {
+        continue;
+      }
+      for (int c = 0; c < 3; ++c)
+      {
+        const double expected = 255.0 * std::clamp(total->GetComponent(ids[0], c), 0.0, 1.0);
+        const double drawn = image->GetScalarComponentAsDouble(pixel.first, pixel.second, 0, c);
+        worst = std::max(worst, int(std::ceil(std::abs(drawn - expected))));
+        EXPECT_LE(std::abs(drawn - expected), 1.0)
+          << "vertex " << ids[0] << " channel " << c << " at pixel " << pixel.first << ", " << pixel.second;
+      }
+      ++compared;
+    }
+    EXPECT_GT(compared, 2000);
+    std::cout << "compared " << compared << " vertices with their pixels; largest difference "
+              << worst << "/255\n";
+  }
+};
+
+TEST_F(RealRender, LoneHeadlight)
+{
+  addLoneHeadlight();
+  expectPixelsMatch(true);
+}
+
+TEST_F(RealRender, LightKitOfDirectionalLights)
+{
+  addLightKit();
+  expectPixelsMatch(false);
+}
+
+TEST_F(RealRender, SwitchedOffSceneLightStillEndsTheLoneHeadlightShader)
+{
+  addHeadlightAndSwitchedOffSceneLight();
+  expectPixelsMatch(false);
+}
+
+TEST_F(RealRender, PositionalSpotAndPointLights)
+{
+  addPositionalLights();
+  expectPixelsMatch(false);
+}
+}
