@@ -126,41 +126,17 @@ void checkWritable(const std::string& fileName)
   }
 }
 
-void writeMesh(vtkPolyData* mesh, const std::string& fileName, Compression compression)
+void writeThroughTemporary(
+  const std::string& fileName, const std::function<std::string(const std::string& temporary)>& write)
 {
-  checkWritable(fileName);
   // Same folder as the target, so the final rename cannot cross file systems.
   const std::string temporary = fileName + ".partial-" + std::to_string(::getpid());
-  vtkNew<VtkErrorCapture> errors;
-  int written = 0;
-  if (lowerExtension(fileName) == ".vtp")
-  {
-    vtkNew<vtkXMLPolyDataWriter> writer;
-    errors->watch(writer);
-    writer->SetInputData(mesh);
-    writer->SetFileName(temporary.c_str());
-    writer->SetDataModeToAppended();
-    writer->EncodeAppendedDataOff(); // raw binary, not base64
-    writer->SetCompressorType(compression == Compression::LZ4 ? vtkXMLWriterBase::LZ4
-        : compression == Compression::ZLib                   ? vtkXMLWriterBase::ZLIB
-                                                             : vtkXMLWriterBase::NONE);
-    written = writer->Write();
-  }
-  else
-  {
-    vtkNew<vtkPolyDataWriter> writer;
-    errors->watch(writer);
-    writer->SetInputData(mesh);
-    writer->SetFileName(temporary.c_str());
-    writer->SetFileTypeToBinary();
-    written = writer->Write();
-  }
+  const std::string failure = write(temporary);
   std::error_code ignored;
-  if (!written || errors->failed())
+  if (!failure.empty())
   {
     fs::remove(temporary, ignored);
-    throw UserError(fileName + ": cannot be written: " +
-      (errors->failed() ? errors->message() : "the writer failed (disk full, or no permission?)"));
+    throw UserError(fileName + ": cannot be written: " + failure);
   }
   std::error_code renameError;
   fs::rename(temporary, fileName, renameError);
@@ -169,5 +145,43 @@ void writeMesh(vtkPolyData* mesh, const std::string& fileName, Compression compr
     fs::remove(temporary, ignored);
     throw UserError(fileName + ": cannot be written: " + renameError.message());
   }
+}
+
+void writeMesh(vtkPolyData* mesh, const std::string& fileName, Compression compression)
+{
+  checkWritable(fileName);
+  writeThroughTemporary(fileName,
+    [&](const std::string& temporary) -> std::string
+    {
+      vtkNew<VtkErrorCapture> errors;
+      int written = 0;
+      if (lowerExtension(fileName) == ".vtp")
+      {
+        vtkNew<vtkXMLPolyDataWriter> writer;
+        errors->watch(writer);
+        writer->SetInputData(mesh);
+        writer->SetFileName(temporary.c_str());
+        writer->SetDataModeToAppended();
+        writer->EncodeAppendedDataOff(); // raw binary, not base64
+        writer->SetCompressorType(compression == Compression::LZ4 ? vtkXMLWriterBase::LZ4
+            : compression == Compression::ZLib                   ? vtkXMLWriterBase::ZLIB
+                                                                 : vtkXMLWriterBase::NONE);
+        written = writer->Write();
+      }
+      else
+      {
+        vtkNew<vtkPolyDataWriter> writer;
+        errors->watch(writer);
+        writer->SetInputData(mesh);
+        writer->SetFileName(temporary.c_str());
+        writer->SetFileTypeToBinary();
+        written = writer->Write();
+      }
+      if (errors->failed())
+      {
+        return errors->message();
+      }
+      return written ? "" : "the writer failed (disk full, or no permission?)";
+    });
 }
 }

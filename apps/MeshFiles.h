@@ -3,6 +3,7 @@
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
 
+#include <functional>
 #include <stdexcept>
 #include <string>
 
@@ -18,6 +19,12 @@ public:
 /// The extensions readMesh understands, for messages and --help.
 extern const char* const readableExtensions;
 extern const char* const writableExtensions;
+
+/// Writes fileName through a temporary file in the same folder: write(temporary) returns ""
+/// on success or the reason it failed; only a complete file is renamed over fileName, so a
+/// failed run never leaves a partial file or spoils an existing one. Throws UserError.
+void writeThroughTemporary(
+  const std::string& fileName, const std::function<std::string(const std::string& temporary)>& write);
 
 /// Reads .vtp, .vtk (legacy polydata), .ply, .obj or .stl. Throws UserError.
 vtkSmartPointer<vtkPolyData> readMesh(const std::string& fileName);
@@ -35,8 +42,7 @@ enum class Compression
   None,
 };
 
-/// Writes .vtp (binary, appended raw) or legacy .vtk (binary). The data go to a temporary
-/// file in the same folder that is renamed over fileName only once complete, so a failed
-/// run never leaves a partial file or spoils an existing one. Throws UserError.
+/// Writes .vtp (binary, appended raw) or legacy .vtk (binary), through a temporary file.
+/// Throws UserError.
 void writeMesh(vtkPolyData* mesh, const std::string& fileName, Compression compression = Compression::LZ4);
 }

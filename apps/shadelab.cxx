@@ -1,7 +1,9 @@
 // shadelab: the command line over ShadeLab's filters.
 //   shadelab shade MESH --scene SCENE.json -o OUT.vtp   per-vertex lighting arrays
 //   shadelab arrays --scene SCENE.json                  the arrays a scene can produce
+//   shadelab render MESH -o OUT.png                     a picture of one array
 #include "MeshFiles.h"
+#include "RenderImage.h"
 #include "VtkErrorCapture.h"
 
 #include "ArrayCatalog.h"
@@ -189,6 +191,42 @@ int runShade(const ShadeOptions& options)
   return 0;
 }
 
+struct RenderCommand
+{
+  std::string mesh;
+  std::string output;
+  std::string scene;
+  std::string size = "800x600";
+  app::RenderOptions options;
+};
+
+int runRender(RenderCommand& command)
+{
+  if (command.output.size() < 4 || command.output.substr(command.output.size() - 4) != ".png")
+  {
+    throw UserError(command.output + ": render writes PNG images; name the output *.png");
+  }
+  int width = 0, height = 0;
+  char separator = 0;
+  std::istringstream size(command.size);
+  if (!(size >> width >> separator >> height) || separator != 'x' || width < 16 || height < 16 ||
+    width > 8192 || height > 8192)
+  {
+    throw UserError("--size: '" + command.size + "' is not WIDTHxHEIGHT with each from 16 to 8192");
+  }
+  command.options.width = width;
+  command.options.height = height;
+  if (!command.scene.empty())
+  {
+    command.options.viewer = loadScene(command.scene).viewer;
+  }
+  vtkSmartPointer<vtkPolyData> mesh = app::readMesh(command.mesh);
+  app::renderToPng(mesh, command.mesh, command.options, command.output);
+  std::cout << "shadelab render: " << command.options.array << " of " << command.mesh << " -> "
+            << command.output << " (" << width << "x" << height << ")\n";
+  return 0;
+}
+
 int runArrays(const std::string& sceneFile)
 {
   const Scene scene = loadScene(sceneFile);
@@ -241,6 +279,19 @@ int main(int argc, char** argv)
   bool verbose = false;
   cli.add_flag("--verbose,-v", verbose, "also show VTK's own log and error output");
 
+  RenderCommand render;
+  CLI::App* renderCommand = cli.add_subcommand("render",
+    "Render one point array of a mesh (usually shade's output) to a PNG, off screen.\n"
+    "3-component arrays are drawn as RGB colours clamped to [0, 1] with VTK's lighting off,\n"
+    "so the picture is ShadeLab's shading; 1-component arrays through a colour map.\n"
+    "Needs an X display: on a headless machine run it as xvfb-run -a shadelab render ...");
+  renderCommand->add_option("mesh", render.mesh, "the mesh to draw")->required();
+  renderCommand->add_option("--output,-o", render.output, "the PNG to write")->required();
+  renderCommand->add_option("--array,-a", render.options.array, "the point array to draw")->capture_default_str();
+  renderCommand->add_option("--scene,-s", render.scene,
+    "take the camera from this scene's viewer (default: framed, looking down -z)");
+  renderCommand->add_option("--size", render.size, "image size, WIDTHxHEIGHT")->capture_default_str();
+
   CLI11_PARSE(cli, argc, argv);
   if (!verbose)
   {
@@ -254,6 +305,10 @@ int main(int argc, char** argv)
     if (shadeCommand->parsed())
     {
       return runShade(shade);
+    }
+    if (renderCommand->parsed())
+    {
+      return runRender(render);
     }
     return runArrays(arraysScene);
   }

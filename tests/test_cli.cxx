@@ -1,6 +1,12 @@
 // The shadelab command as a user runs it: exit codes and the exact message for each kind of
 // bad input, and no partial or spoilt output file after a failure.
+#include "vtkImageData.h"
+#include "vtkNew.h"
+#include "vtkPNGReader.h"
+
 #include <gtest/gtest.h>
+
+#include <set>
 
 #include <cstdlib>
 #include <filesystem>
@@ -46,11 +52,12 @@ protected:
     return text.str();
   }
 
-  Result shadelab(const std::string& arguments)
+  /// Runs shadelab with these arguments; launcher (such as xvfb-run) goes before it.
+  Result shadelab(const std::string& arguments, const std::string& launcher = "")
   {
     const fs::path out = folder / "stdout.txt", err = folder / "stderr.txt";
-    const std::string command = std::string(SHADELAB_EXECUTABLE) + " " + arguments + " > " +
-      out.string() + " 2> " + err.string();
+    const std::string command = launcher + std::string(SHADELAB_EXECUTABLE) + " " + arguments +
+      " > " + out.string() + " 2> " + err.string();
     const int status = std::system(command.c_str());
     Result result{ WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err) };
     fs::remove(out);
@@ -213,6 +220,76 @@ TEST_F(Cli, ReadsObjAndStlAndWritesLegacyVtk)
     EXPECT_NE(result.out.find("  mesh: 4 vertices, 4 polygons and strips\n"), std::string::npos) << result.out;
     EXPECT_EQ(slurp(folder / "tetra.vtk").rfind("# vtk DataFile Version", 0), 0u);
   }
+}
+
+TEST_F(Cli, RendersArraysToPng)
+{
+  // The golden bunny's ambient term is the constant ka La = (0.8, 0.62, 0.45) x 0.08. Drawn as
+  // RGB with VTK's lighting off, every bunny pixel must be round(255 x that) = (16, 13, 9),
+  // and every other pixel the background: nothing of VTK's own shading may creep in.
+  const std::string golden = SHADELAB_SOURCE_DIR "/data/golden/bunny_studio.vtp";
+  const std::string png = (folder / "ambient.png").string();
+  const std::string xvfb = std::string(XVFB_RUN) + " --auto-servernum ";
+  const Result result = shadelab("render " + golden + " --array ambient --size 320x240 -s " +
+      SHADELAB_SOURCE_DIR "/data/scenes/studio.json -o " + png, xvfb);
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_EQ(result.out, "shadelab render: ambient of " + golden + " -> " + png + " (320x240)\n");
+  vtkNew<vtkPNGReader> reader;
+  reader->SetFileName(png.c_str());
+  reader->Update();
+  vtkImageData* image = reader->GetOutput();
+  ASSERT_EQ(image->GetDimensions()[0], 320);
+  ASSERT_EQ(image->GetDimensions()[1], 240);
+  auto pixel = [&](int x, int y)
+  {
+    std::array<int, 3> rgb;
+    for (int c = 0; c < 3; ++c)
+    {
+      rgb[c] = int(image->GetScalarComponentAsDouble(x, y, 0, c));
+    }
+    return rgb;
+  };
+  const std::array<int, 3> background = pixel(0, 0), ambient{ 16, 13, 9 };
+  int bunnyPixels = 0;
+  std::set<std::array<int, 3>> others;
+  for (int y = 0; y < 240; ++y)
+  {
+    for (int x = 0; x < 320; ++x)
+    {
+      const auto rgb = pixel(x, y);
+      bunnyPixels += rgb == ambient;
+      if (rgb != ambient && rgb != background)
+      {
+        others.insert(rgb);
+      }
+    }
+  }
+  EXPECT_GT(bunnyPixels, 320 * 240 / 10);
+  EXPECT_TRUE(others.empty()) << others.size() << " other colours";
+
+  // A 1-component array through the colour map: many colours.
+  const Result mapped = shadelab("render " + golden + " -a key_cos_incidence -o " + png, xvfb);
+  EXPECT_EQ(mapped.exitCode, 0) << mapped.err;
+}
+
+TEST_F(Cli, RenderErrors)
+{
+  const std::string golden = SHADELAB_SOURCE_DIR "/data/golden/bunny_studio.vtp";
+  const std::string png = (folder / "out.png").string();
+  expectError("render " + golden + " -o " + png + " --size 10x10",
+    "--size: '10x10' is not WIDTHxHEIGHT with each from 16 to 8192");
+  expectError("render " + golden + " -o " + (folder / "out.jpg").string(),
+    (folder / "out.jpg").string() + ": render writes PNG images; name the output *.png");
+  const Result noDisplay = shadelab("render " + golden + " -o " + png, "env -u DISPLAY ");
+  EXPECT_EQ(noDisplay.exitCode, 1);
+  EXPECT_EQ(noDisplay.err,
+    "shadelab: no X display to render with: run the command under xvfb-run -a (package xvfb)\n");
+  const Result unknown = shadelab("render " + golden + " -a glare -o " + png, std::string(XVFB_RUN) + " -a ");
+  EXPECT_EQ(unknown.exitCode, 1);
+  EXPECT_EQ(unknown.err, "shadelab: " + golden + ": has no point array 'glare'; it has: Normals, ambient, "
+    "diffuse, specular, total, shading_flags, key_distance, key_cos_incidence, fill_cos_incidence, "
+    "rim_spot_factor, rim_cos_incidence\n");
+  EXPECT_FALSE(fs::exists(png));
 }
 
 TEST_F(Cli, HelpAndUsageErrors)

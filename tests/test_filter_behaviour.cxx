@@ -279,7 +279,8 @@ TEST(Golden, StanfordBunnyUnderTheStudioScene)
 {
   // Regenerate (after a deliberate change) with:
   //   build/bin/shadelab shade data/meshes/bunny_zipper.ply --scene data/scenes/studio.json \
-  //     --arrays 'default,*_cos_incidence,rim_spot_factor,key_distance' -o data/golden/bunny_studio.vtp
+  //     --arrays 'default,*_cos_incidence,rim_spot_factor,key_distance' --compression zlib \
+  //     -o data/golden/bunny_studio.vtp
   const std::string data = SHADELAB_SOURCE_DIR "/data/";
   vtkSmartPointer<vtkPolyData> bunny = app::readMesh(data + "meshes/bunny_zipper.ply");
   vtkSmartPointer<vtkPolyData> output = run(bunny, readSceneFile(data + "scenes/studio.json"),

@@ -110,19 +110,7 @@ public:
   OutputArrays(const shadelab::Scene& scene, const shadelab::ArrayRequest& request,
     const std::string& prefix, vtkIdType count)
   {
-    outputs.lights.resize(scene.lights.size());
-    for (std::size_t l = 0; l < scene.lights.size(); ++l)
-    {
-      outputs.lights[l].fill(nullptr);
-      for (int t = 0; t < shadelab::LightTermCount; ++t)
-      {
-        if (request.lights[l][t])
-        {
-          outputs.lights[l][t] = add(shadelab::lightArrayName(prefix, scene.lights[l].name, LightTerm(t)),
-            shadelab::termInfo(LightTerm(t)).components, count);
-        }
-      }
-    }
+    // In the order of shadelab::availableArrays: totals, flags, then each light's terms.
     for (int t = 0; t < shadelab::TotalTermCount; ++t)
     {
       outputs.totals[t] = request.totals[t]
@@ -136,6 +124,19 @@ public:
       flags->SetNumberOfValues(count);
       outputs.flags = flags->GetPointer(0);
       arrays.push_back(flags);
+    }
+    outputs.lights.resize(scene.lights.size());
+    for (std::size_t l = 0; l < scene.lights.size(); ++l)
+    {
+      outputs.lights[l].fill(nullptr);
+      for (int t = 0; t < shadelab::LightTermCount; ++t)
+      {
+        if (request.lights[l][t])
+        {
+          outputs.lights[l][t] = add(shadelab::lightArrayName(prefix, scene.lights[l].name, LightTerm(t)),
+            shadelab::termInfo(LightTerm(t)).components, count);
+        }
+      }
     }
   }
 

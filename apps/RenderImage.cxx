@@ -1,0 +1,178 @@
+#include "RenderImage.h"
+
+#include "MeshFiles.h"
+#include "VtkErrorCapture.h"
+
+#include "vtkActor.h"
+#include "vtkCamera.h"
+#include "vtkColorTransferFunction.h"
+#include "vtkDataArray.h"
+#include "vtkPNGWriter.h"
+#include "vtkPointData.h"
+#include "vtkPolyDataMapper.h"
+#include "vtkProperty.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
+#include "vtkScalarBarActor.h"
+#include "vtkTextProperty.h"
+#include "vtkUnsignedCharArray.h"
+#include "vtkWindowToImageFilter.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+
+namespace shadelab::app
+{
+namespace
+{
+std::string arrayNames(vtkPointData* pointData)
+{
+  std::string names;
+  for (int a = 0; a < pointData->GetNumberOfArrays(); ++a)
+  {
+    names += (a ? ", " : "") + std::string(pointData->GetArrayName(a) ? pointData->GetArrayName(a) : "");
+  }
+  return names.empty() ? "none" : names;
+}
+
+/// RGB in [0, 1] to 8-bit colours, so that the mapper draws them as they are.
+vtkSmartPointer<vtkUnsignedCharArray> directColours(vtkDataArray* rgb)
+{
+  auto colours = vtkSmartPointer<vtkUnsignedCharArray>::New();
+  colours->SetName("colours");
+  colours->SetNumberOfComponents(3);
+  colours->SetNumberOfTuples(rgb->GetNumberOfTuples());
+  for (vtkIdType i = 0; i < rgb->GetNumberOfTuples(); ++i)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      const double value = std::clamp(rgb->GetComponent(i, c), 0.0, 1.0);
+      colours->SetValue(3 * i + c, static_cast<unsigned char>(std::lround(255.0 * value)));
+    }
+  }
+  return colours;
+}
+
+void placeCamera(vtkRenderer* renderer, vtkPolyData* mesh, const std::optional<Viewer>& viewer)
+{
+  vtkCamera* camera = renderer->GetActiveCamera();
+  double centre[3];
+  mesh->GetCenter(centre);
+  if (viewer && viewer->position)
+  {
+    const glm::dvec3 eye = *viewer->position;
+    const glm::dvec3 target = viewer->focalPoint.value_or(glm::dvec3(centre[0], centre[1], centre[2]));
+    camera->SetPosition(eye.x, eye.y, eye.z);
+    camera->SetFocalPoint(target.x, target.y, target.z);
+    const glm::dvec3 sight = glm::normalize(target - eye);
+    const bool lookingAlongY = std::abs(sight.y) > 0.99;
+    camera->SetViewUp(0.0, lookingAlongY ? 0.0 : 1.0, lookingAlongY ? -1.0 : 0.0);
+    renderer->ResetCameraClippingRange();
+    return;
+  }
+  // A viewer at infinity (or none): a parallel projection along its direction.
+  const glm::dvec3 sight = viewer ? glm::normalize(viewer->viewDirection) : glm::dvec3(0, 0, -1);
+  camera->ParallelProjectionOn();
+  camera->SetFocalPoint(centre);
+  camera->SetPosition(centre[0] - sight.x, centre[1] - sight.y, centre[2] - sight.z);
+  const bool lookingAlongY = std::abs(sight.y) > 0.99;
+  camera->SetViewUp(0.0, lookingAlongY ? 0.0 : 1.0, lookingAlongY ? -1.0 : 0.0);
+  renderer->ResetCamera();
+}
+}
+
+void renderToPng(vtkPolyData* mesh, const std::string& meshName, const RenderOptions& options,
+  const std::string& pngFile)
+{
+  const char* display = std::getenv("DISPLAY");
+  if (!display || !*display)
+  {
+    throw UserError("no X display to render with: run the command under xvfb-run -a (package xvfb)");
+  }
+  vtkDataArray* array = mesh->GetPointData()->GetArray(options.array.c_str());
+  if (!array)
+  {
+    throw UserError(meshName + ": has no point array '" + options.array + "'; it has: " +
+      arrayNames(mesh->GetPointData()));
+  }
+  const int components = array->GetNumberOfComponents();
+  if (components != 1 && components != 3)
+  {
+    throw UserError(meshName + ": array '" + options.array + "' has " + std::to_string(components) +
+      " components; render draws 1 (colour-mapped) or 3 (RGB)");
+  }
+
+  auto coloured = vtkSmartPointer<vtkPolyData>::New();
+  coloured->CopyStructure(mesh);
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputData(coloured);
+  vtkNew<vtkRenderer> renderer;
+  renderer->SetBackground(0.16, 0.17, 0.2);
+  if (components == 3)
+  {
+    coloured->GetPointData()->SetScalars(directColours(array));
+    mapper->SetColorModeToDirectScalars();
+  }
+  else
+  {
+    coloured->GetPointData()->SetScalars(array);
+    double range[2];
+    array->GetRange(range);
+    if (range[0] < 0 && range[1] > 0)
+    {
+      // Signed data (n.s, r.v): centre the diverging map on zero, so white means zero.
+      range[1] = std::max(-range[0], range[1]);
+      range[0] = -range[1];
+    }
+    // Moreland's cool-to-warm diverging map (Moreland 2009, "Diverging Color Maps for
+    // Scientific Visualization"), the map ParaView uses by default.
+    vtkNew<vtkColorTransferFunction> colourMap;
+    colourMap->SetColorSpaceToDiverging();
+    colourMap->AddRGBPoint(range[0], 0.230, 0.299, 0.754);
+    colourMap->AddRGBPoint(range[1], 0.706, 0.016, 0.150);
+    mapper->SetLookupTable(colourMap);
+    mapper->SetScalarRange(range);
+    vtkNew<vtkScalarBarActor> bar;
+    bar->SetLookupTable(colourMap);
+    bar->SetTitle(options.array.c_str());
+    bar->SetNumberOfLabels(5);
+    bar->SetLabelFormat("%.3g");
+    bar->SetWidth(0.1);
+    bar->UnconstrainedFontSizeOn();
+    bar->GetTitleTextProperty()->SetFontSize(16);
+    bar->GetLabelTextProperty()->SetFontSize(14);
+    renderer->AddViewProp(bar);
+  }
+  mapper->ScalarVisibilityOn();
+  vtkNew<vtkActor> actor;
+  actor->SetMapper(mapper);
+  actor->GetProperty()->LightingOff(); // the colours are the shading
+  renderer->AddActor(actor);
+  placeCamera(renderer, mesh, options.viewer);
+
+  vtkNew<vtkRenderWindow> window;
+  window->SetOffScreenRendering(1);
+  window->SetMultiSamples(0);
+  window->SetSize(options.width, options.height);
+  window->AddRenderer(renderer);
+  window->Render();
+  vtkNew<vtkWindowToImageFilter> grab;
+  grab->SetInput(window);
+  grab->SetInputBufferTypeToRGB();
+  grab->ReadFrontBufferOff();
+  grab->Update();
+
+  writeThroughTemporary(pngFile,
+    [&](const std::string& temporary) -> std::string
+    {
+      vtkNew<VtkErrorCapture> errors;
+      vtkNew<vtkPNGWriter> writer;
+      errors->watch(writer);
+      writer->SetInputConnection(grab->GetOutputPort());
+      writer->SetFileName(temporary.c_str());
+      writer->Write();
+      return errors->failed() ? errors->message() : "";
+    });
+}
+}
