@@ -1,6 +1,7 @@
 #include "RenderImage.h"
 
 #include "MeshFiles.h"
+#include "OffScreenImage.h"
 #include "VtkErrorCapture.h"
 
 #include "vtkActor.h"
@@ -11,12 +12,10 @@
 #include "vtkPointData.h"
 #include "vtkPolyDataMapper.h"
 #include "vtkProperty.h"
-#include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
 #include "vtkScalarBarActor.h"
 #include "vtkTextProperty.h"
 #include "vtkUnsignedCharArray.h"
-#include "vtkWindowToImageFilter.h"
 
 #include <algorithm>
 #include <cmath>
@@ -151,17 +150,7 @@ void renderToPng(vtkPolyData* mesh, const std::string& meshName, const RenderOpt
   renderer->AddActor(actor);
   placeCamera(renderer, mesh, options.viewer);
 
-  vtkNew<vtkRenderWindow> window;
-  window->SetOffScreenRendering(1);
-  window->SetMultiSamples(0);
-  window->SetSize(options.width, options.height);
-  window->AddRenderer(renderer);
-  window->Render();
-  vtkNew<vtkWindowToImageFilter> grab;
-  grab->SetInput(window);
-  grab->SetInputBufferTypeToRGB();
-  grab->ReadFrontBufferOff();
-  grab->Update();
+  vtkSmartPointer<vtkImageData> image = renderOffScreen(renderer, options.width, options.height);
 
   writeThroughTemporary(pngFile,
     [&](const std::string& temporary) -> std::string
@@ -169,7 +158,7 @@ void renderToPng(vtkPolyData* mesh, const std::string& meshName, const RenderOpt
       vtkNew<VtkErrorCapture> errors;
       vtkNew<vtkPNGWriter> writer;
       errors->watch(writer);
-      writer->SetInputConnection(grab->GetOutputPort());
+      writer->SetInputData(image);
       writer->SetFileName(temporary.c_str());
       writer->Write();
       return errors->failed() ? errors->message() : "";

@@ -1,6 +1,11 @@
 #pragma once
 // One camera, one property and several light sets built from VTK's own objects, shared by
 // the tests that compare the vtk model with VTK's shader formulas and with real renders.
+#include "TestMeshes.h"
+
+#include "ShadeLabVtkScene.h"
+#include "vtkLocalReflectanceFilter.h"
+
 #include "vtkCamera.h"
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
@@ -93,6 +98,25 @@ protected:
     lamp->PositionalOn();
     lamp->SetConeAngle(20);
     lamp->SetAttenuationValues(1.0, 0.1, 0.02);
+  }
+
+  /// The lit sphere at this resolution, and ShadeLab's float64 total for it under the vtk
+  /// model of these lights, property and camera. Checks that the scene takes the
+  /// lone-headlight shader exactly when lone is true.
+  std::pair<vtkSmartPointer<vtkPolyData>, vtkSmartPointer<vtkDataArray>> shadeLitSphere(int resolution, bool lone)
+  {
+    const Scene scene = sceneFromVtk(lights, property, camera);
+    EXPECT_EQ(scene.vtkLoneHeadlight, lone);
+    vtkSmartPointer<vtkPolyData> sphere = exactSphere(resolution, litSphereCentre, litSphereRadius);
+    vtkNew<vtkLocalReflectanceFilter> filter;
+    filter->SetInputData(sphere);
+    filter->SetScene(scene);
+    filter->SetArraySelection({ "total" });
+    filter->SetOutputPrecision(vtkAlgorithm::DOUBLE_PRECISION);
+    filter->Update();
+    vtkSmartPointer<vtkDataArray> total = filter->GetOutput()->GetPointData()->GetArray("total");
+    EXPECT_NE(total, nullptr);
+    return { sphere, total };
   }
 
   vtkNew<vtkLightCollection> lights;

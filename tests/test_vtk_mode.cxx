@@ -162,17 +162,7 @@ protected:
   /// flipped) and compares the total at every vertex with the shader reference.
   void expectShaderResult(int complexity)
   {
-    const shadelab::Scene scene = shadelab::sceneFromVtk(lights, property, camera);
-    EXPECT_EQ(scene.vtkLoneHeadlight, complexity == 1);
-    vtkSmartPointer<vtkPolyData> sphere =
-      shadelab::testing::exactSphere(60, shadelab::testing::litSphereCentre, shadelab::testing::litSphereRadius);
-    vtkNew<vtkLocalReflectanceFilter> filter;
-    filter->SetInputData(sphere);
-    filter->SetScene(scene);
-    filter->SetArraySelection({ "total" });
-    filter->SetOutputPrecision(vtkAlgorithm::DOUBLE_PRECISION);
-    filter->Update();
-    vtkDataArray* total = filter->GetOutput()->GetPointData()->GetArray("total");
+    const auto [sphere, total] = shadeLitSphere(60, complexity == 1);
     ASSERT_NE(total, nullptr);
     const ShaderReference shader(lights, property, camera, complexity);
     vtkDataArray* normals = sphere->GetPointData()->GetNormals();

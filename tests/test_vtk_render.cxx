@@ -5,17 +5,15 @@
 #include "TestMeshes.h"
 #include "VtkLightSets.h"
 
-#include "ShadeLabVtkScene.h"
-#include "vtkLocalReflectanceFilter.h"
+#include "OffScreenImage.h"
 
 #include "vtkActor.h"
 #include "vtkCellArray.h"
 #include "vtkImageData.h"
+#include "vtkMatrix4x4.h"
 #include "vtkPolyDataMapper.h"
-#include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
 #include "vtkUnsignedCharArray.h"
-#include "vtkWindowToImageFilter.h"
 
 #include <cmath>
 #include <map>
@@ -32,16 +30,8 @@ class RealRender : public shadelab::testing::VtkLightSets
 protected:
   void expectPixelsMatch(bool lone)
   {
-    const shadelab::Scene scene = shadelab::sceneFromVtk(lights, property, camera);
-    ASSERT_EQ(scene.vtkLoneHeadlight, lone);
-    vtkSmartPointer<vtkPolyData> sphere = shadelab::testing::exactSphere(120, litSphereCentre, litSphereRadius);
-    vtkNew<vtkLocalReflectanceFilter> filter;
-    filter->SetInputData(sphere);
-    filter->SetScene(scene);
-    filter->SetArraySelection({ "total" });
-    filter->SetOutputPrecision(vtkAlgorithm::DOUBLE_PRECISION);
-    filter->Update();
-    vtkDataArray* total = filter->GetOutput()->GetPointData()->GetArray("total");
+    const auto [sphere, total] = shadeLitSphere(120, lone);
+    ASSERT_NE(total, nullptr);
 
     // The same vertices and normals as a cloud of vertex cells.
     vtkNew<vtkPolyData> cloud;
@@ -64,31 +54,23 @@ protected:
     renderer->SetActiveCamera(camera);
     renderer->SetLightCollection(lights);
     renderer->ResetCameraClippingRange();
-    vtkNew<vtkRenderWindow> window;
-    window->SetOffScreenRendering(1);
-    window->SetMultiSamples(0);
-    window->SetSize(windowSize, windowSize);
-    window->AddRenderer(renderer);
-    window->Render();
-    vtkNew<vtkWindowToImageFilter> grab;
-    grab->SetInput(window);
-    grab->SetInputBufferTypeToRGB();
-    grab->ReadFrontBufferOff();
-    grab->Update();
-    vtkImageData* image = grab->GetOutput();
+    vtkSmartPointer<vtkImageData> image = shadelab::app::renderOffScreen(renderer, windowSize, windowSize);
     ASSERT_EQ(image->GetDimensions()[0], windowSize);
 
     // Where each vertex lands. Only pixels that exactly one vertex lands in, well inside the
     // pixel, on the side facing the camera, are compared: there the pixel is that vertex.
     std::map<std::pair<int, int>, std::vector<vtkIdType>> landings;
+    vtkMatrix4x4* projection = camera->GetCompositeProjectionTransformMatrix(1.0, -1, 1);
     std::map<vtkIdType, bool> clearlyInside;
     for (vtkIdType i = 0; i < sphere->GetNumberOfPoints(); ++i)
     {
       double p[3];
       sphere->GetPoint(i, p);
-      renderer->SetWorldPoint(p[0], p[1], p[2], 1.0);
-      renderer->WorldToDisplay();
-      const double* d = renderer->GetDisplayPoint();
+      // Where the vertex lands: the camera's projection (square window, so aspect 1) takes it
+      // to normalised device coordinates, whose [-1, 1] spans the window's pixels.
+      double h[4] = { p[0], p[1], p[2], 1.0 };
+      projection->MultiplyPoint(h, h);
+      const double d[2] = { (h[0] / h[3] + 1) * 0.5 * windowSize, (h[1] / h[3] + 1) * 0.5 * windowSize };
       const std::pair<int, int> pixel{ int(std::floor(d[0])), int(std::floor(d[1])) };
       landings[pixel].push_back(i);
       const double fx = d[0] - pixel.first, fy = d[1] - pixel.second;
@@ -98,7 +80,8 @@ protected:
       const double facing = n[0] * (eye[0] - p[0]) + n[1] * (eye[1] - p[1]) + n[2] * (eye[2] - p[2]);
       clearlyInside[i] = fx > 0.1 && fx < 0.9 && fy > 0.1 && fy < 0.9 && facing > 0.5;
     }
-    int compared = 0, worst = 0;
+    int compared = 0;
+    double worst = 0;
     for (const auto& [pixel, ids] : landings)
     {
       if (ids.size() != 1 || !clearlyInside[ids[0]])
@@ -109,7 +92,7 @@ protected:
       {
         const double expected = 255.0 * std::clamp(total->GetComponent(ids[0], c), 0.0, 1.0);
         const double drawn = image->GetScalarComponentAsDouble(pixel.first, pixel.second, 0, c);
-        worst = std::max(worst, int(std::ceil(std::abs(drawn - expected))));
+        worst = std::max(worst, std::abs(drawn - expected));
         EXPECT_LE(std::abs(drawn - expected), 1.0)
           << "vertex " << ids[0] << " channel " << c << " at pixel " << pixel.first << ", " << pixel.second;
       }

@@ -1,0 +1,12 @@
+#pragma once
+// Renders a renderer's scene off screen and reads back the pixels, as drawn (no
+// anti-aliasing, so every pixel is one fragment's colour).
+#include "vtkImageData.h"
+#include "vtkRenderer.h"
+#include "vtkSmartPointer.h"
+
+namespace shadelab::app
+{
+/// RGB, 8 bits per channel, origin at the lower left. Needs an X display (Xvfb will do).
+vtkSmartPointer<vtkImageData> renderOffScreen(vtkRenderer* renderer, int width, int height);
+}
