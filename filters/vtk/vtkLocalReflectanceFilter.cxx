@@ -32,58 +32,66 @@ namespace
 using shadelab::LightTerm;
 using shadelab::TotalTerm;
 
-glm::dvec3 pointAt(vtkPoints* points, vtkIdType id)
+/// Feeds every polygon and strip triangle of the mesh to the orientation test. A worker for
+/// vtkArrayDispatch, so that points and normals are read from raw memory.
+struct OrientationWorker
 {
-  double p[3];
-  points->GetPoint(id, p);
-  return { p[0], p[1], p[2] };
-}
+  vtkPolyData* mesh;
+  shadelab::NormalOrientation result;
 
-glm::dvec3 tupleAt(vtkDataArray* array, vtkIdType id)
-{
-  double t[3];
-  array->GetTuple(id, t);
-  return { t[0], t[1], t[2] };
-}
+  template <typename PointArray, typename NormalArray>
+  void operator()(PointArray* pointArray, NormalArray* normalArray)
+  {
+    const auto points = vtk::DataArrayTupleRange<3>(pointArray);
+    const auto normals = vtk::DataArrayTupleRange<3>(normalArray);
+    auto vec = [](const auto& tuple) { return glm::dvec3(tuple[0], tuple[1], tuple[2]); };
+    double bounds[6];
+    mesh->GetBounds(bounds);
+    shadelab::NormalOrientationAccumulator accumulator(
+      { 0.5 * (bounds[0] + bounds[1]), 0.5 * (bounds[2] + bounds[3]), 0.5 * (bounds[4] + bounds[5]) });
+    auto addTriangle = [&](vtkIdType a, vtkIdType b, vtkIdType c)
+    {
+      accumulator.addTriangle(vec(points[a]), vec(points[b]), vec(points[c]), vec(normals[a]),
+        vec(normals[b]), vec(normals[c]));
+    };
+    // Polygons are split into fans, strips into their triangles; winding does not matter
+    // here because the test uses the stored normals, not the triangles' own orientation.
+    auto polys = vtk::TakeSmartPointer(mesh->GetPolys()->NewIterator());
+    for (polys->GoToFirstCell(); !polys->IsDoneWithTraversal(); polys->GoToNextCell())
+    {
+      vtkIdType size;
+      const vtkIdType* ids;
+      polys->GetCurrentCell(size, ids);
+      for (vtkIdType k = 2; k < size; ++k)
+      {
+        addTriangle(ids[0], ids[k - 1], ids[k]);
+      }
+    }
+    auto strips = vtk::TakeSmartPointer(mesh->GetStrips()->NewIterator());
+    for (strips->GoToFirstCell(); !strips->IsDoneWithTraversal(); strips->GoToNextCell())
+    {
+      vtkIdType size;
+      const vtkIdType* ids;
+      strips->GetCurrentCell(size, ids);
+      for (vtkIdType k = 2; k < size; ++k)
+      {
+        addTriangle(ids[k - 2], ids[k - 1], ids[k]);
+      }
+    }
+    result = accumulator.result();
+  }
+};
 
-/// Feeds every polygon and strip triangle of the mesh to the orientation test.
 shadelab::NormalOrientation assessOrientation(vtkPolyData* mesh, vtkDataArray* normals)
 {
-  double bounds[6];
-  mesh->GetBounds(bounds);
-  shadelab::NormalOrientationAccumulator accumulator(
-    { 0.5 * (bounds[0] + bounds[1]), 0.5 * (bounds[2] + bounds[3]), 0.5 * (bounds[4] + bounds[5]) });
-  vtkPoints* points = mesh->GetPoints();
-  auto addTriangle = [&](vtkIdType a, vtkIdType b, vtkIdType c)
+  OrientationWorker worker{ mesh, {} };
+  vtkDataArray* points = mesh->GetPoints()->GetData();
+  using Reals = vtkArrayDispatch::Reals;
+  if (!vtkArrayDispatch::Dispatch2ByValueType<Reals, Reals>::Execute(points, normals, worker))
   {
-    accumulator.addTriangle(pointAt(points, a), pointAt(points, b), pointAt(points, c),
-      tupleAt(normals, a), tupleAt(normals, b), tupleAt(normals, c));
-  };
-  // Polygons are split into fans, strips into their triangles; winding does not matter here
-  // because the test uses the stored normals, not the triangles' own orientation.
-  auto polys = vtk::TakeSmartPointer(mesh->GetPolys()->NewIterator());
-  for (polys->GoToFirstCell(); !polys->IsDoneWithTraversal(); polys->GoToNextCell())
-  {
-    vtkIdType size;
-    const vtkIdType* ids;
-    polys->GetCurrentCell(size, ids);
-    for (vtkIdType k = 2; k < size; ++k)
-    {
-      addTriangle(ids[0], ids[k - 1], ids[k]);
-    }
+    worker(points, normals); // other value types, through the generic vtkDataArray API
   }
-  auto strips = vtk::TakeSmartPointer(mesh->GetStrips()->NewIterator());
-  for (strips->GoToFirstCell(); !strips->IsDoneWithTraversal(); strips->GoToNextCell())
-  {
-    vtkIdType size;
-    const vtkIdType* ids;
-    strips->GetCurrentCell(size, ids);
-    for (vtkIdType k = 2; k < size; ++k)
-    {
-      addTriangle(ids[k - 2], ids[k - 1], ids[k]);
-    }
-  }
-  return accumulator.result();
+  return worker.result;
 }
 
 vtkSmartPointer<vtkDataArray> flippedCopy(vtkDataArray* normals)
