@@ -1,5 +1,6 @@
 #include "MeshFiles.h"
 
+#include "ProgressLine.h"
 #include "VtkErrorCapture.h"
 
 #include "vtkAlgorithm.h"
@@ -99,6 +100,8 @@ vtkSmartPointer<vtkPolyData> readMesh(const std::string& fileName)
   vtkSmartPointer<vtkAlgorithm> reader = readerFor(fileName, extension);
   vtkNew<VtkErrorCapture> errors;
   errors->watch(reader);
+  vtkNew<ProgressLine> progress;
+  progress->watch(reader, "reading");
   reader->Update();
   auto mesh = vtkPolyData::SafeDownCast(reader->GetOutputDataObject(0));
   const unsigned long code = reader->GetErrorCode();
@@ -154,11 +157,13 @@ void writeMesh(vtkPolyData* mesh, const std::string& fileName, Compression compr
     [&](const std::string& temporary) -> std::string
     {
       vtkNew<VtkErrorCapture> errors;
+      vtkNew<ProgressLine> progress;
       int written = 0;
       if (lowerExtension(fileName) == ".vtp")
       {
         vtkNew<vtkXMLPolyDataWriter> writer;
         errors->watch(writer);
+        progress->watch(writer, "writing");
         writer->SetInputData(mesh);
         writer->SetFileName(temporary.c_str());
         writer->SetDataModeToAppended();
@@ -172,6 +177,7 @@ void writeMesh(vtkPolyData* mesh, const std::string& fileName, Compression compr
       {
         vtkNew<vtkPolyDataWriter> writer;
         errors->watch(writer);
+        progress->watch(writer, "writing");
         writer->SetInputData(mesh);
         writer->SetFileName(temporary.c_str());
         writer->SetFileTypeToBinary();

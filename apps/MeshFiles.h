@@ -26,7 +26,8 @@ extern const char* const writableExtensions;
 void writeThroughTemporary(
   const std::string& fileName, const std::function<std::string(const std::string& temporary)>& write);
 
-/// Reads .vtp, .vtk (legacy polydata), .ply, .obj or .stl. Throws UserError.
+/// Reads .vtp, .vtk (legacy polydata), .ply, .obj or .stl, showing progress on a terminal.
+/// Throws UserError.
 vtkSmartPointer<vtkPolyData> readMesh(const std::string& fileName);
 
 /// Throws UserError unless fileName ends in .vtp or .vtk and its folder exists.
@@ -42,7 +43,7 @@ enum class Compression
   None,
 };
 
-/// Writes .vtp (binary, appended raw) or legacy .vtk (binary), through a temporary file.
-/// Throws UserError.
+/// Writes .vtp (binary, appended raw) or legacy .vtk (binary), through a temporary file,
+/// showing progress on a terminal. Throws UserError.
 void writeMesh(vtkPolyData* mesh, const std::string& fileName, Compression compression = Compression::LZ4);
 }

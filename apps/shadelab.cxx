@@ -3,6 +3,7 @@
 //   shadelab arrays --scene SCENE.json                  the arrays a scene can produce
 //   shadelab render MESH -o OUT.png                     a picture of one array
 #include "MeshFiles.h"
+#include "ProgressLine.h"
 #include "RenderImage.h"
 #include "VtkErrorCapture.h"
 
@@ -162,6 +163,8 @@ int runShade(const ShadeOptions& options)
   filter->SetOrientNormalsOutward(!options.keepNormals);
   vtkNew<app::VtkErrorCapture> errors;
   errors->watch(filter);
+  vtkNew<app::ProgressLine> progress;
+  progress->watch(filter, "shading");
   const Clock::time_point shadeStart = Clock::now();
   filter->Update();
   const double shadeSeconds = secondsSince(shadeStart);

@@ -1,0 +1,53 @@
+#pragma once
+// "reading 40%" on one terminal line while VTK works, for runs long enough to wonder about.
+// Only when standard error is a terminal, so logs and pipes stay clean.
+#include "vtkAlgorithm.h"
+#include "vtkCommand.h"
+
+#include <cstdio>
+#include <string>
+#include <unistd.h>
+
+namespace shadelab::app
+{
+class ProgressLine : public vtkCommand
+{
+public:
+  static ProgressLine* New() { return new ProgressLine; }
+
+  /// Shows the progress of algorithm under this label.
+  void watch(vtkAlgorithm* algorithm, const std::string& label)
+  {
+    if (::isatty(STDERR_FILENO))
+    {
+      label_ = label;
+      lastPercent_ = -1;
+      algorithm->AddObserver(vtkCommand::ProgressEvent, this);
+    }
+  }
+
+  void Execute(vtkObject*, unsigned long, void* callData) override
+  {
+    const int percent = static_cast<int>(100.0 * *static_cast<double*>(callData));
+    if (percent == lastPercent_)
+    {
+      return;
+    }
+    lastPercent_ = percent;
+    // \r returns to the line's start; at 100% the line is blanked for what follows.
+    if (percent >= 100)
+    {
+      std::fprintf(stderr, "\r%*s\r", static_cast<int>(label_.size()) + 6, "");
+    }
+    else
+    {
+      std::fprintf(stderr, "\r%s %3d%%", label_.c_str(), percent);
+    }
+    std::fflush(stderr);
+  }
+
+private:
+  std::string label_;
+  int lastPercent_ = -1;
+};
+}
