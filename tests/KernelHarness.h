@@ -59,8 +59,6 @@ public:
     return { value(name, i, 0), value(name, i, 1), value(name, i, 2) };
   }
 
-  bool has(const std::string& name) const { return arrays.count(name) > 0; }
-
   std::map<std::string, std::vector<T>> arrays;
   std::vector<ShadingFlags> flags;
 

@@ -183,5 +183,28 @@ TEST(DistantLight, IntensityFromTheDirectionsLength)
   const KernelHarness<double> plain(scene, { Vec3<double>(0) }, { Vec3<double>(0, 0, 1) });
   EXPECT_DOUBLE_EQ(plain.value("lamp_diffuse", 0), 0.5 * 0.5);
 }
+
+TEST(Directions, HugeAndTinyVectorsStillNormalise)
+{
+  // glm::normalize squares the components: 1e200 would overflow, 1e-170 underflow.
+  for (double scale : { 1e200, 1e-170 })
+  {
+    Scene scene = oneLightScene(DistantLight{ { 0, 0, -scale }, Rgb(1.0), 1.0, false }, SpecularModel::None, 1.0);
+    EXPECT_TRUE(sceneProblems(scene).empty()) << scale;
+    const KernelHarness<double> run(scene, { Vec3<double>(0) }, { Vec3<double>(0, 0, 1) });
+    EXPECT_EQ(run.vec("lamp_to_light", 0), Vec3<double>(0, 0, 1)) << scale;
+    EXPECT_EQ(run.value("lamp_diffuse", 0), 0.5) << scale;
+  }
 }
 
+TEST(Flags, DoNotDependOnTheArraysRequested)
+{
+  // s = -v at the vertex: the half vector is undefined whether or not h was asked for.
+  const Scene scene = oneLightScene(DistantLight{ { 0, 0, 1 }, Rgb(1.0), 1.0, false }, SpecularModel::Phong, 10.0);
+  const std::vector<Vec3<double>> at{ Vec3<double>(0) }, normal{ Vec3<double>(0, 0, -1) };
+  const KernelHarness<double> everything(scene, at, normal, { "all" });
+  const KernelHarness<double> flagsOnly(scene, at, normal, { "shading_flags" });
+  EXPECT_EQ(everything.flags[0], FlagHalfVectorUndefined);
+  EXPECT_EQ(flagsOnly.flags[0], FlagHalfVectorUndefined);
+}
+}

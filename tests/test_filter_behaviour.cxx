@@ -215,8 +215,67 @@ TEST(FilterErrors, ExactMessages)
   sphere->GetPointData()->AddArray(clash);
   EXPECT_EQ(filterError(sphere, overheadLight(), { "default" }),
     "the input already has a point array named 'total', which this filter would write: set an "
-    "array prefix to keep both");
+    "array prefix (shadelab shade --prefix) to keep both");
   EXPECT_EQ(filterError(sphere, overheadLight(), { "default" }, "shade_"), "");
+}
+
+TEST(FilterErrors, CorruptOrOutOfRangeInput)
+{
+  // A triangle that names a point the mesh does not have (vtkPolyDataReader does not check).
+  vtkNew<vtkPolyData> corrupt;
+  vtkNew<vtkPoints> points;
+  points->InsertNextPoint(0, 0, 0);
+  points->InsertNextPoint(1, 0, 0);
+  points->InsertNextPoint(0, 1, 0);
+  corrupt->SetPoints(points);
+  vtkNew<vtkCellArray> triangles;
+  const vtkIdType ids[3] = { 0, 1, 2000000 };
+  triangles->InsertNextCell(3, ids);
+  corrupt->SetPolys(triangles);
+  EXPECT_EQ(filterError(corrupt, overheadLight(), { "default" }),
+    "the mesh's cells use point id 2000000, but it has 3 points: the file is corrupt");
+
+  vtkSmartPointer<vtkPolyData> sphere = shadelab::testing::exactSphere(10);
+  vtkNew<vtkFloatArray> shortNormals;
+  shortNormals->SetName("Normals");
+  shortNormals->SetNumberOfComponents(3);
+  shortNormals->SetNumberOfTuples(5);
+  sphere->GetPointData()->SetNormals(shortNormals);
+  EXPECT_EQ(filterError(sphere, overheadLight(), { "default" }),
+    "the point normals 'Normals' have 5 tuples of 3 components: there must be one 3-component "
+    "normal per point (" + std::to_string(sphere->GetNumberOfPoints()) + ")");
+}
+
+TEST(FilterErrors, CoordinatesBeyondThePrecision)
+{
+  // At 1e20, squared distances overflow float32 (3.4e38): refused there, exact in float64.
+  vtkSmartPointer<vtkPolyData> far = shadelab::testing::exactSphere(10, { 1e20, 0, 0 }, 1e19);
+  Scene scene;
+  scene.viewer.viewDirection = { 0, 0, -1 };
+  scene.lights = { { "sun", DistantLight{ { 0, 0, -1 }, Rgb(1.0), 1.0, false } } };
+  EXPECT_EQ(filterError(far, scene, { "default" }),
+    "the mesh's coordinates reach 1.1e+20, beyond +-2.3e+18 where squared distances overflow "
+    "float32: use double precision (shadelab shade --precision float64)");
+  vtkNew<vtkLocalReflectanceFilter> filter;
+  filter->SetInputData(far);
+  filter->SetScene(scene);
+  filter->SetArraySelection({ "sun_cos_incidence" });
+  filter->SetOutputPrecision(vtkAlgorithm::DOUBLE_PRECISION);
+  filter->Update();
+  EXPECT_DOUBLE_EQ(filter->GetOutput()->GetPointData()->GetArray("sun_cos_incidence")->GetComponent(0, 0), 1.0);
+}
+
+TEST(FilterErrors, ComputedNormalsDoNotReplaceAnArrayNamedNormals)
+{
+  vtkSmartPointer<vtkPolyData> sphere = sphereWithoutNormals(false);
+  vtkNew<vtkFloatArray> notNormals; // an array that happens to be called Normals
+  notNormals->SetName("Normals");
+  notNormals->SetNumberOfTuples(sphere->GetNumberOfPoints());
+  sphere->GetPointData()->AddArray(notNormals);
+  EXPECT_EQ(filterError(sphere, overheadLight(), { "default" }),
+    "the input already has a point array named 'Normals', which this filter would write: set an "
+    "array prefix (shadelab shade --prefix) to keep both");
+  EXPECT_EQ(filterError(sphere, overheadLight(), { "default" }, "lit_"), "");
 }
 
 /// Bitwise equality of two arrays of the same type and shape.

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 namespace
 {
 using namespace shadelab;
@@ -84,6 +86,12 @@ TEST(SceneFile, MalformedJson)
     "value - unexpected '}'; expected '[', '{', or a literal");
 }
 
+TEST(SceneFile, NumberTooLargeForADouble)
+{
+  EXPECT_EQ(errorOf(R"({ "lights": [ { "type": "ambient", "intensity": 1e400 } ] })"),
+    "scene.json: not valid JSON: number overflow parsing '1e400'");
+}
+
 TEST(SceneFile, UnknownLightType)
 {
   EXPECT_EQ(errorOf(R"({ "lights": [ { "type": "distant", "direction": [0, 0, 1] }, { "type": "laser" } ] })"),
@@ -116,6 +124,13 @@ TEST(SceneFile, WrongTypesAndUnknownFields)
     "position, attenuation, min_distance");
   EXPECT_EQ(errorOf(R"({ "lights": [], "materail": {} })"),
     "scene.json: /materail: unknown field; allowed here: model, viewer, material, lights");
+  // Fields of another model are errors too, not silently ignored.
+  EXPECT_EQ(errorOf(R"({ "lights": [ { "type": "point", "position": [0, 0, 1],
+      "attenuation": { "model": "inverse", "range": 2 } } ] })"),
+    "scene.json: /lights/0/attenuation/range: unknown field; allowed here: model");
+  EXPECT_EQ(errorOf(R"({ "lights": [ { "type": "spot", "position": [0, 0, 1], "direction": [0, 0, -1],
+      "cone": { "model": "vtk", "angle": 20, "outer_angle": 30 } } ] })"),
+    "scene.json: /lights/0/cone/outer_angle: unknown field; allowed here: model, angle, exponent");
   EXPECT_EQ(errorOf(R"({ "lights": [ { "type": "point", "position": [0, 0, 1], "attenuation": "quadratic" } ] })"),
     "scene.json: /lights/0/attenuation: \"quadratic\" is not one of \"none\", \"inverse\", "
     "\"inverse_square\", \"vtk\", \"gltf_range\"");
@@ -172,6 +187,11 @@ TEST(ArraySelection, PatternsAndNames)
   EXPECT_FALSE(distances.flags);
 
   const ArrayRequest all = selectArrays(scene, { "all" });
+  EXPECT_TRUE(all.flags);
+  EXPECT_EQ(all.totals, (std::array<bool, TotalTermCount>{ true, true, true, true }));
+  EXPECT_EQ(std::count(all.lights[0].begin(), all.lights[0].end(), true), 11); // no distance
+  EXPECT_EQ(std::count(all.lights[1].begin(), all.lights[1].end(), true), 12);
+  EXPECT_EQ(std::count(all.lights[2].begin(), all.lights[2].end(), true), 0); // ambient
   EXPECT_EQ(availableArrays(scene).size(), 5u + 11u + 12u); // totals+flags, sun, bulb
 
   try
@@ -185,5 +205,58 @@ TEST(ArraySelection, PatternsAndNames)
     EXPECT_EQ(message.substr(0, message.find(':')), "unknown array 'sun_distance'; this scene has");
     EXPECT_NE(message.find(", bulb_distance,"), std::string::npos);
   }
+  try
+  {
+    selectArrays(scene, {});
+    FAIL() << "no error";
+  }
+  catch (const std::invalid_argument& error)
+  {
+    EXPECT_EQ(std::string(error.what()).substr(0, 40), "no arrays selected; this scene has: defa");
+  }
+}
+
+TEST(ArraySelection, LightArrayNamesCannotCollide)
+{
+  // <light>_<term> names of distinct lights could only coincide if a term name ended in "_"
+  // followed by another term name (light "a_cos" with "incidence" against light "a" with
+  // "cos_incidence"). None may.
+  for (int t = 0; t < LightTermCount; ++t)
+  {
+    for (int u = 0; u < LightTermCount; ++u)
+    {
+      const std::string longer = termInfo(LightTerm(t)).name;
+      const std::string suffix = std::string("_") + termInfo(LightTerm(u)).name;
+      EXPECT_FALSE(longer.size() > suffix.size() &&
+        longer.compare(longer.size() - suffix.size(), suffix.size(), suffix) == 0)
+        << longer << " ends in " << suffix;
+    }
+  }
+}
+
+TEST(ScenePrecision, ValuesThatWouldOverflowFloat32AreRefused)
+{
+  const auto problemsOf = [](const std::string& text, Precision precision)
+  {
+    const std::vector<SceneProblem> problems = sceneProblems(parseScene(text, "scene.json"), precision);
+    return problems.empty() ? std::string("none") : problems.front().path + ": " + problems.front().message;
+  };
+  const std::string farLight = R"({ "lights": [ { "type": "point", "position": [1e30, 0, 0] } ] })";
+  EXPECT_EQ(problemsOf(farLight, Precision::Float64), "none");
+  EXPECT_EQ(problemsOf(farLight, Precision::Float32),
+    "/lights/0/position: must be a finite point with coordinates within +-2.3e+18 for float32 arithmetic");
+  const std::string bright = R"({ "lights": [ { "type": "distant", "direction": [0, 0, -1], "intensity": 1e39 } ] })";
+  EXPECT_EQ(problemsOf(bright, Precision::Float64), "none");
+  EXPECT_EQ(problemsOf(bright, Precision::Float32),
+    "/lights: together the lights can reach 1e+39 at a vertex (colour x intensity x k x "
+    "attenuation at min_distance), beyond what float32 holds: use float64 or smaller values");
+  // A tiny minimum distance: 1/d^2 at 1e-30 is 1e60.
+  const std::string close = R"({ "lights": [ { "type": "point", "position": [0, 0, 1], "min_distance": 1e-30 } ] })";
+  EXPECT_EQ(problemsOf(close, Precision::Float64), "none");
+  EXPECT_NE(problemsOf(close, Precision::Float32).find("can reach 1e+60"), std::string::npos);
+  // Even float64 cannot hold colour 1e200 x intensity 1e200 (the file reader checks float64).
+  EXPECT_EQ(errorOf(R"({ "lights": [ { "type": "ambient", "color": 1e200, "intensity": 1e200 } ] })"),
+    "scene.json: /lights: together the lights can reach inf at a vertex (colour x intensity x k "
+    "x attenuation at min_distance), beyond what float64 holds: use smaller values");
 }
 }

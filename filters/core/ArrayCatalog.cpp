@@ -178,6 +178,10 @@ std::string knownSelections(const Scene& scene)
 
 ArrayRequest selectArrays(const Scene& scene, const std::vector<std::string>& selection)
 {
+  if (selection.empty())
+  {
+    throw std::invalid_argument("no arrays selected; this scene has: " + knownSelections(scene));
+  }
   ArrayRequest request;
   request.lights.resize(scene.lights.size());
   for (const std::string& entry : selection)

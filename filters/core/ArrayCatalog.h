@@ -26,6 +26,7 @@ enum class LightTerm
   Specular,       // RGB
 };
 constexpr int LightTermCount = 12;
+static_assert(static_cast<int>(LightTerm::Specular) + 1 == LightTermCount, "LightTermCount is stale");
 
 /// Quantities summed over all lights.
 enum class TotalTerm
@@ -36,6 +37,7 @@ enum class TotalTerm
   Total,
 };
 constexpr int TotalTermCount = 4;
+static_assert(static_cast<int>(TotalTerm::Total) + 1 == TotalTermCount, "TotalTermCount is stale");
 
 struct TermInfo
 {
@@ -72,7 +74,9 @@ struct ArrayDescription
 /// Every array the scene can produce, in output order, with names prefixed by prefix.
 std::vector<ArrayDescription> availableArrays(const Scene& scene, const std::string& prefix = "");
 
-/// The array name of a light's term: <prefix><light>_<term>.
+/// The array name of a light's term: <prefix><light>_<term>. Distinct lights cannot share an
+/// array name because no term name ends in "_" followed by another term name (a test keeps
+/// it so).
 std::string lightArrayName(const std::string& prefix, const std::string& light, LightTerm term);
 /// The array name of a total or the flags: <prefix><name>.
 std::string totalArrayName(const std::string& prefix, TotalTerm term);
@@ -84,6 +88,7 @@ std::string flagsArrayName(const std::string& prefix);
 ///   "all"      every array the scene has
 ///   "*_TERM"   TERM for every light that has it, e.g. "*_cos_incidence"
 ///   NAME       one array by its full name (without the prefix), e.g. "key_diffuse"
-/// Throws std::invalid_argument naming the first unknown entry and listing what exists.
+/// Throws std::invalid_argument naming the first unknown entry and listing what exists, or
+/// saying that the selection is empty.
 ArrayRequest selectArrays(const Scene& scene, const std::vector<std::string>& selection);
 }

@@ -41,16 +41,26 @@ Vec3<T> reflectAboutNormal(const Vec3<T>& s, const Vec3<T>& n, T cosIncidence)
   return T(2) * cosIncidence * n - s;
 }
 
-// Section 11.4: h = (s + v) / |s + v|. Undefined when s = -v (REFERENCES.md section 4);
-// then this returns false and leaves h untouched.
+// Section 11.4: h = (s + v) / |s + v| is undefined when s = -v (REFERENCES.md section 4).
+// Below this |s + v|^2 is pure rounding noise of two opposite unit vectors.
+template <typename T>
+constexpr T halfVectorUndefinedBelow2 = T(1e-12);
+
+template <typename T>
+bool isHalfVectorDefined(const Vec3<T>& s, const Vec3<T>& v)
+{
+  const Vec3<T> sum = s + v;
+  return glm::dot(sum, sum) > halfVectorUndefinedBelow2<T>;
+}
+
+// Section 11.4: h = (s + v) / |s + v|. Returns false, leaving h untouched, where it is
+// undefined.
 template <typename T>
 bool halfVector(const Vec3<T>& s, const Vec3<T>& v, Vec3<T>& h)
 {
   const Vec3<T> sum = s + v;
   const T length2 = glm::dot(sum, sum);
-  // Below this |s + v| is pure rounding noise of two opposite unit vectors.
-  constexpr T undefinedBelow2 = T(1e-12);
-  if (!(length2 > undefinedBelow2))
+  if (!(length2 > halfVectorUndefinedBelow2<T>))
   {
     return false;
   }

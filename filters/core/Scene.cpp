@@ -1,10 +1,10 @@
 #include "Scene.h"
 
-#include "ArrayCatalog.h"
-
 #include <cmath>
+#include <limits>
 #include <regex>
 #include <set>
+#include <sstream>
 
 namespace shadelab
 {
@@ -21,26 +21,57 @@ std::string lightTypeName(const LightSource& source)
   return std::visit(Namer{}, source);
 }
 
+namespace
+{
+/// Two significant digits: enough to say how far out of range a value is.
+std::string scientific(double x)
+{
+  std::ostringstream text;
+  text.precision(2);
+  text << x;
+  return text.str();
+}
+
+const char* precisionName(Precision precision)
+{
+  return precision == Precision::Float32 ? "float32" : "float64";
+}
+}
+
 std::optional<glm::dvec3> Viewer::lineOfSight() const
 {
   if (!position)
   {
-    return glm::normalize(viewDirection);
+    return unitVector(viewDirection);
   }
   if (!focalPoint || *focalPoint == *position)
   {
     return std::nullopt;
   }
-  return glm::normalize(*focalPoint - *position);
+  return unitVector(*focalPoint - *position);
+}
+
+double coordinateLimit(Precision precision)
+{
+  const double largest = precision == Precision::Float32 ? std::numeric_limits<float>::max()
+                                                         : std::numeric_limits<double>::max();
+  // |a - b|^2 <= (2 limit)^2 = largest / 16: squared distances keep a margin for rounding.
+  return std::sqrt(largest) / 8;
+}
+
+std::string meshCoordinateProblem(double reach, Precision precision)
+{
+  if (reach <= coordinateLimit(precision))
+  {
+    return "";
+  }
+  return "the mesh's coordinates reach " + scientific(reach) + ", beyond +-" +
+    scientific(coordinateLimit(precision)) + " where squared distances overflow " + precisionName(precision) +
+    (precision == Precision::Float32 ? ": use double precision (shadelab shade --precision float64)" : "");
 }
 
 namespace
 {
-bool isFinite(const glm::dvec3& v)
-{
-  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
-
 bool isNonNegative(const glm::dvec3& v)
 {
   return isFinite(v) && v.x >= 0 && v.y >= 0 && v.z >= 0;
@@ -53,7 +84,34 @@ bool isNonNegative(double x)
 
 bool isNonZero(const glm::dvec3& v)
 {
-  return isFinite(v) && glm::dot(v, v) > 0;
+  return isFinite(v) && largestComponent(v) > 0;
+}
+
+/// The largest RGB value a light can add at a vertex: colour x intensity x the larger of kd
+/// and ks, at full attenuation (a positional light at its minimum distance).
+double peakContribution(const LightSource& source, const Material& m)
+{
+  const double k = std::max(largestComponent(m.kd), largestComponent(m.ks));
+  return std::visit(
+    [&](const auto& light)
+    {
+      using Type = std::decay_t<decltype(light)>;
+      double peak = largestComponent(light.color) * light.intensity;
+      if constexpr (std::is_same_v<Type, AmbientLight>)
+      {
+        return peak * largestComponent(m.ka);
+      }
+      if constexpr (std::is_same_v<Type, DistantLight>)
+      {
+        peak *= light.intensityFromLength ? largestComponent(light.direction) * std::sqrt(3.0) : 1.0;
+      }
+      if constexpr (std::is_same_v<Type, PointLight> || std::is_same_v<Type, SpotLight>)
+      {
+        peak *= attenuationAt(light.attenuation, 0.0);
+      }
+      return peak * k;
+    },
+    source);
 }
 
 class ProblemList
@@ -120,7 +178,19 @@ void checkStrength(const Light& light, const std::string& at, ProblemList& list)
   list.check(isNonNegative(light.intensity), at + "/intensity", "must be a number >= 0");
 }
 
-void checkLight(const Scene& scene, const NamedLight& light, const std::string& at, ProblemList& list)
+bool isWithin(const glm::dvec3& point, double limit)
+{
+  return isFinite(point) && largestComponent(point) <= limit;
+}
+
+std::string outOfRange(Precision precision)
+{
+  return std::string("must be a finite point with coordinates within +-") +
+    scientific(coordinateLimit(precision)) + " for " + precisionName(precision) + " arithmetic";
+}
+
+void checkLight(const Scene& scene, const NamedLight& light, const std::string& at, Precision precision,
+  ProblemList& list)
 {
   static const std::regex identifier("[A-Za-z][A-Za-z0-9_]*");
   list.check(std::regex_match(light.name, identifier), at + "/name",
@@ -143,7 +213,7 @@ void checkLight(const Scene& scene, const NamedLight& light, const std::string& 
       }
       if constexpr (std::is_same_v<Type, PointLight> || std::is_same_v<Type, SpotLight>)
       {
-        list.check(isFinite(source.position), at + "/position", "must be a finite point");
+        list.check(isWithin(source.position, coordinateLimit(precision)), at + "/position", outOfRange(precision));
         checkAttenuation(source.attenuation, at, scene.model, list);
       }
       if constexpr (std::is_same_v<Type, SpotLight>)
@@ -161,15 +231,19 @@ void checkLight(const Scene& scene, const NamedLight& light, const std::string& 
 }
 }
 
-std::vector<SceneProblem> sceneProblems(const Scene& scene)
+std::vector<SceneProblem> sceneProblems(const Scene& scene, Precision precision)
 {
   ProblemList list;
   const Viewer& viewer = scene.viewer;
+  const double limit = coordinateLimit(precision);
   if (viewer.position)
   {
-    list.check(isFinite(*viewer.position), "/viewer/position", "must be a finite point");
-    list.check(!viewer.focalPoint || *viewer.focalPoint != *viewer.position, "/viewer/focal_point",
-      "must differ from the position");
+    list.check(isWithin(*viewer.position, limit), "/viewer/position", outOfRange(precision));
+    if (viewer.focalPoint)
+    {
+      list.check(isWithin(*viewer.focalPoint, limit), "/viewer/focal_point", outOfRange(precision));
+      list.check(*viewer.focalPoint != *viewer.position, "/viewer/focal_point", "must differ from the position");
+    }
   }
   else
   {
@@ -188,16 +262,28 @@ std::vector<SceneProblem> sceneProblems(const Scene& scene)
   for (std::size_t i = 0; i < scene.lights.size(); ++i)
   {
     const std::string at = "/lights/" + std::to_string(i);
-    checkLight(scene, scene.lights[i], at, list);
+    checkLight(scene, scene.lights[i], at, precision, list);
     list.check(lightNames.insert(scene.lights[i].name).second, at + "/name",
       "another light is already named '" + scene.lights[i].name + "'");
   }
 
-  std::set<std::string> names;
-  for (const ArrayDescription& array : availableArrays(scene))
+  // Only a scene that is otherwise valid has meaningful peaks.
+  if (list.problems.empty())
   {
-    list.check(names.insert(array.name).second, "/lights",
-      "two arrays would both be named '" + array.name + "': rename a light");
+    // The outputs are sums of the lights' contributions: keep them below a quarter of the
+    // largest finite value, a margin for the rounding of the products that form them.
+    const double largest = precision == Precision::Float32 ? std::numeric_limits<float>::max()
+                                                           : std::numeric_limits<double>::max();
+    double sum = 0;
+    for (const NamedLight& light : scene.lights)
+    {
+      sum += peakContribution(light.source, m);
+    }
+    list.check(sum <= largest / 4, "/lights",
+      std::string("together the lights can reach ") + scientific(sum) +
+        " at a vertex (colour x intensity x k x attenuation at min_distance), beyond what " +
+        precisionName(precision) + " holds: use " +
+        (precision == Precision::Float32 ? "float64 or " : "") + "smaller values");
   }
   return list.problems;
 }

@@ -75,7 +75,25 @@ struct SceneProblem
   std::string message;
 };
 
-/// Everything that would make the scene unusable, in file order; empty when it is valid.
-/// The scene file parser and the VTK filter both report these, so the rules live here once.
-std::vector<SceneProblem> sceneProblems(const Scene& scene);
+/// The arithmetic a scene is evaluated in.
+enum class Precision
+{
+  Float32,
+  Float64,
+};
+
+/// The largest |coordinate| (mesh points, light and viewer positions) that the precision
+/// handles: squared distances between such points cannot overflow.
+double coordinateLimit(Precision precision);
+
+/// Why a mesh whose coordinates reach |x| = reach cannot be shaded in this precision, or ""
+/// when it can.
+std::string meshCoordinateProblem(double reach, Precision precision);
+
+/// Everything that would make the scene unusable in this precision, in file order; empty
+/// when it is valid. Besides values out of their domain, this refuses scenes whose terms
+/// could overflow the precision (a light's colour x intensity x k x attenuation at its
+/// minimum distance), so that finite input never gives Inf. The scene file parser and the
+/// VTK filter both report these, so the rules live here once.
+std::vector<SceneProblem> sceneProblems(const Scene& scene, Precision precision = Precision::Float64);
 }

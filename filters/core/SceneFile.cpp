@@ -101,30 +101,29 @@ public:
     return value_.get<std::string>();
   }
 
-  /// One of the listed strings; returns its index.
-  std::size_t choice(std::initializer_list<const char*> options) const
+  /// One of the listed strings; returns the value paired with it.
+  template <typename Value>
+  Value choice(std::initializer_list<std::pair<const char*, Value>> options) const
   {
     const std::string given = text();
     std::string list;
-    std::size_t index = 0;
-    for (const char* option : options)
+    for (const auto& [name, value] : options)
     {
-      if (given == option)
+      if (given == name)
       {
-        return index;
+        return value;
       }
-      list += (list.empty() ? "\"" : ", \"") + std::string(option) + "\"";
-      ++index;
+      list += (list.empty() ? "\"" : ", \"") + std::string(name) + "\"";
     }
     fail("\"" + given + "\" is not one of " + list);
   }
 
-  glm::dvec3 vector3() const
+  glm::dvec3 vector3(const char* expected = "an array of 3 numbers") const
   {
     if (!value_.is_array() || value_.size() != 3 ||
       !std::all_of(value_.begin(), value_.end(), [](const Json& x) { return x.is_number(); }))
     {
-      fail("must be an array of 3 numbers, got " + describe(value_));
+      fail(std::string("must be ") + expected + ", got " + describe(value_));
     }
     return { value_[0].get<double>(), value_[1].get<double>(), value_[2].get<double>() };
   }
@@ -132,16 +131,7 @@ public:
   /// An RGB colour: [r, g, b], or one number for grey.
   Rgb rgb() const
   {
-    if (value_.is_number())
-    {
-      return Rgb(value_.get<double>());
-    }
-    if (!value_.is_array() || value_.size() != 3 ||
-      !std::all_of(value_.begin(), value_.end(), [](const Json& x) { return x.is_number(); }))
-    {
-      fail("must be [r, g, b] or one number, got " + describe(value_));
-    }
-    return vector3();
+    return value_.is_number() ? Rgb(value_.get<double>()) : vector3("[r, g, b] or one number");
   }
 
   std::size_t size() const { return value_.size(); }
@@ -173,14 +163,15 @@ Attenuation readAttenuation(const Node& light)
     return a;
   }
   const Node node = light.at("attenuation");
-  static constexpr std::initializer_list<const char*> models = { "none", "inverse",
-    "inverse_square", "vtk", "gltf_range" };
-  static constexpr AttenuationModel modelOf[] = { AttenuationModel::None, AttenuationModel::Inverse,
-    AttenuationModel::InverseSquare, AttenuationModel::ConstantLinearQuadratic,
-    AttenuationModel::GltfRange };
+  const auto modelOf = [](const Node& name)
+  {
+    return name.choice<AttenuationModel>({ { "none", AttenuationModel::None },
+      { "inverse", AttenuationModel::Inverse }, { "inverse_square", AttenuationModel::InverseSquare },
+      { "vtk", AttenuationModel::ConstantLinearQuadratic }, { "gltf_range", AttenuationModel::GltfRange } });
+  };
   if (node.isString())
   {
-    a.model = modelOf[node.choice(models)];
+    a.model = modelOf(node);
     if (a.model == AttenuationModel::ConstantLinearQuadratic || a.model == AttenuationModel::GltfRange)
     {
       node.fail("this model has parameters: write it as an object, e.g. {\"model\": \"" +
@@ -189,16 +180,22 @@ Attenuation readAttenuation(const Node& light)
     return a;
   }
   node.expectObject({ "model", "constant", "linear", "quadratic", "range" });
-  a.model = modelOf[node.at("model").choice(models)];
-  if (a.model == AttenuationModel::ConstantLinearQuadratic)
+  a.model = modelOf(node.at("model"));
+  // Now that the model is known, its parameters are the only fields allowed.
+  switch (a.model)
   {
-    a.constant = numberOr(node, "constant", 1.0);
-    a.linear = numberOr(node, "linear", 0.0);
-    a.quadratic = numberOr(node, "quadratic", 0.0);
-  }
-  if (a.model == AttenuationModel::GltfRange)
-  {
-    a.range = node.at("range").number();
+    case AttenuationModel::ConstantLinearQuadratic:
+      node.expectObject({ "model", "constant", "linear", "quadratic" });
+      a.constant = numberOr(node, "constant", 1.0);
+      a.linear = numberOr(node, "linear", 0.0);
+      a.quadratic = numberOr(node, "quadratic", 0.0);
+      break;
+    case AttenuationModel::GltfRange:
+      node.expectObject({ "model", "range" });
+      a.range = node.at("range").number();
+      break;
+    default:
+      node.expectObject({ "model" });
   }
   return a;
 }
@@ -212,14 +209,16 @@ SpotCone readCone(const Node& light)
   }
   const Node node = light.at("cone");
   node.expectObject({ "model", "angle", "exponent", "inner_angle", "outer_angle" });
-  cone.model = node.at("model").choice({ "vtk", "gltf" }) == 0 ? ConeModel::Vtk : ConeModel::Gltf;
+  cone.model = node.at("model").choice<ConeModel>({ { "vtk", ConeModel::Vtk }, { "gltf", ConeModel::Gltf } });
   if (cone.model == ConeModel::Vtk)
   {
+    node.expectObject({ "model", "angle", "exponent" });
     cone.halfAngleDegrees = numberOr(node, "angle", cone.halfAngleDegrees);
     cone.exponent = numberOr(node, "exponent", cone.exponent);
   }
   else
   {
+    node.expectObject({ "model", "inner_angle", "outer_angle" });
     cone.innerAngleDegrees = numberOr(node, "inner_angle", cone.innerAngleDegrees);
     cone.outerAngleDegrees = numberOr(node, "outer_angle", cone.outerAngleDegrees);
   }
@@ -233,16 +232,28 @@ void readStrength(const Node& node, Light& light)
   light.intensity = numberOr(node, "intensity", light.intensity);
 }
 
+enum class LightType
+{
+  Distant,
+  Headlight,
+  Point,
+  Spot,
+  Ambient,
+};
+
 NamedLight readLight(const Node& node, std::size_t index)
 {
+  // First every field any light may have (so that a non-object or a misspelt field is caught
+  // before the type is read), then, below, only those of this light's type.
   node.expectObject({ "name", "type", "color", "intensity", "direction", "intensity_from_length",
     "position", "attenuation", "min_distance", "cone" });
-  const std::size_t type =
-    node.at("type").choice({ "distant", "headlight", "point", "spot", "ambient" });
+  const LightType type = node.at("type").choice<LightType>({ { "distant", LightType::Distant },
+    { "headlight", LightType::Headlight }, { "point", LightType::Point }, { "spot", LightType::Spot },
+    { "ambient", LightType::Ambient } });
   NamedLight light;
   switch (type)
   {
-    case 0:
+    case LightType::Distant:
     {
       node.expectObject({ "name", "type", "color", "intensity", "direction", "intensity_from_length" });
       DistantLight distant;
@@ -255,7 +266,7 @@ NamedLight readLight(const Node& node, std::size_t index)
       light.source = distant;
       break;
     }
-    case 1:
+    case LightType::Headlight:
     {
       node.expectObject({ "name", "type", "color", "intensity" });
       Headlight head;
@@ -263,7 +274,7 @@ NamedLight readLight(const Node& node, std::size_t index)
       light.source = head;
       break;
     }
-    case 2:
+    case LightType::Point:
     {
       node.expectObject({ "name", "type", "color", "intensity", "position", "attenuation", "min_distance" });
       PointLight point;
@@ -273,7 +284,7 @@ NamedLight readLight(const Node& node, std::size_t index)
       light.source = point;
       break;
     }
-    case 3:
+    case LightType::Spot:
     {
       node.expectObject({ "name", "type", "color", "intensity", "position", "direction",
         "attenuation", "min_distance", "cone" });
@@ -286,7 +297,7 @@ NamedLight readLight(const Node& node, std::size_t index)
       light.source = spot;
       break;
     }
-    default:
+    case LightType::Ambient:
     {
       node.expectObject({ "name", "type", "color", "intensity" });
       AmbientLight ambient;
@@ -322,9 +333,8 @@ Material readMaterial(const Node& node, ShadingModel model)
   m.shininess = numberOr(node, "shininess", m.shininess);
   if (node.has("specular"))
   {
-    static constexpr SpecularModel models[] = { SpecularModel::BlinnPhong, SpecularModel::Phong,
-      SpecularModel::None };
-    m.specular = models[node.at("specular").choice({ "blinn-phong", "phong", "none" })];
+    m.specular = node.at("specular").choice<SpecularModel>({ { "blinn-phong", SpecularModel::BlinnPhong },
+      { "phong", SpecularModel::Phong }, { "none", SpecularModel::None } });
   }
   if (node.has("two_sided"))
   {
@@ -367,8 +377,8 @@ Scene readScene(const Json& document)
   Scene scene;
   if (root.has("model"))
   {
-    scene.model = root.at("model").choice({ "lecture", "vtk" }) == 0 ? ShadingModel::Lecture
-                                                                      : ShadingModel::VtkOpenGL2;
+    scene.model = root.at("model").choice<ShadingModel>(
+      { { "lecture", ShadingModel::Lecture }, { "vtk", ShadingModel::VtkOpenGL2 } });
   }
   if (root.has("viewer"))
   {
@@ -410,9 +420,10 @@ Scene parseScene(const std::string& text, const std::string& sourceName)
   {
     document = Json::parse(text);
   }
-  catch (const Json::parse_error& error)
+  catch (const Json::exception& error)
   {
-    // nlohmann prefixes "[json.exception.parse_error.101] "; the rest says line and column.
+    // nlohmann prefixes "[json.exception.parse_error.101] "; the rest says what and where
+    // (a syntax error's line and column, or a number too large such as 1e400).
     std::string message = error.what();
     const std::size_t end = message.find("] ");
     throw SceneFileError(sourceName + ": not valid JSON: " +

@@ -15,12 +15,6 @@ Vec3<T> toVec(const glm::dvec3& v)
 }
 
 template <typename T>
-bool isFinite(const Vec3<T>& v)
-{
-  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
-
-template <typename T>
 void store(T* array, std::size_t i, T value)
 {
   if (array)
@@ -74,7 +68,7 @@ ShadingKernel<T>::ShadingKernel(const Scene& scene, ShadingOutputs<T> outputs)
   }
   else
   {
-    towardViewer_ = toVec<T>(-glm::normalize(scene.viewer.viewDirection));
+    towardViewer_ = toVec<T>(-unitVector(scene.viewer.viewDirection));
   }
 
   const bool totalSpecular = outputs_.totals[int(TotalTerm::Specular)] || outputs_.totals[int(TotalTerm::Total)];
@@ -92,7 +86,7 @@ ShadingKernel<T>::ShadingKernel(const Scene& scene, ShadingOutputs<T> outputs)
     Rgb color;
     if (const auto* distant = std::get_if<DistantLight>(&source))
     {
-      light.toLight = toVec<T>(-glm::normalize(distant->direction));
+      light.toLight = toVec<T>(-unitVector(distant->direction));
       const double lengthFactor = distant->intensityFromLength ? glm::length(distant->direction) : 1.0;
       color = strength(*distant) * lengthFactor;
     }
@@ -112,7 +106,7 @@ ShadingKernel<T>::ShadingKernel(const Scene& scene, ShadingOutputs<T> outputs)
     {
       light.kind = Kind::Spot;
       light.position = toVec<T>(spot->position);
-      light.axis = toVec<T>(glm::normalize(spot->axis));
+      light.axis = toVec<T>(unitVector(spot->axis));
       light.attenuation = spot->attenuation;
       light.cone = PreparedCone<T>(spot->cone);
       color = strength(*spot);
@@ -239,13 +233,18 @@ void ShadingKernel<T>::shadeVertex(std::size_t i, const Vec3<T>& position, const
     }
     Vec3<T> h(0);
     T nDotH = 0;
-    bool hDefined = false;
+    bool hDefined = true;
     if (light.needsHalfVector)
     {
       hDefined = halfVector(s, specularViewer, h);
-      flags |= hDefined ? 0 : FlagHalfVectorUndefined;
       nDotH = glm::dot(n, h);
     }
+    else if (outputs_.flags)
+    {
+      // The flag must not depend on which arrays were asked for.
+      hDefined = isHalfVectorDefined(s, specularViewer);
+    }
+    flags |= hDefined ? 0 : FlagHalfVectorUndefined;
     Vec3<T> specular(0);
     if (light.needsSpecular)
     {
@@ -263,6 +262,7 @@ void ShadingKernel<T>::shadeVertex(std::size_t i, const Vec3<T>& position, const
     store(out[int(LightTerm::Attenuation)], i, ls.attenuation);
     store(out[int(LightTerm::SpotFactor)], i, ls.spotFactor);
     store(out[int(LightTerm::CosIncidence)], i, cosIncidence);
+    // atan2 is the costliest term here: evaluated only when its array was asked for.
     if (out[int(LightTerm::IncidenceAngle)])
     {
       store(out[int(LightTerm::IncidenceAngle)], i, incidenceAngleDegrees(n, s));

@@ -4,6 +4,9 @@
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
+#include <algorithm>
+#include <cmath>
+
 namespace shadelab
 {
 template <typename T>
@@ -11,4 +14,24 @@ using Vec3 = glm::vec<3, T, glm::defaultp>;
 
 /// Linear RGB triple (light colours, material coefficients).
 using Rgb = glm::dvec3;
+
+template <typename T>
+bool isFinite(const Vec3<T>& v)
+{
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+/// The largest absolute component: 0 only for the zero vector, and never overflows.
+inline double largestComponent(const glm::dvec3& v)
+{
+  return std::max({ std::abs(v.x), std::abs(v.y), std::abs(v.z) });
+}
+
+/// v / |v| for any finite non-zero v. glm::normalize squares the components first, so it
+/// returns 0 for |v| above 1e154 and for |v| below 1e-154; scaling by the largest component
+/// first keeps the squares near 1.
+inline glm::dvec3 unitVector(const glm::dvec3& v)
+{
+  return glm::normalize(v / largestComponent(v));
+}
 }

@@ -248,7 +248,44 @@ int vtkLocalReflectanceFilter::RequestData(
                                                 << " vertex or line cells): surface shading needs a surface");
     return 0;
   }
-  const std::vector<shadelab::SceneProblem> problems = shadelab::sceneProblems(this->Scene);
+  for (vtkCellArray* cells : { input->GetVerts(), input->GetLines(), input->GetPolys(), input->GetStrips() })
+  {
+    double ids[2];
+    cells->GetConnectivityArray()->GetRange(ids);
+    if (cells->GetNumberOfConnectivityIds() > 0 && (ids[0] < 0 || ids[1] >= pointCount))
+    {
+      vtkErrorMacro("the mesh's cells use point id " << static_cast<vtkIdType>(ids[0] < 0 ? ids[0] : ids[1])
+                                                     << ", but it has " << pointCount
+                                                     << " points: the file is corrupt");
+      return 0;
+    }
+  }
+  vtkDataArray* inputNormals = input->GetPointData()->GetNormals();
+  if (inputNormals && (inputNormals->GetNumberOfComponents() != 3 || inputNormals->GetNumberOfTuples() != pointCount))
+  {
+    vtkErrorMacro("the point normals '" << (inputNormals->GetName() ? inputNormals->GetName() : "")
+                                        << "' have " << inputNormals->GetNumberOfTuples() << " tuples of "
+                                        << inputNormals->GetNumberOfComponents()
+                                        << " components: there must be one 3-component normal per point ("
+                                        << pointCount << ")");
+    return 0;
+  }
+  const shadelab::Precision precision =
+    this->OutputPrecision == DOUBLE_PRECISION ? shadelab::Precision::Float64 : shadelab::Precision::Float32;
+  double reach = 0;
+  for (int c = 0; c < 3; ++c)
+  {
+    double range[2];
+    input->GetPoints()->GetData()->GetFiniteRange(range, c); // NaN and Inf points are flagged, not refused
+    reach = std::max({ reach, std::abs(range[0]), std::abs(range[1]) });
+  }
+  const std::string coordinateProblem = shadelab::meshCoordinateProblem(reach, precision);
+  if (!coordinateProblem.empty())
+  {
+    vtkErrorMacro(<< coordinateProblem);
+    return 0;
+  }
+  const std::vector<shadelab::SceneProblem> problems = shadelab::sceneProblems(this->Scene, precision);
   if (!problems.empty())
   {
     vtkErrorMacro("scene " << problems.front().path << ": " << problems.front().message);
@@ -264,12 +301,22 @@ int vtkLocalReflectanceFilter::RequestData(
     vtkErrorMacro(<< error.what());
     return 0;
   }
+  std::vector<std::string> written;
   for (const auto& array : shadelab::availableArrays(this->Scene, this->ArrayPrefix))
   {
-    if (input->GetPointData()->HasArray(array.name.c_str()))
+    written.push_back(array.name);
+  }
+  const std::string computedNormalsName = this->ArrayPrefix + "Normals";
+  if (!inputNormals)
+  {
+    written.push_back(computedNormalsName);
+  }
+  for (const std::string& name : written)
+  {
+    if (input->GetPointData()->HasArray(name.c_str()))
     {
       vtkErrorMacro("the input already has a point array named '"
-        << array.name << "', which this filter would write: set an array prefix to keep both");
+        << name << "', which this filter would write: set an array prefix (shadelab shade --prefix) to keep both");
       return 0;
     }
   }
@@ -278,7 +325,7 @@ int vtkLocalReflectanceFilter::RequestData(
 
   // Normals: the input's own, or computed without splitting so point ids stay the same.
   std::ostringstream report;
-  vtkSmartPointer<vtkDataArray> normals = input->GetPointData()->GetNormals();
+  vtkSmartPointer<vtkDataArray> normals = inputNormals;
   const bool computed = normals == nullptr;
   if (computed)
   {
@@ -290,9 +337,10 @@ int vtkLocalReflectanceFilter::RequestData(
     normalFilter->ComputeCellNormalsOff();
     normalFilter->Update();
     normals = normalFilter->GetOutput()->GetPointData()->GetNormals();
-    normals->SetName("Normals");
+    normals->SetName(computedNormalsName.c_str());
     report << "The mesh has no point normals: computed them (vtkPolyDataNormals, no splitting) "
-              "and added them as 'Normals'.";
+              "and added them as '"
+           << computedNormalsName << "'.";
   }
   else
   {

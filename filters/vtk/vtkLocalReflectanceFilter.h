@@ -6,7 +6,7 @@
  * Reads points and point normals, evaluates a shadelab::Scene at every vertex, and adds the
  * requested arrays (see shadelab::selectArrays; README.md has the table). Every input array
  * passes through unchanged. Without point normals, normals are computed without splitting
- * (point ids and count stay) and added as "Normals". Normals that point into a closed or
+ * (point ids and count stay) and added as "<ArrayPrefix>Normals". Normals that point into a closed or
  * nearly closed mesh are used flipped unless OrientNormalsOutward is off; GetNormalsReport()
  * says what happened, and so does the output's field data array "shadelab_normals".
  */
