@@ -24,7 +24,6 @@ namespace fs = std::filesystem;
 namespace shadelab::app
 {
 const char* const readableExtensions = ".vtp, .vtk, .ply, .obj, .stl";
-const char* const writableExtensions = ".vtp, .vtk";
 
 namespace
 {
@@ -115,12 +114,19 @@ vtkSmartPointer<vtkPolyData> readMesh(const std::string& fileName)
   return mesh;
 }
 
-void checkWritable(const std::string& fileName)
+void checkOutputFile(const std::string& fileName, std::initializer_list<const char*> extensions)
 {
   const std::string extension = lowerExtension(fileName);
-  if (extension != ".vtp" && extension != ".vtk")
+  std::string list;
+  bool known = false;
+  for (const char* allowed : extensions)
   {
-    throw UserError(fileName + ": cannot write '" + extension + "' files; use " + writableExtensions);
+    list += (list.empty() ? "" : ", ") + std::string(allowed);
+    known = known || extension == allowed;
+  }
+  if (!known)
+  {
+    throw UserError(fileName + ": cannot write '" + extension + "' files here; use " + list);
   }
   const fs::path folder = fs::absolute(fileName).parent_path();
   if (!fs::is_directory(folder))
@@ -152,7 +158,7 @@ void writeThroughTemporary(
 
 void writeMesh(vtkPolyData* mesh, const std::string& fileName, Compression compression)
 {
-  checkWritable(fileName);
+  checkOutputFile(fileName, meshExtensions);
   writeThroughTemporary(fileName,
     [&](const std::string& temporary) -> std::string
     {

@@ -4,6 +4,7 @@
 #include "vtkSmartPointer.h"
 
 #include <functional>
+#include <initializer_list>
 #include <stdexcept>
 #include <string>
 
@@ -16,9 +17,10 @@ public:
   using std::runtime_error::runtime_error;
 };
 
-/// The extensions readMesh understands, for messages and --help.
+/// The extensions readMesh understands, for messages.
 extern const char* const readableExtensions;
-extern const char* const writableExtensions;
+/// The extensions writeMesh writes.
+constexpr std::initializer_list<const char*> meshExtensions = { ".vtp", ".vtk" };
 
 /// Writes fileName through a temporary file in the same folder: write(temporary) returns ""
 /// on success or the reason it failed; only a complete file is renamed over fileName, so a
@@ -30,8 +32,9 @@ void writeThroughTemporary(
 /// Throws UserError.
 vtkSmartPointer<vtkPolyData> readMesh(const std::string& fileName);
 
-/// Throws UserError unless fileName ends in .vtp or .vtk and its folder exists.
-void checkWritable(const std::string& fileName);
+/// Throws UserError unless fileName ends in one of the extensions (in any case) and its
+/// folder exists.
+void checkOutputFile(const std::string& fileName, std::initializer_list<const char*> extensions);
 
 /// How .vtp data are compressed. LZ4 writes about 7x and reads about 10x faster than zlib
 /// for files about 1.5x larger (measured on a 1M-vertex mesh with every array); ParaView

@@ -15,6 +15,15 @@ class ProgressLine : public vtkCommand
 public:
   static ProgressLine* New() { return new ProgressLine; }
 
+  /// A run cut short by an error leaves no half line for the error to follow.
+  ~ProgressLine() override
+  {
+    if (lastPercent_ >= 0 && lastPercent_ < 100)
+    {
+      clear();
+    }
+  }
+
   /// Shows the progress of algorithm under this label.
   void watch(vtkAlgorithm* algorithm, const std::string& label)
   {
@@ -37,16 +46,20 @@ public:
     // \r returns to the line's start; at 100% the line is blanked for what follows.
     if (percent >= 100)
     {
-      std::fprintf(stderr, "\r%*s\r", static_cast<int>(label_.size()) + 6, "");
+      clear();
+      return;
     }
-    else
-    {
-      std::fprintf(stderr, "\r%s %3d%%", label_.c_str(), percent);
-    }
+    std::fprintf(stderr, "\r%s %3d%%", label_.c_str(), percent);
     std::fflush(stderr);
   }
 
 private:
+  void clear()
+  {
+    std::fprintf(stderr, "\r%*s\r", static_cast<int>(label_.size()) + 6, "");
+    std::fflush(stderr);
+  }
+
   std::string label_;
   int lastPercent_ = -1;
 };

@@ -32,7 +32,13 @@ std::string arrayNames(vtkPointData* pointData)
   {
     names += (a ? ", " : "") + std::string(pointData->GetArrayName(a) ? pointData->GetArrayName(a) : "");
   }
-  return names.empty() ? "none" : names;
+  return names.empty() ? "no point arrays (shade it first: shadelab shade)" : names;
+}
+
+/// A view-up vector not parallel to the line of sight.
+glm::dvec3 viewUpFor(const glm::dvec3& sight)
+{
+  return std::abs(sight.y) > 0.99 ? glm::dvec3(0, 0, -1) : glm::dvec3(0, 1, 0);
 }
 
 /// RGB in [0, 1] to 8-bit colours, so that the mapper draws them as they are.
@@ -64,19 +70,18 @@ void placeCamera(vtkRenderer* renderer, vtkPolyData* mesh, const std::optional<V
     const glm::dvec3 target = viewer->focalPoint.value_or(glm::dvec3(centre[0], centre[1], centre[2]));
     camera->SetPosition(eye.x, eye.y, eye.z);
     camera->SetFocalPoint(target.x, target.y, target.z);
-    const glm::dvec3 sight = glm::normalize(target - eye);
-    const bool lookingAlongY = std::abs(sight.y) > 0.99;
-    camera->SetViewUp(0.0, lookingAlongY ? 0.0 : 1.0, lookingAlongY ? -1.0 : 0.0);
+    const glm::dvec3 up = viewUpFor(unitVector(target - eye));
+    camera->SetViewUp(up.x, up.y, up.z);
     renderer->ResetCameraClippingRange();
     return;
   }
   // A viewer at infinity (or none): a parallel projection along its direction.
-  const glm::dvec3 sight = viewer ? glm::normalize(viewer->viewDirection) : glm::dvec3(0, 0, -1);
+  const glm::dvec3 sight = viewer ? unitVector(viewer->viewDirection) : glm::dvec3(0, 0, -1);
   camera->ParallelProjectionOn();
   camera->SetFocalPoint(centre);
   camera->SetPosition(centre[0] - sight.x, centre[1] - sight.y, centre[2] - sight.z);
-  const bool lookingAlongY = std::abs(sight.y) > 0.99;
-  camera->SetViewUp(0.0, lookingAlongY ? 0.0 : 1.0, lookingAlongY ? -1.0 : 0.0);
+  const glm::dvec3 up = viewUpFor(sight);
+  camera->SetViewUp(up.x, up.y, up.z);
   renderer->ResetCamera();
 }
 }
@@ -84,6 +89,7 @@ void placeCamera(vtkRenderer* renderer, vtkPolyData* mesh, const std::optional<V
 void renderToPng(vtkPolyData* mesh, const std::string& meshName, const RenderOptions& options,
   const std::string& pngFile)
 {
+  checkOutputFile(pngFile, { ".png" });
   const char* display = std::getenv("DISPLAY");
   if (!display || !*display)
   {
@@ -118,6 +124,13 @@ void renderToPng(vtkPolyData* mesh, const std::string& meshName, const RenderOpt
     coloured->GetPointData()->SetScalars(array);
     double range[2];
     array->GetRange(range);
+    if (range[0] == range[1])
+    {
+      // A constant array: a range around it, so the map and its bar stay readable.
+      const double half = range[0] == 0 ? 1.0 : 0.5 * std::abs(range[0]);
+      range[0] -= half;
+      range[1] += half;
+    }
     if (range[0] < 0 && range[1] > 0)
     {
       // Signed data (n.s, r.v): centre the diverging map on zero, so white means zero.

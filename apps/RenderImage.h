@@ -21,7 +21,8 @@ struct RenderOptions
 /// Renders `array` of mesh to a PNG. A 3-component array is drawn as RGB colours, clamped to
 /// [0, 1], with VTK's lighting off: the picture shows ShadeLab's shading, not VTK's. A
 /// 1-component array is drawn through a diverging colour map with a labelled scalar bar.
-/// Needs an X display (run under xvfb-run on a headless machine). Throws UserError.
+/// Needs an X display (run under xvfb-run on a headless machine). Writes through a temporary
+/// file. Throws UserError.
 void renderToPng(vtkPolyData* mesh, const std::string& meshName, const RenderOptions& options,
   const std::string& pngFile);
 }

@@ -6,10 +6,28 @@
 #include "vtkOutputWindow.h"
 #include "vtkSmartPointer.h"
 
+#include <regex>
 #include <string>
+#include <vector>
 
 namespace shadelab::app
 {
+/// The text a user wants from a VTK message. VTK formats an object's error or warning as
+/// "<Kind>: In <file>, line <n>\n<Class> (<address>): <text>\n\n" and a generic warning as
+/// "Generic Warning: In <file>, line <n>\n<text>\n\n".
+inline std::string messageText(std::string message)
+{
+  static const std::regex location("^(ERROR|Warning|Generic Warning): In [^\n]*\n");
+  static const std::regex source("^[A-Za-z0-9_]+ \\(0x[0-9a-fA-F]+\\): ");
+  message = std::regex_replace(message, location, "", std::regex_constants::format_first_only);
+  message = std::regex_replace(message, source, "", std::regex_constants::format_first_only);
+  while (!message.empty() && (message.back() == '\n' || message.back() == ' '))
+  {
+    message.pop_back();
+  }
+  return message;
+}
+
 /// Observes ErrorEvent on the objects it watches and keeps the first message's text. While an
 /// object has this observer, VTK does not print its errors itself.
 class VtkErrorCapture : public vtkCommand
@@ -23,7 +41,7 @@ public:
   {
     if (message_.empty() && callData)
     {
-      message_ = userText(static_cast<const char*>(callData));
+      message_ = messageText(static_cast<const char*>(callData));
     }
   }
 
@@ -31,29 +49,25 @@ public:
   const std::string& message() const { return message_; }
 
 private:
-  static std::string userText(std::string text)
-  {
-    const std::size_t start = text.find("): ");
-    if (start != std::string::npos)
-    {
-      text = text.substr(start + 3);
-    }
-    while (!text.empty() && (text.back() == '\n' || text.back() == ' '))
-    {
-      text.pop_back();
-    }
-    return text;
-  }
-
   std::string message_;
 };
 
 /// Keeps VTK from printing errors of objects nobody watches (the pipeline's own "algorithm
 /// returned failure" follow-ups): the watched object's message is the one that explains.
+/// Warnings are kept, for the command to show as one line each.
 class QuietOutputWindow : public vtkOutputWindow
 {
 public:
   static QuietOutputWindow* New() { return new QuietOutputWindow; }
+  vtkTypeMacro(QuietOutputWindow, vtkOutputWindow);
   void DisplayText(const char*) override {}
+  void DisplayWarningText(const char* text) override { warnings_.push_back(messageText(text)); }
+  void DisplayGenericWarningText(const char* text) override { warnings_.push_back(messageText(text)); }
+
+  /// The warnings since the last call.
+  std::vector<std::string> takeWarnings() { return std::move(warnings_); }
+
+private:
+  std::vector<std::string> warnings_;
 };
 }

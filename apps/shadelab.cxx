@@ -12,7 +12,6 @@
 #include "ShadingFlags.h"
 #include "vtkLocalReflectanceFilter.h"
 
-#include "vtkCommand.h"
 #include "vtkDataArray.h"
 #include "vtkLogger.h"
 #include "vtkPointData.h"
@@ -21,7 +20,6 @@
 #include <CLI/CLI.hpp>
 
 #include <chrono>
-#include <cstdio>
 #include <iomanip>
 #include <iostream>
 #include <sstream>
@@ -31,6 +29,19 @@ namespace
 using namespace shadelab;
 using app::UserError;
 using Clock = std::chrono::steady_clock;
+
+/// Shows the warnings VTK gave since the last call (a reader's complaint about a truncated
+/// block, say), one line each, naming the file they concern.
+void showWarnings(const std::string& about)
+{
+  if (auto* window = app::QuietOutputWindow::SafeDownCast(vtkOutputWindow::GetInstance()))
+  {
+    for (const std::string& warning : window->takeWarnings())
+    {
+      std::cerr << "shadelab: warning: " << about << ": " << warning << "\n";
+    }
+  }
+}
 
 double secondsSince(Clock::time_point start)
 {
@@ -143,7 +154,7 @@ int runShade(const ShadeOptions& options)
   {
     throw UserError(std::string("--arrays: ") + error.what());
   }
-  app::checkWritable(options.output);
+  app::checkOutputFile(options.output, app::meshExtensions);
 
   if (options.threads > 0)
   {
@@ -151,6 +162,7 @@ int runShade(const ShadeOptions& options)
   }
   const Clock::time_point readStart = Clock::now();
   vtkSmartPointer<vtkPolyData> mesh = app::readMesh(options.mesh);
+  showWarnings(options.mesh);
   const double readSeconds = secondsSince(readStart);
 
   vtkNew<vtkLocalReflectanceFilter> filter;
@@ -168,6 +180,7 @@ int runShade(const ShadeOptions& options)
   const Clock::time_point shadeStart = Clock::now();
   filter->Update();
   const double shadeSeconds = secondsSince(shadeStart);
+  showWarnings(options.mesh);
   if (errors->failed())
   {
     throw UserError(options.mesh + ": " + errors->message());
@@ -179,6 +192,7 @@ int runShade(const ShadeOptions& options)
     : options.compression == "none"                                    ? app::Compression::None
                                                                        : app::Compression::LZ4;
   app::writeMesh(output, options.output, compression);
+  showWarnings(options.output);
   const double writeSeconds = secondsSince(writeStart);
 
   std::cout << "shadelab shade: " << options.mesh << " -> " << options.output << "\n"
@@ -205,10 +219,6 @@ struct RenderCommand
 
 int runRender(RenderCommand& command)
 {
-  if (command.output.size() < 4 || command.output.substr(command.output.size() - 4) != ".png")
-  {
-    throw UserError(command.output + ": render writes PNG images; name the output *.png");
-  }
   int width = 0, height = 0;
   char separator = 0;
   std::istringstream size(command.size);
@@ -224,6 +234,7 @@ int runRender(RenderCommand& command)
     command.options.viewer = loadScene(command.scene).viewer;
   }
   vtkSmartPointer<vtkPolyData> mesh = app::readMesh(command.mesh);
+  showWarnings(command.mesh);
   app::renderToPng(mesh, command.mesh, command.options, command.output);
   std::cout << "shadelab render: " << command.options.array << " of " << command.mesh << " -> "
             << command.output << " (" << width << "x" << height << ")\n";
@@ -264,7 +275,7 @@ int main(int argc, char** argv)
     ->check(CLI::IsMember({ "float32", "float64" }))
     ->capture_default_str();
   shadeCommand->add_option("--threads,-j", shade.threads, "threads (0: all cores)")
-    ->check(CLI::NonNegativeNumber)
+    ->check(CLI::Range(0, 256))
     ->capture_default_str();
   shadeCommand->add_option("--compression", shade.compression,
     ".vtp compression: lz4 is fastest, zlib gives files about a third smaller")
@@ -279,8 +290,6 @@ int main(int argc, char** argv)
   CLI::App* arraysCommand = cli.add_subcommand("arrays", "List the arrays a scene can produce.");
   arraysCommand->add_option("--scene,-s", arraysScene, "scene file (JSON)")->required();
 
-  bool verbose = false;
-  cli.add_flag("--verbose,-v", verbose, "also show VTK's own log and error output");
 
   RenderCommand render;
   CLI::App* renderCommand = cli.add_subcommand("render",
@@ -295,7 +304,21 @@ int main(int argc, char** argv)
     "take the camera from this scene's viewer (default: framed, looking down -z)");
   renderCommand->add_option("--size", render.size, "image size, WIDTHxHEIGHT")->capture_default_str();
 
-  CLI11_PARSE(cli, argc, argv);
+  bool verbose = false;
+  for (CLI::App* command : { shadeCommand, arraysCommand, renderCommand })
+  {
+    command->add_flag("--verbose,-v", verbose, "also show VTK's own log and error output");
+  }
+
+  // Exit codes: 0 done, 1 bad input or a failed run, 2 a command line that does not parse.
+  try
+  {
+    cli.parse(argc, argv);
+  }
+  catch (const CLI::ParseError& error)
+  {
+    return cli.exit(error) == 0 ? 0 : 2;
+  }
   if (!verbose)
   {
     // Errors reach the user as one line each, from the objects ShadeLab watches; VTK's own

@@ -128,9 +128,27 @@ TEST_F(Cli, BadScenes)
     negative + ": /lights/0/intensity: must be a number >= 0");
   const std::string missing = file("missing.json", R"({ "lights": [ { "type": "spot", "direction": [0, 0, -1] } ] })");
   expectError("shade " + mesh + " -s " + missing + " -o " + out, missing + ": /lights/0/position: missing");
+  const std::string huge = file("huge.json", R"({ "lights": [ { "type": "ambient", "intensity": 1e400 } ] })");
+  expectError("shade " + mesh + " -s " + huge + " -o " + out, huge + ": not valid JSON: number overflow parsing '1e400'");
   const std::string absent = (folder / "absent.json").string();
   expectError("shade " + mesh + " -s " + absent + " -o " + out,
     absent + ": cannot open the scene file (does it exist, and is it readable?)");
+}
+
+TEST_F(Cli, CorruptAndTruncatedFiles)
+{
+  const std::string scene = goodScene(), out = (folder / "out.vtp").string();
+  const std::string header = "# vtk DataFile Version 3.0\nt\nASCII\nDATASET POLYDATA\nPOINTS 3 float\n0 0 0 1 0 0 0 1 0\n";
+  const std::string corrupt = file("corrupt.vtk", header + "POLYGONS 1 4\n3 0 1 2000000\n");
+  expectError("shade " + corrupt + " -s " + scene + " -o " + out,
+    corrupt + ": the mesh's cells use point id 2000000, but it has 3 points: the file is corrupt");
+  // A NORMALS block cut short: the reader only warns, and so does shadelab, naming the file.
+  const std::string truncated = file("truncated.vtk",
+    header + "POLYGONS 1 4\n3 0 1 2\nPOINT_DATA 3\nNORMALS Normals float\n0 0 1 0 0\n");
+  const Result result = shadelab("shade " + truncated + " -s " + scene + " -o " + out);
+  EXPECT_EQ(result.exitCode, 0);
+  EXPECT_EQ(result.err, "shadelab: warning: " + truncated +
+      ": Error reading ascii data. Possible mismatch of datasize with declaration.\n");
 }
 
 TEST_F(Cli, UnknownArrayNameAndBadOutput)
@@ -147,7 +165,14 @@ TEST_F(Cli, UnknownArrayNameAndBadOutput)
     "sun_cos_incidence, sun_incidence_angle, sun_reflection, sun_r_dot_v, sun_half_vector, "
     "sun_n_dot_h, sun_diffuse, sun_specular\n");
   const std::string png = (folder / "out.png").string();
-  expectError("shade " + mesh + " -s " + scene + " -o " + png, png + ": cannot write '.png' files; use .vtp, .vtk");
+  expectError("shade " + mesh + " -s " + scene + " -o " + png, png + ": cannot write '.png' files here; use .vtp, .vtk");
+  expectError("shade " + mesh + " -s " + scene + " -o " + (folder / "o.vtp").string() + " --arrays ,",
+    "--arrays: no arrays selected; this scene has: default, totals, all, *_to_light, *_distance, "
+    "*_attenuation, *_spot_factor, *_cos_incidence, *_incidence_angle, *_reflection, *_r_dot_v, "
+    "*_half_vector, *_n_dot_h, *_diffuse, *_specular, ambient, diffuse, specular, total, "
+    "shading_flags, sun_to_light, sun_attenuation, sun_spot_factor, sun_cos_incidence, "
+    "sun_incidence_angle, sun_reflection, sun_r_dot_v, sun_half_vector, sun_n_dot_h, sun_diffuse, "
+    "sun_specular");
   const std::string nowhere = (folder / "no" / "such" / "out.vtp").string();
   expectError("shade " + mesh + " -s " + scene + " -o " + nowhere,
     nowhere + ": the folder " + (folder / "no" / "such").string() + " does not exist");
@@ -215,10 +240,12 @@ TEST_F(Cli, ReadsObjAndStlAndWritesLegacyVtk)
   const std::string stlFile = file("tetra.stl", stl + "endsolid tetra\n");
   for (const std::string& mesh : { obj, stlFile })
   {
-    const Result result = shadelab("shade " + mesh + " -s " + goodScene() + " -o " + (folder / "tetra.vtk").string());
+    const fs::path out = folder / "tetra.vtk";
+    fs::remove(out);
+    const Result result = shadelab("shade " + mesh + " -s " + goodScene() + " -o " + out.string());
     EXPECT_EQ(result.exitCode, 0) << result.err;
     EXPECT_NE(result.out.find("  mesh: 4 vertices, 4 polygons and strips\n"), std::string::npos) << result.out;
-    EXPECT_EQ(slurp(folder / "tetra.vtk").rfind("# vtk DataFile Version", 0), 0u);
+    EXPECT_EQ(slurp(out).rfind("# vtk DataFile Version", 0), 0u) << mesh;
   }
 }
 
@@ -267,9 +294,20 @@ TEST_F(Cli, RendersArraysToPng)
   EXPECT_GT(bunnyPixels, 320 * 240 / 10);
   EXPECT_TRUE(others.empty()) << others.size() << " other colours";
 
-  // A 1-component array through the colour map: many colours.
-  const Result mapped = shadelab("render " + golden + " -a key_cos_incidence -o " + png, xvfb);
+  // A 1-component array through the colour map: a smooth ramp of many colours.
+  const Result mapped = shadelab("render " + golden + " -a key_cos_incidence --size 320x240 -o " + png, xvfb);
   EXPECT_EQ(mapped.exitCode, 0) << mapped.err;
+  reader->Modified();
+  reader->Update();
+  std::set<std::array<int, 3>> colours;
+  for (int y = 0; y < 240; ++y)
+  {
+    for (int x = 0; x < 320; ++x)
+    {
+      colours.insert(pixel(x, y));
+    }
+  }
+  EXPECT_GT(colours.size(), 200u);
 }
 
 TEST_F(Cli, RenderErrors)
@@ -279,7 +317,9 @@ TEST_F(Cli, RenderErrors)
   expectError("render " + golden + " -o " + png + " --size 10x10",
     "--size: '10x10' is not WIDTHxHEIGHT with each from 16 to 8192");
   expectError("render " + golden + " -o " + (folder / "out.jpg").string(),
-    (folder / "out.jpg").string() + ": render writes PNG images; name the output *.png");
+    (folder / "out.jpg").string() + ": cannot write '.jpg' files here; use .png");
+  const std::string nowhere = (folder / "no" / "out.png").string();
+  expectError("render " + golden + " -o " + nowhere, nowhere + ": the folder " + (folder / "no").string() + " does not exist");
   const Result noDisplay = shadelab("render " + golden + " -o " + png, "env -u DISPLAY ");
   EXPECT_EQ(noDisplay.exitCode, 1);
   EXPECT_EQ(noDisplay.err,
@@ -299,8 +339,11 @@ TEST_F(Cli, HelpAndUsageErrors)
   EXPECT_NE(help.out.find("--arrays"), std::string::npos);
   EXPECT_NE(help.out.find("Reads .vtp, .vtk, .ply, .obj, .stl"), std::string::npos);
   const Result noScene = shadelab("shade " + goodMesh() + " -o out.vtp");
-  EXPECT_NE(noScene.exitCode, 0);
+  EXPECT_EQ(noScene.exitCode, 2);
   EXPECT_EQ(noScene.err, "--scene is required\nRun with --help for more information.\n");
+  const Result threads = shadelab("shade " + goodMesh() + " -s " + goodScene() + " -o out.vtp --threads 1000");
+  EXPECT_EQ(threads.exitCode, 2);
+  EXPECT_EQ(threads.err, "--threads: Value 1000 not in range 0 to 256\nRun with --help for more information.\n");
   const Result arrays = shadelab("arrays --scene " + goodScene());
   EXPECT_EQ(arrays.exitCode, 0);
   EXPECT_NE(arrays.out.find("  sun_r_dot_v                  1  light 'sun': r.v"), std::string::npos) << arrays.out;
