@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <filesystem>
 
 namespace
 {
@@ -60,6 +61,20 @@ TEST(SceneFile, ReadsEveryLightType)
   EXPECT_EQ(cone.cone.model, ConeModel::Gltf);
   EXPECT_EQ(cone.cone.outerAngleDegrees, 25.0);
   EXPECT_EQ(scene.lights[4].name, "ambient4"); // unnamed: type and index
+}
+
+TEST(SceneFile, EveryBundledSceneIsValid)
+{
+  int scenes = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(SHADELAB_SOURCE_DIR "/data/scenes"))
+  {
+    SCOPED_TRACE(entry.path().string());
+    const Scene scene = readSceneFile(entry.path().string());
+    EXPECT_FALSE(scene.lights.empty());
+    EXPECT_TRUE(sceneProblems(scene, Precision::Float32).empty());
+    ++scenes;
+  }
+  EXPECT_GE(scenes, 5);
 }
 
 TEST(SceneFile, VtkModelUsesVtkPropertyDefaultsAndDetectsTheLoneHeadlight)
