@@ -232,6 +232,16 @@ void readStrength(const Node& node, Light& light)
   light.intensity = numberOr(node, "intensity", light.intensity);
 }
 
+/// A light described by its colour and intensity alone.
+template <typename Light>
+Light readColourOnlyLight(const Node& node)
+{
+  node.expectObject({ "name", "type", "color", "intensity" });
+  Light light;
+  readStrength(node, light);
+  return light;
+}
+
 enum class LightType
 {
   Distant,
@@ -267,13 +277,8 @@ NamedLight readLight(const Node& node, std::size_t index)
       break;
     }
     case LightType::Headlight:
-    {
-      node.expectObject({ "name", "type", "color", "intensity" });
-      Headlight head;
-      readStrength(node, head);
-      light.source = head;
+      light.source = readColourOnlyLight<Headlight>(node);
       break;
-    }
     case LightType::Point:
     {
       node.expectObject({ "name", "type", "color", "intensity", "position", "attenuation", "min_distance" });
@@ -298,13 +303,8 @@ NamedLight readLight(const Node& node, std::size_t index)
       break;
     }
     case LightType::Ambient:
-    {
-      node.expectObject({ "name", "type", "color", "intensity" });
-      AmbientLight ambient;
-      readStrength(node, ambient);
-      light.source = ambient;
+      light.source = readColourOnlyLight<AmbientLight>(node);
       break;
-    }
   }
   light.name = node.has("name") ? node.at("name").text() : lightTypeName(light.source) + std::to_string(index);
   return light;

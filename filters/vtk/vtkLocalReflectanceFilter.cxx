@@ -32,6 +32,20 @@ namespace
 using shadelab::LightTerm;
 using shadelab::TotalTerm;
 
+/// Calls visit(size, ids) for every cell of the array.
+template <typename Visit>
+void forEachCell(vtkCellArray* cells, Visit&& visit)
+{
+  auto cell = vtk::TakeSmartPointer(cells->NewIterator());
+  for (cell->GoToFirstCell(); !cell->IsDoneWithTraversal(); cell->GoToNextCell())
+  {
+    vtkIdType size;
+    const vtkIdType* ids;
+    cell->GetCurrentCell(size, ids);
+    visit(size, ids);
+  }
+}
+
 /// Feeds every polygon and strip triangle of the mesh to the orientation test. A worker for
 /// vtkArrayDispatch, so that points and normals are read from raw memory.
 struct OrientationWorker
@@ -56,28 +70,22 @@ struct OrientationWorker
     };
     // Polygons are split into fans, strips into their triangles; winding does not matter
     // here because the test uses the stored normals, not the triangles' own orientation.
-    auto polys = vtk::TakeSmartPointer(mesh->GetPolys()->NewIterator());
-    for (polys->GoToFirstCell(); !polys->IsDoneWithTraversal(); polys->GoToNextCell())
-    {
-      vtkIdType size;
-      const vtkIdType* ids;
-      polys->GetCurrentCell(size, ids);
-      for (vtkIdType k = 2; k < size; ++k)
+    forEachCell(mesh->GetPolys(),
+      [&](vtkIdType size, const vtkIdType* ids)
       {
-        addTriangle(ids[0], ids[k - 1], ids[k]);
-      }
-    }
-    auto strips = vtk::TakeSmartPointer(mesh->GetStrips()->NewIterator());
-    for (strips->GoToFirstCell(); !strips->IsDoneWithTraversal(); strips->GoToNextCell())
-    {
-      vtkIdType size;
-      const vtkIdType* ids;
-      strips->GetCurrentCell(size, ids);
-      for (vtkIdType k = 2; k < size; ++k)
+        for (vtkIdType k = 2; k < size; ++k)
+        {
+          addTriangle(ids[0], ids[k - 1], ids[k]);
+        }
+      });
+    forEachCell(mesh->GetStrips(),
+      [&](vtkIdType size, const vtkIdType* ids)
       {
-        addTriangle(ids[k - 2], ids[k - 1], ids[k]);
-      }
-    }
+        for (vtkIdType k = 2; k < size; ++k)
+        {
+          addTriangle(ids[k - 2], ids[k - 1], ids[k]);
+        }
+      });
     result = accumulator.result();
   }
 };
