@@ -13,6 +13,7 @@
 #include "vtkFloatArray.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
+#include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
@@ -237,24 +238,22 @@ void vtkLocalReflectanceFilter::SetArraySelection(const std::vector<std::string>
   this->Modified();
 }
 
-int vtkLocalReflectanceFilter::RequestData(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+namespace
 {
-  vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
-  vtkPolyData* output = vtkPolyData::GetData(outputVector);
-  this->NormalsReport.clear();
-
+/// What makes the mesh unusable, or "" when it can be shaded in this precision.
+std::string meshProblem(vtkPolyData* input, shadelab::Precision precision)
+{
   const vtkIdType pointCount = input->GetNumberOfPoints();
+  std::ostringstream problem;
   if (pointCount == 0)
   {
-    vtkErrorMacro("the mesh has no points");
-    return 0;
+    return "the mesh has no points";
   }
   if (input->GetNumberOfPolys() + input->GetNumberOfStrips() == 0)
   {
-    vtkErrorMacro("the mesh has no polygons (" << input->GetNumberOfCells()
-                                                << " vertex or line cells): surface shading needs a surface");
-    return 0;
+    problem << "the mesh has no polygons (" << input->GetNumberOfCells()
+            << " vertex or line cells): surface shading needs a surface";
+    return problem.str();
   }
   for (vtkCellArray* cells : { input->GetVerts(), input->GetLines(), input->GetPolys(), input->GetStrips() })
   {
@@ -262,24 +261,19 @@ int vtkLocalReflectanceFilter::RequestData(
     cells->GetConnectivityArray()->GetRange(ids);
     if (cells->GetNumberOfConnectivityIds() > 0 && (ids[0] < 0 || ids[1] >= pointCount))
     {
-      vtkErrorMacro("the mesh's cells use point id " << static_cast<vtkIdType>(ids[0] < 0 ? ids[0] : ids[1])
-                                                     << ", but it has " << pointCount
-                                                     << " points: the file is corrupt");
-      return 0;
+      problem << "the mesh's cells use point id " << static_cast<vtkIdType>(ids[0] < 0 ? ids[0] : ids[1])
+              << ", but it has " << pointCount << " points: the file is corrupt";
+      return problem.str();
     }
   }
-  vtkDataArray* inputNormals = input->GetPointData()->GetNormals();
-  if (inputNormals && (inputNormals->GetNumberOfComponents() != 3 || inputNormals->GetNumberOfTuples() != pointCount))
+  vtkDataArray* normals = input->GetPointData()->GetNormals();
+  if (normals && (normals->GetNumberOfComponents() != 3 || normals->GetNumberOfTuples() != pointCount))
   {
-    vtkErrorMacro("the point normals '" << (inputNormals->GetName() ? inputNormals->GetName() : "")
-                                        << "' have " << inputNormals->GetNumberOfTuples() << " tuples of "
-                                        << inputNormals->GetNumberOfComponents()
-                                        << " components: there must be one 3-component normal per point ("
-                                        << pointCount << ")");
-    return 0;
+    problem << "the point normals '" << (normals->GetName() ? normals->GetName() : "") << "' have "
+            << normals->GetNumberOfTuples() << " tuples of " << normals->GetNumberOfComponents()
+            << " components: there must be one 3-component normal per point (" << pointCount << ")";
+    return problem.str();
   }
-  const shadelab::Precision precision =
-    this->OutputPrecision == DOUBLE_PRECISION ? shadelab::Precision::Float64 : shadelab::Precision::Float32;
   double reach = 0;
   for (int c = 0; c < 3; ++c)
   {
@@ -287,10 +281,52 @@ int vtkLocalReflectanceFilter::RequestData(
     input->GetPoints()->GetData()->GetFiniteRange(range, c); // NaN and Inf points are flagged, not refused
     reach = std::max({ reach, std::abs(range[0]), std::abs(range[1]) });
   }
-  const std::string coordinateProblem = shadelab::meshCoordinateProblem(reach, precision);
-  if (!coordinateProblem.empty())
+  return shadelab::meshCoordinateProblem(reach, precision);
+}
+
+/// The first of names that the input already has as a point array, or "".
+std::string takenName(vtkPolyData* input, const std::vector<std::string>& names)
+{
+  for (const std::string& name : names)
   {
-    vtkErrorMacro(<< coordinateProblem);
+    if (input->GetPointData()->HasArray(name.c_str()))
+    {
+      return name;
+    }
+  }
+  return "";
+}
+
+/// Point normals computed without splitting, so that point ids and count stay the same.
+vtkSmartPointer<vtkDataArray> computeNormals(vtkPolyData* input, const std::string& name)
+{
+  vtkNew<vtkPolyDataNormals> normalFilter;
+  normalFilter->SetInputData(input);
+  normalFilter->SplittingOff();
+  normalFilter->ConsistencyOn();
+  normalFilter->ComputePointNormalsOn();
+  normalFilter->ComputeCellNormalsOff();
+  normalFilter->Update();
+  vtkSmartPointer<vtkDataArray> normals = normalFilter->GetOutput()->GetPointData()->GetNormals();
+  normals->SetName(name.c_str());
+  return normals;
+}
+}
+
+int vtkLocalReflectanceFilter::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
+  vtkPolyData* output = vtkPolyData::GetData(outputVector);
+  this->NormalsReport.clear();
+
+  // Everything is checked before anything is written.
+  const shadelab::Precision precision =
+    this->OutputPrecision == DOUBLE_PRECISION ? shadelab::Precision::Float64 : shadelab::Precision::Float32;
+  const std::string problem = meshProblem(input, precision);
+  if (!problem.empty())
+  {
+    vtkErrorMacro(<< problem);
     return 0;
   }
   const std::vector<shadelab::SceneProblem> problems = shadelab::sceneProblems(this->Scene, precision);
@@ -309,66 +345,53 @@ int vtkLocalReflectanceFilter::RequestData(
     vtkErrorMacro(<< error.what());
     return 0;
   }
+  vtkDataArray* inputNormals = input->GetPointData()->GetNormals();
+  const std::string computedNormalsName = this->ArrayPrefix + "Normals";
   std::vector<std::string> written;
   for (const auto& array : shadelab::availableArrays(this->Scene, this->ArrayPrefix))
   {
     written.push_back(array.name);
   }
-  const std::string computedNormalsName = this->ArrayPrefix + "Normals";
   if (!inputNormals)
   {
     written.push_back(computedNormalsName);
   }
-  for (const std::string& name : written)
+  const std::string taken = takenName(input, written);
+  if (!taken.empty())
   {
-    if (input->GetPointData()->HasArray(name.c_str()))
-    {
-      vtkErrorMacro("the input already has a point array named '"
-        << name << "', which this filter would write: set an array prefix (shadelab shade --prefix) to keep both");
-      return 0;
-    }
+    vtkErrorMacro("the input already has a point array named '"
+      << taken << "', which this filter would write: set an array prefix (shadelab shade --prefix) to keep both");
+    return 0;
   }
 
   output->ShallowCopy(input);
 
-  // Normals: the input's own, or computed without splitting so point ids stay the same.
+  // Normals: the input's own, or computed and added to the output.
   std::ostringstream report;
   vtkSmartPointer<vtkDataArray> normals = inputNormals;
-  const bool computed = normals == nullptr;
-  if (computed)
+  if (!inputNormals)
   {
-    auto normalFilter = vtkSmartPointer<vtkPolyDataNormals>::New();
-    normalFilter->SetInputData(input);
-    normalFilter->SplittingOff();
-    normalFilter->ConsistencyOn();
-    normalFilter->ComputePointNormalsOn();
-    normalFilter->ComputeCellNormalsOff();
-    normalFilter->Update();
-    normals = normalFilter->GetOutput()->GetPointData()->GetNormals();
-    normals->SetName(computedNormalsName.c_str());
+    normals = computeNormals(input, computedNormalsName);
     report << "The mesh has no point normals: computed them (vtkPolyDataNormals, no splitting) "
               "and added them as '"
            << computedNormalsName << "'.";
   }
   else
   {
-    report << "Using the mesh's point normals '" << (normals->GetName() ? normals->GetName() : "")
-           << "'.";
+    report << "Using the mesh's point normals '" << (normals->GetName() ? normals->GetName() : "") << "'.";
   }
   const shadelab::NormalOrientation orientation = assessOrientation(input, normals);
   vtkSmartPointer<vtkDataArray> shadingNormals = normals;
   if (orientation.pointsInward())
   {
-    report << " They point into the mesh (closure " << orientation.closure << ", flux "
-           << orientation.flux << ")";
+    report << " They point into the mesh (closure " << orientation.closure << ", flux " << orientation.flux << ")";
     if (!this->OrientNormalsOutward)
     {
       report << "; kept as they are, because orienting them outward is off.";
     }
-    else if (computed)
+    else if (!inputNormals)
     {
-      shadingNormals = flippedCopy(normals);
-      normals = shadingNormals;
+      shadingNormals = normals = flippedCopy(normals);
       report << "; flipped them outward.";
     }
     else
@@ -377,15 +400,16 @@ int vtkLocalReflectanceFilter::RequestData(
       report << "; shaded with them flipped outward (the input array is unchanged).";
     }
   }
-  if (computed)
+  if (!inputNormals)
   {
     output->GetPointData()->SetNormals(normals);
   }
   this->NormalsReport = report.str();
 
-  const auto arrays = this->OutputPrecision == DOUBLE_PRECISION
-    ? shade<double>(this->Scene, request, this->ArrayPrefix, input->GetPoints()->GetData(), shadingNormals, this)
-    : shade<float>(this->Scene, request, this->ArrayPrefix, input->GetPoints()->GetData(), shadingNormals, this);
+  vtkDataArray* points = input->GetPoints()->GetData();
+  const auto arrays = precision == shadelab::Precision::Float64
+    ? shade<double>(this->Scene, request, this->ArrayPrefix, points, shadingNormals, this)
+    : shade<float>(this->Scene, request, this->ArrayPrefix, points, shadingNormals, this);
   for (const auto& array : arrays)
   {
     output->GetPointData()->AddArray(array);
