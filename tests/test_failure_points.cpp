@@ -182,6 +182,10 @@ TEST(DistantLight, IntensityFromTheDirectionsLength)
   std::get<DistantLight>(scene.lights[0].source).intensityFromLength = false;
   const KernelHarness<double> plain(scene, { Vec3<double>(0) }, { Vec3<double>(0, 0, 1) });
   EXPECT_DOUBLE_EQ(plain.value("lamp_diffuse", 0), 0.5 * 0.5);
+  // A length whose square would overflow still counts in full.
+  scene.lights[0].source = DistantLight{ { 0, 0, -3e200 }, Rgb(1.0), 1e-200, true };
+  const KernelHarness<double> huge(scene, { Vec3<double>(0) }, { Vec3<double>(0, 0, 1) });
+  EXPECT_DOUBLE_EQ(huge.value("lamp_diffuse", 0), 0.5 * 3.0);
 }
 
 TEST(Directions, HugeAndTinyVectorsStillNormalise)

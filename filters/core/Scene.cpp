@@ -103,7 +103,7 @@ double peakContribution(const LightSource& source, const Material& m)
       }
       if constexpr (std::is_same_v<Type, DistantLight>)
       {
-        peak *= light.intensityFromLength ? largestComponent(light.direction) * std::sqrt(3.0) : 1.0;
+        peak *= light.intensityFromLength ? vectorLength(light.direction) : 1.0;
       }
       if constexpr (std::is_same_v<Type, PointLight> || std::is_same_v<Type, SpotLight>)
       {

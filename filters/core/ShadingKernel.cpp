@@ -87,7 +87,7 @@ ShadingKernel<T>::ShadingKernel(const Scene& scene, ShadingOutputs<T> outputs)
     if (const auto* distant = std::get_if<DistantLight>(&source))
     {
       light.toLight = toVec<T>(-unitVector(distant->direction));
-      const double lengthFactor = distant->intensityFromLength ? glm::length(distant->direction) : 1.0;
+      const double lengthFactor = distant->intensityFromLength ? vectorLength(distant->direction) : 1.0;
       color = strength(*distant) * lengthFactor;
     }
     else if (const auto* head = std::get_if<Headlight>(&source))

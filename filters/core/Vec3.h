@@ -27,6 +27,13 @@ inline double largestComponent(const glm::dvec3& v)
   return std::max({ std::abs(v.x), std::abs(v.y), std::abs(v.z) });
 }
 
+/// |v| for any finite v, without the overflow of squaring components above 1e154.
+inline double vectorLength(const glm::dvec3& v)
+{
+  const double scale = largestComponent(v);
+  return scale > 0 ? scale * glm::length(v / scale) : 0.0;
+}
+
 /// v / |v| for any finite non-zero v. glm::normalize squares the components first, so it
 /// returns 0 for |v| above 1e154 and for |v| below 1e-154; scaling by the largest component
 /// first keeps the squares near 1.
