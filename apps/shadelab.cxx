@@ -2,6 +2,8 @@
 //   shadelab shade MESH --scene SCENE.json -o OUT.vtp   per-vertex lighting arrays
 //   shadelab arrays --scene SCENE.json                  the arrays a scene can produce
 //   shadelab render MESH -o OUT.png                     a picture of one array
+//   shadelab bench                                      speed against baselines
+#include "Benchmark.h"
 #include "MeshFiles.h"
 #include "ProgressLine.h"
 #include "RenderImage.h"
@@ -20,6 +22,7 @@
 #include <CLI/CLI.hpp>
 
 #include <chrono>
+#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <sstream>
@@ -241,6 +244,61 @@ int runRender(RenderCommand& command)
   return 0;
 }
 
+/// "10k", "2.5M" or "300" as a vertex count.
+long long parseCount(const std::string& text)
+{
+  std::size_t used = 0;
+  double value = 0;
+  try
+  {
+    value = std::stod(text, &used);
+  }
+  catch (const std::exception&)
+  {
+    used = 0;
+  }
+  const std::string unit = text.substr(used);
+  const double scale = unit == "" ? 1 : unit == "k" ? 1e3 : unit == "M" ? 1e6 : 0;
+  if (used == 0 || scale == 0 || value * scale < 100 || value * scale > 1e8)
+  {
+    throw UserError("--sizes: '" + text + "' is not a vertex count from 100 to 100M, such as 10k or 1M");
+  }
+  return std::llround(value * scale);
+}
+
+struct BenchCommand
+{
+  std::string sizes = "10k,100k,1M,10M";
+  std::string bunny = "data/meshes/bunny_zipper.ply";
+  bool noBunny = false;
+  int threads = 0;
+  app::BenchmarkOptions options;
+};
+
+int runBench(BenchCommand& command)
+{
+  command.options.sizes.clear();
+  for (const std::string& size : splitList(command.sizes))
+  {
+    command.options.sizes.push_back(parseCount(size));
+  }
+  if (!command.noBunny)
+  {
+    if (!std::ifstream(command.bunny))
+    {
+      throw UserError(command.bunny + ": no such file (the subdivided bunny is one of the meshes; "
+                                      "run from the repository's top folder, give --bunny FILE, or pass --no-bunny)");
+    }
+    command.options.bunnyFile = command.bunny;
+  }
+  if (command.threads > 0)
+  {
+    vtkSMPTools::Initialize(command.threads);
+  }
+  app::runBenchmark(command.options);
+  return 0;
+}
+
 int runArrays(const std::string& sceneFile)
 {
   const Scene scene = loadScene(sceneFile);
@@ -304,8 +362,25 @@ int main(int argc, char** argv)
     "take the camera from this scene's viewer (default: framed, looking down -z)");
   renderCommand->add_option("--size", render.size, "image size, WIDTHxHEIGHT")->capture_default_str();
 
+  BenchCommand bench;
+  CLI::App* benchCommand = cli.add_subcommand("bench",
+    "Time the filter on spheres and the subdivided Stanford bunny, from 10 thousand to 10\n"
+    "million vertices, against vtkArrayCalculator evaluating the same expression and against\n"
+    "the floor of copying the same bytes; print a table and optionally write it as CSV.");
+  benchCommand->add_option("--sizes", bench.sizes, "vertex counts, comma-separated (k and M allowed)")
+    ->capture_default_str();
+  benchCommand->add_option("--repeats", bench.options.maxRepeats, "runs per measurement at most (median taken)")
+    ->check(CLI::Range(1, 100))
+    ->capture_default_str();
+  benchCommand->add_option("--csv", bench.options.csvFile, "also write the table to this CSV file");
+  benchCommand->add_option("--bunny", bench.bunny, "the bunny mesh to subdivide")->capture_default_str();
+  benchCommand->add_flag("--no-bunny", bench.noBunny, "spheres only");
+  benchCommand->add_option("--threads,-j", bench.threads, "threads (0: all cores)")
+    ->check(CLI::Range(0, 256))
+    ->capture_default_str();
+
   bool verbose = false;
-  for (CLI::App* command : { shadeCommand, arraysCommand, renderCommand })
+  for (CLI::App* command : { shadeCommand, arraysCommand, renderCommand, benchCommand })
   {
     command->add_flag("--verbose,-v", verbose, "also show VTK's own log and error output");
   }
@@ -335,6 +410,10 @@ int main(int argc, char** argv)
     if (renderCommand->parsed())
     {
       return runRender(render);
+    }
+    if (benchCommand->parsed())
+    {
+      return runBench(bench);
     }
     return runArrays(arraysScene);
   }

@@ -332,6 +332,43 @@ TEST_F(Cli, RenderErrors)
   EXPECT_FALSE(fs::exists(png));
 }
 
+TEST_F(Cli, BenchmarkTableAgreesWithItsBaseline)
+{
+  // A small run: the table's rows, and vtkArrayCalculator's result for the same expression
+  // equal to ShadeLab's within float32 rounding in every case that has one.
+  const fs::path csv = folder / "bench.csv";
+  const Result result = shadelab("bench --sizes 3k --no-bunny --repeats 1 --csv " + csv.string());
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  std::istringstream lines(slurp(csv));
+  std::string header;
+  std::getline(lines, header);
+  EXPECT_EQ(header, "vertices,mesh,case,first ms,ms,Mvertices/s,x floor,floor ms,calculator ms,"
+                    "x faster,max |diff|,peak MB,arrays MB");
+  int rows = 0, compared = 0;
+  for (std::string line; std::getline(lines, line); ++rows)
+  {
+    // Fields: the case name is quoted when it has a comma.
+    std::vector<std::string> fields;
+    for (std::size_t at = 0; at < line.size();)
+    {
+      const bool quoted = line[at] == '"';
+      const std::size_t end = quoted ? line.find('"', at + 1) + 1 : line.find(',', at);
+      fields.push_back(line.substr(at, end == std::string::npos ? std::string::npos : end - at));
+      at = end == std::string::npos ? line.size() : end + 1;
+    }
+    ASSERT_EQ(fields.size(), 13u) << line;
+    EXPECT_EQ(fields[0], "3027"); // a UV sphere of 55 meridians, 55 rings and 2 poles
+    EXPECT_GT(std::stod(fields[4]), 0.0);
+    if (fields[10] != "-")
+    {
+      EXPECT_LT(std::stod(fields[10]), 1e-5) << line;
+      ++compared;
+    }
+  }
+  EXPECT_EQ(rows, 7);
+  EXPECT_EQ(compared, 6);
+}
+
 TEST_F(Cli, HelpAndUsageErrors)
 {
   const Result help = shadelab("shade --help");

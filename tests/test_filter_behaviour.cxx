@@ -146,6 +146,45 @@ TEST(Normals, OpenSheetIsNeverFlipped)
   EXPECT_DOUBLE_EQ(output->GetPointData()->GetArray("sun_cos_incidence")->GetComponent(0, 0), 1.0);
 }
 
+TEST(Normals, PreparedOnceAndRedoneWhenTheirInputsChange)
+{
+  vtkSmartPointer<vtkPolyData> mesh = sphereWithoutNormals(true);
+  vtkNew<vtkLocalReflectanceFilter> filter;
+  filter->SetInputData(mesh);
+  filter->SetScene(overheadLight());
+  filter->Update();
+  vtkDataArray* first = filter->GetOutput()->GetPointData()->GetNormals();
+  EXPECT_GT(smallestOutwardness(filter->GetOutput(), first), 0.99);
+
+  // A new run on the same input (new lights, say) reuses the prepared normals.
+  filter->SetScene(overheadLight());
+  filter->Update();
+  EXPECT_EQ(filter->GetOutput()->GetPointData()->GetNormals(), first);
+
+  // Orientation off: prepared again, and inward.
+  filter->OrientNormalsOutwardOff();
+  filter->Update();
+  EXPECT_LT(smallestOutwardness(filter->GetOutput(), filter->GetOutput()->GetPointData()->GetNormals()), -0.99);
+  filter->OrientNormalsOutwardOn();
+
+  // A change of the input itself: its triangles wound the other way round give outward
+  // normals that need no flip, and the report says so.
+  vtkNew<vtkReverseSense> reverse;
+  reverse->SetInputData(mesh);
+  reverse->ReverseCellsOn();
+  reverse->Update();
+  mesh->DeepCopy(reverse->GetOutput());
+  filter->Update();
+  EXPECT_EQ(filter->GetNormalsReport(),
+    "The mesh has no point normals: computed them (vtkPolyDataNormals, no splitting) and added "
+    "them as 'Normals'.");
+
+  // A new prefix renames the computed normals.
+  filter->SetArrayPrefix("lit_");
+  filter->Update();
+  EXPECT_NE(filter->GetOutput()->GetPointData()->GetArray("lit_Normals"), nullptr);
+}
+
 TEST(PassThrough, InputArraysAndAttributesAreUntouched)
 {
   vtkSmartPointer<vtkPolyData> sphere = shadelab::testing::exactSphere(20);

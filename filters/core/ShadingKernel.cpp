@@ -2,6 +2,7 @@
 
 #include "Reflectance.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace shadelab
@@ -124,6 +125,10 @@ ShadingKernel<T>::ShadingKernel(const Scene& scene, ShadingOutputs<T> outputs)
     lights_.push_back(light);
   }
   ambient_ = toVec<T>(m.ka * ambientLight);
+  needsViewer_ = twoSided_ || outputs_.flags != nullptr ||
+    std::any_of(lights_.begin(), lights_.end(),
+      [](const PreparedLight& light)
+      { return light.needsSpecular || light.needsReflection || light.needsHalfVector; });
 }
 
 template <typename T>
@@ -202,7 +207,8 @@ void ShadingKernel<T>::shadeVertex(std::size_t i, const Vec3<T>& position, const
   {
     flags |= FlagDegenerateNormal;
   }
-  const Vec3<T> v = toViewer(position, n);
+  // v costs a square root and a division: only when a term or the flags need it.
+  const Vec3<T> v = needsViewer_ ? toViewer(position, n) : Vec3<T>(0);
   if (twoSided_ && glm::dot(n, v) < T(0))
   {
     n = -n;

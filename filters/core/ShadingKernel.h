@@ -81,6 +81,7 @@ private:
   T shininess_ = 0;
   bool twoSided_ = false;
   bool localViewer_ = false;
+  bool needsViewer_ = true;
   Vec3<T> viewerPosition_{ 0 };
   Vec3<T> towardViewer_{ 0 }; // viewer at infinity: the constant v
   /// VTK's lone headlight: the specular viewer is the light itself, so h = s and n.h = n.s.

@@ -225,6 +225,7 @@ std::vector<vtkSmartPointer<vtkDataArray>> shade(const shadelab::Scene& scene,
 }
 
 vtkLocalReflectanceFilter::vtkLocalReflectanceFilter() = default;
+vtkLocalReflectanceFilter::~vtkLocalReflectanceFilter() = default;
 
 void vtkLocalReflectanceFilter::SetScene(const shadelab::Scene& scene)
 {
@@ -365,46 +366,13 @@ int vtkLocalReflectanceFilter::RequestData(
   }
 
   output->ShallowCopy(input);
-
-  // Normals: the input's own, or computed and added to the output.
-  std::ostringstream report;
-  vtkSmartPointer<vtkDataArray> normals = inputNormals;
-  if (!inputNormals)
+  this->PrepareNormals(input);
+  if (this->Normals.added)
   {
-    normals = computeNormals(input, computedNormalsName);
-    report << "The mesh has no point normals: computed them (vtkPolyDataNormals, no splitting) "
-              "and added them as '"
-           << computedNormalsName << "'.";
+    output->GetPointData()->SetNormals(this->Normals.added);
   }
-  else
-  {
-    report << "Using the mesh's point normals '" << (normals->GetName() ? normals->GetName() : "") << "'.";
-  }
-  const shadelab::NormalOrientation orientation = assessOrientation(input, normals);
-  vtkSmartPointer<vtkDataArray> shadingNormals = normals;
-  if (orientation.pointsInward())
-  {
-    report << " They point into the mesh (closure " << orientation.closure << ", flux " << orientation.flux << ")";
-    if (!this->OrientNormalsOutward)
-    {
-      report << "; kept as they are, because orienting them outward is off.";
-    }
-    else if (!inputNormals)
-    {
-      shadingNormals = normals = flippedCopy(normals);
-      report << "; flipped them outward.";
-    }
-    else
-    {
-      shadingNormals = flippedCopy(normals);
-      report << "; shaded with them flipped outward (the input array is unchanged).";
-    }
-  }
-  if (!inputNormals)
-  {
-    output->GetPointData()->SetNormals(normals);
-  }
-  this->NormalsReport = report.str();
+  this->NormalsReport = this->Normals.report;
+  vtkDataArray* shadingNormals = this->Normals.shading;
 
   vtkDataArray* points = input->GetPoints()->GetData();
   const auto arrays = precision == shadelab::Precision::Float64
@@ -420,6 +388,54 @@ int vtkLocalReflectanceFilter::RequestData(
   note->InsertNextValue(this->NormalsReport);
   output->GetFieldData()->AddArray(note);
   return 1;
+}
+
+void vtkLocalReflectanceFilter::PrepareNormals(vtkPolyData* input)
+{
+  PreparedNormals& prepared = this->Normals;
+  if (prepared.shading && prepared.inputTime == input->GetMTime() && prepared.prefix == this->ArrayPrefix &&
+    prepared.orient == this->OrientNormalsOutward)
+  {
+    return;
+  }
+  prepared = { input->GetMTime(), this->ArrayPrefix, this->OrientNormalsOutward, nullptr, nullptr, "" };
+
+  // The input's own normals, or computed ones added to the output.
+  std::ostringstream report;
+  vtkSmartPointer<vtkDataArray> normals = input->GetPointData()->GetNormals();
+  if (!normals)
+  {
+    const std::string name = this->ArrayPrefix + "Normals";
+    normals = prepared.added = computeNormals(input, name);
+    report << "The mesh has no point normals: computed them (vtkPolyDataNormals, no splitting) "
+              "and added them as '"
+           << name << "'.";
+  }
+  else
+  {
+    report << "Using the mesh's point normals '" << (normals->GetName() ? normals->GetName() : "") << "'.";
+  }
+  prepared.shading = normals;
+  const shadelab::NormalOrientation orientation = assessOrientation(input, normals);
+  if (orientation.pointsInward())
+  {
+    report << " They point into the mesh (closure " << orientation.closure << ", flux " << orientation.flux << ")";
+    if (!this->OrientNormalsOutward)
+    {
+      report << "; kept as they are, because orienting them outward is off.";
+    }
+    else if (prepared.added)
+    {
+      prepared.shading = prepared.added = flippedCopy(normals);
+      report << "; flipped them outward.";
+    }
+    else
+    {
+      prepared.shading = flippedCopy(normals);
+      report << "; shaded with them flipped outward (the input array is unchanged).";
+    }
+  }
+  prepared.report = report.str();
 }
 
 void vtkLocalReflectanceFilter::PrintSelf(ostream& os, vtkIndent indent)

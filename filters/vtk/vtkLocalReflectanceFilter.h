@@ -15,6 +15,7 @@
 
 #include "ShadeLabFiltersModule.h"
 #include "vtkPolyDataAlgorithm.h"
+#include "vtkSmartPointer.h"
 
 #include "Scene.h"
 
@@ -56,7 +57,7 @@ public:
 
 protected:
   vtkLocalReflectanceFilter();
-  ~vtkLocalReflectanceFilter() override = default;
+  ~vtkLocalReflectanceFilter() override;
 
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
@@ -70,6 +71,21 @@ private:
   int OutputPrecision = SINGLE_PRECISION;
   bool OrientNormalsOutward = true;
   std::string NormalsReport;
+
+  /// The normals to shade with and those to add to the output, kept between runs while the
+  /// input, the prefix and the orientation setting stay the same: preparing them (computing
+  /// them, and the inward test over every triangle) costs more than shading does.
+  struct PreparedNormals
+  {
+    vtkMTimeType inputTime = 0;
+    std::string prefix;
+    bool orient = true;
+    vtkSmartPointer<vtkDataArray> added; // computed normals for the output, or null
+    vtkSmartPointer<vtkDataArray> shading;
+    std::string report;
+  };
+  PreparedNormals Normals;
+  void PrepareNormals(vtkPolyData* input);
 };
 
 #endif
