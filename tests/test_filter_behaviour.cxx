@@ -8,6 +8,7 @@
 #include "vtkLocalReflectanceFilter.h"
 
 #include "vtkCellArray.h"
+#include "vtkCellArrayIterator.h"
 #include "vtkCellData.h"
 #include "vtkFloatArray.h"
 #include "vtkIntArray.h"
@@ -69,6 +70,23 @@ vtkSmartPointer<vtkPolyData> sphereWithoutNormals(bool woundInward)
   reverse->ReverseCellsOn();
   reverse->Update();
   return reverse->GetOutput();
+}
+
+/// Calls visit(ids) for each triangle of a triangle mesh.
+template <typename Visit>
+void forEachTriangle(vtkPolyData* mesh, Visit&& visit)
+{
+  auto cells = vtk::TakeSmartPointer(mesh->GetPolys()->NewIterator());
+  for (cells->GoToFirstCell(); !cells->IsDoneWithTraversal(); cells->GoToNextCell())
+  {
+    vtkIdType size;
+    const vtkIdType* ids;
+    cells->GetCurrentCell(size, ids);
+    if (size == 3)
+    {
+      visit(ids);
+    }
+  }
 }
 
 /// The smallest n.(p - centre) over the vertices: > 0 when every normal points outward.
@@ -182,7 +200,53 @@ TEST(Normals, PreparedOnceAndRedoneWhenTheirInputsChange)
   // A new prefix renames the computed normals.
   filter->SetArrayPrefix("lit_");
   filter->Update();
-  EXPECT_NE(filter->GetOutput()->GetPointData()->GetArray("lit_Normals"), nullptr);
+  vtkDataArray* renamed = filter->GetOutput()->GetPointData()->GetArray("lit_Normals");
+  ASSERT_NE(renamed, nullptr);
+
+  // Outputs share the prepared normals: one edited in place (and marked modified) is not
+  // trusted again.
+  for (vtkIdType i = 0; i < renamed->GetNumberOfTuples(); ++i)
+  {
+    renamed->SetTuple3(i, 0, 0, 1);
+  }
+  renamed->Modified();
+  filter->SetScene(overheadLight());
+  filter->Update();
+  EXPECT_GT(smallestOutwardness(filter->GetOutput(), filter->GetOutput()->GetPointData()->GetArray("lit_Normals")), 0.99);
+
+  // Another mesh with the same points object, so the same modification time: only the top
+  // half of the sphere's triangles, whose normals are not the whole sphere's.
+  vtkNew<vtkPolyData> cap;
+  cap->SetPoints(mesh->GetPoints());
+  vtkNew<vtkCellArray> top;
+  forEachTriangle(mesh,
+    [&](const vtkIdType* ids)
+    {
+      if (mesh->GetPoint(ids[0])[2] > 0.5)
+      {
+        top->InsertNextCell(3, ids);
+      }
+    });
+  cap->SetPolys(top);
+  mesh->GetPoints()->Modified(); // now both meshes report the points' time as theirs
+  ASSERT_EQ(cap->GetMTime(), mesh->GetMTime());
+  filter->Update(); // prepared for the sphere, at that time
+  filter->SetInputData(cap); // nothing else changes: only the input's identity tells
+  filter->Update();
+  vtkNew<vtkLocalReflectanceFilter> fresh;
+  fresh->SetInputData(cap);
+  fresh->SetScene(overheadLight());
+  fresh->SetArrayPrefix("lit_");
+  fresh->Update();
+  vtkDataArray* cached = filter->GetOutput()->GetPointData()->GetArray("lit_Normals");
+  vtkDataArray* recomputed = fresh->GetOutput()->GetPointData()->GetArray("lit_Normals");
+  for (vtkIdType i = 0; i < cap->GetNumberOfPoints(); ++i)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      ASSERT_EQ(cached->GetComponent(i, c), recomputed->GetComponent(i, c)) << i;
+    }
+  }
 }
 
 TEST(PassThrough, InputArraysAndAttributesAreUntouched)

@@ -393,12 +393,15 @@ int vtkLocalReflectanceFilter::RequestData(
 void vtkLocalReflectanceFilter::PrepareNormals(vtkPolyData* input)
 {
   PreparedNormals& prepared = this->Normals;
-  if (prepared.shading && prepared.inputTime == input->GetMTime() && prepared.prefix == this->ArrayPrefix &&
-    prepared.orient == this->OrientNormalsOutward)
+  if (prepared.stillValidFor(input, this->ArrayPrefix, this->OrientNormalsOutward))
   {
     return;
   }
-  prepared = { input->GetMTime(), this->ArrayPrefix, this->OrientNormalsOutward, nullptr, nullptr, "" };
+  prepared = PreparedNormals{};
+  prepared.input = input;
+  prepared.inputTime = input->GetMTime();
+  prepared.prefix = this->ArrayPrefix;
+  prepared.orient = this->OrientNormalsOutward;
 
   // The input's own normals, or computed ones added to the output.
   std::ostringstream report;
@@ -436,6 +439,19 @@ void vtkLocalReflectanceFilter::PrepareNormals(vtkPolyData* input)
     }
   }
   prepared.report = report.str();
+  prepared.shadingTime = prepared.shading->GetMTime();
+  prepared.addedTime = prepared.added ? prepared.added->GetMTime() : 0;
+}
+
+bool vtkLocalReflectanceFilter::PreparedNormals::stillValidFor(
+  vtkPolyData* mesh, const std::string& arrayPrefix, bool orientOutward) const
+{
+  // Two inputs can share parts (a vtkPoints) and so a modification time: the identity counts
+  // too. A user who edits an output's normals and calls Modified() changes their time.
+  return this->shading && this->input == mesh && this->inputTime == mesh->GetMTime() &&
+    this->prefix == arrayPrefix && this->orient == orientOutward &&
+    this->shadingTime == this->shading->GetMTime() &&
+    (!this->added || this->addedTime == this->added->GetMTime());
 }
 
 void vtkLocalReflectanceFilter::PrintSelf(ostream& os, vtkIndent indent)

@@ -16,6 +16,7 @@
 #include "ShadeLabFiltersModule.h"
 #include "vtkPolyDataAlgorithm.h"
 #include "vtkSmartPointer.h"
+#include "vtkWeakPointer.h"
 
 #include "Scene.h"
 
@@ -73,16 +74,21 @@ private:
   std::string NormalsReport;
 
   /// The normals to shade with and those to add to the output, kept between runs while the
-  /// input, the prefix and the orientation setting stay the same: preparing them (computing
-  /// them, and the inward test over every triangle) costs more than shading does.
+  /// input (the same object, unmodified), the prefix, the orientation setting and the
+  /// prepared arrays themselves (which outputs share) stay the same: preparing them
+  /// (computing them, and the inward test over every triangle) costs more than shading does.
   struct PreparedNormals
   {
+    vtkWeakPointer<vtkPolyData> input;
     vtkMTimeType inputTime = 0;
     std::string prefix;
     bool orient = true;
     vtkSmartPointer<vtkDataArray> added; // computed normals for the output, or null
     vtkSmartPointer<vtkDataArray> shading;
+    vtkMTimeType addedTime = 0, shadingTime = 0;
     std::string report;
+
+    bool stillValidFor(vtkPolyData* mesh, const std::string& arrayPrefix, bool orientOutward) const;
   };
   PreparedNormals Normals;
   void PrepareNormals(vtkPolyData* input);
