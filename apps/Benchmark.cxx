@@ -25,6 +25,8 @@
 #include <functional>
 #include <iomanip>
 #include <iostream>
+#include <limits>
+#include <memory>
 #include <sstream>
 
 namespace shadelab::app
@@ -48,20 +50,40 @@ struct Case
   std::string calculatorArray;
 };
 
-/// Median time in milliseconds of run(), repeated until maxRepeats runs or about a second.
-double medianMilliseconds(const std::function<void()>& run, int maxRepeats)
+/// Median time in milliseconds of run(): at least minRepeats runs, then more up to
+/// maxRepeats while they fit in about two seconds.
+double medianMilliseconds(const std::function<void()>& run, int minRepeats, int maxRepeats)
 {
   std::vector<double> times;
   const Clock::time_point start = Clock::now();
-  do
+  while (static_cast<int>(times.size()) < std::max(1, minRepeats) ||
+    (static_cast<int>(times.size()) < maxRepeats &&
+      std::chrono::duration<double>(Clock::now() - start).count() < 2.0))
   {
     const Clock::time_point begin = Clock::now();
     run();
     times.push_back(std::chrono::duration<double, std::milli>(Clock::now() - begin).count());
-  } while (static_cast<int>(times.size()) < maxRepeats &&
-    std::chrono::duration<double>(Clock::now() - start).count() < 1.0);
+  }
   std::sort(times.begin(), times.end());
   return times[times.size() / 2];
+}
+
+/// How glibc's malloc treats large blocks. For timing, like a long-lived process: blocks up
+/// to 32 MB (glibc's largest mmap threshold) come from the heap, which keeps freed memory
+/// for reuse. For measuring memory: every block of 1 MB and more is mapped on its own and
+/// returned when freed, and freed heap memory is given back first, so that the resident size
+/// follows what is allocated.
+void allocateForTiming()
+{
+  mallopt(M_MMAP_THRESHOLD, 32 << 20);
+  mallopt(M_TRIM_THRESHOLD, 1 << 30);
+}
+
+void allocateForMemoryMeasurement()
+{
+  mallopt(M_MMAP_THRESHOLD, 1 << 20);
+  mallopt(M_TRIM_THRESHOLD, 128 << 10);
+  malloc_trim(0);
 }
 
 /// The mesh with the normals ShadeLab itself would compute and orient outward (the bunny's
@@ -97,16 +119,20 @@ Mesh sphereOfAbout(long long points)
   return { "sphere", sphere->GetOutput() };
 }
 
-/// The Stanford bunny Loop-subdivided until it has the number of vertices closest to
-/// `points` (35,947 x about 4 per level), or nothing if no level is within a factor 2.5.
-std::optional<Mesh> bunnyOfAbout(const std::string& file, long long points)
+/// The Stanford bunny, merged and compacted: vtkLoopSubdivisionFilter gives nothing for a
+/// mesh with unused points, and the bunny has 1,113.
+vtkSmartPointer<vtkPolyData> cleanBunny(const std::string& file)
 {
-  // vtkLoopSubdivisionFilter gives nothing for a mesh with unused points (the bunny has
-  // 1,113): merged and compacted first.
   vtkNew<vtkCleanPolyData> clean;
   clean->SetInputData(readMesh(file));
   clean->Update();
-  vtkSmartPointer<vtkPolyData> bunny = clean->GetOutput();
+  return clean->GetOutput();
+}
+
+/// The bunny Loop-subdivided until it has the number of vertices closest to `points` (about
+/// 4x per level), or nothing if no level is within a factor 2.5.
+std::optional<Mesh> bunnyOfAbout(vtkPolyData* bunny, long long points)
+{
   int levels = 0;
   double estimate = bunny->GetNumberOfPoints();
   while (std::abs(std::log(estimate * 4 / points)) < std::abs(std::log(estimate / points)))
@@ -118,19 +144,20 @@ std::optional<Mesh> bunnyOfAbout(const std::string& file, long long points)
   {
     return std::nullopt;
   }
+  vtkSmartPointer<vtkPolyData> subdivided = bunny;
   if (levels > 0)
   {
     vtkNew<vtkLoopSubdivisionFilter> subdivide;
     subdivide->SetInputData(bunny);
     subdivide->SetNumberOfSubdivisions(levels);
     subdivide->Update();
-    bunny = subdivide->GetOutput();
-    if (bunny->GetNumberOfPoints() == 0)
+    subdivided = subdivide->GetOutput();
+    if (subdivided->GetNumberOfPoints() == 0)
     {
-      throw UserError(file + ": vtkLoopSubdivisionFilter could not subdivide it");
+      throw UserError("vtkLoopSubdivisionFilter could not subdivide the bunny");
     }
   }
-  return Mesh{ "bunny x" + std::to_string(1 << (2 * levels)), withOutwardNormals(bunny) };
+  return Mesh{ "bunny x" + std::to_string(1 << (2 * levels)), withOutwardNormals(subdivided) };
 }
 
 /// The lighting cases, with lights placed around a mesh of this centre and radius.
@@ -215,26 +242,48 @@ struct Row
   double arrayMegabytes;
 };
 
-/// The floor: reading the input bytes and writing the output bytes once, with memcpy and
-/// memset into buffers that are already mapped.
-double floorMilliseconds(vtkPolyData* mesh, std::size_t outputBytes, int repeats)
+/// The floor: reading the input bytes and writing the output bytes once (memcpy and memset,
+/// as REFERENCES.md section 7 measures it), the output into a newly allocated block as the
+/// filter's arrays are.
+double floorMilliseconds(vtkPolyData* mesh, std::size_t outputBytes, int minRepeats, int maxRepeats)
 {
   vtkDataArray* points = mesh->GetPoints()->GetData();
   vtkDataArray* normals = mesh->GetPointData()->GetNormals();
   const std::size_t pointBytes = points->GetNumberOfValues() * points->GetDataTypeSize();
   const std::size_t normalBytes = normals->GetNumberOfValues() * normals->GetDataTypeSize();
-  std::vector<char> in(pointBytes + normalBytes, 1), out(outputBytes, 1);
+  std::vector<char> in(pointBytes + normalBytes, 1);
   return medianMilliseconds(
     [&]
     {
       std::memcpy(in.data(), points->GetVoidPointer(0), pointBytes);
       std::memcpy(in.data() + pointBytes, normals->GetVoidPointer(0), normalBytes);
-      std::memset(out.data(), static_cast<int>(in[in.size() / 2]), out.size());
+      std::unique_ptr<char[]> out(new char[outputBytes]);
+      std::memset(out.get(), in[in.size() / 2], outputBytes);
     },
-    repeats);
+    minRepeats, maxRepeats);
 }
 
-Row measure(const Mesh& mesh, const Case& c, int repeats)
+/// The largest |a - b| over all values, NaN if either has a NaN or the shapes differ.
+double largestDifference(vtkDataArray* a, vtkDataArray* b)
+{
+  if (!a || !b || a->GetNumberOfComponents() != b->GetNumberOfComponents() ||
+    a->GetNumberOfTuples() != b->GetNumberOfTuples())
+  {
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+  double largest = 0;
+  for (vtkIdType t = 0; t < a->GetNumberOfTuples(); ++t)
+  {
+    for (int c = 0; c < a->GetNumberOfComponents(); ++c)
+    {
+      const double difference = std::abs(a->GetComponent(t, c) - b->GetComponent(t, c));
+      largest = difference <= largest ? largest : difference; // a NaN wins
+    }
+  }
+  return largest;
+}
+
+Row measure(const Mesh& mesh, const Case& c, int maxRepeats)
 {
   Row row{ mesh.data->GetNumberOfPoints(), mesh.name, c.name, 0, 0, 0, {}, {}, {}, 0 };
   vtkNew<vtkLocalReflectanceFilter> filter;
@@ -242,8 +291,9 @@ Row measure(const Mesh& mesh, const Case& c, int repeats)
   filter->SetScene(c.scene);
   filter->SetArraySelection(c.arrays);
 
-  // The first run, which also prepares the normals, and its peak memory above what the
+  // The first run also prepares the normals; its peak memory is measured above what the
   // process held before it.
+  allocateForMemoryMeasurement();
   const std::optional<std::size_t> before = statusBytes("VmRSS");
   const bool peakReset = resetPeakMemory();
   const Clock::time_point firstStart = Clock::now();
@@ -254,6 +304,7 @@ Row measure(const Mesh& mesh, const Case& c, int repeats)
   {
     row.peakMegabytes = (static_cast<double>(*peak) - static_cast<double>(*before)) / 1e6;
   }
+  allocateForTiming();
   const std::size_t outputBytes = addedBytes(mesh.data, filter->GetOutput());
   row.arrayMegabytes = outputBytes / 1e6;
   row.milliseconds = medianMilliseconds(
@@ -262,96 +313,133 @@ Row measure(const Mesh& mesh, const Case& c, int repeats)
       filter->Modified();
       filter->Update();
     },
-    repeats);
+    3, maxRepeats);
 
-  if (const std::optional<std::string> expression =
-        c.calculatorArray.empty() ? std::nullopt : calculatorExpression(c.scene, c.calculatorArray == "diffuse"))
+  vtkDataArray* normals = mesh.data->GetPointData()->GetNormals();
+  const std::optional<std::string> expression = c.calculatorArray.empty()
+    ? std::nullopt
+    : calculatorExpression(c.scene, c.calculatorArray == "diffuse", normals->GetName());
+  if (expression)
   {
     vtkNew<vtkArrayCalculator> calculator;
     calculator->SetInputData(mesh.data);
-    calculator->AddVectorArrayName(mesh.data->GetPointData()->GetNormals()->GetName(), 0, 1, 2);
+    calculator->AddVectorArrayName(normals->GetName(), 0, 1, 2);
     calculator->AddCoordinateVectorVariable("coords", 0, 1, 2);
     calculator->SetFunction(expression->c_str());
     calculator->SetResultArrayName("calculator");
     calculator->SetResultArrayType(VTK_FLOAT);
-    row.calculatorMilliseconds = medianMilliseconds(
-      [&]
-      {
-        calculator->Modified();
-        calculator->Update();
-      },
-      repeats);
-    vtkDataArray* ours = filter->GetOutput()->GetPointData()->GetArray(c.calculatorArray.c_str());
-    vtkDataArray* theirs = vtkDataSet::SafeDownCast(calculator->GetOutput())->GetPointData()->GetArray("calculator");
-    double largest = 0;
-    for (vtkIdType v = 0; v < ours->GetNumberOfValues(); ++v)
+    calculator->Update(); // its first run, like ours, is not timed
+    vtkDataArray* theirs =
+      vtkDataSet::SafeDownCast(calculator->GetOutput())->GetPointData()->GetArray("calculator");
+    if (theirs)
     {
-      largest = std::max(largest, std::abs(ours->GetComponent(v / 3, v % 3) - theirs->GetComponent(v / 3, v % 3)));
+      row.calculatorDifference =
+        largestDifference(filter->GetOutput()->GetPointData()->GetArray(c.calculatorArray.c_str()), theirs);
+      row.calculatorMilliseconds = medianMilliseconds(
+        [&]
+        {
+          calculator->Modified();
+          calculator->Update();
+        },
+        1, maxRepeats);
     }
-    row.calculatorDifference = largest;
   }
-  row.floorMilliseconds = floorMilliseconds(mesh.data, outputBytes, repeats);
+  row.floorMilliseconds = floorMilliseconds(mesh.data, outputBytes, 3, maxRepeats);
   return row;
 }
 
-std::string fixed(std::optional<double> value, int decimals)
-{
-  if (!value)
-  {
-    return "-";
-  }
-  std::ostringstream text;
-  text << std::fixed << std::setprecision(decimals) << *value;
-  return text.str();
-}
-
-std::string scientific(std::optional<double> value)
-{
-  if (!value)
-  {
-    return "-";
-  }
-  std::ostringstream text;
-  text << std::scientific << std::setprecision(1) << *value;
-  return text.str();
-}
-
+/// A column of the table: text, or a number shown with `decimals` decimals (0 meaning
+/// scientific notation) in the table and in full in the CSV.
 struct Column
 {
   const char* title;
   int width;
-  std::function<std::string(const Row&)> cell;
+  int decimals;
+  std::function<std::string(const Row&)> text;
+  std::function<std::optional<double>(const Row&)> number;
 };
+
+std::optional<double> ratio(std::optional<double> a, double b)
+{
+  return a ? std::optional<double>(*a / b) : std::nullopt;
+}
 
 const std::vector<Column>& columns()
 {
+  using Text = std::function<std::string(const Row&)>;
+  using Number = std::function<std::optional<double>(const Row&)>;
   static const std::vector<Column> all = {
-    { "vertices", 10, [](const Row& r) { return std::to_string(r.vertices); } },
-    { "mesh", 11, [](const Row& r) { return r.mesh; } },
-    { "case", 31, [](const Row& r) { return r.name; } },
-    { "first ms", 9, [](const Row& r) { return fixed(r.firstMilliseconds, 2); } },
-    { "ms", 9, [](const Row& r) { return fixed(r.milliseconds, 2); } },
-    { "Mvertices/s", 12, [](const Row& r) { return fixed(r.vertices / r.milliseconds / 1e3, 1); } },
-    { "x floor", 8, [](const Row& r) { return fixed(r.milliseconds / r.floorMilliseconds, 1); } },
-    { "floor ms", 9, [](const Row& r) { return fixed(r.floorMilliseconds, 2); } },
-    { "calculator ms", 14, [](const Row& r) { return fixed(r.calculatorMilliseconds, 1); } },
-    { "x faster", 9,
-      [](const Row& r)
-      {
-        return r.calculatorMilliseconds ? fixed(*r.calculatorMilliseconds / r.milliseconds, 1) : "-";
-      } },
-    { "max |diff|", 11, [](const Row& r) { return scientific(r.calculatorDifference); } },
-    { "peak MB", 9, [](const Row& r) { return fixed(r.peakMegabytes, 1); } },
-    { "arrays MB", 10, [](const Row& r) { return fixed(r.arrayMegabytes, 1); } },
+    { "vertices", 10, 0, [](const Row& r) { return std::to_string(r.vertices); }, Number{} },
+    { "mesh", 11, 0, [](const Row& r) { return r.mesh; }, Number{} },
+    { "case", 31, 0, [](const Row& r) { return r.name; }, Number{} },
+    { "first ms", 9, 2, Text{}, [](const Row& r) { return r.firstMilliseconds; } },
+    { "ms", 9, 2, Text{}, [](const Row& r) { return r.milliseconds; } },
+    { "Mvertices/s", 12, 1, Text{}, [](const Row& r) { return r.vertices / r.milliseconds / 1e3; } },
+    { "x floor", 8, 1, Text{}, [](const Row& r) { return r.milliseconds / r.floorMilliseconds; } },
+    { "floor ms", 9, 3, Text{}, [](const Row& r) { return r.floorMilliseconds; } },
+    { "calculator ms", 14, 1, Text{}, [](const Row& r) { return r.calculatorMilliseconds; } },
+    { "x faster", 9, 1, Text{}, [](const Row& r) { return ratio(r.calculatorMilliseconds, r.milliseconds); } },
+    { "max |diff|", 11, 0, Text{}, [](const Row& r) { return r.calculatorDifference; } },
+    { "peak MB", 9, 1, Text{}, [](const Row& r) { return r.peakMegabytes; } },
+    { "arrays MB", 10, 1, Text{}, [](const Row& r) { return r.arrayMegabytes; } },
   };
   return all;
+}
+
+std::string tableCell(const Column& column, const Row& row)
+{
+  if (column.text)
+  {
+    return column.text(row);
+  }
+  const std::optional<double> value = column.number(row);
+  if (!value)
+  {
+    return "-";
+  }
+  std::ostringstream text;
+  if (column.decimals == 0)
+  {
+    text << std::scientific << std::setprecision(1) << *value;
+  }
+  else
+  {
+    text << std::fixed << std::setprecision(column.decimals) << *value;
+  }
+  return text.str();
+}
+
+/// RFC 4180: quoted when it holds a comma or a quote, quotes doubled; numbers in full.
+std::string csvCell(const Column& column, const Row& row)
+{
+  if (column.number)
+  {
+    const std::optional<double> value = column.number(row);
+    std::ostringstream text;
+    if (value)
+    {
+      text << std::setprecision(9) << *value;
+    }
+    return text.str();
+  }
+  std::string text = column.text(row);
+  if (text.find_first_of(",\"") == std::string::npos)
+  {
+    return text;
+  }
+  std::string quoted = "\"";
+  for (char character : text)
+  {
+    quoted += character == '"' ? "\"\"" : std::string(1, character);
+  }
+  return quoted + "\"";
 }
 
 void printRow(const Row& row)
 {
   for (const Column& column : columns())
   {
-    std::cout << std::setw(column.width) << column.cell(row) << " ";
+    std::cout << std::setw(column.width) << tableCell(column, row) << " ";
   }
   std::cout << std::endl;
 }
@@ -359,22 +447,25 @@ void printRow(const Row& row)
 
 void runBenchmark(const BenchmarkOptions& options)
 {
-  // Blocks of 1 MB and more are mapped and unmapped on their own, so that resident memory
-  // follows what is allocated (glibc otherwise keeps freed blocks resident for reuse, and a
-  // run's peak would not show its arrays).
-  mallopt(M_MMAP_THRESHOLD, 1 << 20);
   if (!options.csvFile.empty())
   {
     checkOutputFile(options.csvFile, { ".csv" });
   }
+  vtkSmartPointer<vtkPolyData> bunny = options.bunnyFile.empty() ? nullptr : cleanBunny(options.bunnyFile);
+  {
+    // Starts the thread pool, so that the first row's first run does not pay for it.
+    const Mesh warmUp = sphereOfAbout(1000);
+    measure(warmUp, casesAround(glm::dvec3(0), 1)[0], 1);
+  }
   std::cout << "shadelab bench: " << vtkSMPTools::GetEstimatedNumberOfThreads()
-            << " threads, float32. first ms: the first run, which also prepares the normals; "
-               "ms: the median of up to "
+            << " threads, float32.\n"
+               "first ms: the first run, which also prepares the normals; ms: the median of 3 to "
             << options.maxRepeats
-            << " later runs (new lights on the same mesh); x floor: ms / (memcpy of the input and "
-               "memset of the output bytes);\nx faster: vtkArrayCalculator's time for the same "
-               "expression / ms; max |diff|: between the two results; peak MB: resident memory "
-               "above the start of the first run; arrays MB: the arrays written.\n";
+            << " later runs (new lights on the same mesh);\n"
+               "x floor: ms / the floor (memcpy of the input and memset of the output bytes, one "
+               "thread); x faster: vtkArrayCalculator's median time for the same expression / ms;\n"
+               "max |diff|: between the two results; peak MB: resident memory above the start of "
+               "the first run; arrays MB: the arrays written.\n";
   for (const Column& column : columns())
   {
     std::cout << std::setw(column.width) << column.title << " ";
@@ -385,11 +476,11 @@ void runBenchmark(const BenchmarkOptions& options)
   for (const long long size : options.sizes)
   {
     std::vector<Mesh> meshes{ sphereOfAbout(size) };
-    if (!options.bunnyFile.empty())
+    if (bunny)
     {
-      if (std::optional<Mesh> bunny = bunnyOfAbout(options.bunnyFile, size))
+      if (std::optional<Mesh> subdivided = bunnyOfAbout(bunny, size))
       {
-        meshes.push_back(*bunny);
+        meshes.push_back(*subdivided);
       }
     }
     for (const Mesh& mesh : meshes)
@@ -421,8 +512,7 @@ void runBenchmark(const BenchmarkOptions& options)
         {
           for (std::size_t c = 0; c < columns().size(); ++c)
           {
-            const std::string cell = columns()[c].cell(row);
-            csv << (c ? "," : "") << (cell.find(',') != std::string::npos ? "\"" + cell + "\"" : cell);
+            csv << (c ? "," : "") << csvCell(columns()[c], row);
           }
           csv << "\n";
         }

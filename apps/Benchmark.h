@@ -9,7 +9,7 @@ namespace shadelab::app
 struct BenchmarkOptions
 {
   std::vector<long long> sizes{ 10000, 100000, 1000000, 10000000 };
-  int maxRepeats = 5;
+  int maxRepeats = 9;
   std::string csvFile;
   std::string bunnyFile; // empty: spheres only
 };

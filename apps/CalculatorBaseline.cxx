@@ -21,7 +21,8 @@ std::string vectorOf(const glm::dvec3& v)
 
 /// The expression of one light's diffuse and specular terms, or empty if it has none that an
 /// expression can state.
-std::optional<std::string> lightTerms(const NamedLight& named, const Scene& scene, bool diffuseOnly)
+std::optional<std::string> lightTerms(
+  const NamedLight& named, const Scene& scene, bool diffuseOnly, const std::string& normals)
 {
   const Material& m = scene.material;
   std::string toLight, attenuation = "1";
@@ -55,7 +56,7 @@ std::optional<std::string> lightTerms(const NamedLight& named, const Scene& scen
   {
     return std::nullopt;
   }
-  const std::string cosIncidence = "dot(Normals," + toLight + ")";
+  const std::string cosIncidence = "dot(" + normals + "," + toLight + ")";
   std::string terms =
     "max(" + cosIncidence + ",0)*" + attenuation + "*" + vectorOf(strength * m.kd);
   if (diffuseOnly || m.specular == SpecularModel::None)
@@ -66,15 +67,15 @@ std::optional<std::string> lightTerms(const NamedLight& named, const Scene& scen
     ? "norm(" + vectorOf(*scene.viewer.position) + "-coords)"
     : vectorOf(-unitVector(scene.viewer.viewDirection));
   const std::string cosine = m.specular == SpecularModel::Phong
-    ? "dot(2*" + cosIncidence + "*Normals-" + toLight + "," + toViewer + ")"
-    : "dot(Normals,norm(" + toLight + "+" + toViewer + "))";
+    ? "dot(2*" + cosIncidence + "*" + normals + "-" + toLight + "," + toViewer + ")"
+    : "dot(" + normals + ",norm(" + toLight + "+" + toViewer + "))";
   terms += "+(" + cosIncidence + ">0)*max(" + cosine + ",0)^" + number(m.shininess) + "*" +
     attenuation + "*" + vectorOf(strength * m.ks);
   return terms;
 }
 }
 
-std::optional<std::string> calculatorExpression(const Scene& scene, bool diffuseOnly)
+std::optional<std::string> calculatorExpression(const Scene& scene, bool diffuseOnly, const std::string& normals)
 {
   if (scene.model != ShadingModel::Lecture || scene.material.twoSided)
   {
@@ -89,7 +90,7 @@ std::optional<std::string> calculatorExpression(const Scene& scene, bool diffuse
       ambient += a->color * a->intensity;
       continue;
     }
-    const std::optional<std::string> terms = lightTerms(light, scene, diffuseOnly);
+    const std::optional<std::string> terms = lightTerms(light, scene, diffuseOnly, normals);
     if (!terms)
     {
       return std::nullopt;
@@ -99,6 +100,10 @@ std::optional<std::string> calculatorExpression(const Scene& scene, bool diffuse
   if (!diffuseOnly)
   {
     expression = vectorOf(scene.material.ka * ambient) + (expression.empty() ? "" : "+") + expression;
+  }
+  if (expression.empty())
+  {
+    return std::nullopt; // no light with a diffuse term: nothing for the calculator to do
   }
   return expression;
 }

@@ -9,9 +9,9 @@
 namespace shadelab::app
 {
 /// The vtkArrayCalculator expression for a scene's `diffuse` total (diffuseOnly) or `total`,
-/// in terms of the vector variables "Normals" (unit point normals) and "coords" (point
-/// coordinates). Covers what an expression can say plainly: distant and point lights with
+/// in terms of the vector variables `normals` (the name of the unit point normals array) and
+/// "coords" (point coordinates). Covers what an expression can say plainly: distant and point lights with
 /// 1/d^2 or no attenuation, ambient lights, Phong, Blinn-Phong or no specular, and a local
 /// viewer or one at infinity. Empty for anything else.
-std::optional<std::string> calculatorExpression(const Scene& scene, bool diffuseOnly);
+std::optional<std::string> calculatorExpression(const Scene& scene, bool diffuseOnly, const std::string& normals);
 }

@@ -24,6 +24,7 @@
 #include <chrono>
 #include <fstream>
 #include <iomanip>
+#include <regex>
 #include <iostream>
 #include <sstream>
 
@@ -247,23 +248,19 @@ int runRender(RenderCommand& command)
 /// "10k", "2.5M" or "300" as a vertex count.
 long long parseCount(const std::string& text)
 {
-  std::size_t used = 0;
-  double value = 0;
-  try
+  static const std::regex count("([0-9]+(\\.[0-9]*)?)([kKM]?)");
+  std::smatch parts;
+  double vertices = 0;
+  if (std::regex_match(text, parts, count))
   {
-    value = std::stod(text, &used);
+    const std::string unit = parts[3];
+    vertices = std::stod(parts[1]) * (unit.empty() ? 1 : unit == "M" ? 1e6 : 1e3);
   }
-  catch (const std::exception&)
-  {
-    used = 0;
-  }
-  const std::string unit = text.substr(used);
-  const double scale = unit == "" ? 1 : unit == "k" ? 1e3 : unit == "M" ? 1e6 : 0;
-  if (used == 0 || scale == 0 || value * scale < 100 || value * scale > 1e8)
+  if (!(vertices >= 100 && vertices <= 1e8))
   {
     throw UserError("--sizes: '" + text + "' is not a vertex count from 100 to 100M, such as 10k or 1M");
   }
-  return std::llround(value * scale);
+  return std::llround(vertices);
 }
 
 struct BenchCommand
