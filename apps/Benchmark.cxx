@@ -9,18 +9,19 @@
 #include "vtkArrayCalculator.h"
 #include "vtkCleanPolyData.h"
 #include "vtkDataArray.h"
-#include "vtkLoopSubdivisionFilter.h"
-#include "vtkPointData.h"
 #include "vtkDataSet.h"
 #include "vtkFieldData.h"
+#include "vtkLoopSubdivisionFilter.h"
+#include "vtkPointData.h"
 #include "vtkSMPTools.h"
 #include "vtkSphereSource.h"
+
+#include <malloc.h> // mallopt, malloc_trim: glibc's allocator, for the memory measurement
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstring>
-#include <malloc.h>
 #include <fstream>
 #include <functional>
 #include <iomanip>
