@@ -486,11 +486,9 @@ void runBenchmark(const BenchmarkOptions& options)
     }
     for (const Mesh& mesh : meshes)
     {
-      double bounds[6];
-      mesh.data->GetBounds(bounds);
-      const glm::dvec3 centre{ (bounds[0] + bounds[1]) / 2, (bounds[2] + bounds[3]) / 2, (bounds[4] + bounds[5]) / 2 };
-      const double radius = 0.5 * glm::length(glm::dvec3(bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4]));
-      for (const Case& c : casesAround(centre, radius))
+      double centre[3];
+      mesh.data->GetCenter(centre); // of the bounding box; GetLength is its diagonal
+      for (const Case& c : casesAround({ centre[0], centre[1], centre[2] }, 0.5 * mesh.data->GetLength()))
       {
         rows.push_back(measure(mesh, c, options.maxRepeats));
         printRow(rows.back());

@@ -36,6 +36,12 @@ const char* precisionName(Precision precision)
 {
   return precision == Precision::Float32 ? "float32" : "float64";
 }
+
+double largestFinite(Precision precision)
+{
+  return precision == Precision::Float32 ? std::numeric_limits<float>::max()
+                                         : std::numeric_limits<double>::max();
+}
 }
 
 std::optional<glm::dvec3> Viewer::lineOfSight() const
@@ -53,10 +59,8 @@ std::optional<glm::dvec3> Viewer::lineOfSight() const
 
 double coordinateLimit(Precision precision)
 {
-  const double largest = precision == Precision::Float32 ? std::numeric_limits<float>::max()
-                                                         : std::numeric_limits<double>::max();
   // |a - b|^2 <= (2 limit)^2 = largest / 16: squared distances keep a margin for rounding.
-  return std::sqrt(largest) / 8;
+  return std::sqrt(largestFinite(precision)) / 8;
 }
 
 std::string meshCoordinateProblem(double reach, Precision precision)
@@ -272,14 +276,12 @@ std::vector<SceneProblem> sceneProblems(const Scene& scene, Precision precision)
   {
     // The outputs are sums of the lights' contributions: keep them below a quarter of the
     // largest finite value, a margin for the rounding of the products that form them.
-    const double largest = precision == Precision::Float32 ? std::numeric_limits<float>::max()
-                                                           : std::numeric_limits<double>::max();
     double sum = 0;
     for (const NamedLight& light : scene.lights)
     {
       sum += peakContribution(light.source, m);
     }
-    list.check(sum <= largest / 4, "/lights",
+    list.check(sum <= largestFinite(precision) / 4, "/lights",
       std::string("together the lights can reach ") + scientific(sum) +
         " at a vertex (colour x intensity x k x attenuation at min_distance), beyond what " +
         precisionName(precision) + " holds: use " +

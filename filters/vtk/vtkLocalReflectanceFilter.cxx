@@ -60,10 +60,9 @@ struct OrientationWorker
     const auto points = vtk::DataArrayTupleRange<3>(pointArray);
     const auto normals = vtk::DataArrayTupleRange<3>(normalArray);
     auto vec = [](const auto& tuple) { return glm::dvec3(tuple[0], tuple[1], tuple[2]); };
-    double bounds[6];
-    mesh->GetBounds(bounds);
-    shadelab::NormalOrientationAccumulator accumulator(
-      { 0.5 * (bounds[0] + bounds[1]), 0.5 * (bounds[2] + bounds[3]), 0.5 * (bounds[4] + bounds[5]) });
+    double centre[3];
+    mesh->GetCenter(centre); // of the bounding box
+    shadelab::NormalOrientationAccumulator accumulator({ centre[0], centre[1], centre[2] });
     auto addTriangle = [&](vtkIdType a, vtkIdType b, vtkIdType c)
     {
       accumulator.addTriangle(vec(points[a]), vec(points[b]), vec(points[c]), vec(normals[a]),
@@ -347,7 +346,6 @@ int vtkLocalReflectanceFilter::RequestData(
     return 0;
   }
   vtkDataArray* inputNormals = input->GetPointData()->GetNormals();
-  const std::string computedNormalsName = this->ArrayPrefix + "Normals";
   std::vector<std::string> written;
   for (const auto& array : shadelab::availableArrays(this->Scene, this->ArrayPrefix))
   {
@@ -355,7 +353,7 @@ int vtkLocalReflectanceFilter::RequestData(
   }
   if (!inputNormals)
   {
-    written.push_back(computedNormalsName);
+    written.push_back(this->ComputedNormalsName());
   }
   const std::string taken = takenName(input, written);
   if (!taken.empty())
@@ -408,7 +406,7 @@ void vtkLocalReflectanceFilter::PrepareNormals(vtkPolyData* input)
   vtkSmartPointer<vtkDataArray> normals = input->GetPointData()->GetNormals();
   if (!normals)
   {
-    const std::string name = this->ArrayPrefix + "Normals";
+    const std::string name = this->ComputedNormalsName();
     normals = prepared.added = computeNormals(input, name);
     report << "The mesh has no point normals: computed them (vtkPolyDataNormals, no splitting) "
               "and added them as '"

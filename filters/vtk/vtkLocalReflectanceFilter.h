@@ -92,6 +92,8 @@ private:
   };
   PreparedNormals Normals;
   void PrepareNormals(vtkPolyData* input);
+  /// The name of the normals the filter computes when the input has none.
+  std::string ComputedNormalsName() const { return this->ArrayPrefix + "Normals"; }
 };
 
 #endif
