@@ -446,8 +446,30 @@ void printRow(const Row& row)
 }
 }
 
+/// Whether the options select this case.
+bool selected(const BenchmarkOptions& options, const std::string& caseName)
+{
+  return options.caseFilters.empty() ||
+    std::any_of(options.caseFilters.begin(), options.caseFilters.end(),
+      [&](const std::string& filter) { return caseName.find(filter) != std::string::npos; });
+}
+
 void runBenchmark(const BenchmarkOptions& options)
 {
+  const std::vector<Case> allCases = casesAround(glm::dvec3(0), 1);
+  for (const std::string& filter : options.caseFilters)
+  {
+    if (std::none_of(allCases.begin(), allCases.end(),
+          [&](const Case& c) { return c.name.find(filter) != std::string::npos; }))
+    {
+      std::string names;
+      for (const Case& c : allCases)
+      {
+        names += (names.empty() ? "'" : ", '") + c.name + "'";
+      }
+      throw UserError("--case: no benchmark case contains '" + filter + "'; the cases are " + names);
+    }
+  }
   if (!options.csvFile.empty())
   {
     checkOutputFile(options.csvFile, { ".csv" });
@@ -456,7 +478,7 @@ void runBenchmark(const BenchmarkOptions& options)
   {
     // Starts the thread pool, so that the first row's first run does not pay for it.
     const Mesh warmUp = sphereOfAbout(1000);
-    measure(warmUp, casesAround(glm::dvec3(0), 1)[0], 1);
+    measure(warmUp, allCases[0], 1);
   }
   std::cout << "shadelab bench: " << vtkSMPTools::GetEstimatedNumberOfThreads()
             << " threads, float32.\n"
@@ -490,6 +512,10 @@ void runBenchmark(const BenchmarkOptions& options)
       mesh.data->GetCenter(centre); // of the bounding box; GetLength is its diagonal
       for (const Case& c : casesAround({ centre[0], centre[1], centre[2] }, 0.5 * mesh.data->GetLength()))
       {
+        if (!selected(options, c.name))
+        {
+          continue;
+        }
         rows.push_back(measure(mesh, c, options.maxRepeats));
         printRow(rows.back());
       }

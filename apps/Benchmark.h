@@ -12,6 +12,8 @@ struct BenchmarkOptions
   int maxRepeats = 9;
   std::string csvFile;
   std::string bunnyFile; // empty: spheres only
+  /// Only the cases whose names contain one of these (all when empty).
+  std::vector<std::string> caseFilters;
 };
 
 /// Prints the table to standard output as it goes and writes the CSV. Throws UserError.

@@ -372,6 +372,8 @@ int main(int argc, char** argv)
   benchCommand->add_option("--csv", bench.options.csvFile, "also write the table to this CSV file");
   benchCommand->add_option("--bunny", bench.bunny, "the bunny mesh to subdivide")->capture_default_str();
   benchCommand->add_flag("--no-bunny", bench.noBunny, "spheres only");
+  benchCommand->add_option("--case", bench.options.caseFilters,
+    "only the cases whose names contain this text (repeatable), such as --case lambert");
   benchCommand->add_option("--threads,-j", bench.threads, "threads (0: all cores)")
     ->check(CLI::Range(0, 256))
     ->capture_default_str();

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace shadelab
 {
@@ -13,26 +14,6 @@ template <typename T>
 Vec3<T> toVec(const glm::dvec3& v)
 {
   return Vec3<T>(v);
-}
-
-template <typename T>
-void store(T* array, std::size_t i, T value)
-{
-  if (array)
-  {
-    array[i] = value;
-  }
-}
-
-template <typename T>
-void store(T* array, std::size_t i, const Vec3<T>& value)
-{
-  if (array)
-  {
-    array[3 * i] = value.x;
-    array[3 * i + 1] = value.y;
-    array[3 * i + 2] = value.z;
-  }
 }
 
 // A normal shorter than this is treated as missing: it comes from degenerate geometry
@@ -45,10 +26,113 @@ Rgb strength(const Light& light)
 {
   return light.color * light.intensity;
 }
+
+template <typename T>
+using Lane = std::array<T, VertexBlock<T>::capacity>;
+
+template <typename T>
+void store(T* out, std::size_t first, std::size_t count, const Lane<T>& values)
+{
+  if (out)
+  {
+    std::copy(values.begin(), values.begin() + count, out + first);
+  }
 }
 
 template <typename T>
-ShadingKernel<T>::ShadingKernel(const Scene& scene, ShadingOutputs<T> outputs)
+void store(T* out, std::size_t first, std::size_t count, const Lane<T>& x, const Lane<T>& y, const Lane<T>& z)
+{
+  if (out)
+  {
+    for (std::size_t k = 0; k < count; ++k)
+    {
+      out[3 * (first + k)] = x[k];
+      out[3 * (first + k) + 1] = y[k];
+      out[3 * (first + k) + 2] = z[k];
+    }
+  }
+}
+
+/// An RGB term that is factor x colour at each vertex.
+template <typename T>
+void store(T* out, std::size_t first, std::size_t count, const Lane<T>& factor, const Vec3<T>& color)
+{
+  if (out)
+  {
+    for (std::size_t k = 0; k < count; ++k)
+    {
+      out[3 * (first + k)] = factor[k] * color.x;
+      out[3 * (first + k) + 1] = factor[k] * color.y;
+      out[3 * (first + k) + 2] = factor[k] * color.z;
+    }
+  }
+}
+}
+
+/// The unit vectors (x, y, z) from each vertex of the block to `target`, and the distances.
+/// Returns how many vertices are closer than the smallest normal number, where the direction
+/// is undefined: they get (0, 0, 0) here. (A select against a fallback direction inside this
+/// loop would stop GCC vectorising it, so the rare fix-up is a separate pass.)
+template <typename T>
+std::size_t unitVectorsFrom(const Vec3<T>& target, const VertexBlock<T>& b, Lane<T>& x, Lane<T>& y, Lane<T>& z,
+  Lane<T>& distance)
+{
+  constexpr T smallest = std::numeric_limits<T>::min();
+  const T tx = target.x, ty = target.y, tz = target.z; // copies: target could alias the lanes
+  std::size_t undefined = 0;
+  for (std::size_t k = 0; k < b.count; ++k)
+  {
+    const T ox = tx - b.px[k];
+    const T oy = ty - b.py[k];
+    const T oz = tz - b.pz[k];
+    const T d = std::sqrt(ox * ox + oy * oy + oz * oz);
+    const T divisor = std::max(d, smallest);
+    x[k] = ox / divisor;
+    y[k] = oy / divisor;
+    z[k] = oz / divisor;
+    distance[k] = d;
+    undefined += d < smallest ? 1 : 0;
+  }
+  return undefined;
+}
+
+/// The per-vertex quantities of one block, one array ("lane") each.
+template <typename T>
+struct ShadingKernel<T>::Workspace
+{
+  Lane<T> nx, ny, nz;       // the unit normal, flipped to the viewer where two-sided
+  Lane<T> vx, vy, vz;       // to the viewer
+  Lane<T> sx, sy, sz;       // to the current light
+  Lane<T> distance, attenuation, spotFactor, cosIncidence;
+  Lane<T> diffuse, specular; // the light's factors of Ld kd and Ls ks
+  Lane<T> rx, ry, rz, rDotV;
+  Lane<T> hx, hy, hz, nDotH;
+  Lane<T> incidenceAngle;
+  Lane<T> diffuseR, diffuseG, diffuseB, specularR, specularG, specularB; // sums over lights
+  std::array<ShadingFlags, VertexBlock<T>::capacity> flags;
+  Lane<T> halfVectorDefined; // 1 or 0: a lane of T, so that its loops vectorise with the rest
+  std::size_t nonFinite = 0;
+};
+
+/// Where unitVectorsFrom found no direction, the normal stands in for it.
+template <typename T, typename Workspace>
+void replaceZeroLengthByNormal(std::size_t undefined, std::size_t count, const Lane<T>& distance, Lane<T>& x,
+  Lane<T>& y, Lane<T>& z, const Workspace& w)
+{
+  for (std::size_t k = 0; undefined > 0 && k < count; ++k)
+  {
+    if (distance[k] < std::numeric_limits<T>::min())
+    {
+      x[k] = w.nx[k];
+      y[k] = w.ny[k];
+      z[k] = w.nz[k];
+      --undefined;
+    }
+  }
+}
+
+template <typename T>
+ShadingKernel<T>::ShadingKernel(const Scene& scene, ShadingOutputs<T> outputs, const std::vector<LightMethod>& methods)
   : outputs_(std::move(outputs))
 {
   const Material& m = scene.material;
@@ -77,6 +161,7 @@ ShadingKernel<T>::ShadingKernel(const Scene& scene, ShadingOutputs<T> outputs)
   for (std::size_t l = 0; l < scene.lights.size(); ++l)
   {
     const LightSource& source = scene.lights[l].source;
+    const LightMethod method = methods.empty() ? LightMethod{} : methods.at(l);
     if (const auto* ambient = std::get_if<AmbientLight>(&source))
     {
       ambientLight += strength(*ambient);
@@ -84,6 +169,7 @@ ShadingKernel<T>::ShadingKernel(const Scene& scene, ShadingOutputs<T> outputs)
     }
     PreparedLight light;
     light.out = outputs_.lights[l];
+    light.pow = method.pow;
     Rgb color;
     if (const auto* distant = std::get_if<DistantLight>(&source))
     {
@@ -98,17 +184,29 @@ ShadingKernel<T>::ShadingKernel(const Scene& scene, ShadingOutputs<T> outputs)
     }
     else if (const auto* point = std::get_if<PointLight>(&source))
     {
-      light.kind = Kind::Point;
-      light.position = toVec<T>(point->position);
-      light.attenuation = point->attenuation;
       color = strength(*point);
+      if (method.distantFrom)
+      {
+        // The approximation: the direction, distance and attenuation at the mesh's centre.
+        const glm::dvec3 offset = point->position - *method.distantFrom;
+        const double distance = vectorLength(offset);
+        light.toLight = toVec<T>(distance > 0 ? unitVector(offset) : glm::dvec3(0, 0, 1));
+        light.distance = T(distance);
+        light.attenuation = T(attenuationAt(point->attenuation, distance));
+      }
+      else
+      {
+        light.kind = Kind::Point;
+        light.position = toVec<T>(point->position);
+        light.attenuationModel = point->attenuation;
+      }
     }
     else if (const auto* spot = std::get_if<SpotLight>(&source))
     {
       light.kind = Kind::Spot;
       light.position = toVec<T>(spot->position);
       light.axis = toVec<T>(unitVector(spot->axis));
-      light.attenuation = spot->attenuation;
+      light.attenuationModel = spot->attenuation;
       light.cone = PreparedCone<T>(spot->cone);
       color = strength(*spot);
     }
@@ -121,7 +219,7 @@ ShadingKernel<T>::ShadingKernel(const Scene& scene, ShadingOutputs<T> outputs)
     light.needsReflection = out[int(LightTerm::Reflection)] || out[int(LightTerm::RDotV)] ||
       (light.needsSpecular && specularModel_ == SpecularModel::Phong);
     light.needsHalfVector = out[int(LightTerm::HalfVector)] || out[int(LightTerm::NDotH)] ||
-      (light.needsSpecular && specularModel_ == SpecularModel::BlinnPhong);
+      (light.needsSpecular && specularModel_ == SpecularModel::BlinnPhong) || outputs_.flags;
     lights_.push_back(light);
   }
   ambient_ = toVec<T>(m.ka * ambientLight);
@@ -132,161 +230,350 @@ ShadingKernel<T>::ShadingKernel(const Scene& scene, ShadingOutputs<T> outputs)
 }
 
 template <typename T>
-typename ShadingKernel<T>::LightSample ShadingKernel<T>::sample(
-  const PreparedLight& light, const Vec3<T>& position, const Vec3<T>& normal) const
+void ShadingKernel<T>::prepareNormals(const VertexBlock<T>& b, Workspace& w) const
 {
-  if (light.kind == Kind::Distant)
+  const std::size_t count = b.count;
+  std::size_t nonFinite = 0;
+  for (std::size_t k = 0; k < count; ++k)
   {
-    return { light.toLight, T(0), T(1), T(1), false };
+    // & rather than &&: no branches, so that the loop vectorises.
+    const bool finite = std::isfinite(b.px[k]) & std::isfinite(b.py[k]) & std::isfinite(b.pz[k]) &
+      std::isfinite(b.nx[k]) & std::isfinite(b.ny[k]) & std::isfinite(b.nz[k]);
+    nonFinite += finite ? 0 : 1;
   }
-  const Vec3<T> offset = light.position - position;
-  const T distance = glm::length(offset);
-  // At d = 0 the direction to the light is undefined; the light is taken to shine along the
-  // normal, the limit of a light approaching the surface head-on.
-  const Vec3<T> toLight = distance > T(0) ? offset / distance : normal;
-  const T spotFactor = light.kind == Kind::Spot ? light.cone.factor(glm::dot(-toLight, light.axis)) : T(1);
-  return { toLight, distance, attenuationAt(light.attenuation, distance), spotFactor,
-    distance <= T(light.attenuation.minDistance) };
-}
-
-template <typename T>
-Vec3<T> ShadingKernel<T>::toViewer(const Vec3<T>& position, const Vec3<T>& normal) const
-{
-  if (!localViewer_)
+  w.nonFinite = nonFinite;
+  for (std::size_t k = 0; k < count; ++k)
   {
-    return towardViewer_;
-  }
-  const Vec3<T> offset = viewerPosition_ - position;
-  const T distance = glm::length(offset);
-  // A vertex at the camera has no direction to it; it is seen head-on, along its normal.
-  return distance > T(0) ? offset / distance : normal;
-}
-
-template <typename T>
-void ShadingKernel<T>::writeZeros(std::size_t i) const
-{
-  const Vec3<T> zero(0);
-  for (const PreparedLight& light : lights_)
-  {
-    for (int t = 0; t < LightTermCount; ++t)
-    {
-      if (termInfo(LightTerm(t)).components == 3)
-      {
-        store(light.out[t], i, zero);
-      }
-      else
-      {
-        store(light.out[t], i, T(0));
-      }
-    }
-  }
-  for (T* total : outputs_.totals)
-  {
-    store(total, i, zero);
+    const T length2 = b.nx[k] * b.nx[k] + b.ny[k] * b.ny[k] + b.nz[k] * b.nz[k];
+    const bool usable = length2 > degenerateNormalLength2<T>;
+    const T length = std::sqrt(usable ? length2 : T(1));
+    w.nx[k] = usable ? b.nx[k] / length : T(0);
+    w.ny[k] = usable ? b.ny[k] / length : T(0);
+    w.nz[k] = usable ? b.nz[k] / length : T(0);
+    w.flags[k] = usable ? 0 : FlagDegenerateNormal;
   }
 }
 
 template <typename T>
-void ShadingKernel<T>::shadeVertex(std::size_t i, const Vec3<T>& position, const Vec3<T>& rawNormal) const
+void ShadingKernel<T>::prepareViewer(const VertexBlock<T>& b, Workspace& w) const
 {
-  if (!isFinite(position) || !isFinite(rawNormal))
+  const std::size_t count = b.count;
+  if (!needsViewer_)
   {
-    writeZeros(i);
-    store(outputs_.flags, i, ShadingFlags(FlagNonFiniteInput));
     return;
   }
-
-  ShadingFlags flags = 0;
-  const T normalLength2 = glm::dot(rawNormal, rawNormal);
-  Vec3<T> n(0);
-  if (normalLength2 > degenerateNormalLength2<T>)
+  if (localViewer_)
   {
-    n = rawNormal / std::sqrt(normalLength2);
+    const std::size_t atViewer = unitVectorsFrom(viewerPosition_, b, w.vx, w.vy, w.vz, w.distance);
+    // A vertex at the camera has no direction to it; it is seen head-on, along its normal.
+    replaceZeroLengthByNormal(atViewer, count, w.distance, w.vx, w.vy, w.vz, w);
   }
   else
   {
-    flags |= FlagDegenerateNormal;
+    std::fill_n(w.vx.begin(), count, towardViewer_.x);
+    std::fill_n(w.vy.begin(), count, towardViewer_.y);
+    std::fill_n(w.vz.begin(), count, towardViewer_.z);
   }
-  // v costs a square root and a division: only when a term or the flags need it.
-  const Vec3<T> v = needsViewer_ ? toViewer(position, n) : Vec3<T>(0);
-  if (twoSided_ && glm::dot(n, v) < T(0))
+  if (twoSided_)
   {
-    n = -n;
-    flags |= FlagNormalFlipped;
+    for (std::size_t k = 0; k < count; ++k)
+    {
+      const bool facesAway = w.nx[k] * w.vx[k] + w.ny[k] * w.vy[k] + w.nz[k] * w.vz[k] < T(0);
+      const T sign = facesAway ? T(-1) : T(1);
+      w.nx[k] *= sign;
+      w.ny[k] *= sign;
+      w.nz[k] *= sign;
+      w.flags[k] |= facesAway ? FlagNormalFlipped : 0;
+    }
   }
+}
 
-  Vec3<T> diffuseSum(0);
-  Vec3<T> specularSum(0);
+template <typename T>
+void ShadingKernel<T>::sampleLight(const PreparedLight& light, const VertexBlock<T>& b, Workspace& w) const
+{
+  const std::size_t count = b.count;
+  if (light.kind == Kind::Distant)
+  {
+    std::fill_n(w.sx.begin(), count, light.toLight.x);
+    std::fill_n(w.sy.begin(), count, light.toLight.y);
+    std::fill_n(w.sz.begin(), count, light.toLight.z);
+    std::fill_n(w.distance.begin(), count, light.distance);
+    std::fill_n(w.attenuation.begin(), count, light.attenuation);
+    std::fill_n(w.spotFactor.begin(), count, T(1));
+    return;
+  }
+  const T minDistance = T(light.attenuationModel.minDistance);
+  const std::size_t atLight = unitVectorsFrom(light.position, b, w.sx, w.sy, w.sz, w.distance);
+  // At d = 0 the direction to the light is undefined; the light is taken to shine along the
+  // normal, the limit of a light approaching the surface head-on.
+  replaceZeroLengthByNormal(atLight, count, w.distance, w.sx, w.sy, w.sz, w);
+  for (std::size_t k = 0; k < count; ++k)
+  {
+    w.flags[k] |= w.distance[k] <= minDistance ? FlagLightAtMinimumDistance : 0;
+  }
+  // One loop per model, so that the model's branch is outside the loop.
+  const Attenuation& a = light.attenuationModel;
+  auto attenuate = [&](auto falloff)
+  {
+    for (std::size_t k = 0; k < count; ++k)
+    {
+      w.attenuation[k] = falloff(std::max(w.distance[k], minDistance));
+    }
+  };
+  switch (a.model)
+  {
+    case AttenuationModel::None:
+      std::fill_n(w.attenuation.begin(), count, T(1));
+      break;
+    case AttenuationModel::Inverse:
+      attenuate([](T d) { return inverseFalloff(d); });
+      break;
+    case AttenuationModel::InverseSquare:
+      attenuate([](T d) { return inverseSquareFalloff(d); });
+      break;
+    case AttenuationModel::ConstantLinearQuadratic:
+      attenuate([k0 = T(a.constant), k1 = T(a.linear), k2 = T(a.quadratic)](T d)
+        { return constantLinearQuadraticFalloff(k0, k1, k2, d); });
+      break;
+    case AttenuationModel::GltfRange:
+      attenuate([range = T(a.range)](T d) { return gltfRangeFalloff(range, d); });
+      break;
+  }
+  if (light.kind == Kind::Spot)
+  {
+    const Vec3<T>& axis = light.axis;
+    for (std::size_t k = 0; k < count; ++k)
+    {
+      w.spotFactor[k] = light.cone.factor(-(w.sx[k] * axis.x + w.sy[k] * axis.y + w.sz[k] * axis.z));
+    }
+  }
+  else
+  {
+    std::fill_n(w.spotFactor.begin(), count, T(1));
+  }
+}
+
+template <typename T>
+void ShadingKernel<T>::addLight(const PreparedLight& light, const VertexBlock<T>& b, Workspace& w) const
+{
+  const std::size_t count = b.count;
+  sampleLight(light, b, w);
+  for (std::size_t k = 0; k < count; ++k)
+  {
+    const T cosIncidence = w.nx[k] * w.sx[k] + w.ny[k] * w.sy[k] + w.nz[k] * w.sz[k];
+    w.cosIncidence[k] = cosIncidence;
+    w.flags[k] |= cosIncidence > T(0) ? 0 : FlagLightBelowHorizon;
+    w.diffuse[k] = lambertFactor(cosIncidence) * (w.attenuation[k] * w.spotFactor[k]);
+    w.diffuseR[k] += w.diffuse[k] * light.diffuseColor.x;
+    w.diffuseG[k] += w.diffuse[k] * light.diffuseColor.y;
+    w.diffuseB[k] += w.diffuse[k] * light.diffuseColor.z;
+  }
+  // The viewer of the specular term: v, or the light itself for VTK's lone headlight.
+  const Lane<T>& svx = specularViewerIsLight_ ? w.sx : w.vx;
+  const Lane<T>& svy = specularViewerIsLight_ ? w.sy : w.vy;
+  const Lane<T>& svz = specularViewerIsLight_ ? w.sz : w.vz;
+  if (light.needsReflection)
+  {
+    for (std::size_t k = 0; k < count; ++k)
+    {
+      // r = 2 (n.s) n - s (Reflectance.h reflectAboutNormal, one component at a time)
+      const T twiceCos = T(2) * w.cosIncidence[k];
+      w.rx[k] = twiceCos * w.nx[k] - w.sx[k];
+      w.ry[k] = twiceCos * w.ny[k] - w.sy[k];
+      w.rz[k] = twiceCos * w.nz[k] - w.sz[k];
+      w.rDotV[k] = w.rx[k] * svx[k] + w.ry[k] * svy[k] + w.rz[k] * svz[k];
+    }
+  }
+  if (light.needsHalfVector)
+  {
+    for (std::size_t k = 0; k < count; ++k)
+    {
+      // h = (s + v) / |s + v|, undefined (h = 0, n.h = 0) where s = -v (Reflectance.h halfVector)
+      const T x = w.sx[k] + svx[k];
+      const T y = w.sy[k] + svy[k];
+      const T z = w.sz[k] + svz[k];
+      const T length2 = x * x + y * y + z * z;
+      const bool defined = length2 > halfVectorUndefinedBelow2<T>;
+      const T length = std::sqrt(defined ? length2 : T(1));
+      w.hx[k] = defined ? x / length : T(0);
+      w.hy[k] = defined ? y / length : T(0);
+      w.hz[k] = defined ? z / length : T(0);
+      w.nDotH[k] = w.nx[k] * w.hx[k] + w.ny[k] * w.hy[k] + w.nz[k] * w.hz[k];
+      w.halfVectorDefined[k] = defined ? T(1) : T(0);
+      w.flags[k] |= defined ? 0 : FlagHalfVectorUndefined;
+    }
+  }
+  if (light.needsSpecular)
+  {
+    specularLobes(light, count, w);
+    for (std::size_t k = 0; k < count; ++k)
+    {
+      w.specularR[k] += w.specular[k] * light.specularColor.x;
+      w.specularG[k] += w.specular[k] * light.specularColor.y;
+      w.specularB[k] += w.specular[k] * light.specularColor.z;
+    }
+  }
+  if (light.out[int(LightTerm::IncidenceAngle)])
+  {
+    // atan2 is the costliest term here: evaluated only when its array was asked for.
+    for (std::size_t k = 0; k < count; ++k)
+    {
+      w.incidenceAngle[k] = incidenceAngleDegrees(
+        Vec3<T>(w.nx[k], w.ny[k], w.nz[k]), Vec3<T>(w.sx[k], w.sy[k], w.sz[k]));
+    }
+  }
+}
+
+template <typename T>
+void ShadingKernel<T>::specularLobes(const PreparedLight& light, std::size_t count, Workspace& w) const
+{
+  // Sections 11.3 and 11.4: the lobe cos^eta, cos = r.v (Phong) or n.h (Blinn-Phong),
+  // clamped to 0 and only on lit vertices (Reflectance.h specularLobe), times the light's
+  // attenuation and spot factor.
+  const bool phong = specularModel_ == SpecularModel::Phong;
+  const Lane<T>& cosine = phong ? w.rDotV : w.nDotH;
+  auto litAt = [&](std::size_t k)
+  { return (w.cosIncidence[k] > T(0)) & (phong | (w.halfVectorDefined[k] > T(0))); };
+  // The approximations are cheap and vectorise: evaluated everywhere, then masked.
+  auto approximatedLobes = [&](auto power)
+  {
+    for (std::size_t k = 0; k < count; ++k)
+    {
+      const T lobe = power(std::max(cosine[k], T(0)));
+      w.specular[k] = (litAt(k) ? lobe : T(0)) * (w.attenuation[k] * w.spotFactor[k]);
+    }
+  };
+  const T eta = shininess_;
+  switch (light.pow)
+  {
+    case PowMethod::Exact:
+      // A library call per vertex: skipped where the vertex is unlit.
+      for (std::size_t k = 0; k < count; ++k)
+      {
+        const T lobe = litAt(k) ? std::pow(std::max(cosine[k], T(0)), eta) : T(0);
+        w.specular[k] = lobe * (w.attenuation[k] * w.spotFactor[k]);
+      }
+      break;
+    case PowMethod::Series:
+      approximatedLobes([eta](T x) { return powSeries(x, eta); });
+      break;
+    case PowMethod::Schlick:
+      approximatedLobes([eta](T x) { return powSchlick(x, eta); });
+      break;
+  }
+}
+
+template <typename T>
+void ShadingKernel<T>::storeLight(const PreparedLight& light, const VertexBlock<T>& b, const Workspace& w) const
+{
+  const auto& out = light.out;
+  const std::size_t first = b.first;
+  const std::size_t count = b.count;
+  store(out[int(LightTerm::ToLight)], first, count, w.sx, w.sy, w.sz);
+  store(out[int(LightTerm::Distance)], first, count, w.distance);
+  store(out[int(LightTerm::Attenuation)], first, count, w.attenuation);
+  store(out[int(LightTerm::SpotFactor)], first, count, w.spotFactor);
+  store(out[int(LightTerm::CosIncidence)], first, count, w.cosIncidence);
+  store(out[int(LightTerm::IncidenceAngle)], first, count, w.incidenceAngle);
+  store(out[int(LightTerm::Reflection)], first, count, w.rx, w.ry, w.rz);
+  store(out[int(LightTerm::RDotV)], first, count, w.rDotV);
+  store(out[int(LightTerm::HalfVector)], first, count, w.hx, w.hy, w.hz);
+  store(out[int(LightTerm::NDotH)], first, count, w.nDotH);
+  store(out[int(LightTerm::Diffuse)], first, count, w.diffuse, light.diffuseColor);
+  if (light.needsSpecular)
+  {
+    store(out[int(LightTerm::Specular)], first, count, w.specular, light.specularColor);
+  }
+  else if (T* specular = out[int(LightTerm::Specular)])
+  {
+    std::fill_n(specular + 3 * first, 3 * count, T(0)); // SpecularModel::None
+  }
+}
+
+template <typename T>
+void ShadingKernel<T>::storeTotals(const VertexBlock<T>& b, Workspace& w) const
+{
+  const auto& totals = outputs_.totals;
+  const std::size_t first = b.first;
+  const std::size_t count = b.count;
+  if (T* ambient = totals[int(TotalTerm::Ambient)])
+  {
+    for (std::size_t k = 0; k < count; ++k)
+    {
+      std::copy_n(&ambient_.x, 3, ambient + 3 * (first + k));
+    }
+  }
+  store(totals[int(TotalTerm::Diffuse)], first, count, w.diffuseR, w.diffuseG, w.diffuseB);
+  store(totals[int(TotalTerm::Specular)], first, count, w.specularR, w.specularG, w.specularB);
+  if (T* total = totals[int(TotalTerm::Total)])
+  {
+    for (std::size_t k = 0; k < count; ++k)
+    {
+      total[3 * (first + k)] = ambient_.x + w.diffuseR[k] + w.specularR[k];
+      total[3 * (first + k) + 1] = ambient_.y + w.diffuseG[k] + w.specularG[k];
+      total[3 * (first + k) + 2] = ambient_.z + w.diffuseB[k] + w.specularB[k];
+    }
+  }
+  if (outputs_.flags)
+  {
+    std::copy_n(w.flags.begin(), count, outputs_.flags + first);
+  }
+}
+
+template <typename T>
+void ShadingKernel<T>::shadeBlock(const VertexBlock<T>& b) const
+{
+  Workspace w;
+  const std::size_t count = b.count;
+  for (Lane<T>* sum : { &w.diffuseR, &w.diffuseG, &w.diffuseB, &w.specularR, &w.specularG, &w.specularB })
+  {
+    std::fill_n(sum->begin(), count, T(0));
+  }
+  prepareNormals(b, w);
+  // v costs a square root and a division per vertex: only when a term or the flags need it.
+  prepareViewer(b, w);
   for (const PreparedLight& light : lights_)
   {
-    const LightSample ls = sample(light, position, n);
-    const Vec3<T>& s = ls.toLight;
-    const T cosIncidence = glm::dot(n, s);
-    const bool lit = cosIncidence > T(0);
-    const T strength = ls.attenuation * ls.spotFactor;
-    flags |= ls.atMinimumDistance ? FlagLightAtMinimumDistance : 0;
-    flags |= lit ? 0 : FlagLightBelowHorizon;
-
-    const Vec3<T> diffuse = (lambertFactor(cosIncidence) * strength) * light.diffuseColor;
-    const Vec3<T>& specularViewer = specularViewerIsLight_ ? s : v;
-
-    Vec3<T> r(0);
-    T rDotV = 0;
-    if (light.needsReflection)
-    {
-      r = reflectAboutNormal(s, n, cosIncidence);
-      rDotV = glm::dot(r, specularViewer);
-    }
-    Vec3<T> h(0);
-    T nDotH = 0;
-    bool hDefined = true;
-    if (light.needsHalfVector)
-    {
-      hDefined = halfVector(s, specularViewer, h);
-      nDotH = glm::dot(n, h);
-    }
-    else if (outputs_.flags)
-    {
-      // The flag must not depend on which arrays were asked for.
-      hDefined = isHalfVectorDefined(s, specularViewer);
-    }
-    flags |= hDefined ? 0 : FlagHalfVectorUndefined;
-    Vec3<T> specular(0);
-    if (light.needsSpecular)
-    {
-      const T lobe = specularModel_ == SpecularModel::Phong
-        ? specularLobe(lit, rDotV, shininess_)
-        : specularLobe(lit && hDefined, nDotH, shininess_);
-      specular = (lobe * strength) * light.specularColor;
-    }
-    diffuseSum += diffuse;
-    specularSum += specular;
-
-    const auto& out = light.out;
-    store(out[int(LightTerm::ToLight)], i, s);
-    store(out[int(LightTerm::Distance)], i, ls.distance);
-    store(out[int(LightTerm::Attenuation)], i, ls.attenuation);
-    store(out[int(LightTerm::SpotFactor)], i, ls.spotFactor);
-    store(out[int(LightTerm::CosIncidence)], i, cosIncidence);
-    // atan2 is the costliest term here: evaluated only when its array was asked for.
-    if (out[int(LightTerm::IncidenceAngle)])
-    {
-      store(out[int(LightTerm::IncidenceAngle)], i, incidenceAngleDegrees(n, s));
-    }
-    store(out[int(LightTerm::Reflection)], i, r);
-    store(out[int(LightTerm::RDotV)], i, rDotV);
-    store(out[int(LightTerm::HalfVector)], i, h);
-    store(out[int(LightTerm::NDotH)], i, nDotH);
-    store(out[int(LightTerm::Diffuse)], i, diffuse);
-    store(out[int(LightTerm::Specular)], i, specular);
+    addLight(light, b, w);
+    storeLight(light, b, w);
   }
-
-  const auto& totals = outputs_.totals;
-  store(totals[int(TotalTerm::Ambient)], i, ambient_);
-  store(totals[int(TotalTerm::Diffuse)], i, diffuseSum);
-  store(totals[int(TotalTerm::Specular)], i, specularSum);
-  store(totals[int(TotalTerm::Total)], i, ambient_ + diffuseSum + specularSum);
-  store(outputs_.flags, i, flags);
+  storeTotals(b, w);
+  if (w.nonFinite == 0)
+  {
+    return;
+  }
+  // A NaN or Inf coordinate: every output of that vertex is 0 and its only flag says why.
+  for (std::size_t k = 0; k < count; ++k)
+  {
+    const std::size_t i = b.first + k;
+    if (std::isfinite(b.px[k]) && std::isfinite(b.py[k]) && std::isfinite(b.pz[k]) &&
+      std::isfinite(b.nx[k]) && std::isfinite(b.ny[k]) && std::isfinite(b.nz[k]))
+    {
+      continue;
+    }
+    for (const PreparedLight& light : lights_)
+    {
+      for (int t = 0; t < LightTermCount; ++t)
+      {
+        const int components = termInfo(LightTerm(t)).components;
+        if (T* out = light.out[t])
+        {
+          std::fill_n(out + components * i, components, T(0));
+        }
+      }
+    }
+    for (T* total : outputs_.totals)
+    {
+      if (total)
+      {
+        std::fill_n(total + 3 * i, 3, T(0));
+      }
+    }
+    if (outputs_.flags)
+    {
+      outputs_.flags[i] = FlagNonFiniteInput;
+    }
+  }
 }
 
 template class ShadingKernel<float>;

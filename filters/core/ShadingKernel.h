@@ -1,14 +1,22 @@
 #pragma once
-// Per-vertex evaluation of the local reflectance model: every light's intermediate terms and
-// their sums, written straight into the caller's arrays. VTK-free: the VTK filter hands in
-// raw pointers and calls shadeVertex from a vtkSMPTools loop.
+// Evaluation of the local reflectance model over blocks of vertices: every light's
+// intermediate terms and their sums, written straight into the caller's arrays. VTK-free: the
+// VTK filter hands in raw pointers and calls shadeRange from a vtkSMPTools loop.
+//
+// A block holds up to 256 vertices as separate x, y, z arrays, and each step of the model
+// (normalise, direction to the light, attenuation, cosine, lobe, ...) is one loop over the
+// block with the light's branches taken outside it, so the compiler turns it into SIMD
+// instructions. A vertex-at-a-time version with the same formulas ran 3 to 5 times slower.
 #include "ArrayCatalog.h"
 #include "Scene.h"
 #include "ShadingFlags.h"
+#include "SpecularPower.h"
 #include "SpotCone.h"
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
+#include <optional>
 #include <vector>
 
 namespace shadelab
@@ -23,19 +31,43 @@ struct ShadingOutputs
   ShadingFlags* flags = nullptr;
 };
 
+/// How one light is evaluated: exactly (the default), or by cheaper approximations that a
+/// tolerance chose (MethodChoice.h).
+struct LightMethod
+{
+  /// Point lights only: evaluate the light as a distant one, with the direction and
+  /// attenuation it has at this point (the mesh's centre) used at every vertex.
+  std::optional<glm::dvec3> distantFrom;
+  PowMethod pow = PowMethod::Exact;
+
+  bool operator==(const LightMethod& other) const { return distantFrom == other.distantFrom && pow == other.pow; }
+};
+
+/// Up to `capacity` vertices in structure-of-arrays form; first is the index of the block's
+/// first vertex in the output arrays.
+template <typename T>
+struct VertexBlock
+{
+  static constexpr std::size_t capacity = 256;
+  std::size_t first = 0;
+  std::size_t count = 0;
+  std::array<T, capacity> px, py, pz, nx, ny, nz;
+};
+
 /// Evaluates a scene in arithmetic of type T (float or double). Work that no requested
 /// array needs is skipped: no specular lobe without a specular output, no r without r, r.v
-/// or Phong, no h without h, n.h or Blinn-Phong.
+/// or Phong, no h without h, n.h or Blinn-Phong, no v unless a term or the flags need it.
 template <typename T>
 class ShadingKernel
 {
 public:
-  /// scene must have no sceneProblems(); outputs.lights must have one entry per scene light.
-  ShadingKernel(const Scene& scene, ShadingOutputs<T> outputs);
+  /// scene must have no sceneProblems(); outputs.lights must have one entry per scene light,
+  /// and methods one per scene light or none (every light exact).
+  ShadingKernel(const Scene& scene, ShadingOutputs<T> outputs, const std::vector<LightMethod>& methods = {});
 
-  /// Shades vertex i. The normal need not be unit length. Concurrent calls for different i
-  /// are safe.
-  void shadeVertex(std::size_t i, const Vec3<T>& position, const Vec3<T>& normal) const;
+  /// Shades the block's vertices. Normals need not be unit length. Concurrent calls for
+  /// different vertices are safe.
+  void shadeBlock(const VertexBlock<T>& block) const;
 
 private:
   enum class Kind
@@ -49,30 +81,30 @@ private:
   {
     Kind kind = Kind::Distant;
     Vec3<T> toLight{ 0 }; // distant lights: the constant s
+    T distance = 0;       // distant lights: the constant distance (0, or the approximated one)
+    T attenuation = 1;    // distant lights: the constant attenuation
     Vec3<T> position{ 0 };
     Vec3<T> axis{ 0 };
-    Attenuation attenuation;
+    Attenuation attenuationModel;
     PreparedCone<T> cone{ SpotCone{} };
     Vec3<T> diffuseColor{ 0 };  // Ld kd
     Vec3<T> specularColor{ 0 }; // Ls ks
+    PowMethod pow = PowMethod::Exact;
     bool needsSpecular = false;
     bool needsReflection = false;
     bool needsHalfVector = false;
     std::array<T*, LightTermCount> out{};
   };
 
-  struct LightSample
-  {
-    Vec3<T> toLight;
-    T distance;
-    T attenuation;
-    T spotFactor;
-    bool atMinimumDistance;
-  };
+  struct Workspace;
 
-  LightSample sample(const PreparedLight& light, const Vec3<T>& position, const Vec3<T>& normal) const;
-  Vec3<T> toViewer(const Vec3<T>& position, const Vec3<T>& normal) const;
-  void writeZeros(std::size_t i) const;
+  void prepareNormals(const VertexBlock<T>& block, Workspace& w) const;
+  void prepareViewer(const VertexBlock<T>& block, Workspace& w) const;
+  void sampleLight(const PreparedLight& light, const VertexBlock<T>& block, Workspace& w) const;
+  void addLight(const PreparedLight& light, const VertexBlock<T>& block, Workspace& w) const;
+  void specularLobes(const PreparedLight& light, std::size_t count, Workspace& w) const;
+  void storeLight(const PreparedLight& light, const VertexBlock<T>& block, const Workspace& w) const;
+  void storeTotals(const VertexBlock<T>& block, Workspace& w) const;
 
   std::vector<PreparedLight> lights_;
   ShadingOutputs<T> outputs_;
@@ -87,6 +119,24 @@ private:
   /// VTK's lone headlight: the specular viewer is the light itself, so h = s and n.h = n.s.
   bool specularViewerIsLight_ = false;
 };
+
+/// Shades vertices [begin, end) block by block. vertex(i, block, k) copies vertex i's
+/// position and normal into slot k of the block.
+template <typename T, typename CopyVertex>
+void shadeRange(const ShadingKernel<T>& kernel, std::size_t begin, std::size_t end, CopyVertex&& vertex)
+{
+  VertexBlock<T> block;
+  for (std::size_t first = begin; first < end; first += VertexBlock<T>::capacity)
+  {
+    block.first = first;
+    block.count = std::min(VertexBlock<T>::capacity, end - first);
+    for (std::size_t k = 0; k < block.count; ++k)
+    {
+      vertex(first + k, block, k);
+    }
+    kernel.shadeBlock(block);
+  }
+}
 
 extern template class ShadingKernel<float>;
 extern template class ShadingKernel<double>;

@@ -193,13 +193,18 @@ struct ShadeAllPoints
       vtkSMPTools::For(first, last,
         [&](vtkIdType begin, vtkIdType end)
         {
-          for (vtkIdType i = begin; i < end; ++i)
-          {
-            const auto p = pointRange[i];
-            const auto n = normalRange[i];
-            kernel.shadeVertex(static_cast<std::size_t>(i), shadelab::Vec3<T>(T(p[0]), T(p[1]), T(p[2])),
-              shadelab::Vec3<T>(T(n[0]), T(n[1]), T(n[2])));
-          }
+          shadelab::shadeRange(kernel, static_cast<std::size_t>(begin), static_cast<std::size_t>(end),
+            [&](std::size_t i, shadelab::VertexBlock<T>& block, std::size_t k)
+            {
+              const auto p = pointRange[i];
+              const auto n = normalRange[i];
+              block.px[k] = T(p[0]);
+              block.py[k] = T(p[1]);
+              block.pz[k] = T(p[2]);
+              block.nx[k] = T(n[0]);
+              block.ny[k] = T(n[1]);
+              block.nz[k] = T(n[2]);
+            });
         });
       progressOwner->UpdateProgress(static_cast<double>(last) / count);
     }

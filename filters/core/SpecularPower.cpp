@@ -1,0 +1,87 @@
+#include "SpecularPower.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace shadelab
+{
+std::string powMethodName(PowMethod method)
+{
+  switch (method)
+  {
+    case PowMethod::Exact:
+      return "std::pow";
+    case PowMethod::Series:
+      return "series pow";
+    case PowMethod::Schlick:
+      return "Schlick pow";
+  }
+  return "";
+}
+
+namespace
+{
+template <typename T>
+T evaluate(PowMethod method, T x, T eta)
+{
+  switch (method)
+  {
+    case PowMethod::Series:
+      return powSeries(x, eta);
+    case PowMethod::Schlick:
+      return powSchlick(x, eta);
+    case PowMethod::Exact:
+      break;
+  }
+  return std::pow(x, eta);
+}
+
+template <typename T>
+double errorAt(PowMethod method, double x, double eta)
+{
+  const double exact = std::pow(static_cast<long double>(static_cast<T>(x)), static_cast<long double>(static_cast<T>(eta)));
+  return std::abs(static_cast<double>(evaluate<T>(method, T(x), T(eta))) - exact);
+}
+}
+
+template <typename T>
+double largestPowError(PowMethod method, double eta)
+{
+  // x^eta changes fastest just below 1 for a large eta, so the grid is uniform in x and also
+  // geometric in 1 - x down to 1e-9, then refined around the worst sample.
+  std::vector<double> grid;
+  constexpr int uniform = 4096;
+  for (int k = 0; k <= uniform; ++k)
+  {
+    grid.push_back(double(k) / uniform);
+  }
+  for (double gap = 1e-9; gap < 1; gap *= 1.02)
+  {
+    grid.push_back(1 - gap);
+  }
+  std::sort(grid.begin(), grid.end());
+  double largest = 0;
+  std::size_t worst = 0;
+  for (std::size_t k = 0; k < grid.size(); ++k)
+  {
+    const double error = errorAt<T>(method, grid[k], eta);
+    if (error > largest)
+    {
+      largest = error;
+      worst = k;
+    }
+  }
+  const double low = grid[worst == 0 ? 0 : worst - 1];
+  const double high = grid[std::min(worst + 1, grid.size() - 1)];
+  constexpr int refinement = 512;
+  for (int k = 0; k <= refinement; ++k)
+  {
+    largest = std::max(largest, errorAt<T>(method, low + (high - low) * k / refinement, eta));
+  }
+  return largest;
+}
+
+template double largestPowError<float>(PowMethod, double);
+template double largestPowError<double>(PowMethod, double);
+}
