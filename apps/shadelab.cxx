@@ -141,6 +141,7 @@ struct ShadeOptions
   std::string precision = "float32";
   std::string prefix;
   std::string compression = "lz4";
+  double tolerance = 0;
   int threads = 0;
   bool keepNormals = false;
 };
@@ -177,6 +178,7 @@ int runShade(const ShadeOptions& options)
   filter->SetOutputPrecision(options.precision == "float64" ? vtkAlgorithm::DOUBLE_PRECISION
                                                             : vtkAlgorithm::SINGLE_PRECISION);
   filter->SetOrientNormalsOutward(!options.keepNormals);
+  filter->SetTolerance(options.tolerance);
   vtkNew<app::VtkErrorCapture> errors;
   errors->watch(filter);
   vtkNew<app::ProgressLine> progress;
@@ -205,10 +207,18 @@ int runShade(const ShadeOptions& options)
             << "  scene: " << options.scene << " (" << modelName(scene) << " model, "
             << scene.lights.size() << " lights)\n"
             << "  normals: " << filter->GetNormalsReport() << "\n";
+  if (filter->GetMethodPlan())
+  {
+    std::cout << "  methods:\n";
+    for (const std::string& line : filter->GetMethodPlan()->describe())
+    {
+      std::cout << "    " << line << "\n";
+    }
+  }
   printSummary(output, scene, options.prefix);
   std::cout << std::setprecision(3) << "  time: read " << readSeconds << " s, shade "
             << shadeSeconds << " s (" << vtkSMPTools::GetEstimatedNumberOfThreads() << " threads, "
-            << options.precision << "), write " << writeSeconds << " s\n";
+            << (options.tolerance > 0 ? "methods above" : options.precision) << "), write " << writeSeconds << " s\n";
   return 0;
 }
 
@@ -326,9 +336,17 @@ int main(int argc, char** argv)
     "*_TERM (that term for every light, e.g. *_cos_incidence) or full names (e.g. key_diffuse); "
     "'shadelab arrays --scene FILE' lists them")
     ->capture_default_str();
-  shadeCommand->add_option("--precision", shade.precision, "arithmetic and output arrays")
-    ->check(CLI::IsMember({ "float32", "float64" }))
-    ->capture_default_str();
+  CLI::Option* precisionOption =
+    shadeCommand->add_option("--precision", shade.precision, "arithmetic and output arrays")
+      ->check(CLI::IsMember({ "float32", "float64" }))
+      ->capture_default_str();
+  shadeCommand
+    ->add_option("--tolerance", shade.tolerance,
+      "largest absolute error allowed in the shaded values: ShadeLab then chooses the cheapest "
+      "precision and, per light, approximations (a point light as distant, a faster pow) whose "
+      "predicted errors fit, and prints what it chose; 0 (default): exact methods")
+    ->check(CLI::NonNegativeNumber)
+    ->excludes(precisionOption);
   shadeCommand->add_option("--threads,-j", shade.threads, "threads (0: all cores)")
     ->check(CLI::Range(0, 256))
     ->capture_default_str();

@@ -74,6 +74,10 @@ inline bool isAmbient(const LightSource& source)
   return std::holds_alternative<AmbientLight>(source);
 }
 
+/// Colour x intensity (x |direction| for a distant light with intensityFromLength): the RGB
+/// the light delivers before attenuation, cone and material.
+Rgb emittedColor(const LightSource& source);
+
 /// The name of a light type as the scene file spells it.
 std::string lightTypeName(const LightSource& source);
 }

@@ -21,6 +21,30 @@ std::string lightTypeName(const LightSource& source)
   return std::visit(Namer{}, source);
 }
 
+Rgb emittedColor(const LightSource& source)
+{
+  return std::visit(
+    [](const auto& light)
+    {
+      Rgb color = light.color * light.intensity;
+      if constexpr (std::is_same_v<std::decay_t<decltype(light)>, DistantLight>)
+      {
+        color *= light.intensityFromLength ? vectorLength(light.direction) : 1.0;
+      }
+      return color;
+    },
+    source);
+}
+
+SpecularModel evaluatedSpecularModel(const Scene& scene)
+{
+  if (scene.model == ShadingModel::VtkOpenGL2)
+  {
+    return scene.vtkLoneHeadlight ? SpecularModel::BlinnPhong : SpecularModel::Phong;
+  }
+  return scene.material.specular;
+}
+
 namespace
 {
 /// Two significant digits: enough to say how far out of range a value is.
@@ -96,26 +120,20 @@ bool isNonZero(const glm::dvec3& v)
 double peakContribution(const LightSource& source, const Material& m)
 {
   const double k = std::max(largestComponent(m.kd), largestComponent(m.ks));
-  return std::visit(
-    [&](const auto& light)
-    {
-      using Type = std::decay_t<decltype(light)>;
-      double peak = largestComponent(light.color) * light.intensity;
-      if constexpr (std::is_same_v<Type, AmbientLight>)
-      {
-        return peak * largestComponent(m.ka);
-      }
-      if constexpr (std::is_same_v<Type, DistantLight>)
-      {
-        peak *= light.intensityFromLength ? vectorLength(light.direction) : 1.0;
-      }
-      if constexpr (std::is_same_v<Type, PointLight> || std::is_same_v<Type, SpotLight>)
-      {
-        peak *= attenuationAt(light.attenuation, 0.0);
-      }
-      return peak * k;
-    },
-    source);
+  const double peak = largestComponent(emittedColor(source));
+  if (isAmbient(source))
+  {
+    return peak * largestComponent(m.ka);
+  }
+  if (const auto* point = std::get_if<PointLight>(&source))
+  {
+    return peak * attenuationAt(point->attenuation, 0.0) * k;
+  }
+  if (const auto* spot = std::get_if<SpotLight>(&source))
+  {
+    return peak * attenuationAt(spot->attenuation, 0.0) * k;
+  }
+  return peak * k;
 }
 
 class ProblemList

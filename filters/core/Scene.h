@@ -63,6 +63,11 @@ struct Scene
   /// headlight.
   bool vtkLoneHeadlight = false;
 };
+
+/// The specular model actually evaluated: the material's, or VTK's (REFERENCES.md section 2:
+/// Phong with sign(df); its lone-headlight shader takes max(0, n_z)^p, which is Blinn-Phong
+/// with the viewer along the light, where h = s).
+SpecularModel evaluatedSpecularModel(const Scene& scene);
 }
 
 namespace shadelab

@@ -21,12 +21,6 @@ Vec3<T> toVec(const glm::dvec3& v)
 template <typename T>
 constexpr T degenerateNormalLength2 = T(1e-12);
 
-template <typename Light>
-Rgb strength(const Light& light)
-{
-  return light.color * light.intensity;
-}
-
 template <typename T>
 using Lane = std::array<T, VertexBlock<T>::capacity>;
 
@@ -137,11 +131,9 @@ ShadingKernel<T>::ShadingKernel(const Scene& scene, ShadingOutputs<T> outputs, c
 {
   const Material& m = scene.material;
   const bool vtk = scene.model == ShadingModel::VtkOpenGL2;
-  // REFERENCES.md section 2: VTK's shader uses Phong with sign(df), always flips back faces,
-  // and its ambient term is Ka*Ca from the property alone. Its lone-headlight shader takes
-  // sf = max(0, n_z)^p: Blinn-Phong with the viewer along the light, where h = s.
-  specularModel_ = vtk ? (scene.vtkLoneHeadlight ? SpecularModel::BlinnPhong : SpecularModel::Phong)
-                       : m.specular;
+  // REFERENCES.md section 2: VTK's shader always flips back faces, and its ambient term is
+  // Ka*Ca from the property alone. In its lone-headlight shader the specular viewer is the light.
+  specularModel_ = evaluatedSpecularModel(scene);
   specularViewerIsLight_ = vtk && scene.vtkLoneHeadlight;
   twoSided_ = vtk || m.twoSided;
   shininess_ = T(m.shininess);
@@ -164,27 +156,23 @@ ShadingKernel<T>::ShadingKernel(const Scene& scene, ShadingOutputs<T> outputs, c
     const LightMethod method = methods.empty() ? LightMethod{} : methods.at(l);
     if (const auto* ambient = std::get_if<AmbientLight>(&source))
     {
-      ambientLight += strength(*ambient);
+      ambientLight += emittedColor(*ambient);
       continue;
     }
     PreparedLight light;
     light.out = outputs_.lights[l];
     light.pow = method.pow;
-    Rgb color;
+    const Rgb color = emittedColor(source);
     if (const auto* distant = std::get_if<DistantLight>(&source))
     {
       light.toLight = toVec<T>(-unitVector(distant->direction));
-      const double lengthFactor = distant->intensityFromLength ? vectorLength(distant->direction) : 1.0;
-      color = strength(*distant) * lengthFactor;
     }
-    else if (const auto* head = std::get_if<Headlight>(&source))
+    else if (std::holds_alternative<Headlight>(source))
     {
       light.toLight = toVec<T>(-*scene.viewer.lineOfSight());
-      color = strength(*head);
     }
     else if (const auto* point = std::get_if<PointLight>(&source))
     {
-      color = strength(*point);
       if (method.distantFrom)
       {
         // The approximation: the direction, distance and attenuation at the mesh's centre.
@@ -208,7 +196,6 @@ ShadingKernel<T>::ShadingKernel(const Scene& scene, ShadingOutputs<T> outputs, c
       light.axis = toVec<T>(unitVector(spot->axis));
       light.attenuationModel = spot->attenuation;
       light.cone = PreparedCone<T>(spot->cone);
-      color = strength(*spot);
     }
     light.diffuseColor = toVec<T>(color * m.kd);
     light.specularColor = toVec<T>(color * m.ks);

@@ -1,6 +1,7 @@
 #include "vtkLocalReflectanceFilter.h"
 
 #include "ArrayCatalog.h"
+#include "MethodChoice.h"
 #include "NormalOrientation.h"
 #include "ShadingKernel.h"
 
@@ -23,6 +24,7 @@
 #include "vtkStringArray.h"
 #include "vtkUnsignedCharArray.h"
 
+#include <cmath>
 #include <sstream>
 #include <stdexcept>
 
@@ -213,11 +215,11 @@ struct ShadeAllPoints
 
 template <typename T>
 std::vector<vtkSmartPointer<vtkDataArray>> shade(const shadelab::Scene& scene,
-  const shadelab::ArrayRequest& request, const std::string& prefix, vtkDataArray* points,
-  vtkDataArray* normals, vtkAlgorithm* progressOwner)
+  const shadelab::ArrayRequest& request, const std::vector<shadelab::LightMethod>& methods,
+  const std::string& prefix, vtkDataArray* points, vtkDataArray* normals, vtkAlgorithm* progressOwner)
 {
   OutputArrays<T> arrays(scene, request, prefix, points->GetNumberOfTuples());
-  const shadelab::ShadingKernel<T> kernel(scene, arrays.outputs);
+  const shadelab::ShadingKernel<T> kernel(scene, arrays.outputs, methods);
   ShadeAllPoints<T> worker{ kernel, progressOwner };
   using Reals = vtkArrayDispatch::Reals;
   if (!vtkArrayDispatch::Dispatch2ByValueType<Reals, Reals>::Execute(points, normals, worker))
@@ -245,6 +247,24 @@ void vtkLocalReflectanceFilter::SetArraySelection(const std::vector<std::string>
 
 namespace
 {
+/// The bounding box's centre and half diagonal, and the largest |coordinate|, all over the
+/// finite points (NaN and Inf points are flagged, not refused).
+shadelab::MeshExtent meshExtent(vtkPolyData* input)
+{
+  double range[3][2];
+  for (int c = 0; c < 3; ++c)
+  {
+    input->GetPoints()->GetData()->GetFiniteRange(range[c], c);
+  }
+  shadelab::MeshExtent extent;
+  glm::dvec3 low(range[0][0], range[1][0], range[2][0]);
+  glm::dvec3 high(range[0][1], range[1][1], range[2][1]);
+  extent.centre = 0.5 * (low + high);
+  extent.radius = 0.5 * shadelab::vectorLength(high - low);
+  extent.reach = std::max(shadelab::largestComponent(low), shadelab::largestComponent(high));
+  return extent;
+}
+
 /// What makes the mesh unusable, or "" when it can be shaded in this precision.
 std::string meshProblem(vtkPolyData* input, shadelab::Precision precision)
 {
@@ -279,14 +299,7 @@ std::string meshProblem(vtkPolyData* input, shadelab::Precision precision)
             << " components: there must be one 3-component normal per point (" << pointCount << ")";
     return problem.str();
   }
-  double reach = 0;
-  for (int c = 0; c < 3; ++c)
-  {
-    double range[2];
-    input->GetPoints()->GetData()->GetFiniteRange(range, c); // NaN and Inf points are flagged, not refused
-    reach = std::max({ reach, std::abs(range[0]), std::abs(range[1]) });
-  }
-  return shadelab::meshCoordinateProblem(reach, precision);
+  return shadelab::meshCoordinateProblem(meshExtent(input).reach, precision);
 }
 
 /// The first of names that the input already has as a point array, or "".
@@ -326,8 +339,18 @@ int vtkLocalReflectanceFilter::RequestData(
   this->NormalsReport.clear();
 
   // Everything is checked before anything is written.
-  const shadelab::Precision precision =
-    this->OutputPrecision == DOUBLE_PRECISION ? shadelab::Precision::Float64 : shadelab::Precision::Float32;
+  if (!(this->Tolerance >= 0 && std::isfinite(this->Tolerance)))
+  {
+    vtkErrorMacro("the tolerance is " << this->Tolerance
+                                      << ": it must be a finite number >= 0 (0: exact methods)");
+    return 0;
+  }
+  const bool chooseByTolerance = this->Tolerance > 0;
+  // Under a tolerance the precision is chosen below, and float64 is checked first as the
+  // precision that accepts the most scenes and meshes.
+  shadelab::Precision precision = this->OutputPrecision == DOUBLE_PRECISION || chooseByTolerance
+    ? shadelab::Precision::Float64
+    : shadelab::Precision::Float32;
   const std::string problem = meshProblem(input, precision);
   if (!problem.empty())
   {
@@ -341,9 +364,20 @@ int vtkLocalReflectanceFilter::RequestData(
     return 0;
   }
   shadelab::ArrayRequest request;
+  std::vector<shadelab::LightMethod> methods;
+  this->MethodPlan.reset();
   try
   {
     request = shadelab::selectArrays(this->Scene, this->ArraySelection);
+    if (chooseByTolerance)
+    {
+      const bool float32Fits = meshProblem(input, shadelab::Precision::Float32).empty() &&
+        shadelab::sceneProblems(this->Scene, shadelab::Precision::Float32).empty();
+      this->MethodPlan =
+        shadelab::chooseMethods(this->Scene, request, meshExtent(input), this->Tolerance, float32Fits);
+      precision = this->MethodPlan->precision;
+      methods = this->MethodPlan->methods();
+    }
   }
   catch (const std::invalid_argument& error)
   {
@@ -379,8 +413,8 @@ int vtkLocalReflectanceFilter::RequestData(
 
   vtkDataArray* points = input->GetPoints()->GetData();
   const auto arrays = precision == shadelab::Precision::Float64
-    ? shade<double>(this->Scene, request, this->ArrayPrefix, points, shadingNormals, this)
-    : shade<float>(this->Scene, request, this->ArrayPrefix, points, shadingNormals, this);
+    ? shade<double>(this->Scene, request, methods, this->ArrayPrefix, points, shadingNormals, this)
+    : shade<float>(this->Scene, request, methods, this->ArrayPrefix, points, shadingNormals, this);
   for (const auto& array : arrays)
   {
     output->GetPointData()->AddArray(array);
@@ -390,6 +424,16 @@ int vtkLocalReflectanceFilter::RequestData(
   note->SetName("shadelab_normals");
   note->InsertNextValue(this->NormalsReport);
   output->GetFieldData()->AddArray(note);
+  if (chooseByTolerance)
+  {
+    auto choices = vtkSmartPointer<vtkStringArray>::New();
+    choices->SetName("shadelab_methods");
+    for (const std::string& line : this->MethodPlan->describe())
+    {
+      choices->InsertNextValue(line);
+    }
+    output->GetFieldData()->AddArray(choices);
+  }
   return 1;
 }
 
@@ -464,4 +508,5 @@ void vtkLocalReflectanceFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ArrayPrefix: " << this->ArrayPrefix << "\n";
   os << indent << "OutputPrecision: " << this->OutputPrecision << "\n";
   os << indent << "OrientNormalsOutward: " << this->OrientNormalsOutward << "\n";
+  os << indent << "Tolerance: " << this->Tolerance << "\n";
 }

@@ -18,8 +18,10 @@
 #include "vtkSmartPointer.h"
 #include "vtkWeakPointer.h"
 
+#include "MethodChoice.h"
 #include "Scene.h"
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -48,6 +50,18 @@ public:
   vtkSetClampMacro(OutputPrecision, int, SINGLE_PRECISION, DOUBLE_PRECISION);
   vtkGetMacro(OutputPrecision, int);
 
+  /// The largest absolute error allowed in any shaded value (diffuse, specular, totals).
+  /// 0, the default, means exact methods in OutputPrecision. Above 0 the filter chooses, by
+  /// shadelab::chooseMethods, the cheapest precision and per-light approximations (a point
+  /// light as distant, a cheaper pow) whose predicted errors fit in it; OutputPrecision is then
+  /// not used. GetMethodReport() and the field data array shadelab_methods say what it chose.
+  vtkSetMacro(Tolerance, double);
+  vtkGetMacro(Tolerance, double);
+
+  /// What the last run chose under the tolerance, with its predicted errors; empty when the
+  /// tolerance is 0. Its describe() lines are the field data array shadelab_methods.
+  const std::optional<shadelab::MethodPlan>& GetMethodPlan() const { return this->MethodPlan; }
+
   /// Flip normals that point into a closed or nearly closed mesh (default on).
   vtkSetMacro(OrientNormalsOutward, bool);
   vtkGetMacro(OrientNormalsOutward, bool);
@@ -71,7 +85,9 @@ private:
   std::string ArrayPrefix;
   int OutputPrecision = SINGLE_PRECISION;
   bool OrientNormalsOutward = true;
+  double Tolerance = 0;
   std::string NormalsReport;
+  std::optional<shadelab::MethodPlan> MethodPlan;
 
   /// The normals to shade with and those to add to the output, kept between runs while the
   /// input (the same object, unmodified), the prefix, the orientation setting and the

@@ -1,0 +1,64 @@
+#pragma once
+// Computing no more than the scene needs: given a tolerance on the absolute error of every
+// shaded value, choose the cheapest arithmetic and, per light, the cheapest approximations
+// whose predicted errors fit in it together. The predictions are upper bounds derived below
+// in MethodChoice.cpp; tests check them against measured errors on the meshes in data/.
+#include "ArrayCatalog.h"
+#include "Scene.h"
+#include "ShadingKernel.h"
+
+#include <string>
+#include <vector>
+
+namespace shadelab
+{
+/// What the predictions need to know about the mesh.
+struct MeshExtent
+{
+  glm::dvec3 centre{ 0 }; // of the bounding box
+  double radius = 0;      // half the bounding box's diagonal: no vertex is farther from centre
+  double reach = 0;       // the largest |coordinate|
+};
+
+struct LightChoice
+{
+  std::string name;
+  LightMethod method;
+  double predictedError = 0; // of the approximations chosen for this light
+  std::string why;           // why no cheaper method was taken, or "" when the cheapest was
+};
+
+struct MethodPlan
+{
+  Precision precision = Precision::Float64;
+  double arithmeticError = 0; // predicted rounding error of the chosen precision
+  std::vector<LightChoice> lights; // one per scene light (ambient lights have nothing to choose)
+  double tolerance = 0;
+
+  std::vector<LightMethod> methods() const;
+  /// arithmeticError plus every light's predictedError: at most tolerance.
+  double predictedError() const;
+  /// One line for the precision, then one per light, for the console and the field data.
+  std::vector<std::string> describe() const;
+};
+
+/// Predicted largest error of evaluating a point light as distant from mesh.centre, or
+/// +infinity where the approximation does not hold (the light inside the mesh's bounding
+/// sphere). specular: whether the light's specular term is computed.
+double distantApproximationError(const PointLight& light, const Material& material, bool specular, const MeshExtent& mesh);
+
+/// Predicted largest error that a pow method adds to the light's specular term.
+double powApproximationError(PowMethod method, Precision precision, const LightSource& light,
+  const Material& material, const MeshExtent& mesh);
+
+/// Predicted largest rounding error of the requested values (all lights exact) in this
+/// precision.
+double arithmeticError(Precision precision, const Scene& scene, const ArrayRequest& request, const MeshExtent& mesh);
+
+/// The cheapest plan whose predicted error is at most tolerance (> 0). scene must have no
+/// sceneProblems() and request must come from selectArrays(scene, ...). float32Allowed: false
+/// when the mesh or scene does not fit float32 at all. Throws std::invalid_argument when even
+/// float64 with exact methods is predicted to exceed the tolerance.
+MethodPlan chooseMethods(const Scene& scene, const ArrayRequest& request, const MeshExtent& mesh, double tolerance,
+  bool float32Allowed = true);
+}

@@ -1,0 +1,174 @@
+// The tolerance option: predicted errors checked against measured ones on the real mesh in
+// data/, and the choice following the tolerance.
+#include "MeshFiles.h"
+#include "VtkErrorCapture.h"
+
+#include "SceneFile.h"
+#include "vtkLocalReflectanceFilter.h"
+
+#include "vtkDataArray.h"
+#include "vtkFieldData.h"
+#include "vtkPointData.h"
+#include "vtkStringArray.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+
+namespace
+{
+using namespace shadelab;
+const std::string data = SHADELAB_SOURCE_DIR "/data/";
+
+const std::vector<std::string> shadedArrays = { "ambient", "diffuse", "specular", "total" };
+
+vtkSmartPointer<vtkPolyData> shade(
+  vtkPolyData* mesh, const Scene& scene, double tolerance, std::optional<MethodPlan>* plan = nullptr)
+{
+  vtkNew<vtkLocalReflectanceFilter> filter;
+  filter->SetInputData(mesh);
+  filter->SetScene(scene);
+  filter->SetArraySelection({ "totals" });
+  filter->SetTolerance(tolerance);
+  filter->SetOutputPrecision(vtkAlgorithm::DOUBLE_PRECISION); // used when the tolerance is 0
+  filter->Update();
+  if (plan)
+  {
+    *plan = filter->GetMethodPlan();
+  }
+  auto output = vtkSmartPointer<vtkPolyData>::New();
+  output->ShallowCopy(filter->GetOutput());
+  return output;
+}
+
+/// The largest |a - b| over the shaded arrays.
+double largestError(vtkPolyData* a, vtkPolyData* b)
+{
+  double largest = 0;
+  for (const std::string& name : shadedArrays)
+  {
+    vtkDataArray* x = a->GetPointData()->GetArray(name.c_str());
+    vtkDataArray* y = b->GetPointData()->GetArray(name.c_str());
+    for (vtkIdType v = 0; v < x->GetNumberOfValues(); ++v)
+    {
+      largest = std::max(largest, std::abs(x->GetComponent(v / 3, v % 3) - y->GetComponent(v / 3, v % 3)));
+    }
+  }
+  return largest;
+}
+
+std::vector<std::string> methods(vtkPolyData* output)
+{
+  std::vector<std::string> lines;
+  auto* array = vtkStringArray::SafeDownCast(output->GetFieldData()->GetAbstractArray("shadelab_methods"));
+  for (vtkIdType i = 0; array && i < array->GetNumberOfValues(); ++i)
+  {
+    lines.push_back(array->GetValue(i));
+  }
+  return lines;
+}
+
+/// The bunny under every scene in data/scenes, and the same scenes with their point lights
+/// ten and a hundred times farther, where the distant approximation is taken.
+TEST(Tolerance, MeasuredErrorStaysUnderTheToleranceOnTheBunny)
+{
+  vtkSmartPointer<vtkPolyData> bunny = app::readMesh(data + "meshes/bunny_zipper.ply");
+  int approximated = 0;
+  double tightest = 0;
+  for (const std::string name : { "studio", "sun", "spotlight", "three_lights", "vtk_headlight" })
+  {
+    const Scene original = readSceneFile(data + "scenes/" + name + ".json");
+    for (const double distanceFactor : { 1.0, 10.0, 100.0 })
+    {
+      Scene scene = original;
+      for (NamedLight& light : scene.lights)
+      {
+        if (auto* point = std::get_if<PointLight>(&light.source))
+        {
+          point->position *= distanceFactor;
+          point->intensity *= distanceFactor * distanceFactor;
+        }
+      }
+      const vtkSmartPointer<vtkPolyData> exact = shade(bunny, scene, 0);
+      for (const double tolerance : { 0.1, 1e-2, 1e-3, 1e-4, 1e-6 })
+      {
+        std::optional<MethodPlan> plan;
+        const vtkSmartPointer<vtkPolyData> chosen = shade(bunny, scene, tolerance, &plan);
+        ASSERT_TRUE(plan) << name;
+        const double error = largestError(exact, chosen);
+        // The prediction is an upper bound of the measured error, and fits the tolerance.
+        EXPECT_LE(error, plan->predictedError()) << name << " x" << distanceFactor << ": " << plan->describe()[0];
+        EXPECT_LE(plan->predictedError(), tolerance);
+        EXPECT_EQ(methods(chosen), plan->describe());
+        for (const LightChoice& light : plan->lights)
+        {
+          approximated += light.predictedError > 0 ? 1 : 0;
+        }
+        if (plan->predictedError() > 0)
+        {
+          tightest = std::max(tightest, error / plan->predictedError());
+        }
+      }
+    }
+  }
+  std::cout << "measured / predicted error, largest over all runs: " << tightest << "\n";
+  // Not a vacuous pass: approximations were taken in many of the runs.
+  EXPECT_GT(approximated, 40);
+}
+
+TEST(Tolerance, TheChoiceFollowsTheTolerance)
+{
+  vtkSmartPointer<vtkPolyData> bunny = app::readMesh(data + "meshes/bunny_zipper.ply");
+  Scene scene = readSceneFile(data + "scenes/three_lights.json");
+  // "key" is a point light near the bunny.
+  auto line = [&](double tolerance, const std::string& light)
+  {
+    for (const std::string& text : methods(shade(bunny, scene, tolerance)))
+    {
+      if (text.rfind(light + ":", 0) == 0 || (light.empty() && text.rfind("tolerance", 0) == 0))
+      {
+        return text;
+      }
+    }
+    return std::string("no line for ") + light;
+  };
+  EXPECT_NE(line(1e-2, "key").find("key: Schlick pow"), std::string::npos) << line(1e-2, "key");
+  EXPECT_NE(line(1e-4, "key").find("key: series pow"), std::string::npos) << line(1e-4, "key");
+  EXPECT_NE(line(1e-4, "").find("arithmetic float32"), std::string::npos) << line(1e-4, "");
+  EXPECT_NE(line(1e-6, "").find("arithmetic float64"), std::string::npos) << line(1e-6, "");
+  EXPECT_NE(line(1e-9, "fill").find("fill: exact"), std::string::npos) << line(1e-9, "fill");
+
+  // Diffuse only, the key light 30 bunny sizes away: taken as distant at 1e-2, not at 1e-4.
+  scene.material.specular = SpecularModel::None;
+  auto& key = std::get<PointLight>(scene.lights[0].source);
+  key.position *= 30.0;
+  key.intensity *= 900.0;
+  EXPECT_NE(line(1e-2, "key").find("key: as distant from"), std::string::npos) << line(1e-2, "key");
+  EXPECT_NE(line(1e-4, "key").find("key: exact (as distant it would err by"), std::string::npos)
+    << line(1e-4, "key");
+}
+
+TEST(Tolerance, BadTolerancesAreRefusedWithTheReason)
+{
+  vtkSmartPointer<vtkPolyData> bunny = app::readMesh(data + "meshes/bunny_zipper.ply");
+  const Scene scene = readSceneFile(data + "scenes/studio.json");
+  auto error = [&](double tolerance)
+  {
+    vtkNew<vtkLocalReflectanceFilter> filter;
+    vtkNew<app::VtkErrorCapture> errors;
+    errors->watch(filter);
+    filter->SetInputData(bunny);
+    filter->SetScene(scene);
+    filter->SetTolerance(tolerance);
+    filter->Update();
+    return errors->message();
+  };
+  EXPECT_EQ(error(-1), "the tolerance is -1: it must be a finite number >= 0 (0: exact methods)");
+  EXPECT_EQ(error(std::nan("")), "the tolerance is nan: it must be a finite number >= 0 (0: exact methods)");
+  EXPECT_EQ(error(1e-20),
+    "tolerance 1e-20 is below the predicted float64 rounding error of this scene on this mesh, 2.9e-13: "
+    "give a larger tolerance, or none for the exact methods");
+}
+}
