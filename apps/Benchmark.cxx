@@ -1,5 +1,6 @@
 #include "Benchmark.h"
 
+#include "BenchmarkMeshes.h"
 #include "CalculatorBaseline.h"
 #include "MemoryProbe.h"
 #include "MeshFiles.h"
@@ -32,27 +33,8 @@
 
 namespace shadelab::app
 {
-namespace
-{
 using Clock = std::chrono::steady_clock;
 
-struct Mesh
-{
-  std::string name;
-  vtkSmartPointer<vtkPolyData> data;
-};
-
-struct Case
-{
-  std::string name;
-  Scene scene;
-  std::vector<std::string> arrays;
-  /// What vtkArrayCalculator computes as the same thing: "diffuse", "total" or nothing.
-  std::string calculatorArray;
-};
-
-/// Median time in milliseconds of run(): at least minRepeats runs, then more up to
-/// maxRepeats while they fit in about two seconds.
 double medianMilliseconds(const std::function<void()>& run, int minRepeats, int maxRepeats)
 {
   std::vector<double> times;
@@ -160,6 +142,18 @@ std::optional<Mesh> bunnyOfAbout(vtkPolyData* bunny, long long points)
   }
   return Mesh{ "bunny x" + std::to_string(1 << (2 * levels)), withOutwardNormals(subdivided) };
 }
+
+namespace
+{
+struct Case
+{
+  std::string name;
+  Scene scene;
+  std::vector<std::string> arrays;
+  /// What vtkArrayCalculator computes as the same thing: "diffuse", "total" or nothing.
+  std::string calculatorArray;
+};
+
 
 /// The lighting cases, with lights placed around a mesh of this centre and radius.
 std::vector<Case> casesAround(const glm::dvec3& centre, double radius)

@@ -3,6 +3,7 @@
 //   shadelab arrays --scene SCENE.json                  the arrays a scene can produce
 //   shadelab render MESH -o OUT.png                     a picture of one array
 //   shadelab bench                                      speed against baselines
+#include "AccuracyStudies.h"
 #include "Benchmark.h"
 #include "MeshFiles.h"
 #include "ProgressLine.h"
@@ -275,6 +276,7 @@ long long parseCount(const std::string& text)
 
 struct BenchCommand
 {
+  std::string chartsFolder;
   std::string sizes = "10k,100k,1M,10M";
   std::string bunny = "data/meshes/bunny_zipper.ply";
   bool noBunny = false;
@@ -301,6 +303,15 @@ int runBench(BenchCommand& command)
   if (command.threads > 0)
   {
     vtkSMPTools::Initialize(command.threads);
+  }
+  if (!command.chartsFolder.empty())
+  {
+    if (command.noBunny)
+    {
+      throw UserError("--charts measures on the subdivided bunny: leave out --no-bunny");
+    }
+    app::runAccuracyStudies({ command.chartsFolder, command.bunny, command.options.maxRepeats });
+    return 0;
   }
   app::runBenchmark(command.options);
   return 0;
@@ -390,6 +401,10 @@ int main(int argc, char** argv)
   benchCommand->add_option("--csv", bench.options.csvFile, "also write the table to this CSV file");
   benchCommand->add_option("--bunny", bench.bunny, "the bunny mesh to subdivide")->capture_default_str();
   benchCommand->add_flag("--no-bunny", bench.noBunny, "spheres only");
+  benchCommand->add_option("--charts", bench.chartsFolder,
+    "instead of the speed table, run the accuracy studies (float32, pow methods, a point light as "
+    "distant, Phong against Blinn-Phong, tessellation, and each at its failure point) and write "
+    "accuracy.csv and one PNG chart per study into this folder; needs an X display (xvfb-run -a)");
   benchCommand->add_option("--case", bench.options.caseFilters,
     "only the cases whose names contain this text (repeatable), such as --case lambert");
   benchCommand->add_option("--threads,-j", bench.threads, "threads (0: all cores)")

@@ -45,6 +45,31 @@ double errorAt(PowMethod method, double x, double eta)
 }
 }
 
+void evaluatePowers(PowMethod method, const float* x, float* y, std::size_t count, float eta)
+{
+  switch (method)
+  {
+    case PowMethod::Exact:
+      for (std::size_t i = 0; i < count; ++i)
+      {
+        y[i] = std::pow(x[i], eta);
+      }
+      break;
+    case PowMethod::Series:
+      for (std::size_t i = 0; i < count; ++i)
+      {
+        y[i] = powSeries(x[i], eta);
+      }
+      break;
+    case PowMethod::Schlick:
+      for (std::size_t i = 0; i < count; ++i)
+      {
+        y[i] = powSchlick(x[i], eta);
+      }
+      break;
+  }
+}
+
 template <typename T>
 double largestPowError(PowMethod method, double eta)
 {

@@ -3,6 +3,7 @@
 // and eta >= 0: the exact std::pow and two cheaper approximations that a tolerance may
 // choose. The approximations are branch-free arithmetic on the float's bits, so that a loop
 // of them vectorises, which a loop of std::pow calls does not.
+#include <cstddef>
 #include <cstdint>
 #include <cstring>
 #include <limits>
@@ -26,8 +27,12 @@ namespace detail
 template <typename T>
 using BitsOf = std::conditional_t<sizeof(T) == 4, std::uint32_t, std::uint64_t>;
 
+// always_inline: a call inside a loop stops it vectorising, and GCC's inliner judges the
+// series too large to inline on its own.
+#define SHADELAB_ALWAYS_INLINE [[gnu::always_inline]] inline
+
 template <typename To, typename From>
-To bitCast(From from)
+SHADELAB_ALWAYS_INLINE To bitCast(From from)
 {
   static_assert(sizeof(To) == sizeof(From));
   To to;
@@ -40,7 +45,7 @@ To bitCast(From from)
 // 2 (u + u^3/3 + u^5/5 + u^7/7 + ...) (Abramowitz and Stegun 4.1.27). Four terms leave a
 // truncation error below 2 |u|^9 / 9 / ln 2 = 4e-8.
 template <typename T>
-T log2Series(T x)
+SHADELAB_ALWAYS_INLINE T log2Series(T x)
 {
   using Bits = BitsOf<T>;
   constexpr int mantissaBits = std::numeric_limits<T>::digits - 1;
@@ -64,7 +69,7 @@ T log2Series(T x)
 // and 2^f = e^(f ln 2) from its Taylor series to degree 7 (truncation below
 // (ln 2 / 2)^8 / 8! = 5e-9). Below the smallest normal the result is 0.
 template <typename T>
-T exp2Series(T y)
+SHADELAB_ALWAYS_INLINE T exp2Series(T y)
 {
   using Bits = BitsOf<T>;
   constexpr int mantissaBits = std::numeric_limits<T>::digits - 1;
@@ -88,7 +93,7 @@ T exp2Series(T y)
 // x^eta = 2^(eta log2 x) from the two series above. x is raised to the smallest normal first,
 // so x = 0 gives 0 for eta >= 1 and 1 for eta = 0 (C++'s pow(0, 0) = 1), and no log of 0.
 template <typename T>
-T powSeries(T x, T eta)
+SHADELAB_ALWAYS_INLINE T powSeries(T x, T eta)
 {
   const T smallest = std::numeric_limits<T>::min();
   const T clamped = x < smallest ? smallest : (x > T(1) ? T(1) : x);
@@ -100,11 +105,15 @@ T powSeries(T x, T eta)
 // x = 0 and x = 1 and for eta = 1; broader than the true lobe in between. At eta = 0 it gives 1
 // for x > 0 and 0/0 at x = 0, which is taken as 1 to agree with pow(0, 0).
 template <typename T>
-T powSchlick(T x, T eta)
+SHADELAB_ALWAYS_INLINE T powSchlick(T x, T eta)
 {
   const T denominator = eta - eta * x + x;
   return denominator > T(0) ? x / denominator : T(1);
 }
+
+/// y[i] = x[i]^eta by the method for i < count, in the loops the kernel uses (vectorised for
+/// the approximations): what `shadelab bench --charts` times.
+void evaluatePowers(PowMethod method, const float* x, float* y, std::size_t count, float eta);
 
 /// The largest |approximation - pow(x, eta)| over x in [0, 1] for this eta, in arithmetic of
 /// type T (float or double), found on a dense grid refined around the worst point: the error

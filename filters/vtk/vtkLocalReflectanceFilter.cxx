@@ -239,6 +239,12 @@ void vtkLocalReflectanceFilter::SetScene(const shadelab::Scene& scene)
   this->Modified();
 }
 
+void vtkLocalReflectanceFilter::SetLightMethods(const std::vector<shadelab::LightMethod>& methods)
+{
+  this->LightMethods = methods;
+  this->Modified();
+}
+
 void vtkLocalReflectanceFilter::SetArraySelection(const std::vector<std::string>& selection)
 {
   this->ArraySelection = selection;
@@ -364,8 +370,14 @@ int vtkLocalReflectanceFilter::RequestData(
     return 0;
   }
   shadelab::ArrayRequest request;
-  std::vector<shadelab::LightMethod> methods;
+  std::vector<shadelab::LightMethod> methods = this->LightMethods;
   this->MethodPlan.reset();
+  if (!methods.empty() && methods.size() != this->Scene.lights.size())
+  {
+    vtkErrorMacro("SetLightMethods was given " << methods.size() << " methods for " << this->Scene.lights.size()
+                                               << " lights: give one per light, or none");
+    return 0;
+  }
   try
   {
     request = shadelab::selectArrays(this->Scene, this->ArraySelection);

@@ -58,6 +58,11 @@ public:
   vtkSetMacro(Tolerance, double);
   vtkGetMacro(Tolerance, double);
 
+  /// Explicit methods, one per scene light (empty, the default: all exact), used when the
+  /// tolerance is 0: for comparing methods side by side, as `shadelab bench --charts` does.
+  void SetLightMethods(const std::vector<shadelab::LightMethod>& methods);
+  const std::vector<shadelab::LightMethod>& GetLightMethods() const { return this->LightMethods; }
+
   /// What the last run chose under the tolerance, with its predicted errors; empty when the
   /// tolerance is 0. Its describe() lines are the field data array shadelab_methods.
   const std::optional<shadelab::MethodPlan>& GetMethodPlan() const { return this->MethodPlan; }
@@ -88,6 +93,7 @@ private:
   double Tolerance = 0;
   std::string NormalsReport;
   std::optional<shadelab::MethodPlan> MethodPlan;
+  std::vector<shadelab::LightMethod> LightMethods;
 
   /// The normals to shade with and those to add to the output, kept between runs while the
   /// input (the same object, unmodified), the prefix, the orientation setting and the

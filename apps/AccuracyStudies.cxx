@@ -1,0 +1,539 @@
+#include "AccuracyStudies.h"
+
+#include "BenchmarkMeshes.h"
+#include "Chart.h"
+#include "MeshFiles.h"
+
+#include "MethodChoice.h"
+#include "ShadingKernel.h"
+#include "vtkLocalReflectanceFilter.h"
+
+#include "vtkDataArray.h"
+#include "vtkPointData.h"
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <limits>
+#include <optional>
+#include <sstream>
+
+namespace shadelab::app
+{
+namespace
+{
+/// One measured method: a row of accuracy.csv.
+struct AccuracyRow
+{
+  std::string study, method, parameter;
+  double value = 0; // the parameter's value (eta, distance / radius, ...)
+  long long vertices = 0;
+  std::optional<double> milliseconds;
+  double maxError = 0, rmsError = 0;
+  std::optional<double> predicted;
+  std::string note;
+};
+
+struct ErrorStats
+{
+  double max = 0, rms = 0;
+};
+
+/// Max and RMS of |a - b| over every component of two arrays of the same shape.
+ErrorStats compare(vtkDataArray* a, vtkDataArray* b)
+{
+  ErrorStats stats;
+  double sum2 = 0;
+  const vtkIdType count = a->GetNumberOfValues();
+  for (vtkIdType v = 0; v < count; ++v)
+  {
+    const int c = a->GetNumberOfComponents();
+    const double difference = std::abs(a->GetComponent(v / c, v % c) - b->GetComponent(v / c, v % c));
+    stats.max = std::max(stats.max, difference);
+    sum2 += difference * difference;
+  }
+  stats.rms = std::sqrt(sum2 / std::max<vtkIdType>(count, 1));
+  return stats;
+}
+
+/// A filter set up for one method; run() times it (median) and returns the output.
+struct MethodRun
+{
+  vtkSmartPointer<vtkPolyData> output;
+  double milliseconds = 0;
+};
+
+MethodRun runMethod(vtkPolyData* mesh, const Scene& scene, const std::string& array, Precision precision,
+  const std::vector<LightMethod>& methods, int maxRepeats)
+{
+  vtkNew<vtkLocalReflectanceFilter> filter;
+  filter->SetInputData(mesh);
+  filter->SetScene(scene);
+  filter->SetArraySelection({ array });
+  filter->SetOutputPrecision(
+    precision == Precision::Float64 ? vtkAlgorithm::DOUBLE_PRECISION : vtkAlgorithm::SINGLE_PRECISION);
+  filter->SetLightMethods(methods);
+  filter->Update(); // prepares the normals: not part of the method's time
+  MethodRun run;
+  run.milliseconds = medianMilliseconds(
+    [&]
+    {
+      filter->Modified();
+      filter->Update();
+    },
+    3, maxRepeats);
+  run.output = vtkSmartPointer<vtkPolyData>::New();
+  run.output->ShallowCopy(filter->GetOutput());
+  return run;
+}
+
+vtkDataArray* arrayOf(const MethodRun& run, const std::string& name)
+{
+  return run.output->GetPointData()->GetArray(name.c_str());
+}
+
+const std::array<unsigned char, 3> palette[] = { { 31, 119, 180 }, { 255, 127, 14 }, { 44, 160, 44 },
+  { 214, 39, 40 }, { 148, 103, 189 }, { 140, 86, 75 }, { 227, 119, 194 }, { 127, 127, 127 } };
+
+std::string precisionText(Precision precision)
+{
+  return precision == Precision::Float32 ? "float32" : "float64";
+}
+
+/// The bunny's scene: a point light above and to the side, Blinn-Phong, a local viewer.
+Scene bunnyScene(vtkPolyData* mesh, double shininess)
+{
+  double bounds[6];
+  mesh->GetBounds(bounds);
+  const glm::dvec3 centre(
+    (bounds[0] + bounds[1]) / 2, (bounds[2] + bounds[3]) / 2, (bounds[4] + bounds[5]) / 2);
+  const double radius = mesh->GetLength() / 2;
+  Scene scene;
+  scene.viewer.position = centre + glm::dvec3(0, 0, 4 * radius);
+  scene.material = { Rgb(0.1), Rgb(0.7, 0.6, 0.5), Rgb(0.4), shininess, SpecularModel::BlinnPhong, false };
+  PointLight key;
+  key.position = centre + radius * glm::dvec3(2, 2, 2);
+  key.intensity = 12 * radius * radius;
+  scene.lights = { { "key", key } };
+  return scene;
+}
+
+/// 1. float32 against float64, and the three pow methods, on the subdivided bunny.
+std::vector<AccuracyRow> arithmeticStudy(const Mesh& mesh, int maxRepeats, ChartSpec& chart)
+{
+  const Scene scene = bunnyScene(mesh.data, 30);
+  const MethodRun reference = runMethod(mesh.data, scene, "total", Precision::Float64, {}, maxRepeats);
+  std::vector<AccuracyRow> rows;
+  std::vector<double> times, errors;
+  for (const Precision precision : { Precision::Float64, Precision::Float32 })
+  {
+    for (const PowMethod pow : { PowMethod::Exact, PowMethod::Series, PowMethod::Schlick })
+    {
+      const MethodRun run = runMethod(mesh.data, scene, "total", precision, { LightMethod{ std::nullopt, pow } }, maxRepeats);
+      const ErrorStats stats = compare(arrayOf(reference, "total"), arrayOf(run, "total"));
+      AccuracyRow row{ "1 arithmetic and pow", precisionText(precision) + ", " + powMethodName(pow), "eta", 30,
+        mesh.data->GetNumberOfPoints(), run.milliseconds, stats.max, stats.rms, std::nullopt, "" };
+      if (precision == Precision::Float64 && pow == PowMethod::Exact)
+      {
+        row.note = "the reference";
+      }
+      rows.push_back(row);
+      chart.series.push_back({ row.method, { run.milliseconds }, { stats.max }, false, palette[chart.series.size()] });
+      times.push_back(run.milliseconds);
+      errors.push_back(stats.max);
+    }
+  }
+  ChartSeries front{ "Pareto front", {}, {}, true, { 0, 0, 0 } };
+  for (const std::size_t i : paretoFront(times, errors))
+  {
+    if (errors[i] > 0)
+    {
+      front.x.push_back(times[i]);
+      front.y.push_back(errors[i]);
+    }
+  }
+  chart.series.push_back(front);
+  chart.title = "Total, one point light, Blinn-Phong eta = 30, " + mesh.name + " (" +
+    std::to_string(mesh.data->GetNumberOfPoints()) + " vertices): error against float64 std::pow";
+  chart.xTitle = "time per run (ms, median)";
+  chart.yTitle = "largest |error| over the mesh";
+  chart.logY = true;
+  return rows;
+}
+
+/// 2. The pow methods alone, over eta, including eta = 0 and eta = 10000 (failure points).
+std::vector<AccuracyRow> powStudy(ChartSpec& chart)
+{
+  constexpr std::size_t count = 1 << 20;
+  std::vector<float> x(count), y(count);
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    x[i] = float(i) / float(count - 1);
+  }
+  std::vector<AccuracyRow> rows;
+  std::vector<double> times, errors;
+  int colour = 0;
+  for (const PowMethod method : { PowMethod::Exact, PowMethod::Series, PowMethod::Schlick })
+  {
+    ChartSeries series{ powMethodName(method), {}, {}, false, palette[colour++] };
+    for (const double eta : { 0.0, 1.0, 10.0, 100.0, 1000.0, 10000.0 })
+    {
+      const float e = float(eta);
+      auto evaluate = [&] { evaluatePowers(method, x.data(), y.data(), count, e); };
+      const double ms = medianMilliseconds(evaluate, 5, 15);
+      const double error = largestPowError<float>(method, eta);
+      const bool failurePoint = eta == 0 || eta == 10000;
+      rows.push_back({ "2 pow", powMethodName(method) + " (float32)", "eta", eta, count, ms, error, 0, std::nullopt,
+        failurePoint ? "failure point" : "" });
+      if (!failurePoint)
+      {
+        series.x.push_back(ms);
+        series.y.push_back(error);
+        times.push_back(ms);
+        errors.push_back(error);
+      }
+    }
+    chart.series.push_back(series);
+  }
+  ChartSeries front{ "Pareto front", {}, {}, true, { 0, 0, 0 } };
+  for (const std::size_t i : paretoFront(times, errors))
+  {
+    front.x.push_back(times[i]);
+    front.y.push_back(errors[i]);
+  }
+  chart.series.push_back(front);
+  chart.title = "x^eta in float32 for 2^20 x in [0, 1], eta = 1, 10, 100, 1000: largest error against exact";
+  chart.xTitle = "time for 2^20 values (ms, median, one thread)";
+  chart.yTitle = "largest |x^eta - exact| over x in [0, 1]";
+  chart.logY = true;
+  return rows;
+}
+
+/// 3. A point light taken as distant, against its distance from the mesh's centre. At 0.5
+/// radii the light is inside the mesh's bounding sphere, where the approximation fails.
+std::vector<AccuracyRow> distantStudy(const Mesh& mesh, int maxRepeats, ChartSpec& chart)
+{
+  Scene scene = bunnyScene(mesh.data, 30);
+  scene.material.specular = SpecularModel::None;
+  double bounds[6];
+  mesh.data->GetBounds(bounds);
+  MeshExtent extent;
+  extent.centre = { (bounds[0] + bounds[1]) / 2, (bounds[2] + bounds[3]) / 2, (bounds[4] + bounds[5]) / 2 };
+  extent.radius = mesh.data->GetLength() / 2;
+  std::vector<AccuracyRow> rows;
+  ChartSeries largest{ "largest error", {}, {}, true, palette[0] };
+  ChartSeries rms{ "RMS error", {}, {}, true, palette[1] };
+  ChartSeries bound{ "predicted bound", {}, {}, true, palette[3] };
+  for (const double ratio : { 0.5, 1.5, 2.0, 5.0, 10.0, 20.0, 50.0, 100.0, 1000.0 })
+  {
+    PointLight& key = std::get<PointLight>(scene.lights[0].source);
+    key.position = extent.centre + ratio * extent.radius * glm::dvec3(1, 1, 1) / std::sqrt(3.0);
+    key.intensity = ratio * ratio * extent.radius * extent.radius; // about 1 at the mesh
+    const MethodRun exact = runMethod(mesh.data, scene, "diffuse", Precision::Float64, {}, maxRepeats);
+    const MethodRun exact32 = runMethod(mesh.data, scene, "diffuse", Precision::Float32, {}, maxRepeats);
+    const MethodRun distant = runMethod(mesh.data, scene, "diffuse", Precision::Float32,
+      { LightMethod{ extent.centre, PowMethod::Exact } }, maxRepeats);
+    const MethodRun distant64 = runMethod(mesh.data, scene, "diffuse", Precision::Float64,
+      { LightMethod{ extent.centre, PowMethod::Exact } }, 1);
+    const ErrorStats stats = compare(arrayOf(exact, "diffuse"), arrayOf(distant64, "diffuse"));
+    const double predicted = distantApproximationError(key, scene.material, false, extent);
+    std::ostringstream note;
+    note << std::setprecision(3) << "exact point light (float32) " << exact32.milliseconds << " ms";
+    if (ratio <= 1)
+    {
+      note << "; failure point: the light is inside the mesh's bounding sphere";
+    }
+    rows.push_back({ "3 point light as distant", "distant from the centre (float32 time)", "distance / radius",
+      ratio, mesh.data->GetNumberOfPoints(), distant.milliseconds, stats.max, stats.rms,
+      std::isfinite(predicted) ? std::optional<double>(predicted) : std::nullopt, note.str() });
+    for (ChartSeries* series : { &largest, &rms, &bound })
+    {
+      series->x.push_back(ratio);
+    }
+    largest.y.push_back(stats.max);
+    rms.y.push_back(stats.rms);
+    bound.y.push_back(std::isfinite(predicted) ? predicted : 0);
+  }
+  chart.series = { largest, rms, bound };
+  chart.title = "Diffuse, a point light (1/d^2) taken as distant, " + mesh.name + ": error against distance";
+  chart.xTitle = "light's distance from the mesh's centre / mesh radius";
+  chart.yTitle = "|error| of the diffuse term (light about 1 at the mesh)";
+  chart.logX = chart.logY = true;
+  return rows;
+}
+
+/// 4. Phong at eta against Blinn-Phong at 4 eta (the usual conversion).
+std::vector<AccuracyRow> phongStudy(const Mesh& mesh, int maxRepeats, ChartSpec& chart)
+{
+  std::vector<AccuracyRow> rows;
+  ChartSeries largest{ "largest difference", {}, {}, true, palette[0] };
+  ChartSeries rms{ "RMS difference", {}, {}, true, palette[1] };
+  for (const double eta : { 1.0, 10.0, 100.0, 1000.0 })
+  {
+    Scene phong = bunnyScene(mesh.data, eta);
+    phong.material.specular = SpecularModel::Phong;
+    Scene blinn = bunnyScene(mesh.data, 4 * eta);
+    const MethodRun a = runMethod(mesh.data, phong, "specular", Precision::Float32, {}, maxRepeats);
+    const MethodRun b = runMethod(mesh.data, blinn, "specular", Precision::Float32, {}, maxRepeats);
+    const ErrorStats stats = compare(arrayOf(a, "specular"), arrayOf(b, "specular"));
+    std::ostringstream note;
+    note << std::setprecision(3) << "Phong " << a.milliseconds << " ms, Blinn-Phong " << b.milliseconds << " ms";
+    rows.push_back({ "4 Phong vs Blinn-Phong x4", "Phong(eta) - Blinn-Phong(4 eta), specular", "eta", eta,
+      mesh.data->GetNumberOfPoints(), b.milliseconds, stats.max, stats.rms, std::nullopt, note.str() });
+    largest.x.push_back(eta);
+    rms.x.push_back(eta);
+    largest.y.push_back(stats.max);
+    rms.y.push_back(stats.rms);
+  }
+  chart.series = { largest, rms };
+  chart.title = "Specular term, Phong with eta against Blinn-Phong with 4 eta, " + mesh.name;
+  chart.xTitle = "Phong exponent eta";
+  chart.yTitle = "|difference| of the specular term";
+  chart.logX = chart.logY = true;
+  return rows;
+}
+
+/// Totals of the core kernel (float64) at arbitrary points with given normals.
+std::vector<glm::dvec3> totalsAt(const Scene& scene, const std::vector<glm::dvec3>& points,
+  const std::vector<glm::dvec3>& normals)
+{
+  std::vector<double> total(3 * points.size());
+  ShadingOutputs<double> outputs;
+  outputs.lights.resize(scene.lights.size());
+  for (auto& light : outputs.lights)
+  {
+    light.fill(nullptr);
+  }
+  outputs.totals[int(TotalTerm::Total)] = total.data();
+  const ShadingKernel<double> kernel(scene, outputs);
+  shadeRange(kernel, 0, points.size(),
+    [&](std::size_t i, VertexBlock<double>& block, std::size_t k)
+    {
+      block.px[k] = points[i].x;
+      block.py[k] = points[i].y;
+      block.pz[k] = points[i].z;
+      block.nx[k] = normals[i].x;
+      block.ny[k] = normals[i].y;
+      block.nz[k] = normals[i].z;
+    });
+  std::vector<glm::dvec3> result(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i)
+  {
+    result[i] = { total[3 * i], total[3 * i + 1], total[3 * i + 2] };
+  }
+  return result;
+}
+
+/// 5. Shading at the vertices, interpolated across each triangle (Gouraud), against shading
+/// evaluated exactly inside it, on unit spheres whose true normal is the position.
+std::vector<AccuracyRow> tessellationStudy(ChartSpec& chart)
+{
+  Scene scene;
+  scene.viewer.viewDirection = { 0, 0, -1 };
+  scene.material = { Rgb(0.0), Rgb(0.5), Rgb(0.5), 1, SpecularModel::BlinnPhong, false };
+  scene.lights = { { "sun", DistantLight{ { -1, -0.3, -1 }, Rgb(1.0), 1.0, false } } };
+  // Barycentric points inside each triangle: the centroid and three points near the corners.
+  const glm::dvec3 samples[] = { { 1 / 3., 1 / 3., 1 / 3. }, { 2 / 3., 1 / 6., 1 / 6. }, { 1 / 6., 2 / 3., 1 / 6. },
+    { 1 / 6., 1 / 6., 2 / 3. } };
+  std::vector<AccuracyRow> rows;
+  int colour = 0;
+  for (const double eta : { 1.0, 10.0, 100.0, 1000.0 })
+  {
+    scene.material.shininess = eta;
+    ChartSeries series{ "eta " + std::to_string(int(eta)), {}, {}, true, palette[colour++] };
+    for (const long long size : { 1000LL, 10000LL, 100000LL, 1000000LL })
+    {
+      const Mesh sphere = sphereOfAbout(size);
+      vtkPolyData* mesh = sphere.data;
+      std::vector<glm::dvec3> points(mesh->GetNumberOfPoints());
+      for (vtkIdType i = 0; i < mesh->GetNumberOfPoints(); ++i)
+      {
+        mesh->GetPoint(i, &points[i].x);
+      }
+      std::vector<glm::dvec3> normals = points; // a unit sphere at the origin
+      const auto start = std::chrono::steady_clock::now();
+      const std::vector<glm::dvec3> atVertices = totalsAt(scene, points, normals);
+      const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+      std::vector<glm::dvec3> inside, interpolated;
+      vtkNew<vtkIdList> ids;
+      for (vtkIdType cell = 0; cell < mesh->GetNumberOfCells(); ++cell)
+      {
+        mesh->GetCellPoints(cell, ids);
+        for (vtkIdType k = 2; k < ids->GetNumberOfIds(); ++k) // fans of the sphere's polygons
+        {
+          const vtkIdType a = ids->GetId(0), b = ids->GetId(k - 1), c = ids->GetId(k);
+          for (const glm::dvec3& w : samples)
+          {
+            inside.push_back(w.x * points[a] + w.y * points[b] + w.z * points[c]);
+            interpolated.push_back(w.x * atVertices[a] + w.y * atVertices[b] + w.z * atVertices[c]);
+          }
+        }
+      }
+      std::vector<glm::dvec3> insideNormals;
+      for (const glm::dvec3& p : inside)
+      {
+        insideNormals.push_back(glm::normalize(p));
+      }
+      const std::vector<glm::dvec3> exact = totalsAt(scene, inside, insideNormals);
+      ErrorStats stats;
+      double sum2 = 0;
+      for (std::size_t i = 0; i < exact.size(); ++i)
+      {
+        const double difference = largestComponent(exact[i] - interpolated[i]);
+        stats.max = std::max(stats.max, difference);
+        sum2 += difference * difference;
+      }
+      stats.rms = std::sqrt(sum2 / exact.size());
+      rows.push_back({ "5 tessellation", "vertex shading interpolated (eta " + std::to_string(int(eta)) + ")",
+        "vertices", double(points.size()), static_cast<long long>(points.size()), ms, stats.max, stats.rms,
+        std::nullopt, "" });
+      series.x.push_back(double(points.size()));
+      series.y.push_back(stats.max);
+    }
+    chart.series.push_back(series);
+  }
+  chart.title = "Total on a unit sphere: vertex shading interpolated across triangles against exact inside them";
+  chart.xTitle = "vertices";
+  chart.yTitle = "largest |interpolated - exact| inside the triangles";
+  chart.logX = chart.logY = true;
+  return rows;
+}
+
+/// Failure point of float32: a vertex whose light grazes its horizon, with a viewer placed
+/// on the mirror direction so that the Phong lobe is 1 where the light counts as lit. The
+/// coordinates are far from the origin, so that float32 rounds the direction to the light.
+std::vector<AccuracyRow> grazingRows()
+{
+  std::vector<AccuracyRow> rows;
+  const glm::dvec3 position(1000.1, 2000.3, 500.7);
+  const glm::dvec3 n = glm::normalize(glm::dvec3(1, 2, 3));
+  const glm::dvec3 tangent = glm::normalize(glm::cross(n, glm::dvec3(0, 0, 1)));
+  for (const double elevation : { 1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7 })
+  {
+    const glm::dvec3 toLight = glm::normalize(tangent + elevation * n);
+    Scene scene;
+    scene.material = { Rgb(0.0), Rgb(0.0), Rgb(1.0), 30, SpecularModel::Phong, false };
+    PointLight light;
+    light.position = position + 10.0 * toLight;
+    light.intensity = 100; // 1 at the vertex
+    scene.lights = { { "grazing", light } };
+    const glm::dvec3 mirror = 2 * glm::dot(n, toLight) * n - toLight;
+    scene.viewer.viewDirection = -mirror;
+    double result[2][3];
+    for (int p = 0; p < 2; ++p)
+    {
+      auto shadeOne = [&](auto zero)
+      {
+        using T = decltype(zero);
+        T total[3];
+        ShadingOutputs<T> outputs;
+        outputs.lights.resize(1);
+        outputs.lights[0].fill(nullptr);
+        outputs.totals[int(TotalTerm::Specular)] = total;
+        const ShadingKernel<T> kernel(scene, outputs);
+        shadeRange(kernel, 0, 1,
+          [&](std::size_t, VertexBlock<T>& block, std::size_t k)
+          {
+            block.px[k] = T(position.x);
+            block.py[k] = T(position.y);
+            block.pz[k] = T(position.z);
+            block.nx[k] = T(n.x);
+            block.ny[k] = T(n.y);
+            block.nz[k] = T(n.z);
+          });
+        for (int c = 0; c < 3; ++c)
+        {
+          result[p][c] = total[c];
+        }
+      };
+      p == 0 ? shadeOne(0.0) : shadeOne(0.0f);
+    }
+    rows.push_back({ "failure points", "float32 near grazing incidence (Phong, eta 30)", "light elevation (rad)",
+      elevation, 1, std::nullopt, std::abs(result[1][0] - result[0][0]), std::abs(result[1][0] - result[0][0]),
+      std::nullopt, "float64 specular " + std::to_string(result[0][0]) });
+  }
+  return rows;
+}
+
+void writeCsv(const std::vector<AccuracyRow>& rows, const std::string& file)
+{
+  writeThroughTemporary(file,
+    [&](const std::string& temporary) -> std::string
+    {
+      std::ofstream csv(temporary);
+      csv << "study,method,parameter,value,vertices,ms,max error,rms error,predicted bound,note\n";
+      auto quoted = [](const std::string& text) { return "\"" + text + "\""; };
+      csv << std::setprecision(9);
+      for (const AccuracyRow& r : rows)
+      {
+        csv << quoted(r.study) << "," << quoted(r.method) << "," << quoted(r.parameter) << "," << r.value << ","
+            << r.vertices << ",";
+        if (r.milliseconds)
+        {
+          csv << *r.milliseconds;
+        }
+        csv << "," << r.maxError << "," << r.rmsError << ",";
+        if (r.predicted)
+        {
+          csv << *r.predicted;
+        }
+        csv << "," << quoted(r.note) << "\n";
+      }
+      csv.close();
+      return csv ? "" : "the CSV could not be written (disk full?)";
+    });
+}
+}
+
+void runAccuracyStudies(const AccuracyOptions& options)
+{
+  std::error_code error;
+  std::filesystem::create_directories(options.directory, error);
+  if (error || !std::filesystem::is_directory(options.directory))
+  {
+    throw UserError("--charts: cannot create the folder " + options.directory + " (" + error.message() + ")");
+  }
+  const std::string folder = options.directory + "/";
+  std::optional<Mesh> bunny = bunnyOfAbout(cleanBunny(options.bunnyFile), 140000);
+  if (!bunny)
+  {
+    throw UserError(options.bunnyFile + ": could not be subdivided to about 140,000 vertices");
+  }
+  std::vector<AccuracyRow> rows;
+  auto study = [&](const std::string& name, const std::function<std::vector<AccuracyRow>(ChartSpec&)>& run)
+  {
+    std::cout << "study: " << name << "..." << std::endl;
+    ChartSpec chart;
+    const std::vector<AccuracyRow> studyRows = run(chart);
+    rows.insert(rows.end(), studyRows.begin(), studyRows.end());
+    writeChartPng(chart, folder + name + ".png");
+    for (const AccuracyRow& r : studyRows)
+    {
+      std::cout << "  " << std::left << std::setw(48) << r.method << " " << r.parameter << " " << std::setw(8)
+                << r.value << std::right << std::scientific << std::setprecision(2) << " max " << r.maxError
+                << " rms " << r.rmsError << std::defaultfloat;
+      if (r.milliseconds)
+      {
+        std::cout << std::fixed << std::setprecision(2) << "  " << *r.milliseconds << " ms" << std::defaultfloat;
+      }
+      std::cout << (r.note.empty() ? "" : "  (" + r.note + ")") << "\n";
+    }
+  };
+  study("1_arithmetic_and_pow", [&](ChartSpec& chart) { return arithmeticStudy(*bunny, options.maxRepeats, chart); });
+  study("2_pow", [&](ChartSpec& chart) { return powStudy(chart); });
+  study("3_point_as_distant", [&](ChartSpec& chart) { return distantStudy(*bunny, options.maxRepeats, chart); });
+  study("4_phong_vs_blinn_phong", [&](ChartSpec& chart) { return phongStudy(*bunny, options.maxRepeats, chart); });
+  study("5_tessellation", [&](ChartSpec& chart) { return tessellationStudy(chart); });
+  const std::vector<AccuracyRow> grazing = grazingRows();
+  rows.insert(rows.end(), grazing.begin(), grazing.end());
+  for (const AccuracyRow& r : grazing)
+  {
+    std::cout << "  " << r.method << ", elevation " << r.value << ": |float32 - float64| = " << r.maxError << "\n";
+  }
+  writeCsv(rows, folder + "accuracy.csv");
+  std::cout << "wrote " << folder << "accuracy.csv and 5 charts\n";
+}
+}

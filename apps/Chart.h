@@ -1,0 +1,31 @@
+#pragma once
+// Scatter and line charts drawn with VTK's own charts (vtkChartXY), off screen to PNG.
+#include <array>
+#include <string>
+#include <vector>
+
+namespace shadelab::app
+{
+struct ChartSeries
+{
+  std::string name; // in the legend
+  std::vector<double> x, y;
+  bool line = false; // points joined by lines, or points alone
+  std::array<unsigned char, 3> color{ 0, 0, 0 };
+};
+
+struct ChartSpec
+{
+  std::string title, xTitle, yTitle;
+  bool logX = false, logY = false;
+  std::vector<ChartSeries> series;
+};
+
+/// Indices of the points on the Pareto front of (cost, error): those that no other point
+/// beats in both, ordered by cost.
+std::vector<std::size_t> paretoFront(const std::vector<double>& cost, const std::vector<double>& error);
+
+/// Draws the chart to a PNG, writing through a temporary file. Needs an X display (run under
+/// xvfb-run on a headless machine). Throws UserError.
+void writeChartPng(const ChartSpec& chart, const std::string& pngFile);
+}
