@@ -218,6 +218,25 @@ TEST_F(Cli, ShadesAndSummarises)
   EXPECT_EQ(slurp(out).rfind("<VTKFile type=\"PolyData\"", 0), 0u); // replaced by a VTK XML file
 }
 
+TEST_F(Cli, ToleranceChoosesAndReportsMethods)
+{
+  const std::string scene = SHADELAB_SOURCE_DIR "/data/scenes/three_lights.json";
+  const std::string out = (folder / "tolerance.vtp").string();
+  const Result result = shadelab("shade " + goodMesh() + " -s " + scene + " -o " + out + " --tolerance 1e-2");
+  EXPECT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_NE(result.out.find("  methods:\n    tolerance 0.01, predicted error 0.0054; arithmetic float32"),
+    std::string::npos) << result.out;
+  EXPECT_NE(result.out.find("    key: Schlick pow, predicted error 0.0054"), std::string::npos) << result.out;
+
+  const Result both = shadelab("shade " + goodMesh() + " -s " + scene + " -o " + out +
+    " --tolerance 1e-2 --precision float64");
+  EXPECT_EQ(both.exitCode, 2);
+  EXPECT_EQ(both.err, "--precision excludes --tolerance\nRun with --help for more information.\n");
+  expectError("shade " + goodMesh() + " -s " + scene + " -o " + out + " --tolerance 1e-30",
+    goodMesh() + ": tolerance 1e-30 is below the predicted float64 rounding error of this scene on this mesh, "
+                 "4.7e-14: give a larger tolerance, or none for the exact methods");
+}
+
 TEST_F(Cli, ReadsObjAndStlAndWritesLegacyVtk)
 {
   // A tetrahedron in both formats: 4 vertices (OBJ) and 12 unshared corners (STL, which
