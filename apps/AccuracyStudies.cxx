@@ -37,28 +37,6 @@ struct AccuracyRow
   std::string note;
 };
 
-struct ErrorStats
-{
-  double max = 0, rms = 0;
-};
-
-/// Max and RMS of |a - b| over every component of two arrays of the same shape.
-ErrorStats compare(vtkDataArray* a, vtkDataArray* b)
-{
-  ErrorStats stats;
-  double sum2 = 0;
-  const vtkIdType count = a->GetNumberOfValues();
-  for (vtkIdType v = 0; v < count; ++v)
-  {
-    const int c = a->GetNumberOfComponents();
-    const double difference = std::abs(a->GetComponent(v / c, v % c) - b->GetComponent(v / c, v % c));
-    stats.max = std::max(stats.max, difference);
-    sum2 += difference * difference;
-  }
-  stats.rms = std::sqrt(sum2 / std::max<vtkIdType>(count, 1));
-  return stats;
-}
-
 /// A filter set up for one method; run() times it (median) and returns the output.
 struct MethodRun
 {
@@ -103,14 +81,21 @@ std::string precisionText(Precision precision)
   return precision == Precision::Float32 ? "float32" : "float64";
 }
 
+/// The bounding box's centre and half diagonal.
+MeshExtent boundingSphere(vtkPolyData* mesh)
+{
+  MeshExtent extent;
+  mesh->GetCenter(&extent.centre.x);
+  extent.radius = mesh->GetLength() / 2;
+  return extent;
+}
+
 /// The bunny's scene: a point light above and to the side, Blinn-Phong, a local viewer.
 Scene bunnyScene(vtkPolyData* mesh, double shininess)
 {
-  double bounds[6];
-  mesh->GetBounds(bounds);
-  const glm::dvec3 centre(
-    (bounds[0] + bounds[1]) / 2, (bounds[2] + bounds[3]) / 2, (bounds[4] + bounds[5]) / 2);
-  const double radius = mesh->GetLength() / 2;
+  const MeshExtent extent = boundingSphere(mesh);
+  const glm::dvec3 centre = extent.centre;
+  const double radius = extent.radius;
   Scene scene;
   scene.viewer.position = centre + glm::dvec3(0, 0, 4 * radius);
   scene.material = { Rgb(0.1), Rgb(0.7, 0.6, 0.5), Rgb(0.4), shininess, SpecularModel::BlinnPhong, false };
@@ -133,29 +118,20 @@ std::vector<AccuracyRow> arithmeticStudy(const Mesh& mesh, int maxRepeats, Chart
     for (const PowMethod pow : { PowMethod::Exact, PowMethod::Series, PowMethod::Schlick })
     {
       const MethodRun run = runMethod(mesh.data, scene, "total", precision, { LightMethod{ std::nullopt, pow } }, maxRepeats);
-      const ErrorStats stats = compare(arrayOf(reference, "total"), arrayOf(run, "total"));
+      const Differences stats = compareArrays(arrayOf(reference, "total"), arrayOf(run, "total"));
       AccuracyRow row{ "1 arithmetic and pow", precisionText(precision) + ", " + powMethodName(pow), "eta", 30,
-        mesh.data->GetNumberOfPoints(), run.milliseconds, stats.max, stats.rms, std::nullopt, "" };
+        mesh.data->GetNumberOfPoints(), run.milliseconds, stats.largest, stats.rms, std::nullopt, "" };
       if (precision == Precision::Float64 && pow == PowMethod::Exact)
       {
         row.note = "the reference";
       }
       rows.push_back(row);
-      chart.series.push_back({ row.method, { run.milliseconds }, { stats.max }, false, palette[chart.series.size()] });
+      chart.series.push_back({ row.method, { run.milliseconds }, { stats.largest }, false, palette[chart.series.size()] });
       times.push_back(run.milliseconds);
-      errors.push_back(stats.max);
+      errors.push_back(stats.largest);
     }
   }
-  ChartSeries front{ "Pareto front", {}, {}, true, { 0, 0, 0 } };
-  for (const std::size_t i : paretoFront(times, errors))
-  {
-    if (errors[i] > 0)
-    {
-      front.x.push_back(times[i]);
-      front.y.push_back(errors[i]);
-    }
-  }
-  chart.series.push_back(front);
+  chart.series.push_back(paretoFront(times, errors)); // the reference's error 0 is off the log axis
   chart.title = "Total, one point light, Blinn-Phong eta = 30, " + mesh.name + " (" +
     std::to_string(mesh.data->GetNumberOfPoints()) + " vertices): error against float64 std::pow";
   chart.xTitle = "time per run (ms, median)";
@@ -198,13 +174,7 @@ std::vector<AccuracyRow> powStudy(ChartSpec& chart)
     }
     chart.series.push_back(series);
   }
-  ChartSeries front{ "Pareto front", {}, {}, true, { 0, 0, 0 } };
-  for (const std::size_t i : paretoFront(times, errors))
-  {
-    front.x.push_back(times[i]);
-    front.y.push_back(errors[i]);
-  }
-  chart.series.push_back(front);
+  chart.series.push_back(paretoFront(times, errors));
   chart.title = "x^eta in float32 for 2^20 x in [0, 1], eta = 1, 10, 100, 1000: largest error against exact";
   chart.xTitle = "time for 2^20 values (ms, median, one thread)";
   chart.yTitle = "largest |x^eta - exact| over x in [0, 1]";
@@ -218,11 +188,7 @@ std::vector<AccuracyRow> distantStudy(const Mesh& mesh, int maxRepeats, ChartSpe
 {
   Scene scene = bunnyScene(mesh.data, 30);
   scene.material.specular = SpecularModel::None;
-  double bounds[6];
-  mesh.data->GetBounds(bounds);
-  MeshExtent extent;
-  extent.centre = { (bounds[0] + bounds[1]) / 2, (bounds[2] + bounds[3]) / 2, (bounds[4] + bounds[5]) / 2 };
-  extent.radius = mesh.data->GetLength() / 2;
+  const MeshExtent extent = boundingSphere(mesh.data);
   std::vector<AccuracyRow> rows;
   ChartSeries largest{ "largest error", {}, {}, true, palette[0] };
   ChartSeries rms{ "RMS error", {}, {}, true, palette[1] };
@@ -238,7 +204,7 @@ std::vector<AccuracyRow> distantStudy(const Mesh& mesh, int maxRepeats, ChartSpe
       { LightMethod{ extent.centre, PowMethod::Exact } }, maxRepeats);
     const MethodRun distant64 = runMethod(mesh.data, scene, "diffuse", Precision::Float64,
       { LightMethod{ extent.centre, PowMethod::Exact } }, 1);
-    const ErrorStats stats = compare(arrayOf(exact, "diffuse"), arrayOf(distant64, "diffuse"));
+    const Differences stats = compareArrays(arrayOf(exact, "diffuse"), arrayOf(distant64, "diffuse"));
     const double predicted = distantApproximationError(key, scene.material, false, extent);
     std::ostringstream note;
     note << std::setprecision(3) << "exact point light (float32) " << exact32.milliseconds << " ms";
@@ -247,13 +213,13 @@ std::vector<AccuracyRow> distantStudy(const Mesh& mesh, int maxRepeats, ChartSpe
       note << "; failure point: the light is inside the mesh's bounding sphere";
     }
     rows.push_back({ "3 point light as distant", "distant from the centre (float32 time)", "distance / radius",
-      ratio, mesh.data->GetNumberOfPoints(), distant.milliseconds, stats.max, stats.rms,
+      ratio, mesh.data->GetNumberOfPoints(), distant.milliseconds, stats.largest, stats.rms,
       std::isfinite(predicted) ? std::optional<double>(predicted) : std::nullopt, note.str() });
     for (ChartSeries* series : { &largest, &rms, &bound })
     {
       series->x.push_back(ratio);
     }
-    largest.y.push_back(stats.max);
+    largest.y.push_back(stats.largest);
     rms.y.push_back(stats.rms);
     bound.y.push_back(std::isfinite(predicted) ? predicted : 0);
   }
@@ -278,14 +244,14 @@ std::vector<AccuracyRow> phongStudy(const Mesh& mesh, int maxRepeats, ChartSpec&
     Scene blinn = bunnyScene(mesh.data, 4 * eta);
     const MethodRun a = runMethod(mesh.data, phong, "specular", Precision::Float32, {}, maxRepeats);
     const MethodRun b = runMethod(mesh.data, blinn, "specular", Precision::Float32, {}, maxRepeats);
-    const ErrorStats stats = compare(arrayOf(a, "specular"), arrayOf(b, "specular"));
+    const Differences stats = compareArrays(arrayOf(a, "specular"), arrayOf(b, "specular"));
     std::ostringstream note;
     note << std::setprecision(3) << "Phong " << a.milliseconds << " ms, Blinn-Phong " << b.milliseconds << " ms";
     rows.push_back({ "4 Phong vs Blinn-Phong x4", "Phong(eta) - Blinn-Phong(4 eta), specular", "eta", eta,
-      mesh.data->GetNumberOfPoints(), b.milliseconds, stats.max, stats.rms, std::nullopt, note.str() });
+      mesh.data->GetNumberOfPoints(), b.milliseconds, stats.largest, stats.rms, std::nullopt, note.str() });
     largest.x.push_back(eta);
     rms.x.push_back(eta);
-    largest.y.push_back(stats.max);
+    largest.y.push_back(stats.largest);
     rms.y.push_back(stats.rms);
   }
   chart.series = { largest, rms };
@@ -296,29 +262,23 @@ std::vector<AccuracyRow> phongStudy(const Mesh& mesh, int maxRepeats, ChartSpec&
   return rows;
 }
 
-/// Totals of the core kernel (float64) at arbitrary points with given normals.
-std::vector<glm::dvec3> totalsAt(const Scene& scene, const std::vector<glm::dvec3>& points,
+/// One total of the core kernel, evaluated in arithmetic of type T, at arbitrary points with
+/// given normals.
+template <typename T>
+std::vector<glm::dvec3> totalAt(const Scene& scene, TotalTerm term, const std::vector<glm::dvec3>& points,
   const std::vector<glm::dvec3>& normals)
 {
-  std::vector<double> total(3 * points.size());
-  ShadingOutputs<double> outputs;
+  std::vector<T> total(3 * points.size());
+  ShadingOutputs<T> outputs;
   outputs.lights.resize(scene.lights.size());
   for (auto& light : outputs.lights)
   {
     light.fill(nullptr);
   }
-  outputs.totals[int(TotalTerm::Total)] = total.data();
-  const ShadingKernel<double> kernel(scene, outputs);
+  outputs.totals[int(term)] = total.data();
+  const ShadingKernel<T> kernel(scene, outputs);
   shadeRange(kernel, 0, points.size(),
-    [&](std::size_t i, VertexBlock<double>& block, std::size_t k)
-    {
-      block.px[k] = points[i].x;
-      block.py[k] = points[i].y;
-      block.pz[k] = points[i].z;
-      block.nx[k] = normals[i].x;
-      block.ny[k] = normals[i].y;
-      block.nz[k] = normals[i].z;
-    });
+    [&](std::size_t i, VertexBlock<T>& block, std::size_t k) { block.set(k, points[i], normals[i]); });
   std::vector<glm::dvec3> result(points.size());
   for (std::size_t i = 0; i < points.size(); ++i)
   {
@@ -355,7 +315,7 @@ std::vector<AccuracyRow> tessellationStudy(ChartSpec& chart)
       }
       std::vector<glm::dvec3> normals = points; // a unit sphere at the origin
       const auto start = std::chrono::steady_clock::now();
-      const std::vector<glm::dvec3> atVertices = totalsAt(scene, points, normals);
+      const std::vector<glm::dvec3> atVertices = totalAt<double>(scene, TotalTerm::Total, points, normals);
       const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
       std::vector<glm::dvec3> inside, interpolated;
       vtkNew<vtkIdList> ids;
@@ -377,21 +337,18 @@ std::vector<AccuracyRow> tessellationStudy(ChartSpec& chart)
       {
         insideNormals.push_back(glm::normalize(p));
       }
-      const std::vector<glm::dvec3> exact = totalsAt(scene, inside, insideNormals);
-      ErrorStats stats;
-      double sum2 = 0;
+      const std::vector<glm::dvec3> exact = totalAt<double>(scene, TotalTerm::Total, inside, insideNormals);
+      DifferenceSum sum;
       for (std::size_t i = 0; i < exact.size(); ++i)
       {
-        const double difference = largestComponent(exact[i] - interpolated[i]);
-        stats.max = std::max(stats.max, difference);
-        sum2 += difference * difference;
+        sum.add(largestComponent(exact[i] - interpolated[i]));
       }
-      stats.rms = std::sqrt(sum2 / exact.size());
+      const Differences stats = sum.result();
       rows.push_back({ "5 tessellation", "vertex shading interpolated (eta " + std::to_string(int(eta)) + ")",
-        "vertices", double(points.size()), static_cast<long long>(points.size()), ms, stats.max, stats.rms,
+        "vertices", double(points.size()), static_cast<long long>(points.size()), ms, stats.largest, stats.rms,
         std::nullopt, "" });
       series.x.push_back(double(points.size()));
-      series.y.push_back(stats.max);
+      series.y.push_back(stats.largest);
     }
     chart.series.push_back(series);
   }
@@ -422,38 +379,11 @@ std::vector<AccuracyRow> grazingRows()
     scene.lights = { { "grazing", light } };
     const glm::dvec3 mirror = 2 * glm::dot(n, toLight) * n - toLight;
     scene.viewer.viewDirection = -mirror;
-    double result[2][3];
-    for (int p = 0; p < 2; ++p)
-    {
-      auto shadeOne = [&](auto zero)
-      {
-        using T = decltype(zero);
-        T total[3];
-        ShadingOutputs<T> outputs;
-        outputs.lights.resize(1);
-        outputs.lights[0].fill(nullptr);
-        outputs.totals[int(TotalTerm::Specular)] = total;
-        const ShadingKernel<T> kernel(scene, outputs);
-        shadeRange(kernel, 0, 1,
-          [&](std::size_t, VertexBlock<T>& block, std::size_t k)
-          {
-            block.px[k] = T(position.x);
-            block.py[k] = T(position.y);
-            block.pz[k] = T(position.z);
-            block.nx[k] = T(n.x);
-            block.ny[k] = T(n.y);
-            block.nz[k] = T(n.z);
-          });
-        for (int c = 0; c < 3; ++c)
-        {
-          result[p][c] = total[c];
-        }
-      };
-      p == 0 ? shadeOne(0.0) : shadeOne(0.0f);
-    }
+    const double exact = totalAt<double>(scene, TotalTerm::Specular, { position }, { n })[0].x;
+    const double rounded = totalAt<float>(scene, TotalTerm::Specular, { position }, { n })[0].x;
     rows.push_back({ "failure points", "float32 near grazing incidence (Phong, eta 30)", "light elevation (rad)",
-      elevation, 1, std::nullopt, std::abs(result[1][0] - result[0][0]), std::abs(result[1][0] - result[0][0]),
-      std::nullopt, "float64 specular " + std::to_string(result[0][0]) });
+      elevation, 1, std::nullopt, std::abs(rounded - exact), std::abs(rounded - exact), std::nullopt,
+      "float64 specular " + std::to_string(exact) });
   }
   return rows;
 }

@@ -51,6 +51,27 @@ double medianMilliseconds(const std::function<void()>& run, int minRepeats, int 
   return times[times.size() / 2];
 }
 
+Differences compareArrays(vtkDataArray* a, vtkDataArray* b)
+{
+  if (!a || !b || a->GetNumberOfComponents() != b->GetNumberOfComponents() ||
+    a->GetNumberOfTuples() != b->GetNumberOfTuples())
+  {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    return { nan, nan };
+  }
+  DifferenceSum sum;
+  for (vtkIdType t = 0; t < a->GetNumberOfTuples(); ++t)
+  {
+    for (int c = 0; c < a->GetNumberOfComponents(); ++c)
+    {
+      sum.add(std::abs(a->GetComponent(t, c) - b->GetComponent(t, c)));
+    }
+  }
+  return sum.result();
+}
+
+namespace
+{
 /// How glibc's malloc treats large blocks. For timing, like a long-lived process: blocks up
 /// to 32 MB (glibc's largest mmap threshold) come from the heap, which keeps freed memory
 /// for reuse. For measuring memory: every block of 1 MB and more is mapped on its own and
@@ -90,8 +111,8 @@ vtkSmartPointer<vtkPolyData> withOutwardNormals(vtkPolyData* mesh)
   prepared->GetFieldData()->Initialize();
   return prepared;
 }
+}
 
-/// A UV sphere with about `points` vertices and exact unit normals.
 Mesh sphereOfAbout(long long points)
 {
   const int resolution = std::max(3, static_cast<int>(std::lround(std::sqrt(static_cast<double>(points)))));
@@ -102,8 +123,7 @@ Mesh sphereOfAbout(long long points)
   return { "sphere", sphere->GetOutput() };
 }
 
-/// The Stanford bunny, merged and compacted: vtkLoopSubdivisionFilter gives nothing for a
-/// mesh with unused points, and the bunny has 1,113.
+// vtkLoopSubdivisionFilter gives nothing for a mesh with unused points, and the bunny has 1,113.
 vtkSmartPointer<vtkPolyData> cleanBunny(const std::string& file)
 {
   vtkNew<vtkCleanPolyData> clean;
@@ -258,26 +278,6 @@ double floorMilliseconds(vtkPolyData* mesh, std::size_t outputBytes, int minRepe
     minRepeats, maxRepeats);
 }
 
-/// The largest |a - b| over all values, NaN if either has a NaN or the shapes differ.
-double largestDifference(vtkDataArray* a, vtkDataArray* b)
-{
-  if (!a || !b || a->GetNumberOfComponents() != b->GetNumberOfComponents() ||
-    a->GetNumberOfTuples() != b->GetNumberOfTuples())
-  {
-    return std::numeric_limits<double>::quiet_NaN();
-  }
-  double largest = 0;
-  for (vtkIdType t = 0; t < a->GetNumberOfTuples(); ++t)
-  {
-    for (int c = 0; c < a->GetNumberOfComponents(); ++c)
-    {
-      const double difference = std::abs(a->GetComponent(t, c) - b->GetComponent(t, c));
-      largest = difference <= largest ? largest : difference; // a NaN wins
-    }
-  }
-  return largest;
-}
-
 Row measure(const Mesh& mesh, const Case& c, int maxRepeats)
 {
   Row row{ mesh.data->GetNumberOfPoints(), mesh.name, c.name, 0, 0, 0, {}, {}, {}, 0 };
@@ -329,7 +329,7 @@ Row measure(const Mesh& mesh, const Case& c, int maxRepeats)
     if (theirs)
     {
       row.calculatorDifference =
-        largestDifference(filter->GetOutput()->GetPointData()->GetArray(c.calculatorArray.c_str()), theirs);
+        compareArrays(filter->GetOutput()->GetPointData()->GetArray(c.calculatorArray.c_str()), theirs).largest;
       row.calculatorMilliseconds = medianMilliseconds(
         [&]
         {

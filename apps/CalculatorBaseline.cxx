@@ -1,17 +1,15 @@
 #include "CalculatorBaseline.h"
 
-#include <sstream>
+#include "NumberText.h"
 
 namespace shadelab::app
 {
 namespace
 {
+/// All 17 digits, so that the calculator computes with the same doubles.
 std::string number(double x)
 {
-  std::ostringstream text;
-  text.precision(17);
-  text << x;
-  return text.str();
+  return withDigits(x, 17);
 }
 
 std::string vectorOf(const glm::dvec3& v)

@@ -20,18 +20,19 @@
 
 namespace shadelab::app
 {
-std::vector<std::size_t> paretoFront(const std::vector<double>& cost, const std::vector<double>& error)
+ChartSeries paretoFront(const std::vector<double>& cost, const std::vector<double>& error)
 {
   std::vector<std::size_t> order(cost.size());
   std::iota(order.begin(), order.end(), 0);
   std::sort(order.begin(), order.end(),
     [&](std::size_t a, std::size_t b) { return cost[a] < cost[b] || (cost[a] == cost[b] && error[a] < error[b]); });
-  std::vector<std::size_t> front;
+  ChartSeries front{ "Pareto front", {}, {}, true, { 0, 0, 0 } };
   for (const std::size_t i : order)
   {
-    if (front.empty() || error[i] < error[front.back()])
+    if (front.y.empty() || error[i] < front.y.back())
     {
-      front.push_back(i);
+      front.x.push_back(cost[i]);
+      front.y.push_back(error[i]);
     }
   }
   return front;

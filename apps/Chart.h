@@ -21,9 +21,9 @@ struct ChartSpec
   std::vector<ChartSeries> series;
 };
 
-/// Indices of the points on the Pareto front of (cost, error): those that no other point
-/// beats in both, ordered by cost.
-std::vector<std::size_t> paretoFront(const std::vector<double>& cost, const std::vector<double>& error);
+/// The Pareto front of the points (cost, error), those that no other point beats in both,
+/// as a black line in order of cost.
+ChartSeries paretoFront(const std::vector<double>& cost, const std::vector<double>& error);
 
 /// Draws the chart to a PNG, writing through a temporary file. Needs an X display (run under
 /// xvfb-run on a headless machine). Throws UserError.

@@ -41,15 +41,7 @@ public:
     outputs.flags = request.flags ? flags.data() : nullptr;
     const ShadingKernel<T> kernel(scene, outputs);
     shadeRange(kernel, 0, count,
-      [&](std::size_t i, VertexBlock<T>& block, std::size_t k)
-      {
-        block.px[k] = positions[i].x;
-        block.py[k] = positions[i].y;
-        block.pz[k] = positions[i].z;
-        block.nx[k] = normals[i].x;
-        block.ny[k] = normals[i].y;
-        block.nz[k] = normals[i].z;
-      });
+      [&](std::size_t i, VertexBlock<T>& block, std::size_t k) { block.set(k, positions[i], normals[i]); });
   }
 
   /// Component c of array name at vertex i.

@@ -69,6 +69,34 @@ inline bool isPositional(const LightSource& source)
   return std::holds_alternative<PointLight>(source) || std::holds_alternative<SpotLight>(source);
 }
 
+/// The position of a point or spot light, or nullptr for the others.
+inline const glm::dvec3* positionOf(const LightSource& source)
+{
+  if (const auto* point = std::get_if<PointLight>(&source))
+  {
+    return &point->position;
+  }
+  if (const auto* spot = std::get_if<SpotLight>(&source))
+  {
+    return &spot->position;
+  }
+  return nullptr;
+}
+
+/// The distance attenuation of a point or spot light, or nullptr for the others.
+inline const Attenuation* attenuationOf(const LightSource& source)
+{
+  if (const auto* point = std::get_if<PointLight>(&source))
+  {
+    return &point->attenuation;
+  }
+  if (const auto* spot = std::get_if<SpotLight>(&source))
+  {
+    return &spot->attenuation;
+  }
+  return nullptr;
+}
+
 inline bool isAmbient(const LightSource& source)
 {
   return std::holds_alternative<AmbientLight>(source);

@@ -1,10 +1,11 @@
 #include "MethodChoice.h"
 
+#include "NumberText.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <map>
-#include <sstream>
 #include <stdexcept>
 
 namespace shadelab
@@ -21,36 +22,7 @@ double unitRoundoff(Precision precision)
 
 std::string scientific(double x)
 {
-  std::ostringstream text;
-  text.precision(2);
-  text << x;
-  return text.str();
-}
-
-const glm::dvec3* positionOf(const LightSource& source)
-{
-  if (const auto* point = std::get_if<PointLight>(&source))
-  {
-    return &point->position;
-  }
-  if (const auto* spot = std::get_if<SpotLight>(&source))
-  {
-    return &spot->position;
-  }
-  return nullptr;
-}
-
-const Attenuation* attenuationOf(const LightSource& source)
-{
-  if (const auto* point = std::get_if<PointLight>(&source))
-  {
-    return &point->attenuation;
-  }
-  if (const auto* spot = std::get_if<SpotLight>(&source))
-  {
-    return &spot->attenuation;
-  }
-  return nullptr;
+  return withDigits(x, 2);
 }
 
 /// The largest attenuation at any vertex: every model falls with distance, and no vertex is
@@ -123,15 +95,8 @@ double distantApproximationError(const PointLight& light, const Material& materi
   return diffuse + specularTerm;
 }
 
-double powApproximationError(PowMethod method, Precision precision, const LightSource& light,
-  const Material& material, const MeshExtent& mesh)
+double powApproximationError(double lobeError, const LightSource& light, const Material& material, const MeshExtent& mesh)
 {
-  if (method == PowMethod::Exact)
-  {
-    return 0; // std::pow's own rounding is part of arithmeticError
-  }
-  const double lobeError = precision == Precision::Float32 ? largestPowError<float>(method, material.shininess)
-                                                           : largestPowError<double>(method, material.shininess);
   return specularPeak(light, material) * peakAttenuation(light, mesh) * lobeError;
 }
 
@@ -261,6 +226,22 @@ MethodPlan chooseMethods(
   const Candidate candidates[] = { { true, PowMethod::Schlick }, { false, PowMethod::Schlick },
     { true, PowMethod::Series }, { false, PowMethod::Series }, { true, PowMethod::Exact },
     { false, PowMethod::Exact } };
+  // The lobe's error depends only on the method, the precision and eta, so it is found once
+  // for all lights, and only when a light needs it (each costs a few milliseconds).
+  std::map<PowMethod, double> lobeErrors;
+  auto lobeError = [&](PowMethod method)
+  {
+    auto found = lobeErrors.find(method);
+    if (found == lobeErrors.end())
+    {
+      const double eta = scene.material.shininess;
+      found = lobeErrors
+                .emplace(method, plan.precision == Precision::Float32 ? largestPowError<float>(method, eta)
+                                                                      : largestPowError<double>(method, eta))
+                .first;
+    }
+    return found->second;
+  };
   for (std::size_t l = 0; l < scene.lights.size(); ++l)
   {
     const NamedLight& named = scene.lights[l];
@@ -275,14 +256,11 @@ MethodPlan chooseMethods(
     const auto* point = std::get_if<PointLight>(&named.source);
     double distantError = unbounded;
     std::string distantWhy;
-    if (!point)
-    {
-    }
-    else if (geometryRequested(request, l))
+    if (point && geometryRequested(request, l))
     {
       distantWhy = "not as distant: its direction arrays were requested";
     }
-    else
+    else if (point)
     {
       distantError = distantApproximationError(*point, scene.material, specular, mesh);
       distantWhy = std::isinf(distantError) ? "not as distant: the light is inside the mesh's bounding sphere"
@@ -291,10 +269,9 @@ MethodPlan chooseMethods(
     std::map<PowMethod, double> powError;
     for (const PowMethod method : { PowMethod::Series, PowMethod::Schlick })
     {
-      powError[method] =
-        specular ? powApproximationError(method, plan.precision, named.source, scene.material, mesh) : unbounded;
+      powError[method] = specular ? powApproximationError(lobeError(method), named.source, scene.material, mesh) : unbounded;
     }
-    powError[PowMethod::Exact] = 0;
+    powError[PowMethod::Exact] = 0; // std::pow's own rounding is part of arithmeticError
     for (const Candidate& candidate : candidates)
     {
       if ((candidate.distant && std::isinf(distantError)) || std::isinf(powError[candidate.pow]))

@@ -47,9 +47,9 @@ struct MethodPlan
 /// sphere). specular: whether the light's specular term is computed.
 double distantApproximationError(const PointLight& light, const Material& material, bool specular, const MeshExtent& mesh);
 
-/// Predicted largest error that a pow method adds to the light's specular term.
-double powApproximationError(PowMethod method, Precision precision, const LightSource& light,
-  const Material& material, const MeshExtent& mesh);
+/// Predicted largest error that a pow method adds to the light's specular term, given the
+/// method's largest error on the lobe x^eta itself (largestPowError at the material's eta).
+double powApproximationError(double lobeError, const LightSource& light, const Material& material, const MeshExtent& mesh);
 
 /// Predicted largest rounding error of the requested values (all lights exact) in this
 /// precision.

@@ -1,5 +1,7 @@
 #include "Scene.h"
 
+#include "NumberText.h"
+
 #include <cmath>
 #include <limits>
 #include <regex>
@@ -50,10 +52,7 @@ namespace
 /// Two significant digits: enough to say how far out of range a value is.
 std::string scientific(double x)
 {
-  std::ostringstream text;
-  text.precision(2);
-  text << x;
-  return text.str();
+  return withDigits(x, 2);
 }
 
 const char* precisionName(Precision precision)
@@ -125,13 +124,9 @@ double peakContribution(const LightSource& source, const Material& m)
   {
     return peak * largestComponent(m.ka);
   }
-  if (const auto* point = std::get_if<PointLight>(&source))
+  if (const Attenuation* attenuation = attenuationOf(source))
   {
-    return peak * attenuationAt(point->attenuation, 0.0) * k;
-  }
-  if (const auto* spot = std::get_if<SpotLight>(&source))
-  {
-    return peak * attenuationAt(spot->attenuation, 0.0) * k;
+    return peak * attenuationAt(*attenuation, 0.0) * k;
   }
   return peak * k;
 }

@@ -63,6 +63,15 @@ void store(T* out, std::size_t first, std::size_t count, const Lane<T>& factor, 
 }
 }
 
+/// Whether slot k's position and normal are finite. & rather than &&: no branches, so that a
+/// loop of it vectorises.
+template <typename T>
+bool isFiniteVertex(const VertexBlock<T>& b, std::size_t k)
+{
+  return std::isfinite(b.px[k]) & std::isfinite(b.py[k]) & std::isfinite(b.pz[k]) & std::isfinite(b.nx[k]) &
+    std::isfinite(b.ny[k]) & std::isfinite(b.nz[k]);
+}
+
 /// The unit vectors (x, y, z) from each vertex of the block to `target`, and the distances.
 /// Returns how many vertices are closer than the smallest normal number, where the direction
 /// is undefined: they get (0, 0, 0) here. (A select against a fallback direction inside this
@@ -223,10 +232,7 @@ void ShadingKernel<T>::prepareNormals(const VertexBlock<T>& b, Workspace& w) con
   std::size_t nonFinite = 0;
   for (std::size_t k = 0; k < count; ++k)
   {
-    // & rather than &&: no branches, so that the loop vectorises.
-    const bool finite = std::isfinite(b.px[k]) & std::isfinite(b.py[k]) & std::isfinite(b.pz[k]) &
-      std::isfinite(b.nx[k]) & std::isfinite(b.ny[k]) & std::isfinite(b.nz[k]);
-    nonFinite += finite ? 0 : 1;
+    nonFinite += isFiniteVertex(b, k) ? 0 : 1;
   }
   w.nonFinite = nonFinite;
   for (std::size_t k = 0; k < count; ++k)
@@ -430,24 +436,17 @@ void ShadingKernel<T>::specularLobes(const PreparedLight& light, std::size_t cou
       w.specular[k] = (litAt(k) ? lobe : T(0)) * (w.attenuation[k] * w.spotFactor[k]);
     }
   };
-  const T eta = shininess_;
-  switch (light.pow)
+  if (light.pow == PowMethod::Exact)
   {
-    case PowMethod::Exact:
-      // A library call per vertex: skipped where the vertex is unlit.
-      for (std::size_t k = 0; k < count; ++k)
-      {
-        const T lobe = litAt(k) ? std::pow(std::max(cosine[k], T(0)), eta) : T(0);
-        w.specular[k] = lobe * (w.attenuation[k] * w.spotFactor[k]);
-      }
-      break;
-    case PowMethod::Series:
-      approximatedLobes([eta](T x) { return powSeries(x, eta); });
-      break;
-    case PowMethod::Schlick:
-      approximatedLobes([eta](T x) { return powSchlick(x, eta); });
-      break;
+    // A library call per vertex: skipped where the vertex is unlit.
+    for (std::size_t k = 0; k < count; ++k)
+    {
+      const T lobe = litAt(k) ? std::pow(std::max(cosine[k], T(0)), shininess_) : T(0);
+      w.specular[k] = lobe * (w.attenuation[k] * w.spotFactor[k]);
+    }
+    return;
   }
+  withPowMethod(light.pow, shininess_, approximatedLobes);
 }
 
 template <typename T>
@@ -533,8 +532,7 @@ void ShadingKernel<T>::shadeBlock(const VertexBlock<T>& b) const
   for (std::size_t k = 0; k < count; ++k)
   {
     const std::size_t i = b.first + k;
-    if (std::isfinite(b.px[k]) && std::isfinite(b.py[k]) && std::isfinite(b.pz[k]) &&
-      std::isfinite(b.nx[k]) && std::isfinite(b.ny[k]) && std::isfinite(b.nz[k]))
+    if (isFiniteVertex(b, k))
     {
       continue;
     }

@@ -52,11 +52,24 @@ struct VertexBlock
   std::size_t first = 0;
   std::size_t count = 0;
   std::array<T, capacity> px, py, pz, nx, ny, nz;
+
+  /// Puts a vertex in slot k, converted to T.
+  template <typename U>
+  void set(std::size_t k, const Vec3<U>& position, const Vec3<U>& normal)
+  {
+    px[k] = T(position.x);
+    py[k] = T(position.y);
+    pz[k] = T(position.z);
+    nx[k] = T(normal.x);
+    ny[k] = T(normal.y);
+    nz[k] = T(normal.z);
+  }
 };
 
 /// Evaluates a scene in arithmetic of type T (float or double). Work that no requested
 /// array needs is skipped: no specular lobe without a specular output, no r without r, r.v
-/// or Phong, no h without h, n.h or Blinn-Phong, no v unless a term or the flags need it.
+/// or Phong, no h without h, n.h, Blinn-Phong or the flags, no v unless a term or the flags
+/// need it.
 template <typename T>
 class ShadingKernel
 {

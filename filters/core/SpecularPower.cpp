@@ -23,51 +23,25 @@ std::string powMethodName(PowMethod method)
 namespace
 {
 template <typename T>
-T evaluate(PowMethod method, T x, T eta)
-{
-  switch (method)
-  {
-    case PowMethod::Series:
-      return powSeries(x, eta);
-    case PowMethod::Schlick:
-      return powSchlick(x, eta);
-    case PowMethod::Exact:
-      break;
-  }
-  return std::pow(x, eta);
-}
-
-template <typename T>
 double errorAt(PowMethod method, double x, double eta)
 {
   const double exact = std::pow(static_cast<long double>(static_cast<T>(x)), static_cast<long double>(static_cast<T>(eta)));
-  return std::abs(static_cast<double>(evaluate<T>(method, T(x), T(eta))) - exact);
+  T approximation = 0;
+  withPowMethod(method, T(eta), [&](auto power) { approximation = power(T(x)); });
+  return std::abs(static_cast<double>(approximation) - exact);
 }
 }
 
 void evaluatePowers(PowMethod method, const float* x, float* y, std::size_t count, float eta)
 {
-  switch (method)
-  {
-    case PowMethod::Exact:
+  withPowMethod(method, eta,
+    [&](auto power)
+    {
       for (std::size_t i = 0; i < count; ++i)
       {
-        y[i] = std::pow(x[i], eta);
+        y[i] = power(x[i]);
       }
-      break;
-    case PowMethod::Series:
-      for (std::size_t i = 0; i < count; ++i)
-      {
-        y[i] = powSeries(x[i], eta);
-      }
-      break;
-    case PowMethod::Schlick:
-      for (std::size_t i = 0; i < count; ++i)
-      {
-        y[i] = powSchlick(x[i], eta);
-      }
-      break;
-  }
+    });
 }
 
 template <typename T>

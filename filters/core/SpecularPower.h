@@ -5,6 +5,7 @@
 // of them vectorises, which a loop of std::pow calls does not.
 #include <cstddef>
 #include <cstdint>
+#include <cmath>
 #include <cstring>
 #include <limits>
 #include <string>
@@ -109,6 +110,25 @@ SHADELAB_ALWAYS_INLINE T powSchlick(T x, T eta)
 {
   const T denominator = eta - eta * x + x;
   return denominator > T(0) ? x / denominator : T(1);
+}
+
+/// Calls use(power) with the method's x -> x^eta as a function object, so that a loop inside
+/// use() is compiled once per method with no branch on the method in it.
+template <typename T, typename Use>
+void withPowMethod(PowMethod method, T eta, Use&& use)
+{
+  switch (method)
+  {
+    case PowMethod::Exact:
+      use([eta](T x) { return std::pow(x, eta); });
+      break;
+    case PowMethod::Series:
+      use([eta](T x) { return powSeries(x, eta); });
+      break;
+    case PowMethod::Schlick:
+      use([eta](T x) { return powSchlick(x, eta); });
+      break;
+  }
 }
 
 /// y[i] = x[i]^eta by the method for i < count, in the loops the kernel uses (vectorised for

@@ -200,12 +200,8 @@ struct ShadeAllPoints
             {
               const auto p = pointRange[i];
               const auto n = normalRange[i];
-              block.px[k] = T(p[0]);
-              block.py[k] = T(p[1]);
-              block.pz[k] = T(p[2]);
-              block.nx[k] = T(n[0]);
-              block.ny[k] = T(n[1]);
-              block.nz[k] = T(n[2]);
+              block.set(k, shadelab::Vec3<T>(T(p[0]), T(p[1]), T(p[2])),
+                shadelab::Vec3<T>(T(n[0]), T(n[1]), T(n[2])));
             });
         });
       progressOwner->UpdateProgress(static_cast<double>(last) / count);
@@ -271,8 +267,9 @@ shadelab::MeshExtent meshExtent(vtkPolyData* input)
   return extent;
 }
 
-/// What makes the mesh unusable, or "" when it can be shaded in this precision.
-std::string meshProblem(vtkPolyData* input, shadelab::Precision precision)
+/// What makes the mesh's structure unusable (its coordinates are checked against the precision
+/// apart), or "" when there is nothing.
+std::string meshProblem(vtkPolyData* input)
 {
   const vtkIdType pointCount = input->GetNumberOfPoints();
   std::ostringstream problem;
@@ -305,7 +302,7 @@ std::string meshProblem(vtkPolyData* input, shadelab::Precision precision)
             << " components: there must be one 3-component normal per point (" << pointCount << ")";
     return problem.str();
   }
-  return shadelab::meshCoordinateProblem(meshExtent(input).reach, precision);
+  return "";
 }
 
 /// The first of names that the input already has as a point array, or "".
@@ -357,7 +354,13 @@ int vtkLocalReflectanceFilter::RequestData(
   shadelab::Precision precision = this->OutputPrecision == DOUBLE_PRECISION || chooseByTolerance
     ? shadelab::Precision::Float64
     : shadelab::Precision::Float32;
-  const std::string problem = meshProblem(input, precision);
+  std::string problem = meshProblem(input);
+  shadelab::MeshExtent extent;
+  if (problem.empty())
+  {
+    extent = meshExtent(input);
+    problem = shadelab::meshCoordinateProblem(extent.reach, precision);
+  }
   if (!problem.empty())
   {
     vtkErrorMacro(<< problem);
@@ -383,10 +386,9 @@ int vtkLocalReflectanceFilter::RequestData(
     request = shadelab::selectArrays(this->Scene, this->ArraySelection);
     if (chooseByTolerance)
     {
-      const bool float32Fits = meshProblem(input, shadelab::Precision::Float32).empty() &&
+      const bool float32Fits = shadelab::meshCoordinateProblem(extent.reach, shadelab::Precision::Float32).empty() &&
         shadelab::sceneProblems(this->Scene, shadelab::Precision::Float32).empty();
-      this->MethodPlan =
-        shadelab::chooseMethods(this->Scene, request, meshExtent(input), this->Tolerance, float32Fits);
+      this->MethodPlan = shadelab::chooseMethods(this->Scene, request, extent, this->Tolerance, float32Fits);
       precision = this->MethodPlan->precision;
       methods = this->MethodPlan->methods();
     }

@@ -1,0 +1,17 @@
+#pragma once
+// Numbers as text for messages and generated expressions.
+#include <sstream>
+#include <string>
+
+namespace shadelab
+{
+/// x with this many significant digits: 2 say how far out of range a value is in a message,
+/// 17 give a double back exactly.
+inline std::string withDigits(double x, int digits)
+{
+  std::ostringstream text;
+  text.precision(digits);
+  text << x;
+  return text.str();
+}
+}
