@@ -11,6 +11,7 @@
 #include "VtkErrorCapture.h"
 
 #include "ArrayCatalog.h"
+#include "EnvironmentMap.h"
 #include "SceneFile.h"
 #include "ShadingFlags.h"
 #include "vtkLocalReflectanceFilter.h"
@@ -27,6 +28,7 @@
 #include <iomanip>
 #include <regex>
 #include <iostream>
+#include <memory>
 #include <sstream>
 
 namespace
@@ -133,6 +135,17 @@ void printSummary(vtkPolyData* output, const Scene& scene, const std::string& pr
   }
 }
 
+/// `shade --envmap FILE` and its settings: an environment light added to the scene.
+struct EnvironmentOption
+{
+  std::string name = "envmap";
+  std::string file;
+  std::string estimator = "sh";
+  double rotation = 0;
+  double intensity = 1;
+  int samples = Sampling{}.samples;
+};
+
 struct ShadeOptions
 {
   std::string mesh;
@@ -145,12 +158,55 @@ struct ShadeOptions
   double tolerance = 0;
   int threads = 0;
   bool keepNormals = false;
+  EnvironmentOption environment;
 };
+
+/// The scene file's lights, plus the --envmap light; without --scene, the default scene. At
+/// least one of the two is given.
+Scene sceneWithEnvironment(const std::string& sceneFile, const EnvironmentOption& environment)
+{
+  Scene scene = sceneFile.empty() ? Scene{} : loadScene(sceneFile);
+  if (environment.file.empty())
+  {
+    return scene;
+  }
+  for (const NamedLight& light : scene.lights)
+  {
+    if (light.name == environment.name)
+    {
+      throw UserError("--envmap: " + sceneFile + " already has a light named '" + environment.name +
+        "', the name --envmap gives its light: rename that light");
+    }
+  }
+  EnvironmentLight light;
+  light.file = environment.file;
+  light.rotationDegrees = environment.rotation;
+  light.intensity = environment.intensity;
+  light.estimator = environment.estimator == "brute_force" ? EnvironmentEstimator::BruteForce
+    : environment.estimator == "monte_carlo"               ? EnvironmentEstimator::MonteCarlo
+                                                           : EnvironmentEstimator::SphericalHarmonics;
+  light.sampling.samples = environment.samples;
+  try
+  {
+    light.map = std::make_shared<const EnvironmentMap>(readEnvironmentMap(environment.file));
+  }
+  catch (const std::runtime_error& error)
+  {
+    throw UserError(std::string("--envmap: ") + error.what());
+  }
+  scene.lights.push_back({ environment.name, light });
+  const std::vector<SceneProblem> problems = sceneProblems(scene);
+  if (!problems.empty())
+  {
+    throw UserError("--envmap: " + problems.front().message);
+  }
+  return scene;
+}
 
 int runShade(const ShadeOptions& options)
 {
   // Everything that can be checked before the slow work is checked first.
-  const Scene scene = loadScene(options.scene);
+  const Scene scene = sceneWithEnvironment(options.scene, options.environment);
   const std::vector<std::string> selection = splitList(options.arrays);
   try
   {
@@ -205,7 +261,9 @@ int runShade(const ShadeOptions& options)
   std::cout << "shadelab shade: " << options.mesh << " -> " << options.output << "\n"
             << "  mesh: " << output->GetNumberOfPoints() << " vertices, "
             << output->GetNumberOfPolys() + output->GetNumberOfStrips() << " polygons and strips\n"
-            << "  scene: " << options.scene << " (" << modelName(scene) << " model, "
+            << "  scene: " << (options.scene.empty() ? "default" : options.scene)
+            << (options.environment.file.empty() ? "" : " + --envmap " + options.environment.file) << " ("
+            << modelName(scene) << " model, "
             << scene.lights.size() << " lights)\n"
             << "  normals: " << filter->GetNormalsReport() << "\n";
   if (filter->GetMethodPlan())
@@ -340,7 +398,9 @@ int main(int argc, char** argv)
     "Shade a mesh under a scene and write the terms as point-data arrays.\n"
     "Reads .vtp, .vtk, .ply, .obj, .stl; writes .vtp (binary, compressed) or legacy .vtk\n(binary).");
   shadeCommand->add_option("mesh", shade.mesh, "the mesh to shade")->required();
-  shadeCommand->add_option("--scene,-s", shade.scene, "scene file (JSON; schema in README.md)")->required();
+  shadeCommand->add_option("--scene,-s", shade.scene,
+    "scene file (JSON; schema in README.md); without it, the default material and a viewer at infinity "
+    "looking down -z, lit by --envmap alone");
   shadeCommand->add_option("--output,-o", shade.output, "output file, .vtp or .vtk")->required();
   shadeCommand->add_option("--arrays,-a", shade.arrays,
     "comma-separated arrays to compute: default (totals and shading_flags), totals, all, "
@@ -369,6 +429,29 @@ int main(int argc, char** argv)
     "prepended to every array name written (to keep clear of the input's own arrays)");
   shadeCommand->add_flag("--keep-normal-orientation", shade.keepNormals,
     "do not flip normals that point into a closed mesh");
+  EnvironmentOption& environment = shade.environment;
+  CLI::Option* envmapOption = shadeCommand->add_option("--envmap", environment.file,
+    "add an environment light named 'envmap' from this equirectangular map (.hdr, .exr: twice as wide "
+    "as high, +y up, the image centre toward -z; README.md 'Environment maps')");
+  shadeCommand->add_option("--envmap-estimator", environment.estimator,
+    "its irradiance: sh (9 spherical-harmonic coefficients), monte_carlo (importance sampling by "
+    "luminance) or brute_force (every texel of the map downsampled to 128x64)")
+    ->check(CLI::IsMember({ "sh", "monte_carlo", "brute_force" }))
+    ->capture_default_str()
+    ->needs(envmapOption);
+  shadeCommand->add_option("--envmap-rotation", environment.rotation,
+    "turn the map about +y by this many degrees (anticlockwise seen from above)")
+    ->capture_default_str()
+    ->needs(envmapOption);
+  shadeCommand->add_option("--envmap-intensity", environment.intensity, "multiply the map's radiance")
+    ->check(CLI::NonNegativeNumber)
+    ->capture_default_str()
+    ->needs(envmapOption);
+  shadeCommand->add_option("--envmap-samples", environment.samples,
+    "Monte Carlo samples per vertex (monte_carlo, and the specular term of sh)")
+    ->check(CLI::Range(2, maxSamplesPerVertex))
+    ->capture_default_str()
+    ->needs(envmapOption);
 
   std::string arraysScene;
   CLI::App* arraysCommand = cli.add_subcommand("arrays", "List the arrays a scene can produce.");
@@ -425,6 +508,11 @@ int main(int argc, char** argv)
   catch (const CLI::ParseError& error)
   {
     return cli.exit(error) == 0 ? 0 : 2;
+  }
+  if (shadeCommand->parsed() && shade.scene.empty() && shade.environment.file.empty())
+  {
+    std::cerr << "--scene or --envmap is required\nRun with --help for more information.\n";
+    return 2;
   }
   if (!verbose)
   {

@@ -121,7 +121,8 @@ TEST_F(Cli, BadScenes)
                 "object - unexpected end of input; expected '}'");
   const std::string laser = file("laser.json", R"({ "lights": [ { "type": "laser" } ] })");
   expectError("shade " + mesh + " -s " + laser + " -o " + out,
-    laser + ": /lights/0/type: \"laser\" is not one of \"distant\", \"headlight\", \"point\", \"spot\", \"ambient\"");
+    laser + ": /lights/0/type: \"laser\" is not one of \"distant\", \"headlight\", \"point\", \"spot\", \"ambient\", "
+    "\"polygon\", \"rectangle\", \"disk\", \"sphere\", \"environment\"");
   const std::string negative = file("negative.json",
     R"({ "lights": [ { "type": "point", "position": [0, 0, 1], "intensity": -3 } ] })");
   expectError("shade " + mesh + " -s " + negative + " -o " + out,
@@ -160,7 +161,8 @@ TEST_F(Cli, UnknownArrayNameAndBadOutput)
   EXPECT_EQ(unknown.err,
     "shadelab: --arrays: unknown array 'sun_glare'; this scene has: default, totals, all, "
     "*_to_light, *_distance, *_attenuation, *_spot_factor, *_cos_incidence, *_incidence_angle, "
-    "*_reflection, *_r_dot_v, *_half_vector, *_n_dot_h, *_diffuse, *_specular, ambient, diffuse, "
+    "*_reflection, *_r_dot_v, *_half_vector, *_n_dot_h, *_diffuse, *_specular, *_irradiance, "
+    "*_irradiance_std_error, *_specular_std_error, ambient, diffuse, "
     "specular, total, shading_flags, sun_to_light, sun_attenuation, sun_spot_factor, "
     "sun_cos_incidence, sun_incidence_angle, sun_reflection, sun_r_dot_v, sun_half_vector, "
     "sun_n_dot_h, sun_diffuse, sun_specular\n");
@@ -169,7 +171,8 @@ TEST_F(Cli, UnknownArrayNameAndBadOutput)
   expectError("shade " + mesh + " -s " + scene + " -o " + (folder / "o.vtp").string() + " --arrays ,",
     "--arrays: no arrays selected; this scene has: default, totals, all, *_to_light, *_distance, "
     "*_attenuation, *_spot_factor, *_cos_incidence, *_incidence_angle, *_reflection, *_r_dot_v, "
-    "*_half_vector, *_n_dot_h, *_diffuse, *_specular, ambient, diffuse, specular, total, "
+    "*_half_vector, *_n_dot_h, *_diffuse, *_specular, *_irradiance, *_irradiance_std_error, "
+    "*_specular_std_error, ambient, diffuse, specular, total, "
     "shading_flags, sun_to_light, sun_attenuation, sun_spot_factor, sun_cos_incidence, "
     "sun_incidence_angle, sun_reflection, sun_r_dot_v, sun_half_vector, sun_n_dot_h, sun_diffuse, "
     "sun_specular");
@@ -396,7 +399,7 @@ TEST_F(Cli, HelpAndUsageErrors)
   EXPECT_NE(help.out.find("Reads .vtp, .vtk, .ply, .obj, .stl"), std::string::npos);
   const Result noScene = shadelab("shade " + goodMesh() + " -o out.vtp");
   EXPECT_EQ(noScene.exitCode, 2);
-  EXPECT_EQ(noScene.err, "--scene is required\nRun with --help for more information.\n");
+  EXPECT_EQ(noScene.err, "--scene or --envmap is required\nRun with --help for more information.\n");
   const Result threads = shadelab("shade " + goodMesh() + " -s " + goodScene() + " -o out.vtp --threads 1000");
   EXPECT_EQ(threads.exitCode, 2);
   EXPECT_EQ(threads.err, "--threads: Value 1000 not in range 0 to 256\nRun with --help for more information.\n");

@@ -1,5 +1,6 @@
 // The filter as a VTK user meets it: normals, pass-through of input arrays, errors, thread
 // count, files, and a golden regression on the Stanford bunny.
+#include "ArrayComparison.h"
 #include "MeshFiles.h"
 #include "TestMeshes.h"
 #include "VtkErrorCapture.h"
@@ -381,27 +382,7 @@ TEST(FilterErrors, ComputedNormalsDoNotReplaceAnArrayNamedNormals)
   EXPECT_EQ(filterError(sphere, overheadLight(), { "default" }, "lit_"), "");
 }
 
-/// Bitwise equality of two arrays of the same type and shape.
-void expectSameBits(vtkDataArray* a, vtkDataArray* b, const std::string& name)
-{
-  ASSERT_NE(a, nullptr) << name;
-  ASSERT_NE(b, nullptr) << name;
-  ASSERT_EQ(a->GetDataType(), b->GetDataType()) << name;
-  ASSERT_EQ(a->GetNumberOfValues(), b->GetNumberOfValues()) << name;
-  const std::size_t bytes = a->GetNumberOfValues() * a->GetDataTypeSize();
-  EXPECT_EQ(std::memcmp(a->GetVoidPointer(0), b->GetVoidPointer(0), bytes), 0) << name;
-}
-
-void expectSamePointArrays(vtkPolyData* expected, vtkPolyData* actual)
-{
-  vtkPointData* want = expected->GetPointData();
-  ASSERT_EQ(want->GetNumberOfArrays(), actual->GetPointData()->GetNumberOfArrays());
-  for (int a = 0; a < want->GetNumberOfArrays(); ++a)
-  {
-    const std::string name = want->GetArrayName(a);
-    expectSameBits(want->GetArray(a), actual->GetPointData()->GetArray(name.c_str()), name);
-  }
-}
+using shadelab::testing::expectSamePointArrays;
 
 TEST(Threads, OneAndTwoThreadsGiveTheSameBits)
 {

@@ -111,7 +111,7 @@ TEST(SceneFile, UnknownLightType)
 {
   EXPECT_EQ(errorOf(R"({ "lights": [ { "type": "distant", "direction": [0, 0, 1] }, { "type": "laser" } ] })"),
     "scene.json: /lights/1/type: \"laser\" is not one of \"distant\", \"headlight\", \"point\", "
-    "\"spot\", \"ambient\"");
+    "\"spot\", \"ambient\", \"polygon\", \"rectangle\", \"disk\", \"sphere\", \"environment\"");
 }
 
 TEST(SceneFile, NegativeField)

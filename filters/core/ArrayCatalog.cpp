@@ -1,5 +1,7 @@
 #include "ArrayCatalog.h"
 
+#include "DistributedLight.h"
+
 #include <algorithm>
 #include <stdexcept>
 
@@ -20,6 +22,9 @@ const std::array<TermInfo, LightTermCount> lightTerms = { {
   { "n_dot_h", 1, "n.h" },
   { "diffuse", 3, "this light's diffuse term, RGB" },
   { "specular", 3, "this light's specular term, RGB" },
+  { "irradiance", 3, "E: irradiance, the integral of L max(0, n.w) over the light's solid angle, RGB" },
+  { "irradiance_std_error", 3, "Monte Carlo standard error of the irradiance, RGB" },
+  { "specular_std_error", 3, "Monte Carlo standard error of the specular term, RGB" },
 } };
 
 const std::array<TermInfo, TotalTermCount> totalTerms = { {
@@ -50,7 +55,23 @@ bool lightHasTerm(const LightSource& source, LightTerm term)
   {
     return false;
   }
-  return term != LightTerm::Distance || isPositional(source);
+  if (isDistributed(source))
+  {
+    switch (term)
+    {
+      case LightTerm::Irradiance:
+      case LightTerm::Diffuse:
+      case LightTerm::Specular:
+        return true;
+      case LightTerm::IrradianceStdError:
+        return estimatesIrradianceError(source);
+      case LightTerm::SpecularStdError:
+        return estimatesSpecularError(source);
+      default:
+        return false;
+    }
+  }
+  return term < LightTerm::Irradiance && (term != LightTerm::Distance || isPositional(source));
 }
 
 bool ArrayRequest::any(LightTerm term) const

@@ -24,9 +24,13 @@ enum class LightTerm
   NDotH,          // n.h
   Diffuse,        // RGB
   Specular,       // RGB
+  // Area lights and environment maps (DistributedLight.h):
+  Irradiance,         // E, RGB
+  IrradianceStdError, // Monte Carlo standard error of E, RGB
+  SpecularStdError,   // Monte Carlo standard error of the specular term, RGB
 };
-constexpr int LightTermCount = 12;
-static_assert(static_cast<int>(LightTerm::Specular) + 1 == LightTermCount, "LightTermCount is stale");
+constexpr int LightTermCount = 15;
+static_assert(static_cast<int>(LightTerm::SpecularStdError) + 1 == LightTermCount, "LightTermCount is stale");
 
 /// Quantities summed over all lights.
 enum class TotalTerm
@@ -51,7 +55,8 @@ const TermInfo& termInfo(TotalTerm term);
 extern const TermInfo flagsInfo;
 
 /// Whether a light of this type has this term (distance needs a position; ambient lights
-/// have no per-light terms, their light is in the ambient total).
+/// have no per-light terms, their light is in the ambient total; area lights and environment
+/// maps have irradiance, diffuse, specular, and the standard errors their estimator gives).
 bool lightHasTerm(const LightSource& source, LightTerm term);
 
 /// Which arrays to compute. lights[i] follows scene.lights[i].

@@ -5,8 +5,10 @@
 #include "SpotCone.h"
 #include "Vec3.h"
 
+#include <memory>
 #include <string>
 #include <variant>
+#include <vector>
 
 namespace shadelab
 {
@@ -55,7 +57,99 @@ struct AmbientLight
   double intensity = 1.0;
 };
 
-using LightSource = std::variant<DistantLight, Headlight, PointLight, SpotLight, AmbientLight>;
+/// REFERENCES.md section 3: distributed sources. An emitter of uniform radiance L = colour x
+/// intensity over its surface (a Lambertian emitter), seen from each vertex as a solid angle.
+/// A planar convex polygon; it emits on the side its vertices wind anticlockwise around (the
+/// right-hand normal), or on both sides when the light is two-sided.
+struct PolygonEmitter
+{
+  std::vector<glm::dvec3> vertices;
+};
+
+/// A disk, emitting on the side its normal points to (or both when two-sided).
+struct DiskEmitter
+{
+  glm::dvec3 centre{ 0, 0, 0 };
+  glm::dvec3 normal{ 0, 0, -1 };
+  double radius = 1.0;
+};
+
+/// A sphere, emitting outward everywhere on its surface.
+struct SphereEmitter
+{
+  glm::dvec3 centre{ 0, 0, 0 };
+  double radius = 1.0;
+};
+
+using EmitterShape = std::variant<PolygonEmitter, DiskEmitter, SphereEmitter>;
+
+/// How the irradiance from an area light is estimated. The specular term is estimated by
+/// Monte Carlo for Exact and MonteCarlo, and by the point light for Point.
+enum class AreaEstimator
+{
+  Exact,      // Lambert's polygon formula clipped to the horizon; the sphere's and disk's exact forms
+  MonteCarlo, // `samples` points on the emitter, with a standard error per vertex
+  Point,      // a point light at the emitter's centre (REFERENCES.md section 3, "five times rule")
+};
+
+/// More samples than this per vertex is a mistake (a 100k-vertex mesh would take hours); at
+/// least 2 give a standard error.
+constexpr int maxSamplesPerVertex = 1 << 20;
+
+/// How Monte Carlo estimators place their samples in the unit square they warp.
+struct Sampling
+{
+  int samples = 64;
+  /// One sample in each of `samples` cells of a grid over the square, rather than independent.
+  bool stratified = true;
+};
+
+struct AreaLight
+{
+  EmitterShape shape;
+  Rgb color{ 1, 1, 1 };
+  double intensity = 1.0; // L = color x intensity, radiance
+  bool twoSided = false;
+  AreaEstimator estimator = AreaEstimator::Exact;
+  Sampling sampling;
+};
+
+struct EnvironmentMap; // EnvironmentMap.h
+
+/// How the irradiance from an environment map is estimated. The specular term is estimated by
+/// the same sum for BruteForce, by sampling for MonteCarlo and SphericalHarmonics (nine
+/// coefficients hold too little of a map for a lobe sharper than the cosine).
+enum class EnvironmentEstimator
+{
+  BruteForce,         // every texel of the map downsampled to `bruteForceWidth`, as a distant light
+  MonteCarlo,         // `sampling.samples` directions, drawn by `directions`
+  SphericalHarmonics, // 9 coefficients (Ramamoorthi and Hanrahan 2001), diffuse only
+};
+
+/// Where Monte Carlo directions for an environment map come from.
+enum class EnvironmentDirections
+{
+  Luminance, // importance sampling of the map's luminance: good for small bright sources
+  Cosine,    // cosine-weighted about the normal: exact irradiance from a constant map
+};
+
+/// REFERENCES.md section 3: an environment map, where every texel is a distant light of
+/// radiance colour x intensity x texel, over the texel's solid angle.
+struct EnvironmentLight
+{
+  std::shared_ptr<const EnvironmentMap> map;
+  std::string file; // where the map came from, for messages and reports
+  double rotationDegrees = 0; // about +y, anticlockwise seen from above
+  Rgb color{ 1, 1, 1 };
+  double intensity = 1.0;
+  EnvironmentEstimator estimator = EnvironmentEstimator::SphericalHarmonics;
+  EnvironmentDirections directions = EnvironmentDirections::Luminance;
+  Sampling sampling;
+  int bruteForceWidth = 128;
+};
+
+using LightSource =
+  std::variant<DistantLight, Headlight, PointLight, SpotLight, AmbientLight, AreaLight, EnvironmentLight>;
 
 struct NamedLight
 {
@@ -100,6 +194,12 @@ inline const Attenuation* attenuationOf(const LightSource& source)
 inline bool isAmbient(const LightSource& source)
 {
   return std::holds_alternative<AmbientLight>(source);
+}
+
+/// Area lights and environment maps: lights integrated over a solid angle per vertex.
+inline bool isDistributed(const LightSource& source)
+{
+  return std::holds_alternative<AreaLight>(source) || std::holds_alternative<EnvironmentLight>(source);
 }
 
 /// Colour x intensity (x |direction| for a distant light with intensityFromLength): the RGB

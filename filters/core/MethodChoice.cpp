@@ -198,6 +198,16 @@ std::vector<std::string> MethodPlan::describe() const
 MethodPlan chooseMethods(
   const Scene& scene, const ArrayRequest& request, const MeshExtent& mesh, double tolerance, bool float32Allowed)
 {
+  for (const NamedLight& light : scene.lights)
+  {
+    if (isDistributed(light.source))
+    {
+      throw std::invalid_argument("a tolerance cannot be met with light '" + light.name + "', " +
+        (std::holds_alternative<AreaLight>(light.source) ? "an area light" : "an environment map") +
+        ": its error comes from the estimator the scene names, not from arithmetic a tolerance can choose "
+        "(Monte Carlo estimators report theirs in *_std_error arrays); shade without a tolerance");
+    }
+  }
   MethodPlan plan;
   plan.tolerance = tolerance;
   plan.precision = Precision::Float32;

@@ -1,6 +1,8 @@
 #include "Scene.h"
 
+#include "EnvironmentMap.h"
 #include "NumberText.h"
+#include "PolygonIrradiance.h"
 
 #include <cmath>
 #include <limits>
@@ -19,6 +21,17 @@ std::string lightTypeName(const LightSource& source)
     std::string operator()(const PointLight&) const { return "point"; }
     std::string operator()(const SpotLight&) const { return "spot"; }
     std::string operator()(const AmbientLight&) const { return "ambient"; }
+    std::string operator()(const AreaLight& light) const
+    {
+      return std::visit(
+        [](const auto& shape)
+        {
+          using Shape = std::decay_t<decltype(shape)>;
+          return std::is_same_v<Shape, PolygonEmitter> ? "polygon" : std::is_same_v<Shape, DiskEmitter> ? "disk" : "sphere";
+        },
+        light.shape);
+    }
+    std::string operator()(const EnvironmentLight&) const { return "environment"; }
   };
   return std::visit(Namer{}, source);
 }
@@ -128,6 +141,21 @@ double peakContribution(const LightSource& source, const Material& m)
   {
     return peak * attenuationAt(*attenuation, 0.0) * k;
   }
+  // E is at most pi L, S at most 2 pi L (a lobe of 1 over the hemisphere).
+  const double twoPi = 6.283185307179586;
+  if (const auto* environment = std::get_if<EnvironmentLight>(&source))
+  {
+    double brightest = 0;
+    for (const Rgb& texel : environment->map->radiance)
+    {
+      brightest = std::max(brightest, largestComponent(texel));
+    }
+    return peak * brightest * twoPi * k;
+  }
+  if (isDistributed(source))
+  {
+    return peak * twoPi * k;
+  }
   return peak * k;
 }
 
@@ -206,6 +234,76 @@ std::string outOfRange(Precision precision)
     scientific(coordinateLimit(precision)) + " for " + precisionName(precision) + " arithmetic";
 }
 
+void checkPolygon(const PolygonEmitter& polygon, const std::string& at, Precision precision, ProblemList& list)
+{
+  const auto& v = polygon.vertices;
+  list.check(v.size() >= 3, at + "/vertices", "a polygon needs at least 3 vertices");
+  bool inRange = true;
+  for (const glm::dvec3& vertex : v)
+  {
+    inRange = inRange && isWithin(vertex, coordinateLimit(precision));
+  }
+  list.check(inRange, at + "/vertices", outOfRange(precision));
+  if (v.size() < 3 || !inRange)
+  {
+    return;
+  }
+  const glm::dvec3 normal = polygonNormal(v);
+  const double area = polygonArea(v);
+  list.check(area > 0 && normal != glm::dvec3(0.0), at + "/vertices", "the polygon has no area");
+  if (!(area > 0))
+  {
+    return;
+  }
+  // Planar within a millionth of its size, and convex: every corner turns the same way.
+  const double size = std::sqrt(area);
+  bool planar = true, convex = true;
+  for (std::size_t i = 0; i < v.size(); ++i)
+  {
+    const glm::dvec3& a = v[i];
+    const glm::dvec3& b = v[(i + 1) % v.size()];
+    const glm::dvec3& c = v[(i + 2) % v.size()];
+    planar = planar && std::abs(glm::dot(a - v[0], normal)) <= 1e-6 * size;
+    convex = convex && glm::dot(glm::cross(b - a, c - b), normal) >= 0;
+  }
+  list.check(planar, at + "/vertices", "the polygon's vertices must lie in one plane");
+  list.check(!planar || convex, at + "/vertices",
+    "the polygon must be convex, its vertices in order around it: split a concave emitter into convex lights");
+}
+
+void checkEmitter(const EmitterShape& shape, const std::string& at, Precision precision, ProblemList& list)
+{
+  if (const auto* polygon = std::get_if<PolygonEmitter>(&shape))
+  {
+    checkPolygon(*polygon, at, precision, list);
+    return;
+  }
+  const auto* disk = std::get_if<DiskEmitter>(&shape);
+  const auto* sphere = std::get_if<SphereEmitter>(&shape);
+  const glm::dvec3& centre = disk ? disk->centre : sphere->centre;
+  const double radius = disk ? disk->radius : sphere->radius;
+  list.check(isWithin(centre, coordinateLimit(precision)), at + "/center", outOfRange(precision));
+  list.check(std::isfinite(radius) && radius > 0 && radius <= coordinateLimit(precision), at + "/radius",
+    "must be a number > 0");
+  if (disk)
+  {
+    list.check(isNonZero(disk->normal), at + "/normal", "must be a non-zero vector");
+  }
+}
+
+void checkEnvironment(const EnvironmentLight& light, const std::string& at, ProblemList& list)
+{
+  list.check(light.map != nullptr, at + "/file", "no environment map was loaded for this light");
+  list.check(std::isfinite(light.rotationDegrees), at + "/rotation", "must be a finite angle in degrees");
+  if (light.map)
+  {
+    const int width = light.bruteForceWidth;
+    list.check(width >= 2 && (width >= light.map->width || light.map->width % width == 0),
+      at + "/brute_force_width",
+      "must be at least 2 and divide the map's width (" + std::to_string(light.map->width) + ")");
+  }
+}
+
 void checkLight(const Scene& scene, const NamedLight& light, const std::string& at, Precision precision,
   ProblemList& list)
 {
@@ -242,6 +340,22 @@ void checkLight(const Scene& scene, const NamedLight& light, const std::string& 
       {
         list.check(!vtk, at + "/type",
           "VTK's renderer has no ambient light: with the vtk model, put the ambient colour in material.ka");
+      }
+      if constexpr (std::is_same_v<Type, AreaLight> || std::is_same_v<Type, EnvironmentLight>)
+      {
+        list.check(!vtk, at + "/type",
+          "VTK's renderer has no area lights or environment maps: use the lecture model");
+        const int samples = source.sampling.samples;
+        list.check(samples >= 2 && samples <= maxSamplesPerVertex, at + "/samples",
+          "must be a whole number from 2 to " + std::to_string(maxSamplesPerVertex));
+      }
+      if constexpr (std::is_same_v<Type, AreaLight>)
+      {
+        checkEmitter(source.shape, at, precision, list);
+      }
+      if constexpr (std::is_same_v<Type, EnvironmentLight>)
+      {
+        checkEnvironment(source, at, list);
       }
     },
     light.source);

@@ -2,8 +2,13 @@
 
 #include <nlohmann/json.hpp>
 
+#include "EnvironmentMap.h"
+
 #include <algorithm>
+#include <cmath>
+#include <filesystem>
 #include <fstream>
+#include <memory>
 #include <sstream>
 
 namespace shadelab
@@ -81,6 +86,16 @@ public:
       fail("must be a number, got " + describe(value_));
     }
     return value_.get<double>();
+  }
+
+  int wholeNumber(int low, int high) const
+  {
+    const double x = number();
+    if (!(x >= low && x <= high && x == std::floor(x)))
+    {
+      fail("must be a whole number from " + std::to_string(low) + " to " + std::to_string(high));
+    }
+    return static_cast<int>(x);
   }
 
   bool boolean() const
@@ -249,17 +264,107 @@ enum class LightType
   Point,
   Spot,
   Ambient,
+  Polygon,
+  Rectangle,
+  Disk,
+  Sphere,
+  Environment,
 };
 
-NamedLight readLight(const Node& node, std::size_t index)
+Sampling readSampling(const Node& node)
+{
+  Sampling sampling;
+  if (node.has("samples"))
+  {
+    sampling.samples = node.at("samples").wholeNumber(2, maxSamplesPerVertex);
+  }
+  if (node.has("stratified"))
+  {
+    sampling.stratified = node.at("stratified").boolean();
+  }
+  return sampling;
+}
+
+/// The fields every area light has besides its shape.
+AreaLight readAreaLight(const Node& node, EmitterShape shape)
+{
+  AreaLight light;
+  light.shape = std::move(shape);
+  readStrength(node, light);
+  if (node.has("two_sided"))
+  {
+    light.twoSided = node.at("two_sided").boolean();
+  }
+  if (node.has("estimator"))
+  {
+    light.estimator = node.at("estimator").choice<AreaEstimator>({ { "exact", AreaEstimator::Exact },
+      { "monte_carlo", AreaEstimator::MonteCarlo }, { "point", AreaEstimator::Point } });
+  }
+  light.sampling = readSampling(node);
+  return light;
+}
+
+/// A path in a scene file is relative to the scene file's folder.
+std::string resolvePath(const std::string& path, const std::string& sceneFile)
+{
+  const std::filesystem::path given(path);
+  if (given.is_absolute())
+  {
+    return path;
+  }
+  return (std::filesystem::path(sceneFile).parent_path() / given).lexically_normal().string();
+}
+
+EnvironmentLight readEnvironmentLight(const Node& node, const std::string& sceneFile)
+{
+  node.expectObject({ "name", "type", "file", "rotation", "color", "intensity", "estimator", "directions",
+    "samples", "stratified", "brute_force_width" });
+  EnvironmentLight light;
+  readStrength(node, light);
+  light.file = resolvePath(node.at("file").text(), sceneFile);
+  if (node.has("rotation"))
+  {
+    light.rotationDegrees = node.at("rotation").number();
+  }
+  if (node.has("estimator"))
+  {
+    light.estimator = node.at("estimator").choice<EnvironmentEstimator>(
+      { { "sh", EnvironmentEstimator::SphericalHarmonics }, { "monte_carlo", EnvironmentEstimator::MonteCarlo },
+        { "brute_force", EnvironmentEstimator::BruteForce } });
+  }
+  if (node.has("directions"))
+  {
+    light.directions = node.at("directions").choice<EnvironmentDirections>(
+      { { "luminance", EnvironmentDirections::Luminance }, { "cosine", EnvironmentDirections::Cosine } });
+  }
+  light.sampling = readSampling(node);
+  if (node.has("brute_force_width"))
+  {
+    light.bruteForceWidth = node.at("brute_force_width").wholeNumber(2, 1 << 20);
+  }
+  try
+  {
+    light.map = std::make_shared<const EnvironmentMap>(readEnvironmentMap(light.file));
+  }
+  catch (const std::runtime_error& error)
+  {
+    node.at("file").fail(error.what());
+  }
+  return light;
+}
+
+NamedLight readLight(const Node& node, std::size_t index, const std::string& sceneFile)
 {
   // First every field any light may have (so that a non-object or a misspelt field is caught
   // before the type is read), then, below, only those of this light's type.
   node.expectObject({ "name", "type", "color", "intensity", "direction", "intensity_from_length",
-    "position", "attenuation", "min_distance", "cone" });
+    "position", "attenuation", "min_distance", "cone", "vertices", "center", "edge_u", "edge_v", "normal",
+    "radius", "two_sided", "estimator", "samples", "stratified", "file", "rotation", "directions",
+    "brute_force_width" });
   const LightType type = node.at("type").choice<LightType>({ { "distant", LightType::Distant },
     { "headlight", LightType::Headlight }, { "point", LightType::Point }, { "spot", LightType::Spot },
-    { "ambient", LightType::Ambient } });
+    { "ambient", LightType::Ambient }, { "polygon", LightType::Polygon }, { "rectangle", LightType::Rectangle },
+    { "disk", LightType::Disk }, { "sphere", LightType::Sphere }, { "environment", LightType::Environment } });
   NamedLight light;
   switch (type)
   {
@@ -304,6 +409,52 @@ NamedLight readLight(const Node& node, std::size_t index)
     }
     case LightType::Ambient:
       light.source = readColourOnlyLight<AmbientLight>(node);
+      break;
+    case LightType::Polygon:
+    {
+      node.expectObject({ "name", "type", "color", "intensity", "vertices", "two_sided", "estimator", "samples",
+        "stratified" });
+      const Node vertices = node.at("vertices");
+      if (!vertices.isArray())
+      {
+        vertices.fail("must be an array of [x, y, z] points");
+      }
+      PolygonEmitter polygon;
+      for (std::size_t i = 0; i < vertices.size(); ++i)
+      {
+        polygon.vertices.push_back(vertices.element(i).vector3());
+      }
+      light.source = readAreaLight(node, polygon);
+      break;
+    }
+    case LightType::Rectangle:
+    {
+      // Corners c - u/2 - v/2, c + u/2 - v/2, c + u/2 + v/2, c - u/2 + v/2: it emits toward u x v.
+      node.expectObject({ "name", "type", "color", "intensity", "center", "edge_u", "edge_v", "two_sided",
+        "estimator", "samples", "stratified" });
+      const glm::dvec3 c = node.at("center").vector3();
+      const glm::dvec3 u = 0.5 * node.at("edge_u").vector3();
+      const glm::dvec3 v = 0.5 * node.at("edge_v").vector3();
+      light.source = readAreaLight(node, PolygonEmitter{ { c - u - v, c + u - v, c + u + v, c - u + v } });
+      break;
+    }
+    case LightType::Disk:
+    {
+      node.expectObject({ "name", "type", "color", "intensity", "center", "normal", "radius", "two_sided",
+        "estimator", "samples", "stratified" });
+      light.source = readAreaLight(
+        node, DiskEmitter{ node.at("center").vector3(), node.at("normal").vector3(), node.at("radius").number() });
+      break;
+    }
+    case LightType::Sphere:
+    {
+      node.expectObject({ "name", "type", "color", "intensity", "center", "radius", "estimator", "samples",
+        "stratified" });
+      light.source = readAreaLight(node, SphereEmitter{ node.at("center").vector3(), node.at("radius").number() });
+      break;
+    }
+    case LightType::Environment:
+      light.source = readEnvironmentLight(node, sceneFile);
       break;
   }
   light.name = node.has("name") ? node.at("name").text() : lightTypeName(light.source) + std::to_string(index);
@@ -370,7 +521,7 @@ Viewer readViewer(const Node& node)
   return viewer;
 }
 
-Scene readScene(const Json& document)
+Scene readScene(const Json& document, const std::string& sceneFile)
 {
   const Node root(document, "");
   root.expectObject({ "model", "viewer", "material", "lights" });
@@ -392,7 +543,7 @@ Scene readScene(const Json& document)
   }
   for (std::size_t i = 0; i < lights.size(); ++i)
   {
-    scene.lights.push_back(readLight(lights.element(i), i));
+    scene.lights.push_back(readLight(lights.element(i), i, sceneFile));
   }
   if (scene.model == ShadingModel::VtkOpenGL2)
   {
@@ -431,7 +582,7 @@ Scene parseScene(const std::string& text, const std::string& sourceName)
   }
   try
   {
-    return readScene(document);
+    return readScene(document, sourceName);
   }
   catch (const JsonError& error)
   {

@@ -168,6 +168,19 @@ ShadingKernel<T>::ShadingKernel(const Scene& scene, ShadingOutputs<T> outputs, c
       ambientLight += emittedColor(*ambient);
       continue;
     }
+    if (isDistributed(source))
+    {
+      DistributedLightSlot light;
+      light.out = outputs_.lights[l];
+      light.kd = m.kd;
+      light.ks = m.ks;
+      light.needsSpecular =
+        specularModel_ != SpecularModel::None && (light.out[int(LightTerm::Specular)] || totalSpecular);
+      const LobeModel lobe{ light.needsSpecular ? specularModel_ : SpecularModel::None, m.shininess };
+      light.estimator = makeEstimator(source, l, lobe);
+      distributedLights_.push_back(std::move(light));
+      continue;
+    }
     PreparedLight light;
     light.out = outputs_.lights[l];
     light.pow = method.pow;
@@ -222,7 +235,9 @@ ShadingKernel<T>::ShadingKernel(const Scene& scene, ShadingOutputs<T> outputs, c
   needsViewer_ = twoSided_ || outputs_.flags != nullptr ||
     std::any_of(lights_.begin(), lights_.end(),
       [](const PreparedLight& light)
-      { return light.needsSpecular || light.needsReflection || light.needsHalfVector; });
+      { return light.needsSpecular || light.needsReflection || light.needsHalfVector; }) ||
+    std::any_of(distributedLights_.begin(), distributedLights_.end(),
+      [](const DistributedLightSlot& light) { return light.needsSpecular; });
 }
 
 template <typename T>
@@ -477,6 +492,50 @@ void ShadingKernel<T>::storeLight(const PreparedLight& light, const VertexBlock<
 }
 
 template <typename T>
+void ShadingKernel<T>::addDistributedLight(const DistributedLightSlot& light, const VertexBlock<T>& b, Workspace& w) const
+{
+  const auto& out = light.out;
+  auto storeRgb = [&](LightTerm term, std::size_t i, const Rgb& value)
+  {
+    if (T* array = out[int(term)])
+    {
+      array[3 * i] = T(value.x);
+      array[3 * i + 1] = T(value.y);
+      array[3 * i + 2] = T(value.z);
+    }
+  };
+  for (std::size_t k = 0; k < b.count; ++k)
+  {
+    DistributedTerms terms;
+    // A vertex without a usable normal faces nothing (and its non-finite inputs are zeroed
+    // after the block).
+    if (isFiniteVertex(b, k) && !(w.flags[k] & FlagDegenerateNormal))
+    {
+      SurfacePoint point;
+      point.position = { b.px[k], b.py[k], b.pz[k] };
+      point.normal = { w.nx[k], w.ny[k], w.nz[k] };
+      point.toViewer = needsViewer_ ? glm::dvec3(w.vx[k], w.vy[k], w.vz[k]) : glm::dvec3(0.0);
+      point.index = b.first + k;
+      terms = light.estimator->estimate(point);
+    }
+    const Rgb diffuse = light.kd * terms.irradiance;
+    const Rgb specular = light.ks * terms.specular;
+    w.diffuseR[k] += T(diffuse.x);
+    w.diffuseG[k] += T(diffuse.y);
+    w.diffuseB[k] += T(diffuse.z);
+    w.specularR[k] += T(specular.x);
+    w.specularG[k] += T(specular.y);
+    w.specularB[k] += T(specular.z);
+    const std::size_t i = b.first + k;
+    storeRgb(LightTerm::Irradiance, i, terms.irradiance);
+    storeRgb(LightTerm::Diffuse, i, diffuse);
+    storeRgb(LightTerm::Specular, i, specular);
+    storeRgb(LightTerm::IrradianceStdError, i, terms.irradianceStdError);
+    storeRgb(LightTerm::SpecularStdError, i, light.ks * terms.specularStdError);
+  }
+}
+
+template <typename T>
 void ShadingKernel<T>::storeTotals(const VertexBlock<T>& b, Workspace& w) const
 {
   const auto& totals = outputs_.totals;
@@ -523,6 +582,10 @@ void ShadingKernel<T>::shadeBlock(const VertexBlock<T>& b) const
     addLight(light, b, w);
     storeLight(light, b, w);
   }
+  for (const DistributedLightSlot& light : distributedLights_)
+  {
+    addDistributedLight(light, b, w);
+  }
   storeTotals(b, w);
   if (w.nonFinite == 0)
   {
@@ -536,14 +599,14 @@ void ShadingKernel<T>::shadeBlock(const VertexBlock<T>& b) const
     {
       continue;
     }
-    for (const PreparedLight& light : lights_)
+    for (const auto& out : outputs_.lights)
     {
       for (int t = 0; t < LightTermCount; ++t)
       {
         const int components = termInfo(LightTerm(t)).components;
-        if (T* out = light.out[t])
+        if (T* array = out[t])
         {
-          std::fill_n(out + components * i, components, T(0));
+          std::fill_n(array + components * i, components, T(0));
         }
       }
     }

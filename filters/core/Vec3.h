@@ -41,4 +41,16 @@ inline glm::dvec3 unitVector(const glm::dvec3& v)
 {
   return glm::normalize(v / largestComponent(v));
 }
+
+/// Two unit vectors completing unit n to a right-handed orthonormal basis, t x b = n (T. Duff
+/// et al., "Building an Orthonormal Basis, Revisited", JCGT 6(1), 2017): no branch on n's
+/// largest component and no loss of precision near any axis.
+inline void orthonormalBasis(const glm::dvec3& n, glm::dvec3& t, glm::dvec3& b)
+{
+  const double sign = std::copysign(1.0, n.z);
+  const double a = -1.0 / (sign + n.z);
+  const double c = n.x * n.y * a;
+  t = { 1.0 + sign * n.x * n.x * a, sign * c, -sign * n.x };
+  b = { c, sign + n.y * n.y * a, -n.y };
+}
 }

@@ -187,8 +187,10 @@ struct ShadeAllPoints
     const auto pointRange = vtk::DataArrayTupleRange<3>(points);
     const auto normalRange = vtk::DataArrayTupleRange<3>(normals);
     const vtkIdType count = pointRange.size();
-    // Blocks of the SMP loop, so progress can be reported between them.
-    const vtkIdType block = std::max<vtkIdType>(count / 10, 100000);
+    // Blocks of the SMP loop, so progress can be reported between them: tenths of a large
+    // mesh, hundredths where area lights or environment maps make every vertex slow.
+    const vtkIdType block = kernel.hasDistributedLights() ? std::max<vtkIdType>(count / 100, 1024)
+                                                          : std::max<vtkIdType>(count / 10, 100000);
     for (vtkIdType first = 0; first < count; first += block)
     {
       const vtkIdType last = std::min(count, first + block);

@@ -1,0 +1,211 @@
+#include "AreaLightEstimator.h"
+
+#include "DiskIrradiance.h"
+#include "MonteCarloEstimate.h"
+#include "PolygonIrradiance.h"
+#include "SampleSequence.h"
+#include "SampleWarps.h"
+#include "SphereIrradiance.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace shadelab
+{
+namespace
+{
+double triangleArea(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c)
+{
+  return 0.5 * vectorLength(glm::cross(b - a, c - a));
+}
+}
+
+AreaLightEstimator::AreaLightEstimator(const AreaLight& light, std::uint64_t lightIndex, const LobeModel& lobe)
+  : light_(light)
+  , radiance_(light.color * light.intensity)
+  , lightIndex_(lightIndex)
+  , lobe_(lobe)
+{
+  if (const auto* polygon = std::get_if<PolygonEmitter>(&light.shape))
+  {
+    const auto& v = polygon->vertices;
+    normal_ = polygonNormal(v);
+    // A convex polygon is the fan of triangles (v0, v_k-1, v_k).
+    glm::dvec3 weightedCentre(0.0);
+    for (std::size_t k = 2; k < v.size(); ++k)
+    {
+      const double area = triangleArea(v[0], v[k - 1], v[k]);
+      area_ += area;
+      weightedCentre += area * (v[0] + v[k - 1] + v[k]) / 3.0;
+      fanAreaFraction_.push_back(area_);
+    }
+    for (double& fraction : fanAreaFraction_)
+    {
+      fraction /= area_;
+    }
+    centre_ = weightedCentre / area_;
+  }
+  else if (const auto* disk = std::get_if<DiskEmitter>(&light.shape))
+  {
+    normal_ = unitVector(disk->normal);
+    orthonormalBasis(normal_, tangent_, bitangent_);
+    centre_ = disk->centre;
+    area_ = samplePi * disk->radius * disk->radius;
+  }
+  else
+  {
+    const auto& sphere = std::get<SphereEmitter>(light.shape);
+    centre_ = sphere.centre;
+    area_ = 4 * samplePi * sphere.radius * sphere.radius;
+  }
+}
+
+bool AreaLightEstimator::sendsLightTo(const glm::dvec3& position) const
+{
+  if (std::holds_alternative<SphereEmitter>(light_.shape))
+  {
+    return true;
+  }
+  const double side = glm::dot(normal_, position - centre_);
+  return light_.twoSided ? side != 0 : side > 0;
+}
+
+double AreaLightEstimator::exactProjectedSolidAngle(const SurfacePoint& point) const
+{
+  if (!sendsLightTo(point.position))
+  {
+    return 0;
+  }
+  if (const auto* polygon = std::get_if<PolygonEmitter>(&light_.shape))
+  {
+    return polygonProjectedSolidAngle(polygon->vertices, point.position, point.normal);
+  }
+  if (const auto* disk = std::get_if<DiskEmitter>(&light_.shape))
+  {
+    return diskProjectedSolidAngle(disk->centre, normal_, disk->radius, point.position, point.normal);
+  }
+  const auto& sphere = std::get<SphereEmitter>(light_.shape);
+  return sphereProjectedSolidAngle(sphere.centre, sphere.radius, point.position, point.normal);
+}
+
+WeightedDirection AreaLightEstimator::sample(const glm::dvec2& u, const SurfacePoint& point) const
+{
+  const glm::dvec3& p = point.position;
+  if (const auto* sphere = std::get_if<SphereEmitter>(&light_.shape))
+  {
+    const glm::dvec3 offset = sphere->centre - p;
+    const double d = vectorLength(offset);
+    if (d <= sphere->radius)
+    {
+      // Inside the emitter every direction sees it: cosine-weighted, which makes E exactly pi L.
+      return cosineWeightedDirection(point.normal, u);
+    }
+    // The cone of half-angle asin(r/d), where every direction hits the sphere;
+    // 1 - cos theta_max = (r/d)^2 / (1 + cos theta_max) keeps its digits for a small, far sphere.
+    const double sinMax2 = (sphere->radius / d) * (sphere->radius / d);
+    return uniformConeDirection(offset / d, sinMax2 / (1 + std::sqrt(1 - sinMax2)), u);
+  }
+
+  glm::dvec3 onEmitter;
+  if (const auto* disk = std::get_if<DiskEmitter>(&light_.shape))
+  {
+    const glm::dvec2 q = disk->radius * concentricDisk(u);
+    onEmitter = disk->centre + q.x * tangent_ + q.y * bitangent_;
+  }
+  else
+  {
+    const auto& v = std::get<PolygonEmitter>(light_.shape).vertices;
+    // u.x picks a fan triangle by area and, stretched back to [0, 1), places the point in it.
+    const std::size_t k = std::min<std::size_t>(
+      std::upper_bound(fanAreaFraction_.begin(), fanAreaFraction_.end(), u.x) - fanAreaFraction_.begin(),
+      fanAreaFraction_.size() - 1);
+    const double low = k == 0 ? 0.0 : fanAreaFraction_[k - 1];
+    const double stretched = std::clamp((u.x - low) / (fanAreaFraction_[k] - low), 0.0, 1.0);
+    onEmitter = pointOnTriangle(v[0], v[k + 1], v[k + 2], { stretched, u.y });
+  }
+  // Area sampling, pdf 1/A, in solid angle d^2 / (A cos_e) (pbrt-v4, section 4.2.3).
+  const glm::dvec3 offset = onEmitter - p;
+  const double d2 = glm::dot(offset, offset);
+  if (!(d2 > 0))
+  {
+    return {};
+  }
+  const glm::dvec3 direction = offset / std::sqrt(d2);
+  const double cosEmitter = -glm::dot(normal_, direction); // > 0: the receiver is in front
+  const double emitted = light_.twoSided ? std::abs(cosEmitter) : std::max(cosEmitter, 0.0);
+  return { direction, area_ * emitted / d2 };
+}
+
+DistributedTerms AreaLightEstimator::monteCarlo(const SurfacePoint& point, bool irradiance) const
+{
+  MonteCarloEstimate e(light_.sampling.stratified), s(light_.sampling.stratified);
+  const SampleSequence sequence(lightIndex_, point.index, light_.sampling);
+  for (int j = 0; j < sequence.count(); ++j)
+  {
+    const WeightedDirection sample = this->sample(sequence.point(j), point);
+    // L f(w) / pdf(w) for f = max(0, n.w) and f = lobe(w).
+    const Rgb weighted = radiance_ * sample.weight;
+    if (irradiance)
+    {
+      e.add(weighted * std::max(0.0, glm::dot(point.normal, sample.direction)));
+    }
+    if (lobe_.wanted())
+    {
+      s.add(sample.weight > 0 ? weighted * lobe_(point.normal, sample.direction, point.toViewer) : Rgb(0.0));
+    }
+  }
+  DistributedTerms terms;
+  if (irradiance)
+  {
+    terms.irradiance = e.mean();
+    terms.irradianceStdError = e.standardError();
+  }
+  if (lobe_.wanted())
+  {
+    terms.specular = s.mean();
+    terms.specularStdError = s.standardError();
+  }
+  return terms;
+}
+
+DistributedTerms AreaLightEstimator::pointApproximation(const SurfacePoint& point) const
+{
+  // A Lambertian emitter of area A seen from direction -s has intensity I = L A cos_e (a
+  // sphere, L pi r^2 from every side); the point light's E = I max(0, n.s) / d^2, evaluated at
+  // the point lights' default minimum distance so that a vertex at the centre stays finite.
+  DistributedTerms terms;
+  const glm::dvec3 offset = centre_ - point.position;
+  const double d = vectorLength(offset);
+  const glm::dvec3 s = d > 0 ? offset / d : point.normal;
+  double projectedArea = area_ / 4; // a sphere: pi r^2
+  if (!std::holds_alternative<SphereEmitter>(light_.shape))
+  {
+    const double cosEmitter = -glm::dot(normal_, s);
+    projectedArea = area_ * (light_.twoSided ? std::abs(cosEmitter) : std::max(cosEmitter, 0.0));
+  }
+  const Rgb intensity = radiance_ * projectedArea * attenuationAt(Attenuation{}, d);
+  terms.irradiance = intensity * std::max(0.0, glm::dot(point.normal, s));
+  if (lobe_.wanted())
+  {
+    terms.specular = intensity * lobe_(point.normal, s, point.toViewer);
+  }
+  return terms;
+}
+
+DistributedTerms AreaLightEstimator::estimate(const SurfacePoint& point) const
+{
+  switch (light_.estimator)
+  {
+    case AreaEstimator::Point:
+      return pointApproximation(point);
+    case AreaEstimator::MonteCarlo:
+      return monteCarlo(point, true);
+    case AreaEstimator::Exact:
+      break;
+  }
+  // Exact E; S has no closed form for a Phong lobe over a polygon, so it is sampled.
+  DistributedTerms terms = lobe_.wanted() ? monteCarlo(point, false) : DistributedTerms{};
+  terms.irradiance = radiance_ * exactProjectedSolidAngle(point);
+  return terms;
+}
+}

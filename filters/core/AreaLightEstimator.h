@@ -1,0 +1,45 @@
+#pragma once
+// Estimators of E and S (DistributedLight.h) for an area light: exact, Monte Carlo over the
+// emitter, or a point light at its centre.
+#include "DistributedLight.h"
+#include "SampleWarps.h"
+
+#include <vector>
+
+namespace shadelab
+{
+class AreaLightEstimator final : public DistributedLightEstimator
+{
+public:
+  AreaLightEstimator(const AreaLight& light, std::uint64_t lightIndex, const LobeModel& lobe);
+
+  DistributedTerms estimate(const SurfacePoint& point) const override;
+
+  /// A direction from point to the emitter, with 1 / pdf in solid angle (weight 0 where the
+  /// emitter sends no light back along it). Warps u in [0, 1)^2 onto the emitter: uniformly over a polygon's or
+  /// disk's area, uniformly over the cone a sphere subtends (every direction hits it), or
+  /// cosine-weighted over the hemisphere from inside a sphere.
+  WeightedDirection sample(const glm::dvec2& u, const SurfacePoint& point) const;
+
+  /// E / L by the exact formulas (PolygonIrradiance.h, DiskIrradiance.h, SphereIrradiance.h).
+  double exactProjectedSolidAngle(const SurfacePoint& point) const;
+
+  /// The emitter's area-weighted centre, where the point approximation puts the light.
+  const glm::dvec3& centre() const { return centre_; }
+
+private:
+  bool sendsLightTo(const glm::dvec3& position) const;
+  DistributedTerms monteCarlo(const SurfacePoint& point, bool irradiance) const;
+  DistributedTerms pointApproximation(const SurfacePoint& point) const;
+
+  AreaLight light_;
+  Rgb radiance_;
+  std::uint64_t lightIndex_;
+  LobeModel lobe_;
+  glm::dvec3 centre_{ 0.0 };
+  glm::dvec3 normal_{ 0.0 }; // polygons and disks
+  glm::dvec3 tangent_{ 0.0 }, bitangent_{ 0.0 }; // disks: the plane's axes
+  double area_ = 0;
+  std::vector<double> fanAreaFraction_; // polygons: cumulative share of each fan triangle
+};
+}

@@ -1,0 +1,159 @@
+#include "EnvironmentLightEstimator.h"
+
+#include "MonteCarloEstimate.h"
+#include "SampleSequence.h"
+#include "SampleWarps.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace shadelab
+{
+namespace
+{
+/// Rotation by angle about +y, anticlockwise seen from above (+y toward the viewer): maps the
+/// map's frame to the world's.
+glm::dmat3 rotationAboutY(double degrees)
+{
+  const double a = degrees * samplePi / 180;
+  const double c = std::cos(a), s = std::sin(a);
+  // glm is column-major: columns are the images of x, y and z.
+  return glm::dmat3(glm::dvec3(c, 0, -s), glm::dvec3(0, 1, 0), glm::dvec3(s, 0, c));
+}
+}
+
+EnvironmentLightEstimator::EnvironmentLightEstimator(const EnvironmentLight& light, std::uint64_t lightIndex, const LobeModel& lobe)
+  : light_(light)
+  , scale_(light.color * light.intensity)
+  , lightIndex_(lightIndex)
+  , lobe_(lobe)
+  , worldToMap_(glm::transpose(rotationAboutY(light.rotationDegrees)))
+{
+  const EnvironmentMap& map = *light.map;
+  switch (light.estimator)
+  {
+    case EnvironmentEstimator::BruteForce:
+    {
+      const EnvironmentMap level =
+        map.width > light.bruteForceWidth ? downsampled(map, light.bruteForceWidth) : map;
+      texels_.reserve(std::size_t(level.width) * level.height);
+      for (int row = 0; row < level.height; ++row)
+      {
+        const double solidAngle = texelSolidAngle(row, level.width, level.height);
+        for (int column = 0; column < level.width; ++column)
+        {
+          texels_.push_back({ texelCentreDirection(level, column, row), scale_ * level.texel(column, row) * solidAngle });
+        }
+      }
+      break;
+    }
+    case EnvironmentEstimator::SphericalHarmonics:
+      sh_ = projectRadiance(map);
+      if (lobe.wanted())
+      {
+        sampler_.emplace(map);
+      }
+      break;
+    case EnvironmentEstimator::MonteCarlo:
+      if (light.directions == EnvironmentDirections::Luminance)
+      {
+        sampler_.emplace(map);
+      }
+      break;
+  }
+}
+
+Rgb EnvironmentLightEstimator::radianceAt(const glm::dvec3& mapDirection) const
+{
+  const EnvironmentMap& map = *light_.map;
+  const glm::dvec2 uv = uvOfDirection(mapDirection);
+  const int column = std::min(int(uv.x * map.width), map.width - 1);
+  const int row = std::min(int(uv.y * map.height), map.height - 1);
+  return map.texel(column, row);
+}
+
+DistributedTerms EnvironmentLightEstimator::bruteForce(const glm::dvec3& n, const glm::dvec3& v) const
+{
+  // Every texel a distant light of intensity L Omega (REFERENCES.md section 3).
+  DistributedTerms terms;
+  for (const Texel& texel : texels_)
+  {
+    const double cosIncidence = glm::dot(n, texel.direction);
+    if (cosIncidence > 0)
+    {
+      terms.irradiance += texel.radiantIntensity * cosIncidence;
+      if (lobe_.wanted())
+      {
+        terms.specular += texel.radiantIntensity * lobe_(n, texel.direction, v);
+      }
+    }
+  }
+  return terms;
+}
+
+DistributedTerms EnvironmentLightEstimator::monteCarlo(const glm::dvec3& n, const glm::dvec3& v, std::uint64_t vertex,
+  bool irradiance, EnvironmentDirections directions) const
+{
+  MonteCarloEstimate e(light_.sampling.stratified), s(light_.sampling.stratified);
+  const SampleSequence sequence(lightIndex_, vertex, light_.sampling);
+  for (int j = 0; j < sequence.count(); ++j)
+  {
+    const glm::dvec2 u = sequence.point(j);
+    glm::dvec3 direction;
+    Rgb weighted; // L(w) / pdf(w)
+    if (directions == EnvironmentDirections::Luminance)
+    {
+      const EnvironmentSample sample = sampler_->sample(u.x, u.y);
+      direction = sample.direction;
+      weighted = sample.pdf > 0 ? scale_ * sample.radiance / sample.pdf : Rgb(0.0);
+    }
+    else
+    {
+      const WeightedDirection sample = cosineWeightedDirection(n, u);
+      direction = sample.direction;
+      weighted = scale_ * radianceAt(direction) * sample.weight;
+    }
+    if (irradiance)
+    {
+      e.add(weighted * std::max(0.0, glm::dot(n, direction)));
+    }
+    if (lobe_.wanted())
+    {
+      s.add(weighted * lobe_(n, direction, v));
+    }
+  }
+  DistributedTerms terms;
+  if (irradiance)
+  {
+    terms.irradiance = e.mean();
+    terms.irradianceStdError = e.standardError();
+  }
+  if (lobe_.wanted())
+  {
+    terms.specular = s.mean();
+    terms.specularStdError = s.standardError();
+  }
+  return terms;
+}
+
+DistributedTerms EnvironmentLightEstimator::estimate(const SurfacePoint& point) const
+{
+  // The map is fixed and the scene turns: normal and viewer go into the map's frame.
+  const glm::dvec3 n = worldToMap_ * point.normal;
+  const glm::dvec3 v = worldToMap_ * point.toViewer;
+  switch (light_.estimator)
+  {
+    case EnvironmentEstimator::BruteForce:
+      return bruteForce(n, v);
+    case EnvironmentEstimator::MonteCarlo:
+      return monteCarlo(n, v, point.index, true, light_.directions);
+    case EnvironmentEstimator::SphericalHarmonics:
+      break;
+  }
+  // Nine coefficients cannot hold a lobe sharper than the cosine: S is sampled by luminance.
+  DistributedTerms terms =
+    lobe_.wanted() ? monteCarlo(n, v, point.index, false, EnvironmentDirections::Luminance) : DistributedTerms{};
+  terms.irradiance = scale_ * irradianceFromSh9(sh_, n);
+  return terms;
+}
+}

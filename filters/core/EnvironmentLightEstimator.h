@@ -1,0 +1,46 @@
+#pragma once
+// Estimators of E and S (DistributedLight.h) for an environment map: the brute-force sum
+// over texels, Monte Carlo, or nine spherical-harmonic coefficients.
+#include "DistributedLight.h"
+#include "EnvironmentMap.h"
+#include "EnvironmentSampler.h"
+#include "SphericalHarmonics.h"
+
+#include <glm/mat3x3.hpp>
+
+#include <optional>
+#include <vector>
+
+namespace shadelab
+{
+class EnvironmentLightEstimator final : public DistributedLightEstimator
+{
+public:
+  EnvironmentLightEstimator(const EnvironmentLight& light, std::uint64_t lightIndex, const LobeModel& lobe);
+
+  DistributedTerms estimate(const SurfacePoint& point) const override;
+
+private:
+  /// A texel of the brute-force level: its centre's direction (map frame) and radiance x
+  /// solid angle, scaled by the light's colour and intensity.
+  struct Texel
+  {
+    glm::dvec3 direction;
+    Rgb radiantIntensity;
+  };
+
+  DistributedTerms bruteForce(const glm::dvec3& n, const glm::dvec3& v) const;
+  DistributedTerms monteCarlo(const glm::dvec3& n, const glm::dvec3& v, std::uint64_t vertex, bool irradiance,
+    EnvironmentDirections directions) const;
+  Rgb radianceAt(const glm::dvec3& mapDirection) const;
+
+  EnvironmentLight light_;
+  Rgb scale_;
+  std::uint64_t lightIndex_;
+  LobeModel lobe_;
+  glm::dmat3 worldToMap_{ 1.0 };
+  std::vector<Texel> texels_;              // BruteForce
+  std::optional<EnvironmentSampler> sampler_; // sampling by luminance
+  ShCoefficients9 sh_{};                   // SphericalHarmonics
+};
+}

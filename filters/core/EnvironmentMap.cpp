@@ -1,0 +1,185 @@
+#include "EnvironmentMap.h"
+
+#include <OpenImageIO/imageio.h>
+#include <glm/gtc/constants.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+#include <stdexcept>
+
+namespace shadelab
+{
+namespace
+{
+constexpr double pi = glm::pi<double>();
+
+bool isRadiance(double value)
+{
+  return std::isfinite(value) && value >= 0.0;
+}
+
+std::string shapeText(int width, int height)
+{
+  return std::to_string(width) + "x" + std::to_string(height);
+}
+}
+
+void requireValidShape(const EnvironmentMap& map, const char* user)
+{
+  if (map.width <= 0 || map.height <= 0 ||
+    map.radiance.size() != static_cast<std::size_t>(map.width) * map.height)
+  {
+    throw std::invalid_argument(std::string(user) + ": the map is " +
+      shapeText(map.width, map.height) + " but holds " + std::to_string(map.radiance.size()) +
+      " texels; it needs at least one texel and width x height of them");
+  }
+}
+
+glm::dvec3 directionAt(double u, double v)
+{
+  const double theta = pi * v;
+  const double phi = 2.0 * pi * (u - 0.5);
+  const double sinTheta = std::sin(theta);
+  return { sinTheta * std::sin(phi), std::cos(theta), -sinTheta * std::cos(phi) };
+}
+
+glm::dvec2 uvOfDirection(const glm::dvec3& unitDirection)
+{
+  const glm::dvec3& d = unitDirection;
+  // atan2 of the pair keeps full precision near the poles, where acos(y) loses half the
+  // digits (Kahan, as in Reflectance.h).
+  const double theta = std::atan2(std::sqrt(d.x * d.x + d.z * d.z), d.y);
+  const double phi = std::atan2(d.x, -d.z);
+  const double u = phi / (2.0 * pi) + 0.5;
+  // phi = pi (and phi just below it, by rounding) is u = 1, the same direction as u = 0.
+  return { u < 1.0 ? u : 0.0, theta / pi };
+}
+
+glm::dvec3 texelCentreDirection(const EnvironmentMap& map, int column, int row)
+{
+  return directionAt((column + 0.5) / map.width, (row + 0.5) / map.height);
+}
+
+// Solid angle is the integral of sin(theta) dtheta dphi. Over a texel, phi spans 2 pi / W and
+// theta spans [a, b] = pi [row, row + 1] / H, so it is (2 pi / W)(cos a - cos b), written as
+// (2 pi / W) 2 sin((a + b) / 2) sin((b - a) / 2) to avoid the cancellation of cos a - cos b
+// near the poles. For small texels this is REFERENCES.md section 3's (2 pi / W)(pi / H) sin(theta).
+double texelSolidAngle(int row, int width, int height)
+{
+  const double centreTheta = pi * (row + 0.5) / height;
+  const double halfSpan = 0.5 * pi / height;
+  return (2.0 * pi / width) * 2.0 * std::sin(centreTheta) * std::sin(halfSpan);
+}
+
+// ITU-R BT.709-6's luminance equation Y = 0.2126 R + 0.7152 G + 0.0722 B. On linear RGB it is
+// the Y row of the RGB-to-XYZ matrix of its primaries and D65 white (shared by sRGB).
+double luminance(const Rgb& rgb)
+{
+  return 0.2126 * rgb.r + 0.7152 * rgb.g + 0.0722 * rgb.b;
+}
+
+EnvironmentMap readEnvironmentMap(const std::string& path)
+{
+  std::error_code ignored;
+  if (!std::filesystem::exists(path, ignored))
+  {
+    throw std::runtime_error(path + ": no such file");
+  }
+  // Clears any error an earlier failure left, so that the message below is this file's.
+  OIIO::geterror();
+  const auto input = OIIO::ImageInput::open(path);
+  if (!input)
+  {
+    throw std::runtime_error(path + ": cannot read as an image: " + OIIO::geterror());
+  }
+  const OIIO::ImageSpec& spec = input->spec();
+  if (spec.width <= 0 || spec.height <= 0)
+  {
+    throw std::runtime_error(
+      path + ": the image is empty (" + shapeText(spec.width, spec.height) + ")");
+  }
+  if (spec.nchannels != 1 && spec.nchannels < 3)
+  {
+    throw std::runtime_error(path + ": has " + std::to_string(spec.nchannels) +
+      " channels; expected 1 (grey) or 3 or more (RGB)");
+  }
+  if (spec.width != 2 * spec.height)
+  {
+    throw std::runtime_error(
+      path + ": an equirectangular map must be twice as wide as it is high; this one is " +
+      shapeText(spec.width, spec.height));
+  }
+
+  const int channels = spec.nchannels == 1 ? 1 : 3;
+  const std::size_t texels = static_cast<std::size_t>(spec.width) * spec.height;
+  std::vector<float> pixels(texels * channels);
+  if (!input->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, pixels.data()))
+  {
+    throw std::runtime_error(path + ": cannot read as an image: " + input->geterror());
+  }
+
+  EnvironmentMap map;
+  map.width = spec.width;
+  map.height = spec.height;
+  map.radiance.resize(texels);
+  for (std::size_t i = 0; i < texels; ++i)
+  {
+    const float* p = &pixels[i * channels];
+    const Rgb value = channels == 1 ? Rgb(p[0]) : Rgb(p[0], p[1], p[2]);
+    if (!isRadiance(value.r) || !isRadiance(value.g) || !isRadiance(value.b))
+    {
+      std::ostringstream message;
+      message << path << ": texel (column " << i % map.width << ", row " << i / map.width
+              << ") is not a finite non-negative radiance (" << value.r << ", " << value.g
+              << ", " << value.b << ")";
+      throw std::runtime_error(message.str());
+    }
+    map.radiance[i] = value;
+  }
+  return map;
+}
+
+EnvironmentMap downsampled(const EnvironmentMap& map, int width)
+{
+  requireValidShape(map, "downsampled");
+  if (map.width != 2 * map.height)
+  {
+    throw std::invalid_argument("downsampled: the map is " + shapeText(map.width, map.height) +
+      "; only a 2:1 map can be downsampled");
+  }
+  if (width < 2 || width % 2 != 0 || map.width % width != 0)
+  {
+    throw std::invalid_argument("downsampled: width " + std::to_string(width) +
+      " must be an even divisor of the map's width " + std::to_string(map.width) +
+      " and at least 2");
+  }
+  // Each coarse texel covers factor x factor fine ones, as both maps are 2:1.
+  const int factor = map.width / width;
+  EnvironmentMap coarse;
+  coarse.width = width;
+  coarse.height = width / 2;
+  coarse.radiance.assign(static_cast<std::size_t>(coarse.width) * coarse.height, Rgb(0.0));
+  for (int coarseRow = 0; coarseRow < coarse.height; ++coarseRow)
+  {
+    Rgb* sums = &coarse.radiance[static_cast<std::size_t>(coarseRow) * coarse.width];
+    double solidAngleSum = 0.0; // of the fine texels under one coarse texel
+    for (int row = coarseRow * factor; row < (coarseRow + 1) * factor; ++row)
+    {
+      const double solidAngle = texelSolidAngle(row, map.width, map.height);
+      solidAngleSum += factor * solidAngle;
+      for (int column = 0; column < map.width; ++column)
+      {
+        sums[column / factor] += map.texel(column, row) * solidAngle;
+      }
+    }
+    // Dividing by the weights' own sum, equal to the coarse texel's solid angle to rounding,
+    // makes each texel a true weighted mean: a constant map stays constant.
+    for (int column = 0; column < coarse.width; ++column)
+    {
+      sums[column] /= solidAngleSum;
+    }
+  }
+  return coarse;
+}
+}

@@ -1,0 +1,132 @@
+#include "EnvironmentSampler.h"
+
+#include <glm/gtc/constants.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace shadelab
+{
+namespace
+{
+constexpr double pi = glm::pi<double>();
+constexpr double largestBelowOne = 0x1.fffffffffffffp-1;
+
+/// Writes the cumulative distribution of weights[0, count) to cdf[0, count]: from 0 to
+/// exactly 1 (sum / sum), or evenly spaced if every weight is 0. Returns the weights' sum.
+double buildCdf(const double* weights, int count, double* cdf)
+{
+  cdf[0] = 0.0;
+  for (int i = 0; i < count; ++i)
+  {
+    cdf[i + 1] = cdf[i] + weights[i];
+  }
+  const double sum = cdf[count];
+  for (int i = 1; i <= count; ++i)
+  {
+    cdf[i] = sum > 0.0 ? cdf[i] / sum : static_cast<double>(i) / count;
+  }
+  return sum;
+}
+
+struct BinSample
+{
+  int bin;
+  double offset; // where in the bin, in [0, 1)
+};
+
+/// Inverts a cdf of `count` bins at u: the bin with cdf[bin] <= u < cdf[bin + 1], which is
+/// never one of zero width, since cdf[0] = 0 <= u < 1 = cdf[count].
+BinSample sampleCdf(const double* cdf, int count, double u)
+{
+  // Outside [0, 1) (or NaN) no bin would hold u.
+  u = u > 0.0 ? std::min(u, largestBelowOne) : 0.0;
+  const int bin = static_cast<int>(std::upper_bound(cdf, cdf + count + 1, u) - cdf) - 1;
+  const double offset = (u - cdf[bin]) / (cdf[bin + 1] - cdf[bin]);
+  return { bin, std::min(offset, largestBelowOne) };
+}
+
+bool isRadiance(const Rgb& rgb)
+{
+  return isFinite(rgb) && rgb.r >= 0.0 && rgb.g >= 0.0 && rgb.b >= 0.0;
+}
+}
+
+EnvironmentSampler::EnvironmentSampler(const EnvironmentMap& map)
+  : map_(map)
+{
+  requireValidShape(map, "EnvironmentSampler");
+  const int width = map.width;
+  const int height = map.height;
+  rowCentreSinTheta_.resize(height);
+  columnCdfs_.resize(static_cast<std::size_t>(height) * (width + 1));
+  rowCdf_.resize(height + 1);
+  std::vector<double> rowWeights(height);
+  std::vector<double> texelWeights(width);
+  for (int row = 0; row < height; ++row)
+  {
+    rowCentreSinTheta_[row] = std::sin(pi * (row + 0.5) / height);
+    for (int column = 0; column < width; ++column)
+    {
+      // Non-negative channels make the luminance 0 only where the radiance is 0, so every
+      // texel with radiance can be sampled and the estimates are unbiased.
+      if (!isRadiance(map.texel(column, row)))
+      {
+        throw std::invalid_argument("EnvironmentSampler: texel (column " +
+          std::to_string(column) + ", row " + std::to_string(row) +
+          ") is not a finite non-negative radiance");
+      }
+      texelWeights[column] = luminance(map.texel(column, row)) * rowCentreSinTheta_[row];
+    }
+    rowWeights[row] = buildCdf(
+      texelWeights.data(), width, &columnCdfs_[static_cast<std::size_t>(row) * (width + 1)]);
+  }
+  const double weightSum = buildCdf(rowWeights.data(), height, rowCdf_.data());
+  // The density over (u, v) of a texel is its weight / weightSum divided by its area in
+  // (u, v), 1 / (width height).
+  uvDensityPerWeight_ = weightSum > 0.0 ? width * static_cast<double>(height) / weightSum : 0.0;
+}
+
+EnvironmentSample EnvironmentSampler::sample(double u1, double u2) const
+{
+  if (uvDensityPerWeight_ == 0.0)
+  {
+    // Black map: cos(theta) = 1 - 2 u2 uniform in [-1, 1] is uniform over the sphere
+    // (Archimedes' hat-box theorem), and every texel is 0.
+    const double v = std::acos(1.0 - 2.0 * u2) / pi;
+    return { directionAt(u1, v), 1.0 / (4.0 * pi), Rgb(0.0) };
+  }
+  const BinSample row = sampleCdf(rowCdf_.data(), map_.height, u2);
+  const BinSample column = sampleCdf(
+    &columnCdfs_[static_cast<std::size_t>(row.bin) * (map_.width + 1)], map_.width, u1);
+  const glm::dvec3 direction = directionAt(
+    (column.bin + column.offset) / map_.width, (row.bin + row.offset) / map_.height);
+  return { direction, pdfAt(column.bin, row.bin, direction), map_.texel(column.bin, row.bin) };
+}
+
+double EnvironmentSampler::pdf(const glm::dvec3& unitDirection) const
+{
+  if (uvDensityPerWeight_ == 0.0)
+  {
+    return 1.0 / (4.0 * pi);
+  }
+  const glm::dvec2 uv = uvOfDirection(unitDirection);
+  const int column = std::min(static_cast<int>(uv.x * map_.width), map_.width - 1);
+  const int row = std::min(static_cast<int>(uv.y * map_.height), map_.height - 1);
+  return pdfAt(column, row, unitDirection);
+}
+
+double EnvironmentSampler::pdfAt(int column, int row, const glm::dvec3& direction) const
+{
+  const double sinTheta = std::sqrt(direction.x * direction.x + direction.z * direction.z);
+  if (sinTheta == 0.0)
+  {
+    return 0.0;
+  }
+  const double uvDensity =
+    luminance(map_.texel(column, row)) * rowCentreSinTheta_[row] * uvDensityPerWeight_;
+  return uvDensity / (2.0 * pi * pi * sinTheta);
+}
+}

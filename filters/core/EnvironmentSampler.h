@@ -1,0 +1,49 @@
+#pragma once
+// Importance sampling of an environment map by luminance, for Monte Carlo estimates of
+// integrals over the sphere such as the irradiance sum f / pdf. The density over the image
+// (u, v) is piecewise constant, proportional to luminance x sin(theta) of each texel's centre
+// (the sin(theta) because a texel's solid angle shrinks towards the poles), and is sampled
+// as a 2D piecewise-constant distribution: a row from the marginal distribution of rows,
+// then a column from that row's conditional distribution (Pharr, Jakob and Humphreys,
+// "Physically Based Rendering", 3rd ed.: piecewise-constant 2D distributions in section 13.6,
+// infinite area lights in section 14.2). The density per solid angle is the density over
+// (u, v) divided by 2 pi^2 sin(theta), as dw = sin(theta) dtheta dphi = 2 pi^2 sin(theta) du dv.
+#include "EnvironmentMap.h"
+
+#include <vector>
+
+namespace shadelab
+{
+struct EnvironmentSample
+{
+  glm::dvec3 direction;
+  double pdf; // per unit solid angle
+  Rgb radiance; // of the texel hit
+};
+
+class EnvironmentSampler
+{
+public:
+  /// Throws std::invalid_argument for a map of the wrong shape or with a negative or
+  /// non-finite luminance. A black map is sampled uniformly over the sphere.
+  explicit EnvironmentSampler(const EnvironmentMap& map);
+
+  /// u1 chooses the column and u2 the row, both in [0, 1). Exactly at a pole (u2 = 0 with a
+  /// lit top row) the density per solid angle is infinite and the pdf returned is 0: a caller
+  /// counts the sample as 0, the limit of f / pdf there, as pbrt does.
+  EnvironmentSample sample(double u1, double u2) const;
+
+  /// The density per unit solid angle that sample() draws unitDirection with: positive
+  /// wherever the radiance is, but 0 exactly at a pole.
+  double pdf(const glm::dvec3& unitDirection) const;
+
+private:
+  double pdfAt(int column, int row, const glm::dvec3& direction) const;
+
+  EnvironmentMap map_;
+  std::vector<double> rowCdf_; // height + 1 values from 0 to 1
+  std::vector<double> columnCdfs_; // height rows of width + 1 values from 0 to 1
+  std::vector<double> rowCentreSinTheta_;
+  double uvDensityPerWeight_ = 0.0; // width x height / sum of texel weights; 0 for black
+};
+}

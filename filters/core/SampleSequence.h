@@ -1,0 +1,74 @@
+#pragma once
+// Points in the unit square for the Monte Carlo estimators, which warp them onto an emitter or
+// onto directions. Each point is a hash of (light, vertex, sample), not a draw from a
+// generator's running state: a vertex's estimate is the same bits whatever thread computes it,
+// in whatever order, and with any number of threads.
+#include "Lights.h"
+
+#include <glm/vec2.hpp>
+
+#include <cmath>
+#include <cstdint>
+
+namespace shadelab
+{
+/// SplitMix64's finaliser (G. Steele, D. Lea, C. Flood, "Fast Splittable Pseudorandom Number
+/// Generators", OOPSLA 2014): a bijection of 64-bit words whose every output bit depends on
+/// every input bit. Chained over the three indices it serves as a counter-based generator.
+/// Eight lines of code, where <random>'s engines keep a running state that cannot be indexed.
+inline std::uint64_t mix64(std::uint64_t z)
+{
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+  return z ^ (z >> 31);
+}
+
+/// A double in [0, 1) from the top 53 bits of a word.
+inline double unitInterval(std::uint64_t bits)
+{
+  return static_cast<double>(bits >> 11) * 0x1.0p-53;
+}
+
+/// The sample points of one light at one vertex. Stratified: the square is cut into a grid of
+/// rows x columns = samples cells (columns the largest divisor of samples not above its square
+/// root, so every count has an exact grid) and sample j falls at a random place in cell j,
+/// cells taken row by row. Independent: every point is uniform over the whole square.
+class SampleSequence
+{
+public:
+  SampleSequence(std::uint64_t light, std::uint64_t vertex, const Sampling& sampling)
+    : key_(mix64(mix64(light + 0x9e3779b97f4a7c15ull) ^ vertex))
+    , sampling_(sampling)
+  {
+    columns_ = static_cast<int>(std::sqrt(static_cast<double>(sampling.samples)));
+    while (columns_ > 1 && sampling.samples % columns_ != 0)
+    {
+      --columns_;
+    }
+    columns_ = std::max(columns_, 1);
+  }
+
+  int count() const { return sampling_.samples; }
+
+  glm::dvec2 point(int j) const
+  {
+    const std::uint64_t bits = mix64(key_ ^ mix64(static_cast<std::uint64_t>(j) + 1));
+    const glm::dvec2 uniform(unitInterval(bits), unitInterval(mix64(bits)));
+    if (!sampling_.stratified)
+    {
+      return uniform;
+    }
+    const int rows = sampling_.samples / columns_;
+    const int row = j / columns_;
+    const int column = j % columns_;
+    // min: (cell + u) / cells can round up to exactly 1 for u just below 1.
+    return { std::min((column + uniform.x) / columns_, 1 - 0x1.0p-53),
+      std::min((row + uniform.y) / rows, 1 - 0x1.0p-53) };
+  }
+
+private:
+  std::uint64_t key_;
+  Sampling sampling_;
+  int columns_ = 1;
+};
+}

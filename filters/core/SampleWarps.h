@@ -1,0 +1,69 @@
+#pragma once
+// Warps of the unit square onto the shapes the Monte Carlo estimators sample, each with its
+// source. They keep neighbouring strata of the square neighbours on the shape, so that
+// stratification survives the warp.
+#include "Vec3.h"
+
+#include <glm/vec2.hpp>
+
+#include <cmath>
+
+namespace shadelab
+{
+constexpr double samplePi = 3.14159265358979323846;
+
+/// Shirley and Chiu's concentric map of the square onto the unit disk ("A Low Distortion Map
+/// Between Disk and Square", JGT 2(3), 1997): area-preserving.
+inline glm::dvec2 concentricDisk(const glm::dvec2& u)
+{
+  const glm::dvec2 s = 2.0 * u - 1.0;
+  if (s.x == 0 && s.y == 0)
+  {
+    return { 0, 0 };
+  }
+  const bool xMajor = std::abs(s.x) > std::abs(s.y);
+  const double r = xMajor ? s.x : s.y;
+  const double theta = xMajor ? (samplePi / 4) * (s.y / s.x) : (samplePi / 2) - (samplePi / 4) * (s.x / s.y);
+  return { r * std::cos(theta), r * std::sin(theta) };
+}
+
+/// A direction and 1 / its pdf in solid angle: the weight of a Monte Carlo sample.
+struct WeightedDirection
+{
+  glm::dvec3 direction{ 0.0 };
+  double weight = 0;
+};
+
+/// Cosine-weighted about unit n, pdf cos / pi (Malley's method: the concentric disk lifted to
+/// the hemisphere). Estimates E from a constant radiance L exactly: every sample is pi L.
+inline WeightedDirection cosineWeightedDirection(const glm::dvec3& n, const glm::dvec2& u)
+{
+  glm::dvec3 t, b;
+  orthonormalBasis(n, t, b);
+  const glm::dvec2 disk = concentricDisk(u);
+  const double cosTheta = std::sqrt(std::max(0.0, 1 - glm::dot(disk, disk)));
+  return { disk.x * t + disk.y * b + cosTheta * n, cosTheta > 0 ? samplePi / cosTheta : 0.0 };
+}
+
+/// Uniform over the cone about unit axis whose half-angle has 1 - cos = oneMinusCosMax (pbrt-v4
+/// SampleUniformCone), pdf 1 / (2 pi (1 - cos theta_max)). oneMinusCosMax is passed rather than
+/// the cosine so that a small cone keeps its digits.
+inline WeightedDirection uniformConeDirection(const glm::dvec3& axis, double oneMinusCosMax, const glm::dvec2& u)
+{
+  glm::dvec3 t, b;
+  orthonormalBasis(axis, t, b);
+  const double cosTheta = 1 - u.x * oneMinusCosMax;
+  const double sinTheta = std::sqrt(std::max(0.0, 1 - cosTheta * cosTheta));
+  const double phi = 2 * samplePi * u.y;
+  return { sinTheta * std::cos(phi) * t + sinTheta * std::sin(phi) * b + cosTheta * axis,
+    2 * samplePi * oneMinusCosMax };
+}
+
+/// A uniform point on triangle (a, b, c) (the square-root warp, G. Turk, "Generating Random
+/// Points in Triangles", Graphics Gems, 1990).
+inline glm::dvec3 pointOnTriangle(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, const glm::dvec2& u)
+{
+  const double root = std::sqrt(u.x);
+  return (1 - root) * a + root * (1 - u.y) * b + root * u.y * c;
+}
+}

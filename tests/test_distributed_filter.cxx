@@ -1,0 +1,195 @@
+// Area lights and environment maps through vtkLocalReflectanceFilter: the arrays they add,
+// their agreement with the local lights where the two must agree, threads, and errors.
+#include "ArrayComparison.h"
+#include "EnvironmentMap.h"
+#include "TestMeshes.h"
+#include "VtkErrorCapture.h"
+#include "vtkLocalReflectanceFilter.h"
+
+#include "vtkSMPTools.h"
+
+#include <gtest/gtest.h>
+
+#include <memory>
+
+namespace
+{
+using namespace shadelab;
+
+Scene shinyScene()
+{
+  Scene scene;
+  scene.viewer.viewDirection = glm::normalize(glm::dvec3(-0.2, -0.3, -1));
+  scene.material.kd = { 0.8, 0.5, 0.3 };
+  scene.material.ks = { 0.4, 0.4, 0.4 };
+  scene.material.shininess = 30;
+  return scene;
+}
+
+vtkSmartPointer<vtkPolyData> shade(vtkPolyData* mesh, const Scene& scene, const std::vector<std::string>& arrays,
+  int precision = vtkAlgorithm::DOUBLE_PRECISION)
+{
+  vtkNew<vtkLocalReflectanceFilter> filter;
+  filter->SetInputData(mesh);
+  filter->SetScene(scene);
+  filter->SetArraySelection(arrays);
+  filter->SetOutputPrecision(precision);
+  filter->Update();
+  auto output = vtkSmartPointer<vtkPolyData>::New();
+  output->ShallowCopy(filter->GetOutput());
+  return output;
+}
+
+/// A 32x16 map, black but for one texel.
+std::shared_ptr<const EnvironmentMap> singleTexelMap(int column, int row, const Rgb& radiance)
+{
+  auto map = std::make_shared<EnvironmentMap>();
+  map->width = 32;
+  map->height = 16;
+  map->radiance.assign(32 * 16, Rgb(0.0));
+  map->radiance[std::size_t(row) * 32 + column] = radiance;
+  return map;
+}
+
+double largestDifference(vtkDataArray* a, vtkDataArray* b)
+{
+  double largest = 0;
+  for (vtkIdType v = 0; v < a->GetNumberOfValues(); ++v)
+  {
+    largest = std::max(largest, std::abs(a->GetVariantValue(v).ToDouble() - b->GetVariantValue(v).ToDouble()));
+  }
+  return largest;
+}
+}
+
+// REFERENCES.md section 3: every texel of a map is a distant light of intensity L Omega from
+// the texel's direction; the whole model (diffuse, specular, totals) must agree.
+TEST(DistributedLightsFilter, SingleTexelMapIsTheDistantLight)
+{
+  vtkSmartPointer<vtkPolyData> sphere = shadelab::testing::exactSphere(40);
+  const int column = 20, row = 5;
+  const Rgb radiance(300, 200, 100);
+  EnvironmentLight environment;
+  environment.map = singleTexelMap(column, row, radiance);
+  environment.estimator = EnvironmentEstimator::BruteForce;
+  environment.bruteForceWidth = 32;
+  Scene mapped = shinyScene();
+  mapped.lights = { { "sky", environment } };
+
+  Scene distant = shinyScene();
+  const glm::dvec3 towardTexel = texelCentreDirection(*environment.map, column, row);
+  distant.lights = { { "sky", DistantLight{ -towardTexel, radiance * texelSolidAngle(row, 32, 16), 1.0, false } } };
+
+  vtkSmartPointer<vtkPolyData> a = shade(sphere, mapped, { "totals" });
+  vtkSmartPointer<vtkPolyData> b = shade(sphere, distant, { "totals" });
+  for (const char* name : { "diffuse", "specular", "total" })
+  {
+    vtkDataArray* fromMap = a->GetPointData()->GetArray(name);
+    vtkDataArray* fromLight = b->GetPointData()->GetArray(name);
+    EXPECT_LE(largestDifference(fromMap, fromLight), 1e-12 * fromLight->GetRange(-1)[1]) << name;
+    EXPECT_GT(fromLight->GetRange(-1)[1], 0.1) << name; // the light does reach the sphere
+  }
+}
+
+TEST(DistributedLightsFilter, ArraysFollowTheEstimators)
+{
+  vtkSmartPointer<vtkPolyData> sphere = shadelab::testing::exactSphere(20);
+  Scene scene = shinyScene();
+  AreaLight panel;
+  panel.shape = PolygonEmitter{ { { -1, 3, -1 }, { 1, 3, -1 }, { 1, 3, 1 }, { -1, 3, 1 } } };
+  AreaLight bulb;
+  bulb.shape = SphereEmitter{ { 2, 2, 2 }, 0.3 };
+  bulb.estimator = AreaEstimator::MonteCarlo;
+  AreaLight far;
+  far.shape = DiskEmitter{ { 0, -9, 0 }, { 0, 1, 0 }, 0.5 };
+  far.estimator = AreaEstimator::Point;
+  scene.lights = { { "panel", panel }, { "bulb", bulb }, { "far", far } };
+  vtkSmartPointer<vtkPolyData> output = shade(sphere, scene, { "all" });
+  vtkPointData* arrays = output->GetPointData();
+
+  // Exact E has no error; its Monte Carlo specular has. The point approximation has neither.
+  EXPECT_TRUE(arrays->HasArray("panel_irradiance"));
+  EXPECT_FALSE(arrays->HasArray("panel_irradiance_std_error"));
+  EXPECT_TRUE(arrays->HasArray("panel_specular_std_error"));
+  EXPECT_TRUE(arrays->HasArray("bulb_irradiance_std_error"));
+  EXPECT_TRUE(arrays->HasArray("bulb_specular_std_error"));
+  EXPECT_FALSE(arrays->HasArray("far_irradiance_std_error"));
+  EXPECT_FALSE(arrays->HasArray("far_specular_std_error"));
+  EXPECT_FALSE(arrays->HasArray("panel_cos_incidence")); // a local light's term
+
+  // diffuse = kd E, and the totals sum the lights.
+  vtkDataArray* total = arrays->GetArray("diffuse");
+  double largest = 0;
+  for (vtkIdType i = 0; i < output->GetNumberOfPoints(); ++i)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      double sum = 0;
+      for (const char* light : { "panel", "bulb", "far" })
+      {
+        const double e = arrays->GetArray((std::string(light) + "_irradiance").c_str())->GetComponent(i, c);
+        const double diffuse = arrays->GetArray((std::string(light) + "_diffuse").c_str())->GetComponent(i, c);
+        EXPECT_DOUBLE_EQ(diffuse, scene.material.kd[c] * e);
+        sum += diffuse;
+      }
+      EXPECT_NEAR(total->GetComponent(i, c), sum, 1e-12);
+      largest = std::max(largest, sum);
+    }
+  }
+  EXPECT_GT(largest, 0.01);
+}
+
+TEST(DistributedLightsFilter, OneAndTwoThreadsGiveTheSameBits)
+{
+  vtkSmartPointer<vtkPolyData> sphere = shadelab::testing::exactSphere(60);
+  Scene scene = shinyScene();
+  AreaLight disk;
+  disk.shape = DiskEmitter{ { 0, 2, 1 }, { 0, -1, -0.5 }, 0.7 };
+  disk.estimator = AreaEstimator::MonteCarlo;
+  EnvironmentLight environment;
+  auto map = std::make_shared<EnvironmentMap>();
+  map->width = 16;
+  map->height = 8;
+  for (int i = 0; i < 16 * 8; ++i)
+  {
+    map->radiance.push_back(Rgb(1 + i % 7, 1 + i % 5, 1 + i % 3));
+  }
+  environment.map = map;
+  environment.estimator = EnvironmentEstimator::MonteCarlo;
+  scene.lights = { { "disk", disk }, { "sky", environment } };
+  vtkSmartPointer<vtkPolyData> one, two;
+  vtkSMPTools::LocalScope(vtkSMPTools::Config{ 1 }, [&] { one = shade(sphere, scene, { "all" }, vtkAlgorithm::SINGLE_PRECISION); });
+  vtkSMPTools::LocalScope(vtkSMPTools::Config{ 2 }, [&] { two = shade(sphere, scene, { "all" }, vtkAlgorithm::SINGLE_PRECISION); });
+  shadelab::testing::expectSamePointArrays(one, two);
+}
+
+TEST(DistributedLightsFilter, RefusedWhereTheyCannotApply)
+{
+  vtkSmartPointer<vtkPolyData> sphere = shadelab::testing::exactSphere(10);
+  AreaLight panel;
+  panel.shape = SphereEmitter{ { 0, 3, 0 }, 1 };
+  auto errorOf = [&](const Scene& scene, double tolerance)
+  {
+    vtkNew<vtkLocalReflectanceFilter> filter;
+    vtkNew<app::VtkErrorCapture> errors;
+    errors->watch(filter);
+    filter->SetInputData(sphere);
+    filter->SetScene(scene);
+    filter->SetTolerance(tolerance);
+    filter->Update();
+    return errors->message();
+  };
+  Scene vtkModel;
+  vtkModel.model = ShadingModel::VtkOpenGL2;
+  vtkModel.viewer.position = glm::dvec3(0, 0, 5);
+  vtkModel.lights = { { "panel", panel } };
+  EXPECT_EQ(errorOf(vtkModel, 0),
+    "scene /lights/0/type: VTK's renderer has no area lights or environment maps: use the lecture model");
+  Scene lecture = shinyScene();
+  lecture.lights = { { "panel", panel } };
+  EXPECT_EQ(errorOf(lecture, 1e-3),
+    "a tolerance cannot be met with light 'panel', an area light: its error comes from the estimator the "
+    "scene names, not from arithmetic a tolerance can choose (Monte Carlo estimators report theirs in "
+    "*_std_error arrays); shade without a tolerance");
+  EXPECT_EQ(errorOf(lecture, 0), "");
+}

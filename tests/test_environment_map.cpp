@@ -1,0 +1,682 @@
+// Environment maps: orientation, texel solid angles, downsampling, reading HDR files and
+// their failures, the 9-coefficient irradiance of Ramamoorthi and Hanrahan, and importance
+// sampling by luminance.
+#include "EnvironmentMap.h"
+#include "EnvironmentSampler.h"
+#include "SphericalHarmonics.h"
+
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <functional>
+#include <iostream>
+#include <limits>
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace
+{
+using namespace shadelab;
+constexpr double pi = M_PI;
+const std::string venicePath = SHADELAB_SOURCE_DIR "/data/envmaps/venice_sunset_1k";
+
+EnvironmentMap mapOf(int width, int height, const std::function<Rgb(const glm::dvec3&)>& radianceAt)
+{
+  EnvironmentMap map;
+  map.width = width;
+  map.height = height;
+  for (int row = 0; row < height; ++row)
+  {
+    for (int column = 0; column < width; ++column)
+    {
+      map.radiance.push_back(radianceAt(texelCentreDirection(map, column, row)));
+    }
+  }
+  return map;
+}
+
+/// The integral of radiance over the sphere: sum of radiance x texel solid angle.
+Rgb radiantIntegral(const EnvironmentMap& map)
+{
+  Rgb sum(0.0);
+  for (int row = 0; row < map.height; ++row)
+  {
+    for (int column = 0; column < map.width; ++column)
+    {
+      sum += map.texel(column, row) * texelSolidAngle(row, map.width, map.height);
+    }
+  }
+  return sum;
+}
+
+/// The irradiance at n of the map's texels taken as point sources at their centres.
+Rgb bruteForceIrradiance(const EnvironmentMap& map, const glm::dvec3& n)
+{
+  Rgb sum(0.0);
+  for (int row = 0; row < map.height; ++row)
+  {
+    for (int column = 0; column < map.width; ++column)
+    {
+      const double cosine = std::max(0.0, glm::dot(n, texelCentreDirection(map, column, row)));
+      sum += map.texel(column, row) * cosine * texelSolidAngle(row, map.width, map.height);
+    }
+  }
+  return sum;
+}
+
+glm::dvec3 randomDirection(std::mt19937_64& random)
+{
+  std::normal_distribution<double> normal;
+  return unitVector(glm::dvec3(normal(random), normal(random), normal(random)));
+}
+
+void expectNearVector(const glm::dvec3& actual, const glm::dvec3& expected, double tolerance)
+{
+  EXPECT_NEAR(actual.x, expected.x, tolerance);
+  EXPECT_NEAR(actual.y, expected.y, tolerance);
+  EXPECT_NEAR(actual.z, expected.z, tolerance);
+}
+
+double relativeError(const Rgb& actual, const Rgb& expected)
+{
+  return largestComponent(actual - expected) / largestComponent(expected);
+}
+
+// --- Geometry -------------------------------------------------------------------------------
+
+TEST(EnvironmentMap, TexelSolidAnglesSumToFourPi)
+{
+  for (const auto& [width, height] : { std::pair(8, 4), std::pair(1024, 512) })
+  {
+    double sum = 0.0;
+    for (int row = 0; row < height; ++row)
+    {
+      sum += width * texelSolidAngle(row, width, height);
+    }
+    EXPECT_NEAR(sum / (4.0 * pi), 1.0, 1e-12) << width << "x" << height;
+  }
+}
+
+TEST(EnvironmentMap, TexelSolidAngleIsTheBandAreaOverTheWidth)
+{
+  // Row 0 of an 8x4 map: the cap theta <= pi/4 has area 2 pi (1 - cos(pi/4)).
+  EXPECT_DOUBLE_EQ(texelSolidAngle(0, 8, 4), 2.0 * pi * (1.0 - std::sqrt(0.5)) / 8.0);
+}
+
+TEST(EnvironmentMap, Orientation)
+{
+  const double tolerance = 1e-15;
+  expectNearVector(directionAt(0.5, 0.5), { 0, 0, -1 }, tolerance);
+  expectNearVector(directionAt(0.75, 0.5), { 1, 0, 0 }, tolerance);
+  expectNearVector(directionAt(0.25, 0.5), { -1, 0, 0 }, tolerance);
+  expectNearVector(directionAt(0.0, 0.5), { 0, 0, 1 }, tolerance);
+  expectNearVector(directionAt(1.0, 0.5), { 0, 0, 1 }, tolerance);
+  for (const double u : { 0.0, 0.3, 0.5, 0.9 })
+  {
+    expectNearVector(directionAt(u, 0.0), { 0, 1, 0 }, tolerance);
+    expectNearVector(directionAt(u, 1.0), { 0, -1, 0 }, tolerance);
+  }
+  // Texel (2, 0) of a 4x2 map is centred at u = 0.625, v = 0.25: theta = phi = pi/4.
+  EnvironmentMap map;
+  map.width = 4;
+  map.height = 2;
+  expectNearVector(texelCentreDirection(map, 2, 0), { 0.5, std::sqrt(0.5), -0.5 }, tolerance);
+}
+
+TEST(EnvironmentMap, UvOfDirectionInvertsDirectionAt)
+{
+  std::mt19937_64 random(1);
+  std::uniform_real_distribution<double> uniform;
+  for (int i = 0; i < 10000; ++i)
+  {
+    const glm::dvec3 direction = randomDirection(random);
+    const glm::dvec2 uv = uvOfDirection(direction);
+    EXPECT_GE(uv.x, 0.0);
+    EXPECT_LT(uv.x, 1.0);
+    expectNearVector(directionAt(uv.x, uv.y), direction, 1e-12);
+
+    const glm::dvec2 drawn(uniform(random), uniform(random));
+    const glm::dvec2 back = uvOfDirection(directionAt(drawn.x, drawn.y));
+    EXPECT_NEAR(back.x, drawn.x, 1e-12);
+    EXPECT_NEAR(back.y, drawn.y, 1e-12);
+  }
+  EXPECT_EQ(uvOfDirection({ 0, 0, 1 }).x, 0.0); // u = 1 wraps to 0
+}
+
+TEST(EnvironmentMap, LuminanceOfPrimariesAndWhite)
+{
+  EXPECT_DOUBLE_EQ(luminance({ 1, 0, 0 }), 0.2126);
+  EXPECT_DOUBLE_EQ(luminance({ 0, 1, 0 }), 0.7152);
+  EXPECT_DOUBLE_EQ(luminance({ 0, 0, 1 }), 0.0722);
+  EXPECT_DOUBLE_EQ(luminance({ 2, 2, 2 }), 2.0);
+}
+
+// --- Downsampling ---------------------------------------------------------------------------
+
+TEST(Downsampled, KeepsTheIntegralOfRadiance)
+{
+  std::mt19937_64 random(2);
+  std::uniform_real_distribution<double> uniform(0.0, 100.0);
+  EnvironmentMap map;
+  map.width = 64;
+  map.height = 32;
+  for (int i = 0; i < map.width * map.height; ++i)
+  {
+    map.radiance.emplace_back(uniform(random), uniform(random), uniform(random));
+  }
+  const Rgb integral = radiantIntegral(map);
+  for (const int width : { 64, 32, 16, 8, 2 })
+  {
+    const EnvironmentMap coarse = downsampled(map, width);
+    EXPECT_EQ(coarse.width, width);
+    EXPECT_EQ(coarse.height, width / 2);
+    EXPECT_LT(relativeError(radiantIntegral(coarse), integral), 1e-12) << width;
+  }
+}
+
+TEST(Downsampled, ConstantMapStaysConstant)
+{
+  const Rgb value(0.25, 3.0, 1e4);
+  const EnvironmentMap coarse =
+    downsampled(mapOf(128, 64, [&](const glm::dvec3&) { return value; }), 8);
+  for (const Rgb& texel : coarse.radiance)
+  {
+    // To the rounding of sums of 16 x 16 products.
+    EXPECT_LT(relativeError(texel, value), 1e-14);
+  }
+}
+
+TEST(Downsampled, RefusesWidthsThatAreNotEvenDivisors)
+{
+  const EnvironmentMap map = mapOf(64, 32, [](const glm::dvec3&) { return Rgb(1.0); });
+  for (const int width : { 0, 1, 6, 48, 128 })
+  {
+    EXPECT_THROW(downsampled(map, width), std::invalid_argument) << width;
+  }
+  try
+  {
+    downsampled(map, 6);
+  }
+  catch (const std::invalid_argument& error)
+  {
+    EXPECT_STREQ(error.what(),
+      "downsampled: width 6 must be an even divisor of the map's width 64 and at least 2");
+  }
+  EXPECT_THROW(downsampled(mapOf(64, 64, [](const glm::dvec3&) { return Rgb(1.0); }), 32),
+    std::invalid_argument);
+}
+
+// --- Reading files --------------------------------------------------------------------------
+
+std::string tempPath(const std::string& name)
+{
+  return ::testing::TempDir() + "shadelab_envmap_" + name;
+}
+
+void writeImage(const std::string& path, int width, int height, int channels,
+  const std::vector<float>& pixels, OIIO::TypeDesc storedAs)
+{
+  const auto output = OIIO::ImageOutput::create(path);
+  ASSERT_TRUE(output) << OIIO::geterror();
+  const OIIO::ImageSpec spec(width, height, channels, storedAs);
+  ASSERT_TRUE(output->open(path, spec)) << output->geterror();
+  ASSERT_TRUE(output->write_image(OIIO::TypeDesc::FLOAT, pixels.data())) << output->geterror();
+  ASSERT_TRUE(output->close());
+}
+
+std::vector<float> randomPixels(std::size_t count, unsigned seed)
+{
+  // Log-uniform over five decades, as in real HDR maps.
+  std::mt19937_64 random(seed);
+  std::uniform_real_distribution<float> exponent(-2.0f, 3.0f);
+  std::vector<float> pixels(count);
+  for (float& p : pixels)
+  {
+    p = std::pow(10.0f, exponent(random));
+  }
+  return pixels;
+}
+
+std::string readError(const std::string& path)
+{
+  try
+  {
+    readEnvironmentMap(path);
+  }
+  catch (const std::runtime_error& error)
+  {
+    return error.what();
+  }
+  ADD_FAILURE() << path << " was read without an error";
+  return "";
+}
+
+TEST(ReadEnvironmentMap, RadianceHdrRoundTrip)
+{
+  const std::string path = tempPath("round_trip.hdr");
+  const std::vector<float> pixels = randomPixels(16 * 8 * 3, 3);
+  writeImage(path, 16, 8, 3, pixels, OIIO::TypeDesc::FLOAT);
+  const EnvironmentMap map = readEnvironmentMap(path);
+  ASSERT_EQ(map.width, 16);
+  ASSERT_EQ(map.height, 8);
+  for (std::size_t i = 0; i < map.radiance.size(); ++i)
+  {
+    // RGBE keeps 8 bits of mantissa under the largest channel's exponent: every channel is
+    // within 1/128 of the texel's largest channel.
+    const Rgb written(pixels[3 * i], pixels[3 * i + 1], pixels[3 * i + 2]);
+    EXPECT_LE(largestComponent(map.radiance[i] - written), 0.01 * largestComponent(written)) << i;
+  }
+}
+
+TEST(ReadEnvironmentMap, HalfExrRoundTrip)
+{
+  const std::string path = tempPath("round_trip.exr");
+  const std::vector<float> pixels = randomPixels(16 * 8 * 3, 4);
+  writeImage(path, 16, 8, 3, pixels, OIIO::TypeDesc::HALF);
+  const EnvironmentMap map = readEnvironmentMap(path);
+  ASSERT_EQ(map.width, 16);
+  ASSERT_EQ(map.height, 8);
+  for (std::size_t i = 0; i < map.radiance.size(); ++i)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      // A half has 11 significant bits: relative rounding below 2^-11 = 4.9e-4.
+      EXPECT_NEAR(map.radiance[i][c], pixels[3 * i + c], 1e-3 * pixels[3 * i + c]) << i;
+    }
+  }
+}
+
+TEST(ReadEnvironmentMap, OneChannelIsGreyAndAlphaIsIgnored)
+{
+  const std::string greyPath = tempPath("grey.exr");
+  const std::vector<float> grey = randomPixels(8 * 4, 5);
+  writeImage(greyPath, 8, 4, 1, grey, OIIO::TypeDesc::FLOAT);
+  const EnvironmentMap greyMap = readEnvironmentMap(greyPath);
+  for (std::size_t i = 0; i < grey.size(); ++i)
+  {
+    EXPECT_EQ(greyMap.radiance[i], Rgb(grey[i]));
+  }
+
+  const std::string rgbaPath = tempPath("rgba.exr");
+  std::vector<float> rgba = randomPixels(8 * 4 * 4, 6);
+  writeImage(rgbaPath, 8, 4, 4, rgba, OIIO::TypeDesc::FLOAT);
+  const EnvironmentMap rgbaMap = readEnvironmentMap(rgbaPath);
+  for (std::size_t i = 0; i < rgbaMap.radiance.size(); ++i)
+  {
+    EXPECT_EQ(rgbaMap.radiance[i], Rgb(rgba[4 * i], rgba[4 * i + 1], rgba[4 * i + 2]));
+  }
+}
+
+TEST(ReadEnvironmentMap, MissingFile)
+{
+  const std::string path = tempPath("missing.hdr");
+  EXPECT_EQ(readError(path), path + ": no such file");
+}
+
+TEST(ReadEnvironmentMap, NotAnImage)
+{
+  const std::string path = tempPath("text.hdr");
+  std::ofstream(path) << "this is text, not a Radiance picture\n";
+  // The reason after the colon is OpenImageIO's own, as it gives it.
+  ASSERT_FALSE(OIIO::ImageInput::open(path));
+  const std::string oiioError = OIIO::geterror();
+  EXPECT_FALSE(oiioError.empty());
+  EXPECT_EQ(readError(path), path + ": cannot read as an image: " + oiioError);
+}
+
+TEST(ReadEnvironmentMap, TruncatedFile)
+{
+  // A real header with 2000 bytes of pixels: OpenImageIO opens it and fails while decoding.
+  std::ifstream whole(venicePath + ".hdr", std::ios::binary);
+  std::vector<char> start(2000);
+  whole.read(start.data(), static_cast<std::streamsize>(start.size()));
+  const std::string path = tempPath("truncated.hdr");
+  std::ofstream(path, std::ios::binary).write(start.data(), whole.gcount());
+  const std::string prefix = path + ": cannot read as an image: ";
+  const std::string message = readError(path);
+  EXPECT_EQ(message.substr(0, prefix.size()), prefix);
+  EXPECT_GT(message.size(), prefix.size()) << "no reason given";
+}
+
+TEST(ReadEnvironmentMap, EmptyImage)
+{
+  const std::string path = tempPath("empty.ppm");
+  std::ofstream(path) << "P6\n0 0\n255\n";
+  EXPECT_EQ(readError(path), path + ": the image is empty (0x0)");
+}
+
+TEST(ReadEnvironmentMap, TwoChannels)
+{
+  const std::string path = tempPath("two_channels.exr");
+  writeImage(path, 8, 4, 2, std::vector<float>(8 * 4 * 2, 1.0f), OIIO::TypeDesc::HALF);
+  EXPECT_EQ(readError(path), path + ": has 2 channels; expected 1 (grey) or 3 or more (RGB)");
+}
+
+TEST(ReadEnvironmentMap, NotTwiceAsWideAsHigh)
+{
+  const std::string path = tempPath("square.exr");
+  writeImage(path, 6, 4, 3, std::vector<float>(6 * 4 * 3, 1.0f), OIIO::TypeDesc::HALF);
+  EXPECT_EQ(readError(path),
+    path + ": an equirectangular map must be twice as wide as it is high; this one is 6x4");
+}
+
+TEST(ReadEnvironmentMap, NegativeOrNonFiniteTexel)
+{
+  const std::string path = tempPath("bad_texel.exr");
+  std::vector<float> pixels(8 * 4 * 3, 1.0f);
+  pixels[3 * (2 * 8 + 5) + 1] = -1.5f; // column 5, row 2, green
+  writeImage(path, 8, 4, 3, pixels, OIIO::TypeDesc::FLOAT);
+  EXPECT_EQ(readError(path),
+    path + ": texel (column 5, row 2) is not a finite non-negative radiance (1, -1.5, 1)");
+
+  // The first bad texel in row-major order is the one named.
+  pixels[3 * (1 * 8 + 3) + 2] = std::numeric_limits<float>::quiet_NaN(); // column 3, row 1
+  pixels[3 * (3 * 8 + 0) + 0] = std::numeric_limits<float>::infinity();
+  writeImage(path, 8, 4, 3, pixels, OIIO::TypeDesc::FLOAT);
+  EXPECT_EQ(readError(path),
+    path + ": texel (column 3, row 1) is not a finite non-negative radiance (1, 1, nan)");
+}
+
+Rgb meanRadiance(const EnvironmentMap& map)
+{
+  Rgb sum(0.0);
+  for (const Rgb& texel : map.radiance)
+  {
+    sum += texel;
+  }
+  return sum / static_cast<double>(map.radiance.size());
+}
+
+TEST(ReadEnvironmentMap, VeniceSunset)
+{
+  const EnvironmentMap hdr = readEnvironmentMap(venicePath + ".hdr");
+  ASSERT_EQ(hdr.width, 1024);
+  ASSERT_EQ(hdr.height, 512);
+  double peak = 0.0;
+  for (const Rgb& texel : hdr.radiance)
+  {
+    peak = std::max(peak, largestComponent(texel));
+  }
+  EXPECT_NEAR(peak, 6496.0, 0.01 * 6496.0); // the sun (data/PROVENANCE.md)
+
+  const EnvironmentMap exr = readEnvironmentMap(venicePath + ".exr");
+  ASSERT_EQ(exr.width, 1024);
+  ASSERT_EQ(exr.height, 512);
+  EXPECT_LT(relativeError(meanRadiance(exr), meanRadiance(hdr)), 0.01);
+}
+
+// --- Spherical harmonics --------------------------------------------------------------------
+
+TEST(SphericalHarmonics, ConstantsAgreeWithThePublishedTable)
+{
+  // R&H eq. 10 and 13 give them to 6 digits: our closed forms must round to those.
+  const double tolerance = 5e-7;
+  const std::array<double, 9> atZ = shBasis9({ 0, 0, 1 });
+  EXPECT_DOUBLE_EQ(atZ[0], 1.0 / std::sqrt(4.0 * pi));
+  EXPECT_DOUBLE_EQ(atZ[2], std::sqrt(3.0 / (4.0 * pi)));
+  EXPECT_DOUBLE_EQ(atZ[6], 2.0 * std::sqrt(5.0 / (16.0 * pi)));
+  EXPECT_NEAR(atZ[0], 0.282095, tolerance);
+  EXPECT_NEAR(atZ[2], 0.488603, tolerance); // Y10 = 0.488603 z
+  EXPECT_NEAR(atZ[6], 2 * 0.315392, 2 * tolerance); // Y20 = 0.315392 (3 z^2 - 1)
+  const std::array<double, 9> atX = shBasis9({ 1, 0, 0 });
+  EXPECT_NEAR(atX[8], 0.546274, tolerance); // Y22 = 0.546274 (x^2 - y^2)
+  EXPECT_DOUBLE_EQ(atX[8], std::sqrt(15.0 / (16.0 * pi)));
+  const std::array<double, 9> atXy = shBasis9({ std::sqrt(0.5), std::sqrt(0.5), 0 });
+  EXPECT_NEAR(atXy[4], 1.092548 / 2, tolerance); // Y2-2 = 1.092548 xy
+  EXPECT_DOUBLE_EQ(atXy[4], std::sqrt(15.0 / (4.0 * pi)) / 2);
+
+  // Eq. 13 with one unit coefficient at a time picks out c1..c5. R&H computed them from the
+  // rounded basis constants, so their c2 and c3 are off the closed forms (0.5116634,
+  // 0.7431239) by 6e-7 and 1.1e-6.
+  const auto irradianceOfUnit = [](int k, const glm::dvec3& n) {
+    ShCoefficients9 unit;
+    unit.fill(Rgb(0.0));
+    unit[k] = Rgb(1.0);
+    return irradianceFromSh9(unit, n).r;
+  };
+  const double c5 = -irradianceOfUnit(6, { 1, 0, 0 });
+  EXPECT_NEAR(irradianceOfUnit(8, { 1, 0, 0 }), 0.429043, tolerance); // c1
+  EXPECT_NEAR(irradianceOfUnit(3, { 1, 0, 0 }) / 2, 0.511664, 1.5e-6); // c2
+  EXPECT_NEAR(irradianceOfUnit(6, { 0, 0, 1 }) + c5, 0.743125, 1.5e-6); // c3
+  EXPECT_NEAR(irradianceOfUnit(0, { 0, 1, 0 }), 0.886227, tolerance); // c4
+  EXPECT_NEAR(c5, 0.247708, tolerance);
+}
+
+std::vector<glm::dvec3> testNormals()
+{
+  std::vector<glm::dvec3> normals = { { 1, 0, 0 }, { -1, 0, 0 }, { 0, 1, 0 }, { 0, -1, 0 },
+    { 0, 0, 1 }, { 0, 0, -1 } };
+  std::mt19937_64 random(7);
+  for (int i = 0; i < 20; ++i)
+  {
+    normals.push_back(randomDirection(random));
+  }
+  return normals;
+}
+
+TEST(SphericalHarmonics, ConstantMapGivesPiL)
+{
+  // Not exact, though the basis constants are: the projection is a sum at texel centres,
+  // which integrates x^2, y^2 and z^2 over the sphere with an error of order h^2, h = pi / H.
+  // Summing the rows in closed form (sum of sin((2j + 1) a) = sin^2(H a) / sin(a)) gives a
+  // relative error in E of (30 n_y^2 - 10) h^2 / 384 to leading order: at most 4.9e-7 for
+  // H = 1024 (2e-6 for H = 512).
+  const int height = 1024;
+  const Rgb value(0.5, 1.0, 2.0);
+  const ShCoefficients9 sh =
+    projectRadiance(mapOf(2 * height, height, [&](const glm::dvec3&) { return value; }));
+  const double h = pi / height;
+  for (const glm::dvec3& n : testNormals())
+  {
+    const Rgb irradiance = irradianceFromSh9(sh, n);
+    EXPECT_LT(relativeError(irradiance, pi * value), 1e-6) << n.x << " " << n.y << " " << n.z;
+    EXPECT_NEAR(irradiance.g / (pi * value.g) - 1.0, (30.0 * n.y * n.y - 10.0) * h * h / 384.0,
+      1e-10);
+  }
+}
+
+TEST(SphericalHarmonics, LinearRadianceGivesExactIrradiance)
+{
+  // L(w) = a + b.w lies in bands 0 and 1, which the 9 coefficients hold exactly. The
+  // constant gives pi a. For b.w, split b into (b.n) n and a part perpendicular to n, whose
+  // integral against max(0, n.w) vanishes by symmetry about n; the integral of cos^2 over
+  // the hemisphere around n is 2 pi / 3. So E(n) = pi a + (2 pi / 3) b.n.
+  const Rgb a(3.0, 2.0, 4.0);
+  const glm::dvec3 bRed(1.0, -0.5, 0.7);
+  const glm::dvec3 bGreen(0.2, 1.5, -0.3);
+  const glm::dvec3 bBlue(-1.0, 0.4, 2.0);
+  const auto radiance = [&](const glm::dvec3& w) {
+    return a + Rgb(glm::dot(bRed, w), glm::dot(bGreen, w), glm::dot(bBlue, w));
+  };
+  const ShCoefficients9 sh = projectRadiance(mapOf(1024, 512, radiance));
+  for (const glm::dvec3& n : testNormals())
+  {
+    const Rgb exact =
+      pi * a + (2.0 * pi / 3.0) * Rgb(glm::dot(bRed, n), glm::dot(bGreen, n), glm::dot(bBlue, n));
+    EXPECT_LT(relativeError(irradianceFromSh9(sh, n), exact), 1e-5)
+      << n.x << " " << n.y << " " << n.z;
+  }
+}
+
+TEST(SphericalHarmonics, SingleBrightTexelWithinThePublishedBound)
+{
+  // The worst case of R&H: one small bright source. Its projection is exact, so the SH
+  // irradiance at cos(gamma) = n.w is L Omega (1/4 + cos/2 + (5/32)(3 cos^2 - 1)) (the
+  // addition theorem), off the true L Omega max(0, cos) by at most 3/32 = 9.375% of the peak
+  // L Omega, at the horizon (REFERENCES.md section 3: about +9.4%).
+  EnvironmentMap map = mapOf(64, 32, [](const glm::dvec3&) { return Rgb(0.0); });
+  const int column = 40;
+  const int row = 10;
+  map.radiance[row * map.width + column] = Rgb(1000.0);
+  const glm::dvec3 w = texelCentreDirection(map, column, row);
+  const double peak = 1000.0 * texelSolidAngle(row, map.width, map.height);
+  const ShCoefficients9 sh = projectRadiance(map);
+
+  std::vector<glm::dvec3> normals = testNormals();
+  const glm::dvec3 horizon = unitVector(glm::cross(w, glm::dvec3(0, 1, 0)));
+  for (const glm::dvec3& n : { w, -w, horizon, unitVector(w + horizon), unitVector(horizon - w) })
+  {
+    normals.push_back(n);
+  }
+  double largestError = 0.0;
+  for (const glm::dvec3& n : normals)
+  {
+    const double exact = peak * std::max(0.0, glm::dot(n, w));
+    largestError = std::max(largestError, std::abs(irradianceFromSh9(sh, n).r - exact) / peak);
+  }
+  std::cout << "single bright texel: largest SH irradiance error " << 100.0 * largestError
+            << "% of the peak irradiance\n";
+  EXPECT_NEAR(largestError, 3.0 / 32.0, 1e-9);
+  EXPECT_LT(largestError, 0.10);
+}
+
+TEST(SphericalHarmonics, ProjectionTimeOf1024x512)
+{
+  const EnvironmentMap map = readEnvironmentMap(venicePath + ".hdr");
+  double fastest = std::numeric_limits<double>::infinity();
+  double slowest = 0.0;
+  ShCoefficients9 sh;
+  for (int run = 0; run < 5; ++run)
+  {
+    const auto start = std::chrono::steady_clock::now();
+    sh = projectRadiance(map);
+    const std::chrono::duration<double, std::milli> elapsed =
+      std::chrono::steady_clock::now() - start;
+    fastest = std::min(fastest, elapsed.count());
+    slowest = std::max(slowest, elapsed.count());
+  }
+  std::cout << "projectRadiance of 1024x512: " << fastest << " ms fastest, " << slowest
+            << " ms slowest of 5 runs\n";
+  // Band 0 is the mean radiance over the sphere times 4 pi Y00.
+  EXPECT_LT(relativeError(sh[0], radiantIntegral(map) * 0.5 / std::sqrt(pi)), 1e-12);
+}
+
+// --- Importance sampling --------------------------------------------------------------------
+
+/// A smooth, coloured map: a soft bright lobe around d on a dim sky.
+EnvironmentMap smoothMap(int width)
+{
+  const glm::dvec3 d = unitVector(glm::dvec3(0.6, 0.5, -0.4));
+  return mapOf(width, width / 2, [&](const glm::dvec3& w) {
+    const double lobe = std::exp(8.0 * (glm::dot(w, d) - 1.0));
+    return Rgb(0.2, 0.3, 0.5) + Rgb(20.0, 15.0, 8.0) * lobe;
+  });
+}
+
+TEST(EnvironmentSampler, PdfIntegratesToOne)
+{
+  // Not exactly 1: the density per solid angle at a texel centre is uniform over the texel
+  // only to first order, and the sum is 2 H sin(pi / 2H) / pi = 1 - (pi / 2H)^2 / 6, 1 - 1e-4
+  // for H = 64.
+  for (const EnvironmentMap& map :
+    { smoothMap(128), downsampled(readEnvironmentMap(venicePath + ".hdr"), 256) })
+  {
+    const EnvironmentSampler sampler(map);
+    double sum = 0.0;
+    for (int row = 0; row < map.height; ++row)
+    {
+      for (int column = 0; column < map.width; ++column)
+      {
+        sum += sampler.pdf(texelCentreDirection(map, column, row)) *
+          texelSolidAngle(row, map.width, map.height);
+      }
+    }
+    EXPECT_NEAR(sum, 1.0, 1e-3) << map.width;
+  }
+}
+
+TEST(EnvironmentSampler, PdfOfASampleIsTheSamplesPdf)
+{
+  const EnvironmentMap map = downsampled(readEnvironmentMap(venicePath + ".hdr"), 256);
+  const EnvironmentSampler sampler(map);
+  std::mt19937_64 random(8);
+  std::uniform_real_distribution<double> uniform;
+  for (int i = 0; i < 10000; ++i)
+  {
+    const EnvironmentSample s = sampler.sample(uniform(random), uniform(random));
+    EXPECT_NEAR(glm::length(s.direction), 1.0, 1e-15);
+    ASSERT_GT(s.pdf, 0.0);
+    EXPECT_NEAR(sampler.pdf(s.direction), s.pdf, 1e-9 * s.pdf);
+    const glm::dvec2 uv = uvOfDirection(s.direction);
+    EXPECT_EQ(s.radiance, map.texel(static_cast<int>(uv.x * map.width),
+                            static_cast<int>(uv.y * map.height)));
+    EXPECT_GT(luminance(s.radiance), 0.0);
+  }
+}
+
+TEST(EnvironmentSampler, MonteCarloIrradianceAgreesWithTheTexelSum)
+{
+  const EnvironmentMap map = smoothMap(128);
+  const EnvironmentSampler sampler(map);
+  std::mt19937_64 random(9);
+  std::uniform_real_distribution<double> uniform;
+  const int count = 4096;
+  for (const glm::dvec3& n : testNormals())
+  {
+    Rgb sum(0.0);
+    Rgb sumOfSquares(0.0);
+    for (int i = 0; i < count; ++i)
+    {
+      const EnvironmentSample s = sampler.sample(uniform(random), uniform(random));
+      const Rgb estimate = s.radiance * std::max(0.0, glm::dot(n, s.direction)) / s.pdf;
+      sum += estimate;
+      sumOfSquares += estimate * estimate;
+    }
+    const Rgb mean = sum / double(count);
+    const Rgb variance = (sumOfSquares / double(count) - mean * mean) * (count / (count - 1.0));
+    const Rgb standardError = glm::sqrt(variance / double(count));
+    const Rgb exact = bruteForceIrradiance(map, n);
+    for (int c = 0; c < 3; ++c)
+    {
+      EXPECT_LE(std::abs(mean[c] - exact[c]), 5.0 * standardError[c])
+        << "channel " << c << " normal " << n.x << " " << n.y << " " << n.z;
+    }
+  }
+}
+
+TEST(EnvironmentSampler, BlackMapIsSampledUniformly)
+{
+  const EnvironmentSampler sampler(mapOf(16, 8, [](const glm::dvec3&) { return Rgb(0.0); }));
+  std::mt19937_64 random(10);
+  std::uniform_real_distribution<double> uniform;
+  for (int i = 0; i < 1000; ++i)
+  {
+    const double u2 = uniform(random);
+    const EnvironmentSample s = sampler.sample(uniform(random), u2);
+    EXPECT_DOUBLE_EQ(s.pdf, 1.0 / (4.0 * pi));
+    EXPECT_NEAR(s.direction.y, 1.0 - 2.0 * u2, 1e-12); // uniform height: uniform area
+    EXPECT_EQ(s.radiance, Rgb(0.0));
+    EXPECT_DOUBLE_EQ(sampler.pdf(randomDirection(random)), 1.0 / (4.0 * pi));
+  }
+}
+
+TEST(EnvironmentSampler, SamplesOnlyTexelsWithRadiance)
+{
+  EnvironmentMap map = mapOf(16, 8, [](const glm::dvec3&) { return Rgb(0.0); });
+  map.radiance[3 * 16 + 5] = Rgb(0.0, 0.0, 2.0);
+  map.radiance[6 * 16 + 12] = Rgb(1.0, 0.0, 0.0);
+  const EnvironmentSampler sampler(map);
+  std::mt19937_64 random(11);
+  std::uniform_real_distribution<double> uniform;
+  for (int i = 0; i < 1000; ++i)
+  {
+    EXPECT_NE(sampler.sample(uniform(random), uniform(random)).radiance, Rgb(0.0));
+  }
+  EXPECT_EQ(sampler.pdf(texelCentreDirection(map, 0, 0)), 0.0);
+  EXPECT_GT(sampler.pdf(texelCentreDirection(map, 5, 3)), 0.0);
+  EXPECT_GT(sampler.pdf(texelCentreDirection(map, 12, 6)), 0.0);
+}
+
+TEST(EnvironmentSampler, RefusesNegativeRadiance)
+{
+  EnvironmentMap map = mapOf(8, 4, [](const glm::dvec3&) { return Rgb(1.0); });
+  map.radiance[9] = Rgb(1.0, -0.1, 1.0);
+  EXPECT_THROW(EnvironmentSampler{ map }, std::invalid_argument);
+}
+}
