@@ -408,3 +408,32 @@ TEST_F(Cli, HelpAndUsageErrors)
   EXPECT_NE(arrays.out.find("  sun_r_dot_v                  1  light 'sun': r.v"), std::string::npos) << arrays.out;
 }
 }
+
+namespace
+{
+TEST_F(Cli, EnvironmentMapOption)
+{
+  const std::string mesh = goodMesh(), out = (folder / "out.vtp").string();
+  const std::string missing = (folder / "none.hdr").string();
+  expectError("shade " + mesh + " --envmap " + missing + " -o " + out, "--envmap: " + missing + ": no such file");
+  const std::string square = file("square.ppm", "P3\n3 2\n255\n0 0 0 1 1 1 2 2 2\n3 3 3 4 4 4 5 5 5\n");
+  expectError("shade " + mesh + " --envmap " + square + " -o " + out,
+    "--envmap: " + square + ": an equirectangular map must be twice as wide as it is high; this one is 3x2");
+  EXPECT_FALSE(fs::exists(out));
+  const Result noMap = shadelab("shade " + mesh + " --envmap-rotation 30 -s " + goodScene() + " -o " + out);
+  EXPECT_EQ(noMap.exitCode, 2);
+  EXPECT_EQ(noMap.err, "--envmap-rotation requires --envmap\nRun with --help for more information.\n");
+  const std::string named = file("named.json",
+    R"({ "lights": [ { "name": "envmap", "type": "ambient" } ] })");
+  expectError("shade " + mesh + " -s " + named + " --envmap " + SHADELAB_SOURCE_DIR "/data/envmaps/venice_sunset_1k.hdr -o " + out,
+    "--envmap: " + named + " already has a light named 'envmap', the name --envmap gives its light: rename that light");
+
+  // The map alone lights the bunny; its arrays are listed in the summary.
+  const Result shaded = shadelab("shade " + mesh + " --envmap " SHADELAB_SOURCE_DIR
+    "/data/envmaps/venice_sunset_1k.hdr --envmap-estimator monte_carlo --envmap-samples 16 -a all -o " + out);
+  EXPECT_EQ(shaded.exitCode, 0) << shaded.err;
+  EXPECT_NE(shaded.out.find("scene: default + --envmap "), std::string::npos) << shaded.out;
+  EXPECT_NE(shaded.out.find("envmap_irradiance_std_error"), std::string::npos) << shaded.out;
+  EXPECT_TRUE(fs::exists(out));
+}
+}

@@ -1,5 +1,6 @@
 // Scene files: what a valid file means, and the exact message for each kind of bad input.
 #include "ArrayCatalog.h"
+#include "EnvironmentMap.h"
 #include "SceneFile.h"
 
 #include <gtest/gtest.h>
@@ -168,6 +169,84 @@ TEST(SceneFile, RulesOfTheModel)
   EXPECT_EQ(errorOf(R"({ "lights": [ { "name": "2nd", "type": "ambient" } ] })"),
     "scene.json: /lights/0/name: '2nd' is not a valid light name: use letters, digits and _, "
     "starting with a letter");
+}
+
+TEST(SceneFile, ReadsAreaLightsAndEnvironmentMaps)
+{
+  // The map's path is relative to the scene file's folder.
+  const Scene scene = parseScene(R"({
+    "lights": [
+      { "name": "panel", "type": "rectangle", "center": [0, 2, 0], "edge_u": [2, 0, 0], "edge_v": [0, 0, 1],
+        "intensity": 3, "two_sided": true, "estimator": "monte_carlo", "samples": 100, "stratified": false },
+      { "type": "polygon", "vertices": [[0, 1, 0], [1, 1, 0], [0, 1, 1]], "estimator": "point" },
+      { "type": "disk", "center": [0, 3, 0], "normal": [0, -1, 0], "radius": 0.5 },
+      { "type": "sphere", "center": [1, 1, 1], "radius": 0.1, "color": [1, 0.5, 0.25] },
+      { "name": "sky", "type": "environment", "file": "../envmaps/venice_sunset_1k.hdr", "rotation": 90,
+        "estimator": "monte_carlo", "directions": "cosine", "brute_force_width": 64 }
+    ]
+  })", SHADELAB_SOURCE_DIR "/data/scenes/inline.json");
+  ASSERT_EQ(scene.lights.size(), 5u);
+  const auto& panel = std::get<AreaLight>(scene.lights[0].source);
+  const std::vector<glm::dvec3> corners = { { -1, 2, -0.5 }, { 1, 2, -0.5 }, { 1, 2, 0.5 }, { -1, 2, 0.5 } };
+  EXPECT_EQ(std::get<PolygonEmitter>(panel.shape).vertices, corners);
+  EXPECT_EQ(panel.intensity, 3);
+  EXPECT_TRUE(panel.twoSided);
+  EXPECT_EQ(panel.estimator, AreaEstimator::MonteCarlo);
+  EXPECT_EQ(panel.sampling.samples, 100);
+  EXPECT_FALSE(panel.sampling.stratified);
+  EXPECT_EQ(scene.lights[1].name, "polygon1");
+  EXPECT_EQ(std::get<AreaLight>(scene.lights[1].source).estimator, AreaEstimator::Point);
+  const auto& disk = std::get<AreaLight>(scene.lights[2].source);
+  EXPECT_EQ(scene.lights[2].name, "disk2");
+  EXPECT_EQ(disk.estimator, AreaEstimator::Exact); // the defaults
+  EXPECT_EQ(disk.sampling.samples, 64);
+  EXPECT_TRUE(disk.sampling.stratified);
+  EXPECT_FALSE(disk.twoSided);
+  EXPECT_EQ(std::get<DiskEmitter>(disk.shape).radius, 0.5);
+  EXPECT_EQ(scene.lights[3].name, "sphere3");
+  EXPECT_EQ(std::get<SphereEmitter>(std::get<AreaLight>(scene.lights[3].source).shape).centre, glm::dvec3(1.0));
+  const auto& sky = std::get<EnvironmentLight>(scene.lights[4].source);
+  EXPECT_EQ(sky.file, SHADELAB_SOURCE_DIR "/data/envmaps/venice_sunset_1k.hdr");
+  ASSERT_NE(sky.map, nullptr);
+  EXPECT_EQ(sky.map->width, 1024);
+  EXPECT_EQ(sky.rotationDegrees, 90);
+  EXPECT_EQ(sky.estimator, EnvironmentEstimator::MonteCarlo);
+  EXPECT_EQ(sky.directions, EnvironmentDirections::Cosine);
+  EXPECT_EQ(sky.bruteForceWidth, 64);
+}
+
+TEST(SceneFile, AreaLightAndEnvironmentMapErrors)
+{
+  EXPECT_EQ(errorOf(R"({ "lights": [ { "type": "polygon", "vertices": [[0, 0, 0], [1, 0, 0]] } ] })"),
+    "scene.json: /lights/0/vertices: a polygon needs at least 3 vertices");
+  EXPECT_EQ(errorOf(R"({ "lights": [ { "type": "polygon", "vertices": [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 1]] } ] })"),
+    "scene.json: /lights/0/vertices: the polygon's vertices must lie in one plane");
+  EXPECT_EQ(errorOf(R"({ "lights": [ { "type": "polygon",
+      "vertices": [[0, 0, 0], [2, 0, 0], [2, 2, 0], [1, 0.5, 0], [0, 2, 0]] } ] })"),
+    "scene.json: /lights/0/vertices: the polygon must be convex, its vertices in order around it: split a "
+    "concave emitter into convex lights");
+  EXPECT_EQ(errorOf(R"({ "lights": [ { "type": "polygon", "vertices": [[0, 0, 0], [1, 0, 0], [2, 0, 0]] } ] })"),
+    "scene.json: /lights/0/vertices: the polygon has no area");
+  EXPECT_EQ(errorOf(R"({ "lights": [ { "type": "sphere", "center": [0, 0, 0], "radius": -1 } ] })"),
+    "scene.json: /lights/0/radius: must be a number > 0");
+  EXPECT_EQ(errorOf(R"({ "lights": [ { "type": "disk", "center": [0, 0, 0], "normal": [0, 0, 0], "radius": 1 } ] })"),
+    "scene.json: /lights/0/normal: must be a non-zero vector");
+  EXPECT_EQ(errorOf(R"({ "lights": [ { "type": "sphere", "center": [0, 0, 0], "radius": 1, "samples": 1 } ] })"),
+    "scene.json: /lights/0/samples: must be a whole number from 2 to 1048576");
+  EXPECT_EQ(errorOf(R"({ "lights": [ { "type": "sphere", "center": [0, 0, 0], "radius": 1, "estimator": "sh" } ] })"),
+    "scene.json: /lights/0/estimator: \"sh\" is not one of \"exact\", \"monte_carlo\", \"point\"");
+  EXPECT_EQ(errorOf(R"({ "lights": [ { "type": "sphere", "center": [0, 0, 0], "radius": 1, "two_sided": true } ] })"),
+    "scene.json: /lights/0/two_sided: unknown field; allowed here: name, type, color, intensity, center, radius, "
+    "estimator, samples, stratified");
+  EXPECT_EQ(errorOf(R"({ "model": "vtk", "viewer": { "position": [0, 0, 1] },
+      "lights": [ { "type": "sphere", "center": [0, 0, 0], "radius": 1 } ] })"),
+    "scene.json: /lights/0/type: VTK's renderer has no area lights or environment maps: use the lecture model");
+  EXPECT_EQ(errorOf(R"({ "lights": [ { "type": "environment", "file": "no_such_map.hdr" } ] })"),
+    "scene.json: /lights/0/file: no_such_map.hdr: no such file");
+  EXPECT_EQ(errorOf(R"({ "lights": [ { "type": "environment" } ] })"), "scene.json: /lights/0/file: missing");
+  const std::string map = SHADELAB_SOURCE_DIR "/data/envmaps/venice_sunset_1k.hdr";
+  EXPECT_EQ(errorOf(R"({ "lights": [ { "type": "environment", "file": ")" + map + R"(", "brute_force_width": 100 } ] })"),
+    "scene.json: /lights/0/brute_force_width: must be at least 2 and divide the map's width (1024)");
 }
 
 TEST(SceneFile, MissingFile)
