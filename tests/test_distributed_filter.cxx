@@ -1,7 +1,9 @@
 // Area lights and environment maps through vtkLocalReflectanceFilter: the arrays they add,
 // their agreement with the local lights where the two must agree, threads, and errors.
 #include "ArrayComparison.h"
+#include "EnvironmentLightEstimator.h"
 #include "EnvironmentMap.h"
+#include "ShadingFlags.h"
 #include "TestMeshes.h"
 #include "VtkErrorCapture.h"
 #include "vtkLocalReflectanceFilter.h"
@@ -10,6 +12,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <memory>
 
 namespace
@@ -192,4 +195,70 @@ TEST(DistributedLightsFilter, RefusedWhereTheyCannotApply)
     "scene names, not from arithmetic a tolerance can choose (Monte Carlo estimators report theirs in "
     "*_std_error arrays); shade without a tolerance");
   EXPECT_EQ(errorOf(lecture, 0), "");
+}
+
+// The kernel evaluates SH irradiance as a polynomial in its vectorised loops; it must be the
+// estimator's eq. 13, with the map turned.
+TEST(DistributedLightsFilter, VectorisedShIrradianceIsTheEstimators)
+{
+  vtkSmartPointer<vtkPolyData> sphere = shadelab::testing::exactSphere(30);
+  EnvironmentLight environment;
+  environment.map = std::make_shared<const EnvironmentMap>(
+    readEnvironmentMap(SHADELAB_SOURCE_DIR "/data/envmaps/studio_small_03_1k.hdr"));
+  environment.rotationDegrees = 37;
+  environment.color = { 1.0, 0.5, 0.25 };
+  environment.intensity = 0.04;
+  Scene scene = shinyScene();
+  scene.lights = { { "sky", environment } };
+  vtkSmartPointer<vtkPolyData> output = shade(sphere, scene, { "sky_irradiance" });
+  vtkDataArray* irradiance = output->GetPointData()->GetArray("sky_irradiance");
+  vtkDataArray* normals = sphere->GetPointData()->GetNormals();
+  const EnvironmentLightEstimator estimator(environment, 0, LobeModel{});
+  double largest = 0;
+  for (vtkIdType i = 0; i < sphere->GetNumberOfPoints(); ++i)
+  {
+    SurfacePoint point;
+    normals->GetTuple(i, &point.normal.x);
+    const Rgb expected = estimator.estimate(point).irradiance;
+    for (int c = 0; c < 3; ++c)
+    {
+      EXPECT_NEAR(irradiance->GetComponent(i, c), expected[c], 1e-12 * std::max(1.0, std::abs(expected[c])));
+      largest = std::max(largest, std::abs(expected[c]));
+    }
+  }
+  EXPECT_GT(largest, 0.1);
+}
+
+// A vertex with a NaN coordinate gets 0 in every array, and one without a normal no light.
+TEST(DistributedLightsFilter, NonFiniteAndNormalLessVerticesGetNothing)
+{
+  vtkSmartPointer<vtkPolyData> sphere = shadelab::testing::exactSphere(12);
+  sphere->GetPoints()->SetPoint(5, std::nan(""), 0, 0);
+  sphere->GetPointData()->GetNormals()->SetTuple3(7, 0, 0, 0);
+  Scene scene = shinyScene();
+  AreaLight bulb;
+  bulb.shape = SphereEmitter{ { 0, 0, 3 }, 1 };
+  bulb.estimator = AreaEstimator::MonteCarlo;
+  EnvironmentLight sky;
+  sky.map = singleTexelMap(3, 3, Rgb(5.0));
+  scene.lights = { { "bulb", bulb }, { "sky", sky } };
+  vtkSmartPointer<vtkPolyData> output = shade(sphere, scene, { "all" });
+  vtkPointData* arrays = output->GetPointData();
+  for (int a = 0; a < arrays->GetNumberOfArrays(); ++a)
+  {
+    vtkDataArray* array = arrays->GetArray(a);
+    if (std::string(array->GetName()) == "Normals" || std::string(array->GetName()) == "shading_flags")
+    {
+      continue;
+    }
+    for (const vtkIdType vertex : { 5, 7 })
+    {
+      for (int c = 0; c < array->GetNumberOfComponents(); ++c)
+      {
+        EXPECT_EQ(array->GetComponent(vertex, c), 0.0) << array->GetName() << " at vertex " << vertex;
+      }
+    }
+  }
+  EXPECT_EQ(arrays->GetArray("shading_flags")->GetComponent(5, 0), FlagNonFiniteInput);
+  EXPECT_EQ(arrays->GetArray("shading_flags")->GetComponent(7, 0), FlagDegenerateNormal);
 }

@@ -48,12 +48,19 @@ EnvironmentLightEstimator::EnvironmentLightEstimator(const EnvironmentLight& lig
       break;
     }
     case EnvironmentEstimator::SphericalHarmonics:
-      sh_ = projectRadiance(map);
+    {
+      ShCoefficients9 coefficients = projectRadiance(map);
+      for (Rgb& coefficient : coefficients)
+      {
+        coefficient *= scale_; // the coefficients are linear in the radiance
+      }
+      irradiance_ = composedWith(irradiancePolynomial(coefficients), worldToMap_);
       if (lobe.wanted())
       {
         sampler_.emplace(map);
       }
       break;
+    }
     case EnvironmentEstimator::MonteCarlo:
       if (light.directions == EnvironmentDirections::Luminance)
       {
@@ -153,7 +160,7 @@ DistributedTerms EnvironmentLightEstimator::estimate(const SurfacePoint& point) 
   // Nine coefficients cannot hold a lobe sharper than the cosine: S is sampled by luminance.
   DistributedTerms terms =
     lobe_.wanted() ? monteCarlo(n, v, point.index, false, EnvironmentDirections::Luminance) : DistributedTerms{};
-  terms.irradiance = scale_ * irradianceFromSh9(sh_, n);
+  terms.irradiance = (*irradiance_)(point.normal);
   return terms;
 }
 }

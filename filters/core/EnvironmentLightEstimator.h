@@ -20,6 +20,10 @@ public:
 
   DistributedTerms estimate(const SurfacePoint& point) const override;
 
+  /// For the SH estimator, E as a polynomial of the world normal (eq. 13 turned with the map),
+  /// for the kernel's vectorised loops; nothing for the other estimators.
+  const std::optional<IrradiancePolynomial>& irradiance() const { return irradiance_; }
+
 private:
   /// A texel of the brute-force level: its centre's direction (map frame) and radiance x
   /// solid angle, scaled by the light's colour and intensity.
@@ -41,6 +45,6 @@ private:
   glm::dmat3 worldToMap_{ 1.0 };
   std::vector<Texel> texels_;              // BruteForce
   std::optional<EnvironmentSampler> sampler_; // sampling by luminance
-  ShCoefficients9 sh_{};                   // SphericalHarmonics
+  std::optional<IrradiancePolynomial> irradiance_; // SphericalHarmonics
 };
 }

@@ -1,5 +1,6 @@
 #include "ShadingKernel.h"
 
+#include "EnvironmentLightEstimator.h"
 #include "Reflectance.h"
 
 #include <algorithm>
@@ -43,6 +44,22 @@ void store(T* out, std::size_t first, std::size_t count, const Lane<T>& x, const
       out[3 * (first + k)] = x[k];
       out[3 * (first + k) + 1] = y[k];
       out[3 * (first + k) + 2] = z[k];
+    }
+  }
+}
+
+/// An RGB term that is colour x (r, g, b) at each vertex.
+template <typename T>
+void store(T* out, std::size_t first, std::size_t count, const Lane<T>& r, const Lane<T>& g, const Lane<T>& b,
+  const Vec3<T>& color)
+{
+  if (out)
+  {
+    for (std::size_t k = 0; k < count; ++k)
+    {
+      out[3 * (first + k)] = r[k] * color.x;
+      out[3 * (first + k) + 1] = g[k] * color.y;
+      out[3 * (first + k) + 2] = b[k] * color.z;
     }
   }
 }
@@ -112,6 +129,8 @@ struct ShadingKernel<T>::Workspace
   Lane<T> hx, hy, hz, nDotH;
   Lane<T> incidenceAngle;
   Lane<T> diffuseR, diffuseG, diffuseB, specularR, specularG, specularB; // sums over lights
+  Lane<T> irradianceR, irradianceG, irradianceB; // an area light's or map's E
+  Lane<T> integralR, integralG, integralB;       // and its S, before ks
   std::array<ShadingFlags, VertexBlock<T>::capacity> flags;
   Lane<T> halfVectorDefined; // 1 or 0: a lane of T, so that its loops vectorise with the rest
   std::size_t nonFinite = 0;
@@ -177,7 +196,20 @@ ShadingKernel<T>::ShadingKernel(const Scene& scene, ShadingOutputs<T> outputs, c
       light.needsSpecular =
         specularModel_ != SpecularModel::None && (light.out[int(LightTerm::Specular)] || totalSpecular);
       const LobeModel lobe{ light.needsSpecular ? specularModel_ : SpecularModel::None, m.shininess };
-      light.estimator = makeEstimator(source, l, lobe);
+      const auto* environment = std::get_if<EnvironmentLight>(&source);
+      if (environment && environment->estimator == EnvironmentEstimator::SphericalHarmonics)
+      {
+        auto estimator = std::make_shared<const EnvironmentLightEstimator>(*environment, l, lobe);
+        const IrradiancePolynomial& e = *estimator->irradiance();
+        light.irradiance = PreparedPolynomial{ { toVec<T>(e.xx), toVec<T>(e.yy), toVec<T>(e.zz), toVec<T>(e.xy),
+          toVec<T>(e.xz), toVec<T>(e.yz), toVec<T>(e.x), toVec<T>(e.y), toVec<T>(e.z), toVec<T>(e.constant) } };
+        // The estimator is still needed for S, which it samples.
+        light.estimator = light.needsSpecular ? std::move(estimator) : nullptr;
+      }
+      else
+      {
+        light.estimator = makeEstimator(source, l, lobe);
+      }
       distributedLights_.push_back(std::move(light));
       continue;
     }
@@ -492,7 +524,7 @@ void ShadingKernel<T>::storeLight(const PreparedLight& light, const VertexBlock<
 }
 
 template <typename T>
-void ShadingKernel<T>::addDistributedLight(const DistributedLightSlot& light, const VertexBlock<T>& b, Workspace& w) const
+void ShadingKernel<T>::estimateDistributedLight(const DistributedLightSlot& light, const VertexBlock<T>& b, Workspace& w) const
 {
   const auto& out = light.out;
   auto storeRgb = [&](LightTerm term, std::size_t i, const Rgb& value)
@@ -518,21 +550,72 @@ void ShadingKernel<T>::addDistributedLight(const DistributedLightSlot& light, co
       point.index = b.first + k;
       terms = light.estimator->estimate(point);
     }
-    const Rgb diffuse = light.kd * terms.irradiance;
-    const Rgb specular = light.ks * terms.specular;
-    w.diffuseR[k] += T(diffuse.x);
-    w.diffuseG[k] += T(diffuse.y);
-    w.diffuseB[k] += T(diffuse.z);
-    w.specularR[k] += T(specular.x);
-    w.specularG[k] += T(specular.y);
-    w.specularB[k] += T(specular.z);
+    if (!light.irradiance)
+    {
+      w.irradianceR[k] = T(terms.irradiance.x);
+      w.irradianceG[k] = T(terms.irradiance.y);
+      w.irradianceB[k] = T(terms.irradiance.z);
+    }
+    w.integralR[k] = T(terms.specular.x);
+    w.integralG[k] = T(terms.specular.y);
+    w.integralB[k] = T(terms.specular.z);
     const std::size_t i = b.first + k;
-    storeRgb(LightTerm::Irradiance, i, terms.irradiance);
-    storeRgb(LightTerm::Diffuse, i, diffuse);
-    storeRgb(LightTerm::Specular, i, specular);
     storeRgb(LightTerm::IrradianceStdError, i, terms.irradianceStdError);
     storeRgb(LightTerm::SpecularStdError, i, light.ks * terms.specularStdError);
   }
+}
+
+template <typename T>
+void ShadingKernel<T>::addDistributedLight(const DistributedLightSlot& light, const VertexBlock<T>& b, Workspace& w) const
+{
+  const std::size_t count = b.count;
+  if (light.irradiance)
+  {
+    // R&H eq. 13, the quadratic polynomial of the normal, in a loop GCC vectorises. A
+    // degenerate normal was set to 0 and gets no light.
+    const auto& c = light.irradiance->coefficients;
+    for (std::size_t k = 0; k < count; ++k)
+    {
+      const T x = w.nx[k], y = w.ny[k], z = w.nz[k];
+      const T usable = x * x + y * y + z * z > T(0.5) ? T(1) : T(0);
+      const T monomials[10] = { x * x, y * y, z * z, x * y, x * z, y * z, x, y, z, T(1) };
+      T r = 0, g = 0, bl = 0;
+      for (int m = 0; m < 10; ++m)
+      {
+        r += c[m].x * monomials[m];
+        g += c[m].y * monomials[m];
+        bl += c[m].z * monomials[m];
+      }
+      w.irradianceR[k] = usable * r;
+      w.irradianceG[k] = usable * g;
+      w.irradianceB[k] = usable * bl;
+    }
+  }
+  if (light.estimator)
+  {
+    estimateDistributedLight(light, b, w);
+  }
+  else
+  {
+    for (Lane<T>* lane : { &w.integralR, &w.integralG, &w.integralB })
+    {
+      std::fill_n(lane->begin(), count, T(0));
+    }
+  }
+  const Vec3<T> kd = toVec<T>(light.kd), ks = toVec<T>(light.ks);
+  for (std::size_t k = 0; k < count; ++k)
+  {
+    w.diffuseR[k] += kd.x * w.irradianceR[k];
+    w.diffuseG[k] += kd.y * w.irradianceG[k];
+    w.diffuseB[k] += kd.z * w.irradianceB[k];
+    w.specularR[k] += ks.x * w.integralR[k];
+    w.specularG[k] += ks.y * w.integralG[k];
+    w.specularB[k] += ks.z * w.integralB[k];
+  }
+  const auto& out = light.out;
+  store(out[int(LightTerm::Irradiance)], b.first, count, w.irradianceR, w.irradianceG, w.irradianceB);
+  store(out[int(LightTerm::Diffuse)], b.first, count, w.irradianceR, w.irradianceG, w.irradianceB, kd);
+  store(out[int(LightTerm::Specular)], b.first, count, w.integralR, w.integralG, w.integralB, ks);
 }
 
 template <typename T>

@@ -115,10 +115,19 @@ private:
     std::array<T*, LightTermCount> out{};
   };
 
-  /// An area light or environment map: its estimator, run vertex by vertex in float64.
+  /// E(n) = sum of coefficient x monomial over the monomials xx, yy, zz, xy, xz, yz, x, y, z,
+  /// 1 of the normal: an environment map's SH irradiance, evaluated in a vectorised loop.
+  struct PreparedPolynomial
+  {
+    std::array<Vec3<T>, 10> coefficients;
+  };
+
+  /// An area light or environment map: its estimator, run vertex by vertex in float64, and
+  /// for SH irradiance the polynomial that replaces it for E.
   struct DistributedLightSlot
   {
     std::shared_ptr<const DistributedLightEstimator> estimator;
+    std::optional<PreparedPolynomial> irradiance;
     Rgb kd{ 0.0 }, ks{ 0.0 };
     bool needsSpecular = false;
     std::array<T*, LightTermCount> out{};
@@ -133,6 +142,7 @@ private:
   void specularLobes(const PreparedLight& light, std::size_t count, Workspace& w) const;
   void storeLight(const PreparedLight& light, const VertexBlock<T>& block, const Workspace& w) const;
   void addDistributedLight(const DistributedLightSlot& light, const VertexBlock<T>& block, Workspace& w) const;
+  void estimateDistributedLight(const DistributedLightSlot& light, const VertexBlock<T>& block, Workspace& w) const;
   void storeTotals(const VertexBlock<T>& block, Workspace& w) const;
 
   std::vector<PreparedLight> lights_;

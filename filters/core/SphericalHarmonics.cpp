@@ -90,15 +90,52 @@ ShCoefficients9 projectRadiance(const EnvironmentMap& map)
   return coefficients;
 }
 
-// R&H eq. 13.
+// R&H eq. 13: E = c1 L22 (x^2 - y^2) + c3 L20 z^2 + c4 L00 - c5 L20
+//   + 2 c1 (L2-2 xy + L21 xz + L2-1 yz) + 2 c2 (L11 x + L1-1 y + L10 z).
+IrradiancePolynomial irradiancePolynomial(const ShCoefficients9& coefficients)
+{
+  const auto& [l00, l1m1, l10, l11, l2m2, l2m1, l20, l21, l22] = coefficients;
+  IrradiancePolynomial e;
+  e.xx = c1 * l22;
+  e.yy = -c1 * l22;
+  e.zz = c3 * l20;
+  e.xy = 2.0 * c1 * l2m2;
+  e.xz = 2.0 * c1 * l21;
+  e.yz = 2.0 * c1 * l2m1;
+  e.x = 2.0 * c2 * l11;
+  e.y = 2.0 * c2 * l1m1;
+  e.z = 2.0 * c2 * l10;
+  e.constant = c4 * l00 - c5 * l20;
+  return e;
+}
+
+IrradiancePolynomial composedWith(const IrradiancePolynomial& p, const glm::dmat3& a)
+{
+  // Per channel, p(m) = m^T S m + b.m + c with S symmetric; p(a n) = n^T (a^T S a) n + (a^T b).n + c.
+  IrradiancePolynomial q;
+  q.constant = p.constant;
+  for (int channel = 0; channel < 3; ++channel)
+  {
+    const double xy = p.xy[channel] / 2, xz = p.xz[channel] / 2, yz = p.yz[channel] / 2;
+    const glm::dmat3 square(glm::dvec3(p.xx[channel], xy, xz), glm::dvec3(xy, p.yy[channel], yz),
+      glm::dvec3(xz, yz, p.zz[channel]));
+    const glm::dmat3 turned = glm::transpose(a) * square * a;
+    const glm::dvec3 linear = glm::transpose(a) * glm::dvec3(p.x[channel], p.y[channel], p.z[channel]);
+    q.xx[channel] = turned[0][0];
+    q.yy[channel] = turned[1][1];
+    q.zz[channel] = turned[2][2];
+    q.xy[channel] = 2 * turned[0][1];
+    q.xz[channel] = 2 * turned[0][2];
+    q.yz[channel] = 2 * turned[1][2];
+    q.x[channel] = linear.x;
+    q.y[channel] = linear.y;
+    q.z[channel] = linear.z;
+  }
+  return q;
+}
+
 Rgb irradianceFromSh9(const ShCoefficients9& coefficients, const glm::dvec3& unitNormal)
 {
-  const double x = unitNormal.x;
-  const double y = unitNormal.y;
-  const double z = unitNormal.z;
-  const auto& [l00, l1m1, l10, l11, l2m2, l2m1, l20, l21, l22] = coefficients;
-  return c1 * l22 * (x * x - y * y) + c3 * l20 * z * z + c4 * l00 - c5 * l20 +
-    2.0 * c1 * (l2m2 * x * y + l21 * x * z + l2m1 * y * z) +
-    2.0 * c2 * (l11 * x + l1m1 * y + l10 * z);
+  return irradiancePolynomial(coefficients)(unitNormal);
 }
 }

@@ -11,6 +11,8 @@
 // frame works if the projection and eq. 13 use the same one, as both do here.
 #include "EnvironmentMap.h"
 
+#include <glm/mat3x3.hpp>
+
 #include <array>
 
 namespace shadelab
@@ -24,6 +26,26 @@ std::array<double, 9> shBasis9(const glm::dvec3& unitDirection);
 
 /// L_lm = sum over texels of L Y_lm(texel centre direction) texel solid angle.
 ShCoefficients9 projectRadiance(const EnvironmentMap& map);
+
+/// R&H eq. 13 as the coefficients of a quadratic polynomial in the normal's components, so
+/// that a vectorised loop can evaluate it (ShadingKernel):
+/// E(n) = xx x^2 + yy y^2 + zz z^2 + xy x y + xz x z + yz y z + x x + y y + z z + constant.
+struct IrradiancePolynomial
+{
+  Rgb xx{ 0.0 }, yy{ 0.0 }, zz{ 0.0 }, xy{ 0.0 }, xz{ 0.0 }, yz{ 0.0 }, x{ 0.0 }, y{ 0.0 }, z{ 0.0 }, constant{ 0.0 };
+
+  Rgb operator()(const glm::dvec3& n) const
+  {
+    return xx * (n.x * n.x) + yy * (n.y * n.y) + zz * (n.z * n.z) + xy * (n.x * n.y) + xz * (n.x * n.z) +
+      yz * (n.y * n.z) + x * n.x + y * n.y + z * n.z + constant;
+  }
+};
+
+IrradiancePolynomial irradiancePolynomial(const ShCoefficients9& coefficients);
+
+/// The polynomial n -> p(a n): the same irradiance in a frame turned by a (for a map turned
+/// in the world, a takes world directions into the map's frame).
+IrradiancePolynomial composedWith(const IrradiancePolynomial& p, const glm::dmat3& a);
 
 /// R&H eq. 13: the irradiance E(n) = integral of L(w) max(0, n.w) dw of the radiance the
 /// coefficients represent.
