@@ -1,9 +1,8 @@
 #include "AreaLightEstimator.h"
 
 #include "DiskIrradiance.h"
-#include "MonteCarloEstimate.h"
 #include "PolygonIrradiance.h"
-#include "SampleSequence.h"
+#include "SampledTerms.h"
 #include "SampleWarps.h"
 #include "SphereIrradiance.h"
 
@@ -138,34 +137,13 @@ WeightedDirection AreaLightEstimator::sample(const glm::dvec2& u, const SurfaceP
 
 DistributedTerms AreaLightEstimator::monteCarlo(const SurfacePoint& point, bool irradiance) const
 {
-  MonteCarloEstimate e(light_.sampling.stratified), s(light_.sampling.stratified);
   const SampleSequence sequence(lightIndex_, point.index, light_.sampling);
-  for (int j = 0; j < sequence.count(); ++j)
-  {
-    const WeightedDirection sample = this->sample(sequence.point(j), point);
-    // L f(w) / pdf(w) for f = max(0, n.w) and f = lobe(w).
-    const Rgb weighted = radiance_ * sample.weight;
-    if (irradiance)
+  return sampledTerms(sequence, light_.sampling.stratified, irradiance, lobe_, point.normal, point.toViewer,
+    [&](const glm::dvec2& u)
     {
-      e.add(weighted * std::max(0.0, glm::dot(point.normal, sample.direction)));
-    }
-    if (lobe_.wanted())
-    {
-      s.add(sample.weight > 0 ? weighted * lobe_(point.normal, sample.direction, point.toViewer) : Rgb(0.0));
-    }
-  }
-  DistributedTerms terms;
-  if (irradiance)
-  {
-    terms.irradiance = e.mean();
-    terms.irradianceStdError = e.standardError();
-  }
-  if (lobe_.wanted())
-  {
-    terms.specular = s.mean();
-    terms.specularStdError = s.standardError();
-  }
-  return terms;
+      const WeightedDirection sample = this->sample(u, point);
+      return RadianceSample{ sample.direction, radiance_ * sample.weight };
+    });
 }
 
 DistributedTerms AreaLightEstimator::pointApproximation(const SurfacePoint& point) const

@@ -1,7 +1,6 @@
 #include "EnvironmentLightEstimator.h"
 
-#include "MonteCarloEstimate.h"
-#include "SampleSequence.h"
+#include "SampledTerms.h"
 #include "SampleWarps.h"
 
 #include <algorithm>
@@ -101,46 +100,18 @@ DistributedTerms EnvironmentLightEstimator::bruteForce(const glm::dvec3& n, cons
 DistributedTerms EnvironmentLightEstimator::monteCarlo(const glm::dvec3& n, const glm::dvec3& v, std::uint64_t vertex,
   bool irradiance, EnvironmentDirections directions) const
 {
-  MonteCarloEstimate e(light_.sampling.stratified), s(light_.sampling.stratified);
   const SampleSequence sequence(lightIndex_, vertex, light_.sampling);
-  for (int j = 0; j < sequence.count(); ++j)
-  {
-    const glm::dvec2 u = sequence.point(j);
-    glm::dvec3 direction;
-    Rgb weighted; // L(w) / pdf(w)
-    if (directions == EnvironmentDirections::Luminance)
+  return sampledTerms(sequence, light_.sampling.stratified, irradiance, lobe_, n, v,
+    [&](const glm::dvec2& u)
     {
-      const EnvironmentSample sample = sampler_->sample(u.x, u.y);
-      direction = sample.direction;
-      weighted = sample.pdf > 0 ? scale_ * sample.radiance / sample.pdf : Rgb(0.0);
-    }
-    else
-    {
+      if (directions == EnvironmentDirections::Luminance)
+      {
+        const EnvironmentSample sample = sampler_->sample(u.x, u.y);
+        return RadianceSample{ sample.direction, sample.pdf > 0 ? scale_ * sample.radiance / sample.pdf : Rgb(0.0) };
+      }
       const WeightedDirection sample = cosineWeightedDirection(n, u);
-      direction = sample.direction;
-      weighted = scale_ * radianceAt(direction) * sample.weight;
-    }
-    if (irradiance)
-    {
-      e.add(weighted * std::max(0.0, glm::dot(n, direction)));
-    }
-    if (lobe_.wanted())
-    {
-      s.add(weighted * lobe_(n, direction, v));
-    }
-  }
-  DistributedTerms terms;
-  if (irradiance)
-  {
-    terms.irradiance = e.mean();
-    terms.irradianceStdError = e.standardError();
-  }
-  if (lobe_.wanted())
-  {
-    terms.specular = s.mean();
-    terms.specularStdError = s.standardError();
-  }
-  return terms;
+      return RadianceSample{ sample.direction, scale_ * radianceAt(sample.direction) * sample.weight };
+    });
 }
 
 DistributedTerms EnvironmentLightEstimator::estimate(const SurfacePoint& point) const

@@ -1,0 +1,49 @@
+#pragma once
+// The Monte Carlo loop the area-light and environment-map estimators share: E and S from
+// sampled directions, with their standard errors.
+#include "DistributedLight.h"
+#include "MonteCarloEstimate.h"
+#include "SampleSequence.h"
+
+namespace shadelab
+{
+/// A sampled direction w and L(w) / pdf(w), the sample's radiance over its density.
+struct RadianceSample
+{
+  glm::dvec3 direction{ 0.0 };
+  Rgb weighted{ 0.0 };
+};
+
+/// Averages L(w) max(0, n.w) / pdf(w) (when irradiance is wanted) and L(w) lobe(w) / pdf(w)
+/// (when the lobe is) over the sequence's points, which sampleAt(u) turns into RadianceSamples.
+template <typename SampleAt>
+DistributedTerms sampledTerms(const SampleSequence& sequence, bool stratified, bool irradiance, const LobeModel& lobe,
+  const glm::dvec3& n, const glm::dvec3& v, SampleAt&& sampleAt)
+{
+  MonteCarloEstimate e(stratified), s(stratified);
+  for (int j = 0; j < sequence.count(); ++j)
+  {
+    const RadianceSample sample = sampleAt(sequence.point(j));
+    if (irradiance)
+    {
+      e.add(sample.weighted * std::max(0.0, glm::dot(n, sample.direction)));
+    }
+    if (lobe.wanted())
+    {
+      s.add(sample.weighted * lobe(n, sample.direction, v));
+    }
+  }
+  DistributedTerms terms;
+  if (irradiance)
+  {
+    terms.irradiance = e.mean();
+    terms.irradianceStdError = e.standardError();
+  }
+  if (lobe.wanted())
+  {
+    terms.specular = s.mean();
+    terms.specularStdError = s.standardError();
+  }
+  return terms;
+}
+}
