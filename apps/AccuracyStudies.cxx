@@ -1,11 +1,11 @@
 #include "AccuracyStudies.h"
 
+#include "AccuracyStudyParts.h"
 #include "BenchmarkMeshes.h"
 #include "Chart.h"
+#include "DistributedStudies.h"
 #include "MeshFiles.h"
 
-#include "MethodChoice.h"
-#include "ShadingKernel.h"
 #include "vtkLocalReflectanceFilter.h"
 
 #include "vtkDataArray.h"
@@ -23,38 +23,24 @@
 
 namespace shadelab::app
 {
-namespace
-{
-/// One measured method: a row of accuracy.csv.
-struct AccuracyRow
-{
-  std::string study, method, parameter;
-  double value = 0; // the parameter's value (eta, distance / radius, ...)
-  long long vertices = 0;
-  std::optional<double> milliseconds;
-  double maxError = 0, rmsError = 0;
-  std::optional<double> predicted;
-  std::string note;
-};
-
-/// A filter set up for one method; run() times it (median) and returns the output.
-struct MethodRun
-{
-  vtkSmartPointer<vtkPolyData> output;
-  double milliseconds = 0;
-};
-
-MethodRun runMethod(vtkPolyData* mesh, const Scene& scene, const std::string& array, Precision precision,
-  const std::vector<LightMethod>& methods, int maxRepeats)
+MethodRun runMethod(vtkPolyData* mesh, const Scene& scene, const std::vector<std::string>& arrays,
+  Precision precision, const std::vector<LightMethod>& methods, int maxRepeats, int minRepeats)
 {
   vtkNew<vtkLocalReflectanceFilter> filter;
   filter->SetInputData(mesh);
+  // The normals (computed, or tested for pointing inward) are prepared in a run of their own,
+  // which the filter keeps while the input is unchanged; one distant light makes that run
+  // cheap even when the scene's estimators take seconds.
+  Scene lambert;
+  lambert.lights = { { "sun", DistantLight{} } };
+  filter->SetScene(lambert);
+  filter->SetArraySelection({ "shading_flags" });
+  filter->Update();
   filter->SetScene(scene);
-  filter->SetArraySelection({ array });
+  filter->SetArraySelection(arrays);
   filter->SetOutputPrecision(
     precision == Precision::Float64 ? vtkAlgorithm::DOUBLE_PRECISION : vtkAlgorithm::SINGLE_PRECISION);
   filter->SetLightMethods(methods);
-  filter->Update(); // prepares the normals: not part of the method's time
   MethodRun run;
   run.milliseconds = medianMilliseconds(
     [&]
@@ -62,7 +48,7 @@ MethodRun runMethod(vtkPolyData* mesh, const Scene& scene, const std::string& ar
       filter->Modified();
       filter->Update();
     },
-    3, maxRepeats);
+    minRepeats, maxRepeats);
   run.output = vtkSmartPointer<vtkPolyData>::New();
   run.output->ShallowCopy(filter->GetOutput());
   return run;
@@ -73,9 +59,8 @@ vtkDataArray* arrayOf(const MethodRun& run, const std::string& name)
   return run.output->GetPointData()->GetArray(name.c_str());
 }
 
-const std::array<unsigned char, 3> palette[] = { { 31, 119, 180 }, { 255, 127, 14 }, { 44, 160, 44 },
-  { 214, 39, 40 }, { 148, 103, 189 }, { 140, 86, 75 }, { 227, 119, 194 }, { 127, 127, 127 } };
-
+namespace
+{
 std::string precisionText(Precision precision)
 {
   return precision == Precision::Float32 ? "float32" : "float64";
@@ -110,14 +95,15 @@ Scene bunnyScene(vtkPolyData* mesh, double shininess)
 std::vector<AccuracyRow> arithmeticStudy(const Mesh& mesh, int maxRepeats, ChartSpec& chart)
 {
   const Scene scene = bunnyScene(mesh.data, 30);
-  const MethodRun reference = runMethod(mesh.data, scene, "total", Precision::Float64, {}, maxRepeats);
+  const MethodRun reference = runMethod(mesh.data, scene, { "total" }, Precision::Float64, {}, maxRepeats);
   std::vector<AccuracyRow> rows;
   std::vector<double> times, errors;
   for (const Precision precision : { Precision::Float64, Precision::Float32 })
   {
     for (const PowMethod pow : { PowMethod::Exact, PowMethod::Series, PowMethod::Schlick })
     {
-      const MethodRun run = runMethod(mesh.data, scene, "total", precision, { LightMethod{ std::nullopt, pow } }, maxRepeats);
+      const MethodRun run =
+        runMethod(mesh.data, scene, { "total" }, precision, { LightMethod{ std::nullopt, pow } }, maxRepeats);
       const Differences stats = compareArrays(arrayOf(reference, "total"), arrayOf(run, "total"));
       AccuracyRow row{ "1 arithmetic and pow", precisionText(precision) + ", " + powMethodName(pow), "eta", 30,
         mesh.data->GetNumberOfPoints(), run.milliseconds, stats.largest, stats.rms, std::nullopt, "" };
@@ -198,11 +184,11 @@ std::vector<AccuracyRow> distantStudy(const Mesh& mesh, int maxRepeats, ChartSpe
     PointLight& key = std::get<PointLight>(scene.lights[0].source);
     key.position = extent.centre + ratio * extent.radius * glm::dvec3(1, 1, 1) / std::sqrt(3.0);
     key.intensity = ratio * ratio * extent.radius * extent.radius; // about 1 at the mesh
-    const MethodRun exact = runMethod(mesh.data, scene, "diffuse", Precision::Float64, {}, maxRepeats);
-    const MethodRun exact32 = runMethod(mesh.data, scene, "diffuse", Precision::Float32, {}, maxRepeats);
-    const MethodRun distant = runMethod(mesh.data, scene, "diffuse", Precision::Float32,
+    const MethodRun exact = runMethod(mesh.data, scene, { "diffuse" }, Precision::Float64, {}, maxRepeats);
+    const MethodRun exact32 = runMethod(mesh.data, scene, { "diffuse" }, Precision::Float32, {}, maxRepeats);
+    const MethodRun distant = runMethod(mesh.data, scene, { "diffuse" }, Precision::Float32,
       { LightMethod{ extent.centre, PowMethod::Exact } }, maxRepeats);
-    const MethodRun distant64 = runMethod(mesh.data, scene, "diffuse", Precision::Float64,
+    const MethodRun distant64 = runMethod(mesh.data, scene, { "diffuse" }, Precision::Float64,
       { LightMethod{ extent.centre, PowMethod::Exact } }, 1);
     const Differences stats = compareArrays(arrayOf(exact, "diffuse"), arrayOf(distant64, "diffuse"));
     const double predicted = distantApproximationError(key, scene.material, false, extent);
@@ -242,8 +228,8 @@ std::vector<AccuracyRow> phongStudy(const Mesh& mesh, int maxRepeats, ChartSpec&
     Scene phong = bunnyScene(mesh.data, eta);
     phong.material.specular = SpecularModel::Phong;
     Scene blinn = bunnyScene(mesh.data, 4 * eta);
-    const MethodRun a = runMethod(mesh.data, phong, "specular", Precision::Float32, {}, maxRepeats);
-    const MethodRun b = runMethod(mesh.data, blinn, "specular", Precision::Float32, {}, maxRepeats);
+    const MethodRun a = runMethod(mesh.data, phong, { "specular" }, Precision::Float32, {}, maxRepeats);
+    const MethodRun b = runMethod(mesh.data, blinn, { "specular" }, Precision::Float32, {}, maxRepeats);
     const Differences stats = compareArrays(arrayOf(a, "specular"), arrayOf(b, "specular"));
     std::ostringstream note;
     note << std::setprecision(3) << "Phong " << a.milliseconds << " ms, Blinn-Phong " << b.milliseconds << " ms";
@@ -269,14 +255,7 @@ std::vector<glm::dvec3> totalAt(const Scene& scene, TotalTerm term, const std::v
   const std::vector<glm::dvec3>& normals)
 {
   std::vector<T> total(3 * points.size());
-  ShadingOutputs<T> outputs;
-  outputs.lights.resize(scene.lights.size());
-  for (auto& light : outputs.lights)
-  {
-    light.fill(nullptr);
-  }
-  outputs.totals[int(term)] = total.data();
-  const ShadingKernel<T> kernel(scene, outputs);
+  const ShadingKernel<T> kernel(scene, oneTotal(scene, term, total.data()));
   shadeRange(kernel, 0, points.size(),
     [&](std::size_t i, VertexBlock<T>& block, std::size_t k) { block.set(k, points[i], normals[i]); });
   std::vector<glm::dvec3> result(points.size());
@@ -388,6 +367,25 @@ std::vector<AccuracyRow> grazingRows()
   return rows;
 }
 
+void printRows(const std::vector<AccuracyRow>& rows)
+{
+  for (const AccuracyRow& r : rows)
+  {
+    std::cout << "  " << std::left << std::setw(48) << r.method << " " << r.parameter << " " << std::setw(8) << r.value
+              << std::right;
+    if (r.maxError && r.rmsError)
+    {
+      std::cout << std::scientific << std::setprecision(2) << " max " << *r.maxError << " rms " << *r.rmsError
+                << std::defaultfloat;
+    }
+    if (r.milliseconds)
+    {
+      std::cout << std::fixed << std::setprecision(2) << "  " << *r.milliseconds << " ms" << std::defaultfloat;
+    }
+    std::cout << (r.note.empty() ? "" : "  (" + r.note + ")") << "\n";
+  }
+}
+
 void writeCsv(const std::vector<AccuracyRow>& rows, const std::string& file)
 {
   writeThroughTemporary(file,
@@ -400,15 +398,14 @@ void writeCsv(const std::vector<AccuracyRow>& rows, const std::string& file)
       for (const AccuracyRow& r : rows)
       {
         csv << quoted(r.study) << "," << quoted(r.method) << "," << quoted(r.parameter) << "," << r.value << ","
-            << r.vertices << ",";
-        if (r.milliseconds)
+            << r.vertices;
+        for (const std::optional<double>& value : { r.milliseconds, r.maxError, r.rmsError, r.predicted })
         {
-          csv << *r.milliseconds;
-        }
-        csv << "," << r.maxError << "," << r.rmsError << ",";
-        if (r.predicted)
-        {
-          csv << *r.predicted;
+          csv << ",";
+          if (value)
+          {
+            csv << *value;
+          }
         }
         csv << "," << quoted(r.note) << "\n";
       }
@@ -427,11 +424,15 @@ void runAccuracyStudies(const AccuracyOptions& options)
     throw UserError("--charts: cannot create the folder " + options.directory + " (" + error.message() + ")");
   }
   const std::string folder = options.directory + "/";
-  std::optional<Mesh> bunny = bunnyOfAbout(cleanBunny(options.bunnyFile), 140000);
+  const DistributedStudyInputs distributed = readDistributedStudyInputs(options);
+  const vtkSmartPointer<vtkPolyData> clean = cleanBunny(options.bunnyFile);
+  std::optional<Mesh> bunny = bunnyOfAbout(clean, 140000);
   if (!bunny)
   {
     throw UserError(options.bunnyFile + ": could not be subdivided to about 140,000 vertices");
   }
+  // Not subdivided (level 0, with outward normals): area lights and maps cost far more per vertex.
+  const Mesh plainBunny = *bunnyOfAbout(clean, clean->GetNumberOfPoints());
   std::vector<AccuracyRow> rows;
   auto study = [&](const std::string& name, const std::function<std::vector<AccuracyRow>(ChartSpec&)>& run)
   {
@@ -440,30 +441,38 @@ void runAccuracyStudies(const AccuracyOptions& options)
     const std::vector<AccuracyRow> studyRows = run(chart);
     rows.insert(rows.end(), studyRows.begin(), studyRows.end());
     writeChartPng(chart, folder + name + ".png");
-    for (const AccuracyRow& r : studyRows)
-    {
-      std::cout << "  " << std::left << std::setw(48) << r.method << " " << r.parameter << " " << std::setw(8)
-                << r.value << std::right << std::scientific << std::setprecision(2) << " max " << r.maxError
-                << " rms " << r.rmsError << std::defaultfloat;
-      if (r.milliseconds)
-      {
-        std::cout << std::fixed << std::setprecision(2) << "  " << *r.milliseconds << " ms" << std::defaultfloat;
-      }
-      std::cout << (r.note.empty() ? "" : "  (" + r.note + ")") << "\n";
-    }
+    printRows(studyRows);
   };
   study("1_arithmetic_and_pow", [&](ChartSpec& chart) { return arithmeticStudy(*bunny, options.maxRepeats, chart); });
   study("2_pow", [&](ChartSpec& chart) { return powStudy(chart); });
   study("3_point_as_distant", [&](ChartSpec& chart) { return distantStudy(*bunny, options.maxRepeats, chart); });
   study("4_phong_vs_blinn_phong", [&](ChartSpec& chart) { return phongStudy(*bunny, options.maxRepeats, chart); });
   study("5_tessellation", [&](ChartSpec& chart) { return tessellationStudy(chart); });
+  study("6_area_light",
+    [&](ChartSpec& chart) { return areaLightStudy(plainBunny, distributed.softbox, options.maxRepeats, chart); });
+  study("7_sunset_map",
+    [&](ChartSpec& chart)
+    {
+      return environmentMapStudy(
+        plainBunny, distributed.softbox, distributed.sunset, "7 sunset map", options.maxRepeats, chart);
+    });
+  study("8_studio_map",
+    [&](ChartSpec& chart)
+    {
+      return environmentMapStudy(
+        plainBunny, distributed.softbox, distributed.studio, "8 studio map", options.maxRepeats, chart);
+    });
   const std::vector<AccuracyRow> grazing = grazingRows();
   rows.insert(rows.end(), grazing.begin(), grazing.end());
   for (const AccuracyRow& r : grazing)
   {
-    std::cout << "  " << r.method << ", elevation " << r.value << ": |float32 - float64| = " << r.maxError << "\n";
+    std::cout << "  " << r.method << ", elevation " << r.value << ": |float32 - float64| = " << *r.maxError << "\n";
   }
+  std::cout << "speed requirements:" << std::endl;
+  const std::vector<AccuracyRow> speed = speedRequirementRows(plainBunny, distributed.softbox, distributed.studio);
+  rows.insert(rows.end(), speed.begin(), speed.end());
+  printRows(speed);
   writeCsv(rows, folder + "accuracy.csv");
-  std::cout << "wrote " << folder << "accuracy.csv and 5 charts\n";
+  std::cout << "wrote " << folder << "accuracy.csv and 8 charts\n";
 }
 }

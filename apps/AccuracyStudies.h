@@ -10,10 +10,16 @@ struct AccuracyOptions
   std::string directory;
   std::string bunnyFile;
   int maxRepeats = 9;
+  /// Where the area-light study finds its softbox and material, and where the map studies
+  /// find venice_sunset_1k.hdr and studio_small_03_1k.hdr.
+  std::string areaLightScene = "data/scenes/area_lights.json";
+  std::string envmapFolder = "data/envmaps";
 };
 
-/// Runs the five studies (arithmetic and pow, pow over eta, a point light as distant, Phong
-/// against Blinn-Phong, tessellation) and the failure points; writes accuracy.csv and one
-/// PNG per study into the directory. Needs an X display for the charts. Throws UserError.
+/// Runs the eight studies (arithmetic and pow, pow over eta, a point light as distant, Phong
+/// against Blinn-Phong, tessellation, an area light's estimators, two environment maps'
+/// estimators), the failure points and the speed requirements of the SH estimator; writes
+/// accuracy.csv and one PNG per study into the directory. Needs an X display for the charts.
+/// Throws UserError.
 void runAccuracyStudies(const AccuracyOptions& options);
 }

@@ -10,12 +10,16 @@
 #include "vtkContextScene.h"
 #include "vtkDoubleArray.h"
 #include "vtkPNGWriter.h"
+#include "vtkPen.h"
 #include "vtkPlot.h"
+#include "vtkPlotPoints.h"
 #include "vtkRenderer.h"
 #include "vtkTable.h"
 #include "vtkTextProperty.h"
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <numeric>
 
 namespace shadelab::app
@@ -45,14 +49,10 @@ void writeChartPng(const ChartSpec& spec, const std::string& pngFile)
   chart->GetTitleProperties()->SetFontSize(16);
   chart->SetShowLegend(true);
   chart->GetLegend()->SetHorizontalAlignment(vtkChartLegend::RIGHT);
-  chart->GetLegend()->SetVerticalAlignment(vtkChartLegend::TOP);
-  for (const auto& [axis, title, log] : { std::tuple{ vtkAxis::BOTTOM, spec.xTitle, spec.logX },
-         std::tuple{ vtkAxis::LEFT, spec.yTitle, spec.logY } })
-  {
-    chart->GetAxis(axis)->SetTitle(title);
-    chart->GetAxis(axis)->SetLogScale(log);
-  }
+  chart->GetLegend()->SetVerticalAlignment(spec.legendOutside ? vtkChartLegend::CENTER : vtkChartLegend::TOP);
+  chart->GetLegend()->SetInline(!spec.legendOutside);
   std::vector<vtkSmartPointer<vtkTable>> tables;
+  std::array<double, 2> xRange{ HUGE_VAL, -HUGE_VAL }, yRange{ HUGE_VAL, -HUGE_VAL }; // of the points drawn
   for (const ChartSeries& series : spec.series)
   {
     auto table = vtkSmartPointer<vtkTable>::New();
@@ -67,6 +67,8 @@ void writeChartPng(const ChartSpec& spec, const std::string& pngFile)
       {
         x->InsertNextValue(series.x[i]);
         y->InsertNextValue(series.y[i]);
+        xRange = { std::min(xRange[0], series.x[i]), std::max(xRange[1], series.x[i]) };
+        yRange = { std::min(yRange[0], series.y[i]), std::max(yRange[1], series.y[i]) };
       }
     }
     table->AddColumn(x);
@@ -75,7 +77,29 @@ void writeChartPng(const ChartSpec& spec, const std::string& pngFile)
     vtkPlot* plot = chart->AddPlot(series.line ? vtkChart::LINE : vtkChart::POINTS);
     plot->SetInputData(table, 0, 1);
     plot->SetColor(series.color[0], series.color[1], series.color[2], 255);
-    plot->SetWidth(series.line ? 2.0f : 6.0f);
+    plot->SetWidth(series.wide ? 10.0f : series.line ? 2.0f : 6.0f);
+    if (series.dashed)
+    {
+      plot->GetPen()->SetLineType(vtkPen::DASH_LINE);
+    }
+    if (series.markers)
+    {
+      vtkPlotPoints::SafeDownCast(plot)->SetMarkerStyle(vtkPlotPoints::CIRCLE);
+    }
+  }
+  // VTK can fit a log axis to the data exactly, cutting the markers at its ends in half.
+  const bool markers = std::any_of(
+    spec.series.begin(), spec.series.end(), [](const ChartSeries& series) { return !series.line || series.markers; });
+  for (const auto& [axis, title, log, range] : { std::tuple{ vtkAxis::BOTTOM, spec.xTitle, spec.logX, xRange },
+         std::tuple{ vtkAxis::LEFT, spec.yTitle, spec.logY, yRange } })
+  {
+    chart->GetAxis(axis)->SetTitle(title);
+    chart->GetAxis(axis)->SetLogScale(log);
+    if (log && markers && range[0] <= range[1])
+    {
+      chart->GetAxis(axis)->SetUnscaledRange(range[0] / 1.3, range[1] * 1.3);
+      chart->GetAxis(axis)->SetBehavior(vtkAxis::FIXED);
+    }
   }
   vtkNew<vtkContextActor> actor;
   actor->GetScene()->AddItem(chart);

@@ -12,13 +12,17 @@ struct ChartSeries
   std::vector<double> x, y;
   bool line = false; // points joined by lines, or points alone
   std::array<unsigned char, 3> color{ 0, 0, 0 };
+  bool markers = false; // with line: a marker at each point too
+  bool dashed = false;  // with line
+  bool wide = false;    // a wide band, to mark the points of the series drawn over it
 };
 
 struct ChartSpec
 {
   std::string title, xTitle, yTitle;
   bool logX = false, logY = false;
-  std::vector<ChartSeries> series;
+  bool legendOutside = false; // beside the plot, for series that fill every corner of it
+  std::vector<ChartSeries> series; // drawn in this order
 };
 
 /// The Pareto front of the points (cost, error), those that no other point beats in both,

@@ -486,8 +486,10 @@ int main(int argc, char** argv)
   benchCommand->add_flag("--no-bunny", bench.noBunny, "spheres only");
   benchCommand->add_option("--charts", bench.chartsFolder,
     "instead of the speed table, run the accuracy studies (float32, pow methods, a point light as "
-    "distant, Phong against Blinn-Phong, tessellation, and each at its failure point) and write "
-    "accuracy.csv and one PNG chart per study into this folder; needs an X display (xvfb-run -a)");
+    "distant, Phong against Blinn-Phong, tessellation, each at its failure point; the estimators of "
+    "an area light and of two environment maps, and the SH estimator's speed) and write "
+    "accuracy.csv and one PNG chart per study into this folder; reads data/scenes/area_lights.json "
+    "and data/envmaps/; needs an X display (xvfb-run -a)");
   benchCommand->add_option("--case", bench.options.caseFilters,
     "only the cases whose names contain this text (repeatable), such as --case lambert");
   benchCommand->add_option("--threads,-j", bench.threads, "threads (0: all cores)")

@@ -571,51 +571,60 @@ void ShadingKernel<T>::addDistributedLight(const DistributedLightSlot& light, co
   const std::size_t count = b.count;
   if (light.irradiance)
   {
-    // R&H eq. 13, the quadratic polynomial of the normal, in a loop GCC vectorises. A
-    // degenerate normal was set to 0 and gets no light.
-    const auto& c = light.irradiance->coefficients;
-    for (std::size_t k = 0; k < count; ++k)
+    // R&H eq. 13, the quadratic polynomial of the normal, written out so that GCC vectorises
+    // the loop. A degenerate normal was set to 0 and gets no light.
+    const auto& [xx, yy, zz, xy, xz, yz, cx, cy, cz, constant] = light.irradiance->coefficients;
+    auto polynomial = [&](Lane<T>& out, int channel)
     {
-      const T x = w.nx[k], y = w.ny[k], z = w.nz[k];
-      const T usable = x * x + y * y + z * z > T(0.5) ? T(1) : T(0);
-      const T monomials[10] = { x * x, y * y, z * z, x * y, x * z, y * z, x, y, z, T(1) };
-      T r = 0, g = 0, bl = 0;
-      for (int m = 0; m < 10; ++m)
+      for (std::size_t k = 0; k < count; ++k)
       {
-        r += c[m].x * monomials[m];
-        g += c[m].y * monomials[m];
-        bl += c[m].z * monomials[m];
+        const T x = w.nx[k], y = w.ny[k], z = w.nz[k];
+        const T usable = x * x + y * y + z * z > T(0.5) ? T(1) : T(0);
+        out[k] = usable *
+          (xx[channel] * (x * x) + yy[channel] * (y * y) + zz[channel] * (z * z) + xy[channel] * (x * y) +
+            xz[channel] * (x * z) + yz[channel] * (y * z) + cx[channel] * x + cy[channel] * y + cz[channel] * z +
+            constant[channel]);
       }
-      w.irradianceR[k] = usable * r;
-      w.irradianceG[k] = usable * g;
-      w.irradianceB[k] = usable * bl;
-    }
+    };
+    polynomial(w.irradianceR, 0);
+    polynomial(w.irradianceG, 1);
+    polynomial(w.irradianceB, 2);
   }
+  const Vec3<T> kd = toVec<T>(light.kd), ks = toVec<T>(light.ks);
   if (light.estimator)
   {
     estimateDistributedLight(light, b, w);
-  }
-  else
-  {
-    for (Lane<T>* lane : { &w.integralR, &w.integralG, &w.integralB })
+    for (std::size_t k = 0; k < count; ++k)
     {
-      std::fill_n(lane->begin(), count, T(0));
+      w.specularR[k] += ks.x * w.integralR[k];
+      w.specularG[k] += ks.y * w.integralG[k];
+      w.specularB[k] += ks.z * w.integralB[k];
     }
   }
-  const Vec3<T> kd = toVec<T>(light.kd), ks = toVec<T>(light.ks);
   for (std::size_t k = 0; k < count; ++k)
   {
     w.diffuseR[k] += kd.x * w.irradianceR[k];
     w.diffuseG[k] += kd.y * w.irradianceG[k];
     w.diffuseB[k] += kd.z * w.irradianceB[k];
-    w.specularR[k] += ks.x * w.integralR[k];
-    w.specularG[k] += ks.y * w.integralG[k];
-    w.specularB[k] += ks.z * w.integralB[k];
   }
   const auto& out = light.out;
   store(out[int(LightTerm::Irradiance)], b.first, count, w.irradianceR, w.irradianceG, w.irradianceB);
   store(out[int(LightTerm::Diffuse)], b.first, count, w.irradianceR, w.irradianceG, w.irradianceB, kd);
-  store(out[int(LightTerm::Specular)], b.first, count, w.integralR, w.integralG, w.integralB, ks);
+  if (light.estimator)
+  {
+    store(out[int(LightTerm::Specular)], b.first, count, w.integralR, w.integralG, w.integralB, ks);
+  }
+  else
+  {
+    // SH with no specular term to sample (the material has none, or no array needs it).
+    for (const LightTerm term : { LightTerm::Specular, LightTerm::SpecularStdError })
+    {
+      if (T* array = out[int(term)])
+      {
+        std::fill_n(array + 3 * b.first, 3 * count, T(0));
+      }
+    }
+  }
 }
 
 template <typename T>

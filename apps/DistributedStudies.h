@@ -1,0 +1,37 @@
+#pragma once
+// Studies 6 to 8 of `shadelab bench --charts`: the estimators of an area light and of two
+// environment maps on the bunny, error against time; and issue 4's two speed requirements.
+#include "AccuracyStudies.h"
+#include "AccuracyStudyParts.h"
+#include "BenchmarkMeshes.h"
+#include "Chart.h"
+
+namespace shadelab::app
+{
+/// What the studies read, all read before any study runs so that a missing file stops the
+/// run at once.
+struct DistributedStudyInputs
+{
+  /// The area-light scene's material and viewer, with its softbox alone.
+  Scene softbox;
+  /// The bundled maps as SH lights, each scaled so that the bunny's totals are of order 1.
+  EnvironmentLight sunset, studio;
+};
+
+/// Throws UserError naming the file or folder that is missing or unreadable.
+DistributedStudyInputs readDistributedStudyInputs(const AccuracyOptions& options);
+
+/// 6. The softbox by the exact, Monte Carlo and point estimators, against E exact and S by
+/// 16384 stratified samples; charts the error of the total.
+std::vector<AccuracyRow> areaLightStudy(const Mesh& bunny, const Scene& softbox, int maxRepeats, ChartSpec& chart);
+
+/// 7 and 8. A map by brute force at several widths, SH and Monte Carlo by luminance and by
+/// cosine, against brute force at width 256, under the softbox scene's material and viewer;
+/// charts the error of the diffuse term.
+std::vector<AccuracyRow> environmentMapStudy(const Mesh& bunny, const Scene& material, const EnvironmentLight& map,
+  const std::string& studyName, int maxRepeats, ChartSpec& chart);
+
+/// Issue 4's speed requirements: the SH irradiance's time per vertex against a distant
+/// light's Lambert term, and the time to project the map on the 9 coefficients.
+std::vector<AccuracyRow> speedRequirementRows(const Mesh& bunny, const Scene& material, const EnvironmentLight& map);
+}
