@@ -432,7 +432,7 @@ int main(int argc, char** argv)
   EnvironmentOption& environment = shade.environment;
   CLI::Option* envmapOption = shadeCommand->add_option("--envmap", environment.file,
     "add an environment light named 'envmap' from this equirectangular map (.hdr, .exr: twice as wide "
-    "as high, +y up, the image centre toward -z; README.md 'Environment maps')");
+    "as high, +y up, the image centre toward -z; README.md, 'Area lights and environment maps')");
   shadeCommand->add_option("--envmap-estimator", environment.estimator,
     "its irradiance: sh (9 spherical-harmonic coefficients), monte_carlo (importance sampling by "
     "luminance) or brute_force (every texel of the map downsampled to 128x64)")
