@@ -285,6 +285,34 @@ TEST(AreaEstimators, PolygonExactAgainstMonteCarloWithinThreeStandardErrors)
   }
 }
 
+// A one-sided emitter lights only the side its normal faces; a two-sided one both, alike.
+TEST(AreaEstimators, OneSidedEmittersLightOnlyTheirFront)
+{
+  const SurfacePoint below = surfacePoint({ 0.1, 0, 0.2 }, { 0.2, 1, 0 });  // in front of the square
+  const SurfacePoint above = surfacePoint({ 0.1, 2, 0.2 }, { 0.2, -1, 0 }); // its mirror image behind it
+  AreaLight disk;
+  disk.shape = DiskEmitter{ { 0, 1, 0 }, { 0, -1, 0 }, 0.4 };
+  for (AreaLight light : { squareLight(AreaEstimator::Exact), disk })
+  {
+    for (const AreaEstimator estimator : { AreaEstimator::Exact, AreaEstimator::MonteCarlo, AreaEstimator::Point })
+    {
+      light.estimator = estimator;
+      light.twoSided = false;
+      const AreaLightEstimator oneSided(light, 0, blinnPhong30);
+      const DistributedTerms front = oneSided.estimate(below);
+      EXPECT_GT(front.irradiance.x, 0.1);
+      EXPECT_EQ(oneSided.estimate(above).irradiance.x, 0.0);
+      EXPECT_EQ(oneSided.estimate(above).specular.x, 0.0);
+      light.twoSided = true;
+      const AreaLightEstimator twoSided(light, 0, blinnPhong30);
+      // Mirror images see the same, Monte Carlo too: the same vertex index draws the same
+      // points on the emitter, which mirror onto themselves.
+      EXPECT_NEAR(twoSided.estimate(above).irradiance.x, front.irradiance.x, 1e-12);
+      EXPECT_EQ(twoSided.estimate(below).irradiance.x, front.irradiance.x);
+    }
+  }
+}
+
 // REFERENCES.md section 3: the sphere's closed form, including the partly-below-horizon case,
 // against Monte Carlo over the cone it subtends.
 TEST(AreaEstimators, SphereClosedFormAgainstMonteCarlo)
