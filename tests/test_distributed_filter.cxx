@@ -195,6 +195,29 @@ TEST(DistributedLightsFilter, RefusedWhereTheyCannotApply)
     "scene names, not from arithmetic a tolerance can choose (Monte Carlo estimators report theirs in "
     "*_std_error arrays); shade without a tolerance");
   EXPECT_EQ(errorOf(lecture, 0), "");
+
+  // Maps made in C++ are checked as maps read from files are.
+  auto map = std::make_shared<EnvironmentMap>();
+  map->width = 3;
+  map->height = 2;
+  map->radiance.assign(6, Rgb(1.0));
+  EnvironmentLight sky;
+  sky.map = map;
+  lecture.lights = { { "sky", sky } };
+  EXPECT_EQ(errorOf(lecture, 0), "scene /lights/0/file: the map must be twice as wide as high, with width x height texels");
+  map->width = 4;
+  map->radiance.assign(8, Rgb(1.0));
+  map->radiance[5].y = std::nan("");
+  EXPECT_EQ(errorOf(lecture, 0), "scene /lights/0/file: every texel must be a finite non-negative radiance");
+  map->radiance[5].y = 1;
+  sky.estimator = EnvironmentEstimator::BruteForce;
+  sky.bruteForceWidth = 3;
+  lecture.lights = { { "sky", sky } };
+  EXPECT_EQ(errorOf(lecture, 0), "scene /lights/0/brute_force_width: must be an even number that divides the map's "
+                                 "width (4), or at least that width");
+  sky.bruteForceWidth = 2;
+  lecture.lights = { { "sky", sky } };
+  EXPECT_EQ(errorOf(lecture, 0), "");
 }
 
 // The kernel evaluates SH irradiance as a polynomial in its vectorised loops; it must be the

@@ -246,7 +246,8 @@ TEST(SceneFile, AreaLightAndEnvironmentMapErrors)
   EXPECT_EQ(errorOf(R"({ "lights": [ { "type": "environment" } ] })"), "scene.json: /lights/0/file: missing");
   const std::string map = SHADELAB_SOURCE_DIR "/data/envmaps/venice_sunset_1k.hdr";
   EXPECT_EQ(errorOf(R"({ "lights": [ { "type": "environment", "file": ")" + map + R"(", "brute_force_width": 100 } ] })"),
-    "scene.json: /lights/0/brute_force_width: must be at least 2 and divide the map's width (1024)");
+    "scene.json: /lights/0/brute_force_width: must be an even number that divides the map's width (1024), or at "
+    "least that width");
 }
 
 TEST(SceneFile, MissingFile)

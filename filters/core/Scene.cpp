@@ -4,6 +4,7 @@
 #include "NumberText.h"
 #include "PolygonIrradiance.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <regex>
@@ -293,15 +294,23 @@ void checkEmitter(const EmitterShape& shape, const std::string& at, Precision pr
 
 void checkEnvironment(const EnvironmentLight& light, const std::string& at, ProblemList& list)
 {
-  list.check(light.map != nullptr, at + "/file", "no environment map was loaded for this light");
   list.check(std::isfinite(light.rotationDegrees), at + "/rotation", "must be a finite angle in degrees");
-  if (light.map)
+  const EnvironmentMap* map = light.map.get();
+  list.check(map != nullptr, at + "/file", "no environment map was loaded for this light");
+  if (!map)
   {
-    const int width = light.bruteForceWidth;
-    list.check(width >= 2 && (width >= light.map->width || light.map->width % width == 0),
-      at + "/brute_force_width",
-      "must be at least 2 and divide the map's width (" + std::to_string(light.map->width) + ")");
+    return;
   }
+  // readEnvironmentMap ensures these; a map made in C++ may not.
+  const bool shaped = map->height > 0 && map->width == 2 * map->height &&
+    map->radiance.size() == std::size_t(map->width) * std::size_t(map->height);
+  list.check(shaped, at + "/file", "the map must be twice as wide as high, with width x height texels");
+  const bool radiant = std::all_of(map->radiance.begin(), map->radiance.end(), [](const Rgb& t) { return isNonNegative(t); });
+  list.check(radiant, at + "/file", "every texel must be a finite non-negative radiance");
+  const int width = light.bruteForceWidth;
+  list.check(width >= map->width || (width >= 2 && width % 2 == 0 && map->width % width == 0),
+    at + "/brute_force_width",
+    "must be an even number that divides the map's width (" + std::to_string(map->width) + "), or at least that width");
 }
 
 void checkLight(const Scene& scene, const NamedLight& light, const std::string& at, Precision precision,
