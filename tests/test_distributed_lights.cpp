@@ -3,6 +3,7 @@
 #include "AreaLightEstimator.h"
 #include "EnvironmentLightEstimator.h"
 #include "EnvironmentMap.h"
+#include "LobeSampling.h"
 #include "MonteCarloEstimate.h"
 #include "PolygonIrradiance.h"
 #include "SampleSequence.h"
@@ -498,4 +499,78 @@ TEST(SampleSequence, OnePointPerCellAndTheSameForTheSameVertex)
     EXPECT_NE(u, SampleSequence(4, 77, sampling).point(j));
   }
   EXPECT_EQ(cells, std::vector<int>(12, 1));
+}
+
+// Drawing directions by the lobe (LobeSampling.h): its density integrates to 1 over the
+// sphere, for both lobes, broad and sharp.
+TEST(LobeSampling, DensityIntegratesToOne)
+{
+  const glm::dvec3 n = glm::normalize(glm::dvec3(0.2, 1, 0.1));
+  const glm::dvec3 v = glm::normalize(glm::dvec3(-0.5, 0.6, 0.3));
+  for (const SpecularModel model : { SpecularModel::Phong, SpecularModel::BlinnPhong })
+  {
+    for (const double eta : { 1.0, 30.0, 300.0 })
+    {
+      const LobeModel lobe{ model, eta };
+      // The sphere in 2048 x 1024 cells of exact solid angle, each at its centre.
+      double integral = 0;
+      const int width = 2048, height = 1024;
+      for (int row = 0; row < height; ++row)
+      {
+        const double solidAngle = texelSolidAngle(row, width, height);
+        for (int column = 0; column < width; ++column)
+        {
+          const glm::dvec3 s = directionAt((column + 0.5) / width, (row + 0.5) / height);
+          integral += lobeDensity(lobe, n, v, s) * solidAngle;
+        }
+      }
+      EXPECT_NEAR(integral, 1.0, 2e-3) << (model == SpecularModel::Phong ? "Phong" : "Blinn-Phong") << " eta " << eta;
+    }
+  }
+}
+
+// S by luminance and lobe together against the brute-force sum over every texel of a smooth
+// map, for a sharp lobe (eta 300) that luminance sampling alone would mostly miss.
+TEST(EnvironmentEstimators, SpecularByBothStrategiesAgainstBruteForce)
+{
+  auto map = std::make_shared<EnvironmentMap>();
+  map->width = 256;
+  map->height = 128;
+  for (int row = 0; row < map->height; ++row)
+  {
+    for (int column = 0; column < map->width; ++column)
+    {
+      const glm::dvec3 w = texelCentreDirection(*map, column, row);
+      map->radiance.push_back(Rgb(1 + 0.8 * w.y + 0.5 * w.x * w.z, 1 + 0.3 * w.x, 0.5 + 0.5 * w.z * w.z));
+    }
+  }
+  EnvironmentLight reference = environmentLight(map, EnvironmentEstimator::BruteForce);
+  reference.bruteForceWidth = map->width;
+  const LobeModel sharp{ SpecularModel::BlinnPhong, 300 };
+  const EnvironmentLightEstimator bruteForce(reference, 0, sharp);
+  // Independent samples, whose standard error is calibrated (stratified ones over-report it).
+  EnvironmentLight monteCarlo = environmentLight(map, EnvironmentEstimator::MonteCarlo, 256);
+  monteCarlo.sampling.stratified = false;
+  const EnvironmentLightEstimator sampled(monteCarlo, 0, sharp);
+  int within = 0, withinOne = 0, compared = 0;
+  const auto normals = spreadDirections(200);
+  for (std::size_t i = 0; i < normals.size(); ++i)
+  {
+    SurfacePoint point = surfacePoint({ 0, 0, 0 }, normals[i], i);
+    point.toViewer = glm::normalize(normals[i] + glm::dvec3(0.3, 0.2, -0.4));
+    const double truth = bruteForce.estimate(point).specular.x;
+    const DistributedTerms estimate = sampled.estimate(point);
+    if (truth < 1e-3)
+    {
+      continue; // the viewer below the horizon
+    }
+    ++compared;
+    within += std::abs(estimate.specular.x - truth) <= 3 * estimate.specularStdError.x;
+    withinOne += std::abs(estimate.specular.x - truth) <= estimate.specularStdError.x;
+  }
+  std::cout << within << " of " << compared << " specular estimates within 3 standard errors, " << withinOne
+            << " within 1\n";
+  EXPECT_GT(compared, 150);
+  EXPECT_GE(within, 0.97 * compared);
+  EXPECT_NEAR(double(withinOne) / compared, 0.68, 0.1);
 }

@@ -142,7 +142,7 @@ DistributedTerms AreaLightEstimator::monteCarlo(const SurfacePoint& point, bool 
     [&](const glm::dvec2& u)
     {
       const WeightedDirection sample = this->sample(u, point);
-      return RadianceSample{ sample.direction, radiance_ * sample.weight };
+      return RadianceSample{ sample.direction, radiance_ * sample.weight, std::nullopt };
     });
 }
 

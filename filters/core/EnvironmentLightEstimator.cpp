@@ -1,5 +1,6 @@
 #include "EnvironmentLightEstimator.h"
 
+#include "LobeSampling.h"
 #include "SampledTerms.h"
 #include "SampleWarps.h"
 
@@ -107,11 +108,39 @@ DistributedTerms EnvironmentLightEstimator::monteCarlo(const glm::dvec3& n, cons
       if (directions == EnvironmentDirections::Luminance)
       {
         const EnvironmentSample sample = sampler_->sample(u.x, u.y);
-        return RadianceSample{ sample.direction, sample.pdf > 0 ? scale_ * sample.radiance / sample.pdf : Rgb(0.0) };
+        const Rgb radiance = scale_ * sample.radiance;
+        RadianceSample drawn{ sample.direction, sample.pdf > 0 ? radiance / sample.pdf : Rgb(0.0), std::nullopt };
+        if (lobe_.wanted())
+        {
+          drawn.specular = specularByBothStrategies(n, v, u, sample.direction, radiance, sample.pdf);
+        }
+        return drawn;
       }
       const WeightedDirection sample = cosineWeightedDirection(n, u);
-      return RadianceSample{ sample.direction, scale_ * radianceAt(sample.direction) * sample.weight };
+      return RadianceSample{ sample.direction, scale_ * radianceAt(sample.direction) * sample.weight, std::nullopt };
     });
+}
+
+Rgb EnvironmentLightEstimator::specularByBothStrategies(const glm::dvec3& n, const glm::dvec3& v, const glm::dvec2& u,
+  const glm::dvec3& byLuminance, const Rgb& radiance, double luminanceDensity) const
+{
+  // Veach's balance heuristic with one sample of each strategy (E. Veach, "Robust Monte Carlo
+  // Methods for Light Transport Simulation", 1997, section 9.2): f(x) / (p_L(x) + p_B(x)) +
+  // f(y) / (p_L(y) + p_B(y)), x drawn by luminance and y by the lobe, is unbiased wherever
+  // either density covers f. Luminance alone misses a sharp lobe under a dim sky; the lobe alone
+  // misses a small sun.
+  Rgb estimate(0.0);
+  if (luminanceDensity > 0)
+  {
+    estimate += radiance * lobe_(n, byLuminance, v) / (luminanceDensity + lobeDensity(lobe_, n, v, byLuminance));
+  }
+  const glm::dvec3 byLobe = lobeDirection(lobe_, n, v, u);
+  const double density = lobeDensity(lobe_, n, v, byLobe);
+  if (density > 0)
+  {
+    estimate += scale_ * radianceAt(byLobe) * lobe_(n, byLobe, v) / (sampler_->pdf(byLobe) + density);
+  }
+  return estimate;
 }
 
 DistributedTerms EnvironmentLightEstimator::estimate(const SurfacePoint& point) const

@@ -36,6 +36,9 @@ private:
   DistributedTerms bruteForce(const glm::dvec3& n, const glm::dvec3& v) const;
   DistributedTerms monteCarlo(const glm::dvec3& n, const glm::dvec3& v, std::uint64_t vertex, bool irradiance,
     EnvironmentDirections directions) const;
+  /// One estimate of S from the direction drawn by luminance and one drawn by the lobe.
+  Rgb specularByBothStrategies(const glm::dvec3& n, const glm::dvec3& v, const glm::dvec2& u,
+    const glm::dvec3& byLuminance, const Rgb& radiance, double luminanceDensity) const;
   Rgb radianceAt(const glm::dvec3& mapDirection) const;
 
   EnvironmentLight light_;

@@ -129,7 +129,8 @@ enum class EnvironmentEstimator
 /// Where Monte Carlo directions for an environment map come from.
 enum class EnvironmentDirections
 {
-  Luminance, // importance sampling of the map's luminance: good for small bright sources
+  Luminance, // importance sampling of the map's luminance, good for small bright sources; for S
+             // combined with sampling the lobe (multiple importance sampling)
   Cosine,    // cosine-weighted about the normal: exact irradiance from a constant map
 };
 

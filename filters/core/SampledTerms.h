@@ -5,6 +5,8 @@
 #include "MonteCarloEstimate.h"
 #include "SampleSequence.h"
 
+#include <optional>
+
 namespace shadelab
 {
 /// A sampled direction w and L(w) / pdf(w), the sample's radiance over its density.
@@ -12,6 +14,9 @@ struct RadianceSample
 {
   glm::dvec3 direction{ 0.0 };
   Rgb weighted{ 0.0 };
+  /// An estimate of S made from more than this direction (multiple importance sampling), to
+  /// use instead of weighted x lobe(w).
+  std::optional<Rgb> specular;
 };
 
 /// Averages L(w) max(0, n.w) / pdf(w) (when irradiance is wanted) and L(w) lobe(w) / pdf(w)
@@ -30,7 +35,7 @@ DistributedTerms sampledTerms(const SampleSequence& sequence, bool stratified, b
     }
     if (lobe.wanted())
     {
-      s.add(sample.weighted * lobe(n, sample.direction, v));
+      s.add(sample.specular ? *sample.specular : sample.weighted * lobe(n, sample.direction, v));
     }
   }
   DistributedTerms terms;
