@@ -138,7 +138,8 @@ Rgb EnvironmentLightEstimator::specularByBothStrategies(const glm::dvec3& n, con
   const double density = lobeDensity(lobe_, n, v, byLobe);
   if (density > 0)
   {
-    estimate += scale_ * radianceAt(byLobe) * lobe_(n, byLobe, v) / (sampler_->pdf(byLobe) + density);
+    const EnvironmentSample there = sampler_->at(byLobe);
+    estimate += scale_ * there.radiance * lobe_(n, byLobe, v) / (there.pdf + density);
   }
   return estimate;
 }

@@ -108,14 +108,16 @@ EnvironmentSample EnvironmentSampler::sample(double u1, double u2) const
 
 double EnvironmentSampler::pdf(const glm::dvec3& unitDirection) const
 {
-  if (uvDensityPerWeight_ == 0.0)
-  {
-    return 1.0 / (4.0 * pi);
-  }
+  return at(unitDirection).pdf;
+}
+
+EnvironmentSample EnvironmentSampler::at(const glm::dvec3& unitDirection) const
+{
   const glm::dvec2 uv = uvOfDirection(unitDirection);
   const int column = std::min(static_cast<int>(uv.x * map_.width), map_.width - 1);
   const int row = std::min(static_cast<int>(uv.y * map_.height), map_.height - 1);
-  return pdfAt(column, row, unitDirection);
+  const double density = uvDensityPerWeight_ == 0.0 ? 1.0 / (4.0 * pi) : pdfAt(column, row, unitDirection);
+  return { unitDirection, density, map_.texel(column, row) };
 }
 
 double EnvironmentSampler::pdfAt(int column, int row, const glm::dvec3& direction) const

@@ -37,6 +37,9 @@ public:
   /// wherever the radiance is, but 0 exactly at a pole.
   double pdf(const glm::dvec3& unitDirection) const;
 
+  /// The same density and the radiance of the texel unitDirection falls in, found together.
+  EnvironmentSample at(const glm::dvec3& unitDirection) const;
+
 private:
   double pdfAt(int column, int row, const glm::dvec3& direction) const;
 
