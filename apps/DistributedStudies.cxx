@@ -283,7 +283,7 @@ std::vector<AccuracyRow> environmentMapStudy(const Mesh& bunny, const Scene& mat
     study.measure("brute_force", "width", width, lit());
   }
   light.estimator = EnvironmentEstimator::SphericalHarmonics;
-  study.measure("sh", "S samples (by luminance)", light.sampling.samples, lit());
+  study.measure("sh", "S samples (luminance and lobe)", light.sampling.samples, lit());
   light.estimator = EnvironmentEstimator::MonteCarlo;
   for (const auto& [directions, family] : { std::pair{ EnvironmentDirections::Luminance, "monte_carlo by luminance" },
          std::pair{ EnvironmentDirections::Cosine, "monte_carlo by cosine" } })
