@@ -158,7 +158,7 @@ DistributedTerms EnvironmentLightEstimator::estimate(const SurfacePoint& point) 
     case EnvironmentEstimator::SphericalHarmonics:
       break;
   }
-  // Nine coefficients cannot hold a lobe sharper than the cosine: S is sampled by luminance.
+  // Nine coefficients cannot hold a lobe sharper than the cosine: S is sampled, by luminance and by the lobe.
   DistributedTerms terms =
     lobe_.wanted() ? monteCarlo(n, v, point.index, false, EnvironmentDirections::Luminance) : DistributedTerms{};
   terms.irradiance = (*irradiance_)(point.normal);
