@@ -72,11 +72,8 @@ EnvironmentLightEstimator::EnvironmentLightEstimator(const EnvironmentLight& lig
 
 Rgb EnvironmentLightEstimator::radianceAt(const glm::dvec3& mapDirection) const
 {
-  const EnvironmentMap& map = *light_.map;
-  const glm::dvec2 uv = uvOfDirection(mapDirection);
-  const int column = std::min(int(uv.x * map.width), map.width - 1);
-  const int row = std::min(int(uv.y * map.height), map.height - 1);
-  return map.texel(column, row);
+  const glm::ivec2 texel = texelToward(*light_.map, mapDirection);
+  return light_.map->texel(texel.x, texel.y);
 }
 
 DistributedTerms EnvironmentLightEstimator::bruteForce(const glm::dvec3& n, const glm::dvec3& v) const

@@ -3,6 +3,7 @@
 #include <OpenImageIO/imageio.h>
 #include <glm/gtc/constants.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <sstream>
@@ -59,6 +60,14 @@ glm::dvec2 uvOfDirection(const glm::dvec3& unitDirection)
 glm::dvec3 texelCentreDirection(const EnvironmentMap& map, int column, int row)
 {
   return directionAt((column + 0.5) / map.width, (row + 0.5) / map.height);
+}
+
+glm::ivec2 texelToward(const EnvironmentMap& map, const glm::dvec3& unitDirection)
+{
+  const glm::dvec2 uv = uvOfDirection(unitDirection);
+  // min: v = 1 exactly (the bottom pole) belongs to the last row.
+  return { std::min(static_cast<int>(uv.x * map.width), map.width - 1),
+    std::min(static_cast<int>(uv.y * map.height), map.height - 1) };
 }
 
 // Solid angle is the integral of sin(theta) dtheta dphi. Over a texel, phi spans 2 pi / W and

@@ -13,6 +13,7 @@
 #include "Vec3.h"
 
 #include <glm/vec2.hpp>
+#include <glm/ext/vector_int2.hpp>
 
 #include <cstddef>
 #include <string>
@@ -44,6 +45,9 @@ glm::dvec3 directionAt(double u, double v);
 glm::dvec2 uvOfDirection(const glm::dvec3& unitDirection);
 
 glm::dvec3 texelCentreDirection(const EnvironmentMap& map, int column, int row);
+
+/// The (column, row) of the texel a unit direction falls in.
+glm::ivec2 texelToward(const EnvironmentMap& map, const glm::dvec3& unitDirection);
 
 /// The exact solid angle of any texel of the row in a width x height map.
 double texelSolidAngle(int row, int width, int height);

@@ -113,11 +113,9 @@ double EnvironmentSampler::pdf(const glm::dvec3& unitDirection) const
 
 EnvironmentSample EnvironmentSampler::at(const glm::dvec3& unitDirection) const
 {
-  const glm::dvec2 uv = uvOfDirection(unitDirection);
-  const int column = std::min(static_cast<int>(uv.x * map_.width), map_.width - 1);
-  const int row = std::min(static_cast<int>(uv.y * map_.height), map_.height - 1);
-  const double density = uvDensityPerWeight_ == 0.0 ? 1.0 / (4.0 * pi) : pdfAt(column, row, unitDirection);
-  return { unitDirection, density, map_.texel(column, row) };
+  const glm::ivec2 texel = texelToward(map_, unitDirection);
+  const double density = uvDensityPerWeight_ == 0.0 ? 1.0 / (4.0 * pi) : pdfAt(texel.x, texel.y, unitDirection);
+  return { unitDirection, density, map_.texel(texel.x, texel.y) };
 }
 
 double EnvironmentSampler::pdfAt(int column, int row, const glm::dvec3& direction) const
