@@ -237,7 +237,7 @@ MethodPlan chooseMethods(
     { true, PowMethod::Series }, { false, PowMethod::Series }, { true, PowMethod::Exact },
     { false, PowMethod::Exact } };
   // The lobe's error depends only on the method, the precision and eta, so it is found once
-  // for all lights, and only when a light needs it (each costs a few milliseconds).
+  // for all lights, and only when a light needs it.
   std::map<PowMethod, double> lobeErrors;
   auto lobeError = [&](PowMethod method)
   {

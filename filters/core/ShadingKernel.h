@@ -3,7 +3,7 @@
 // intermediate terms and their sums, written straight into the caller's arrays. VTK-free: the
 // VTK filter hands in raw pointers and calls shadeRange from a vtkSMPTools loop.
 //
-// A block holds up to 256 vertices as separate x, y, z arrays, and each step of the model
+// A block holds up to 128 vertices as separate x, y, z arrays, and each step of the model
 // (normalise, direction to the light, attenuation, cosine, lobe, ...) is one loop over the
 // block with the light's branches taken outside it, so the compiler turns it into SIMD
 // instructions. A vertex-at-a-time version with the same formulas ran 3 to 5 times slower.
@@ -50,7 +50,7 @@ struct LightMethod
 template <typename T>
 struct VertexBlock
 {
-  static constexpr std::size_t capacity = 256;
+  static constexpr std::size_t capacity = 128;
   std::size_t first = 0;
   std::size_t count = 0;
   std::array<T, capacity> px, py, pz, nx, ny, nz;

@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <mutex>
+#include <utility>
 #include <vector>
 
 namespace shadelab
@@ -30,22 +33,9 @@ double errorAt(PowMethod method, double x, double eta)
   withPowMethod(method, T(eta), [&](auto power) { approximation = power(T(x)); });
   return std::abs(static_cast<double>(approximation) - exact);
 }
-}
-
-void evaluatePowers(PowMethod method, const float* x, float* y, std::size_t count, float eta)
-{
-  withPowMethod(method, eta,
-    [&](auto power)
-    {
-      for (std::size_t i = 0; i < count; ++i)
-      {
-        y[i] = power(x[i]);
-      }
-    });
-}
 
 template <typename T>
-double largestPowError(PowMethod method, double eta)
+double searchLargestPowError(PowMethod method, double eta)
 {
   // x^eta changes fastest just below 1 for a large eta, so the grid is uniform in x and also
   // geometric in 1 - x down to 1e-9, then refined around the worst sample.
@@ -79,6 +69,40 @@ double largestPowError(PowMethod method, double eta)
     largest = std::max(largest, errorAt<T>(method, low + (high - low) * k / refinement, eta));
   }
   return largest;
+}
+}
+
+void evaluatePowers(PowMethod method, const float* x, float* y, std::size_t count, float eta)
+{
+  withPowMethod(method, eta,
+    [&](auto power)
+    {
+      for (std::size_t i = 0; i < count; ++i)
+      {
+        y[i] = power(x[i]);
+      }
+    });
+}
+
+template <typename T>
+double largestPowError(PowMethod method, double eta)
+{
+  // The search takes milliseconds, longer than shading a million vertices: each answer is
+  // kept, so a filter re-run under a tolerance pays for it once per method and shininess.
+  static std::mutex mutex;
+  static std::map<std::pair<PowMethod, double>, double> found;
+  const std::pair<PowMethod, double> key{ method, eta };
+  {
+    const std::lock_guard<std::mutex> lock(mutex);
+    if (const auto known = found.find(key); known != found.end())
+    {
+      return known->second;
+    }
+  }
+  const double error = searchLargestPowError<T>(method, eta);
+  const std::lock_guard<std::mutex> lock(mutex);
+  found.emplace(key, error);
+  return error;
 }
 
 template double largestPowError<float>(PowMethod, double);
