@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
 namespace
 {
@@ -38,6 +39,61 @@ TEST(SpecularPower, SeriesAtItsFailurePoints)
   EXPECT_EQ(powSeries(1.0, 1000.0), 1.0);
   EXPECT_EQ(powSeries(0.999f, 1e5f), 0.0f);
   EXPECT_EQ(powSeries(0.7, 0.0), 1.0);
+}
+
+TEST(SpecularPower, WholePowersAreTheNearestFloat)
+{
+  // Binary exponentiation in double, rounded once to float: the float nearest the true x^eta
+  // (long double pow, 64-bit mantissa), at every x of a grid uniform in [0, 1], dense below 1,
+  // and at the smallest floats, where the power underflows. glibc's powf is allowed 1 ulp
+  // from it; wholePowers is held to 0.
+  std::vector<float> x;
+  for (int k = 0; k <= 4096; ++k)
+  {
+    x.push_back(k / 4096.0f);
+  }
+  for (int j = 1; j <= 2000; ++j)
+  {
+    x.push_back(1.0f - j * 0x1p-24f);
+  }
+  for (const float tiny : { 0x1p-149f, 1e-30f, 0x1p-75f, 0x1.000002p-75f, 0x1p-5f })
+  {
+    x.push_back(tiny);
+  }
+  std::vector<float> y(x.size());
+  for (const unsigned eta : { 0u, 1u, 2u, 3u, 30u, 32u, 100u, 1000u, 65536u })
+  {
+    wholePowers(x.data(), y.data(), x.size(), eta);
+    int differ = 0;
+    for (std::size_t i = 0; i < x.size(); ++i)
+    {
+      const float nearest = static_cast<float>(std::pow(static_cast<long double>(x[i]), static_cast<long double>(eta)));
+      differ += y[i] != nearest;
+      EXPECT_EQ(y[i], nearest) << "x " << x[i] << " eta " << eta;
+    }
+    EXPECT_EQ(differ, 0) << "eta " << eta;
+  }
+  // pow(0, 0) = 1; x^1 = x down to the smallest subnormal; 2^-150 is halfway to the smallest
+  // float and rounds to even, 0, while anything above it rounds up.
+  const float edge[] = { 0.0f, 0x1p-149f, 0x1p-75f, 0x1.000002p-75f };
+  float out[4];
+  wholePowers(edge, out, 4, 0);
+  EXPECT_EQ(out[0], 1.0f);
+  wholePowers(edge, out, 4, 1);
+  EXPECT_EQ(out[1], 0x1p-149f);
+  wholePowers(edge, out, 4, 2);
+  EXPECT_EQ(out[2], 0.0f);
+  EXPECT_EQ(out[3], 0x1p-149f);
+}
+
+TEST(SpecularPower, WholeExponents)
+{
+  EXPECT_TRUE(isWholeExponent(0));
+  EXPECT_TRUE(isWholeExponent(30));
+  EXPECT_TRUE(isWholeExponent(65536));
+  EXPECT_FALSE(isWholeExponent(7.5));
+  EXPECT_FALSE(isWholeExponent(65537));
+  EXPECT_FALSE(isWholeExponent(-1));
 }
 
 TEST(SpecularPower, SchlickAtKnownPoints)

@@ -474,31 +474,52 @@ void ShadingKernel<T>::specularLobes(const PreparedLight& light, std::size_t cou
   const Lane<T>& cosine = phong ? w.rDotV : w.nDotH;
   auto litAt = [&](std::size_t k)
   { return (w.cosIncidence[k] > T(0)) & (phong | (w.halfVectorDefined[k] > T(0))); };
-  // The approximations are cheap and vectorise: evaluated everywhere, then masked, in two
-  // loops (one loop doing both ran twice as slow).
-  auto approximatedLobes = [&](auto power)
+  // The approximations, and the exact power in float for a whole eta, are vectorised loops:
+  // evaluated everywhere, then masked, each in its own loop (one loop doing all ran twice as
+  // slow).
+  Lane<T>& lobe = w.specular;
+  auto powersOfClampedCosines = [&](auto&& raiseAll)
   {
-    Lane<T>& lobe = w.specular;
     for (std::size_t k = 0; k < count; ++k)
     {
-      lobe[k] = power(std::max(cosine[k], T(0)));
+      lobe[k] = std::max(cosine[k], T(0));
     }
+    raiseAll();
     for (std::size_t k = 0; k < count; ++k)
     {
       w.specular[k] = (litAt(k) ? lobe[k] : T(0)) * (w.attenuation[k] * w.spotFactor[k]);
     }
   };
-  if (light.pow == PowMethod::Exact)
+  if (light.pow != PowMethod::Exact)
   {
-    // A library call per vertex: skipped where the vertex is unlit.
-    for (std::size_t k = 0; k < count; ++k)
-    {
-      const T lobe = litAt(k) ? std::pow(std::max(cosine[k], T(0)), shininess_) : T(0);
-      w.specular[k] = lobe * (w.attenuation[k] * w.spotFactor[k]);
-    }
+    powersOfClampedCosines(
+      [&]
+      {
+        withPowMethod(light.pow, shininess_,
+          [&](auto power)
+          {
+            for (std::size_t k = 0; k < count; ++k)
+            {
+              lobe[k] = power(lobe[k]);
+            }
+          });
+      });
     return;
   }
-  withPowMethod(light.pow, shininess_, approximatedLobes);
+  if constexpr (std::is_same_v<T, float>)
+  {
+    if (isWholeExponent(shininess_))
+    {
+      powersOfClampedCosines([&] { wholePowers(lobe.data(), lobe.data(), count, unsigned(shininess_)); });
+      return;
+    }
+  }
+  // A library call per vertex: skipped where the vertex is unlit.
+  for (std::size_t k = 0; k < count; ++k)
+  {
+    const T power = litAt(k) ? std::pow(std::max(cosine[k], T(0)), shininess_) : T(0);
+    w.specular[k] = power * (w.attenuation[k] * w.spotFactor[k]);
+  }
 }
 
 template <typename T>

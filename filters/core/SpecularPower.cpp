@@ -84,6 +84,48 @@ void evaluatePowers(PowMethod method, const float* x, float* y, std::size_t coun
     });
 }
 
+void wholePowers(const float* x, float* y, std::size_t count, unsigned eta)
+{
+  // Below 2^(-150 / eta) the power is below half the smallest float and rounds to 0; such an x
+  // is raised to that bound first, so that no product falls among the subnormal doubles,
+  // which are many times slower, and set to 0 at the end.
+  const double zeroBelow = eta > 0 ? std::exp2(-150.0 / eta) : 0.0;
+  // One loop over a chunk per bit of eta, rather than a loop over bits per value, so that
+  // each loop vectorises.
+  constexpr std::size_t chunk = 128;
+  double base[chunk], power[chunk];
+  for (std::size_t first = 0; first < count; first += chunk)
+  {
+    const std::size_t n = std::min(chunk, count - first);
+    for (std::size_t k = 0; k < n; ++k)
+    {
+      base[k] = std::max(double(x[first + k]), zeroBelow);
+      power[k] = 1.0;
+    }
+    for (unsigned bits = eta; bits != 0; bits >>= 1)
+    {
+      if (bits & 1u)
+      {
+        for (std::size_t k = 0; k < n; ++k)
+        {
+          power[k] *= base[k];
+        }
+      }
+      if (bits > 1)
+      {
+        for (std::size_t k = 0; k < n; ++k)
+        {
+          base[k] *= base[k];
+        }
+      }
+    }
+    for (std::size_t k = 0; k < n; ++k)
+    {
+      y[first + k] = double(x[first + k]) < zeroBelow ? 0.0f : float(power[k]);
+    }
+  }
+}
+
 template <typename T>
 double largestPowError(PowMethod method, double eta)
 {
