@@ -37,18 +37,32 @@ using Clock = std::chrono::steady_clock;
 
 double medianMilliseconds(const std::function<void()>& run, int minRepeats, int maxRepeats)
 {
-  std::vector<double> times;
+  return interleavedMedianMilliseconds({ run }, minRepeats, maxRepeats).front();
+}
+
+std::vector<double> interleavedMedianMilliseconds(
+  const std::vector<std::function<void()>>& runs, int minRepeats, int maxRepeats)
+{
+  std::vector<std::vector<double>> times(runs.size());
   const Clock::time_point start = Clock::now();
-  while (static_cast<int>(times.size()) < std::max(1, minRepeats) ||
-    (static_cast<int>(times.size()) < maxRepeats &&
-      std::chrono::duration<double>(Clock::now() - start).count() < 2.0))
+  for (int round = 0; round < std::max(1, minRepeats) ||
+       (round < maxRepeats && std::chrono::duration<double>(Clock::now() - start).count() < 2.0 * runs.size());
+       ++round)
   {
-    const Clock::time_point begin = Clock::now();
-    run();
-    times.push_back(std::chrono::duration<double, std::milli>(Clock::now() - begin).count());
+    for (std::size_t r = 0; r < runs.size(); ++r)
+    {
+      const Clock::time_point begin = Clock::now();
+      runs[r]();
+      times[r].push_back(std::chrono::duration<double, std::milli>(Clock::now() - begin).count());
+    }
   }
-  std::sort(times.begin(), times.end());
-  return times[times.size() / 2];
+  std::vector<double> medians;
+  for (std::vector<double>& each : times)
+  {
+    std::sort(each.begin(), each.end());
+    medians.push_back(each[each.size() / 2]);
+  }
+  return medians;
 }
 
 Differences compareArrays(vtkDataArray* a, vtkDataArray* b)
@@ -265,23 +279,33 @@ struct Row
 /// The floor: reading the input bytes and writing the output bytes once (memcpy and memset,
 /// as REFERENCES.md section 7 measures it), the output into a newly allocated block as the
 /// filter's arrays are.
-double floorMilliseconds(vtkPolyData* mesh, std::size_t outputBytes, int minRepeats, int maxRepeats)
+class FloorCopy
 {
-  vtkDataArray* points = mesh->GetPoints()->GetData();
-  vtkDataArray* normals = mesh->GetPointData()->GetNormals();
-  const std::size_t pointBytes = points->GetNumberOfValues() * points->GetDataTypeSize();
-  const std::size_t normalBytes = normals->GetNumberOfValues() * normals->GetDataTypeSize();
-  std::vector<char> in(pointBytes + normalBytes, 1);
-  return medianMilliseconds(
-    [&]
-    {
-      std::memcpy(in.data(), points->GetVoidPointer(0), pointBytes);
-      std::memcpy(in.data() + pointBytes, normals->GetVoidPointer(0), normalBytes);
-      std::unique_ptr<char[]> out(new char[outputBytes]);
-      std::memset(out.get(), in[in.size() / 2], outputBytes);
-    },
-    minRepeats, maxRepeats);
-}
+public:
+  FloorCopy(vtkPolyData* mesh, std::size_t outputBytes)
+    : points_(mesh->GetPoints()->GetData())
+    , normals_(mesh->GetPointData()->GetNormals())
+    , pointBytes_(points_->GetNumberOfValues() * points_->GetDataTypeSize())
+    , normalBytes_(normals_->GetNumberOfValues() * normals_->GetDataTypeSize())
+    , outputBytes_(outputBytes)
+    , in_(pointBytes_ + normalBytes_, 1)
+  {
+  }
+
+  void operator()()
+  {
+    std::memcpy(in_.data(), points_->GetVoidPointer(0), pointBytes_);
+    std::memcpy(in_.data() + pointBytes_, normals_->GetVoidPointer(0), normalBytes_);
+    std::unique_ptr<char[]> out(new char[outputBytes_]);
+    std::memset(out.get(), in_[in_.size() / 2], outputBytes_);
+  }
+
+private:
+  vtkDataArray* points_;
+  vtkDataArray* normals_;
+  std::size_t pointBytes_, normalBytes_, outputBytes_;
+  std::vector<char> in_;
+};
 
 Row measure(const Mesh& mesh, const Case& c, int maxRepeats)
 {
@@ -308,13 +332,18 @@ Row measure(const Mesh& mesh, const Case& c, int maxRepeats)
   allocateForTiming();
   const std::size_t outputBytes = addedBytes(mesh.data, filter->GetOutput());
   row.arrayMegabytes = outputBytes / 1e6;
-  row.milliseconds = medianMilliseconds(
-    [&]
-    {
-      filter->Modified();
-      filter->Update();
-    },
+  // The filter and the floor in turn, so that their ratio holds under a changing load.
+  FloorCopy floor(mesh.data, outputBytes);
+  const std::vector<double> medians = interleavedMedianMilliseconds(
+    { [&]
+      {
+        filter->Modified();
+        filter->Update();
+      },
+      std::ref(floor) },
     3, maxRepeats);
+  row.milliseconds = medians[0];
+  row.floorMilliseconds = medians[1];
 
   vtkDataArray* normals = mesh.data->GetPointData()->GetNormals();
   const std::optional<std::string> expression = c.calculatorArray.empty()
@@ -345,7 +374,6 @@ Row measure(const Mesh& mesh, const Case& c, int maxRepeats)
         1, maxRepeats);
     }
   }
-  row.floorMilliseconds = floorMilliseconds(mesh.data, outputBytes, 3, maxRepeats);
   return row;
 }
 

@@ -9,6 +9,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace shadelab::app
 {
@@ -21,6 +22,11 @@ struct Mesh
 /// Median time in milliseconds of run(): at least minRepeats runs, then more up to
 /// maxRepeats while they fit in about two seconds.
 double medianMilliseconds(const std::function<void()>& run, int minRepeats, int maxRepeats);
+
+/// The same for several runs taken in turn, one of each per round, so that a ratio of their
+/// medians compares them under the same load on a shared machine: one median per run.
+std::vector<double> interleavedMedianMilliseconds(
+  const std::vector<std::function<void()>>& runs, int minRepeats, int maxRepeats);
 
 /// The largest and RMS differences between two results. A NaN difference makes the largest
 /// NaN, so that a broken result cannot pass for an accurate one.
