@@ -5,6 +5,7 @@
 #include "MemoryProbe.h"
 #include "MeshFiles.h"
 
+#include "ShadeLabLargeArrays.h"
 #include "vtkLocalReflectanceFilter.h"
 
 #include "vtkArrayCalculator.h"
@@ -22,6 +23,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <functional>
@@ -29,6 +31,7 @@
 #include <iostream>
 #include <limits>
 #include <memory>
+#include <new>
 #include <sstream>
 
 namespace shadelab::app
@@ -86,19 +89,22 @@ Differences compareArrays(vtkDataArray* a, vtkDataArray* b)
 
 namespace
 {
-/// How glibc's malloc treats large blocks. For timing, like a long-lived process: blocks up
-/// to 32 MB (glibc's largest mmap threshold) come from the heap, which keeps freed memory
-/// for reuse. For measuring memory: every block of 1 MB and more is mapped on its own and
-/// returned when freed, and freed heap memory is given back first, so that the resident size
-/// follows what is allocated.
+/// How glibc's malloc treats large blocks. For timing, like a long-lived process: every block
+/// comes from the heap, which keeps freed memory for reuse, so that a run at any size reuses
+/// what the run before it freed (without this, blocks above 32 MB, glibc's largest mmap
+/// threshold, would be mapped afresh each run, and 10M vertices would pay for zeroing new
+/// pages where 1M does not). For measuring memory: every block of 1 MB and more is mapped
+/// on its own and returned when freed, and freed heap memory is given back first, so that the
+/// resident size follows what is allocated.
 void allocateForTiming()
 {
-  mallopt(M_MMAP_THRESHOLD, 32 << 20);
+  mallopt(M_MMAP_MAX, 0);
   mallopt(M_TRIM_THRESHOLD, 1 << 30);
 }
 
 void allocateForMemoryMeasurement()
 {
+  mallopt(M_MMAP_MAX, 65536); // glibc's default
   mallopt(M_MMAP_THRESHOLD, 1 << 20);
   mallopt(M_TRIM_THRESHOLD, 128 << 10);
   malloc_trim(0);
@@ -278,7 +284,7 @@ struct Row
 
 /// The floor: reading the input bytes and writing the output bytes once (memcpy and memset,
 /// as REFERENCES.md section 7 measures it), the output into a newly allocated block as the
-/// filter's arrays are.
+/// filter's arrays are (ShadeLabLargeArrays.h).
 class FloorCopy
 {
 public:
@@ -296,7 +302,11 @@ public:
   {
     std::memcpy(in_.data(), points_->GetVoidPointer(0), pointBytes_);
     std::memcpy(in_.data() + pointBytes_, normals_->GetVoidPointer(0), normalBytes_);
-    std::unique_ptr<char[]> out(new char[outputBytes_]);
+    std::unique_ptr<void, decltype(&std::free)> out(allocateLarge(outputBytes_), &std::free);
+    if (!out)
+    {
+      throw std::bad_alloc();
+    }
     std::memset(out.get(), in_[in_.size() / 2], outputBytes_);
   }
 

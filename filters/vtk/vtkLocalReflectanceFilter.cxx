@@ -3,6 +3,7 @@
 #include "ArrayCatalog.h"
 #include "MethodChoice.h"
 #include "NormalOrientation.h"
+#include "ShadeLabLargeArrays.h"
 #include "ShadingKernel.h"
 
 #include "vtkArrayDispatch.h"
@@ -139,7 +140,7 @@ public:
     {
       auto flags = vtkSmartPointer<vtkUnsignedCharArray>::New();
       flags->SetName(shadelab::flagsArrayName(prefix).c_str());
-      flags->SetNumberOfValues(count);
+      allocate<unsigned char>(flags.GetPointer(), count);
       outputs.flags = flags->GetPointer(0);
       arrays.push_back(flags);
     }
@@ -167,9 +168,24 @@ private:
     auto array = vtkSmartPointer<ArrayType>::New();
     array->SetName(name.c_str());
     array->SetNumberOfComponents(components);
-    array->SetNumberOfTuples(count);
+    allocate<T>(array.GetPointer(), count);
     arrays.push_back(array);
     return array->GetPointer(0);
+  }
+
+  /// Memory for `count` tuples, in huge pages when large (ShadeLabLargeArrays.h). Throws
+  /// std::runtime_error, naming the array, when there is not enough.
+  template <typename Value>
+  static void allocate(vtkAOSDataArrayTemplate<Value>* array, vtkIdType count)
+  {
+    if (!shadelab::allocateTuples(array, count))
+    {
+      std::ostringstream message;
+      message << "not enough memory for the array '" << array->GetName() << "' ("
+              << static_cast<double>(count) * array->GetNumberOfComponents() * sizeof(Value) / 1e6
+              << " MB): request fewer arrays, or float32";
+      throw std::runtime_error(message.str());
+    }
   }
 };
 
@@ -428,9 +444,19 @@ int vtkLocalReflectanceFilter::RequestData(
   vtkDataArray* shadingNormals = this->Normals.shading;
 
   vtkDataArray* points = input->GetPoints()->GetData();
-  const auto arrays = precision == shadelab::Precision::Float64
-    ? shade<double>(this->Scene, request, methods, this->ArrayPrefix, points, shadingNormals, this)
-    : shade<float>(this->Scene, request, methods, this->ArrayPrefix, points, shadingNormals, this);
+  std::vector<vtkSmartPointer<vtkDataArray>> arrays;
+  try
+  {
+    arrays = precision == shadelab::Precision::Float64
+      ? shade<double>(this->Scene, request, methods, this->ArrayPrefix, points, shadingNormals, this)
+      : shade<float>(this->Scene, request, methods, this->ArrayPrefix, points, shadingNormals, this);
+  }
+  catch (const std::runtime_error& error) // an array that could not be allocated
+  {
+    output->Initialize();
+    vtkErrorMacro(<< error.what());
+    return 0;
+  }
   for (const auto& array : arrays)
   {
     output->GetPointData()->AddArray(array);
