@@ -33,6 +33,12 @@ ChartSeries paretoFront(const std::vector<double>& cost, const std::vector<doubl
   ChartSeries front{ "Pareto front", {}, {}, true, { 0, 0, 0 } };
   for (const std::size_t i : order)
   {
+    // An error of 0 (an exact method at a point where it has no rounding, such as x^1) has no
+    // place on a log axis: a front through it would not be drawn at all.
+    if (!(error[i] > 0))
+    {
+      continue;
+    }
     if (front.y.empty() || error[i] < front.y.back())
     {
       front.x.push_back(cost[i]);

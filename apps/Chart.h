@@ -26,7 +26,7 @@ struct ChartSpec
 };
 
 /// The Pareto front of the points (cost, error), those that no other point beats in both,
-/// as a black line in order of cost.
+/// as a black line in order of cost, for a log error axis: points with error 0 are left out.
 ChartSeries paretoFront(const std::vector<double>& cost, const std::vector<double>& error);
 
 /// Draws the chart to a PNG, writing through a temporary file. Needs an X display (run under
