@@ -35,7 +35,7 @@ ChartSeries paretoFront(const std::vector<double>& cost, const std::vector<doubl
   {
     // An error of 0 (an exact method at a point where it has no rounding, such as x^1) has no
     // place on a log axis: a front through it would not be drawn at all.
-    if (!(error[i] > 0))
+    if (error[i] == 0)
     {
       continue;
     }

@@ -79,31 +79,36 @@ TEST(LargeArrays, WrittenMemoryIsInHugePages)
 
 TEST(LargeArrays, FilterFillsLargeArraysCompletely)
 {
-  // 359,402 vertices: the float64 RGB diffuse array is 8.6 MB, so it takes the large path.
+  // 359,402 vertices: the float64 RGB total is 8.6 MB, so it takes the large path. An ambient
+  // light makes every vertex's value non-zero, so that a vertex left unwritten (a fresh page
+  // reads 0) would show.
   vtkSmartPointer<vtkPolyData> sphere = shadelab::testing::exactSphere(600);
   Scene scene;
+  scene.material.ka = Rgb(0.1, 0.2, 0.3);
   scene.material.kd = Rgb(0.5, 0.25, 1.0);
   scene.material.specular = SpecularModel::None;
-  scene.lights = { { "sun", DistantLight{ { 0, 0, -1 }, Rgb(1.0), 2.0, false } } };
+  scene.lights = { { "sun", DistantLight{ { 0, 0, -1 }, Rgb(1.0), 2.0, false } },
+    { "sky", AmbientLight{ Rgb(1.0), 1.0 } } };
   vtkNew<vtkLocalReflectanceFilter> filter;
   filter->SetInputData(sphere);
   filter->SetScene(scene);
-  filter->SetArraySelection({ "diffuse" });
+  filter->SetArraySelection({ "total" });
   filter->SetOutputPrecision(vtkAlgorithm::DOUBLE_PRECISION);
   filter->Update();
-  vtkDataArray* diffuse = filter->GetOutput()->GetPointData()->GetArray("diffuse");
-  ASSERT_NE(diffuse, nullptr);
-  ASSERT_EQ(diffuse->GetNumberOfTuples(), sphere->GetNumberOfPoints());
-  EXPECT_EQ(reinterpret_cast<std::uintptr_t>(diffuse->GetVoidPointer(0)) % hugePage, 0u);
-  // Lambert under a light along +z: kd 2 max(0, z) at every vertex of the unit sphere.
+  vtkDataArray* total = filter->GetOutput()->GetPointData()->GetArray("total");
+  ASSERT_NE(total, nullptr);
+  ASSERT_EQ(total->GetNumberOfTuples(), sphere->GetNumberOfPoints());
+  EXPECT_EQ(reinterpret_cast<std::uintptr_t>(total->GetVoidPointer(0)) % hugePage, 0u);
+  // ka + kd 2 max(0, z) at every vertex of the unit sphere, the light shining along -z.
+  const double ka[] = { 0.1, 0.2, 0.3 };
+  const double kd[] = { 0.5, 0.25, 1.0 };
   double worst = 0;
   for (vtkIdType i = 0; i < sphere->GetNumberOfPoints(); ++i)
   {
     const double z = sphere->GetPoint(i)[2];
-    const double kd[] = { 0.5, 0.25, 1.0 };
     for (int c = 0; c < 3; ++c)
     {
-      worst = std::max(worst, std::abs(diffuse->GetComponent(i, c) - kd[c] * 2.0 * std::max(z, 0.0)));
+      worst = std::max(worst, std::abs(total->GetComponent(i, c) - (ka[c] + kd[c] * 2.0 * std::max(z, 0.0))));
     }
   }
   EXPECT_LT(worst, 1e-12);

@@ -25,20 +25,18 @@ std::string powMethodName(PowMethod method)
 
 namespace
 {
-template <typename T>
-double errorAt(PowMethod method, double x, double eta)
+/// The largest |power(x) - pow(x, eta)| over x in [0, 1], x and eta as type T holds them.
+/// x^eta changes fastest just below 1 for a large eta, so the grid is uniform in x and also
+/// geometric in 1 - x down to 1e-9, then refined around the worst sample.
+template <typename T, typename Power>
+double searchLargestError(double eta, Power&& power)
 {
-  const double exact = std::pow(static_cast<long double>(static_cast<T>(x)), static_cast<long double>(static_cast<T>(eta)));
-  T approximation = 0;
-  withPowMethod(method, T(eta), [&](auto power) { approximation = power(T(x)); });
-  return std::abs(static_cast<double>(approximation) - exact);
-}
-
-template <typename T>
-double searchLargestPowError(PowMethod method, double eta)
-{
-  // x^eta changes fastest just below 1 for a large eta, so the grid is uniform in x and also
-  // geometric in 1 - x down to 1e-9, then refined around the worst sample.
+  auto errorAt = [&](double x)
+  {
+    const long double exact =
+      std::pow(static_cast<long double>(static_cast<T>(x)), static_cast<long double>(static_cast<T>(eta)));
+    return static_cast<double>(std::abs(static_cast<long double>(power(static_cast<T>(x))) - exact));
+  };
   std::vector<double> grid;
   constexpr int uniform = 4096;
   for (int k = 0; k <= uniform; ++k)
@@ -54,7 +52,7 @@ double searchLargestPowError(PowMethod method, double eta)
   std::size_t worst = 0;
   for (std::size_t k = 0; k < grid.size(); ++k)
   {
-    const double error = errorAt<T>(method, grid[k], eta);
+    const double error = errorAt(grid[k]);
     if (error > largest)
     {
       largest = error;
@@ -66,9 +64,21 @@ double searchLargestPowError(PowMethod method, double eta)
   constexpr int refinement = 512;
   for (int k = 0; k <= refinement; ++k)
   {
-    largest = std::max(largest, errorAt<T>(method, low + (high - low) * k / refinement, eta));
+    largest = std::max(largest, errorAt(low + (high - low) * k / refinement));
   }
   return largest;
+}
+
+template <typename T>
+double searchLargestPowError(PowMethod method, double eta)
+{
+  return searchLargestError<T>(eta,
+    [&](T x)
+    {
+      T approximation = 0;
+      withPowMethod(method, T(eta), [&](auto power) { approximation = power(x); });
+      return approximation;
+    });
 }
 }
 
@@ -126,9 +136,24 @@ void wholePowers(const float* x, float* y, std::size_t count, unsigned eta)
   }
 }
 
+double largestWholePowerError(unsigned eta)
+{
+  return searchLargestError<float>(eta,
+    [&](float x)
+    {
+      float power = 0;
+      wholePowers(&x, &power, 1, eta);
+      return power;
+    });
+}
+
 template <typename T>
 double largestPowError(PowMethod method, double eta)
 {
+  if (!std::isfinite(eta))
+  {
+    return searchLargestPowError<T>(method, eta); // not a key a map can order
+  }
   // The search takes milliseconds, longer than shading a million vertices: each answer is
   // kept, so a filter re-run under a tolerance pays for it once per method and shininess.
   static std::mutex mutex;

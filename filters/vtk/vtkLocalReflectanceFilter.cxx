@@ -451,7 +451,7 @@ int vtkLocalReflectanceFilter::RequestData(
       ? shade<double>(this->Scene, request, methods, this->ArrayPrefix, points, shadingNormals, this)
       : shade<float>(this->Scene, request, methods, this->ArrayPrefix, points, shadingNormals, this);
   }
-  catch (const std::runtime_error& error) // an array that could not be allocated
+  catch (const std::exception& error) // an array, or anything else, that could not be allocated
   {
     output->Initialize();
     vtkErrorMacro(<< error.what());
