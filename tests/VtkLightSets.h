@@ -1,10 +1,10 @@
 #pragma once
 // One camera, one property and several light sets built from VTK's own objects, shared by
 // the tests that compare the vtk model with VTK's shader formulas and with real renders.
+#include "FilterRun.h"
 #include "TestMeshes.h"
 
 #include "ShadeLabVtkScene.h"
-#include "vtkLocalReflectanceFilter.h"
 
 #include "vtkCamera.h"
 #include "vtkLight.h"
@@ -108,13 +108,7 @@ protected:
     const Scene scene = sceneFromVtk(lights, property, camera);
     EXPECT_EQ(scene.vtkLoneHeadlight, lone);
     vtkSmartPointer<vtkPolyData> sphere = exactSphere(resolution, litSphereCentre, litSphereRadius);
-    vtkNew<vtkLocalReflectanceFilter> filter;
-    filter->SetInputData(sphere);
-    filter->SetScene(scene);
-    filter->SetArraySelection({ "total" });
-    filter->SetOutputPrecision(vtkAlgorithm::DOUBLE_PRECISION);
-    filter->Update();
-    vtkSmartPointer<vtkDataArray> total = filter->GetOutput()->GetPointData()->GetArray("total");
+    vtkSmartPointer<vtkDataArray> total = shadeWithFilter(sphere, scene, { "total" })->GetPointData()->GetArray("total");
     EXPECT_NE(total, nullptr);
     return { sphere, total };
   }

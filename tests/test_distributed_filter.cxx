@@ -1,6 +1,7 @@
 // Area lights and environment maps through vtkLocalReflectanceFilter: the arrays they add,
 // their agreement with the local lights where the two must agree, threads, and errors.
 #include "ArrayComparison.h"
+#include "FilterRun.h"
 #include "EnvironmentLightEstimator.h"
 #include "EnvironmentMap.h"
 #include "ShadingFlags.h"
@@ -18,6 +19,7 @@
 namespace
 {
 using namespace shadelab;
+using shadelab::testing::shadeWithFilter;
 
 Scene shinyScene()
 {
@@ -27,20 +29,6 @@ Scene shinyScene()
   scene.material.ks = { 0.4, 0.4, 0.4 };
   scene.material.shininess = 30;
   return scene;
-}
-
-vtkSmartPointer<vtkPolyData> shade(vtkPolyData* mesh, const Scene& scene, const std::vector<std::string>& arrays,
-  int precision = vtkAlgorithm::DOUBLE_PRECISION)
-{
-  vtkNew<vtkLocalReflectanceFilter> filter;
-  filter->SetInputData(mesh);
-  filter->SetScene(scene);
-  filter->SetArraySelection(arrays);
-  filter->SetOutputPrecision(precision);
-  filter->Update();
-  auto output = vtkSmartPointer<vtkPolyData>::New();
-  output->ShallowCopy(filter->GetOutput());
-  return output;
 }
 
 /// A 32x16 map, black but for one texel.
@@ -83,8 +71,8 @@ TEST(DistributedLightsFilter, SingleTexelMapIsTheDistantLight)
   const glm::dvec3 towardTexel = texelCentreDirection(*environment.map, column, row);
   distant.lights = { { "sky", DistantLight{ -towardTexel, radiance * texelSolidAngle(row, 32, 16), 1.0, false } } };
 
-  vtkSmartPointer<vtkPolyData> a = shade(sphere, mapped, { "totals" });
-  vtkSmartPointer<vtkPolyData> b = shade(sphere, distant, { "totals" });
+  vtkSmartPointer<vtkPolyData> a = shadeWithFilter(sphere, mapped, { "totals" });
+  vtkSmartPointer<vtkPolyData> b = shadeWithFilter(sphere, distant, { "totals" });
   for (const char* name : { "diffuse", "specular", "total" })
   {
     vtkDataArray* fromMap = a->GetPointData()->GetArray(name);
@@ -107,7 +95,7 @@ TEST(DistributedLightsFilter, ArraysFollowTheEstimators)
   far.shape = DiskEmitter{ { 0, -9, 0 }, { 0, 1, 0 }, 0.5 };
   far.estimator = AreaEstimator::Point;
   scene.lights = { { "panel", panel }, { "bulb", bulb }, { "far", far } };
-  vtkSmartPointer<vtkPolyData> output = shade(sphere, scene, { "all" });
+  vtkSmartPointer<vtkPolyData> output = shadeWithFilter(sphere, scene, { "all" });
   vtkPointData* arrays = output->GetPointData();
 
   // Exact E has no error; its Monte Carlo specular has. The point approximation has neither.
@@ -161,8 +149,8 @@ TEST(DistributedLightsFilter, OneAndTwoThreadsGiveTheSameBits)
   environment.estimator = EnvironmentEstimator::MonteCarlo;
   scene.lights = { { "disk", disk }, { "sky", environment } };
   vtkSmartPointer<vtkPolyData> one, two;
-  vtkSMPTools::LocalScope(vtkSMPTools::Config{ 1 }, [&] { one = shade(sphere, scene, { "all" }, vtkAlgorithm::SINGLE_PRECISION); });
-  vtkSMPTools::LocalScope(vtkSMPTools::Config{ 2 }, [&] { two = shade(sphere, scene, { "all" }, vtkAlgorithm::SINGLE_PRECISION); });
+  vtkSMPTools::LocalScope(vtkSMPTools::Config{ 1 }, [&] { one = shadeWithFilter(sphere, scene, { "all" }, vtkAlgorithm::SINGLE_PRECISION); });
+  vtkSMPTools::LocalScope(vtkSMPTools::Config{ 2 }, [&] { two = shadeWithFilter(sphere, scene, { "all" }, vtkAlgorithm::SINGLE_PRECISION); });
   shadelab::testing::expectSamePointArrays(one, two);
 }
 
@@ -233,7 +221,7 @@ TEST(DistributedLightsFilter, VectorisedShIrradianceIsTheEstimators)
   environment.intensity = 0.04;
   Scene scene = shinyScene();
   scene.lights = { { "sky", environment } };
-  vtkSmartPointer<vtkPolyData> output = shade(sphere, scene, { "sky_irradiance" });
+  vtkSmartPointer<vtkPolyData> output = shadeWithFilter(sphere, scene, { "sky_irradiance" });
   vtkDataArray* irradiance = output->GetPointData()->GetArray("sky_irradiance");
   vtkDataArray* normals = sphere->GetPointData()->GetNormals();
   const EnvironmentLightEstimator estimator(environment, 0, LobeModel{});
@@ -265,7 +253,7 @@ TEST(DistributedLightsFilter, NonFiniteAndNormalLessVerticesGetNothing)
   EnvironmentLight sky;
   sky.map = singleTexelMap(3, 3, Rgb(5.0));
   scene.lights = { { "bulb", bulb }, { "sky", sky } };
-  vtkSmartPointer<vtkPolyData> output = shade(sphere, scene, { "all" });
+  vtkSmartPointer<vtkPolyData> output = shadeWithFilter(sphere, scene, { "all" });
   vtkPointData* arrays = output->GetPointData();
   for (int a = 0; a < arrays->GetNumberOfArrays(); ++a)
   {

@@ -1,6 +1,7 @@
 // The filter as a VTK user meets it: normals, pass-through of input arrays, errors, thread
 // count, files, and a golden regression on the Stanford bunny.
 #include "ArrayComparison.h"
+#include "FilterRun.h"
 #include "MeshFiles.h"
 #include "TestMeshes.h"
 #include "VtkErrorCapture.h"
@@ -27,6 +28,7 @@
 namespace
 {
 using namespace shadelab;
+using shadelab::testing::shadeWithFilter;
 
 /// A distant light straight down -z, lighting the sphere's top, viewer on +z.
 Scene overheadLight()
@@ -39,18 +41,11 @@ Scene overheadLight()
   return scene;
 }
 
+/// The filter's output in its default precision, float32.
 vtkSmartPointer<vtkPolyData> run(vtkPolyData* input, const Scene& scene,
   const std::vector<std::string>& arrays = { "default" }, bool orient = true)
 {
-  vtkNew<vtkLocalReflectanceFilter> filter;
-  filter->SetInputData(input);
-  filter->SetScene(scene);
-  filter->SetArraySelection(arrays);
-  filter->SetOrientNormalsOutward(orient);
-  filter->Update();
-  auto output = vtkSmartPointer<vtkPolyData>::New();
-  output->ShallowCopy(filter->GetOutput());
-  return output;
+  return shadeWithFilter(input, scene, arrays, vtkAlgorithm::SINGLE_PRECISION, orient);
 }
 
 std::string normalsReport(vtkPolyData* output)

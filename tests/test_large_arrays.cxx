@@ -1,12 +1,11 @@
 // Output arrays of 4 MB and more come from ShadeLabLargeArrays.h: aligned to 2 MB, backed by
 // huge pages where the kernel offers them, and filled completely by the filter.
+#include "FilterRun.h"
 #include "TestMeshes.h"
 
 #include "ShadeLabLargeArrays.h"
-#include "vtkLocalReflectanceFilter.h"
 
 #include "vtkDataArray.h"
-#include "vtkNew.h"
 #include "vtkPointData.h"
 
 #include <gtest/gtest.h>
@@ -89,13 +88,8 @@ TEST(LargeArrays, FilterFillsLargeArraysCompletely)
   scene.material.specular = SpecularModel::None;
   scene.lights = { { "sun", DistantLight{ { 0, 0, -1 }, Rgb(1.0), 2.0, false } },
     { "sky", AmbientLight{ Rgb(1.0), 1.0 } } };
-  vtkNew<vtkLocalReflectanceFilter> filter;
-  filter->SetInputData(sphere);
-  filter->SetScene(scene);
-  filter->SetArraySelection({ "total" });
-  filter->SetOutputPrecision(vtkAlgorithm::DOUBLE_PRECISION);
-  filter->Update();
-  vtkDataArray* total = filter->GetOutput()->GetPointData()->GetArray("total");
+  vtkSmartPointer<vtkPolyData> output = shadelab::testing::shadeWithFilter(sphere, scene, { "total" });
+  vtkDataArray* total = output->GetPointData()->GetArray("total");
   ASSERT_NE(total, nullptr);
   ASSERT_EQ(total->GetNumberOfTuples(), sphere->GetNumberOfPoints());
   EXPECT_EQ(reinterpret_cast<std::uintptr_t>(total->GetVoidPointer(0)) % hugePage, 0u);

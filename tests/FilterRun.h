@@ -1,0 +1,31 @@
+#pragma once
+// Running vtkLocalReflectanceFilter once in a test, for the output alone.
+#include "Scene.h"
+#include "vtkLocalReflectanceFilter.h"
+
+#include "vtkNew.h"
+#include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
+
+#include <string>
+#include <vector>
+
+namespace shadelab::testing
+{
+/// The filter's output for `mesh` under `scene` with these arrays, in this precision, as a copy
+/// that outlives the filter.
+inline vtkSmartPointer<vtkPolyData> shadeWithFilter(vtkPolyData* mesh, const Scene& scene,
+  const std::vector<std::string>& arrays, int precision = vtkAlgorithm::DOUBLE_PRECISION, bool orientOutward = true)
+{
+  vtkNew<vtkLocalReflectanceFilter> filter;
+  filter->SetInputData(mesh);
+  filter->SetScene(scene);
+  filter->SetArraySelection(arrays);
+  filter->SetOutputPrecision(precision);
+  filter->SetOrientNormalsOutward(orientOutward);
+  filter->Update();
+  auto output = vtkSmartPointer<vtkPolyData>::New();
+  output->ShallowCopy(filter->GetOutput());
+  return output;
+}
+}
