@@ -283,7 +283,7 @@ struct Row
 };
 
 /// The floor: reading the input bytes and writing the output bytes once (memcpy and memset,
-/// as REFERENCES.md section 7 measures it), the output into a newly allocated block as the
+/// the least that any pass over the same bytes costs), the output into a newly allocated block as the
 /// filter's arrays are (ShadeLabLargeArrays.h).
 class FloorCopy
 {

@@ -11,10 +11,14 @@
 #include "VtkErrorCapture.h"
 
 #include "ArrayCatalog.h"
+#include "DefaultLightKit.h"
 #include "EnvironmentMap.h"
 #include "SceneFile.h"
+#include "SceneFrame.h"
+#include "ShadeLabMeshExtent.h"
 #include "ShadingFlags.h"
 #include "vtkLocalReflectanceFilter.h"
+#include "vtkShadingNormalsFilter.h"
 
 #include "vtkDataArray.h"
 #include "vtkLogger.h"
@@ -29,6 +33,7 @@
 #include <regex>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 namespace
@@ -158,13 +163,21 @@ struct ShadeOptions
   double tolerance = 0;
   int threads = 0;
   bool keepNormals = false;
+  bool noWeld = false;
+  double featureAngle = 80;
+  double weldTolerance = 0;
+  std::optional<double> splitAngle; // split sharp edges at this angle before shading
   EnvironmentOption environment;
 };
 
-/// The scene file's lights, plus the --envmap light; without --scene, the default scene. At
-/// least one of the two is given.
+/// The scene file's lights, plus the --envmap light. Without --scene: the map alone under the
+/// default material and viewer, or without a map either, the default light kit.
 Scene sceneWithEnvironment(const std::string& sceneFile, const EnvironmentOption& environment)
 {
+  if (sceneFile.empty() && environment.file.empty())
+  {
+    return defaultLightKit();
+  }
   Scene scene = sceneFile.empty() ? Scene{} : loadScene(sceneFile);
   if (environment.file.empty())
   {
@@ -228,15 +241,35 @@ int runShade(const ShadeOptions& options)
   const double readSeconds = secondsSince(readStart);
 
   vtkNew<vtkLocalReflectanceFilter> filter;
-  filter->SetInputData(mesh);
+  vtkNew<vtkShadingNormalsFilter> splitter;
+  vtkNew<app::VtkErrorCapture> errors;
+  if (options.splitAngle)
+  {
+    // Splitting adds points, so it runs as a step of its own, before the shading filter: the
+    // shading filter keeps point ids and count.
+    splitter->SetInputData(mesh);
+    splitter->KeepInputNormalsOff();
+    splitter->SplitSharpEdgesOn();
+    splitter->SetSplitAngle(*options.splitAngle);
+    splitter->SetOrientOutward(!options.keepNormals);
+    splitter->SetNormalsName(options.prefix + "Normals");
+    errors->watch(splitter);
+    filter->SetInputConnection(splitter->GetOutputPort());
+  }
+  else
+  {
+    filter->SetInputData(mesh);
+  }
   filter->SetScene(scene);
   filter->SetArraySelection(selection);
   filter->SetArrayPrefix(options.prefix);
   filter->SetOutputPrecision(options.precision == "float64" ? vtkAlgorithm::DOUBLE_PRECISION
                                                             : vtkAlgorithm::SINGLE_PRECISION);
   filter->SetOrientNormalsOutward(!options.keepNormals);
+  filter->SetWeldCoincidentPoints(!options.noWeld);
+  filter->SetFeatureAngle(options.featureAngle);
+  filter->SetWeldTolerance(options.weldTolerance);
   filter->SetTolerance(options.tolerance);
-  vtkNew<app::VtkErrorCapture> errors;
   errors->watch(filter);
   vtkNew<app::ProgressLine> progress;
   progress->watch(filter, "shading");
@@ -261,11 +294,15 @@ int runShade(const ShadeOptions& options)
   std::cout << "shadelab shade: " << options.mesh << " -> " << options.output << "\n"
             << "  mesh: " << output->GetNumberOfPoints() << " vertices, "
             << output->GetNumberOfPolys() + output->GetNumberOfStrips() << " polygons and strips\n"
-            << "  scene: " << (options.scene.empty() ? "default" : options.scene)
+            << "  scene: "
+            << (!options.scene.empty()       ? options.scene
+                 : options.environment.file.empty() ? "the default light kit, placed on the mesh"
+                                                    : "default material and viewer")
             << (options.environment.file.empty() ? "" : " + --envmap " + options.environment.file) << " ("
             << modelName(scene) << " model, "
             << scene.lights.size() << " lights)\n"
-            << "  normals: " << filter->GetNormalsReport() << "\n";
+            << "  normals: " << (options.splitAngle ? splitter->GetReport() + " " : "")
+            << filter->GetNormalsReport() << "\n";
   if (filter->GetMethodPlan())
   {
     std::cout << "  methods:\n";
@@ -302,12 +339,10 @@ int runRender(RenderCommand& command)
   }
   command.options.width = width;
   command.options.height = height;
-  if (!command.scene.empty())
-  {
-    command.options.viewer = loadScene(command.scene).viewer;
-  }
+  const Scene scene = command.scene.empty() ? defaultLightKit() : loadScene(command.scene);
   vtkSmartPointer<vtkPolyData> mesh = app::readMesh(command.mesh);
   showWarnings(command.mesh);
+  command.options.viewer = placedOnMesh(scene, meshExtentOf(mesh)).viewer;
   app::renderToPng(mesh, command.mesh, command.options, command.output);
   std::cout << "shadelab render: " << command.options.array << " of " << command.mesh << " -> "
             << command.output << " (" << width << "x" << height << ")\n";
@@ -386,6 +421,23 @@ int runArrays(const std::string& sceneFile)
   }
   return 0;
 }
+
+/// A CLI11 check that a number lies in [low, high], saying so in the numbers' own words (CLI11's
+/// Range prints doubles as 0.000000).
+CLI::Validator numberFromTo(double low, double high)
+{
+  std::ostringstream range;
+  range << low << " to " << high;
+  return CLI::Validator(
+    [low, high, text = range.str()](std::string& value)
+    {
+      double number = 0;
+      std::istringstream in(value);
+      const bool whole = (in >> number) && (in >> std::ws).eof();
+      return whole && number >= low && number <= high ? std::string() : "Value " + value + " not in range " + text;
+    },
+    "NUMBER in [" + range.str() + "]");
+}
 }
 
 int main(int argc, char** argv)
@@ -399,8 +451,9 @@ int main(int argc, char** argv)
     "Reads .vtp, .vtk, .ply, .obj, .stl; writes .vtp (binary, compressed) or legacy .vtk\n(binary).");
   shadeCommand->add_option("mesh", shade.mesh, "the mesh to shade")->required();
   shadeCommand->add_option("--scene,-s", shade.scene,
-    "scene file (JSON; schema in README.md); without it, the default material and a viewer at infinity "
-    "looking down -z, lit by --envmap alone");
+    "scene file (JSON; schema in README.md, 'Scene files'); without it, a three-point light kit with a "
+    "little ambient light, placed and scaled to fit the mesh, or with --envmap, the map alone under the "
+    "default material and a viewer at infinity looking down -z");
   shadeCommand->add_option("--output,-o", shade.output, "output file, .vtp or .vtk")->required();
   shadeCommand->add_option("--arrays,-a", shade.arrays,
     "comma-separated arrays to compute: default (totals and shading_flags), totals, all, "
@@ -429,6 +482,25 @@ int main(int argc, char** argv)
     "prepended to every array name written (to keep clear of the input's own arrays)");
   shadeCommand->add_flag("--keep-normal-orientation", shade.keepNormals,
     "do not flip normals that point into a closed mesh");
+  shadeCommand->add_flag("--no-weld", shade.noWeld,
+    "computed normals: give each point the normal of its own polygons only, even where several points "
+    "share a position (by default they share one, as if the file had not split them at seams)");
+  shadeCommand->add_option("--feature-angle", shade.featureAngle,
+    "computed normals: points at one position whose polygons meet at an edge sharper than this many "
+    "degrees keep their own normals, so that edges the file split on purpose stay sharp")
+    ->check(numberFromTo(0, 180))
+    ->capture_default_str();
+  shadeCommand->add_option("--weld-tolerance", shade.weldTolerance,
+    "computed normals: points closer than this fraction of the mesh's bounding-box diagonal count as "
+    "one position (default 0: the same coordinates, as files store the copies of a split point)")
+    ->check(numberFromTo(0, 0.1))
+    ->capture_default_str();
+  shadeCommand->add_option("--split-sharp-edges", shade.splitAngle,
+    "DEGREES (30 is usual): compute normals after duplicating the points of edges sharper than this "
+    "(vtkPolyDataNormals' splitting), so that each side of a sharp edge gets its own normal, for a mesh "
+    "that stores such edges' points once; the output then has MORE points than the input, and the "
+    "mesh's own normals are replaced")
+    ->check(numberFromTo(0, 180));
   EnvironmentOption& environment = shade.environment;
   CLI::Option* envmapOption = shadeCommand->add_option("--envmap", environment.file,
     "add an environment light named 'envmap' from this equirectangular map (.hdr, .exr: twice as wide "
@@ -468,7 +540,8 @@ int main(int argc, char** argv)
   renderCommand->add_option("--output,-o", render.output, "the PNG to write")->required();
   renderCommand->add_option("--array,-a", render.options.array, "the point array to draw")->capture_default_str();
   renderCommand->add_option("--scene,-s", render.scene,
-    "take the camera from this scene's viewer (default: framed, looking down -z)");
+    "take the camera from this scene's viewer (default: the default light kit's, which frames the "
+    "mesh looking down -z)");
   renderCommand->add_option("--size", render.size, "image size, WIDTHxHEIGHT")->capture_default_str();
 
   BenchCommand bench;
@@ -510,11 +583,6 @@ int main(int argc, char** argv)
   catch (const CLI::ParseError& error)
   {
     return cli.exit(error) == 0 ? 0 : 2;
-  }
-  if (shadeCommand->parsed() && shade.scene.empty() && shade.environment.file.empty())
-  {
-    std::cerr << "--scene or --envmap is required\nRun with --help for more information.\n";
-    return 2;
   }
   if (!verbose)
   {

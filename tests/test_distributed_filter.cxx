@@ -53,7 +53,7 @@ double largestDifference(vtkDataArray* a, vtkDataArray* b)
 }
 }
 
-// REFERENCES.md section 3: every texel of a map is a distant light of intensity L Omega from
+// docs/formulas.md section 12.3: every texel of a map is a distant light of intensity L Omega from
 // the texel's direction; the whole model (diffuse, specular, totals) must agree.
 TEST(DistributedLightsFilter, SingleTexelMapIsTheDistantLight)
 {

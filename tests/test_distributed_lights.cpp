@@ -68,7 +68,7 @@ const LobeModel noSpecular{};
 const LobeModel blinnPhong30{ SpecularModel::BlinnPhong, 30 };
 }
 
-// REFERENCES.md section 3: a constant environment L gives E = pi L at every normal.
+// docs/formulas.md sections 11.1 and 13.3: a constant environment L gives E = pi L at every normal.
 TEST(EnvironmentEstimators, ConstantMapGivesPiLEverywhere)
 {
   const Rgb radiance(0.5, 1.0, 2.0);
@@ -104,7 +104,7 @@ TEST(EnvironmentEstimators, ConstantMapGivesPiLEverywhere)
   EXPECT_LT(largestRelativeError(environmentLight(map, EnvironmentEstimator::MonteCarlo, 4096)), 1e-2);
 }
 
-// REFERENCES.md section 3: every texel is a distant light of intensity L Omega. A map that is
+// docs/formulas.md section 12.3: every texel is a distant light of intensity L Omega. A map that is
 // black but for one texel is that distant light.
 TEST(EnvironmentEstimators, SingleBrightTexelIsADistantLight)
 {
@@ -160,7 +160,7 @@ TEST(EnvironmentEstimators, RotationTurnsTheMapAboutUp)
     peak * std::max(0.0, glm::dot(inMap, inWorld)), 1e-12 * peak);
 }
 
-// REFERENCES.md section 3 gives 9.4% of the peak as the error of nine coefficients under a
+// docs/formulas.md section 12.5 gives 9.4% of the peak as the error of nine coefficients under a
 // single small source at the horizon. The general bound behind it: the clamped cosine's
 // Legendre series cut after l = 2 is 1/4 + t/2 + (15 t^2 - 5)/32 (coefficients 1/4, 1/2, 5/16),
 // which differs from max(0, t) by at most 3/32 (at t = 0), so the error at any normal is at
@@ -314,7 +314,7 @@ TEST(AreaEstimators, OneSidedEmittersLightOnlyTheirFront)
   }
 }
 
-// REFERENCES.md section 3: the sphere's closed form, including the partly-below-horizon case,
+// docs/formulas.md section 11.3 (Snyder 1996): the sphere's closed form, including the partly-below-horizon case,
 // against Monte Carlo over the cone it subtends.
 TEST(AreaEstimators, SphereClosedFormAgainstMonteCarlo)
 {
@@ -350,7 +350,7 @@ TEST(AreaEstimators, SphereClosedFormAgainstMonteCarlo)
   EXPECT_GE(within, 0.98 * compared);
 }
 
-// REFERENCES.md section 3, the "five times rule": beyond five times its largest dimension, a
+// docs/formulas.md section 11.5, the "five-times rule": beyond five times its largest dimension, a
 // source may be taken as a point. For a sphere wholly above the horizon the point is exact
 // (pi L cos(beta) (r/d)^2 is I cos / d^2 with I = pi r^2 L); for a disk on its axis the
 // relative error is (r/h)^2, 1% at five diameters.
@@ -429,7 +429,7 @@ double logLogSlope(const std::vector<double>& samples, const std::vector<double>
 }
 }
 
-// REFERENCES.md section 3: Monte Carlo error falls as sigma / sqrt(N). Independent samples
+// docs/formulas.md sections 13.1 and 13.2: Monte Carlo error falls as sigma / sqrt(N). Independent samples
 // follow it; stratified samples do better on this smooth integrand.
 TEST(AreaEstimators, MonteCarloErrorFallsAsOneOverRootN)
 {

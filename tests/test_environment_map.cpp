@@ -509,7 +509,7 @@ TEST(SphericalHarmonics, SingleBrightTexelWithinThePublishedBound)
   // The worst case of R&H: one small bright source. Its projection is exact, so the SH
   // irradiance at cos(gamma) = n.w is L Omega (1/4 + cos/2 + (5/32)(3 cos^2 - 1)) (the
   // addition theorem), off the true L Omega max(0, cos) by at most 3/32 = 9.375% of the peak
-  // L Omega, at the horizon (REFERENCES.md section 3: about +9.4%).
+  // L Omega, at the horizon (docs/formulas.md section 12.5: about +9.4%).
   EnvironmentMap map = mapOf(64, 32, [](const glm::dvec3&) { return Rgb(0.0); });
   const int column = 40;
   const int row = 10;

@@ -1,4 +1,4 @@
-// Every failure point of REFERENCES.md section 4 at its exact point: a defined, finite
+// Every failure point of docs/formulas.md section 16 at its exact point: a defined, finite
 // result and the right flag, in float64 and float32.
 #include "KernelHarness.h"
 #include "ShadingFlags.h"
@@ -175,7 +175,7 @@ TYPED_TEST(FailurePoints, TwoSidedFlipsNormalsFacingAway)
 
 TEST(DistantLight, IntensityFromTheDirectionsLength)
 {
-  // Lecture section 6: the strength of a distant light may be the length of its direction.
+  // docs/formulas.md section 8.1: the strength of a distant light may be the length of its direction.
   Scene scene = oneLightScene(DistantLight{ { 0, 0, -3 }, Rgb(1.0), 0.5, true }, SpecularModel::None, 1.0);
   const KernelHarness<double> run(scene, { Vec3<double>(0) }, { Vec3<double>(0, 0, 1) });
   EXPECT_DOUBLE_EQ(run.value("lamp_diffuse", 0), 0.5 * 0.5 * 3.0); // kd x intensity x |direction|

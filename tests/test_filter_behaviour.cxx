@@ -109,7 +109,7 @@ TEST(Normals, ComputedWithoutSplittingAndTurnedOutward)
   EXPECT_STREQ(normals->GetName(), "Normals");
   EXPECT_GT(smallestOutwardness(output, normals), 0.99);
   const std::string report = normalsReport(output);
-  EXPECT_NE(report.find("The mesh has no point normals: computed them"), std::string::npos) << report;
+  EXPECT_NE(report.find("The mesh has no point normals: computed area-weighted ones"), std::string::npos) << report;
   EXPECT_NE(report.find("They point into the mesh"), std::string::npos) << report;
   EXPECT_NE(report.find("; flipped them outward."), std::string::npos) << report;
 }
@@ -119,8 +119,7 @@ TEST(Normals, OutwardWindingNeedsNoFlip)
   vtkSmartPointer<vtkPolyData> output = run(sphereWithoutNormals(false), overheadLight());
   EXPECT_GT(smallestOutwardness(output, output->GetPointData()->GetNormals()), 0.99);
   EXPECT_EQ(normalsReport(output),
-    "The mesh has no point normals: computed them (vtkPolyDataNormals, no splitting) and added "
-    "them as 'Normals'.");
+    "The mesh has no point normals: computed area-weighted ones and added them as 'Normals'.");
 }
 
 TEST(Normals, OrientationCanBeLeftAlone)
@@ -146,7 +145,7 @@ TEST(Normals, InwardInputNormalsAreUsedFlippedButPassThroughUnchanged)
   EXPECT_LT(smallestOutwardness(output, normals), -0.99);
   vtkDataArray* cosine = output->GetPointData()->GetArray("sun_cos_incidence");
   EXPECT_DOUBLE_EQ(cosine->GetComponent(0, 0), 1.0); // vertex 0 is the top of the sphere
-  EXPECT_NE(normalsReport(output).find("; shaded with them flipped outward (the input array is unchanged)."),
+  EXPECT_NE(normalsReport(output).find("; flipped them outward. Shaded with the flipped copy; the input's array passes through unchanged."),
     std::string::npos);
 }
 
@@ -190,8 +189,7 @@ TEST(Normals, PreparedOnceAndRedoneWhenTheirInputsChange)
   mesh->DeepCopy(reverse->GetOutput());
   filter->Update();
   EXPECT_EQ(filter->GetNormalsReport(),
-    "The mesh has no point normals: computed them (vtkPolyDataNormals, no splitting) and added "
-    "them as 'Normals'.");
+    "The mesh has no point normals: computed area-weighted ones and added them as 'Normals'.");
 
   // A new prefix renames the computed normals.
   filter->SetArrayPrefix("lit_");

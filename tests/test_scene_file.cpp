@@ -44,7 +44,7 @@ TEST(SceneFile, ReadsEveryLightType)
   ASSERT_EQ(scene.lights.size(), 5u);
   EXPECT_EQ(scene.model, ShadingModel::Lecture);
   EXPECT_EQ(scene.material.kd, Rgb(0.5, 0.4, 0.3));
-  EXPECT_EQ(scene.material.ka, Rgb(0.5, 0.4, 0.3)); // lecture section 12: ka defaults to kd
+  EXPECT_EQ(scene.material.ka, Rgb(0.5, 0.4, 0.3)); // docs/formulas.md section 7: ka defaults to kd
   EXPECT_EQ(scene.material.ks, Rgb(0.2));
   EXPECT_EQ(scene.material.specular, SpecularModel::Phong);
   EXPECT_TRUE(scene.material.twoSided);
@@ -139,7 +139,7 @@ TEST(SceneFile, WrongTypesAndUnknownFields)
     "scene.json: /lights/0/cone: unknown field; allowed here: name, type, color, intensity, "
     "position, attenuation, min_distance");
   EXPECT_EQ(errorOf(R"({ "lights": [], "materail": {} })"),
-    "scene.json: /materail: unknown field; allowed here: model, viewer, material, lights");
+    "scene.json: /materail: unknown field; allowed here: model, frame, viewer, material, lights");
   // Fields of another model are errors too, not silently ignored.
   EXPECT_EQ(errorOf(R"({ "lights": [ { "type": "point", "position": [0, 0, 1],
       "attenuation": { "model": "inverse", "range": 2 } } ] })"),

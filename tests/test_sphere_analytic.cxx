@@ -114,7 +114,7 @@ void expectInBothPrecisions(const Scene& scene, const std::map<std::string, Expe
   expectClosedForms(scene, expected, vtkAlgorithm::SINGLE_PRECISION, float32);
 }
 
-// The lecture's complete model under a distant light along +z with the viewer at infinity
+// The complete model (docs/formulas.md section 6) under a distant light along +z with the viewer at infinity
 // on +z: n.s = cos(theta), r = (sin 2theta cos phi, sin 2theta sin phi, cos 2theta),
 // r.v = cos(2 theta), h = z, n.h = cos(theta).
 void distantLightOverhead(SpecularModel model, double eta, const Tolerance& float32 = float32Tolerance)

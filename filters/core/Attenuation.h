@@ -7,8 +7,8 @@ namespace shadelab
 enum class AttenuationModel
 {
   None,                    // f = 1
-  Inverse,                 // f = 1/d            (lecture section 5, the softer fall-off)
-  InverseSquare,           // f = 1/d^2          (lecture section 5, physically correct)
+  Inverse,                 // f = 1/d            (docs/formulas.md section 9.1, softer)
+  InverseSquare,           // f = 1/d^2          (docs/formulas.md section 9.1, physical)
   ConstantLinearQuadratic, // f = 1/(k0+k1 d+k2 d^2)  (vtkLight::AttenuationValues)
   GltfRange,               // f = window(d)/d^2  (KHR_lights_punctual)
 };
@@ -16,7 +16,7 @@ enum class AttenuationModel
 /// How a positional light fades with distance. Every model is evaluated at
 /// max(d, minDistance), so a light at (or very near) a vertex gives a large but finite value
 /// instead of Inf. Filament, Frostbite and Unity clamp the same way at 1 cm
-/// (REFERENCES.md section 4).
+/// (docs/formulas.md section 9.2).
 struct Attenuation
 {
   AttenuationModel model = AttenuationModel::InverseSquare;
@@ -27,14 +27,14 @@ struct Attenuation
   double minDistance = 0.01;
 };
 
-// Lecture section 5: f = 1/d^2.
+// docs/formulas.md section 9.1: f = 1/d^2, the inverse-square law.
 template <typename T>
 T inverseSquareFalloff(T d)
 {
   return T(1) / (d * d);
 }
 
-// Lecture section 5: f = 1/d.
+// docs/formulas.md section 9.1: f = 1/d.
 template <typename T>
 T inverseFalloff(T d)
 {

@@ -1,15 +1,16 @@
 #pragma once
 // Lights integrated over a solid angle at every vertex: area lights and environment maps
-// (REFERENCES.md section 3). Each light type has several estimators; all of them return the
-// same two integrals, so that the kernel and the arrays do not depend on which one ran:
+// (docs/formulas.md sections 11 and 12). Each light type has several estimators; all of them
+// return the same two integrals, so that the kernel and the arrays do not depend on which one
+// ran:
 //
 //   irradiance E = integral of L(w) max(0, n.w) dw
 //   specular   S = integral over lit directions (n.w > 0) of L(w) lobe(w) dw
 //
-// Both reduce to the lecture's point light in the limit of a small source: a source of
-// intensity I at distance d gives E = I max(0, n.s) / d^2 and S = I lobe(s) / d^2. So the
-// diffuse term is kd E and the specular term ks S, as kd Ld max(0, n.s) att and ks Ls lobe att
-// are for a point light.
+// Both reduce to the point light (docs/formulas.md sections 8.2 and 11.1) in the limit of a
+// small source: a source of intensity I at distance d gives E = I max(0, n.s) / d^2 and
+// S = I lobe(s) / d^2. So the diffuse term is kd E and the specular term ks S, as
+// kd Ld max(0, n.s) att and ks Ls lobe att are for a point light.
 #include "Lights.h"
 #include "Reflectance.h"
 #include "Scene.h"
@@ -39,8 +40,8 @@ struct DistributedTerms
   Rgb specularStdError{ 0.0 };
 };
 
-/// The lecture's specular lobe for light arriving from the unit direction s (sections 11.3 and
-/// 11.4; Reflectance.h): max(0, r.v)^eta or max(0, n.h)^eta, on lit directions only.
+/// The specular lobe for light arriving from the unit direction s (docs/formulas.md sections 4
+/// and 5; Reflectance.h): max(0, r.v)^eta or max(0, n.h)^eta, on lit directions only.
 struct LobeModel
 {
   SpecularModel model = SpecularModel::None; // None: no specular integral is estimated

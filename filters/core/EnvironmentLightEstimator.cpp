@@ -78,7 +78,7 @@ Rgb EnvironmentLightEstimator::radianceAt(const glm::dvec3& mapDirection) const
 
 DistributedTerms EnvironmentLightEstimator::bruteForce(const glm::dvec3& n, const glm::dvec3& v) const
 {
-  // Every texel a distant light of intensity L Omega (REFERENCES.md section 3).
+  // Every texel a distant light of intensity L Omega (docs/formulas.md section 12.3).
   DistributedTerms terms;
   for (const Texel& texel : texels_)
   {

@@ -73,7 +73,8 @@ glm::ivec2 texelToward(const EnvironmentMap& map, const glm::dvec3& unitDirectio
 // Solid angle is the integral of sin(theta) dtheta dphi. Over a texel, phi spans 2 pi / W and
 // theta spans [a, b] = pi [row, row + 1] / H, so it is (2 pi / W)(cos a - cos b), written as
 // (2 pi / W) 2 sin((a + b) / 2) sin((b - a) / 2) to avoid the cancellation of cos a - cos b
-// near the poles. For small texels this is REFERENCES.md section 3's (2 pi / W)(pi / H) sin(theta).
+// near the poles. For small texels this is (2 pi / W)(pi / H) sin(theta) (docs/formulas.md
+// section 12.2).
 double texelSolidAngle(int row, int width, int height)
 {
   const double centreTheta = pi * (row + 0.5) / height;

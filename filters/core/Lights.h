@@ -1,5 +1,5 @@
 #pragma once
-// Light sources of the lecture (sections 4 to 7), one struct per type, in the manner of
+// Light sources (docs/formulas.md sections 8, 11 and 12), one struct per type, in the manner of
 // pbrt-v4's lights.h. These describe a light; ShadingKernel.h evaluates them at vertices.
 #include "Attenuation.h"
 #include "SpotCone.h"
@@ -12,14 +12,14 @@
 
 namespace shadelab
 {
-/// Lecture section 4.1: at infinite distance, constant direction, no attenuation.
+/// docs/formulas.md section 8.1: at infinite distance, constant direction, no attenuation.
 struct DistantLight
 {
   glm::dvec3 direction{ 0, 0, -1 }; // the direction the light travels; s = -direction
   Rgb color{ 1, 1, 1 };
   double intensity = 1.0;
-  /// Lecture section 6: "the intensity of a distant light source is encoded in the length
-  /// of the direction vector". When set, intensity is multiplied by |direction|.
+  /// docs/formulas.md section 8.1: the light's strength may be carried by the length of its
+  /// direction vector. When set, intensity is multiplied by |direction|.
   bool intensityFromLength = false;
 };
 
@@ -30,7 +30,7 @@ struct Headlight
   double intensity = 1.0;
 };
 
-/// Lecture sections 4.2, 5 and 6: a local light radiating equally in all directions.
+/// docs/formulas.md sections 8.2 and 9: a local light radiating equally in all directions.
 struct PointLight
 {
   glm::dvec3 position{ 0, 0, 0 };
@@ -39,7 +39,8 @@ struct PointLight
   Attenuation attenuation;
 };
 
-/// Lecture section 6: a point light that emits only inside a cone around its axis.
+/// docs/formulas.md sections 8.3 and 10: a point light that emits only inside a cone around
+/// its axis.
 struct SpotLight
 {
   glm::dvec3 position{ 0, 0, 0 };
@@ -50,14 +51,14 @@ struct SpotLight
   SpotCone cone;
 };
 
-/// Lecture section 7 and 11.1: light arriving equally from all directions (La).
+/// docs/formulas.md sections 8.4 and 2: light arriving equally from all directions (La).
 struct AmbientLight
 {
   Rgb color{ 1, 1, 1 };
   double intensity = 1.0;
 };
 
-/// REFERENCES.md section 3: distributed sources. An emitter of uniform radiance L = colour x
+/// docs/formulas.md section 11: distributed sources. An emitter of uniform radiance L = colour x
 /// intensity over its surface (a Lambertian emitter), seen from each vertex as a solid angle.
 /// A planar convex polygon; it emits on the side its vertices wind anticlockwise around (the
 /// right-hand normal), or on both sides when the light is two-sided.
@@ -89,7 +90,7 @@ enum class AreaEstimator
 {
   Exact,      // Lambert's polygon formula clipped to the horizon; the sphere's and disk's exact forms
   MonteCarlo, // `samples` points on the emitter, with a standard error per vertex
-  Point,      // a point light at the emitter's centre (REFERENCES.md section 3, "five times rule")
+  Point,      // a point light at the emitter's centre ("five-times rule", docs/formulas.md section 11.5)
 };
 
 /// More samples than this per vertex is a mistake (a 100k-vertex mesh would take hours); at
@@ -134,7 +135,7 @@ enum class EnvironmentDirections
   Cosine,    // cosine-weighted about the normal: exact irradiance from a constant map
 };
 
-/// REFERENCES.md section 3: an environment map, where every texel is a distant light of
+/// docs/formulas.md section 12: an environment map, where every texel is a distant light of
 /// radiance colour x intensity x texel, over the texel's solid angle.
 struct EnvironmentLight
 {

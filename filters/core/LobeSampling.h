@@ -1,9 +1,10 @@
 #pragma once
-// Directions drawn in proportion to the lecture's specular lobe, for Monte Carlo estimates of
-// S = integral of L lobe dw where L is smooth and the lobe sharp. The lobe is a cosine power
-// about an axis, whose normalised density is (eta + 1) / (2 pi) cos^eta (Phong's lobe as a
-// distribution: E. Lafortune and Y. Willems, "Using the Modified Phong Reflectance Model for
-// Physically Based Rendering", 1994; pbrt-v3 section 14.1.1 for the half-vector form).
+// Directions drawn in proportion to the specular lobe (docs/formulas.md sections 4, 5 and
+// 13.3), for Monte Carlo estimates of S = integral of L lobe dw where L is smooth and the lobe
+// sharp. The lobe is a cosine power about an axis, whose normalised density is
+// (eta + 1) / (2 pi) cos^eta (Phong's lobe as a distribution: E. Lafortune and Y. Willems,
+// "Using the Modified Phong Reflectance Model for Physically Based Rendering", 1994; pbrt-v3
+// section 14.1.1 for the half-vector form).
 #include "DistributedLight.h"
 #include "SampleWarps.h"
 

@@ -4,6 +4,7 @@
 // whose predicted errors fit in it together. The predictions are upper bounds derived below
 // in MethodChoice.cpp; tests check them against measured errors on the meshes in data/.
 #include "ArrayCatalog.h"
+#include "MeshExtent.h"
 #include "Scene.h"
 #include "ShadingKernel.h"
 
@@ -12,14 +13,6 @@
 
 namespace shadelab
 {
-/// What the predictions need to know about the mesh.
-struct MeshExtent
-{
-  glm::dvec3 centre{ 0 }; // of the bounding box
-  double radius = 0;      // half the bounding box's diagonal: no vertex is farther from centre
-  double reach = 0;       // the largest |coordinate|
-};
-
 struct LightChoice
 {
   std::string name;

@@ -1,6 +1,7 @@
 #pragma once
 // A planar polygon emitting uniformly (a Lambertian emitter of radiance L): its exact
-// irradiance E = L P at a point, through the projected solid angle P (REFERENCES.md section 3).
+// irradiance E = L P at a point, through the projected solid angle P (docs/formulas.md
+// sections 11.1 and 11.2).
 #include "Vec3.h"
 
 #include <vector>

@@ -1,7 +1,7 @@
 #pragma once
-// The lecture's local reflectance terms (seed/lecture-light-and-reflectance.md, section 11;
-// REFERENCES.md section 1), each a small named function in the manner of Filament's
-// shading code. n, s, v are unit vectors: normal, to-light, to-viewer.
+// The local reflectance terms (docs/formulas.md sections 2 to 6: Lambert 1760, Phong 1975,
+// Blinn 1977), each a small named function in the manner of Filament's shading code. n, s, v
+// are unit vectors: normal, to-light, to-viewer.
 #include "Vec3.h"
 
 #include <algorithm>
@@ -9,11 +9,11 @@
 
 namespace shadelab
 {
-// Section 11.2: the angle of incidence theta_i between n and s, in degrees. Computed as
-// atan2(|n x s|, n.s) rather than acos(n.s): acos loses about half the significant digits
-// near 0 and 180 degrees, atan2 of the pair loses none (W. Kahan, "How Futile are Mindless
-// Assessments of Roundoff in Floating-Point Computation?", 2006, section 12). A zero normal,
-// whose n.s is 0, gets 90 degrees.
+// docs/formulas.md section 3: the angle of incidence theta_i between n and s, in degrees.
+// Computed as atan2(|n x s|, n.s) rather than acos(n.s): acos loses about half the significant
+// digits near 0 and 180 degrees, atan2 of the pair loses none (W. Kahan, "How Futile are
+// Mindless Assessments of Roundoff in Floating-Point Computation?", 2006, section 12). A zero
+// normal, whose n.s is 0, gets 90 degrees.
 template <typename T>
 T incidenceAngleDegrees(const Vec3<T>& n, const Vec3<T>& s)
 {
@@ -27,21 +27,21 @@ T incidenceAngleDegrees(const Vec3<T>& n, const Vec3<T>& s)
   return std::atan2(sine, cosine) * degreesPerRadian;
 }
 
-// Section 11.2, Lambert: I = Ld kd max(0, n.s). This is the max(0, n.s) factor.
+// docs/formulas.md section 3, Lambert: I = Ld kd max(0, n.s). This is the max(0, n.s) factor.
 template <typename T>
 T lambertFactor(T cosIncidence)
 {
   return std::max(cosIncidence, T(0));
 }
 
-// Section 11.3: r = 2 (n.s) n - s, the mirror direction of s about n.
+// docs/formulas.md section 4 (Phong 1975): r = 2 (n.s) n - s, the mirror direction of s about n.
 template <typename T>
 Vec3<T> reflectAboutNormal(const Vec3<T>& s, const Vec3<T>& n, T cosIncidence)
 {
   return T(2) * cosIncidence * n - s;
 }
 
-// Section 11.4: h = (s + v) / |s + v| is undefined when s = -v (REFERENCES.md section 4).
+// docs/formulas.md sections 5 and 16.2: h = (s + v) / |s + v| is undefined when s = -v.
 // Below this |s + v|^2 is pure rounding noise of two opposite unit vectors.
 template <typename T>
 constexpr T halfVectorUndefinedBelow2 = T(1e-12);
@@ -53,8 +53,8 @@ bool isHalfVectorDefined(const Vec3<T>& s, const Vec3<T>& v)
   return glm::dot(sum, sum) > halfVectorUndefinedBelow2<T>;
 }
 
-// Section 11.4: h = (s + v) / |s + v|. Returns false, leaving h untouched, where it is
-// undefined.
+// docs/formulas.md section 5 (Blinn 1977): h = (s + v) / |s + v|. Returns false, leaving h
+// untouched, where it is undefined.
 template <typename T>
 bool halfVector(const Vec3<T>& s, const Vec3<T>& v, Vec3<T>& h)
 {
@@ -68,10 +68,10 @@ bool halfVector(const Vec3<T>& s, const Vec3<T>& v, Vec3<T>& h)
   return true;
 }
 
-// Sections 11.3 and 11.4: the specular lobe cos^eta, for Phong (cos = r.v) and Blinn-Phong
-// (cos = n.h). Negative cosines are clamped to 0 before pow (REFERENCES.md section 4), and
+// docs/formulas.md sections 4 and 5: the specular lobe cos^eta, for Phong (cos = r.v) and
+// Blinn-Phong (cos = n.h). Negative cosines are clamped to 0 before pow (section 16.1), and
 // only a lit vertex (n.s > 0) has a lobe. eta = 0 follows C++'s pow(0, 0) = 1: the lobe is
-// the constant 1 on every lit vertex.
+// the constant 1 on every lit vertex (section 16.3).
 template <typename T>
 T specularLobe(bool lit, T cosine, T eta)
 {

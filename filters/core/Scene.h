@@ -11,12 +11,12 @@ namespace shadelab
 enum class SpecularModel
 {
   None,
-  Phong,      // lecture section 11.3: max(0, r.v)^eta
-  BlinnPhong, // lecture section 11.4: max(0, n.h)^eta
+  Phong,      // Phong 1975, docs/formulas.md section 4: max(0, r.v)^eta
+  BlinnPhong, // Blinn 1977, docs/formulas.md section 5: max(0, n.h)^eta
 };
 
-/// Lecture section 11 and 12: RGB coefficients and shininess. The defaults follow section 12
-/// ("ambient RGB = diffuse RGB, specular = white").
+/// docs/formulas.md sections 2 to 7: RGB coefficients and shininess. The defaults follow
+/// section 7 (ambient RGB = diffuse RGB, specular = white).
 struct Material
 {
   Rgb ka{ 0.8, 0.8, 0.8 };
@@ -44,17 +44,28 @@ struct Viewer
 
 enum class ShadingModel
 {
-  /// The lecture's complete model (section 11.5), with the options above.
+  /// The complete local model of the course (docs/formulas.md section 6), with the options above.
   Lecture,
-  /// What VTK 9.1's OpenGL2 renderer computes at a vertex (REFERENCES.md section 2):
+  /// What VTK 9.1's OpenGL2 renderer computes at a vertex (docs/vtk-renderer.md):
   /// Phong with a local viewer, always two-sided, ambient = ka with no ambient light, and a
   /// lone headlight shaded as df = max(0, n_z), sf = df^p.
   VtkOpenGL2,
 };
 
+/// What a scene's positions and lengths are measured in.
+enum class SceneFrame
+{
+  World, // the mesh's own coordinates
+  /// Units of the mesh's bounding-sphere radius R about its centre c (world = c + R p), with
+  /// intensities defined so that the lighting does not depend on where the mesh is or how
+  /// big it is. placedOnMesh (SceneFrame.h) turns such a scene into world coordinates.
+  Mesh,
+};
+
 struct Scene
 {
   ShadingModel model = ShadingModel::Lecture;
+  SceneFrame frame = SceneFrame::World;
   std::vector<NamedLight> lights;
   Material material;
   Viewer viewer;
@@ -64,7 +75,7 @@ struct Scene
   bool vtkLoneHeadlight = false;
 };
 
-/// The specular model actually evaluated: the material's, or VTK's (REFERENCES.md section 2:
+/// The specular model actually evaluated: the material's, or VTK's (docs/vtk-renderer.md section 5:
 /// Phong with sign(df); its lone-headlight shader takes max(0, n_z)^p, which is Blinn-Phong
 /// with the viewer along the light, where h = s).
 SpecularModel evaluatedSpecularModel(const Scene& scene);

@@ -478,7 +478,7 @@ Material readMaterial(const Node& node, ShadingModel model)
     node.expectObject({ "ka", "kd", "ks", "shininess", "specular", "two_sided" });
   }
   m.kd = rgbOr(node, "kd", m.kd);
-  // Lecture section 12: ambient RGB defaults to the diffuse RGB.
+  // docs/formulas.md section 7: ambient RGB defaults to the diffuse RGB.
   m.ka = rgbOr(node, "ka", model == ShadingModel::Lecture ? m.kd : m.ka);
   m.ks = rgbOr(node, "ks", m.ks);
   m.shininess = numberOr(node, "shininess", m.shininess);
@@ -524,12 +524,16 @@ Viewer readViewer(const Node& node)
 Scene readScene(const Json& document, const std::string& sceneFile)
 {
   const Node root(document, "");
-  root.expectObject({ "model", "viewer", "material", "lights" });
+  root.expectObject({ "model", "frame", "viewer", "material", "lights" });
   Scene scene;
   if (root.has("model"))
   {
     scene.model = root.at("model").choice<ShadingModel>(
       { { "lecture", ShadingModel::Lecture }, { "vtk", ShadingModel::VtkOpenGL2 } });
+  }
+  if (root.has("frame"))
+  {
+    scene.frame = root.at("frame").choice<SceneFrame>({ { "world", SceneFrame::World }, { "mesh", SceneFrame::Mesh } });
   }
   if (root.has("viewer"))
   {

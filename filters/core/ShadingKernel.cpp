@@ -159,8 +159,9 @@ ShadingKernel<T>::ShadingKernel(const Scene& scene, ShadingOutputs<T> outputs, c
 {
   const Material& m = scene.material;
   const bool vtk = scene.model == ShadingModel::VtkOpenGL2;
-  // REFERENCES.md section 2: VTK's shader always flips back faces, and its ambient term is
-  // Ka*Ca from the property alone. In its lone-headlight shader the specular viewer is the light.
+  // docs/vtk-renderer.md sections 1, 2 and 5: VTK's shader always flips back faces, and its
+  // ambient term is Ka*Ca from the property alone. In its lone-headlight shader the specular
+  // viewer is the light.
   specularModel_ = evaluatedSpecularModel(scene);
   specularViewerIsLight_ = vtk && scene.vtkLoneHeadlight;
   twoSided_ = vtk || m.twoSided;
@@ -467,9 +468,9 @@ void ShadingKernel<T>::addLight(const PreparedLight& light, const VertexBlock<T>
 template <typename T>
 void ShadingKernel<T>::specularLobes(const PreparedLight& light, std::size_t count, Workspace& w) const
 {
-  // Sections 11.3 and 11.4: the lobe cos^eta, cos = r.v (Phong) or n.h (Blinn-Phong),
-  // clamped to 0 and only on lit vertices (Reflectance.h specularLobe), times the light's
-  // attenuation and spot factor.
+  // docs/formulas.md sections 4, 5 and 16.1: the lobe cos^eta, cos = r.v (Phong) or n.h
+  // (Blinn-Phong), clamped to 0 and only on lit vertices (Reflectance.h specularLobe), times the
+  // light's attenuation and spot factor.
   const bool phong = specularModel_ == SpecularModel::Phong;
   const Lane<T>& cosine = phong ? w.rDotV : w.nDotH;
   auto litAt = [&](std::size_t k)

@@ -1,5 +1,5 @@
 #pragma once
-// x^eta for the specular lobe (lecture sections 11.3 and 11.4), x a clamped cosine in [0, 1]
+// x^eta for the specular lobe (docs/formulas.md sections 4, 5 and 15), x a clamped cosine in [0, 1]
 // and eta >= 0: the exact std::pow and two cheaper approximations that a tolerance may
 // choose. The approximations are branch-free arithmetic on the float's bits, so that a loop
 // of them vectorises, which a loop of std::pow calls does not.

@@ -1,6 +1,7 @@
 #pragma once
 // A sphere emitting uniformly (a Lambertian emitter of radiance L): its exact irradiance
-// E = L P at a point, through the projected solid angle P (REFERENCES.md section 3).
+// E = L P at a point, through the projected solid angle P (docs/formulas.md sections 11.1
+// and 11.3).
 #include "Vec3.h"
 
 namespace shadelab

@@ -1,6 +1,6 @@
 #pragma once
 // The irradiance environment map of Ramamoorthi and Hanrahan, "An Efficient Representation
-// for Irradiance Environment Maps", SIGGRAPH 2001 (REFERENCES.md section 3): the radiance
+// for Irradiance Environment Maps", SIGGRAPH 2001 (docs/formulas.md section 12.4): the radiance
 // projected on the 9 real spherical harmonics of bands 0 to 2, from which the irradiance at
 // any normal is a quadratic polynomial of the normal (their eq. 13). About 1% error on
 // average; the worst case is a small bright source, at most about 9% of its peak.

@@ -2,9 +2,11 @@
 
 #include "ArrayCatalog.h"
 #include "MethodChoice.h"
-#include "NormalOrientation.h"
 #include "ShadeLabLargeArrays.h"
+#include "SceneFrame.h"
+#include "ShadeLabMeshExtent.h"
 #include "ShadingKernel.h"
+#include "vtkShadingNormalsFilter.h"
 
 #include "vtkArrayDispatch.h"
 #include "vtkCellArray.h"
@@ -19,7 +21,6 @@
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
-#include "vtkPolyDataNormals.h"
 #include "vtkSMPTools.h"
 #include "vtkSmartPointer.h"
 #include "vtkStringArray.h"
@@ -35,88 +36,6 @@ namespace
 {
 using shadelab::LightTerm;
 using shadelab::TotalTerm;
-
-/// Calls visit(size, ids) for every cell of the array.
-template <typename Visit>
-void forEachCell(vtkCellArray* cells, Visit&& visit)
-{
-  auto cell = vtk::TakeSmartPointer(cells->NewIterator());
-  for (cell->GoToFirstCell(); !cell->IsDoneWithTraversal(); cell->GoToNextCell())
-  {
-    vtkIdType size;
-    const vtkIdType* ids;
-    cell->GetCurrentCell(size, ids);
-    visit(size, ids);
-  }
-}
-
-/// Feeds every polygon and strip triangle of the mesh to the orientation test. A worker for
-/// vtkArrayDispatch, so that points and normals are read from raw memory.
-struct OrientationWorker
-{
-  vtkPolyData* mesh;
-  shadelab::NormalOrientation result;
-
-  template <typename PointArray, typename NormalArray>
-  void operator()(PointArray* pointArray, NormalArray* normalArray)
-  {
-    const auto points = vtk::DataArrayTupleRange<3>(pointArray);
-    const auto normals = vtk::DataArrayTupleRange<3>(normalArray);
-    auto vec = [](const auto& tuple) { return glm::dvec3(tuple[0], tuple[1], tuple[2]); };
-    double centre[3];
-    mesh->GetCenter(centre); // of the bounding box
-    shadelab::NormalOrientationAccumulator accumulator({ centre[0], centre[1], centre[2] });
-    auto addTriangle = [&](vtkIdType a, vtkIdType b, vtkIdType c)
-    {
-      accumulator.addTriangle(vec(points[a]), vec(points[b]), vec(points[c]), vec(normals[a]),
-        vec(normals[b]), vec(normals[c]));
-    };
-    // Polygons are split into fans, strips into their triangles; winding does not matter
-    // here because the test uses the stored normals, not the triangles' own orientation.
-    forEachCell(mesh->GetPolys(),
-      [&](vtkIdType size, const vtkIdType* ids)
-      {
-        for (vtkIdType k = 2; k < size; ++k)
-        {
-          addTriangle(ids[0], ids[k - 1], ids[k]);
-        }
-      });
-    forEachCell(mesh->GetStrips(),
-      [&](vtkIdType size, const vtkIdType* ids)
-      {
-        for (vtkIdType k = 2; k < size; ++k)
-        {
-          addTriangle(ids[k - 2], ids[k - 1], ids[k]);
-        }
-      });
-    result = accumulator.result();
-  }
-};
-
-shadelab::NormalOrientation assessOrientation(vtkPolyData* mesh, vtkDataArray* normals)
-{
-  OrientationWorker worker{ mesh, {} };
-  vtkDataArray* points = mesh->GetPoints()->GetData();
-  using Reals = vtkArrayDispatch::Reals;
-  if (!vtkArrayDispatch::Dispatch2ByValueType<Reals, Reals>::Execute(points, normals, worker))
-  {
-    worker(points, normals); // other value types, through the generic vtkDataArray API
-  }
-  return worker.result;
-}
-
-vtkSmartPointer<vtkDataArray> flippedCopy(vtkDataArray* normals)
-{
-  vtkSmartPointer<vtkDataArray> copy = vtk::TakeSmartPointer(normals->NewInstance());
-  copy->DeepCopy(normals);
-  for (auto tuple : vtk::DataArrayTupleRange<3>(copy))
-  {
-    tuple[0] = -tuple[0];
-    tuple[1] = -tuple[1];
-    tuple[2] = -tuple[2];
-  }
-  return copy;
-}
 
 /// Allocates the requested arrays of value type T on the output and points the kernel's
 /// outputs at their memory.
@@ -267,24 +186,6 @@ void vtkLocalReflectanceFilter::SetArraySelection(const std::vector<std::string>
 
 namespace
 {
-/// The bounding box's centre and half diagonal, and the largest |coordinate|, all over the
-/// finite points (NaN and Inf points are flagged, not refused).
-shadelab::MeshExtent meshExtent(vtkPolyData* input)
-{
-  double range[3][2];
-  for (int c = 0; c < 3; ++c)
-  {
-    input->GetPoints()->GetData()->GetFiniteRange(range[c], c);
-  }
-  shadelab::MeshExtent extent;
-  glm::dvec3 low(range[0][0], range[1][0], range[2][0]);
-  glm::dvec3 high(range[0][1], range[1][1], range[2][1]);
-  extent.centre = 0.5 * (low + high);
-  extent.radius = 0.5 * shadelab::vectorLength(high - low);
-  extent.reach = std::max(shadelab::largestComponent(low), shadelab::largestComponent(high));
-  return extent;
-}
-
 /// What makes the mesh's structure unusable (its coordinates are checked against the precision
 /// apart), or "" when there is nothing.
 std::string meshProblem(vtkPolyData* input)
@@ -336,20 +237,6 @@ std::string takenName(vtkPolyData* input, const std::vector<std::string>& names)
   return "";
 }
 
-/// Point normals computed without splitting, so that point ids and count stay the same.
-vtkSmartPointer<vtkDataArray> computeNormals(vtkPolyData* input, const std::string& name)
-{
-  vtkNew<vtkPolyDataNormals> normalFilter;
-  normalFilter->SetInputData(input);
-  normalFilter->SplittingOff();
-  normalFilter->ConsistencyOn();
-  normalFilter->ComputePointNormalsOn();
-  normalFilter->ComputeCellNormalsOff();
-  normalFilter->Update();
-  vtkSmartPointer<vtkDataArray> normals = normalFilter->GetOutput()->GetPointData()->GetNormals();
-  normals->SetName(name.c_str());
-  return normals;
-}
 }
 
 int vtkLocalReflectanceFilter::RequestData(
@@ -376,7 +263,7 @@ int vtkLocalReflectanceFilter::RequestData(
   shadelab::MeshExtent extent;
   if (problem.empty())
   {
-    extent = meshExtent(input);
+    extent = shadelab::meshExtentOf(input);
     problem = shadelab::meshCoordinateProblem(extent.reach, precision);
   }
   if (!problem.empty())
@@ -384,7 +271,9 @@ int vtkLocalReflectanceFilter::RequestData(
     vtkErrorMacro(<< problem);
     return 0;
   }
-  const std::vector<shadelab::SceneProblem> problems = shadelab::sceneProblems(this->Scene, precision);
+  // A scene written relative to the mesh is placed on it here, and checked where it lands.
+  const shadelab::Scene scene = shadelab::placedOnMesh(this->Scene, extent);
+  const std::vector<shadelab::SceneProblem> problems = shadelab::sceneProblems(scene, precision);
   if (!problems.empty())
   {
     vtkErrorMacro("scene " << problems.front().path << ": " << problems.front().message);
@@ -393,20 +282,20 @@ int vtkLocalReflectanceFilter::RequestData(
   shadelab::ArrayRequest request;
   std::vector<shadelab::LightMethod> methods = this->LightMethods;
   this->MethodPlan.reset();
-  if (!methods.empty() && methods.size() != this->Scene.lights.size())
+  if (!methods.empty() && methods.size() != scene.lights.size())
   {
-    vtkErrorMacro("SetLightMethods was given " << methods.size() << " methods for " << this->Scene.lights.size()
+    vtkErrorMacro("SetLightMethods was given " << methods.size() << " methods for " << scene.lights.size()
                                                << " lights: give one per light, or none");
     return 0;
   }
   try
   {
-    request = shadelab::selectArrays(this->Scene, this->ArraySelection);
+    request = shadelab::selectArrays(scene, this->ArraySelection);
     if (chooseByTolerance)
     {
       const bool float32Fits = shadelab::meshCoordinateProblem(extent.reach, shadelab::Precision::Float32).empty() &&
-        shadelab::sceneProblems(this->Scene, shadelab::Precision::Float32).empty();
-      this->MethodPlan = shadelab::chooseMethods(this->Scene, request, extent, this->Tolerance, float32Fits);
+        shadelab::sceneProblems(scene, shadelab::Precision::Float32).empty();
+      this->MethodPlan = shadelab::chooseMethods(scene, request, extent, this->Tolerance, float32Fits);
       precision = this->MethodPlan->precision;
       methods = this->MethodPlan->methods();
     }
@@ -418,7 +307,7 @@ int vtkLocalReflectanceFilter::RequestData(
   }
   vtkDataArray* inputNormals = input->GetPointData()->GetNormals();
   std::vector<std::string> written;
-  for (const auto& array : shadelab::availableArrays(this->Scene, this->ArrayPrefix))
+  for (const auto& array : shadelab::availableArrays(scene, this->ArrayPrefix))
   {
     written.push_back(array.name);
   }
@@ -448,8 +337,8 @@ int vtkLocalReflectanceFilter::RequestData(
   try
   {
     arrays = precision == shadelab::Precision::Float64
-      ? shade<double>(this->Scene, request, methods, this->ArrayPrefix, points, shadingNormals, this)
-      : shade<float>(this->Scene, request, methods, this->ArrayPrefix, points, shadingNormals, this);
+      ? shade<double>(scene, request, methods, this->ArrayPrefix, points, shadingNormals, this)
+      : shade<float>(scene, request, methods, this->ArrayPrefix, points, shadingNormals, this);
   }
   catch (const std::exception& error) // an array, or anything else, that could not be allocated
   {
@@ -482,7 +371,8 @@ int vtkLocalReflectanceFilter::RequestData(
 void vtkLocalReflectanceFilter::PrepareNormals(vtkPolyData* input)
 {
   PreparedNormals& prepared = this->Normals;
-  if (prepared.stillValidFor(input, this->ArrayPrefix, this->OrientNormalsOutward))
+  if (prepared.stillValidFor(input, this->ArrayPrefix, this->OrientNormalsOutward, this->WeldCoincidentPoints,
+        this->FeatureAngle, this->WeldTolerance))
   {
     return;
   }
@@ -491,54 +381,44 @@ void vtkLocalReflectanceFilter::PrepareNormals(vtkPolyData* input)
   prepared.inputTime = input->GetMTime();
   prepared.prefix = this->ArrayPrefix;
   prepared.orient = this->OrientNormalsOutward;
+  prepared.weld = this->WeldCoincidentPoints;
+  prepared.featureAngle = this->FeatureAngle;
+  prepared.weldTolerance = this->WeldTolerance;
 
-  // The input's own normals, or computed ones added to the output.
-  std::ostringstream report;
-  vtkSmartPointer<vtkDataArray> normals = input->GetPointData()->GetNormals();
-  if (!normals)
+  // The input's own normals, or computed ones added to the output; either may be used
+  // flipped, in which case the input's own array still passes through unchanged.
+  vtkNew<vtkShadingNormalsFilter> normalsFilter;
+  normalsFilter->SetInputData(input);
+  normalsFilter->SetNormalsName(this->ComputedNormalsName());
+  normalsFilter->SetOrientOutward(this->OrientNormalsOutward);
+  normalsFilter->SetWeldCoincidentPoints(this->WeldCoincidentPoints);
+  normalsFilter->SetFeatureAngle(this->FeatureAngle);
+  normalsFilter->SetWeldTolerance(this->WeldTolerance);
+  normalsFilter->Update();
+  vtkDataArray* inputNormals = input->GetPointData()->GetNormals();
+  prepared.shading = normalsFilter->GetOutput()->GetPointData()->GetNormals();
+  prepared.report = normalsFilter->GetReport();
+  if (!inputNormals)
   {
-    const std::string name = this->ComputedNormalsName();
-    normals = prepared.added = computeNormals(input, name);
-    report << "The mesh has no point normals: computed them (vtkPolyDataNormals, no splitting) "
-              "and added them as '"
-           << name << "'.";
+    prepared.added = prepared.shading;
   }
-  else
+  else if (prepared.shading != inputNormals)
   {
-    report << "Using the mesh's point normals '" << (normals->GetName() ? normals->GetName() : "") << "'.";
+    prepared.report += " Shaded with the flipped copy; the input's array passes through unchanged.";
   }
-  prepared.shading = normals;
-  const shadelab::NormalOrientation orientation = assessOrientation(input, normals);
-  if (orientation.pointsInward())
-  {
-    report << " They point into the mesh (closure " << orientation.closure << ", flux " << orientation.flux << ")";
-    if (!this->OrientNormalsOutward)
-    {
-      report << "; kept as they are, because orienting them outward is off.";
-    }
-    else if (prepared.added)
-    {
-      prepared.shading = prepared.added = flippedCopy(normals);
-      report << "; flipped them outward.";
-    }
-    else
-    {
-      prepared.shading = flippedCopy(normals);
-      report << "; shaded with them flipped outward (the input array is unchanged).";
-    }
-  }
-  prepared.report = report.str();
   prepared.shadingTime = prepared.shading->GetMTime();
   prepared.addedTime = prepared.added ? prepared.added->GetMTime() : 0;
 }
 
 bool vtkLocalReflectanceFilter::PreparedNormals::stillValidFor(
-  vtkPolyData* mesh, const std::string& arrayPrefix, bool orientOutward) const
+  vtkPolyData* mesh, const std::string& arrayPrefix, bool orientOutward, bool weld, double featureAngle,
+  double weldTolerance) const
 {
   // Two inputs can share parts (a vtkPoints) and so a modification time: the identity counts
   // too. A user who edits an output's normals and calls Modified() changes their time.
   return this->shading && this->input == mesh && this->inputTime == mesh->GetMTime() &&
-    this->prefix == arrayPrefix && this->orient == orientOutward &&
+    this->prefix == arrayPrefix && this->orient == orientOutward && this->weld == weld &&
+    this->featureAngle == featureAngle && this->weldTolerance == weldTolerance &&
     this->shadingTime == this->shading->GetMTime() &&
     (!this->added || this->addedTime == this->added->GetMTime());
 }
@@ -550,5 +430,8 @@ void vtkLocalReflectanceFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ArrayPrefix: " << this->ArrayPrefix << "\n";
   os << indent << "OutputPrecision: " << this->OutputPrecision << "\n";
   os << indent << "OrientNormalsOutward: " << this->OrientNormalsOutward << "\n";
+  os << indent << "WeldCoincidentPoints: " << this->WeldCoincidentPoints << "\n";
+  os << indent << "FeatureAngle: " << this->FeatureAngle << "\n";
+  os << indent << "WeldTolerance: " << this->WeldTolerance << "\n";
   os << indent << "Tolerance: " << this->Tolerance << "\n";
 }

@@ -5,10 +5,11 @@
  *
  * Reads points and point normals, evaluates a shadelab::Scene at every vertex, and adds the
  * requested arrays (see shadelab::selectArrays; README.md has the table). Every input array
- * passes through unchanged. Without point normals, normals are computed without splitting
- * (point ids and count stay) and added as "<ArrayPrefix>Normals". Normals that point into a closed or
- * nearly closed mesh are used flipped unless OrientNormalsOutward is off; GetNormalsReport()
- * says what happened, and so does the output's field data array "shadelab_normals".
+ * passes through unchanged. Without point normals, normals are computed by
+ * vtkShadingNormalsFilter (smooth, shared by coincident points, point ids and count unchanged)
+ * and added as "<ArrayPrefix>Normals". Normals that point into a closed or nearly closed mesh
+ * are used flipped unless OrientNormalsOutward is off; GetNormalsReport() says what happened,
+ * and so does the output's field data array "shadelab_normals".
  */
 #ifndef vtkLocalReflectanceFilter_h
 #define vtkLocalReflectanceFilter_h
@@ -72,6 +73,18 @@ public:
   vtkGetMacro(OrientNormalsOutward, bool);
   vtkBooleanMacro(OrientNormalsOutward, bool);
 
+  /// Computed normals are shared by points at one position unless their polygons meet at an
+  /// edge sharper than FeatureAngle degrees (vtkShadingNormalsFilter; defaults on and 80).
+  vtkSetMacro(WeldCoincidentPoints, bool);
+  vtkGetMacro(WeldCoincidentPoints, bool);
+  vtkBooleanMacro(WeldCoincidentPoints, bool);
+  vtkSetClampMacro(FeatureAngle, double, 0.0, 180.0);
+  vtkGetMacro(FeatureAngle, double);
+  /// How far apart points at "one position" may be, as a fraction of the bounding box's
+  /// diagonal (vtkShadingNormalsFilter; default 0, the same coordinates).
+  vtkSetClampMacro(WeldTolerance, double, 0.0, 0.1);
+  vtkGetMacro(WeldTolerance, double);
+
   /// What the last run did about normals, in one or two sentences.
   const std::string& GetNormalsReport() const { return this->NormalsReport; }
 
@@ -90,6 +103,9 @@ private:
   std::string ArrayPrefix;
   int OutputPrecision = SINGLE_PRECISION;
   bool OrientNormalsOutward = true;
+  bool WeldCoincidentPoints = true;
+  double FeatureAngle = 80.0;
+  double WeldTolerance = 0.0;
   double Tolerance = 0;
   std::string NormalsReport;
   std::optional<shadelab::MethodPlan> MethodPlan;
@@ -105,12 +121,17 @@ private:
     vtkMTimeType inputTime = 0;
     std::string prefix;
     bool orient = true;
+    bool weld = true;
+    double featureAngle = 80.0;
+    double weldTolerance = 0.0;
     vtkSmartPointer<vtkDataArray> added; // computed normals for the output, or null
     vtkSmartPointer<vtkDataArray> shading;
     vtkMTimeType addedTime = 0, shadingTime = 0;
     std::string report;
 
-    bool stillValidFor(vtkPolyData* mesh, const std::string& arrayPrefix, bool orientOutward) const;
+    bool stillValidFor(
+      vtkPolyData* mesh, const std::string& arrayPrefix, bool orientOutward, bool weld, double featureAngle,
+      double weldTolerance) const;
   };
   PreparedNormals Normals;
   void PrepareNormals(vtkPolyData* input);

@@ -1,0 +1,105 @@
+/**
+ * @class vtkShadingNormalsFilter
+ * @brief Point normals for shading: the mesh's own, or smooth ones computed from its
+ * polygons, oriented out of the mesh.
+ *
+ * Without point normals in the input (or with KeepInputNormals off), computes area-weighted
+ * point normals (shadelab::polygonAreaVectors, shadelab::unitPointNormals) without changing
+ * point ids or count. Points that share a position (the same coordinates, or within
+ * WeldTolerance) share their normal unless their polygons meet at an edge sharper than
+ * FeatureAngle, so a mesh split at texture seams shades smooth and one split at its sharp
+ * edges keeps them.
+ * Polygons wound inconsistently (a directed edge traversed twice) are reordered with
+ * vtkPolyDataNormals' consistency pass first. SplitSharpEdgesOn instead duplicates points at
+ * edges sharper than SplitAngle (vtkPolyDataNormals' splitting): the point count changes,
+ * and point data is copied to the new points.
+ *
+ * Normals that point into a closed or nearly closed mesh (shadelab::NormalOrientation) are
+ * flipped unless OrientOutward is off; the input's own normals are then replaced by a flipped
+ * copy. GetReport() says what was done, and so does the output's field data array
+ * "shadelab_normals". Every other array passes through.
+ */
+#ifndef vtkShadingNormalsFilter_h
+#define vtkShadingNormalsFilter_h
+
+#include "ShadeLabFiltersModule.h"
+#include "vtkPolyDataAlgorithm.h"
+
+#include <string>
+
+class SHADELABFILTERS_EXPORT vtkShadingNormalsFilter : public vtkPolyDataAlgorithm
+{
+public:
+  static vtkShadingNormalsFilter* New();
+  vtkTypeMacro(vtkShadingNormalsFilter, vtkPolyDataAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /// Use the input's point normals when it has them (default on).
+  vtkSetMacro(KeepInputNormals, bool);
+  vtkGetMacro(KeepInputNormals, bool);
+  vtkBooleanMacro(KeepInputNormals, bool);
+
+  /// Share normals between points at one position (default on).
+  vtkSetMacro(WeldCoincidentPoints, bool);
+  vtkGetMacro(WeldCoincidentPoints, bool);
+  vtkBooleanMacro(WeldCoincidentPoints, bool);
+
+  /// How close two points must be to count as one position, as a fraction of the bounding
+  /// box's diagonal. Default 0: the same coordinates, which is how files that split a point
+  /// store its copies (and the fastest); above 0 for files that round the copies differently.
+  vtkSetClampMacro(WeldTolerance, double, 0.0, 0.1);
+  vtkGetMacro(WeldTolerance, double);
+
+  /// Points at one position whose polygons meet at an edge sharper than this many degrees
+  /// keep their own normals (default 80). Higher than vtkPolyDataNormals' 30 because it only
+  /// keeps apart points that the file has split already: a coarse smooth surface has edges
+  /// sharper than 30 degrees that are no creases (spot.obj's sharpest is 77), while the hard
+  /// edges that CAD and game exports split at are usually right angles.
+  vtkSetClampMacro(FeatureAngle, double, 0.0, 180.0);
+  vtkGetMacro(FeatureAngle, double);
+
+  /// Duplicate points at edges sharper than SplitAngle, so each side gets its own normal
+  /// (default off: it changes the point count). For meshes that store a sharp edge's points
+  /// once, which no normal per point can shade sharp otherwise.
+  vtkSetMacro(SplitSharpEdges, bool);
+  vtkGetMacro(SplitSharpEdges, bool);
+  vtkBooleanMacro(SplitSharpEdges, bool);
+
+  /// The angle SplitSharpEdges splits at, in degrees (default 30, as vtkPolyDataNormals).
+  vtkSetClampMacro(SplitAngle, double, 0.0, 180.0);
+  vtkGetMacro(SplitAngle, double);
+
+  /// Flip normals that point into a closed or nearly closed mesh (default on).
+  vtkSetMacro(OrientOutward, bool);
+  vtkGetMacro(OrientOutward, bool);
+  vtkBooleanMacro(OrientOutward, bool);
+
+  /// The name of computed normals (default "Normals").
+  vtkSetMacro(NormalsName, std::string);
+  vtkGetMacro(NormalsName, std::string);
+
+  /// What the last run did, in one or a few sentences.
+  const std::string& GetReport() const { return this->Report; }
+
+protected:
+  vtkShadingNormalsFilter() = default;
+  ~vtkShadingNormalsFilter() override = default;
+
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+private:
+  vtkShadingNormalsFilter(const vtkShadingNormalsFilter&) = delete;
+  void operator=(const vtkShadingNormalsFilter&) = delete;
+
+  bool KeepInputNormals = true;
+  bool WeldCoincidentPoints = true;
+  double WeldTolerance = 0.0;
+  double FeatureAngle = 80.0;
+  bool SplitSharpEdges = false;
+  double SplitAngle = 30.0;
+  bool OrientOutward = true;
+  std::string NormalsName = "Normals";
+  std::string Report;
+};
+
+#endif

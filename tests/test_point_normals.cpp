@@ -1,0 +1,159 @@
+// Point normals from polygons (PointNormals.h) on meshes small enough to know every normal:
+// area weighting, welding copies of a point across a seam, keeping them apart at a sharp
+// edge, and the winding test.
+#include "PointNormals.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace
+{
+using namespace shadelab;
+
+/// Triangles given as corner ids into points, in the PolygonList layout.
+struct Triangles
+{
+  std::vector<glm::dvec3> points;
+  std::vector<PointId> offsets{ 0 };
+  std::vector<PointId> connectivity;
+
+  void add(PointId a, PointId b, PointId c)
+  {
+    connectivity.insert(connectivity.end(), { a, b, c });
+    offsets.push_back(static_cast<PointId>(connectivity.size()));
+  }
+  PolygonList list() const { return { offsets.data(), connectivity.data(), offsets.size() - 1 }; }
+  std::vector<glm::dvec3> areas() const
+  {
+    return polygonAreaVectors(list(), {}, [this](PointId id) { return points[static_cast<std::size_t>(id)]; });
+  }
+};
+
+/// A roof: two unit right triangles meeting at the ridge along x, each sloping down at
+/// `slope` radians from the horizontal, so that the faces meet at a dihedral angle of
+/// 2 x slope. Each triangle has its own three points, as a file split at the ridge stores
+/// them: points 0-2 and 3-5, with 0 and 3 at the ridge's start and 1 and 4 at its end.
+Triangles splitRoof(double slope)
+{
+  Triangles roof;
+  const double y = std::cos(slope), z = -std::sin(slope);
+  roof.points = { { 0, 0, 0 }, { 1, 0, 0 }, { 0, y, z }, { 0, 0, 0 }, { 1, 0, 0 }, { 0, -y, z } };
+  roof.add(0, 1, 2); // normal (0, -z, y) rotated: faces up and toward +y
+  roof.add(4, 3, 5); // faces up and toward -y
+  return roof;
+}
+
+const std::vector<PointId> roofMergeMap{ 0, 1, 2, 0, 1, 5 };
+
+void expectNear(const glm::dvec3& actual, const glm::dvec3& expected, double tolerance)
+{
+  EXPECT_NEAR(actual.x, expected.x, tolerance);
+  EXPECT_NEAR(actual.y, expected.y, tolerance);
+  EXPECT_NEAR(actual.z, expected.z, tolerance);
+}
+
+TEST(PointNormals, AreaVectorIsHalfTheCrossProduct)
+{
+  Triangles quad;
+  quad.points = { { 0, 0, 0 }, { 2, 0, 0 }, { 2, 3, 0 }, { 0, 3, 0 } };
+  quad.offsets = { 0, 4 };
+  quad.connectivity = { 0, 1, 2, 3 };
+  const std::vector<glm::dvec3> areas = quad.areas();
+  ASSERT_EQ(areas.size(), 1u);
+  EXPECT_EQ(areas[0], glm::dvec3(0, 0, 6)); // a 2 x 3 rectangle, wound anticlockwise about +z
+}
+
+TEST(PointNormals, AreaWeightedAtASharedPoint)
+{
+  // A small and a large triangle sharing point 0, at right angles: the normal at 0 leans to
+  // the large one in the ratio of their areas (1/2 against 2).
+  Triangles fan;
+  fan.points = { { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 2 }, { 0, 2, 0 } };
+  fan.add(0, 1, 2); // area 1/2, normal +z
+  fan.add(0, 3, 4); // area 2, in the plane x = 0, normal -x
+  const std::vector<glm::dvec3> unit =
+    unitPointNormals(fan.points.size(), fan.list(), fan.areas(), nullptr, {}, 80.0);
+  expectNear(unit[0], glm::dvec3(-2.0, 0, 0.5) / std::sqrt(4.25), 1e-15);
+  expectNear(unit[1], glm::dvec3(0, 0, 1), 0);
+}
+
+TEST(PointNormals, CopiesAcrossASmoothSeamShareOneNormal)
+{
+  const Triangles roof = splitRoof(20.0 * M_PI / 180.0); // faces meet at 40 degrees
+  const PolygonEdges edges(roof.list(), roofMergeMap, roof.points.size());
+  WeldSummary summary;
+  const std::vector<glm::dvec3> unit =
+    unitPointNormals(roof.points.size(), roof.list(), roof.areas(), &edges, roofMergeMap, 80.0, &summary);
+  // Both faces have the same area, so the ridge's normal is straight up.
+  for (std::size_t ridge : { 0, 1, 3, 4 })
+  {
+    expectNear(unit[ridge], glm::dvec3(0, 0, 1), 1e-15);
+  }
+  EXPECT_EQ(unit[0], unit[3]);
+  EXPECT_EQ(unit[1], unit[4]);
+  EXPECT_EQ(summary.sharedPositions, 2u);
+  EXPECT_EQ(summary.pointsAveraged, 4u);
+  EXPECT_EQ(summary.pointsKeptApart, 0u);
+}
+
+TEST(PointNormals, CopiesAtASharpEdgeKeepTheirOwn)
+{
+  const double slope = 50.0 * M_PI / 180.0; // faces meet at 100 degrees, sharper than 80
+  const Triangles roof = splitRoof(slope);
+  const PolygonEdges edges(roof.list(), roofMergeMap, roof.points.size());
+  WeldSummary summary;
+  const std::vector<glm::dvec3> unit =
+    unitPointNormals(roof.points.size(), roof.list(), roof.areas(), &edges, roofMergeMap, 80.0, &summary);
+  const glm::dvec3 towardPlusY(0, std::sin(slope), std::cos(slope));
+  const glm::dvec3 towardMinusY(0, -std::sin(slope), std::cos(slope));
+  expectNear(unit[0], towardPlusY, 1e-15);
+  expectNear(unit[3], towardMinusY, 1e-15);
+  EXPECT_EQ(summary.pointsKeptApart, 4u);
+  // A feature angle above the edge's 100 degrees welds them after all.
+  const std::vector<glm::dvec3> welded =
+    unitPointNormals(roof.points.size(), roof.list(), roof.areas(), &edges, roofMergeMap, 101.0);
+  expectNear(welded[0], glm::dvec3(0, 0, 1), 1e-15);
+}
+
+TEST(PointNormals, WithoutWeldingEachCopyHasItsFacesNormal)
+{
+  const double slope = 20.0 * M_PI / 180.0;
+  const Triangles roof = splitRoof(slope);
+  const std::vector<glm::dvec3> unit =
+    unitPointNormals(roof.points.size(), roof.list(), roof.areas(), nullptr, {}, 80.0);
+  expectNear(unit[0], glm::dvec3(0, std::sin(slope), std::cos(slope)), 1e-15);
+  expectNear(unit[3], glm::dvec3(0, -std::sin(slope), std::cos(slope)), 1e-15);
+}
+
+TEST(PointNormals, PointsWithoutAreaHaveTheZeroNormal)
+{
+  Triangles mesh;
+  mesh.points = { { 0, 0, 0 }, { 1, 0, 0 }, { 2, 0, 0 }, { 5, 5, 5 } }; // collinear, and an isolated point
+  mesh.add(0, 1, 2);
+  mesh.offsets.push_back(mesh.offsets.back()); // a polygon with no points at all
+  const std::vector<glm::dvec3> unit =
+    unitPointNormals(mesh.points.size(), mesh.list(), mesh.areas(), nullptr, {}, 80.0);
+  for (const glm::dvec3& n : unit)
+  {
+    EXPECT_EQ(n, glm::dvec3(0.0));
+  }
+}
+
+TEST(PointNormals, WindingTestFindsEdgesTraversedTwiceTheSameWay)
+{
+  Triangles square;
+  square.points = { { 0, 0, 0 }, { 1, 0, 0 }, { 1, 1, 0 }, { 0, 1, 0 } };
+  square.add(0, 1, 2);
+  square.add(0, 2, 3); // traverses 2 -> 0, the first traverses 0 -> 2: consistent
+  EXPECT_EQ(PolygonEdges(square.list(), {}, 4).inconsistentCount(), 0u);
+  Triangles turned = square;
+  turned.connectivity = { 0, 1, 2, 0, 3, 2 }; // the second now traverses 0 -> 2 too
+  EXPECT_EQ(PolygonEdges(turned.list(), {}, 4).inconsistentCount(), 1u);
+  // On a split roof the edge joins only through the merge map.
+  Triangles roof = splitRoof(0.3);
+  roof.connectivity = { 0, 1, 2, 3, 4, 5 }; // both traverse the ridge from its start
+  EXPECT_EQ(PolygonEdges(roof.list(), {}, 6).inconsistentCount(), 0u);
+  EXPECT_EQ(PolygonEdges(roof.list(), roofMergeMap, 6).inconsistentCount(), 1u);
+}
+}
