@@ -5,6 +5,7 @@
 #include "MeshFiles.h"
 
 #include "DefaultLightKit.h"
+#include "SceneFile.h"
 #include "NormalOrientation.h"
 #include "SceneFrame.h"
 #include "ShadeLabMeshExtent.h"
@@ -13,6 +14,7 @@
 #include "vtkCellArrayIterator.h"
 #include "vtkDataArray.h"
 #include "vtkPointData.h"
+#include "vtkPoints.h"
 
 #include <gtest/gtest.h>
 
@@ -125,6 +127,38 @@ TEST_P(RealMesh, DefaultLightKitLightsItWell)
   EXPECT_GE(quantile(0.95) - quantile(0.05), 0.15);
   std::cout << meshCase.file << ": " << seen.size() << " vertices seen, luminance from " << seen.front()
             << ", median " << quantile(0.5) << ", 5-95% spread " << quantile(0.95) - quantile(0.05) << "\n";
+}
+
+TEST(MeshFrame, AScenePlacedOnTheMeshLightsItAlikeAnywhereAtAnySize)
+{
+  // The bunny as it comes, and moved to x = 1e3 and made 40 times larger (the size and place
+  // of a CAD part in millimetres), under studio_mesh.json: the same totals at every vertex.
+  vtkSmartPointer<vtkPolyData> bunny = app::readMesh(SHADELAB_SOURCE_DIR "/data/meshes/bunny_zipper.ply");
+  auto moved = vtkSmartPointer<vtkPolyData>::New();
+  moved->DeepCopy(bunny);
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  for (vtkIdType i = 0; i < bunny->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    bunny->GetPoint(i, p);
+    points->InsertNextPoint(1e3 + 40 * p[0], -250 + 40 * p[1], 40 * p[2]);
+  }
+  moved->SetPoints(points);
+  const Scene studio = readSceneFile(SHADELAB_SOURCE_DIR "/data/scenes/studio_mesh.json");
+  vtkSmartPointer<vtkPolyData> here = shadelab::testing::shadeWithFilter(bunny, studio, { "totals" });
+  vtkSmartPointer<vtkPolyData> there = shadelab::testing::shadeWithFilter(moved, studio, { "totals" });
+  vtkDataArray* expected = here->GetPointData()->GetArray("total");
+  vtkDataArray* actual = there->GetPointData()->GetArray("total");
+  double worst = 0, brightest = 0;
+  for (vtkIdType v = 0; v < expected->GetNumberOfValues(); ++v)
+  {
+    worst = std::max(worst, std::abs(actual->GetVariantValue(v).ToDouble() - expected->GetVariantValue(v).ToDouble()));
+    brightest = std::max(brightest, expected->GetVariantValue(v).ToDouble());
+  }
+  // float64 arithmetic on points moved in float64: what is left is rounding.
+  EXPECT_LT(worst, 1e-9);
+  EXPECT_GT(brightest, 0.9); // as lit as studio.json lights the bunny in its own coordinates
 }
 
 INSTANTIATE_TEST_SUITE_P(BundledMeshes, RealMesh,

@@ -1,4 +1,5 @@
 // Scene files: what a valid file means, and the exact message for each kind of bad input.
+#include "SceneFileErrors.h"
 #include "ArrayCatalog.h"
 #include "EnvironmentMap.h"
 #include "SceneFile.h"
@@ -14,15 +15,7 @@ using namespace shadelab;
 
 std::string errorOf(const std::string& text)
 {
-  try
-  {
-    parseScene(text, "scene.json");
-  }
-  catch (const SceneFileError& error)
-  {
-    return error.what();
-  }
-  return "no error";
+  return shadelab::testing::sceneFileErrorOf(text);
 }
 
 TEST(SceneFile, ReadsEveryLightType)

@@ -1,6 +1,7 @@
 // Scenes in the mesh frame: parsing "frame", placing a scene on a mesh (every light type's
 // geometry and fall-off), studio_mesh.json against studio.json on the bunny, and the default
 // light kit.
+#include "SceneFileErrors.h"
 #include "DefaultLightKit.h"
 #include "EnvironmentMap.h"
 #include "KernelHarness.h"
@@ -25,15 +26,7 @@ using shadelab::testing::KernelHarness;
 
 std::string errorOf(const std::string& text)
 {
-  try
-  {
-    parseScene(text, "scene.json");
-  }
-  catch (const SceneFileError& error)
-  {
-    return error.what();
-  }
-  return "no error";
+  return shadelab::testing::sceneFileErrorOf(text);
 }
 
 /// |actual - expected| <= rel |expected|: rel 0 asks for equality.
