@@ -1,5 +1,7 @@
 #include "MeshFiles.h"
 
+#include "IsolatedWork.h"
+#include "MeshFileChecks.h"
 #include "ProgressLine.h"
 #include "VtkErrorCapture.h"
 
@@ -17,6 +19,8 @@
 #include <cctype>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
+#include <stdexcept>
 #include <unistd.h>
 
 namespace fs = std::filesystem;
@@ -85,17 +89,11 @@ vtkSmartPointer<vtkAlgorithm> readerFor(const std::string& fileName, const std::
 }
 }
 
-vtkSmartPointer<vtkPolyData> readMesh(const std::string& fileName)
+namespace
 {
-  const std::string extension = lowerExtension(fileName);
-  if (!fs::exists(fileName))
-  {
-    throw UserError(fileName + ": no such file");
-  }
-  if (fs::is_directory(fileName) || !std::ifstream(fileName))
-  {
-    throw UserError(fileName + ": cannot be read (is it a readable file?)");
-  }
+/// Reads the file with VTK's reader for its extension, in this process. Throws UserError.
+vtkSmartPointer<vtkPolyData> readDirectly(const std::string& fileName, const std::string& extension)
+{
   vtkSmartPointer<vtkAlgorithm> reader = readerFor(fileName, extension);
   vtkNew<VtkErrorCapture> errors;
   errors->watch(reader);
@@ -109,9 +107,105 @@ vtkSmartPointer<vtkPolyData> readMesh(const std::string& fileName)
     const std::string reason = errors->failed() ? errors->message()
       : code != vtkErrorCode::NoError           ? vtkErrorCode::GetStringFromErrorCode(code)
                                                 : "the reader produced no polydata";
-    throw UserError(fileName + ": cannot be read as " + extension + ": " + reason);
+    throw UserError(fileName + ": cannot be read as " + extension + ": " + printableText(reason));
   }
   return mesh;
+}
+
+/// The mesh as VTK XML (binary, uncompressed): how the reading process hands it over.
+std::string serialised(vtkPolyData* mesh)
+{
+  vtkNew<vtkXMLPolyDataWriter> writer;
+  writer->SetInputData(mesh);
+  writer->WriteToOutputStringOn();
+  writer->SetDataModeToAppended();
+  writer->EncodeAppendedDataOff();
+  writer->SetCompressorTypeToNone();
+  writer->SetHeaderTypeToUInt64();
+  if (!writer->Write())
+  {
+    throw std::runtime_error("the mesh could not be handed over (out of memory?)");
+  }
+  return writer->GetOutputString();
+}
+
+vtkSmartPointer<vtkPolyData> deserialised(std::string bytes)
+{
+  vtkNew<vtkXMLPolyDataReader> reader;
+  reader->ReadFromInputStringOn();
+  reader->SetInputString(std::move(bytes));
+  reader->Update();
+  auto mesh = vtkSmartPointer<vtkPolyData>::New();
+  mesh->ShallowCopy(reader->GetOutput());
+  return mesh;
+}
+}
+
+vtkSmartPointer<vtkPolyData> readMesh(const std::string& fileName)
+{
+  const std::string extension = lowerExtension(fileName);
+  std::error_code error;
+  if (!fs::exists(fileName, error))
+  {
+    throw UserError(fileName + ": no such file");
+  }
+  if (fs::is_directory(fileName, error) || !std::ifstream(fileName))
+  {
+    throw UserError(fileName + ": cannot be read (is it a readable file?)");
+  }
+  const std::uintmax_t size = fs::file_size(fileName, error);
+  const std::string problem = fileProblem(fileName, extension, error ? 0 : size);
+  if (!problem.empty())
+  {
+    throw UserError(fileName + ": " + problem);
+  }
+  // VTK's readers are not hardened against damaged files: the reading runs in a process of
+  // its own, bounded in processor time and memory by the file's size (a reader asking for far
+  // more is answering a lie in the file), so that a crash there is an error here.
+  const double megabytes = static_cast<double>(size) / 1e6;
+  IsolationLimits limits;
+  limits.cpuSeconds = 10 + 2 * megabytes;
+  limits.memoryBytes = (std::size_t(512) << 20) + 32 * static_cast<std::size_t>(size);
+  const IsolatedOutcome outcome = runIsolated(
+    [&](ChildChannel& channel)
+    {
+      vtkSmartPointer<vtkPolyData> mesh = readDirectly(fileName, extension);
+      if (auto* window = QuietOutputWindow::SafeDownCast(vtkOutputWindow::GetInstance()))
+      {
+        for (const std::string& warning : window->takeWarnings())
+        {
+          channel.warning(printableText(warning));
+        }
+      }
+      channel.result(serialised(mesh));
+    },
+    limits);
+  for (const std::string& warning : outcome.warnings)
+  {
+    vtkOutputWindow::GetInstance()->DisplayWarningText(warning.c_str());
+  }
+  std::ostringstream message;
+  message << fileName << ": ";
+  switch (outcome.end)
+  {
+    case IsolatedOutcome::End::Finished:
+      return deserialised(outcome.result);
+    case IsolatedOutcome::End::Failed:
+      throw UserError(printableText(outcome.error, 400)); // readDirectly's message names the file
+    case IsolatedOutcome::End::OutOfMemory:
+      message << "reading it needs more than " << limits.memoryBytes / (1 << 20)
+              << " MB, far more than a file of this size can hold: it declares more data than it has";
+      break;
+    case IsolatedOutcome::End::TimedOut:
+      message << "reading it took more than " << limits.cpuSeconds
+              << " s of processor time, far more than a file of this size needs: it is damaged";
+      break;
+    case IsolatedOutcome::End::Crashed:
+      message << "VTK's " << extension << " reader crashed on it (" << outcome.signalName
+              << "): the file is damaged or not a valid " << extension << " file";
+      break;
+  }
+  throw UserError(message.str());
 }
 
 void checkOutputFile(const std::string& fileName, std::initializer_list<const char*> extensions)

@@ -142,7 +142,7 @@ TEST_F(Cli, CorruptAndTruncatedFiles)
   const std::string header = "# vtk DataFile Version 3.0\nt\nASCII\nDATASET POLYDATA\nPOINTS 3 float\n0 0 0 1 0 0 0 1 0\n";
   const std::string corrupt = file("corrupt.vtk", header + "POLYGONS 1 4\n3 0 1 2000000\n");
   expectError("shade " + corrupt + " -s " + scene + " -o " + out,
-    corrupt + ": the mesh's cells use point id 2000000, but it has 3 points: the file is corrupt");
+    corrupt + ": the mesh's cells use point id 2000000, but it has 3 points: the mesh is corrupt");
   // A NORMALS block cut short: the reader only warns, and so does shadelab, naming the file.
   const std::string truncated = file("truncated.vtk",
     header + "POLYGONS 1 4\n3 0 1 2\nPOINT_DATA 3\nNORMALS Normals float\n0 0 1 0 0\n");

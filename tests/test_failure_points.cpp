@@ -141,6 +141,31 @@ TYPED_TEST(FailurePoints, ZeroNormalGetsAmbientOnly)
   EXPECT_EQ(run.flags[0], FlagDegenerateNormal | FlagLightBelowHorizon);
 }
 
+TYPED_TEST(FailurePoints, HugeNormalShadesAsItsDirection)
+{
+  // A finite normal whose squared length overflows (1e30 in float32, 1e200 in float64) shades
+  // exactly as the unit normal along it: under a point light and a sphere light, every term.
+  using T = TypeParam;
+  Scene scene = oneLightScene(PointLight{ { 0.3, 0.2, 2.0 }, Rgb(1.0), 2.0, Attenuation{} }, SpecularModel::BlinnPhong, 20);
+  AreaLight bulb;
+  bulb.shape = SphereEmitter{ { -0.5, 0.4, 3.0 }, 0.5 };
+  scene.lights.push_back({ "bulb", bulb });
+  const T huge = std::is_same<T, float>::value ? T(1e30) : T(1e200);
+  const Vec3<T> direction = glm::normalize(Vec3<T>(T(0.6), T(0), T(0.8)));
+  const KernelHarness<T> unit(scene, { Vec3<T>(0) }, { direction });
+  const KernelHarness<T> scaled(scene, { Vec3<T>(0) }, { Vec3<T>(T(0.6) * huge, T(0), T(0.8) * huge) });
+  expectAllFinite(scaled);
+  for (const auto& [name, values] : unit.arrays)
+  {
+    for (std::size_t i = 0; i < values.size(); ++i)
+    {
+      EXPECT_NEAR(scaled.arrays.at(name)[i], values[i], 4 * std::numeric_limits<T>::epsilon() * (1 + std::abs(values[i])))
+        << name;
+    }
+  }
+  EXPECT_EQ(scaled.flags[0], unit.flags[0]);
+}
+
 TYPED_TEST(FailurePoints, NaNCoordinateZeroesEveryOutput)
 {
   using T = TypeParam;

@@ -330,7 +330,7 @@ TEST(FilterErrors, CorruptOrOutOfRangeInput)
   triangles->InsertNextCell(3, ids);
   corrupt->SetPolys(triangles);
   EXPECT_EQ(filterError(corrupt, overheadLight(), { "default" }),
-    "the mesh's cells use point id 2000000, but it has 3 points: the file is corrupt");
+    "the mesh's cells use point id 2000000, but it has 3 points: the mesh is corrupt");
 
   vtkSmartPointer<vtkPolyData> sphere = shadelab::testing::exactSphere(10);
   vtkNew<vtkFloatArray> shortNormals;

@@ -283,6 +283,7 @@ void ShadingKernel<T>::prepareNormals(const VertexBlock<T>& b, Workspace& w) con
     nonFinite += isFiniteVertex(b, k) ? 0 : 1;
   }
   w.nonFinite = nonFinite;
+  std::size_t overflowing = 0;
   for (std::size_t k = 0; k < count; ++k)
   {
     const T length2 = b.nx[k] * b.nx[k] + b.ny[k] * b.ny[k] + b.nz[k] * b.nz[k];
@@ -292,6 +293,24 @@ void ShadingKernel<T>::prepareNormals(const VertexBlock<T>& b, Workspace& w) con
     w.ny[k] = usable ? b.ny[k] / length : T(0);
     w.nz[k] = usable ? b.nz[k] / length : T(0);
     w.flags[k] = usable ? 0 : FlagDegenerateNormal;
+    overflowing += length2 > std::numeric_limits<T>::max() ? 1 : 0;
+  }
+  // A finite normal whose squared length overflows (a component above 1.8e19 in float32) is
+  // normalised again, scaled by its largest component first; a separate pass, since such
+  // normals are rare and a branch in the loop above would stop it vectorising.
+  for (std::size_t k = 0; overflowing > 0 && k < count; ++k)
+  {
+    const T length2 = b.nx[k] * b.nx[k] + b.ny[k] * b.ny[k] + b.nz[k] * b.nz[k];
+    if (length2 > std::numeric_limits<T>::max() && isFiniteVertex(b, k))
+    {
+      const T scale = std::max({ std::abs(b.nx[k]), std::abs(b.ny[k]), std::abs(b.nz[k]) });
+      const T x = b.nx[k] / scale, y = b.ny[k] / scale, z = b.nz[k] / scale;
+      const T length = std::sqrt(x * x + y * y + z * z);
+      w.nx[k] = x / length;
+      w.ny[k] = y / length;
+      w.nz[k] = z / length;
+      --overflowing;
+    }
   }
 }
 

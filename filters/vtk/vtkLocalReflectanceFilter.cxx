@@ -4,6 +4,7 @@
 #include "MethodChoice.h"
 #include "ShadeLabLargeArrays.h"
 #include "SceneFrame.h"
+#include "ShadeLabMeshChecks.h"
 #include "ShadeLabMeshExtent.h"
 #include "ShadingKernel.h"
 #include "vtkShadingNormalsFilter.h"
@@ -202,16 +203,10 @@ std::string meshProblem(vtkPolyData* input)
             << " vertex or line cells): surface shading needs a surface";
     return problem.str();
   }
-  for (vtkCellArray* cells : { input->GetVerts(), input->GetLines(), input->GetPolys(), input->GetStrips() })
+  const std::string cells = shadelab::cellProblem(input);
+  if (!cells.empty())
   {
-    double ids[2];
-    cells->GetConnectivityArray()->GetRange(ids);
-    if (cells->GetNumberOfConnectivityIds() > 0 && (ids[0] < 0 || ids[1] >= pointCount))
-    {
-      problem << "the mesh's cells use point id " << static_cast<vtkIdType>(ids[0] < 0 ? ids[0] : ids[1])
-              << ", but it has " << pointCount << " points: the file is corrupt";
-      return problem.str();
-    }
+    return cells;
   }
   vtkDataArray* normals = input->GetPointData()->GetNormals();
   if (normals && (normals->GetNumberOfComponents() != 3 || normals->GetNumberOfTuples() != pointCount))

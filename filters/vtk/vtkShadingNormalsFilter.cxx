@@ -2,6 +2,7 @@
 
 #include "NormalOrientation.h"
 #include "PointNormals.h"
+#include "ShadeLabMeshChecks.h"
 
 #include "vtkArrayDispatch.h"
 #include "vtkCellArray.h"
@@ -277,6 +278,12 @@ int vtkShadingNormalsFilter::RequestData(
   if (input->GetNumberOfPoints() == 0)
   {
     return 1; // an empty mesh has no normals to prepare
+  }
+  const std::string cells = shadelab::cellProblem(input);
+  if (!cells.empty())
+  {
+    vtkErrorMacro(<< cells);
+    return 0;
   }
   std::ostringstream report;
   vtkDataArray* inputNormals = input->GetPointData()->GetNormals();

@@ -1,0 +1,232 @@
+#include "IsolatedWork.h"
+
+#include <cerrno>
+#include <cmath>
+#include <csignal>
+#include <cstdint>
+#include <cstring>
+#include <fcntl.h>
+#include <fstream>
+#include <new>
+#include <stdexcept>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace shadelab::app
+{
+namespace
+{
+void writeAll(int fd, const char* data, std::size_t size)
+{
+  while (size > 0)
+  {
+    const ssize_t written = ::write(fd, data, size);
+    if (written < 0 && errno == EINTR)
+    {
+      continue;
+    }
+    if (written <= 0)
+    {
+      ::_exit(3); // the parent has gone: nothing left to report to
+    }
+    data += written;
+    size -= static_cast<std::size_t>(written);
+  }
+}
+
+std::string readAll(int fd)
+{
+  std::string bytes;
+  char buffer[1 << 16];
+  for (;;)
+  {
+    const ssize_t got = ::read(fd, buffer, sizeof buffer);
+    if (got < 0 && errno == EINTR)
+    {
+      continue;
+    }
+    if (got <= 0)
+    {
+      return bytes;
+    }
+    bytes.append(buffer, static_cast<std::size_t>(got));
+  }
+}
+
+/// The process's address space now, from /proc (0 where it cannot be read).
+std::size_t currentAddressSpace()
+{
+  std::ifstream status("/proc/self/status");
+  std::string key;
+  while (status >> key)
+  {
+    if (key == "VmSize:")
+    {
+      std::size_t kilobytes = 0;
+      status >> kilobytes;
+      return kilobytes * 1024;
+    }
+    status.ignore(1 << 12, '\n');
+  }
+  return 0;
+}
+
+void limit(int resource, rlim_t value)
+{
+  const rlimit bound{ value, value };
+  ::setrlimit(resource, &bound);
+}
+
+[[noreturn]] void runChild(int fd, const std::function<void(ChildChannel&)>& work, const IsolationLimits& limits)
+{
+  // Standard error stays where progress is shown only if it is a terminal; everything else
+  // the work's libraries print (VTK's PLY code writes to it directly) goes nowhere.
+  const int devNull = ::open("/dev/null", O_WRONLY);
+  ::dup2(devNull, STDOUT_FILENO);
+  if (!::isatty(STDERR_FILENO))
+  {
+    ::dup2(devNull, STDERR_FILENO);
+  }
+  const rlim_t seconds = static_cast<rlim_t>(std::ceil(limits.cpuSeconds));
+  const rlimit cpu{ seconds, seconds + 1 }; // SIGXCPU at the soft limit, SIGKILL a second later
+  ::setrlimit(RLIMIT_CPU, &cpu);
+  limit(RLIMIT_AS, static_cast<rlim_t>(currentAddressSpace() + limits.memoryBytes));
+  limit(RLIMIT_FSIZE, 0); // it reads; it writes no file
+  limit(RLIMIT_CORE, 0);
+  ChildChannel channel(fd);
+  try
+  {
+    work(channel);
+  }
+  catch (const std::bad_alloc&)
+  {
+    ::_exit(4);
+  }
+  catch (const std::length_error&) // a size too large for a std::vector, asked for by a count
+  {
+    ::_exit(4);
+  }
+  catch (const std::exception& error)
+  {
+    channel.failure(error.what());
+  }
+  catch (...)
+  {
+    channel.failure("an unknown error");
+  }
+  ::_exit(0); // not exit(): the parent's static objects are the parent's to destroy
+}
+
+/// Splits the child's records: a kind byte, an 8-byte length, the bytes.
+void decode(const std::string& bytes, IsolatedOutcome& outcome)
+{
+  std::size_t at = 0;
+  while (at + 9 <= bytes.size())
+  {
+    const char kind = bytes[at];
+    std::uint64_t length = 0;
+    std::memcpy(&length, bytes.data() + at + 1, sizeof length);
+    at += 9;
+    if (length > bytes.size() - at)
+    {
+      return; // cut short: the child died while writing
+    }
+    std::string payload = bytes.substr(at, length);
+    at += length;
+    if (kind == 'W')
+    {
+      outcome.warnings.push_back(std::move(payload));
+    }
+    else if (kind == 'E')
+    {
+      outcome.end = IsolatedOutcome::End::Failed;
+      outcome.error = std::move(payload);
+    }
+    else if (kind == 'R')
+    {
+      outcome.end = IsolatedOutcome::End::Finished;
+      outcome.result = std::move(payload);
+    }
+  }
+}
+}
+
+void ChildChannel::send(char kind, const std::string& bytes)
+{
+  const std::uint64_t length = bytes.size();
+  char header[9];
+  header[0] = kind;
+  std::memcpy(header + 1, &length, sizeof length);
+  writeAll(fd_, header, sizeof header);
+  writeAll(fd_, bytes.data(), bytes.size());
+}
+
+IsolatedOutcome runIsolated(const std::function<void(ChildChannel&)>& work, const IsolationLimits& limits)
+{
+  int channel[2];
+  if (::pipe(channel) != 0)
+  {
+    throw std::runtime_error(std::string("cannot start a reader process: ") + std::strerror(errno));
+  }
+  std::fflush(nullptr); // nothing buffered is written twice, once by each process
+  const pid_t child = ::fork();
+  if (child < 0)
+  {
+    ::close(channel[0]);
+    ::close(channel[1]);
+    throw std::runtime_error(std::string("cannot start a reader process: ") + std::strerror(errno));
+  }
+  if (child == 0)
+  {
+    ::close(channel[0]);
+    runChild(channel[1], work, limits);
+  }
+  ::close(channel[1]);
+  const std::string bytes = readAll(channel[0]);
+  ::close(channel[0]);
+  int status = 0;
+  while (::waitpid(child, &status, 0) < 0 && errno == EINTR)
+  {
+  }
+  IsolatedOutcome outcome;
+  decode(bytes, outcome);
+  if (WIFSIGNALED(status))
+  {
+    const int signal = WTERMSIG(status);
+    outcome.end = signal == SIGXCPU || signal == SIGKILL ? IsolatedOutcome::End::TimedOut
+                                                         : IsolatedOutcome::End::Crashed;
+    outcome.signalName = std::string("SIG") + (sigabbrev_np(signal) ? sigabbrev_np(signal) : "?");
+  }
+  else if (WIFEXITED(status) && WEXITSTATUS(status) == 4)
+  {
+    outcome.end = IsolatedOutcome::End::OutOfMemory;
+  }
+  else if (outcome.end == IsolatedOutcome::End::Finished && !(WIFEXITED(status) && WEXITSTATUS(status) == 0))
+  {
+    outcome.end = IsolatedOutcome::End::Crashed; // it sent a result, then failed: trust neither
+    outcome.signalName = "exit code " + std::to_string(WEXITSTATUS(status));
+  }
+  else if (outcome.end == IsolatedOutcome::End::Failed && outcome.error.empty())
+  {
+    outcome.end = IsolatedOutcome::End::Crashed;
+    outcome.signalName = "exit code " + std::to_string(WEXITSTATUS(status));
+  }
+  return outcome;
+}
+
+std::string printableText(const std::string& text, std::size_t maxLength)
+{
+  std::string shown;
+  for (const char c : text)
+  {
+    if (shown.size() == maxLength)
+    {
+      shown += "...";
+      break;
+    }
+    shown += c >= 0x20 && c < 0x7f ? c : '?';
+  }
+  return shown;
+}
+}
