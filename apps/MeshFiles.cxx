@@ -21,7 +21,11 @@
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+#include <csignal>
+#include <cstring>
+#include <signal.h>
 #include <unistd.h>
+#include <vector>
 
 namespace fs = std::filesystem;
 
@@ -222,19 +226,105 @@ void checkOutputFile(const std::string& fileName, std::initializer_list<const ch
   {
     throw UserError(fileName + ": cannot write '" + extension + "' files here; use " + list);
   }
-  const fs::path folder = fs::absolute(fileName).parent_path();
-  if (!fs::is_directory(folder))
+  std::error_code error;
+  const fs::path folder = fs::absolute(fileName, error).parent_path();
+  if (!fs::is_directory(folder, error))
   {
     throw UserError(fileName + ": the folder " + folder.string() + " does not exist");
   }
 }
 
+namespace
+{
+/// The temporary file being written, for the signal handler: a fixed buffer, since a handler
+/// may touch nothing that allocates.
+char temporaryBeingWritten[4096] = "";
+
+extern "C" void removeTemporaryAndDie(int signal)
+{
+  if (temporaryBeingWritten[0] != '\0')
+  {
+    ::unlink(temporaryBeingWritten);
+  }
+  std::signal(signal, SIG_DFL);
+  std::raise(signal);
+}
+
+/// While it lives, an interrupt, hang-up or termination removes the temporary file first.
+class TemporaryGuard
+{
+public:
+  explicit TemporaryGuard(const std::string& temporary)
+  {
+    if (temporary.size() < sizeof temporaryBeingWritten)
+    {
+      std::memcpy(temporaryBeingWritten, temporary.c_str(), temporary.size() + 1);
+    }
+    for (int signal : { SIGINT, SIGTERM, SIGHUP })
+    {
+      previous_.push_back(std::signal(signal, removeTemporaryAndDie));
+    }
+  }
+  ~TemporaryGuard()
+  {
+    int i = 0;
+    for (int signal : { SIGINT, SIGTERM, SIGHUP })
+    {
+      std::signal(signal, previous_[i++]);
+    }
+    temporaryBeingWritten[0] = '\0';
+  }
+
+private:
+  std::vector<void (*)(int)> previous_;
+};
+
+/// Removes FILE.partial-PID files that runs killed before they could (their process is gone).
+void removeStaleTemporaries(const std::string& fileName)
+{
+  const fs::path target = fs::absolute(fileName);
+  const std::string stem = target.filename().string() + ".partial-";
+  std::error_code error;
+  for (const fs::directory_entry& entry : fs::directory_iterator(target.parent_path(), error))
+  {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind(stem, 0) != 0)
+    {
+      continue;
+    }
+    const std::string pid = name.substr(stem.size());
+    if (pid.empty() || pid.size() > 9 || pid.find_first_not_of("0123456789") != std::string::npos)
+    {
+      continue;
+    }
+    if (::kill(static_cast<pid_t>(std::stol(pid)), 0) != 0 && errno == ESRCH)
+    {
+      fs::remove(entry.path(), error);
+    }
+  }
+}
+}
+
 void writeThroughTemporary(
   const std::string& fileName, const std::function<std::string(const std::string& temporary)>& write)
 {
+  removeStaleTemporaries(fileName);
   // Same folder as the target, so the final rename cannot cross file systems.
   const std::string temporary = fileName + ".partial-" + std::to_string(::getpid());
-  const std::string failure = write(temporary);
+  const TemporaryGuard guard(temporary);
+  std::string failure;
+  try
+  {
+    failure = write(temporary);
+  }
+  catch (const std::bad_alloc&)
+  {
+    failure = "not enough memory to write it";
+  }
+  catch (const std::exception& error)
+  {
+    failure = error.what();
+  }
   std::error_code ignored;
   if (!failure.empty())
   {

@@ -28,6 +28,7 @@
 #include <CLI/CLI.hpp>
 
 #include <chrono>
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <regex>
@@ -279,7 +280,18 @@ int runShade(const ShadeOptions& options)
   showWarnings(options.mesh);
   if (errors->failed())
   {
-    throw UserError(options.mesh + ": " + errors->message());
+    // The filter names a scene's problem "scene <JSON pointer>: ...": it is the scene's, and
+    // the message names the scene's source, as the scene file's own checks do.
+    const std::string message = errors->message();
+    const std::string scenePrefix = "scene /";
+    if (message.rfind(scenePrefix, 0) == 0)
+    {
+      const std::string source = !options.scene.empty() ? options.scene
+        : options.environment.file.empty()               ? "the default light kit"
+                                                         : "--envmap " + options.environment.file;
+      throw UserError(source + ": " + message.substr(scenePrefix.size() - 1));
+    }
+    throw UserError(options.mesh + ": " + message);
   }
   vtkPolyData* output = filter->GetOutput();
 
@@ -591,6 +603,11 @@ int main(int argc, char** argv)
     vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
     vtkOutputWindow::SetInstance(vtkSmartPointer<app::QuietOutputWindow>::New());
   }
+  if (envmapOption->count() > 0 && shade.environment.file.empty())
+  {
+    std::cerr << "--envmap: needs the map's file name\nRun with --help for more information.\n";
+    return 2;
+  }
   try
   {
     if (shadeCommand->parsed())
@@ -608,6 +625,23 @@ int main(int argc, char** argv)
     return runArrays(arraysScene);
   }
   catch (const UserError& error)
+  {
+    std::cerr << "shadelab: " << error.what() << "\n";
+    return 1;
+  }
+  // Whatever else ends a run ends it with one line too: a path the system refuses (too long,
+  // say), or memory that ran out outside the places that expect it.
+  catch (const std::filesystem::filesystem_error& error)
+  {
+    std::cerr << "shadelab: " << error.path1().string() << ": " << error.code().message() << "\n";
+    return 1;
+  }
+  catch (const std::bad_alloc&)
+  {
+    std::cerr << "shadelab: not enough memory for this run (a smaller mesh, fewer arrays or float32 need less)\n";
+    return 1;
+  }
+  catch (const std::exception& error)
   {
     std::cerr << "shadelab: " << error.what() << "\n";
     return 1;

@@ -114,7 +114,7 @@ EnvironmentMap readEnvironmentMap(const std::string& path)
     throw std::runtime_error(path + ": has " + std::to_string(spec.nchannels) +
       " channels; expected 1 (grey) or 3 or more (RGB)");
   }
-  if (spec.width != 2 * spec.height)
+  if (static_cast<long long>(spec.width) != 2LL * spec.height)
   {
     throw std::runtime_error(
       path + ": an equirectangular map must be twice as wide as it is high; this one is " +
@@ -123,6 +123,21 @@ EnvironmentMap readEnvironmentMap(const std::string& path)
 
   const int channels = spec.nchannels == 1 ? 1 : 3;
   const std::size_t texels = static_cast<std::size_t>(spec.width) * spec.height;
+  // A header can declare any size; the pixels must be in the file. Compressed formats hold
+  // far more texels than bytes only for flat images, so the bound is generous, and it stops
+  // a 1 kB file from asking for gigabytes before a single pixel is read.
+  const std::uintmax_t fileBytes = std::filesystem::file_size(path, ignored);
+  const std::size_t mostTexels = std::max<std::size_t>(std::size_t(1) << 20, 64 * static_cast<std::size_t>(fileBytes));
+  if (texels > mostTexels || texels > maxEnvironmentTexels)
+  {
+    std::ostringstream message;
+    message << path << ": the header declares " << shapeText(spec.width, spec.height) << " texels ("
+            << static_cast<double>(texels) * channels * sizeof(float) / 1e9 << " GB as floats), more than "
+            << (texels > maxEnvironmentTexels ? "ShadeLab takes (" + std::to_string(maxEnvironmentTexels) + " texels)"
+                                              : "a file of " + std::to_string(fileBytes) + " bytes can hold")
+            << ": it is damaged, or too large a map";
+    throw std::runtime_error(message.str());
+  }
   std::vector<float> pixels(texels * channels);
   if (!input->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, pixels.data()))
   {

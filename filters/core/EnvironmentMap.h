@@ -55,10 +55,15 @@ double texelSolidAngle(int row, int width, int height);
 /// Luminance of linear RGB with the Rec. 709 (sRGB) primaries.
 double luminance(const Rgb& rgb);
 
+/// The largest map readEnvironmentMap takes: 16384 x 8192 texels (1.6 GB as float RGB, and
+/// finer than any per-vertex estimate can use).
+constexpr std::size_t maxEnvironmentTexels = std::size_t(16384) * 8192;
+
 /// Reads an equirectangular map with OpenImageIO (Radiance .hdr, OpenEXR, anything it reads):
 /// the first three channels as RGB, or one channel as grey. Throws std::runtime_error
 /// "<path>: <what is wrong>" for a missing or unreadable file, an empty image, 2 channels,
-/// a shape other than 2:1, and a negative or non-finite texel.
+/// a shape other than 2:1, more texels than maxEnvironmentTexels or than the file's size can
+/// hold (64 per byte, at least 2^20), and a negative or non-finite texel.
 EnvironmentMap readEnvironmentMap(const std::string& path);
 
 /// A 2:1 map `width` texels wide, `width` an even divisor of map.width: each texel is the

@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <regex>
 #include <set>
 #include <sstream>
 
@@ -313,12 +312,30 @@ void checkEnvironment(const EnvironmentLight& light, const std::string& at, Prob
     "must be an even number that divides the map's width (" + std::to_string(map->width) + "), or at least that width");
 }
 
+/// Letters, digits and _, starting with a letter: a name that can stand in an array's name.
+/// (A loop, not std::regex_match, whose recursion overflows the stack on long names.)
+bool isLightName(const std::string& name)
+{
+  auto isAsciiLetter = [](char c) { return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z'); };
+  return !name.empty() && isAsciiLetter(name[0]) &&
+    std::all_of(name.begin(), name.end(),
+      [&](char c) { return isAsciiLetter(c) || (c >= '0' && c <= '9') || c == '_'; });
+}
+
 void checkLight(const Scene& scene, const NamedLight& light, const std::string& at, Precision precision,
   ProblemList& list)
 {
-  static const std::regex identifier("[A-Za-z][A-Za-z0-9_]*");
-  list.check(std::regex_match(light.name, identifier), at + "/name",
-    "'" + light.name + "' is not a valid light name: use letters, digits and _, starting with a letter");
+  if (light.name.size() > maxLightNameLength)
+  {
+    list.check(false, at + "/name",
+      "a name of " + std::to_string(light.name.size()) + " characters is too long: use at most " +
+        std::to_string(maxLightNameLength));
+  }
+  else
+  {
+    list.check(isLightName(light.name), at + "/name",
+      "'" + light.name + "' is not a valid light name: use letters, digits and _, starting with a letter");
+  }
 
   const bool vtk = scene.model == ShadingModel::VtkOpenGL2;
   std::visit(

@@ -3,6 +3,7 @@
 #include "Lights.h"
 #include "Vec3.h"
 
+#include <cstddef>
 #include <optional>
 #include <vector>
 
@@ -90,6 +91,9 @@ struct SceneProblem
   std::string path;
   std::string message;
 };
+
+/// The longest light name a scene may have: names become parts of array names.
+constexpr std::size_t maxLightNameLength = 64;
 
 /// The arithmetic a scene is evaluated in.
 enum class Precision

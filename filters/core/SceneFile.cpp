@@ -568,12 +568,28 @@ Scene readScene(const Json& document, const std::string& sceneFile)
 }
 }
 
+namespace
+{
+constexpr int maxSceneDepth = 32;
+}
+
 Scene parseScene(const std::string& text, const std::string& sourceName)
 {
   Json document;
   try
   {
-    document = Json::parse(text);
+    // No scene nests deeper than a few levels; refusing deeper ones as they are parsed keeps
+    // every later walk over the document (and its description in messages) shallow.
+    const Json::parser_callback_t depthLimit = [&](int depth, Json::parse_event_t, Json&)
+    {
+      if (depth > maxSceneDepth)
+      {
+        throw SceneFileError(sourceName + ": nested more than " + std::to_string(maxSceneDepth) +
+          " levels deep: a scene file has a few levels (lights, a light, its fields)");
+      }
+      return true;
+    };
+    document = Json::parse(text, depthLimit);
   }
   catch (const Json::exception& error)
   {
@@ -581,8 +597,10 @@ Scene parseScene(const std::string& text, const std::string& sourceName)
     // (a syntax error's line and column, or a number too large such as 1e400).
     std::string message = error.what();
     const std::size_t end = message.find("] ");
-    throw SceneFileError(sourceName + ": not valid JSON: " +
-      (end == std::string::npos ? message : message.substr(end + 2)));
+    message = end == std::string::npos ? message : message.substr(end + 2);
+    // The message quotes what it last read, which in a binary file is any byte.
+    std::replace_if(message.begin(), message.end(), [](char c) { return c < 0x20 || c >= 0x7f; }, '?');
+    throw SceneFileError(sourceName + ": not valid JSON: " + message);
   }
   try
   {
@@ -596,6 +614,11 @@ Scene parseScene(const std::string& text, const std::string& sourceName)
 
 Scene readSceneFile(const std::string& fileName)
 {
+  std::error_code error;
+  if (std::filesystem::is_directory(fileName, error))
+  {
+    throw SceneFileError(fileName + ": is a folder, not a scene file");
+  }
   std::ifstream file(fileName);
   if (!file)
   {
