@@ -9,6 +9,7 @@
 #include <fstream>
 #include <new>
 #include <stdexcept>
+#include <sys/mman.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -78,7 +79,8 @@ void limit(int resource, rlim_t value)
   ::setrlimit(resource, &bound);
 }
 
-[[noreturn]] void runChild(int fd, const std::function<void(ChildChannel&)>& work, const IsolationLimits& limits)
+[[noreturn]] void runChild(
+  int fd, const std::string& resultPath, const std::function<void(ChildChannel&)>& work, const IsolationLimits& limits)
 {
   // Standard error stays where progress is shown only if it is a terminal; everything else
   // the work's libraries print (VTK's PLY code writes to it directly) goes nowhere.
@@ -92,9 +94,9 @@ void limit(int resource, rlim_t value)
   const rlimit cpu{ seconds, seconds + 1 }; // SIGXCPU at the soft limit, SIGKILL a second later
   ::setrlimit(RLIMIT_CPU, &cpu);
   limit(RLIMIT_AS, static_cast<rlim_t>(currentAddressSpace() + limits.memoryBytes));
-  limit(RLIMIT_FSIZE, 0); // it reads; it writes no file
+  limit(RLIMIT_FSIZE, static_cast<rlim_t>(limits.memoryBytes)); // its result, and no more
   limit(RLIMIT_CORE, 0);
-  ChildChannel channel(fd);
+  ChildChannel channel(fd, resultPath);
   try
   {
     work(channel);
@@ -146,7 +148,6 @@ void decode(const std::string& bytes, IsolatedOutcome& outcome)
     else if (kind == 'R')
     {
       outcome.end = IsolatedOutcome::End::Finished;
-      outcome.result = std::move(payload);
     }
   }
 }
@@ -162,13 +163,35 @@ void ChildChannel::send(char kind, const std::string& bytes)
   writeAll(fd_, bytes.data(), bytes.size());
 }
 
+IsolatedOutcome::IsolatedOutcome(IsolatedOutcome&& other) noexcept
+  : end(other.end)
+  , resultPath(std::move(other.resultPath))
+  , error(std::move(other.error))
+  , signalName(std::move(other.signalName))
+  , warnings(std::move(other.warnings))
+  , resultFd(other.resultFd)
+{
+  other.resultFd = -1;
+}
+
+IsolatedOutcome::~IsolatedOutcome()
+{
+  if (resultFd >= 0)
+  {
+    ::close(resultFd);
+  }
+}
+
 IsolatedOutcome runIsolated(const std::function<void(ChildChannel&)>& work, const IsolationLimits& limits)
 {
+  IsolatedOutcome outcome;
+  outcome.resultFd = ::memfd_create("shadelab-result", 0);
   int channel[2];
-  if (::pipe(channel) != 0)
+  if (outcome.resultFd < 0 || ::pipe(channel) != 0)
   {
     throw std::runtime_error(std::string("cannot start a reader process: ") + std::strerror(errno));
   }
+  const std::string resultPath = "/proc/self/fd/" + std::to_string(outcome.resultFd);
   std::fflush(nullptr); // nothing buffered is written twice, once by each process
   const pid_t child = ::fork();
   if (child < 0)
@@ -180,7 +203,7 @@ IsolatedOutcome runIsolated(const std::function<void(ChildChannel&)>& work, cons
   if (child == 0)
   {
     ::close(channel[0]);
-    runChild(channel[1], work, limits);
+    runChild(channel[1], resultPath, work, limits);
   }
   ::close(channel[1]);
   const std::string bytes = readAll(channel[0]);
@@ -189,8 +212,8 @@ IsolatedOutcome runIsolated(const std::function<void(ChildChannel&)>& work, cons
   while (::waitpid(child, &status, 0) < 0 && errno == EINTR)
   {
   }
-  IsolatedOutcome outcome;
   decode(bytes, outcome);
+  outcome.resultPath = resultPath; // the same descriptor number here as in the child
   if (WIFSIGNALED(status))
   {
     const int signal = WTERMSIG(status);

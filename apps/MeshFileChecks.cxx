@@ -252,8 +252,8 @@ std::string objIndexProblem(const std::string& text)
         if (resolved < 1 || resolved > listed[slot])
         {
           return "line " + std::to_string(lineNumber) + ": face index " + std::to_string(index) + " refers to " +
-            names[slot] + " " + std::to_string(resolved) + ", but " + std::to_string(listed[slot]) +
-            " are listed before it";
+            names[slot] + " " + std::to_string(resolved) + ", but the file lists " + std::to_string(listed[slot]) +
+            " before that line";
         }
       }
     }

@@ -91,10 +91,7 @@ vtkSmartPointer<vtkAlgorithm> readerFor(const std::string& fileName, const std::
   throw UserError(fileName + ": unknown mesh format '" + extension + "'; ShadeLab reads " +
     readableExtensions);
 }
-}
 
-namespace
-{
 /// Reads the file with VTK's reader for its extension, in this process. Throws UserError.
 vtkSmartPointer<vtkPolyData> readDirectly(const std::string& fileName, const std::string& extension)
 {
@@ -116,12 +113,12 @@ vtkSmartPointer<vtkPolyData> readDirectly(const std::string& fileName, const std
   return mesh;
 }
 
-/// The mesh as VTK XML (binary, uncompressed): how the reading process hands it over.
-std::string serialised(vtkPolyData* mesh)
+/// Writes the mesh as VTK XML (binary, uncompressed): how the reading process hands it over.
+void handOver(vtkPolyData* mesh, const std::string& path)
 {
   vtkNew<vtkXMLPolyDataWriter> writer;
   writer->SetInputData(mesh);
-  writer->WriteToOutputStringOn();
+  writer->SetFileName(path.c_str());
   writer->SetDataModeToAppended();
   writer->EncodeAppendedDataOff();
   writer->SetCompressorTypeToNone();
@@ -130,14 +127,12 @@ std::string serialised(vtkPolyData* mesh)
   {
     throw std::runtime_error("the mesh could not be handed over (out of memory?)");
   }
-  return writer->GetOutputString();
 }
 
-vtkSmartPointer<vtkPolyData> deserialised(std::string bytes)
+vtkSmartPointer<vtkPolyData> takeOver(const std::string& path)
 {
   vtkNew<vtkXMLPolyDataReader> reader;
-  reader->ReadFromInputStringOn();
-  reader->SetInputString(std::move(bytes));
+  reader->SetFileName(path.c_str());
   reader->Update();
   auto mesh = vtkSmartPointer<vtkPolyData>::New();
   mesh->ShallowCopy(reader->GetOutput());
@@ -181,7 +176,8 @@ vtkSmartPointer<vtkPolyData> readMesh(const std::string& fileName)
           channel.warning(printableText(warning));
         }
       }
-      channel.result(serialised(mesh));
+      handOver(mesh, channel.resultPath());
+      channel.finished();
     },
     limits);
   for (const std::string& warning : outcome.warnings)
@@ -193,7 +189,7 @@ vtkSmartPointer<vtkPolyData> readMesh(const std::string& fileName)
   switch (outcome.end)
   {
     case IsolatedOutcome::End::Finished:
-      return deserialised(outcome.result);
+      return takeOver(outcome.resultPath);
     case IsolatedOutcome::End::Failed:
       throw UserError(printableText(outcome.error, 400)); // readDirectly's message names the file
     case IsolatedOutcome::End::OutOfMemory:

@@ -1,89 +1,18 @@
 // The shadelab command as a user runs it: exit codes and the exact message for each kind of
 // bad input, and no partial or spoilt output file after a failure.
+#include "CliFixture.h"
+
 #include "vtkImageData.h"
 #include "vtkNew.h"
 #include "vtkPNGReader.h"
 
-#include <gtest/gtest.h>
-
 #include <set>
-
-#include <cstdlib>
-#include <filesystem>
-#include <fstream>
-#include <sstream>
-#include <sys/wait.h>
 
 namespace
 {
+using shadelab::testing::Cli;
+using shadelab::testing::Result;
 namespace fs = std::filesystem;
-
-struct Result
-{
-  int exitCode;
-  std::string out;
-  std::string err;
-};
-
-class Cli : public ::testing::Test
-{
-protected:
-  void SetUp() override
-  {
-    folder = fs::temp_directory_path() /
-      ("shadelab_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(folder);
-    fs::create_directories(folder);
-  }
-  void TearDown() override { fs::remove_all(folder); }
-
-  std::string file(const std::string& name, const std::string& content)
-  {
-    const std::string path = (folder / name).string();
-    std::ofstream(path) << content;
-    return path;
-  }
-
-  static std::string slurp(const fs::path& path)
-  {
-    std::ifstream in(path);
-    std::ostringstream text;
-    text << in.rdbuf();
-    return text.str();
-  }
-
-  /// Runs shadelab with these arguments; launcher (such as xvfb-run) goes before it.
-  Result shadelab(const std::string& arguments, const std::string& launcher = "")
-  {
-    const fs::path out = folder / "stdout.txt", err = folder / "stderr.txt";
-    const std::string command = launcher + std::string(SHADELAB_EXECUTABLE) + " " + arguments +
-      " > " + out.string() + " 2> " + err.string();
-    const int status = std::system(command.c_str());
-    Result result{ WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err) };
-    fs::remove(out);
-    fs::remove(err);
-    return result;
-  }
-
-  /// Runs shade with a mesh and scene, expecting failure with exactly this one-line message.
-  void expectError(const std::string& arguments, const std::string& message)
-  {
-    const Result result = shadelab(arguments);
-    EXPECT_EQ(result.exitCode, 1) << arguments;
-    EXPECT_EQ(result.err, "shadelab: " + message + "\n") << arguments;
-    EXPECT_EQ(result.out, "") << arguments;
-  }
-
-  std::string goodScene()
-  {
-    return file("scene.json",
-      R"({ "lights": [ { "name": "sun", "type": "distant", "direction": [0, 0, -1] } ] })");
-  }
-
-  std::string goodMesh() { return SHADELAB_SOURCE_DIR "/data/meshes/bunny_zipper.ply"; }
-
-  fs::path folder;
-};
 
 TEST_F(Cli, MissingOrUnreadableMesh)
 {

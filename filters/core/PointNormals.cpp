@@ -4,7 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
+#include <stdexcept>
 
 namespace shadelab
 {
@@ -50,8 +52,13 @@ private:
 }
 
 PolygonEdges::PolygonEdges(const PolygonList& polygons, const std::vector<PointId>& mergeMap, std::size_t pointCount)
-  : start_(pointCount + 1, 0)
+  : polygons_(polygons)
+  , start_(pointCount + 1, 0)
 {
+  if (polygons.count > std::numeric_limits<std::uint32_t>::max())
+  {
+    throw std::length_error("more than 2^32 polygons");
+  }
   auto welded = [&](PointId id) { return mergeMap.empty() ? id : mergeMap[static_cast<std::size_t>(id)]; };
   // Two passes over the edges: count them by lower welded end, then file them there.
   auto forEachEdge = [&](auto&& visit)
@@ -62,13 +69,12 @@ PolygonEdges::PolygonEdges(const PolygonList& polygons, const std::vector<PointI
       const PointId* ids = polygons.ids(k);
       for (std::size_t i = 0; size >= 3 && i < size; ++i)
       {
-        const PointId from = ids[i], to = ids[(i + 1) % size];
-        const PointId weldedFrom = welded(from), weldedTo = welded(to);
-        if (weldedFrom != weldedTo)
+        const PointId from = welded(ids[i]), to = welded(ids[(i + 1) % size]);
+        if (from != to)
         {
-          const bool lowToHigh = weldedFrom < weldedTo;
-          visit(std::min(weldedFrom, weldedTo),
-            Entry{ std::max(weldedFrom, weldedTo), lowToHigh, { k, lowToHigh ? from : to, lowToHigh ? to : from } });
+          visit(std::min(from, to),
+            Entry{ 2 * std::max(from, to) + (from < to ? 1 : 0), static_cast<std::uint32_t>(k),
+              static_cast<std::uint32_t>(i) });
         }
       }
     }
@@ -80,23 +86,21 @@ PolygonEdges::PolygonEdges(const PolygonList& polygons, const std::vector<PointI
   forEachEdge([&](PointId low, const Entry& entry) { entries_[next[static_cast<std::size_t>(low)]++] = entry; });
   for (std::size_t v = 0; v < pointCount; ++v)
   {
-    // Stable, so that uses of one edge stay in polygon order.
-    std::stable_sort(entries_.begin() + static_cast<std::ptrdiff_t>(start_[v]),
+    std::sort(entries_.begin() + static_cast<std::ptrdiff_t>(start_[v]),
       entries_.begin() + static_cast<std::ptrdiff_t>(start_[v + 1]));
   }
 }
 
 std::size_t PolygonEdges::inconsistentCount() const
 {
-  auto sameWay = [&](std::size_t a, std::size_t b)
-  { return entries_[a].high == entries_[b].high && entries_[a].lowToHigh == entries_[b].lowToHigh; };
   std::size_t inconsistent = 0;
   for (std::size_t v = 0; v + 1 < start_.size(); ++v)
   {
     for (std::size_t e = start_[v] + 1; e < start_[v + 1]; ++e)
     {
       // The same edge in the same direction twice, counted once however many repeat it.
-      const bool repeatsFirstTime = sameWay(e, e - 1) && !(e >= start_[v] + 2 && sameWay(e, e - 2));
+      const bool repeatsFirstTime = entries_[e].key == entries_[e - 1].key &&
+        !(e >= start_[v] + 2 && entries_[e].key == entries_[e - 2].key);
       inconsistent += repeatsFirstTime ? 1 : 0;
     }
   }

@@ -13,6 +13,7 @@
 #include <glm/vec3.hpp>
 
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 namespace shadelab
@@ -95,16 +96,27 @@ public:
   void forEachPairOfUses(Visit&& visit) const;
 
 private:
+  /// One polygon's traversal of an edge, in 16 bytes: a large mesh has six per triangle.
   struct Entry
   {
-    PointId high;   // the welded id of the higher end
-    bool lowToHigh; // the polygon traverses the edge from its lower welded id
-    Use use;
+    PointId key;           // 2 x the higher welded end, + 1 if traversed from the lower end
+    std::uint32_t polygon; // the polygon, and the corner its edge starts at
+    std::uint32_t corner;
     bool operator<(const Entry& other) const
     {
-      return high != other.high ? high < other.high : lowToHigh < other.lowToHigh;
+      return key != other.key ? key < other.key
+                              : (polygon != other.polygon ? polygon < other.polygon : corner < other.corner);
     }
   };
+  Use useOf(const Entry& entry) const
+  {
+    const PointId* ids = polygons_.ids(entry.polygon);
+    const PointId from = ids[entry.corner], to = ids[(entry.corner + 1) % polygons_.size(entry.polygon)];
+    const bool lowToHigh = (entry.key & 1) != 0;
+    return { entry.polygon, lowToHigh ? from : to, lowToHigh ? to : from };
+  }
+
+  PolygonList polygons_;
   std::vector<std::size_t> start_; // the entries of lower welded end v are entries_[start_[v]..start_[v+1])
   std::vector<Entry> entries_;     // sorted within each lower end
 };
@@ -116,11 +128,12 @@ void PolygonEdges::forEachPairOfUses(Visit&& visit) const
   {
     for (std::size_t a = start_[v]; a < start_[v + 1]; ++a)
     {
-      for (std::size_t b = a + 1; b < start_[v + 1] && entries_[b].high == entries_[a].high; ++b)
+      // Entries of one edge are adjacent: their keys differ in the direction bit at most.
+      for (std::size_t b = a + 1; b < start_[v + 1] && entries_[b].key / 2 == entries_[a].key / 2; ++b)
       {
-        if (entries_[a].use.polygon != entries_[b].use.polygon)
+        if (entries_[a].polygon != entries_[b].polygon)
         {
-          visit(entries_[a].use, entries_[b].use);
+          visit(useOf(entries_[a]), useOf(entries_[b]));
         }
       }
     }

@@ -1,0 +1,166 @@
+// The guards around reading and writing mesh files: work isolated in a child process ends in
+// an outcome whatever it does, a PLY header's or OBJ's claims are checked against the file,
+// and a temporary output does not outlive a run that is killed.
+#include "IsolatedWork.h"
+#include "MeshFileChecks.h"
+#include "MeshFiles.h"
+
+#include <gtest/gtest.h>
+
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <sys/wait.h>
+#include <unistd.h>
+#include <vector>
+
+namespace
+{
+using namespace shadelab::app;
+namespace fs = std::filesystem;
+
+TEST(IsolatedWork, EveryEndingIsReported)
+{
+  IsolationLimits limits;
+  limits.cpuSeconds = 1;
+  limits.memoryBytes = std::size_t(256) << 20;
+
+  const std::string bytes("bytes\0with a zero", 17);
+  IsolatedOutcome done = runIsolated(
+    [&](ChildChannel& channel)
+    {
+      channel.warning("a warning");
+      std::ofstream(channel.resultPath(), std::ios::binary) << bytes;
+      channel.finished();
+    },
+    limits);
+  EXPECT_EQ(done.end, IsolatedOutcome::End::Finished);
+  std::ifstream result(done.resultPath, std::ios::binary);
+  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(result), {}), bytes);
+  EXPECT_EQ(done.warnings, std::vector<std::string>{ "a warning" });
+
+  IsolatedOutcome failed = runIsolated([](ChildChannel&) { throw std::runtime_error("no such thing"); }, limits);
+  EXPECT_EQ(failed.end, IsolatedOutcome::End::Failed);
+  EXPECT_EQ(failed.error, "no such thing");
+
+  IsolatedOutcome greedy = runIsolated(
+    [](ChildChannel& channel)
+    {
+      std::vector<char> tooMuch(std::size_t(1) << 30, 1); // 1 GB against a 256 MB limit
+      channel.warning(std::string(1, tooMuch[12345]));
+    },
+    limits);
+  EXPECT_EQ(greedy.end, IsolatedOutcome::End::OutOfMemory);
+
+  IsolatedOutcome crashed = runIsolated([](ChildChannel&) { std::raise(SIGSEGV); }, limits);
+  EXPECT_EQ(crashed.end, IsolatedOutcome::End::Crashed);
+  EXPECT_EQ(crashed.signalName, "SIGSEGV");
+
+  IsolatedOutcome endless = runIsolated(
+    [](ChildChannel&)
+    {
+      for (volatile unsigned long i = 0;; i = i + 1)
+      {
+      }
+    },
+    limits);
+  EXPECT_EQ(endless.end, IsolatedOutcome::End::TimedOut);
+
+  IsolatedOutcome silent = runIsolated([](ChildChannel&) {}, limits);
+  EXPECT_EQ(silent.end, IsolatedOutcome::End::Crashed); // it ended without a word
+  EXPECT_EQ(silent.signalName, "exit code 0");
+}
+
+TEST(IsolatedWork, PrintableTextHidesBinaryBytes)
+{
+  EXPECT_EQ(printableText(std::string("ok \x01\xff\n end", 10)), "ok ??? end");
+  EXPECT_EQ(printableText(std::string(300, 'a'), 5), "aaaaa...");
+}
+
+TEST(MeshFileChecks, PlyHeaderCountsAgainstTheFileSize)
+{
+  const std::string header = "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\n"
+                             "property float y\nproperty float z\nelement face 1\n"
+                             "property list uchar int vertex_indices\nend_header\n";
+  // 3 vertices of 12 bytes and a face of at least 1 byte: 37 bytes after the header.
+  EXPECT_EQ(plyHeaderProblem(header, header.size() + 37), "");
+  EXPECT_EQ(plyHeaderProblem(header, header.size() + 35),
+    "the PLY header declares 3 vertices and 1 faces, which need at least 37 bytes, but the file has 35 after its "
+    "header: it is cut short or its counts are wrong");
+  const std::string ascii = "ply\r\nformat ascii 1.0\r\ncomment made by hand\r\nelement vertex 1\r\nproperty double x\r\n"
+                            "property double y\r\nproperty double z\r\nend_header\r\n";
+  EXPECT_EQ(plyHeaderProblem(ascii, ascii.size() + 5), ""); // "0 0 0": 2 bytes a value, the last without a separator
+  EXPECT_EQ(plyHeaderProblem("ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nend_header\n", 100),
+    "the PLY header's vertex element has no x, y and z properties");
+  EXPECT_EQ(plyHeaderProblem("ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float x\n", 100),
+    "line 5 of the PLY header ('property float x') repeats the property 'x' of element 'vertex'");
+  EXPECT_EQ(plyHeaderProblem("ply\nformat ascii 1.0\nelement vertex 1\n", 100),
+    "the PLY header has no end_header line (a damaged file, or the header is longer than 1 MB)");
+  EXPECT_EQ(plyHeaderProblem("solid cube\n", 100), "not a PLY file (it does not start with a PLY header)");
+}
+
+TEST(MeshFileChecks, ObjFaceIndicesReferToListedVertices)
+{
+  const std::string triangle = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\n";
+  EXPECT_EQ(objIndexProblem(triangle + "f 1/1 2/1 3/1\n"), "");
+  EXPECT_EQ(objIndexProblem(triangle + "f -3 -2 -1\n"), ""); // relative to the last vertex
+  EXPECT_EQ(objIndexProblem(triangle + "f 1 2 4\n"),
+    "line 5: face index 4 refers to vertex 4, but the file lists 3 before that line");
+  EXPECT_EQ(objIndexProblem(triangle + "f 1//1 2//1 3//1\n"),
+    "line 5: face index 1 refers to normal 1, but the file lists 0 before that line");
+  EXPECT_EQ(objIndexProblem(triangle + "f 0 1 2\n"),
+    "line 5: face index 0 refers to vertex 0, but the file lists 3 before that line");
+  EXPECT_EQ(objIndexProblem(triangle + "f 1 2 x\n"), "line 5: 'x' is not an OBJ face corner");
+}
+
+TEST(WriteThroughTemporary, AKilledRunLeavesNoTemporary)
+{
+  const fs::path folder = fs::temp_directory_path() / "shadelab_killed_write";
+  fs::remove_all(folder);
+  fs::create_directories(folder);
+  const std::string target = (folder / "out.vtp").string();
+  const pid_t child = ::fork();
+  if (child == 0)
+  {
+    writeThroughTemporary(target,
+      [](const std::string& temporary)
+      {
+        std::ofstream(temporary) << "half a file";
+        std::raise(SIGTERM); // killed while writing
+        return std::string();
+      });
+    ::_exit(0);
+  }
+  int status = 0;
+  ::waitpid(child, &status, 0);
+  ASSERT_TRUE(WIFSIGNALED(status));
+  EXPECT_EQ(WTERMSIG(status), SIGTERM); // the signal still ends the run, after the clean-up
+  EXPECT_TRUE(fs::is_empty(folder));
+  fs::remove_all(folder);
+}
+
+TEST(WriteThroughTemporary, AnExceptionLeavesNoTemporary)
+{
+  const fs::path folder = fs::temp_directory_path() / "shadelab_failed_write";
+  fs::remove_all(folder);
+  fs::create_directories(folder);
+  const std::string target = (folder / "out.vtp").string();
+  try
+  {
+    writeThroughTemporary(target,
+      [](const std::string& temporary) -> std::string
+      {
+        std::ofstream(temporary) << "half a file";
+        throw std::bad_alloc();
+      });
+    ADD_FAILURE() << "no error";
+  }
+  catch (const UserError& error)
+  {
+    EXPECT_EQ(std::string(error.what()), target + ": cannot be written: not enough memory to write it");
+  }
+  EXPECT_TRUE(fs::is_empty(folder));
+  fs::remove_all(folder);
+}
+}
