@@ -82,6 +82,12 @@ void limit(int resource, rlim_t value)
 [[noreturn]] void runChild(
   int fd, const std::string& resultPath, const std::function<void(ChildChannel&)>& work, const IsolationLimits& limits)
 {
+  // The child dies of its own faults: handlers the parent installed (a sanitizer's, a
+  // fuzzer's) would report them as the parent's and exit instead.
+  for (int signal : { SIGSEGV, SIGBUS, SIGABRT, SIGFPE, SIGILL })
+  {
+    std::signal(signal, SIG_DFL);
+  }
   // Standard error stays where progress is shown only if it is a terminal; everything else
   // the work's libraries print (VTK's PLY code writes to it directly) goes nowhere.
   const int devNull = ::open("/dev/null", O_WRONLY);

@@ -5,6 +5,8 @@
 #include "ProgressLine.h"
 #include "VtkErrorCapture.h"
 
+#include "ShadeLabMeshChecks.h"
+
 #include "vtkAlgorithm.h"
 #include "vtkErrorCode.h"
 #include "vtkOBJReader.h"
@@ -169,6 +171,13 @@ vtkSmartPointer<vtkPolyData> readMesh(const std::string& fileName)
     [&](ChildChannel& channel)
     {
       vtkSmartPointer<vtkPolyData> mesh = readDirectly(fileName, extension);
+      // Checked here, before it is handed over: a reader can build cells whose offsets lie,
+      // and reading them back would trust the lie.
+      const std::string cells = cellProblem(mesh);
+      if (!cells.empty())
+      {
+        throw std::runtime_error(fileName + ": " + cells);
+      }
       if (auto* window = QuietOutputWindow::SafeDownCast(vtkOutputWindow::GetInstance()))
       {
         for (const std::string& warning : window->takeWarnings())
@@ -189,7 +198,15 @@ vtkSmartPointer<vtkPolyData> readMesh(const std::string& fileName)
   switch (outcome.end)
   {
     case IsolatedOutcome::End::Finished:
-      return takeOver(outcome.resultPath);
+      try
+      {
+        return takeOver(outcome.resultPath);
+      }
+      catch (const std::bad_alloc&)
+      {
+        message << "not enough memory to take over the mesh read from it";
+        break;
+      }
     case IsolatedOutcome::End::Failed:
       throw UserError(printableText(outcome.error, 400)); // readDirectly's message names the file
     case IsolatedOutcome::End::OutOfMemory:

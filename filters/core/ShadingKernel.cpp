@@ -619,9 +619,10 @@ void ShadingKernel<T>::addDistributedLight(const DistributedLightSlot& light, co
   {
     // R&H eq. 13, the quadratic polynomial of the normal, written out so that GCC vectorises
     // the loop. A degenerate normal was set to 0 and gets no light.
-    const auto& [xx, yy, zz, xy, xz, yz, cx, cy, cz, constant] = light.irradiance->coefficients;
     auto polynomial = [&](Lane<T>& out, int channel)
     {
+      // Bound here, not outside: a lambda cannot capture structured bindings before C++20.
+      const auto& [xx, yy, zz, xy, xz, yz, cx, cy, cz, constant] = light.irradiance->coefficients;
       for (std::size_t k = 0; k < count; ++k)
       {
         const T x = w.nx[k], y = w.ny[k], z = w.nz[k];
