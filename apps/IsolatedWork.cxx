@@ -88,21 +88,20 @@ void limit(int resource, rlim_t value)
   {
     std::signal(signal, SIG_DFL);
   }
-  // Standard error stays where progress is shown only if it is a terminal; everything else
-  // the work's libraries print (VTK's PLY code writes to it directly) goes nowhere.
+  // What the work's libraries print goes nowhere (VTK's PLY code writes to standard error
+  // directly, a line per missing element); the terminal, if standard error is one, stays
+  // reachable for progress through a descriptor of its own.
+  std::FILE* terminal = ::isatty(STDERR_FILENO) ? ::fdopen(::dup(STDERR_FILENO), "w") : nullptr;
   const int devNull = ::open("/dev/null", O_WRONLY);
   ::dup2(devNull, STDOUT_FILENO);
-  if (!::isatty(STDERR_FILENO))
-  {
-    ::dup2(devNull, STDERR_FILENO);
-  }
+  ::dup2(devNull, STDERR_FILENO);
   const rlim_t seconds = static_cast<rlim_t>(std::ceil(limits.cpuSeconds));
   const rlimit cpu{ seconds, seconds + 1 }; // SIGXCPU at the soft limit, SIGKILL a second later
   ::setrlimit(RLIMIT_CPU, &cpu);
   limit(RLIMIT_AS, static_cast<rlim_t>(currentAddressSpace() + limits.memoryBytes));
   limit(RLIMIT_FSIZE, static_cast<rlim_t>(limits.memoryBytes)); // its result, and no more
   limit(RLIMIT_CORE, 0);
-  ChildChannel channel(fd, resultPath);
+  ChildChannel channel(fd, resultPath, terminal);
   try
   {
     work(channel);

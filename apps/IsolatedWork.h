@@ -7,6 +7,7 @@
 // that a large result is neither copied through a pipe nor held twice in memory; warnings and
 // errors come back through a pipe.
 #include <cstddef>
+#include <cstdio>
 #include <functional>
 #include <string>
 #include <vector>
@@ -25,11 +26,14 @@ struct IsolationLimits
 class ChildChannel
 {
 public:
-  ChildChannel(int fd, std::string resultPath)
+  ChildChannel(int fd, std::string resultPath, std::FILE* terminal)
     : fd_(fd)
     , resultPath_(std::move(resultPath))
+    , terminal_(terminal)
   {
   }
+  /// The terminal that standard error was, for progress, or null when it was none.
+  std::FILE* terminal() const { return terminal_; }
   void warning(const std::string& text) { send('W', text); }
   /// Where to write the result, as a file path (the memfd, seen through /proc).
   const std::string& resultPath() const { return resultPath_; }
@@ -41,6 +45,7 @@ private:
   void send(char kind, const std::string& bytes);
   int fd_;
   std::string resultPath_;
+  std::FILE* terminal_;
 };
 
 /// How the child's work ended. Holds the result file open while it lives.

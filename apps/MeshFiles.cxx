@@ -94,14 +94,15 @@ vtkSmartPointer<vtkAlgorithm> readerFor(const std::string& fileName, const std::
     readableExtensions);
 }
 
-/// Reads the file with VTK's reader for its extension, in this process. Throws UserError.
-vtkSmartPointer<vtkPolyData> readDirectly(const std::string& fileName, const std::string& extension)
+/// Reads the file with VTK's reader for its extension, in this process, showing progress on
+/// terminal (null: nowhere). Throws UserError.
+vtkSmartPointer<vtkPolyData> readDirectly(const std::string& fileName, const std::string& extension, std::FILE* terminal)
 {
   vtkSmartPointer<vtkAlgorithm> reader = readerFor(fileName, extension);
   vtkNew<VtkErrorCapture> errors;
   errors->watch(reader);
   vtkNew<ProgressLine> progress;
-  progress->watch(reader, "reading");
+  progress->watch(reader, "reading", terminal);
   reader->Update();
   auto mesh = vtkPolyData::SafeDownCast(reader->GetOutputDataObject(0));
   const unsigned long code = reader->GetErrorCode();
@@ -170,7 +171,7 @@ vtkSmartPointer<vtkPolyData> readMesh(const std::string& fileName)
   const IsolatedOutcome outcome = runIsolated(
     [&](ChildChannel& channel)
     {
-      vtkSmartPointer<vtkPolyData> mesh = readDirectly(fileName, extension);
+      vtkSmartPointer<vtkPolyData> mesh = readDirectly(fileName, extension, channel.terminal());
       // Checked here, before it is handed over: a reader can build cells whose offsets lie,
       // and reading them back would trust the lie.
       const std::string cells = cellProblem(mesh);

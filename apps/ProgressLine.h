@@ -1,6 +1,6 @@
 #pragma once
 // "reading 40%" on one terminal line while VTK works, for runs long enough to wonder about.
-// Only when standard error is a terminal, so logs and pipes stay clean.
+// Only on a terminal, so logs and pipes stay clean.
 #include "vtkAlgorithm.h"
 #include "vtkCommand.h"
 
@@ -24,10 +24,12 @@ public:
     }
   }
 
-  /// Shows the progress of algorithm under this label.
-  void watch(vtkAlgorithm* algorithm, const std::string& label)
+  /// Shows the progress of algorithm under this label, on terminal (by default standard
+  /// error, if it is a terminal; null: nowhere).
+  void watch(vtkAlgorithm* algorithm, const std::string& label, std::FILE* terminal = ::isatty(STDERR_FILENO) ? stderr : nullptr)
   {
-    if (::isatty(STDERR_FILENO))
+    terminal_ = terminal;
+    if (terminal_)
     {
       label_ = label;
       lastPercent_ = -1;
@@ -49,18 +51,19 @@ public:
       clear();
       return;
     }
-    std::fprintf(stderr, "\r%s %3d%%", label_.c_str(), percent);
-    std::fflush(stderr);
+    std::fprintf(terminal_, "\r%s %3d%%", label_.c_str(), percent);
+    std::fflush(terminal_);
   }
 
 private:
   void clear()
   {
-    std::fprintf(stderr, "\r%*s\r", static_cast<int>(label_.size()) + 6, "");
-    std::fflush(stderr);
+    std::fprintf(terminal_, "\r%*s\r", static_cast<int>(label_.size()) + 6, "");
+    std::fflush(terminal_);
   }
 
   std::string label_;
+  std::FILE* terminal_ = nullptr;
   int lastPercent_ = -1;
 };
 }

@@ -43,18 +43,34 @@ using namespace shadelab;
 using app::UserError;
 using Clock = std::chrono::steady_clock;
 
-/// Shows the warnings VTK gave since the last call (a reader's complaint about a truncated
-/// block, say), one line each, naming the file they concern.
-void showWarnings(const std::string& about)
+/// The warnings VTK gives during a run (a reader's complaint about a truncated block, say),
+/// each naming the file it concerns. Shown once the run has succeeded: a run that fails ends
+/// in its one line, the error.
+class RunWarnings
 {
-  if (auto* window = app::QuietOutputWindow::SafeDownCast(vtkOutputWindow::GetInstance()))
+public:
+  /// Takes the warnings VTK gave since the last call, as being about this file.
+  void collect(const std::string& about)
   {
-    for (const std::string& warning : window->takeWarnings())
+    if (auto* window = app::QuietOutputWindow::SafeDownCast(vtkOutputWindow::GetInstance()))
     {
-      std::cerr << "shadelab: warning: " << about << ": " << warning << "\n";
+      for (const std::string& warning : window->takeWarnings())
+      {
+        lines_.push_back("shadelab: warning: " + about + ": " + warning);
+      }
     }
   }
-}
+  void show() const
+  {
+    for (const std::string& line : lines_)
+    {
+      std::cerr << line << "\n";
+    }
+  }
+
+private:
+  std::vector<std::string> lines_;
+};
 
 double secondsSince(Clock::time_point start)
 {
@@ -236,9 +252,10 @@ int runShade(const ShadeOptions& options)
   {
     vtkSMPTools::Initialize(options.threads);
   }
+  RunWarnings warnings;
   const Clock::time_point readStart = Clock::now();
   vtkSmartPointer<vtkPolyData> mesh = app::readMesh(options.mesh);
-  showWarnings(options.mesh);
+  warnings.collect(options.mesh);
   const double readSeconds = secondsSince(readStart);
 
   vtkNew<vtkLocalReflectanceFilter> filter;
@@ -277,7 +294,7 @@ int runShade(const ShadeOptions& options)
   const Clock::time_point shadeStart = Clock::now();
   filter->Update();
   const double shadeSeconds = secondsSince(shadeStart);
-  showWarnings(options.mesh);
+  warnings.collect(options.mesh);
   if (errors->failed())
   {
     // The filter names a scene's problem "scene <JSON pointer>: ...": it is the scene's, and
@@ -300,9 +317,10 @@ int runShade(const ShadeOptions& options)
     : options.compression == "none"                                    ? app::Compression::None
                                                                        : app::Compression::LZ4;
   app::writeMesh(output, options.output, compression);
-  showWarnings(options.output);
+  warnings.collect(options.output);
   const double writeSeconds = secondsSince(writeStart);
 
+  warnings.show();
   std::cout << "shadelab shade: " << options.mesh << " -> " << options.output << "\n"
             << "  mesh: " << output->GetNumberOfPoints() << " vertices, "
             << output->GetNumberOfPolys() + output->GetNumberOfStrips() << " polygons and strips\n"
@@ -352,10 +370,12 @@ int runRender(RenderCommand& command)
   command.options.width = width;
   command.options.height = height;
   const Scene scene = command.scene.empty() ? defaultLightKit() : loadScene(command.scene);
+  RunWarnings warnings;
   vtkSmartPointer<vtkPolyData> mesh = app::readMesh(command.mesh);
-  showWarnings(command.mesh);
+  warnings.collect(command.mesh);
   command.options.viewer = placedOnMesh(scene, meshExtentOf(mesh)).viewer;
   app::renderToPng(mesh, command.mesh, command.options, command.output);
+  warnings.show();
   std::cout << "shadelab render: " << command.options.array << " of " << command.mesh << " -> "
             << command.output << " (" << width << "x" << height << ")\n";
   return 0;

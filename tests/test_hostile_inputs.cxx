@@ -45,6 +45,11 @@ const std::string cutShort = " after its header: it is cut short or its counts a
 TEST_F(Cli, HostileMeshesAreRefusedInOneLine)
 {
   const Hostile meshes[] = {
+    // A reader's warning ("Error reading binary data!") and then a refusal: the refusal alone
+    // (found by the command-line run over fuzz_mesh_vtk's corpus).
+    { "meshes/fuzz_legacy_vtk_warning_then_refusal.vtk",
+      "the mesh's coordinates reach 7.5e+31, beyond +-2.3e+18 where squared distances overflow float32: use double "
+      "precision (shadelab shade --precision float64)" },
     { "meshes/legacy_vtk_corrupt_offsets.vtk",
       "polygon 7's points run from 188 to 6413125869375586328 in a list of 1344: the mesh is corrupt" },
     // Read by VTK without complaint, with offsets beyond the ids: refused before it is handed
