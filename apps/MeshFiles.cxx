@@ -8,6 +8,9 @@
 #include "ShadeLabMeshChecks.h"
 
 #include "vtkAlgorithm.h"
+#include "vtkPointData.h"
+#include "vtkFieldData.h"
+#include "vtkCellData.h"
 #include "vtkErrorCode.h"
 #include "vtkOBJReader.h"
 #include "vtkPLYReader.h"
@@ -116,27 +119,40 @@ vtkSmartPointer<vtkPolyData> readDirectly(const std::string& fileName, const std
   return mesh;
 }
 
-/// Writes the mesh as VTK XML (binary, uncompressed): how the reading process hands it over.
+/// Writes the mesh as legacy binary VTK, which holds any array name (XML does not: VTK 9.1
+/// writes names into attributes unescaped): how the reading process hands it over.
 void handOver(vtkPolyData* mesh, const std::string& path)
 {
-  vtkNew<vtkXMLPolyDataWriter> writer;
+  vtkNew<vtkPolyDataWriter> writer;
   writer->SetInputData(mesh);
   writer->SetFileName(path.c_str());
-  writer->SetDataModeToAppended();
-  writer->EncodeAppendedDataOff();
-  writer->SetCompressorTypeToNone();
-  writer->SetHeaderTypeToUInt64();
+  writer->SetFileTypeToBinary();
+  writer->WriteArrayMetaDataOff(); // information keys that the reading side may not know
   if (!writer->Write())
   {
     throw std::runtime_error("the mesh could not be handed over (out of memory?)");
   }
 }
 
-vtkSmartPointer<vtkPolyData> takeOver(const std::string& path)
+/// The mesh handOver wrote. Throws UserError (naming fileName) if it cannot be read back.
+vtkSmartPointer<vtkPolyData> takeOver(const std::string& path, const std::string& fileName)
 {
-  vtkNew<vtkXMLPolyDataReader> reader;
+  vtkNew<vtkPolyDataReader> reader;
+  vtkNew<VtkErrorCapture> errors;
+  errors->watch(reader);
   reader->SetFileName(path.c_str());
+  reader->ReadAllScalarsOn(); // every array, not only the first of each attribute kind
+  reader->ReadAllVectorsOn();
+  reader->ReadAllNormalsOn();
+  reader->ReadAllTensorsOn();
+  reader->ReadAllColorScalarsOn();
+  reader->ReadAllTCoordsOn();
+  reader->ReadAllFieldsOn();
   reader->Update();
+  if (errors->failed() || reader->GetErrorCode() != vtkErrorCode::NoError)
+  {
+    throw UserError(fileName + ": the mesh read from it could not be taken over: " + printableText(errors->message()));
+  }
   auto mesh = vtkSmartPointer<vtkPolyData>::New();
   mesh->ShallowCopy(reader->GetOutput());
   return mesh;
@@ -201,7 +217,7 @@ vtkSmartPointer<vtkPolyData> readMesh(const std::string& fileName)
     case IsolatedOutcome::End::Finished:
       try
       {
-        return takeOver(outcome.resultPath);
+        return takeOver(outcome.resultPath, fileName);
       }
       catch (const std::bad_alloc&)
       {
@@ -354,9 +370,45 @@ void writeThroughTemporary(
   }
 }
 
+namespace
+{
+/// The first array name of the mesh that VTK 9.1's XML writer would write unescaped into an
+/// attribute, making the file unreadable (a quote, <, > or &, or a byte that is not
+/// printable ASCII), with where it is; "" when there is none.
+std::string nameXmlCannotHold(vtkPolyData* mesh)
+{
+  auto unsafe = [](const std::string& name)
+  {
+    return std::any_of(name.begin(), name.end(),
+      [](char c) { return c < 0x20 || c >= 0x7f || c == '"' || c == '<' || c == '>' || c == '&'; });
+  };
+  for (const auto& [data, kind] : { std::make_pair<vtkFieldData*, const char*>(mesh->GetPointData(), "point"),
+         std::make_pair<vtkFieldData*, const char*>(mesh->GetCellData(), "cell"),
+         std::make_pair<vtkFieldData*, const char*>(mesh->GetFieldData(), "field") })
+  {
+    for (int a = 0; a < data->GetNumberOfArrays(); ++a)
+    {
+      const char* name = data->GetArrayName(a);
+      if (name && unsafe(name))
+      {
+        return std::string("the ") + kind + " array '" + printableText(name, 60) + "'";
+      }
+    }
+  }
+  return "";
+}
+}
+
 void writeMesh(vtkPolyData* mesh, const std::string& fileName, Compression compression)
 {
   checkOutputFile(fileName, meshExtensions);
+  const std::string unsafeName = lowerExtension(fileName) == ".vtp" ? nameXmlCannotHold(mesh) : "";
+  if (!unsafeName.empty())
+  {
+    throw UserError(fileName + ": " + unsafeName +
+      " has a name that a .vtp file cannot hold (VTK 9.1 writes it unescaped, and no reader could open the "
+      "file): rename it in the input, or write legacy .vtk");
+  }
   writeThroughTemporary(fileName,
     [&](const std::string& temporary) -> std::string
     {

@@ -27,7 +27,9 @@
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -454,6 +456,46 @@ int runArrays(const std::string& sceneFile)
   return 0;
 }
 
+/// value as a number, when the whole of it is one.
+std::optional<double> numberIn(const std::string& value)
+{
+  double number = 0;
+  std::istringstream in(value);
+  if ((in >> number) && (in >> std::ws).eof())
+  {
+    return number;
+  }
+  return std::nullopt;
+}
+
+/// A CLI11 check for a finite number >= 0 (CLI11's NonNegativeNumber prints its bound, the
+/// largest double, in 300 digits, and lets infinity through).
+CLI::Validator finiteNonNegative()
+{
+  return CLI::Validator(
+    [](std::string& value)
+    {
+      const std::optional<double> number = numberIn(value);
+      return number && std::isfinite(*number) && *number >= 0 ? std::string()
+                                                               : "'" + value + "' is not a finite number >= 0";
+    },
+    "NUMBER >= 0");
+}
+
+/// A prefix for array names: letters, digits and _, so that every file format and ParaView
+/// can store and show the names (VTK 9.1's XML writer does not escape them).
+CLI::Validator arrayNamePrefix()
+{
+  return CLI::Validator(
+    [](std::string& value)
+    {
+      const bool valid = value.size() <= 64 &&
+        std::all_of(value.begin(), value.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
+      return valid ? std::string() : "use at most 64 letters, digits and _";
+    },
+    "PREFIX");
+}
+
 /// A CLI11 check that a number lies in [low, high], saying so in the numbers' own words (CLI11's
 /// Range prints doubles as 0.000000).
 CLI::Validator numberFromTo(double low, double high)
@@ -463,10 +505,8 @@ CLI::Validator numberFromTo(double low, double high)
   return CLI::Validator(
     [low, high, text = range.str()](std::string& value)
     {
-      double number = 0;
-      std::istringstream in(value);
-      const bool whole = (in >> number) && (in >> std::ws).eof();
-      return whole && number >= low && number <= high ? std::string() : "Value " + value + " not in range " + text;
+      const std::optional<double> number = numberIn(value);
+      return number && *number >= low && *number <= high ? std::string() : "Value " + value + " not in range " + text;
     },
     "NUMBER in [" + range.str() + "]");
 }
@@ -501,7 +541,7 @@ int main(int argc, char** argv)
       "largest absolute error allowed in the shaded values: ShadeLab then chooses the cheapest "
       "precision and, per light, approximations (a point light as distant, a faster pow) whose "
       "predicted errors fit, and prints what it chose; 0 (default): exact methods")
-    ->check(CLI::NonNegativeNumber)
+    ->check(finiteNonNegative())
     ->excludes(precisionOption);
   shadeCommand->add_option("--threads,-j", shade.threads, "threads (0: all cores)")
     ->check(CLI::Range(0, 256))
@@ -511,7 +551,8 @@ int main(int argc, char** argv)
     ->check(CLI::IsMember({ "lz4", "zlib", "none" }))
     ->capture_default_str();
   shadeCommand->add_option("--prefix", shade.prefix,
-    "prepended to every array name written (to keep clear of the input's own arrays)");
+    "prepended to every array name written (to keep clear of the input's own arrays): letters, digits and _")
+    ->check(arrayNamePrefix());
   shadeCommand->add_flag("--keep-normal-orientation", shade.keepNormals,
     "do not flip normals that point into a closed mesh");
   shadeCommand->add_flag("--no-weld", shade.noWeld,
@@ -548,7 +589,7 @@ int main(int argc, char** argv)
     ->capture_default_str()
     ->needs(envmapOption);
   shadeCommand->add_option("--envmap-intensity", environment.intensity, "multiply the map's radiance")
-    ->check(CLI::NonNegativeNumber)
+    ->check(finiteNonNegative())
     ->capture_default_str()
     ->needs(envmapOption);
   shadeCommand->add_option("--envmap-samples", environment.samples,

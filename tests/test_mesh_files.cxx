@@ -5,6 +5,12 @@
 #include "MeshFileChecks.h"
 #include "MeshFiles.h"
 
+#include "vtkFloatArray.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+
 #include <gtest/gtest.h>
 
 #include <csignal>
@@ -130,6 +136,40 @@ TEST(MeshFileChecks, ObjFaceIndicesReferToListedVertices)
   EXPECT_EQ(objIndexProblem(triangle + "f 0 1 2\n"),
     "line 5: face index 0 refers to vertex 0, but the file lists 3 before that line");
   EXPECT_EQ(objIndexProblem(triangle + "f 1 2 x\n"), "line 5: 'x' is not an OBJ face corner");
+}
+
+TEST(WriteMesh, ArrayNamesAVtpCannotHoldAreRefused)
+{
+  // VTK 9.1 writes array names into XML attributes unescaped: a quote would make a file no
+  // reader opens. Legacy .vtk encodes names, so it takes them.
+  const fs::path folder = fs::temp_directory_path() / "shadelab_unsafe_names";
+  fs::remove_all(folder);
+  fs::create_directories(folder);
+  vtkNew<vtkPolyData> mesh;
+  vtkNew<vtkPoints> points;
+  points->InsertNextPoint(0, 0, 0);
+  mesh->SetPoints(points);
+  vtkNew<vtkFloatArray> quoted;
+  quoted->SetName("temperature \"K\"");
+  quoted->InsertNextValue(1);
+  mesh->GetPointData()->AddArray(quoted);
+  const std::string vtp = (folder / "out.vtp").string();
+  try
+  {
+    writeMesh(mesh, vtp);
+    ADD_FAILURE() << "no error";
+  }
+  catch (const UserError& error)
+  {
+    EXPECT_EQ(std::string(error.what()), vtp + ": the point array 'temperature \"K\"' has a name that a .vtp file "
+      "cannot hold (VTK 9.1 writes it unescaped, and no reader could open the file): rename it in the input, or "
+      "write legacy .vtk");
+  }
+  EXPECT_TRUE(fs::is_empty(folder));
+  const std::string vtk = (folder / "out.vtk").string();
+  writeMesh(mesh, vtk);
+  EXPECT_EQ(readMesh(vtk)->GetPointData()->GetArray(0)->GetName(), std::string("temperature \"K\""));
+  fs::remove_all(folder);
 }
 
 TEST(WriteThroughTemporary, AKilledRunLeavesNoTemporary)

@@ -227,8 +227,10 @@ ArrayRequest selectArrays(const Scene& scene, const std::vector<std::string>& se
     }
     if (!known)
     {
-      throw std::invalid_argument(
-        "unknown array '" + entry + "'; this scene has: " + knownSelections(scene));
+      // Quoted short and printable: the entry may be anything a user or a script passed.
+      std::string shown = entry.size() > 60 ? entry.substr(0, 60) + "..." : entry;
+      std::replace_if(shown.begin(), shown.end(), [](char c) { return c < 0x20 || c >= 0x7f; }, '?');
+      throw std::invalid_argument("unknown array '" + shown + "'; this scene has: " + knownSelections(scene));
     }
   }
   return request;
