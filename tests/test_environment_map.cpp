@@ -330,11 +330,24 @@ TEST(ReadEnvironmentMap, NotAnImage)
   EXPECT_EQ(readError(path), path + ": cannot read as an image: " + oiioError);
 }
 
-TEST(ReadEnvironmentMap, TruncatedFile)
+TEST(ReadEnvironmentMap, HeaderDeclaresMoreThanTheFileCanHold)
 {
-  // A real header with 2000 bytes of pixels: OpenImageIO opens it and fails while decoding.
+  // The sunset's header (1024 x 512) on its first 2000 bytes: 64 texels a byte at most is
+  // 128,000, so it is refused before anything is allocated or decoded.
   std::ifstream whole(venicePath + ".hdr", std::ios::binary);
   std::vector<char> start(2000);
+  whole.read(start.data(), static_cast<std::streamsize>(start.size()));
+  const std::string path = tempPath("cut_short.hdr");
+  std::ofstream(path, std::ios::binary).write(start.data(), whole.gcount());
+  EXPECT_EQ(readError(path), path + ": the header declares 1024x512 texels (0.00629146 GB as floats), more than a "
+    "file of 2000 bytes can hold: it is damaged, or too large a map");
+}
+
+TEST(ReadEnvironmentMap, TruncatedFile)
+{
+  // A real header with 20000 bytes of pixels: OpenImageIO opens it and fails while decoding.
+  std::ifstream whole(venicePath + ".hdr", std::ios::binary);
+  std::vector<char> start(20000);
   whole.read(start.data(), static_cast<std::streamsize>(start.size()));
   const std::string path = tempPath("truncated.hdr");
   std::ofstream(path, std::ios::binary).write(start.data(), whole.gcount());

@@ -127,7 +127,7 @@ EnvironmentMap readEnvironmentMap(const std::string& path)
   // far more texels than bytes only for flat images, so the bound is generous, and it stops
   // a 1 kB file from asking for gigabytes before a single pixel is read.
   const std::uintmax_t fileBytes = std::filesystem::file_size(path, ignored);
-  const std::size_t mostTexels = std::max<std::size_t>(std::size_t(1) << 20, 64 * static_cast<std::size_t>(fileBytes));
+  const std::size_t mostTexels = std::max<std::size_t>(4096, 64 * static_cast<std::size_t>(fileBytes));
   if (texels > mostTexels || texels > maxEnvironmentTexels)
   {
     std::ostringstream message;

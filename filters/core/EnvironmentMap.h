@@ -63,7 +63,7 @@ constexpr std::size_t maxEnvironmentTexels = std::size_t(16384) * 8192;
 /// the first three channels as RGB, or one channel as grey. Throws std::runtime_error
 /// "<path>: <what is wrong>" for a missing or unreadable file, an empty image, 2 channels,
 /// a shape other than 2:1, more texels than maxEnvironmentTexels or than the file's size can
-/// hold (64 per byte, at least 2^20), and a negative or non-finite texel.
+/// hold (64 per byte, at least 4096), and a negative or non-finite texel.
 EnvironmentMap readEnvironmentMap(const std::string& path);
 
 /// A 2:1 map `width` texels wide, `width` an even divisor of map.width: each texel is the
