@@ -2,6 +2,7 @@
 // with it (the file checks, VTK's reader in its own process, the cell checks, normals and
 // shading under the default light kit). A refusal is an outcome; only a crash, hang, leak or
 // undefined behaviour in this process is a finding.
+#include "FuzzFiles.h"
 #include "MeshFiles.h"
 
 #include "DefaultLightKit.h"
@@ -28,7 +29,7 @@ extern "C" int LLVMFuzzerInitialize(int*, char***)
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
 {
-  const std::string path = "/tmp/shadelab-fuzz-" + std::to_string(::getpid()) + MESH_EXTENSION;
+  const std::string path = fuzzFolder() + "/shadelab-fuzz-" + std::to_string(::getpid()) + MESH_EXTENSION;
   std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
   try
   {
