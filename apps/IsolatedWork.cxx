@@ -14,6 +14,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+// Defined by the sanitizer runtimes, absent otherwise (hence weak).
+extern "C" void __sanitizer_set_death_callback(void (*callback)(void)) __attribute__((weak));
+
 namespace shadelab::app
 {
 namespace
@@ -87,6 +90,12 @@ void limit(int resource, rlim_t value)
   for (int signal : { SIGSEGV, SIGBUS, SIGABRT, SIGFPE, SIGILL })
   {
     std::signal(signal, SIG_DFL);
+  }
+  // Likewise a sanitizer's report of a memory error in the work: the callback a fuzzer set
+  // would save the input as a crash of the parent's.
+  if (__sanitizer_set_death_callback)
+  {
+    __sanitizer_set_death_callback(nullptr);
   }
   // What the work's libraries print goes nowhere (VTK's PLY code writes to standard error
   // directly, a line per missing element); the terminal, if standard error is one, stays
