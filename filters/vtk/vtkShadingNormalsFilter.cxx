@@ -181,22 +181,10 @@ std::vector<bool> polygonsToTurn(vtkPolyData* mesh, const MeshPolygons& polygons
   return flipped;
 }
 
-/// Calls visit(size, ids) for every cell of the array.
-template <typename Visit>
-void forEachCell(vtkCellArray* cells, Visit&& visit)
-{
-  auto cell = vtk::TakeSmartPointer(cells->NewIterator());
-  for (cell->GoToFirstCell(); !cell->IsDoneWithTraversal(); cell->GoToNextCell())
-  {
-    vtkIdType size;
-    const vtkIdType* ids;
-    cell->GetCurrentCell(size, ids);
-    visit(size, ids);
-  }
-}
-
-/// Feeds every polygon and strip triangle of the mesh to the orientation test. A worker for
-/// vtkArrayDispatch, so that points and normals are read from raw memory.
+/// Feeds every triangle of the mesh's polygons (split into fans) and strips to the
+/// orientation test. A worker for vtkArrayDispatch, so that points and normals are read from
+/// raw memory. Winding does not matter here: the test uses the stored normals, not the
+/// triangles' own orientation.
 struct OrientationWorker
 {
   vtkPolyData* mesh;
@@ -211,29 +199,17 @@ struct OrientationWorker
     double centre[3];
     mesh->GetCenter(centre); // of the bounding box
     shadelab::NormalOrientationAccumulator accumulator({ centre[0], centre[1], centre[2] });
-    auto addTriangle = [&](vtkIdType a, vtkIdType b, vtkIdType c)
+    const MeshPolygons polygons(mesh);
+    const shadelab::PolygonList& list = polygons.list();
+    for (std::size_t k = 0; k < list.count; ++k)
     {
-      accumulator.addTriangle(vec(points[a]), vec(points[b]), vec(points[c]), vec(normals[a]),
-        vec(normals[b]), vec(normals[c]));
-    };
-    // Polygons are split into fans, strips into their triangles; winding does not matter
-    // here because the test uses the stored normals, not the triangles' own orientation.
-    forEachCell(mesh->GetPolys(),
-      [&](vtkIdType size, const vtkIdType* ids)
+      const shadelab::PointId* ids = list.ids(k);
+      for (std::size_t i = 2; i < list.size(k); ++i)
       {
-        for (vtkIdType k = 2; k < size; ++k)
-        {
-          addTriangle(ids[0], ids[k - 1], ids[k]);
-        }
-      });
-    forEachCell(mesh->GetStrips(),
-      [&](vtkIdType size, const vtkIdType* ids)
-      {
-        for (vtkIdType k = 2; k < size; ++k)
-        {
-          addTriangle(ids[k - 2], ids[k - 1], ids[k]);
-        }
-      });
+        accumulator.addTriangle(vec(points[ids[0]]), vec(points[ids[i - 1]]), vec(points[ids[i]]),
+          vec(normals[ids[0]]), vec(normals[ids[i - 1]]), vec(normals[ids[i]]));
+      }
+    }
     result = accumulator.result();
   }
 };
