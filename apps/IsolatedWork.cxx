@@ -1,6 +1,8 @@
 #include "IsolatedWork.h"
 
+#include <algorithm>
 #include <cerrno>
+#include <chrono>
 #include <cmath>
 #include <csignal>
 #include <cstdint>
@@ -8,6 +10,7 @@
 #include <fcntl.h>
 #include <fstream>
 #include <new>
+#include <poll.h>
 #include <stdexcept>
 #include <sys/mman.h>
 #include <sys/resource.h>
@@ -39,12 +42,26 @@ void writeAll(int fd, const char* data, std::size_t size)
   }
 }
 
-std::string readAll(int fd)
+/// Everything written to fd until it is closed, or until the deadline has passed: then
+/// stalled is set.
+std::string readAll(int fd, std::chrono::steady_clock::time_point deadline, bool& stalled)
 {
   std::string bytes;
   char buffer[1 << 16];
   for (;;)
   {
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+    pollfd wait{ fd, POLLIN, 0 };
+    const int ready = left.count() > 0 ? ::poll(&wait, 1, static_cast<int>(std::min<long long>(left.count(), 1 << 30))) : 0;
+    if (ready < 0 && errno == EINTR)
+    {
+      continue;
+    }
+    if (ready == 0)
+    {
+      stalled = true;
+      return bytes;
+    }
     const ssize_t got = ::read(fd, buffer, sizeof buffer);
     if (got < 0 && errno == EINTR)
     {
@@ -220,15 +237,26 @@ IsolatedOutcome runIsolated(const std::function<void(ChildChannel&)>& work, cons
     runChild(channel[1], resultPath, work, limits);
   }
   ::close(channel[1]);
-  const std::string bytes = readAll(channel[0]);
+  bool stalled = false;
+  const auto deadline = std::chrono::steady_clock::now() +
+    std::chrono::milliseconds(static_cast<long long>(limits.wallSeconds * 1000));
+  const std::string bytes = readAll(channel[0], deadline, stalled);
   ::close(channel[0]);
+  if (stalled)
+  {
+    ::kill(child, SIGKILL);
+  }
   int status = 0;
   while (::waitpid(child, &status, 0) < 0 && errno == EINTR)
   {
   }
   decode(bytes, outcome);
   outcome.resultPath = resultPath; // the same descriptor number here as in the child
-  if (WIFSIGNALED(status))
+  if (stalled)
+  {
+    outcome.end = IsolatedOutcome::End::Stalled;
+  }
+  else if (WIFSIGNALED(status))
   {
     const int signal = WTERMSIG(status);
     outcome.end = signal == SIGXCPU || signal == SIGKILL ? IsolatedOutcome::End::TimedOut

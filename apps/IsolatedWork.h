@@ -18,6 +18,8 @@ namespace shadelab::app
 struct IsolationLimits
 {
   double cpuSeconds = 60;                          // processor time, after which the child is stopped
+  double wallSeconds = 180;                        // time on the clock, likewise: a child that waits
+                                                   // (on a lock, a pipe) uses no processor time
   std::size_t memoryBytes = std::size_t(1) << 30; // address space beyond what the process has,
                                                   // and the largest result file
 };
@@ -63,6 +65,7 @@ struct IsolatedOutcome
     Failed,      // it threw: error holds what()
     OutOfMemory, // it needed more than IsolationLimits::memoryBytes
     TimedOut,    // it used more than IsolationLimits::cpuSeconds
+    Stalled,     // it had not ended after IsolationLimits::wallSeconds
     Crashed,     // a signal ended it: signalName says which
   };
   End end = End::Failed;

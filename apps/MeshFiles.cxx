@@ -10,12 +10,14 @@
 #include "vtkAlgorithm.h"
 #include "vtkPointData.h"
 #include "vtkFieldData.h"
+#include "vtkInformation.h"
 #include "vtkCellData.h"
 #include "vtkErrorCode.h"
 #include "vtkOBJReader.h"
 #include "vtkPLYReader.h"
 #include "vtkPolyDataReader.h"
 #include "vtkPolyDataWriter.h"
+#include "vtkSMPTools.h"
 #include "vtkSTLReader.h"
 #include "vtkXMLPolyDataReader.h"
 #include "vtkXMLPolyDataWriter.h"
@@ -119,15 +121,84 @@ vtkSmartPointer<vtkPolyData> readDirectly(const std::string& fileName, const std
   return mesh;
 }
 
-/// Writes the mesh as legacy binary VTK, which holds any array name (XML does not: VTK 9.1
-/// writes names into attributes unescaped): how the reading process hands it over.
+/// Calls rename(array) for every array of the mesh: point, cell and field data.
+template <typename Rename>
+void forEachArray(vtkPolyData* mesh, Rename rename)
+{
+  for (vtkFieldData* data : { static_cast<vtkFieldData*>(mesh->GetPointData()),
+         static_cast<vtkFieldData*>(mesh->GetCellData()), mesh->GetFieldData() })
+  {
+    for (int a = 0; a < data->GetNumberOfArrays(); ++a)
+    {
+      rename(data->GetAbstractArray(a));
+    }
+  }
+}
+
+/// A name as 'x' and the hexadecimal digits of its bytes, which any XML attribute holds.
+std::string encodedName(const char* name)
+{
+  static const char digits[] = "0123456789abcdef";
+  std::string text = "x";
+  for (const char* c = name; *c; ++c)
+  {
+    const unsigned char byte = static_cast<unsigned char>(*c);
+    text += { digits[byte >> 4], digits[byte & 15] };
+  }
+  return text;
+}
+
+std::string decodedName(const char* text)
+{
+  std::string name;
+  auto value = [](char digit) { return digit <= '9' ? digit - '0' : digit - 'a' + 10; };
+  for (const char* c = text + 1; c[0] && c[1]; c += 2)
+  {
+    name += static_cast<char>(value(c[0]) * 16 + value(c[1]));
+  }
+  return name;
+}
+
+/// Renames the array and its components with code(name); unnamed ones stay unnamed.
+template <typename Code>
+void recodeNames(vtkAbstractArray* array, Code code)
+{
+  if (array->GetName())
+  {
+    array->SetName(code(array->GetName()).c_str());
+  }
+  for (int c = 0; c < array->GetNumberOfComponents(); ++c)
+  {
+    if (array->HasAComponentName() && array->GetComponentName(c))
+    {
+      array->SetComponentName(c, code(array->GetComponentName(c)).c_str());
+    }
+  }
+}
+
+/// Writes the mesh as VTK XML with raw appended data (the fastest of VTK's writers and readers
+/// on large meshes: a third of the time of legacy binary, which swaps every byte) into path:
+/// how the reading process hands it over. VTK 9.1 writes names into XML attributes unescaped,
+/// so every name is written hex-encoded and decoded on the other side; array information
+/// keys, which the other side may not know, are dropped.
 void handOver(vtkPolyData* mesh, const std::string& path)
 {
-  vtkNew<vtkPolyDataWriter> writer;
+  forEachArray(mesh,
+    [](vtkAbstractArray* array)
+    {
+      recodeNames(array, encodedName);
+      if (array->HasInformation())
+      {
+        array->GetInformation()->Clear();
+      }
+    });
+  vtkNew<vtkXMLPolyDataWriter> writer;
   writer->SetInputData(mesh);
   writer->SetFileName(path.c_str());
-  writer->SetFileTypeToBinary();
-  writer->WriteArrayMetaDataOff(); // information keys that the reading side may not know
+  writer->SetDataModeToAppended();
+  writer->EncodeAppendedDataOff();
+  writer->SetCompressorTypeToNone();
+  writer->SetHeaderTypeToUInt64(); // arrays of more than 4 GB
   if (!writer->Write())
   {
     throw std::runtime_error("the mesh could not be handed over (out of memory?)");
@@ -137,17 +208,10 @@ void handOver(vtkPolyData* mesh, const std::string& path)
 /// The mesh handOver wrote. Throws UserError (naming fileName) if it cannot be read back.
 vtkSmartPointer<vtkPolyData> takeOver(const std::string& path, const std::string& fileName)
 {
-  vtkNew<vtkPolyDataReader> reader;
+  vtkNew<vtkXMLPolyDataReader> reader;
   vtkNew<VtkErrorCapture> errors;
   errors->watch(reader);
   reader->SetFileName(path.c_str());
-  reader->ReadAllScalarsOn(); // every array, not only the first of each attribute kind
-  reader->ReadAllVectorsOn();
-  reader->ReadAllNormalsOn();
-  reader->ReadAllTensorsOn();
-  reader->ReadAllColorScalarsOn();
-  reader->ReadAllTCoordsOn();
-  reader->ReadAllFieldsOn();
   reader->Update();
   if (errors->failed() || reader->GetErrorCode() != vtkErrorCode::NoError)
   {
@@ -155,6 +219,7 @@ vtkSmartPointer<vtkPolyData> takeOver(const std::string& path, const std::string
   }
   auto mesh = vtkSmartPointer<vtkPolyData>::New();
   mesh->ShallowCopy(reader->GetOutput());
+  forEachArray(mesh, [](vtkAbstractArray* array) { recodeNames(array, decodedName); });
   return mesh;
 }
 }
@@ -166,6 +231,11 @@ vtkSmartPointer<vtkPolyData> readMesh(const std::string& fileName)
   if (!fs::exists(fileName, error))
   {
     throw UserError(fileName + ": no such file");
+  }
+  if (!fs::is_directory(fileName, error) && !fs::is_regular_file(fileName, error))
+  {
+    // A pipe or a device would have the reader wait, or read without end.
+    throw UserError(fileName + ": not a regular file (a pipe or a device?): save the mesh to a file first");
   }
   if (fs::is_directory(fileName, error) || !std::ifstream(fileName))
   {
@@ -184,9 +254,14 @@ vtkSmartPointer<vtkPolyData> readMesh(const std::string& fileName)
   IsolationLimits limits;
   limits.cpuSeconds = 10 + 2 * megabytes;
   limits.memoryBytes = (std::size_t(512) << 20) + 32 * static_cast<std::size_t>(size);
+  limits.wallSeconds = 10 + 3 * limits.cpuSeconds; // room for a busy machine
   const IsolatedOutcome outcome = runIsolated(
     [&](ChildChannel& channel)
     {
+      // oneTBB does not support fork(): worker threads the parent may have started are not in
+      // the child. The reading needs none (VTK's readers are serial), so VTK's parallel loops
+      // (array ranges) run here without TBB.
+      vtkSMPTools::SetBackend("Sequential");
       vtkSmartPointer<vtkPolyData> mesh = readDirectly(fileName, extension, channel.terminal());
       // Checked here, before it is handed over: a reader can build cells whose offsets lie,
       // and reading them back would trust the lie.
@@ -233,6 +308,10 @@ vtkSmartPointer<vtkPolyData> readMesh(const std::string& fileName)
     case IsolatedOutcome::End::TimedOut:
       message << "reading it took more than " << limits.cpuSeconds
               << " s of processor time, far more than a file of this size needs: it is damaged";
+      break;
+    case IsolatedOutcome::End::Stalled:
+      message << "VTK's " << extension << " reader had not finished after " << limits.wallSeconds
+              << " s, and was stopped: is the file on a slow or stalled disk?";
       break;
     case IsolatedOutcome::End::Crashed:
       message << "VTK's " << extension << " reader crashed on it (" << outcome.signalName

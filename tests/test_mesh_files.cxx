@@ -17,6 +17,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 #include <vector>
@@ -91,9 +92,31 @@ TEST(IsolatedWork, EveryEndingIsReported)
     limits);
   EXPECT_EQ(endless.end, IsolatedOutcome::End::TimedOut);
 
+  // A child that waits uses no processor time: the clock stops it.
+  limits.wallSeconds = 1;
+  IsolatedOutcome waiting = runIsolated([](ChildChannel&) { ::pause(); }, limits);
+  EXPECT_EQ(waiting.end, IsolatedOutcome::End::Stalled);
+
   IsolatedOutcome silent = runIsolated([](ChildChannel&) {}, limits);
   EXPECT_EQ(silent.end, IsolatedOutcome::End::Crashed); // it ended without a word
   EXPECT_EQ(silent.signalName, "exit code 0");
+}
+
+TEST(ReadMesh, APipeIsRefusedBeforeAnythingWaitsOnIt)
+{
+  const fs::path pipe = fs::temp_directory_path() / ("shadelab-pipe-" + std::to_string(::getpid()) + ".ply");
+  ASSERT_EQ(::mkfifo(pipe.c_str(), 0600), 0);
+  try
+  {
+    readMesh(pipe.string());
+    ADD_FAILURE() << "a pipe was read";
+  }
+  catch (const UserError& error)
+  {
+    EXPECT_EQ(std::string(error.what()),
+      pipe.string() + ": not a regular file (a pipe or a device?): save the mesh to a file first");
+  }
+  fs::remove(pipe);
 }
 
 TEST(IsolatedWork, PrintableTextHidesBinaryBytes)

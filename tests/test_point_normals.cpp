@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace
@@ -24,9 +25,28 @@ struct Triangles
     offsets.push_back(static_cast<PointId>(connectivity.size()));
   }
   PolygonList list() const { return { offsets.data(), connectivity.data(), offsets.size() - 1 }; }
+  glm::dvec3 at(PointId id) const { return points[static_cast<std::size_t>(id)]; }
   std::vector<glm::dvec3> areas() const
   {
-    return polygonAreaVectors(list(), {}, [this](PointId id) { return points[static_cast<std::size_t>(id)]; });
+    return polygonAreaVectors(list(), {}, [this](PointId id) { return at(id); });
+  }
+  CornerSums sums() const
+  {
+    CornerSums sums(points.size(), glm::dvec3(0.0));
+    sumAtCorners(list(), 0, list().count, {}, [this](PointId id) { return at(id); }, sums);
+    return sums;
+  }
+  /// Unit normals, welded along edges (nullptr: not welded).
+  std::vector<glm::dvec3> normals(const PolygonEdges* edges, const std::vector<PointId>& mergeMap, double featureAngle,
+    WeldSummary* summary = nullptr) const
+  {
+    std::vector<glm::dvec3> unit = sums().areas;
+    if (edges)
+    {
+      weldCopies(unit, *edges, areas(), mergeMap, featureAngle, summary);
+    }
+    std::transform(unit.begin(), unit.end(), unit.begin(), unitNormal);
+    return unit;
   }
 };
 
@@ -73,7 +93,7 @@ TEST(PointNormals, AreaWeightedAtASharedPoint)
   fan.add(0, 1, 2); // area 1/2, normal +z
   fan.add(0, 3, 4); // area 2, in the plane x = 0, normal -x
   const std::vector<glm::dvec3> unit =
-    unitPointNormals(fan.points.size(), fan.list(), fan.areas(), nullptr, {}, 80.0);
+    fan.normals(nullptr, {}, 80.0);
   expectNear(unit[0], glm::dvec3(-2.0, 0, 0.5) / std::sqrt(4.25), 1e-15);
   expectNear(unit[1], glm::dvec3(0, 0, 1), 0);
 }
@@ -81,10 +101,10 @@ TEST(PointNormals, AreaWeightedAtASharedPoint)
 TEST(PointNormals, CopiesAcrossASmoothSeamShareOneNormal)
 {
   const Triangles roof = splitRoof(20.0 * M_PI / 180.0); // faces meet at 40 degrees
-  const PolygonEdges edges(roof.list(), roofMergeMap, roof.points.size());
+  const PolygonEdges edges(roof.list(), roofMergeMap);
   WeldSummary summary;
   const std::vector<glm::dvec3> unit =
-    unitPointNormals(roof.points.size(), roof.list(), roof.areas(), &edges, roofMergeMap, 80.0, &summary);
+    roof.normals(&edges, roofMergeMap, 80.0, &summary);
   // Both faces have the same area, so the ridge's normal is straight up.
   for (std::size_t ridge : { 0, 1, 3, 4 })
   {
@@ -101,10 +121,10 @@ TEST(PointNormals, CopiesAtASharpEdgeKeepTheirOwn)
 {
   const double slope = 50.0 * M_PI / 180.0; // faces meet at 100 degrees, sharper than 80
   const Triangles roof = splitRoof(slope);
-  const PolygonEdges edges(roof.list(), roofMergeMap, roof.points.size());
+  const PolygonEdges edges(roof.list(), roofMergeMap);
   WeldSummary summary;
   const std::vector<glm::dvec3> unit =
-    unitPointNormals(roof.points.size(), roof.list(), roof.areas(), &edges, roofMergeMap, 80.0, &summary);
+    roof.normals(&edges, roofMergeMap, 80.0, &summary);
   const glm::dvec3 towardPlusY(0, std::sin(slope), std::cos(slope));
   const glm::dvec3 towardMinusY(0, -std::sin(slope), std::cos(slope));
   expectNear(unit[0], towardPlusY, 1e-15);
@@ -112,7 +132,7 @@ TEST(PointNormals, CopiesAtASharpEdgeKeepTheirOwn)
   EXPECT_EQ(summary.pointsKeptApart, 4u);
   // A feature angle above the edge's 100 degrees welds them after all.
   const std::vector<glm::dvec3> welded =
-    unitPointNormals(roof.points.size(), roof.list(), roof.areas(), &edges, roofMergeMap, 101.0);
+    roof.normals(&edges, roofMergeMap, 101.0);
   expectNear(welded[0], glm::dvec3(0, 0, 1), 1e-15);
 }
 
@@ -121,7 +141,7 @@ TEST(PointNormals, WithoutWeldingEachCopyHasItsFacesNormal)
   const double slope = 20.0 * M_PI / 180.0;
   const Triangles roof = splitRoof(slope);
   const std::vector<glm::dvec3> unit =
-    unitPointNormals(roof.points.size(), roof.list(), roof.areas(), nullptr, {}, 80.0);
+    roof.normals(nullptr, {}, 80.0);
   expectNear(unit[0], glm::dvec3(0, std::sin(slope), std::cos(slope)), 1e-15);
   expectNear(unit[3], glm::dvec3(0, -std::sin(slope), std::cos(slope)), 1e-15);
 }
@@ -133,7 +153,7 @@ TEST(PointNormals, PointsWithoutAreaHaveTheZeroNormal)
   mesh.add(0, 1, 2);
   mesh.offsets.push_back(mesh.offsets.back()); // a polygon with no points at all
   const std::vector<glm::dvec3> unit =
-    unitPointNormals(mesh.points.size(), mesh.list(), mesh.areas(), nullptr, {}, 80.0);
+    mesh.normals(nullptr, {}, 80.0);
   for (const glm::dvec3& n : unit)
   {
     EXPECT_EQ(n, glm::dvec3(0.0));
@@ -146,14 +166,96 @@ TEST(PointNormals, WindingTestFindsEdgesTraversedTwiceTheSameWay)
   square.points = { { 0, 0, 0 }, { 1, 0, 0 }, { 1, 1, 0 }, { 0, 1, 0 } };
   square.add(0, 1, 2);
   square.add(0, 2, 3); // traverses 2 -> 0, the first traverses 0 -> 2: consistent
-  EXPECT_EQ(PolygonEdges(square.list(), {}, 4).inconsistentCount(), 0u);
+  EXPECT_EQ(PolygonEdges(square.list(), {}).inconsistentCount(), 0u);
   Triangles turned = square;
   turned.connectivity = { 0, 1, 2, 0, 3, 2 }; // the second now traverses 0 -> 2 too
-  EXPECT_EQ(PolygonEdges(turned.list(), {}, 4).inconsistentCount(), 1u);
+  EXPECT_EQ(PolygonEdges(turned.list(), {}).inconsistentCount(), 1u);
   // On a split roof the edge joins only through the merge map.
   Triangles roof = splitRoof(0.3);
   roof.connectivity = { 0, 1, 2, 3, 4, 5 }; // both traverse the ridge from its start
-  EXPECT_EQ(PolygonEdges(roof.list(), {}, 6).inconsistentCount(), 0u);
-  EXPECT_EQ(PolygonEdges(roof.list(), roofMergeMap, 6).inconsistentCount(), 1u);
+  EXPECT_EQ(PolygonEdges(roof.list(), {}).inconsistentCount(), 0u);
+  EXPECT_EQ(PolygonEdges(roof.list(), roofMergeMap).inconsistentCount(), 1u);
+}
+
+/// A regular tetrahedron's four faces, wound outward: a closed, consistent surface.
+Triangles tetrahedron()
+{
+  Triangles solid;
+  solid.points = { { 1, 1, 1 }, { 1, -1, -1 }, { -1, 1, -1 }, { -1, -1, 1 } };
+  solid.add(0, 1, 2);
+  solid.add(0, 3, 1);
+  solid.add(0, 2, 3);
+  solid.add(1, 3, 2);
+  return solid;
+}
+
+TEST(PointNormals, EdgeBalanceIsZeroOnlyWhereTheSurfaceClosesConsistently)
+{
+  const Triangles closed = tetrahedron();
+  EXPECT_TRUE(unbalancedPoints(closed.sums().edgeBalance).empty());
+  // Without its last face, the three points of that face's rim are on a boundary.
+  Triangles open = closed;
+  open.offsets.pop_back();
+  open.connectivity.resize(9);
+  EXPECT_EQ(unbalancedPoints(open.sums().edgeBalance), (std::vector<PointId>{ 1, 2, 3 }));
+  // One face turned round: every edge of it is traversed twice in one direction.
+  Triangles turned = closed;
+  std::swap(turned.connectivity[10], turned.connectivity[11]); // 1, 2, 3
+  EXPECT_EQ(unbalancedPoints(turned.sums().edgeBalance), (std::vector<PointId>{ 1, 2, 3 }));
+  EXPECT_EQ(PolygonEdges(turned.list(), {}).inconsistentCount(), 3u);
+}
+
+TEST(PointNormals, SumsAtCornersAreTheAreaVectorsAroundEachPoint)
+{
+  const Triangles solid = tetrahedron();
+  const CornerSums sums = solid.sums();
+  const std::vector<glm::dvec3> areas = solid.areas();
+  EXPECT_EQ(sums.areas[0], areas[0] + areas[1] + areas[2]);
+  EXPECT_EQ(sums.areas[3], areas[1] + areas[2] + areas[3]);
+  // Each face's vector area points away from the opposite corner: the normals point out.
+  for (std::size_t i = 0; i < 4; ++i)
+  {
+    EXPECT_GT(glm::dot(sums.areas[i], solid.points[i]), 0.0);
+  }
+}
+
+TEST(PointNormals, WindingOfAClosedSurfaceHasNoVectorAreaAndThreeTimesItsVolumeAsFlux)
+{
+  // The tetrahedron's corners are alternate corners of the cube [-1, 1]^3: its volume is the
+  // cube's 8 less four corner pyramids of 4/3, 8/3; its flux about the origin 3 x 8/3 = 8.
+  const NormalOrientation outward = tetrahedron().sums().winding.result();
+  EXPECT_NEAR(outward.closure, 0.0, 1e-15);
+  EXPECT_NEAR(outward.flux, 8.0, 1e-14);
+  EXPECT_FALSE(outward.pointsInward());
+  Triangles inside = tetrahedron();
+  std::reverse(inside.connectivity.begin(), inside.connectivity.end()); // every face turned round
+  inside.offsets = { 0, 3, 6, 9, 12 };
+  EXPECT_NEAR(inside.sums().winding.result().flux, -8.0, 1e-14);
+  EXPECT_TRUE(inside.sums().winding.result().pointsInward());
+}
+
+TEST(PointNormals, SubsetHoldsThePolygonsWithAnEdgeBetweenListedPoints)
+{
+  const Triangles solid = tetrahedron();
+  // Points 1 and 3 share an edge in faces 1 (0, 3, 1) and 3 (1, 3, 2); 0 and 2 alone share
+  // edges with unlisted points only.
+  const PolygonSubset subset(solid.list(), { 1, 3 }, 4);
+  ASSERT_EQ(subset.list().count, 2u);
+  EXPECT_EQ(std::vector<PointId>(subset.list().ids(0), subset.list().ids(0) + 3), (std::vector<PointId>{ 0, 3, 1 }));
+  EXPECT_EQ(std::vector<PointId>(subset.list().ids(1), subset.list().ids(1) + 3), (std::vector<PointId>{ 1, 3, 2 }));
+  EXPECT_EQ(PolygonSubset(solid.list(), {}, 4).list().count, 0u);
+}
+
+TEST(PointNormals, CoincidentPointsMapToTheLowestIdAtTheirPosition)
+{
+  const double nan = std::nan("");
+  const std::vector<glm::dvec3> points = { { 0, 0, 0 }, { 1, 2, 3 }, { -0.0, 0, 0 }, { 1, 2, 3 }, { 1, 2, 3 },
+    { nan, 0, 0 }, { nan, 0, 0 }, { 0, 0, 0 } };
+  auto at = [&points](PointId id) { return points[static_cast<std::size_t>(id)]; };
+  // Point 7 is not a candidate, so it stays itself; -0 is the same position as +0; NaN
+  // positions are nobody's.
+  EXPECT_EQ(coincidentPointMap({ 0, 1, 2, 3, 4, 5, 6 }, points.size(), at),
+    (std::vector<PointId>{ 0, 1, 0, 1, 1, 5, 6, 7 }));
+  EXPECT_TRUE(coincidentPointMap({ 0, 1, 5, 6 }, points.size(), at).empty());
 }
 }

@@ -14,11 +14,7 @@ void NormalOrientationAccumulator::addTriangle(const glm::dvec3& p0, const glm::
   {
     return;
   }
-  const glm::dvec3 normal = normalSum / normalLength;
-  const glm::dvec3 centroid = (p0 + p1 + p2) / 3.0;
-  vectorArea_ += area * normal;
-  area_ += area;
-  flux_ += area * glm::dot(normal, centroid - centre_);
+  add(area * (normalSum / normalLength), area, (p0 + p1 + p2) / 3.0);
 }
 
 NormalOrientation NormalOrientationAccumulator::result() const

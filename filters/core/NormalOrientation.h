@@ -7,6 +7,7 @@
 //    for one with small holes and 1 for a flat sheet.
 //  - flux = sum of A n.(g - c), g the triangle's centroid and c a centre. For a closed
 //    surface this is 3 x its volume with outward normals and -3 x it with inward ones.
+#include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
 namespace shadelab
@@ -34,6 +35,22 @@ public:
   /// One triangle: its corners and the normals stored at them.
   void addTriangle(const glm::dvec3& p0, const glm::dvec3& p1, const glm::dvec3& p2,
     const glm::dvec3& n0, const glm::dvec3& n1, const glm::dvec3& n2);
+
+  /// One polygon: its vector area (A n), its area A, and its centroid.
+  void add(const glm::dvec3& vectorArea, double area, const glm::dvec3& centroid)
+  {
+    vectorArea_ += vectorArea;
+    area_ += area;
+    flux_ += glm::dot(vectorArea, centroid - centre_);
+  }
+
+  /// Adds another accumulator's polygons (about the same centre).
+  void add(const NormalOrientationAccumulator& other)
+  {
+    vectorArea_ += other.vectorArea_;
+    area_ += other.area_;
+    flux_ += other.flux_;
+  }
 
   NormalOrientation result() const;
 

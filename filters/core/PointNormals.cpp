@@ -12,14 +12,7 @@ namespace shadelab
 {
 namespace
 {
-glm::dvec3 unitOrZero(const glm::dvec3& sum)
-{
-  // A point with no area, or with coordinates so large that its sum overflowed, has no
-  // normal; shading flags (0, 0, 0) as degenerate.
-  return isFinite(sum) && largestComponent(sum) > 0.0 ? unitVector(sum) : glm::dvec3(0.0);
-}
-
-/// Sets of points, joined under their lowest id so that the result does not depend on the
+/// Sets of indices, joined under their lowest so that the result does not depend on the
 /// order of the joins.
 class DisjointSets
 {
@@ -27,146 +20,203 @@ public:
   explicit DisjointSets(std::size_t count)
     : parent_(count)
   {
-    std::iota(parent_.begin(), parent_.end(), PointId(0));
+    std::iota(parent_.begin(), parent_.end(), std::size_t(0));
   }
 
-  PointId root(PointId id)
+  std::size_t root(std::size_t member)
   {
-    while (parent_[static_cast<std::size_t>(id)] != id)
+    while (parent_[member] != member)
     {
-      // Path halving keeps the trees flat.
-      id = parent_[static_cast<std::size_t>(id)] = parent_[static_cast<std::size_t>(parent_[static_cast<std::size_t>(id)])];
+      member = parent_[member] = parent_[parent_[member]]; // path halving keeps the trees flat
     }
-    return id;
+    return member;
   }
 
-  void join(PointId a, PointId b)
+  void join(std::size_t a, std::size_t b)
   {
-    const PointId ra = root(a), rb = root(b);
-    parent_[static_cast<std::size_t>(std::max(ra, rb))] = std::min(ra, rb);
+    const std::size_t ra = root(a), rb = root(b);
+    parent_[std::max(ra, rb)] = std::min(ra, rb);
   }
 
 private:
-  std::vector<PointId> parent_;
+  std::vector<std::size_t> parent_;
 };
 }
 
-PolygonEdges::PolygonEdges(const PolygonList& polygons, const std::vector<PointId>& mergeMap, std::size_t pointCount)
+PolygonEdges::PolygonEdges(const PolygonList& polygons, const std::vector<PointId>& mergeMap)
   : polygons_(polygons)
-  , start_(pointCount + 1, 0)
 {
   if (polygons.count > std::numeric_limits<std::uint32_t>::max())
   {
     throw std::length_error("more than 2^32 polygons");
   }
   auto welded = [&](PointId id) { return mergeMap.empty() ? id : mergeMap[static_cast<std::size_t>(id)]; };
-  // Two passes over the edges: count them by lower welded end, then file them there.
-  auto forEachEdge = [&](auto&& visit)
+  for (std::size_t k = 0; k < polygons.count; ++k)
   {
-    for (std::size_t k = 0; k < polygons.count; ++k)
+    const std::size_t size = polygons.size(k);
+    const PointId* ids = polygons.ids(k);
+    for (std::size_t i = 0; size >= 3 && i < size; ++i)
     {
-      const std::size_t size = polygons.size(k);
-      const PointId* ids = polygons.ids(k);
-      for (std::size_t i = 0; size >= 3 && i < size; ++i)
+      const PointId from = welded(ids[i]), to = welded(ids[i + 1 < size ? i + 1 : 0]);
+      if (from != to)
       {
-        const PointId from = welded(ids[i]), to = welded(ids[(i + 1) % size]);
-        if (from != to)
-        {
-          visit(std::min(from, to),
-            Entry{ 2 * std::max(from, to) + (from < to ? 1 : 0), static_cast<std::uint32_t>(k),
-              static_cast<std::uint32_t>(i) });
-        }
+        entries_.push_back({ std::min(from, to), 2 * std::max(from, to) + (from < to ? 1 : 0),
+          static_cast<std::uint32_t>(k), static_cast<std::uint32_t>(i) });
       }
     }
-  };
-  forEachEdge([&](PointId low, const Entry&) { ++start_[static_cast<std::size_t>(low) + 1]; });
-  std::partial_sum(start_.begin(), start_.end(), start_.begin());
-  entries_.resize(start_.back());
-  std::vector<std::size_t> next(start_.begin(), start_.end() - 1);
-  forEachEdge([&](PointId low, const Entry& entry) { entries_[next[static_cast<std::size_t>(low)]++] = entry; });
-  for (std::size_t v = 0; v < pointCount; ++v)
-  {
-    std::sort(entries_.begin() + static_cast<std::ptrdiff_t>(start_[v]),
-      entries_.begin() + static_cast<std::ptrdiff_t>(start_[v + 1]));
   }
+  std::sort(entries_.begin(), entries_.end());
 }
 
 std::size_t PolygonEdges::inconsistentCount() const
 {
   std::size_t inconsistent = 0;
-  for (std::size_t v = 0; v + 1 < start_.size(); ++v)
+  for (std::size_t e = 1; e < entries_.size(); ++e)
   {
-    for (std::size_t e = start_[v] + 1; e < start_[v + 1]; ++e)
-    {
-      // The same edge in the same direction twice, counted once however many repeat it.
-      const bool repeatsFirstTime = entries_[e].key == entries_[e - 1].key &&
-        !(e >= start_[v] + 2 && entries_[e].key == entries_[e - 2].key);
-      inconsistent += repeatsFirstTime ? 1 : 0;
-    }
+    // The same edge in the same direction twice, counted once however many repeat it.
+    const bool repeatsFirstTime = entries_[e].sameTraversal(entries_[e - 1]) &&
+      !(e >= 2 && entries_[e].sameTraversal(entries_[e - 2]));
+    inconsistent += repeatsFirstTime ? 1 : 0;
   }
   return inconsistent;
 }
 
-std::vector<glm::dvec3> unitPointNormals(std::size_t pointCount, const PolygonList& polygons,
-  const std::vector<glm::dvec3>& areaVectors, const PolygonEdges* weldedEdges, const std::vector<PointId>& mergeMap,
-  double featureAngleDegrees, WeldSummary* summary)
+CornerSums::CornerSums(std::size_t pointCount, const glm::dvec3& centre)
+  : areas(pointCount, glm::dvec3(0.0))
+  , edgeBalance(pointCount, 0)
+  , winding(centre)
 {
-  // Summed in polygon order, so that the result is the same on any thread count.
-  std::vector<glm::dvec3> sums(pointCount, glm::dvec3(0.0));
-  for (std::size_t k = 0; k < polygons.count; ++k)
+}
+
+void CornerSums::addPoints(const CornerSums& later, std::size_t first, std::size_t last)
+{
+  for (std::size_t i = first; i < last; ++i)
   {
-    for (std::size_t i = 0; i < polygons.size(k); ++i)
+    areas[i] += later.areas[i];
+    edgeBalance[i] += later.edgeBalance[i];
+  }
+}
+
+std::vector<PointId> unbalancedPoints(const std::vector<std::uint64_t>& edgeBalance)
+{
+  std::vector<PointId> points;
+  for (std::size_t i = 0; i < edgeBalance.size(); ++i)
+  {
+    if (edgeBalance[i] != 0)
     {
-      sums[static_cast<std::size_t>(polygons.ids(k)[i])] += areaVectors[k];
+      points.push_back(static_cast<PointId>(i));
     }
   }
-  std::vector<glm::dvec3> normals(pointCount);
-  if (!weldedEdges)
+  return points;
+}
+
+PolygonSubset::PolygonSubset(const PolygonList& polygons, const std::vector<PointId>& points, std::size_t pointCount)
+{
+  std::vector<bool> listed(pointCount, false);
+  for (PointId id : points)
   {
-    std::transform(sums.begin(), sums.end(), normals.begin(), unitOrZero);
-    return normals;
+    listed[static_cast<std::size_t>(id)] = true;
   }
-  const double cosFeatureAngle = std::cos(featureAngleDegrees * (M_PI / 180.0));
-  DisjointSets copies(pointCount);
-  weldedEdges->forEachPairOfUses(
-    [&](const PolygonEdges::Use& a, const PolygonEdges::Use& b)
-    {
-      const glm::dvec3& areaA = areaVectors[a.polygon];
-      const glm::dvec3& areaB = areaVectors[b.polygon];
-      const double lengths = vectorLength(areaA) * vectorLength(areaB);
-      if (lengths > 0.0 && glm::dot(areaA, areaB) >= cosFeatureAngle * lengths)
-      {
-        copies.join(a.lowEnd, b.lowEnd);
-        copies.join(a.highEnd, b.highEnd);
-      }
-    });
-  std::vector<glm::dvec3> joinedSums(pointCount, glm::dvec3(0.0));
-  std::vector<std::size_t> joinedCount(pointCount, 0);
-  for (std::size_t i = 0; i < pointCount; ++i)
+  auto isListed = [&](PointId id) { return listed[static_cast<std::size_t>(id)]; };
+  for (std::size_t k = 0; !points.empty() && k < polygons.count; ++k)
   {
-    const std::size_t root = static_cast<std::size_t>(copies.root(static_cast<PointId>(i)));
-    joinedSums[root] += sums[i];
+    const std::size_t size = polygons.size(k);
+    const PointId* ids = polygons.ids(k);
+    bool between = false;
+    bool previousListed = size > 0 && isListed(ids[size - 1]);
+    for (std::size_t i = 0; !between && i < size; ++i)
+    {
+      const bool listedHere = isListed(ids[i]);
+      between = previousListed && listedHere;
+      previousListed = listedHere;
+    }
+    if (between)
+    {
+      connectivity_.insert(connectivity_.end(), ids, ids + size);
+      offsets_.push_back(static_cast<PointId>(connectivity_.size()));
+      original_.push_back(k);
+    }
+  }
+  list_ = { offsets_.data(), connectivity_.data(), offsets_.size() - 1 };
+}
+
+glm::dvec3 unitNormal(const glm::dvec3& sum)
+{
+  // A point with no area, or with coordinates so large that its sum overflowed, has no
+  // normal; shading flags (0, 0, 0) as degenerate.
+  return isFinite(sum) && largestComponent(sum) > 0.0 ? unitVector(sum) : glm::dvec3(0.0);
+}
+
+void weldCopies(std::vector<glm::dvec3>& areaSums, const PolygonEdges& edges,
+  const std::vector<glm::dvec3>& edgePolygonAreas, const std::vector<PointId>& mergeMap,
+  double featureAngleDegrees, WeldSummary* summary)
+{
+  // The points whose position other points share, in ascending order: the only ones that can
+  // be joined.
+  std::vector<PointId> shared;
+  for (std::size_t i = 0; i < mergeMap.size(); ++i)
+  {
+    if (mergeMap[i] != static_cast<PointId>(i))
+    {
+      shared.insert(shared.end(), { static_cast<PointId>(i), mergeMap[i] });
+    }
+  }
+  std::sort(shared.begin(), shared.end());
+  shared.erase(std::unique(shared.begin(), shared.end()), shared.end());
+  auto indexOf = [&](PointId id)
+  { return static_cast<std::size_t>(std::lower_bound(shared.begin(), shared.end(), id) - shared.begin()); };
+
+  const double cosFeatureAngle = std::cos(featureAngleDegrees * (M_PI / 180.0));
+  DisjointSets copies(shared.size());
+  if (!shared.empty())
+  {
+    edges.forEachPairOfUses(
+      [&](const PolygonEdges::Use& a, const PolygonEdges::Use& b)
+      {
+        const glm::dvec3& areaA = edgePolygonAreas[a.polygon];
+        const glm::dvec3& areaB = edgePolygonAreas[b.polygon];
+        const double lengths = vectorLength(areaA) * vectorLength(areaB);
+        if (lengths > 0.0 && glm::dot(areaA, areaB) >= cosFeatureAngle * lengths)
+        {
+          // The ends at one position are one point, or copies (and so shared).
+          if (a.lowEnd != b.lowEnd)
+          {
+            copies.join(indexOf(a.lowEnd), indexOf(b.lowEnd));
+          }
+          if (a.highEnd != b.highEnd)
+          {
+            copies.join(indexOf(a.highEnd), indexOf(b.highEnd));
+          }
+        }
+      });
+  }
+  // Joined copies' sums, added in id order so that the result is the same on any thread count.
+  std::vector<glm::dvec3> joinedSums(shared.size(), glm::dvec3(0.0));
+  std::vector<std::size_t> joinedCount(shared.size(), 0);
+  for (std::size_t j = 0; j < shared.size(); ++j)
+  {
+    const std::size_t root = copies.root(j);
+    joinedSums[root] += areaSums[static_cast<std::size_t>(shared[j])];
     ++joinedCount[root];
   }
-  std::vector<std::size_t> pointsAtPosition(pointCount, 0);
-  for (PointId position : mergeMap)
+  for (std::size_t j = 0; j < shared.size(); ++j)
   {
-    ++pointsAtPosition[static_cast<std::size_t>(position)];
-  }
-  for (std::size_t i = 0; i < pointCount; ++i)
-  {
-    const std::size_t root = static_cast<std::size_t>(copies.root(static_cast<PointId>(i)));
-    normals[i] = unitOrZero(joinedSums[root]);
-    if (summary && pointsAtPosition[static_cast<std::size_t>(mergeMap[i])] > 1)
+    const std::size_t root = copies.root(j);
+    areaSums[static_cast<std::size_t>(shared[j])] = joinedSums[root];
+    if (summary)
     {
       (joinedCount[root] > 1 ? summary->pointsAveraged : summary->pointsKeptApart) += 1;
     }
   }
   if (summary)
   {
-    summary->sharedPositions = static_cast<std::size_t>(
-      std::count_if(pointsAtPosition.begin(), pointsAtPosition.end(), [](std::size_t count) { return count > 1; }));
+    std::vector<PointId> positions;
+    for (PointId id : shared)
+    {
+      positions.push_back(mergeMap[static_cast<std::size_t>(id)]);
+    }
+    std::sort(positions.begin(), positions.end());
+    summary->sharedPositions = static_cast<std::size_t>(std::unique(positions.begin(), positions.end()) - positions.begin());
   }
-  return normals;
 }
 }

@@ -9,11 +9,23 @@
 // So points at one position share their normal: the copies are found by position (a merge
 // map), and copies whose own normals differ by more than the feature angle stay apart, so that
 // an edge the file split on purpose stays sharp. Point ids and count never change.
+//
+// The work is in proportion to what the mesh needs. One pass over the polygons sums the area
+// vectors at each point and tests each point's edges (CornerSums): where every edge at a point
+// is traversed once in each direction, the surface closes consistently around it, and there is
+// nothing to weld or to reorder. Only the other points (boundaries, seams, inconsistent or
+// non-manifold edges: usually a small part of a mesh) go through the exact edge analysis.
+#include "NormalOrientation.h"
+#include "Vec3.h"
+
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <numeric>
 #include <vector>
 
 namespace shadelab
@@ -42,15 +54,82 @@ struct PolygonList
   const PointId* ids(std::size_t k) const { return connectivity + offsets[k]; }
 };
 
-/// Each polygon's vector area (the Newell normal: half the sum of a fan's cross products,
-/// exact for any planar polygon), turned round where flipped[k] is set (flipped may be
-/// empty). pointAt(id) gives a point as a glm::dvec3. Polygons with fewer than 3 corners have
-/// none (0, 0, 0).
+/// A polygon's vector area: the Newell normal, half the sum of a fan's cross products, exact
+/// for any planar polygon. pointAt(id) gives a point as a glm::dvec3. Polygons with fewer than
+/// 3 corners have none, (0, 0, 0).
+template <typename PointAt>
+glm::dvec3 polygonAreaVector(const PointId* ids, std::size_t size, PointAt pointAt)
+{
+  if (size < 3)
+  {
+    return glm::dvec3(0.0);
+  }
+  const glm::dvec3 first = pointAt(ids[0]);
+  glm::dvec3 twiceArea(0.0);
+  glm::dvec3 previous = pointAt(ids[1]) - first;
+  for (std::size_t i = 2; i < size; ++i)
+  {
+    const glm::dvec3 next = pointAt(ids[i]) - first;
+    twiceArea += glm::cross(previous, next);
+    previous = next;
+  }
+  return 0.5 * twiceArea;
+}
+
+/// Each polygon's vector area, turned round where flipped[k] is set (flipped may be empty).
 template <typename PointAt>
 std::vector<glm::dvec3> polygonAreaVectors(const PolygonList& polygons, const std::vector<bool>& flipped, PointAt pointAt)
 {
-  std::vector<glm::dvec3> areas(polygons.count, glm::dvec3(0.0));
+  std::vector<glm::dvec3> areas(polygons.count);
   for (std::size_t k = 0; k < polygons.count; ++k)
+  {
+    const glm::dvec3 area = polygonAreaVector(polygons.ids(k), polygons.size(k), pointAt);
+    areas[k] = !flipped.empty() && flipped[k] ? -area : area;
+  }
+  return areas;
+}
+
+/// A pseudo-random 64-bit signature of a point id (the SplitMix64 finaliser: S. Vigna,
+/// https://prng.di.unimi.it/splitmix64.c), for the edge balance.
+inline std::uint64_t idSignature(PointId id)
+{
+  std::uint64_t z = static_cast<std::uint64_t>(id) + 0x9e3779b97f4a7c15ull;
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+  return z ^ (z >> 31);
+}
+
+/// What a pass over the polygons gathers at each point, and about the mesh.
+struct CornerSums
+{
+  /// Zero sums for pointCount points; the winding's orientation is taken about centre.
+  CornerSums(std::size_t pointCount, const glm::dvec3& centre);
+
+  /// The sum of the vector areas of the polygons around the point.
+  std::vector<glm::dvec3> areas;
+  /// The sum, modulo 2^64, of idSignature(next) - idSignature(previous) over the point's
+  /// corners. Each edge p -> q adds signature(q) at p's corner and each edge q -> p subtracts
+  /// it, so the sum is 0 where every edge at p is traversed once in each direction (a surface
+  /// closing around p, consistently wound) and, but for a chance of about 2^-64, not 0 where
+  /// an edge is used once (a boundary or seam), or twice in one direction (inconsistent
+  /// winding).
+  std::vector<std::uint64_t> edgeBalance;
+  /// Whether the polygons' own winding points out of the mesh: each polygon counts with its
+  /// vector area at the mean of its corners (exact for planar polygons, whose vector area is
+  /// normal to their plane).
+  NormalOrientationAccumulator winding;
+
+  /// Adds the sums of `later` (another pass, over later polygons) at points first..last-1.
+  void addPoints(const CornerSums& later, std::size_t first, std::size_t last);
+};
+
+/// Adds polygons first..last-1 (turned round where flipped[k] is set; flipped may be empty)
+/// to sums. pointAt(id) gives a point as a glm::dvec3.
+template <typename PointAt>
+void sumAtCorners(const PolygonList& polygons, std::size_t first, std::size_t last, const std::vector<bool>& flipped,
+  PointAt pointAt, CornerSums& sums)
+{
+  for (std::size_t k = first; k < last; ++k)
   {
     const std::size_t size = polygons.size(k);
     const PointId* ids = polygons.ids(k);
@@ -58,19 +137,54 @@ std::vector<glm::dvec3> polygonAreaVectors(const PolygonList& polygons, const st
     {
       continue;
     }
-    const glm::dvec3 first = pointAt(ids[0]);
-    glm::dvec3 twiceArea(0.0);
-    glm::dvec3 previous = pointAt(ids[1]) - first;
-    for (std::size_t i = 2; i < size; ++i)
+    const glm::dvec3 computed = polygonAreaVector(ids, size, pointAt);
+    const glm::dvec3 area = !flipped.empty() && flipped[k] ? -computed : computed;
+    // Walks the corners with the previous and next ids at hand (no modulo: this is the
+    // loop that a large mesh spends its normals' time in).
+    std::uint64_t previous = idSignature(ids[size - 1]), current = idSignature(ids[0]);
+    glm::dvec3 cornerSum(0.0);
+    for (std::size_t i = 0; i < size; ++i)
     {
-      const glm::dvec3 next = pointAt(ids[i]) - first;
-      twiceArea += glm::cross(previous, next);
-      previous = next;
+      const std::uint64_t next = idSignature(ids[i + 1 < size ? i + 1 : 0]);
+      const std::size_t point = static_cast<std::size_t>(ids[i]);
+      sums.areas[point] += area;
+      sums.edgeBalance[point] += next - previous;
+      previous = current;
+      current = next;
+      cornerSum += pointAt(ids[i]);
     }
-    areas[k] = (!flipped.empty() && flipped[k] ? -0.5 : 0.5) * twiceArea;
+    sums.winding.add(area, vectorLength(area), cornerSum / static_cast<double>(size));
   }
-  return areas;
 }
+
+/// The points whose edgeBalance is not 0, in ascending order: the only ones that can be on a
+/// seam, a boundary or an inconsistently wound edge.
+std::vector<PointId> unbalancedPoints(const std::vector<std::uint64_t>& edgeBalance);
+
+/// The polygons that have an edge between two of the given points (ascending ids, out of
+/// pointCount), as a list of their own.
+class PolygonSubset
+{
+public:
+  PolygonSubset(const PolygonList& polygons, const std::vector<PointId>& points, std::size_t pointCount);
+
+  const PolygonList& list() const { return list_; }
+  /// The index, in the whole list, of the subset's polygon k.
+  std::size_t original(std::size_t k) const { return original_[k]; }
+
+private:
+  std::vector<PointId> offsets_{ 0 };
+  std::vector<PointId> connectivity_;
+  std::vector<std::size_t> original_;
+  PolygonList list_;
+};
+
+/// For the given points (ascending), the map of those that share exact coordinates with a
+/// lower one to the lowest such id (mergeMap[i] = i for every other point), or an empty map
+/// when no two of them share a position. pointAt(id) gives a point as a glm::dvec3; points
+/// with a non-finite coordinate share with none.
+template <typename PointAt>
+std::vector<PointId> coincidentPointMap(const std::vector<PointId>& points, std::size_t pointCount, PointAt pointAt);
 
 /// Every edge of the polygons between welded ids (mergeMap[i] is the id of the point that
 /// stands for point i's position; empty: no welding), grouped by edge, so that polygons that
@@ -78,7 +192,7 @@ std::vector<glm::dvec3> polygonAreaVectors(const PolygonList& polygons, const st
 class PolygonEdges
 {
 public:
-  PolygonEdges(const PolygonList& polygons, const std::vector<PointId>& mergeMap, std::size_t pointCount);
+  PolygonEdges(const PolygonList& polygons, const std::vector<PointId>& mergeMap);
 
   /// The number of edges that two polygons traverse in the same direction. Neighbours on a
   /// consistently wound surface traverse their shared edge in opposite directions, so 0
@@ -91,23 +205,31 @@ public:
     std::size_t polygon;
     PointId lowEnd, highEnd; // the points at the welded edge's lower and higher welded id
   };
+
   /// Calls visit(a, b) for every two uses of one edge by different polygons.
   template <typename Visit>
   void forEachPairOfUses(Visit&& visit) const;
 
 private:
-  /// One polygon's traversal of an edge, in 16 bytes: a large mesh has six per triangle.
+  /// One polygon's traversal of an edge.
   struct Entry
   {
+    PointId low;           // the lower welded end
     PointId key;           // 2 x the higher welded end, + 1 if traversed from the lower end
     std::uint32_t polygon; // the polygon, and the corner its edge starts at
     std::uint32_t corner;
+
+    bool sameEdge(const Entry& other) const { return low == other.low && key / 2 == other.key / 2; }
+    bool sameTraversal(const Entry& other) const { return low == other.low && key == other.key; }
     bool operator<(const Entry& other) const
     {
-      return key != other.key ? key < other.key
-                              : (polygon != other.polygon ? polygon < other.polygon : corner < other.corner);
+      return low != other.low ? low < other.low
+        : key != other.key    ? key < other.key
+        : polygon != other.polygon ? polygon < other.polygon
+                                   : corner < other.corner;
     }
   };
+
   Use useOf(const Entry& entry) const
   {
     const PointId* ids = polygons_.ids(entry.polygon);
@@ -117,36 +239,78 @@ private:
   }
 
   PolygonList polygons_;
-  std::vector<std::size_t> start_; // the entries of lower welded end v are entries_[start_[v]..start_[v+1])
-  std::vector<Entry> entries_;     // sorted within each lower end
+  std::vector<Entry> entries_; // sorted, so that the entries of one edge are adjacent
 };
 
 template <typename Visit>
 void PolygonEdges::forEachPairOfUses(Visit&& visit) const
 {
-  for (std::size_t v = 0; v + 1 < start_.size(); ++v)
+  for (std::size_t a = 0; a < entries_.size(); ++a)
   {
-    for (std::size_t a = start_[v]; a < start_[v + 1]; ++a)
+    for (std::size_t b = a + 1; b < entries_.size() && entries_[b].sameEdge(entries_[a]); ++b)
     {
-      // Entries of one edge are adjacent: their keys differ in the direction bit at most.
-      for (std::size_t b = a + 1; b < start_[v + 1] && entries_[b].key / 2 == entries_[a].key / 2; ++b)
+      if (entries_[a].polygon != entries_[b].polygon)
       {
-        if (entries_[a].polygon != entries_[b].polygon)
-        {
-          visit(useOf(entries_[a]), useOf(entries_[b]));
-        }
+        visit(useOf(entries_[a]), useOf(entries_[b]));
       }
     }
   }
 }
 
-/// Unit normals, one per point, from the polygons' area vectors: each point's is the sum over
-/// the polygons around it. With welding (edges built with a merge map), copies of one point
-/// share their sum where two of their polygons meet at an edge at less than
-/// featureAngleDegrees (polygons joined in a chain count): a seam through a smooth surface
-/// disappears, and an edge the file split on purpose stays sharp. A point without area
-/// (isolated, or only degenerate polygons) gets (0, 0, 0), which shading flags.
-std::vector<glm::dvec3> unitPointNormals(std::size_t pointCount, const PolygonList& polygons,
-  const std::vector<glm::dvec3>& areaVectors, const PolygonEdges* weldedEdges, const std::vector<PointId>& mergeMap,
+/// Welding: each copy of a point (mergeMap[i] != i, or a point others map to) gets the sum
+/// of the area sums of the copies it is joined to, in place. Two copies are joined where two
+/// polygons around them meet at an edge (of `edges`, built with mergeMap; edgePolygonAreas
+/// are those polygons' area vectors) at less than featureAngleDegrees, and joins chain: a seam
+/// through a smooth surface disappears, and an edge the file split on purpose stays sharp.
+void weldCopies(std::vector<glm::dvec3>& areaSums, const PolygonEdges& edges,
+  const std::vector<glm::dvec3>& edgePolygonAreas, const std::vector<PointId>& mergeMap,
   double featureAngleDegrees, WeldSummary* summary = nullptr);
+
+/// A point's unit normal from its area sum; (0, 0, 0) for a point without area (isolated, or
+/// only degenerate polygons), which shading flags.
+glm::dvec3 unitNormal(const glm::dvec3& areaSum);
+
+template <typename PointAt>
+std::vector<PointId> coincidentPointMap(const std::vector<PointId>& points, std::size_t pointCount, PointAt pointAt)
+{
+  struct Located
+  {
+    glm::dvec3 position;
+    PointId id;
+  };
+  std::vector<Located> located;
+  located.reserve(points.size());
+  for (PointId id : points)
+  {
+    const glm::dvec3 p = pointAt(id);
+    if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z))
+    {
+      located.push_back({ p, id });
+    }
+  }
+  // -0 and +0 compare equal, so they are one position, as they are one point.
+  auto before = [](const Located& a, const Located& b)
+  {
+    if (a.position.x != b.position.x) return a.position.x < b.position.x;
+    if (a.position.y != b.position.y) return a.position.y < b.position.y;
+    if (a.position.z != b.position.z) return a.position.z < b.position.z;
+    return a.id < b.id;
+  };
+  std::sort(located.begin(), located.end(), before);
+  std::vector<PointId> map;
+  for (std::size_t k = 1; k < located.size(); ++k)
+  {
+    if (located[k].position == located[k - 1].position)
+    {
+      if (map.empty())
+      {
+        map.resize(pointCount);
+        std::iota(map.begin(), map.end(), PointId(0));
+      }
+      // Sorted by id within a position: the first of a run stands for all of it.
+      map[static_cast<std::size_t>(located[k].id)] = map[static_cast<std::size_t>(located[k - 1].id)];
+    }
+  }
+  return map;
+}
 }

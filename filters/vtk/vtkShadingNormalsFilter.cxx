@@ -22,6 +22,8 @@
 #include "vtkStaticPointLocator.h"
 #include "vtkStringArray.h"
 
+#include <optional>
+#include <numeric>
 #include <sstream>
 #include <type_traits>
 
@@ -103,46 +105,54 @@ private:
   std::vector<shadelab::PointId> connectivity_;
 };
 
-glm::dvec3 pointOf(vtkPoints* points, shadelab::PointId id)
+/// For the candidate points (ascending), the id of the point that stands for each one's
+/// position (an empty map: no two share one): with a tolerance of 0, exactly coincident
+/// points (shadelab::coincidentPointMap); otherwise each candidate not yet placed stands for
+/// those within the tolerance of it, in id order (vtkStaticPointLocator over the candidates;
+/// VTK 9.1's MergePoints with a tolerance is not used: run after run on spot.obj it left 1 to
+/// 10 positions split among several ids, differently each time).
+template <typename PointAt>
+std::vector<shadelab::PointId> positionMergeMap(
+  vtkPolyData* mesh, const std::vector<shadelab::PointId>& candidates, double relativeTolerance, PointAt pointAt)
 {
-  double p[3];
-  points->GetPoint(id, p);
-  return { p[0], p[1], p[2] };
-}
-
-/// For each point, the id of the point that stands for its position: with a tolerance of 0,
-/// exactly coincident points share one (vtkStaticPointLocator::MergePoints, threaded);
-/// otherwise each point not yet placed stands for those within the tolerance of it, in id
-/// order. (VTK 9.1's MergePoints with a tolerance is not used: run after run on spot.obj it
-/// left 1 to 10 positions split among several ids, differently each time.)
-std::vector<shadelab::PointId> positionMergeMap(vtkPolyData* mesh, double relativeTolerance)
-{
-  vtkNew<vtkStaticPointLocator> locator;
-  locator->SetDataSet(mesh);
-  locator->BuildLocator();
-  std::vector<shadelab::PointId> map(static_cast<std::size_t>(mesh->GetNumberOfPoints()), -1);
+  const std::size_t pointCount = static_cast<std::size_t>(mesh->GetNumberOfPoints());
   if (relativeTolerance == 0.0)
   {
-    locator->MergePoints(0.0, map.data());
-    return map;
+    return shadelab::coincidentPointMap(candidates, pointCount, pointAt);
   }
+  vtkNew<vtkPoints> positions;
+  positions->SetDataTypeToDouble();
+  for (shadelab::PointId id : candidates)
+  {
+    const glm::dvec3 p = pointAt(id);
+    positions->InsertNextPoint(p.x, p.y, p.z);
+  }
+  vtkNew<vtkPolyData> cloud;
+  cloud->SetPoints(positions);
+  vtkNew<vtkStaticPointLocator> locator;
+  locator->SetDataSet(cloud);
+  locator->BuildLocator();
+  std::vector<shadelab::PointId> map(pointCount);
+  std::iota(map.begin(), map.end(), shadelab::PointId(0));
+  std::vector<bool> placed(candidates.size(), false);
   const double radius = relativeTolerance * mesh->GetLength();
   vtkNew<vtkIdList> near;
-  for (vtkIdType i = 0; i < mesh->GetNumberOfPoints(); ++i)
+  for (std::size_t k = 0; k < candidates.size(); ++k)
   {
-    if (map[static_cast<std::size_t>(i)] >= 0)
+    if (placed[k])
     {
       continue;
     }
-    double p[3];
-    mesh->GetPoint(i, p);
-    locator->FindPointsWithinRadius(radius, p, near);
-    for (vtkIdType k = 0; k < near->GetNumberOfIds(); ++k)
+    locator->FindPointsWithinRadius(radius, positions->GetPoint(static_cast<vtkIdType>(k)), near);
+    for (vtkIdType n = 0; n < near->GetNumberOfIds(); ++n)
     {
-      shadelab::PointId& position = map[static_cast<std::size_t>(near->GetId(k))];
-      position = position >= 0 ? position : i;
+      const std::size_t j = static_cast<std::size_t>(near->GetId(n));
+      if (!placed[j])
+      {
+        map[static_cast<std::size_t>(candidates[j])] = candidates[k];
+        placed[j] = true;
+      }
     }
-    map[static_cast<std::size_t>(i)] = i;
   }
   return map;
 }
@@ -181,13 +191,15 @@ std::vector<bool> polygonsToTurn(vtkPolyData* mesh, const MeshPolygons& polygons
   return flipped;
 }
 
-/// Feeds every triangle of the mesh's polygons (split into fans) and strips to the
-/// orientation test. A worker for vtkArrayDispatch, so that points and normals are read from
-/// raw memory. Winding does not matter here: the test uses the stored normals, not the
-/// triangles' own orientation.
+/// Feeds every triangle of the mesh's polygons (split into fans) to the orientation test, in
+/// fixed blocks of polygons summed in order, so that the result is the same on any number of
+/// threads. A worker for vtkArrayDispatch, so that points and normals are read from raw
+/// memory. Winding does not matter here: the test uses the stored normals, not the triangles'
+/// own orientation.
 struct OrientationWorker
 {
   vtkPolyData* mesh;
+  const shadelab::PolygonList& polygons;
   shadelab::NormalOrientation result;
 
   template <typename PointArray, typename NormalArray>
@@ -198,25 +210,37 @@ struct OrientationWorker
     auto vec = [](const auto& tuple) { return glm::dvec3(tuple[0], tuple[1], tuple[2]); };
     double centre[3];
     mesh->GetCenter(centre); // of the bounding box
-    shadelab::NormalOrientationAccumulator accumulator({ centre[0], centre[1], centre[2] });
-    const MeshPolygons polygons(mesh);
-    const shadelab::PolygonList& list = polygons.list();
-    for (std::size_t k = 0; k < list.count; ++k)
-    {
-      const shadelab::PointId* ids = list.ids(k);
-      for (std::size_t i = 2; i < list.size(k); ++i)
+    const shadelab::NormalOrientationAccumulator empty({ centre[0], centre[1], centre[2] });
+    constexpr std::size_t blockSize = 1 << 16;
+    std::vector<shadelab::NormalOrientationAccumulator> blocks((polygons.count + blockSize - 1) / blockSize, empty);
+    vtkSMPTools::For(0, static_cast<vtkIdType>(blocks.size()),
+      [&](vtkIdType firstBlock, vtkIdType endBlock)
       {
-        accumulator.addTriangle(vec(points[ids[0]]), vec(points[ids[i - 1]]), vec(points[ids[i]]),
-          vec(normals[ids[0]]), vec(normals[ids[i - 1]]), vec(normals[ids[i]]));
-      }
+        for (std::size_t b = static_cast<std::size_t>(firstBlock); b < static_cast<std::size_t>(endBlock); ++b)
+        {
+          for (std::size_t k = b * blockSize; k < std::min(polygons.count, (b + 1) * blockSize); ++k)
+          {
+            const shadelab::PointId* ids = polygons.ids(k);
+            for (std::size_t i = 2; i < polygons.size(k); ++i)
+            {
+              blocks[b].addTriangle(vec(points[ids[0]]), vec(points[ids[i - 1]]), vec(points[ids[i]]),
+                vec(normals[ids[0]]), vec(normals[ids[i - 1]]), vec(normals[ids[i]]));
+            }
+          }
+        }
+      });
+    shadelab::NormalOrientationAccumulator total = empty;
+    for (const auto& block : blocks)
+    {
+      total.add(block);
     }
-    result = accumulator.result();
+    result = total.result();
   }
 };
 
-shadelab::NormalOrientation assessOrientation(vtkPolyData* mesh, vtkDataArray* normals)
+shadelab::NormalOrientation assessOrientation(vtkPolyData* mesh, const shadelab::PolygonList& polygons, vtkDataArray* normals)
 {
-  OrientationWorker worker{ mesh, {} };
+  OrientationWorker worker{ mesh, polygons, {} };
   vtkDataArray* points = mesh->GetPoints()->GetData();
   using Reals = vtkArrayDispatch::Reals;
   if (!vtkArrayDispatch::Dispatch2ByValueType<Reals, Reals>::Execute(points, normals, worker))
@@ -226,16 +250,142 @@ shadelab::NormalOrientation assessOrientation(vtkPolyData* mesh, vtkDataArray* n
   return worker.result;
 }
 
-vtkSmartPointer<vtkDataArray> flippedCopy(vtkDataArray* normals)
+/// Computed point normals: what was found and done, for the report.
+struct ComputedNormals
 {
-  vtkSmartPointer<vtkDataArray> copy = vtk::TakeSmartPointer(normals->NewInstance());
-  copy->DeepCopy(normals);
-  for (auto tuple : vtk::DataArrayTupleRange<3>(copy))
+  vtkSmartPointer<vtkFloatArray> normals;
+  std::size_t inconsistentEdges = 0;
+  shadelab::WeldSummary weld;
+  shadelab::NormalOrientation orientation; // of the polygons' winding, which the normals follow
+};
+
+/// The polygons' sums at their corners (shadelab::sumAtCorners), made in two fixed halves of
+/// the polygons, on two threads where there are two, and added: the same bits on any number
+/// of threads.
+template <typename PointAt>
+shadelab::CornerSums sumInHalves(const shadelab::PolygonList& list, const std::vector<bool>& flipped,
+  std::size_t pointCount, const glm::dvec3& centre, PointAt pointAt)
+{
+  shadelab::CornerSums sums(pointCount, centre), later(pointCount, centre);
+  const std::size_t middle = list.count / 2;
+  vtkSMPTools::For(0, 2, 1,
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      for (vtkIdType half = begin; half < end; ++half)
+      {
+        if (half == 0)
+        {
+          shadelab::sumAtCorners(list, 0, middle, flipped, pointAt, sums);
+        }
+        else
+        {
+          shadelab::sumAtCorners(list, middle, list.count, flipped, pointAt, later);
+        }
+      }
+    });
+  vtkSMPTools::For(0, static_cast<vtkIdType>(pointCount),
+    [&](vtkIdType begin, vtkIdType end)
+    { sums.addPoints(later, static_cast<std::size_t>(begin), static_cast<std::size_t>(end)); });
+  sums.winding.add(later.winding);
+  return sums;
+}
+
+/// Computes area-weighted point normals (PointNormals.h). A worker for vtkArrayDispatch over
+/// the point array, so that points are read from raw memory.
+struct NormalsWorker
+{
+  vtkPolyData* mesh;
+  const MeshPolygons& polygons;
+  bool weld;
+  double weldTolerance;
+  double featureAngle;
+  ComputedNormals computed;
+
+  template <typename PointArray>
+  void operator()(PointArray* pointArray)
+  {
+    const auto points = vtk::DataArrayTupleRange<3>(pointArray);
+    auto pointAt = [&points](shadelab::PointId id)
+    {
+      const auto p = points[id];
+      return glm::dvec3(p[0], p[1], p[2]);
+    };
+    const shadelab::PolygonList& list = polygons.list();
+    const std::size_t pointCount = static_cast<std::size_t>(mesh->GetNumberOfPoints());
+    double centre[3];
+    mesh->GetCenter(centre); // of the bounding box
+    shadelab::CornerSums sums = sumInHalves(list, {}, pointCount, { centre[0], centre[1], centre[2] }, pointAt);
+    // Only points whose edges do not pair up can be copies on a seam or on an inconsistent
+    // edge: the rest of the mesh needs nothing more.
+    const std::vector<shadelab::PointId> candidates = shadelab::unbalancedPoints(sums.edgeBalance);
+    std::vector<std::uint64_t>().swap(sums.edgeBalance);
+    const std::vector<shadelab::PointId> mergeMap =
+      weld ? positionMergeMap(mesh, candidates, weldTolerance, pointAt) : std::vector<shadelab::PointId>{};
+    const shadelab::PolygonSubset aroundCandidates(list, candidates, pointCount);
+    const shadelab::PolygonEdges edges(aroundCandidates.list(), mergeMap);
+    computed.inconsistentEdges = edges.inconsistentCount();
+    std::vector<bool> flipped;
+    if (computed.inconsistentEdges > 0)
+    {
+      // The rare, slow case: reorder the windings over the whole mesh, and sum again.
+      flipped = polygonsToTurn(mesh, polygons, mergeMap);
+      sums = sumInHalves(list, flipped, pointCount, { centre[0], centre[1], centre[2] }, pointAt);
+    }
+    if (!mergeMap.empty())
+    {
+      std::vector<bool> flippedAround;
+      for (std::size_t k = 0; !flipped.empty() && k < aroundCandidates.list().count; ++k)
+      {
+        flippedAround.push_back(flipped[aroundCandidates.original(k)]);
+      }
+      shadelab::weldCopies(sums.areas, edges, shadelab::polygonAreaVectors(aroundCandidates.list(), flippedAround, pointAt),
+        mergeMap, featureAngle, &computed.weld);
+    }
+    computed.orientation = sums.winding.result();
+    computed.normals = vtkSmartPointer<vtkFloatArray>::New();
+    computed.normals->SetNumberOfComponents(3);
+    computed.normals->SetNumberOfTuples(static_cast<vtkIdType>(pointCount));
+    float* out = computed.normals->GetPointer(0);
+    vtkSMPTools::For(0, static_cast<vtkIdType>(pointCount),
+      [&](vtkIdType begin, vtkIdType end)
+      {
+        for (std::size_t i = static_cast<std::size_t>(begin); i < static_cast<std::size_t>(end); ++i)
+        {
+          const glm::dvec3 n = shadelab::unitNormal(sums.areas[i]);
+          out[3 * i] = static_cast<float>(n.x);
+          out[3 * i + 1] = static_cast<float>(n.y);
+          out[3 * i + 2] = static_cast<float>(n.z);
+        }
+      });
+  }
+};
+
+ComputedNormals computeNormals(vtkPolyData* mesh, const MeshPolygons& polygons, bool weld, double weldTolerance, double featureAngle)
+{
+  NormalsWorker worker{ mesh, polygons, weld, weldTolerance, featureAngle, {} };
+  vtkDataArray* points = mesh->GetPoints()->GetData();
+  if (!vtkArrayDispatch::DispatchByValueType<vtkArrayDispatch::Reals>::Execute(points, worker))
+  {
+    worker(points); // other value types, through the generic vtkDataArray API
+  }
+  return worker.computed;
+}
+
+void flipInPlace(vtkDataArray* normals)
+{
+  for (auto tuple : vtk::DataArrayTupleRange<3>(normals))
   {
     tuple[0] = -tuple[0];
     tuple[1] = -tuple[1];
     tuple[2] = -tuple[2];
   }
+}
+
+vtkSmartPointer<vtkDataArray> flippedCopy(vtkDataArray* normals)
+{
+  vtkSmartPointer<vtkDataArray> copy = vtk::TakeSmartPointer(normals->NewInstance());
+  copy->DeepCopy(normals);
+  flipInPlace(copy);
   return copy;
 }
 
@@ -262,6 +412,7 @@ int vtkShadingNormalsFilter::RequestData(
     return 0;
   }
   std::ostringstream report;
+  std::optional<shadelab::NormalOrientation> orientation; // of computed normals, found with them
   vtkDataArray* inputNormals = input->GetPointData()->GetNormals();
   vtkSmartPointer<vtkDataArray> normals;
   if (this->KeepInputNormals && usableNormals(inputNormals, input->GetNumberOfPoints()))
@@ -289,37 +440,14 @@ int vtkShadingNormalsFilter::RequestData(
   else
   {
     output->ShallowCopy(input);
-    const std::size_t pointCount = static_cast<std::size_t>(input->GetNumberOfPoints());
-    const MeshPolygons polygons(input);
-    const std::vector<shadelab::PointId> mergeMap = this->WeldCoincidentPoints
-      ? positionMergeMap(input, this->WeldTolerance)
-      : std::vector<shadelab::PointId>{};
-    const shadelab::PolygonEdges edges(polygons.list(), mergeMap, pointCount);
-    const std::size_t inconsistent = edges.inconsistentCount();
-    const std::vector<bool> flipped =
-      inconsistent > 0 ? polygonsToTurn(input, polygons, mergeMap) : std::vector<bool>{};
-    vtkPoints* points = input->GetPoints();
-    const std::vector<glm::dvec3> areas = shadelab::polygonAreaVectors(
-      polygons.list(), flipped, [points](shadelab::PointId id) { return pointOf(points, id); });
-    shadelab::WeldSummary weld;
-    const std::vector<glm::dvec3> unit = shadelab::unitPointNormals(pointCount, polygons.list(), areas,
-      this->WeldCoincidentPoints ? &edges : nullptr, mergeMap, this->FeatureAngle, &weld);
-    auto computed = vtkSmartPointer<vtkFloatArray>::New();
-    computed->SetName(this->NormalsName.c_str());
-    computed->SetNumberOfComponents(3);
-    computed->SetNumberOfTuples(static_cast<vtkIdType>(pointCount));
-    vtkSMPTools::For(0, static_cast<vtkIdType>(pointCount),
-      [&](vtkIdType begin, vtkIdType end)
-      {
-        for (vtkIdType i = begin; i < end; ++i)
-        {
-          const glm::dvec3& n = unit[static_cast<std::size_t>(i)];
-          const float tuple[3] = { static_cast<float>(n.x), static_cast<float>(n.y), static_cast<float>(n.z) };
-          computed->SetTypedTuple(i, tuple);
-        }
-      });
-    normals = computed;
-    output->GetPointData()->SetNormals(computed);
+    const ComputedNormals computed = computeNormals(
+      input, MeshPolygons(input), this->WeldCoincidentPoints, this->WeldTolerance, this->FeatureAngle);
+    computed.normals->SetName(this->NormalsName.c_str());
+    const std::size_t inconsistent = computed.inconsistentEdges;
+    const shadelab::WeldSummary& weld = computed.weld;
+    orientation = computed.orientation;
+    normals = computed.normals;
+    output->GetPointData()->SetNormals(computed.normals);
     report << (inputNormals ? "Replaced the mesh's point normals" : "The mesh has no point normals")
            << ": computed area-weighted ones and added them as '" << this->NormalsName << "'";
     if (inconsistent > 0)
@@ -340,13 +468,23 @@ int vtkShadingNormalsFilter::RequestData(
     report << ".";
   }
 
-  const shadelab::NormalOrientation orientation = assessOrientation(output, normals);
-  if (orientation.pointsInward())
+  if (!orientation)
   {
-    report << " They point into the mesh (closure " << orientation.closure << ", flux " << orientation.flux << ")";
+    orientation = assessOrientation(output, MeshPolygons(output).list(), normals);
+  }
+  if (orientation->pointsInward())
+  {
+    report << " They point into the mesh (closure " << orientation->closure << ", flux " << orientation->flux << ")";
     if (this->OrientOutward)
     {
-      output->GetPointData()->SetNormals(flippedCopy(normals));
+      if (normals == inputNormals)
+      {
+        output->GetPointData()->SetNormals(flippedCopy(normals)); // the input's own pass through
+      }
+      else
+      {
+        flipInPlace(normals);
+      }
       report << "; flipped them outward.";
     }
     else

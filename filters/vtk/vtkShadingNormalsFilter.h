@@ -4,15 +4,16 @@
  * polygons, oriented out of the mesh.
  *
  * Without point normals in the input (or with KeepInputNormals off), computes area-weighted
- * point normals (shadelab::polygonAreaVectors, shadelab::unitPointNormals) without changing
- * point ids or count. Points that share a position (the same coordinates, or within
- * WeldTolerance) share their normal unless their polygons meet at an edge sharper than
- * FeatureAngle, so a mesh split at texture seams shades smooth and one split at its sharp
- * edges keeps them.
- * Polygons wound inconsistently (a directed edge traversed twice) are reordered with
- * vtkPolyDataNormals' consistency pass first. SplitSharpEdgesOn instead duplicates points at
- * edges sharper than SplitAngle (vtkPolyDataNormals' splitting): the point count changes,
- * and point data is copied to the new points.
+ * point normals (PointNormals.h) without changing point ids or count, in one pass over the
+ * polygons that also finds the points whose edges do not pair up (boundaries, seams,
+ * inconsistent windings). Only those go further: points among them that share a position
+ * (the same coordinates, or within WeldTolerance) share their normal unless their polygons
+ * meet at an edge sharper than FeatureAngle, so a mesh split at texture seams shades smooth
+ * and one split at its sharp edges keeps them; and only if polygons there are wound
+ * inconsistently (a directed edge traversed twice) does vtkPolyDataNormals' consistency pass
+ * reorder the polygons first. SplitSharpEdgesOn instead duplicates points at edges sharper
+ * than SplitAngle (vtkPolyDataNormals' splitting): the point count changes, and point data is
+ * copied to the new points.
  *
  * Normals that point into a closed or nearly closed mesh (shadelab::NormalOrientation) are
  * flipped unless OrientOutward is off; the input's own normals are then replaced by a flipped
