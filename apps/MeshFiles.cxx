@@ -192,14 +192,10 @@ void handOver(vtkPolyData* mesh, const std::string& path)
         array->GetInformation()->Clear();
       }
     });
-  vtkNew<vtkXMLPolyDataWriter> writer;
-  writer->SetInputData(mesh);
-  writer->SetFileName(path.c_str());
-  writer->SetDataModeToAppended();
-  writer->EncodeAppendedDataOff();
-  writer->SetCompressorTypeToNone();
-  writer->SetHeaderTypeToUInt64(); // arrays of more than 4 GB
-  if (!writer->Write())
+  vtkSmartPointer<vtkAlgorithm> writer = vtkWriterFor(mesh, path, ".vtp", Compression::None);
+  vtkXMLPolyDataWriter::SafeDownCast(writer)->SetHeaderTypeToUInt64(); // arrays of more than 4 GB
+  writer->Update(); // writes
+  if (writer->GetErrorCode() != vtkErrorCode::NoError)
   {
     throw std::runtime_error("the mesh could not be handed over (out of memory?)");
   }
@@ -478,6 +474,32 @@ std::string nameXmlCannotHold(vtkPolyData* mesh)
 }
 }
 
+vtkSmartPointer<vtkAlgorithm> vtkWriterFor(vtkPolyData* mesh, const std::string& path, const std::string& extension, Compression compression)
+{
+  if (extension == ".vtp")
+  {
+    auto writer = vtkSmartPointer<vtkXMLPolyDataWriter>::New();
+    writer->SetInputData(mesh);
+    writer->SetFileName(path.c_str());
+    writer->SetDataModeToAppended();
+    writer->EncodeAppendedDataOff(); // raw binary, not base64
+    writer->SetCompressorType(compression == Compression::LZ4 ? vtkXMLWriterBase::LZ4
+        : compression == Compression::ZLib                   ? vtkXMLWriterBase::ZLIB
+                                                             : vtkXMLWriterBase::NONE);
+    return writer;
+  }
+  auto writer = vtkSmartPointer<vtkPolyDataWriter>::New();
+  writer->SetInputData(mesh);
+  writer->SetFileName(path.c_str());
+  writer->SetFileTypeToBinary();
+  return writer;
+}
+
+vtkSmartPointer<vtkAlgorithm> vtkReaderFor(const std::string& fileName)
+{
+  return readerFor(fileName, lowerExtension(fileName));
+}
+
 void writeMesh(vtkPolyData* mesh, const std::string& fileName, Compression compression)
 {
   checkOutputFile(fileName, meshExtensions);
@@ -491,33 +513,13 @@ void writeMesh(vtkPolyData* mesh, const std::string& fileName, Compression compr
   writeThroughTemporary(fileName,
     [&](const std::string& temporary) -> std::string
     {
+      vtkSmartPointer<vtkAlgorithm> writer = vtkWriterFor(mesh, temporary, lowerExtension(fileName), compression);
       vtkNew<VtkErrorCapture> errors;
+      errors->watch(writer);
       vtkNew<ProgressLine> progress;
-      int written = 0;
-      if (lowerExtension(fileName) == ".vtp")
-      {
-        vtkNew<vtkXMLPolyDataWriter> writer;
-        errors->watch(writer);
-        progress->watch(writer, "writing");
-        writer->SetInputData(mesh);
-        writer->SetFileName(temporary.c_str());
-        writer->SetDataModeToAppended();
-        writer->EncodeAppendedDataOff(); // raw binary, not base64
-        writer->SetCompressorType(compression == Compression::LZ4 ? vtkXMLWriterBase::LZ4
-            : compression == Compression::ZLib                   ? vtkXMLWriterBase::ZLIB
-                                                                 : vtkXMLWriterBase::NONE);
-        written = writer->Write();
-      }
-      else
-      {
-        vtkNew<vtkPolyDataWriter> writer;
-        errors->watch(writer);
-        progress->watch(writer, "writing");
-        writer->SetInputData(mesh);
-        writer->SetFileName(temporary.c_str());
-        writer->SetFileTypeToBinary();
-        written = writer->Write();
-      }
+      progress->watch(writer, "writing");
+      writer->Update(); // writes
+      const bool written = writer->GetErrorCode() == vtkErrorCode::NoError;
       if (errors->failed())
       {
         return errors->message();

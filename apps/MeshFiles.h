@@ -1,5 +1,6 @@
 #pragma once
 // Reading and writing meshes by file extension, with errors that name the file.
+#include "vtkAlgorithm.h"
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
 
@@ -45,6 +46,14 @@ enum class Compression
   ZLib,
   None,
 };
+
+/// VTK's reader for the file's extension, set to read it: without ShadeLab's checks and
+/// without a process of its own (the benchmark's floor). Throws UserError for an unknown one.
+vtkSmartPointer<vtkAlgorithm> vtkReaderFor(const std::string& fileName);
+
+/// VTK's writer of mesh to path, as writeMesh writes extension (".vtp" or ".vtk"): Update()
+/// writes, and GetErrorCode() tells whether it could.
+vtkSmartPointer<vtkAlgorithm> vtkWriterFor(vtkPolyData* mesh, const std::string& path, const std::string& extension, Compression compression);
 
 /// Writes .vtp (binary, appended raw) or legacy .vtk (binary), through a temporary file,
 /// showing progress on a terminal. Throws UserError.

@@ -2,9 +2,7 @@
 //   shadelab shade MESH --scene SCENE.json -o OUT.vtp   per-vertex lighting arrays
 //   shadelab arrays --scene SCENE.json                  the arrays a scene can produce
 //   shadelab render MESH -o OUT.png                     a picture of one array
-//   shadelab bench                                      speed against baselines
-#include "AccuracyStudies.h"
-#include "Benchmark.h"
+// (The developers' benchmark and studies are bench/shadelab-bench.)
 #include "MeshFiles.h"
 #include "ProgressLine.h"
 #include "RenderImage.h"
@@ -33,7 +31,6 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
-#include <regex>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -383,67 +380,6 @@ int runRender(RenderCommand& command)
   return 0;
 }
 
-/// "10k", "2.5M" or "300" as a vertex count.
-long long parseCount(const std::string& text)
-{
-  static const std::regex count("([0-9]+(\\.[0-9]*)?)([kKM]?)");
-  std::smatch parts;
-  double vertices = 0;
-  if (std::regex_match(text, parts, count))
-  {
-    const std::string unit = parts[3];
-    vertices = std::stod(parts[1]) * (unit.empty() ? 1 : unit == "M" ? 1e6 : 1e3);
-  }
-  if (!(vertices >= 100 && vertices <= 1e8))
-  {
-    throw UserError("--sizes: '" + text + "' is not a vertex count from 100 to 100M, such as 10k or 1M");
-  }
-  return std::llround(vertices);
-}
-
-struct BenchCommand
-{
-  std::string chartsFolder;
-  std::string sizes = "10k,100k,1M,10M";
-  std::string bunny = "data/meshes/bunny_zipper.ply";
-  bool noBunny = false;
-  int threads = 0;
-  app::BenchmarkOptions options;
-};
-
-int runBench(BenchCommand& command)
-{
-  command.options.sizes.clear();
-  for (const std::string& size : splitList(command.sizes))
-  {
-    command.options.sizes.push_back(parseCount(size));
-  }
-  if (!command.noBunny)
-  {
-    if (!std::ifstream(command.bunny))
-    {
-      throw UserError(command.bunny + ": no such file (the subdivided bunny is one of the meshes; "
-                                      "run from the repository's top folder, give --bunny FILE, or pass --no-bunny)");
-    }
-    command.options.bunnyFile = command.bunny;
-  }
-  if (command.threads > 0)
-  {
-    vtkSMPTools::Initialize(command.threads);
-  }
-  if (!command.chartsFolder.empty())
-  {
-    if (command.noBunny)
-    {
-      throw UserError("--charts measures on the subdivided bunny: leave out --no-bunny");
-    }
-    app::runAccuracyStudies({ command.chartsFolder, command.bunny, command.options.maxRepeats });
-    return 0;
-  }
-  app::runBenchmark(command.options);
-  return 0;
-}
-
 int runArrays(const std::string& sceneFile)
 {
   const Scene scene = loadScene(sceneFile);
@@ -510,140 +446,134 @@ CLI::Validator numberFromTo(double low, double high)
     },
     "NUMBER in [" + range.str() + "]");
 }
+/// `shade`'s options, read into options.
+CLI::App* addShadeCommand(CLI::App& cli, ShadeOptions& options)
+{
+  CLI::App* command = cli.add_subcommand("shade",
+    "Shade a mesh under a scene and write the terms as point-data arrays.\n"
+    "Reads .vtp, .vtk, .ply, .obj, .stl; writes .vtp (binary, compressed) or legacy .vtk\n(binary).");
+  command->add_option("mesh", options.mesh, "the mesh to shade")->required();
+  command->add_option("--scene,-s", options.scene,
+    "scene file (JSON; schema in README.md, 'Scene files'); without it, a three-point light kit with a "
+    "little ambient light, placed and scaled to fit the mesh, or with --envmap, the map alone under the "
+    "default material and a viewer at infinity looking down -z");
+  command->add_option("--output,-o", options.output, "output file, .vtp or .vtk")->required();
+  command->add_option("--arrays,-a", options.arrays,
+    "comma-separated arrays to compute: default (totals and shading_flags), totals, all, "
+    "*_TERM (that term for every light, e.g. *_cos_incidence) or full names (e.g. key_diffuse); "
+    "'shadelab arrays --scene FILE' lists them")
+    ->capture_default_str();
+  CLI::Option* precisionOption =
+    command->add_option("--precision", options.precision, "arithmetic and output arrays")
+      ->check(CLI::IsMember({ "float32", "float64" }))
+      ->capture_default_str();
+  command
+    ->add_option("--tolerance", options.tolerance,
+      "largest absolute error allowed in the shaded values: ShadeLab then chooses the cheapest "
+      "precision and, per light, approximations (a point light as distant, a faster pow) whose "
+      "predicted errors fit, and prints what it chose; 0 (default): exact methods")
+    ->check(finiteNonNegative())
+    ->excludes(precisionOption);
+  command->add_option("--threads,-j", options.threads, "threads (0: all cores)")
+    ->check(CLI::Range(0, 256))
+    ->capture_default_str();
+  command->add_option("--compression", options.compression,
+    ".vtp compression: lz4 is fastest, zlib gives files about a third smaller")
+    ->check(CLI::IsMember({ "lz4", "zlib", "none" }))
+    ->capture_default_str();
+  command->add_option("--prefix", options.prefix,
+    "prepended to every array name written (to keep clear of the input's own arrays): letters, digits and _")
+    ->check(arrayNamePrefix());
+  command->add_flag("--keep-normal-orientation", options.keepNormals,
+    "do not flip normals that point into a closed mesh");
+  command->add_flag("--no-weld", options.noWeld,
+    "computed normals: give each point the normal of its own polygons only, even where several points "
+    "share a position (by default they share one, as if the file had not split them at seams)");
+  command->add_option("--feature-angle", options.featureAngle,
+    "computed normals: points at one position whose polygons meet at an edge sharper than this many "
+    "degrees keep their own normals, so that edges the file split on purpose stay sharp")
+    ->check(numberFromTo(0, 180))
+    ->capture_default_str();
+  command->add_option("--weld-tolerance", options.weldTolerance,
+    "computed normals: points closer than this fraction of the mesh's bounding-box diagonal count as "
+    "one position (default 0: the same coordinates, as files store the copies of a split point)")
+    ->check(numberFromTo(0, 0.1))
+    ->capture_default_str();
+  command->add_option("--split-sharp-edges", options.splitAngle,
+    "DEGREES (30 is usual): compute normals after duplicating the points of edges sharper than this "
+    "(vtkPolyDataNormals' splitting), so that each side of a sharp edge gets its own normal, for a mesh "
+    "that stores such edges' points once; the output then has MORE points than the input, and the "
+    "mesh's own normals are replaced")
+    ->check(numberFromTo(0, 180));
+  EnvironmentOption& environment = options.environment;
+  CLI::Option* envmapOption = command->add_option("--envmap", environment.file,
+    "add an environment light named 'envmap' from this equirectangular map (.hdr, .exr: twice as wide "
+    "as high, +y up, the image centre toward -z; README.md, 'Area lights and environment maps')");
+  command->add_option("--envmap-estimator", environment.estimator,
+    "its irradiance: sh (9 spherical-harmonic coefficients), monte_carlo (importance sampling by "
+    "luminance) or brute_force (every texel of the map downsampled to 128x64)")
+    ->check(CLI::IsMember({ "sh", "monte_carlo", "brute_force" }))
+    ->capture_default_str()
+    ->needs(envmapOption);
+  command->add_option("--envmap-rotation", environment.rotation,
+    "turn the map about +y by this many degrees (anticlockwise seen from above)")
+    ->capture_default_str()
+    ->needs(envmapOption);
+  command->add_option("--envmap-intensity", environment.intensity, "multiply the map's radiance")
+    ->check(finiteNonNegative())
+    ->capture_default_str()
+    ->needs(envmapOption);
+  command->add_option("--envmap-samples", environment.samples,
+    "Monte Carlo samples per vertex (monte_carlo, and the specular term of sh)")
+    ->check(CLI::Range(2, maxSamplesPerVertex))
+    ->capture_default_str()
+    ->needs(envmapOption);
+  envmapOption->check(CLI::Validator(
+    [](std::string& file) { return file.empty() ? std::string("needs the map's file name") : std::string(); }, "FILE"));
+  return command;
+}
+
+/// `arrays`'s option, read into sceneFile.
+CLI::App* addArraysCommand(CLI::App& cli, std::string& sceneFile)
+{
+  CLI::App* command = cli.add_subcommand("arrays", "List the arrays a scene can produce.");
+  command->add_option("--scene,-s", sceneFile, "scene file (JSON)")->required();
+  return command;
+}
+
+/// `render`'s options, read into options.
+CLI::App* addRenderCommand(CLI::App& cli, RenderCommand& options)
+{
+  CLI::App* command = cli.add_subcommand("render",
+    "Render one point array of a mesh (usually shade's output) to a PNG, off screen.\n"
+    "3-component arrays are drawn as RGB colours clamped to [0, 1] with VTK's lighting off,\n"
+    "so the picture is ShadeLab's shading; 1-component arrays through a colour map.\n"
+    "Needs an X display: on a headless machine run it as xvfb-run -a shadelab render ...");
+  command->add_option("mesh", options.mesh, "the mesh to draw")->required();
+  command->add_option("--output,-o", options.output, "the PNG to write")->required();
+  command->add_option("--array,-a", options.options.array, "the point array to draw")->capture_default_str();
+  command->add_option("--scene,-s", options.scene,
+    "take the camera from this scene's viewer (default: the default light kit's, which frames the "
+    "mesh looking down -z)");
+  command->add_option("--size", options.size, "image size, WIDTHxHEIGHT")->capture_default_str();
+  return command;
+}
+
 }
 
 int main(int argc, char** argv)
 {
   CLI::App cli{ "ShadeLab: per-vertex lighting and reflectance terms as VTK arrays." };
   cli.require_subcommand(1);
-
   ShadeOptions shade;
-  CLI::App* shadeCommand = cli.add_subcommand("shade",
-    "Shade a mesh under a scene and write the terms as point-data arrays.\n"
-    "Reads .vtp, .vtk, .ply, .obj, .stl; writes .vtp (binary, compressed) or legacy .vtk\n(binary).");
-  shadeCommand->add_option("mesh", shade.mesh, "the mesh to shade")->required();
-  shadeCommand->add_option("--scene,-s", shade.scene,
-    "scene file (JSON; schema in README.md, 'Scene files'); without it, a three-point light kit with a "
-    "little ambient light, placed and scaled to fit the mesh, or with --envmap, the map alone under the "
-    "default material and a viewer at infinity looking down -z");
-  shadeCommand->add_option("--output,-o", shade.output, "output file, .vtp or .vtk")->required();
-  shadeCommand->add_option("--arrays,-a", shade.arrays,
-    "comma-separated arrays to compute: default (totals and shading_flags), totals, all, "
-    "*_TERM (that term for every light, e.g. *_cos_incidence) or full names (e.g. key_diffuse); "
-    "'shadelab arrays --scene FILE' lists them")
-    ->capture_default_str();
-  CLI::Option* precisionOption =
-    shadeCommand->add_option("--precision", shade.precision, "arithmetic and output arrays")
-      ->check(CLI::IsMember({ "float32", "float64" }))
-      ->capture_default_str();
-  shadeCommand
-    ->add_option("--tolerance", shade.tolerance,
-      "largest absolute error allowed in the shaded values: ShadeLab then chooses the cheapest "
-      "precision and, per light, approximations (a point light as distant, a faster pow) whose "
-      "predicted errors fit, and prints what it chose; 0 (default): exact methods")
-    ->check(finiteNonNegative())
-    ->excludes(precisionOption);
-  shadeCommand->add_option("--threads,-j", shade.threads, "threads (0: all cores)")
-    ->check(CLI::Range(0, 256))
-    ->capture_default_str();
-  shadeCommand->add_option("--compression", shade.compression,
-    ".vtp compression: lz4 is fastest, zlib gives files about a third smaller")
-    ->check(CLI::IsMember({ "lz4", "zlib", "none" }))
-    ->capture_default_str();
-  shadeCommand->add_option("--prefix", shade.prefix,
-    "prepended to every array name written (to keep clear of the input's own arrays): letters, digits and _")
-    ->check(arrayNamePrefix());
-  shadeCommand->add_flag("--keep-normal-orientation", shade.keepNormals,
-    "do not flip normals that point into a closed mesh");
-  shadeCommand->add_flag("--no-weld", shade.noWeld,
-    "computed normals: give each point the normal of its own polygons only, even where several points "
-    "share a position (by default they share one, as if the file had not split them at seams)");
-  shadeCommand->add_option("--feature-angle", shade.featureAngle,
-    "computed normals: points at one position whose polygons meet at an edge sharper than this many "
-    "degrees keep their own normals, so that edges the file split on purpose stay sharp")
-    ->check(numberFromTo(0, 180))
-    ->capture_default_str();
-  shadeCommand->add_option("--weld-tolerance", shade.weldTolerance,
-    "computed normals: points closer than this fraction of the mesh's bounding-box diagonal count as "
-    "one position (default 0: the same coordinates, as files store the copies of a split point)")
-    ->check(numberFromTo(0, 0.1))
-    ->capture_default_str();
-  shadeCommand->add_option("--split-sharp-edges", shade.splitAngle,
-    "DEGREES (30 is usual): compute normals after duplicating the points of edges sharper than this "
-    "(vtkPolyDataNormals' splitting), so that each side of a sharp edge gets its own normal, for a mesh "
-    "that stores such edges' points once; the output then has MORE points than the input, and the "
-    "mesh's own normals are replaced")
-    ->check(numberFromTo(0, 180));
-  EnvironmentOption& environment = shade.environment;
-  CLI::Option* envmapOption = shadeCommand->add_option("--envmap", environment.file,
-    "add an environment light named 'envmap' from this equirectangular map (.hdr, .exr: twice as wide "
-    "as high, +y up, the image centre toward -z; README.md, 'Area lights and environment maps')");
-  shadeCommand->add_option("--envmap-estimator", environment.estimator,
-    "its irradiance: sh (9 spherical-harmonic coefficients), monte_carlo (importance sampling by "
-    "luminance) or brute_force (every texel of the map downsampled to 128x64)")
-    ->check(CLI::IsMember({ "sh", "monte_carlo", "brute_force" }))
-    ->capture_default_str()
-    ->needs(envmapOption);
-  shadeCommand->add_option("--envmap-rotation", environment.rotation,
-    "turn the map about +y by this many degrees (anticlockwise seen from above)")
-    ->capture_default_str()
-    ->needs(envmapOption);
-  shadeCommand->add_option("--envmap-intensity", environment.intensity, "multiply the map's radiance")
-    ->check(finiteNonNegative())
-    ->capture_default_str()
-    ->needs(envmapOption);
-  shadeCommand->add_option("--envmap-samples", environment.samples,
-    "Monte Carlo samples per vertex (monte_carlo, and the specular term of sh)")
-    ->check(CLI::Range(2, maxSamplesPerVertex))
-    ->capture_default_str()
-    ->needs(envmapOption);
-
+  CLI::App* shadeCommand = addShadeCommand(cli, shade);
   std::string arraysScene;
-  CLI::App* arraysCommand = cli.add_subcommand("arrays", "List the arrays a scene can produce.");
-  arraysCommand->add_option("--scene,-s", arraysScene, "scene file (JSON)")->required();
-
-
+  CLI::App* arraysCommand = addArraysCommand(cli, arraysScene);
   RenderCommand render;
-  CLI::App* renderCommand = cli.add_subcommand("render",
-    "Render one point array of a mesh (usually shade's output) to a PNG, off screen.\n"
-    "3-component arrays are drawn as RGB colours clamped to [0, 1] with VTK's lighting off,\n"
-    "so the picture is ShadeLab's shading; 1-component arrays through a colour map.\n"
-    "Needs an X display: on a headless machine run it as xvfb-run -a shadelab render ...");
-  renderCommand->add_option("mesh", render.mesh, "the mesh to draw")->required();
-  renderCommand->add_option("--output,-o", render.output, "the PNG to write")->required();
-  renderCommand->add_option("--array,-a", render.options.array, "the point array to draw")->capture_default_str();
-  renderCommand->add_option("--scene,-s", render.scene,
-    "take the camera from this scene's viewer (default: the default light kit's, which frames the "
-    "mesh looking down -z)");
-  renderCommand->add_option("--size", render.size, "image size, WIDTHxHEIGHT")->capture_default_str();
-
-  BenchCommand bench;
-  CLI::App* benchCommand = cli.add_subcommand("bench",
-    "Time the filter on spheres and the subdivided Stanford bunny, from 10 thousand to 10\n"
-    "million vertices, against vtkArrayCalculator evaluating the same expression and against\n"
-    "the floor of copying the same bytes; print a table and optionally write it as CSV.");
-  benchCommand->add_option("--sizes", bench.sizes, "vertex counts, comma-separated (k and M allowed)")
-    ->capture_default_str();
-  benchCommand->add_option("--repeats", bench.options.maxRepeats, "runs per measurement at most (median taken)")
-    ->check(CLI::Range(1, 100))
-    ->capture_default_str();
-  benchCommand->add_option("--csv", bench.options.csvFile, "also write the table to this CSV file");
-  benchCommand->add_option("--bunny", bench.bunny, "the bunny mesh to subdivide")->capture_default_str();
-  benchCommand->add_flag("--no-bunny", bench.noBunny, "spheres only");
-  benchCommand->add_option("--charts", bench.chartsFolder,
-    "instead of the speed table, run the accuracy studies (float32, pow methods, a point light as "
-    "distant, Phong against Blinn-Phong, tessellation, each at its failure point; the estimators of "
-    "an area light and of two environment maps, and the SH estimator's speed) and write "
-    "accuracy.csv and one PNG chart per study into this folder; reads data/scenes/area_lights.json "
-    "and data/envmaps/; needs an X display (xvfb-run -a)");
-  benchCommand->add_option("--case", bench.options.caseFilters,
-    "only the cases whose names contain this text (repeatable), such as --case lambert");
-  benchCommand->add_option("--threads,-j", bench.threads, "threads (0: all cores)")
-    ->check(CLI::Range(0, 256))
-    ->capture_default_str();
+  CLI::App* renderCommand = addRenderCommand(cli, render);
 
   bool verbose = false;
-  for (CLI::App* command : { shadeCommand, arraysCommand, renderCommand, benchCommand })
+  for (CLI::App* command : { shadeCommand, arraysCommand, renderCommand })
   {
     command->add_flag("--verbose,-v", verbose, "also show VTK's own log and error output");
   }
@@ -664,11 +594,6 @@ int main(int argc, char** argv)
     vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
     vtkOutputWindow::SetInstance(vtkSmartPointer<app::QuietOutputWindow>::New());
   }
-  if (envmapOption->count() > 0 && shade.environment.file.empty())
-  {
-    std::cerr << "--envmap: needs the map's file name\nRun with --help for more information.\n";
-    return 2;
-  }
   try
   {
     if (shadeCommand->parsed())
@@ -678,10 +603,6 @@ int main(int argc, char** argv)
     if (renderCommand->parsed())
     {
       return runRender(render);
-    }
-    if (benchCommand->parsed())
-    {
-      return runBench(bench);
     }
     return runArrays(arraysScene);
   }

@@ -51,9 +51,14 @@ protected:
   /// Runs shadelab with these arguments; launcher (such as xvfb-run) goes before it.
   Result shadelab(const std::string& arguments, const std::string& launcher = "")
   {
+    return run(SHADELAB_EXECUTABLE, arguments, launcher);
+  }
+
+  /// Runs an executable with these arguments, launcher before it.
+  Result run(const std::string& executable, const std::string& arguments, const std::string& launcher = "")
+  {
     const fs::path out = folder / "stdout.txt", err = folder / "stderr.txt";
-    const std::string command = launcher + std::string(SHADELAB_EXECUTABLE) + " " + arguments +
-      " > " + out.string() + " 2> " + err.string();
+    const std::string command = launcher + executable + " " + arguments + " > " + out.string() + " 2> " + err.string();
     const int status = std::system(command.c_str());
     Result result{ WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err) };
     fs::remove(out);

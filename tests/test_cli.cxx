@@ -296,7 +296,7 @@ TEST_F(Cli, BenchmarkTableAgreesWithItsBaseline)
   // A small run: the table's rows, and vtkArrayCalculator's result for the same expression
   // equal to ShadeLab's within float32 rounding in every case that has one.
   const fs::path csv = folder / "bench.csv";
-  const Result result = shadelab("bench --sizes 3k --no-bunny --repeats 1 --csv " + csv.string());
+  const Result result = run(SHADELAB_BENCH_EXECUTABLE, "--sizes 3k --no-bunny --repeats 1 --csv " + csv.string());
   ASSERT_EQ(result.exitCode, 0) << result.err;
   std::istringstream lines(slurp(csv));
   std::string header;

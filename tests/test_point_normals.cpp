@@ -5,7 +5,6 @@
 
 #include <gtest/gtest.h>
 
-#include <algorithm>
 #include <cmath>
 
 namespace
@@ -40,12 +39,16 @@ struct Triangles
   std::vector<glm::dvec3> normals(const PolygonEdges* edges, const std::vector<PointId>& mergeMap, double featureAngle,
     WeldSummary* summary = nullptr) const
   {
-    std::vector<glm::dvec3> unit = sums().areas;
+    auto welded = sums().points;
     if (edges)
     {
-      weldCopies(unit, *edges, areas(), mergeMap, featureAngle, summary);
+      weldCopies(welded, *edges, areas(), mergeMap, featureAngle, summary);
     }
-    std::transform(unit.begin(), unit.end(), unit.begin(), unitNormal);
+    std::vector<glm::dvec3> unit;
+    for (const CornerSum& sum : welded)
+    {
+      unit.push_back(unitNormal(sum.area));
+    }
     return unit;
   }
 };
@@ -192,16 +195,16 @@ Triangles tetrahedron()
 TEST(PointNormals, EdgeBalanceIsZeroOnlyWhereTheSurfaceClosesConsistently)
 {
   const Triangles closed = tetrahedron();
-  EXPECT_TRUE(unbalancedPoints(closed.sums().edgeBalance).empty());
+  EXPECT_TRUE(unbalancedPoints(closed.sums().points).empty());
   // Without its last face, the three points of that face's rim are on a boundary.
   Triangles open = closed;
   open.offsets.pop_back();
   open.connectivity.resize(9);
-  EXPECT_EQ(unbalancedPoints(open.sums().edgeBalance), (std::vector<PointId>{ 1, 2, 3 }));
+  EXPECT_EQ(unbalancedPoints(open.sums().points), (std::vector<PointId>{ 1, 2, 3 }));
   // One face turned round: every edge of it is traversed twice in one direction.
   Triangles turned = closed;
   std::swap(turned.connectivity[10], turned.connectivity[11]); // 1, 2, 3
-  EXPECT_EQ(unbalancedPoints(turned.sums().edgeBalance), (std::vector<PointId>{ 1, 2, 3 }));
+  EXPECT_EQ(unbalancedPoints(turned.sums().points), (std::vector<PointId>{ 1, 2, 3 }));
   EXPECT_EQ(PolygonEdges(turned.list(), {}).inconsistentCount(), 3u);
 }
 
@@ -210,12 +213,12 @@ TEST(PointNormals, SumsAtCornersAreTheAreaVectorsAroundEachPoint)
   const Triangles solid = tetrahedron();
   const CornerSums sums = solid.sums();
   const std::vector<glm::dvec3> areas = solid.areas();
-  EXPECT_EQ(sums.areas[0], areas[0] + areas[1] + areas[2]);
-  EXPECT_EQ(sums.areas[3], areas[1] + areas[2] + areas[3]);
+  EXPECT_EQ(sums.points[0].area, areas[0] + areas[1] + areas[2]);
+  EXPECT_EQ(sums.points[3].area, areas[1] + areas[2] + areas[3]);
   // Each face's vector area points away from the opposite corner: the normals point out.
   for (std::size_t i = 0; i < 4; ++i)
   {
-    EXPECT_GT(glm::dot(sums.areas[i], solid.points[i]), 0.0);
+    EXPECT_GT(glm::dot(sums.points[i].area, solid.points[i]), 0.0);
   }
 }
 

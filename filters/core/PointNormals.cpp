@@ -81,28 +81,12 @@ std::size_t PolygonEdges::inconsistentCount() const
   return inconsistent;
 }
 
-CornerSums::CornerSums(std::size_t pointCount, const glm::dvec3& centre)
-  : areas(pointCount, glm::dvec3(0.0))
-  , edgeBalance(pointCount, 0)
-  , winding(centre)
-{
-}
-
-void CornerSums::addPoints(const CornerSums& later, std::size_t first, std::size_t last)
-{
-  for (std::size_t i = first; i < last; ++i)
-  {
-    areas[i] += later.areas[i];
-    edgeBalance[i] += later.edgeBalance[i];
-  }
-}
-
-std::vector<PointId> unbalancedPoints(const std::vector<std::uint64_t>& edgeBalance)
+std::vector<PointId> unbalancedPoints(const std::vector<CornerSum, LargeAllocator<CornerSum>>& sums)
 {
   std::vector<PointId> points;
-  for (std::size_t i = 0; i < edgeBalance.size(); ++i)
+  for (std::size_t i = 0; i < sums.size(); ++i)
   {
-    if (edgeBalance[i] != 0)
+    if (sums[i].edgeBalance != 0)
     {
       points.push_back(static_cast<PointId>(i));
     }
@@ -147,7 +131,7 @@ glm::dvec3 unitNormal(const glm::dvec3& sum)
   return isFinite(sum) && largestComponent(sum) > 0.0 ? unitVector(sum) : glm::dvec3(0.0);
 }
 
-void weldCopies(std::vector<glm::dvec3>& areaSums, const PolygonEdges& edges,
+void weldCopies(std::vector<CornerSum, LargeAllocator<CornerSum>>& sums, const PolygonEdges& edges,
   const std::vector<glm::dvec3>& edgePolygonAreas, const std::vector<PointId>& mergeMap,
   double featureAngleDegrees, WeldSummary* summary)
 {
@@ -196,13 +180,13 @@ void weldCopies(std::vector<glm::dvec3>& areaSums, const PolygonEdges& edges,
   for (std::size_t j = 0; j < shared.size(); ++j)
   {
     const std::size_t root = copies.root(j);
-    joinedSums[root] += areaSums[static_cast<std::size_t>(shared[j])];
+    joinedSums[root] += sums[static_cast<std::size_t>(shared[j])].area;
     ++joinedCount[root];
   }
   for (std::size_t j = 0; j < shared.size(); ++j)
   {
     const std::size_t root = copies.root(j);
-    areaSums[static_cast<std::size_t>(shared[j])] = joinedSums[root];
+    sums[static_cast<std::size_t>(shared[j])].area = joinedSums[root];
     if (summary)
     {
       (joinedCount[root] > 1 ? summary->pointsAveraged : summary->pointsKeptApart) += 1;

@@ -15,6 +15,7 @@
 // is traversed once in each direction, the surface closes consistently around it, and there is
 // nothing to weld or to reorder. Only the other points (boundaries, seams, inconsistent or
 // non-manifold edges: usually a small part of a mesh) go through the exact edge analysis.
+#include "LargeMemory.h"
 #include "NormalOrientation.h"
 #include "Vec3.h"
 
@@ -99,28 +100,36 @@ inline std::uint64_t idSignature(PointId id)
   return z ^ (z >> 31);
 }
 
-/// What a pass over the polygons gathers at each point, and about the mesh.
-struct CornerSums
+/// What a pass over the polygons gathers at one point, in 32 bytes: half a cache line, which
+/// each corner of each polygon updates once.
+struct CornerSum
 {
-  /// Zero sums for pointCount points; the winding's orientation is taken about centre.
-  CornerSums(std::size_t pointCount, const glm::dvec3& centre);
-
   /// The sum of the vector areas of the polygons around the point.
-  std::vector<glm::dvec3> areas;
+  glm::dvec3 area{ 0.0 };
   /// The sum, modulo 2^64, of idSignature(next) - idSignature(previous) over the point's
   /// corners. Each edge p -> q adds signature(q) at p's corner and each edge q -> p subtracts
   /// it, so the sum is 0 where every edge at p is traversed once in each direction (a surface
   /// closing around p, consistently wound) and, but for a chance of about 2^-64, not 0 where
   /// an edge is used once (a boundary or seam), or twice in one direction (inconsistent
   /// winding).
-  std::vector<std::uint64_t> edgeBalance;
+  std::uint64_t edgeBalance = 0;
+};
+
+/// What a pass over the polygons gathers at each point, and about the mesh.
+struct CornerSums
+{
+  /// Zero sums for pointCount points; the winding's orientation is taken about centre.
+  CornerSums(std::size_t pointCount, const glm::dvec3& centre)
+    : points(pointCount)
+    , winding(centre)
+  {
+  }
+
+  std::vector<CornerSum, LargeAllocator<CornerSum>> points; // in huge pages: no page fault per 4 kB
   /// Whether the polygons' own winding points out of the mesh: each polygon counts with its
   /// vector area at the mean of its corners (exact for planar polygons, whose vector area is
   /// normal to their plane).
   NormalOrientationAccumulator winding;
-
-  /// Adds the sums of `later` (another pass, over later polygons) at points first..last-1.
-  void addPoints(const CornerSums& later, std::size_t first, std::size_t last);
 };
 
 /// Adds polygons first..last-1 (turned round where flipped[k] is set; flipped may be empty)
@@ -129,8 +138,20 @@ template <typename PointAt>
 void sumAtCorners(const PolygonList& polygons, std::size_t first, std::size_t last, const std::vector<bool>& flipped,
   PointAt pointAt, CornerSums& sums)
 {
+  // The pass is bound by memory: each corner updates a point's sums, which are seldom in
+  // cache. So the sums of the corners two polygons ahead are fetched while this one is
+  // computed, and nothing here divides (a division's latency showed as much as the misses).
+  constexpr std::size_t lookAhead = 2;
   for (std::size_t k = first; k < last; ++k)
   {
+    if (k + lookAhead < last)
+    {
+      const PointId* ahead = polygons.ids(k + lookAhead);
+      for (std::size_t i = 0; i < polygons.size(k + lookAhead); ++i)
+      {
+        __builtin_prefetch(&sums.points[static_cast<std::size_t>(ahead[i])], 1);
+      }
+    }
     const std::size_t size = polygons.size(k);
     const PointId* ids = polygons.ids(k);
     if (size < 3)
@@ -139,27 +160,27 @@ void sumAtCorners(const PolygonList& polygons, std::size_t first, std::size_t la
     }
     const glm::dvec3 computed = polygonAreaVector(ids, size, pointAt);
     const glm::dvec3 area = !flipped.empty() && flipped[k] ? -computed : computed;
-    // Walks the corners with the previous and next ids at hand (no modulo: this is the
-    // loop that a large mesh spends its normals' time in).
+    // Walks the corners with the previous and next ids at hand (no modulo).
     std::uint64_t previous = idSignature(ids[size - 1]), current = idSignature(ids[0]);
     glm::dvec3 cornerSum(0.0);
     for (std::size_t i = 0; i < size; ++i)
     {
       const std::uint64_t next = idSignature(ids[i + 1 < size ? i + 1 : 0]);
-      const std::size_t point = static_cast<std::size_t>(ids[i]);
-      sums.areas[point] += area;
-      sums.edgeBalance[point] += next - previous;
+      CornerSum& sum = sums.points[static_cast<std::size_t>(ids[i])];
+      sum.area += area;
+      sum.edgeBalance += next - previous;
       previous = current;
       current = next;
       cornerSum += pointAt(ids[i]);
     }
-    sums.winding.add(area, vectorLength(area), cornerSum / static_cast<double>(size));
+    const double inverseSize = size == 3 ? 1.0 / 3.0 : 1.0 / static_cast<double>(size);
+    sums.winding.add(area, glm::length(area), cornerSum * inverseSize);
   }
 }
 
 /// The points whose edgeBalance is not 0, in ascending order: the only ones that can be on a
 /// seam, a boundary or an inconsistently wound edge.
-std::vector<PointId> unbalancedPoints(const std::vector<std::uint64_t>& edgeBalance);
+std::vector<PointId> unbalancedPoints(const std::vector<CornerSum, LargeAllocator<CornerSum>>& sums);
 
 /// The polygons that have an edge between two of the given points (ascending ids, out of
 /// pointCount), as a list of their own.
@@ -258,11 +279,11 @@ void PolygonEdges::forEachPairOfUses(Visit&& visit) const
 }
 
 /// Welding: each copy of a point (mergeMap[i] != i, or a point others map to) gets the sum
-/// of the area sums of the copies it is joined to, in place. Two copies are joined where two
+/// of the area sums of the copies it is joined to, in place (edge balances are left as they are). Two copies are joined where two
 /// polygons around them meet at an edge (of `edges`, built with mergeMap; edgePolygonAreas
 /// are those polygons' area vectors) at less than featureAngleDegrees, and joins chain: a seam
 /// through a smooth surface disappears, and an edge the file split on purpose stays sharp.
-void weldCopies(std::vector<glm::dvec3>& areaSums, const PolygonEdges& edges,
+void weldCopies(std::vector<CornerSum, LargeAllocator<CornerSum>>& sums, const PolygonEdges& edges,
   const std::vector<glm::dvec3>& edgePolygonAreas, const std::vector<PointId>& mergeMap,
   double featureAngleDegrees, WeldSummary* summary = nullptr);
 

@@ -2,6 +2,7 @@
 
 #include "NormalOrientation.h"
 #include "PointNormals.h"
+#include "ShadeLabLargeArrays.h"
 #include "ShadeLabMeshChecks.h"
 
 #include "vtkArrayDispatch.h"
@@ -259,34 +260,15 @@ struct ComputedNormals
   shadelab::NormalOrientation orientation; // of the polygons' winding, which the normals follow
 };
 
-/// The polygons' sums at their corners (shadelab::sumAtCorners), made in two fixed halves of
-/// the polygons, on two threads where there are two, and added: the same bits on any number
-/// of threads.
+/// The polygons' sums at their corners (shadelab::sumAtCorners), in polygon order: one
+/// thread, because the pass is bound by memory (scattering to points), and two threads
+/// scattering into two sets of sums ran no faster here.
 template <typename PointAt>
-shadelab::CornerSums sumInHalves(const shadelab::PolygonList& list, const std::vector<bool>& flipped,
+shadelab::CornerSums sumAtCorners(const shadelab::PolygonList& list, const std::vector<bool>& flipped,
   std::size_t pointCount, const glm::dvec3& centre, PointAt pointAt)
 {
-  shadelab::CornerSums sums(pointCount, centre), later(pointCount, centre);
-  const std::size_t middle = list.count / 2;
-  vtkSMPTools::For(0, 2, 1,
-    [&](vtkIdType begin, vtkIdType end)
-    {
-      for (vtkIdType half = begin; half < end; ++half)
-      {
-        if (half == 0)
-        {
-          shadelab::sumAtCorners(list, 0, middle, flipped, pointAt, sums);
-        }
-        else
-        {
-          shadelab::sumAtCorners(list, middle, list.count, flipped, pointAt, later);
-        }
-      }
-    });
-  vtkSMPTools::For(0, static_cast<vtkIdType>(pointCount),
-    [&](vtkIdType begin, vtkIdType end)
-    { sums.addPoints(later, static_cast<std::size_t>(begin), static_cast<std::size_t>(end)); });
-  sums.winding.add(later.winding);
+  shadelab::CornerSums sums(pointCount, centre);
+  shadelab::sumAtCorners(list, 0, list.count, flipped, pointAt, sums);
   return sums;
 }
 
@@ -314,11 +296,10 @@ struct NormalsWorker
     const std::size_t pointCount = static_cast<std::size_t>(mesh->GetNumberOfPoints());
     double centre[3];
     mesh->GetCenter(centre); // of the bounding box
-    shadelab::CornerSums sums = sumInHalves(list, {}, pointCount, { centre[0], centre[1], centre[2] }, pointAt);
+    shadelab::CornerSums sums = sumAtCorners(list, {}, pointCount, { centre[0], centre[1], centre[2] }, pointAt);
     // Only points whose edges do not pair up can be copies on a seam or on an inconsistent
     // edge: the rest of the mesh needs nothing more.
-    const std::vector<shadelab::PointId> candidates = shadelab::unbalancedPoints(sums.edgeBalance);
-    std::vector<std::uint64_t>().swap(sums.edgeBalance);
+    const std::vector<shadelab::PointId> candidates = shadelab::unbalancedPoints(sums.points);
     const std::vector<shadelab::PointId> mergeMap =
       weld ? positionMergeMap(mesh, candidates, weldTolerance, pointAt) : std::vector<shadelab::PointId>{};
     const shadelab::PolygonSubset aroundCandidates(list, candidates, pointCount);
@@ -329,7 +310,7 @@ struct NormalsWorker
     {
       // The rare, slow case: reorder the windings over the whole mesh, and sum again.
       flipped = polygonsToTurn(mesh, polygons, mergeMap);
-      sums = sumInHalves(list, flipped, pointCount, { centre[0], centre[1], centre[2] }, pointAt);
+      sums = sumAtCorners(list, flipped, pointCount, { centre[0], centre[1], centre[2] }, pointAt);
     }
     if (!mergeMap.empty())
     {
@@ -338,20 +319,23 @@ struct NormalsWorker
       {
         flippedAround.push_back(flipped[aroundCandidates.original(k)]);
       }
-      shadelab::weldCopies(sums.areas, edges, shadelab::polygonAreaVectors(aroundCandidates.list(), flippedAround, pointAt),
+      shadelab::weldCopies(sums.points, edges, shadelab::polygonAreaVectors(aroundCandidates.list(), flippedAround, pointAt),
         mergeMap, featureAngle, &computed.weld);
     }
     computed.orientation = sums.winding.result();
     computed.normals = vtkSmartPointer<vtkFloatArray>::New();
     computed.normals->SetNumberOfComponents(3);
-    computed.normals->SetNumberOfTuples(static_cast<vtkIdType>(pointCount));
+    if (!shadelab::allocateTuples<float>(computed.normals, static_cast<vtkIdType>(pointCount)))
+    {
+      throw std::bad_alloc();
+    }
     float* out = computed.normals->GetPointer(0);
     vtkSMPTools::For(0, static_cast<vtkIdType>(pointCount),
       [&](vtkIdType begin, vtkIdType end)
       {
         for (std::size_t i = static_cast<std::size_t>(begin); i < static_cast<std::size_t>(end); ++i)
         {
-          const glm::dvec3 n = shadelab::unitNormal(sums.areas[i]);
+          const glm::dvec3 n = shadelab::unitNormal(sums.points[i].area);
           out[3 * i] = static_cast<float>(n.x);
           out[3 * i + 1] = static_cast<float>(n.y);
           out[3 * i + 2] = static_cast<float>(n.z);

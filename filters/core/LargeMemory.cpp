@@ -1,4 +1,4 @@
-#include "ShadeLabLargeArrays.h"
+#include "LargeMemory.h"
 
 #include <cstdlib>
 
