@@ -256,6 +256,10 @@ int runShade(const ShadeOptions& options)
   vtkSmartPointer<vtkPolyData> mesh = app::readMesh(options.mesh);
   warnings.collect(options.mesh);
   const double readSeconds = secondsSince(readStart);
+  if (mesh->GetNumberOfPoints() == 0)
+  {
+    throw UserError(options.mesh + ": the mesh has no points"); // the filter passes an empty mesh on
+  }
 
   vtkNew<vtkLocalReflectanceFilter> filter;
   vtkNew<vtkShadingNormalsFilter> splitter;

@@ -7,7 +7,6 @@
 #include "ShadeLabMeshChecks.h"
 #include "ShadeLabMeshExtent.h"
 #include "ShadingKernel.h"
-#include "vtkShadingNormalsFilter.h"
 
 #include "vtkArrayDispatch.h"
 #include "vtkCellArray.h"
@@ -193,10 +192,6 @@ std::string meshProblem(vtkPolyData* input)
 {
   const vtkIdType pointCount = input->GetNumberOfPoints();
   std::ostringstream problem;
-  if (pointCount == 0)
-  {
-    return "the mesh has no points";
-  }
   if (input->GetNumberOfPolys() + input->GetNumberOfStrips() == 0)
   {
     problem << "the mesh has no polygons (" << input->GetNumberOfCells()
@@ -241,6 +236,11 @@ int vtkLocalReflectanceFilter::RequestData(
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   this->NormalsReport.clear();
 
+  if (input->GetNumberOfPoints() == 0)
+  {
+    output->ShallowCopy(input); // nothing in, nothing out, and no error: VTK's convention
+    return 1;
+  }
   // Everything is checked before anything is written.
   if (!(this->Tolerance >= 0 && std::isfinite(this->Tolerance)))
   {
@@ -319,13 +319,7 @@ int vtkLocalReflectanceFilter::RequestData(
   }
 
   output->ShallowCopy(input);
-  this->PrepareNormals(input);
-  if (this->Normals.added)
-  {
-    output->GetPointData()->SetNormals(this->Normals.added);
-  }
-  this->NormalsReport = this->Normals.report;
-  vtkDataArray* shadingNormals = this->Normals.shading;
+  vtkDataArray* shadingNormals = this->PrepareNormals(input, output);
 
   vtkDataArray* points = input->GetPoints()->GetData();
   std::vector<vtkSmartPointer<vtkDataArray>> arrays;
@@ -363,59 +357,37 @@ int vtkLocalReflectanceFilter::RequestData(
   return 1;
 }
 
-void vtkLocalReflectanceFilter::PrepareNormals(vtkPolyData* input)
+vtkDataArray* vtkLocalReflectanceFilter::PrepareNormals(vtkPolyData* input, vtkPolyData* output)
 {
-  PreparedNormals& prepared = this->Normals;
-  if (prepared.stillValidFor(input, this->ArrayPrefix, this->OrientNormalsOutward, this->WeldCoincidentPoints,
-        this->FeatureAngle, this->WeldTolerance))
+  vtkShadingNormalsFilter* step = this->NormalsStep;
+  step->SetInputData(input);
+  step->SetNormalsName(this->ComputedNormalsName());
+  step->SetOrientOutward(this->OrientNormalsOutward);
+  step->SetWeldCoincidentPoints(this->WeldCoincidentPoints);
+  step->SetFeatureAngle(this->FeatureAngle);
+  step->SetWeldTolerance(this->WeldTolerance);
+  // Outputs share the prepared normals: one edited in place since the step ran (and marked
+  // modified) is not trusted.
+  vtkDataArray* previous = step->GetOutput()->GetPointData()->GetNormals();
+  if (previous && previous->GetMTime() > step->GetOutput()->GetUpdateTime())
   {
-    return;
+    step->Modified();
   }
-  prepared = PreparedNormals{};
-  prepared.input = input;
-  prepared.inputTime = input->GetMTime();
-  prepared.prefix = this->ArrayPrefix;
-  prepared.orient = this->OrientNormalsOutward;
-  prepared.weld = this->WeldCoincidentPoints;
-  prepared.featureAngle = this->FeatureAngle;
-  prepared.weldTolerance = this->WeldTolerance;
-
+  step->Update();
   // The input's own normals, or computed ones added to the output; either may be used
   // flipped, in which case the input's own array still passes through unchanged.
-  vtkNew<vtkShadingNormalsFilter> normalsFilter;
-  normalsFilter->SetInputData(input);
-  normalsFilter->SetNormalsName(this->ComputedNormalsName());
-  normalsFilter->SetOrientOutward(this->OrientNormalsOutward);
-  normalsFilter->SetWeldCoincidentPoints(this->WeldCoincidentPoints);
-  normalsFilter->SetFeatureAngle(this->FeatureAngle);
-  normalsFilter->SetWeldTolerance(this->WeldTolerance);
-  normalsFilter->Update();
   vtkDataArray* inputNormals = input->GetPointData()->GetNormals();
-  prepared.shading = normalsFilter->GetOutput()->GetPointData()->GetNormals();
-  prepared.report = normalsFilter->GetReport();
+  vtkDataArray* shading = step->GetOutput()->GetPointData()->GetNormals();
+  this->NormalsReport = step->GetReport();
   if (!inputNormals)
   {
-    prepared.added = prepared.shading;
+    output->GetPointData()->SetNormals(shading);
   }
-  else if (prepared.shading != inputNormals)
+  else if (shading != inputNormals)
   {
-    prepared.report += " Shaded with the flipped copy; the input's array passes through unchanged.";
+    this->NormalsReport += " Shaded with the flipped copy; the input's array passes through unchanged.";
   }
-  prepared.shadingTime = prepared.shading->GetMTime();
-  prepared.addedTime = prepared.added ? prepared.added->GetMTime() : 0;
-}
-
-bool vtkLocalReflectanceFilter::PreparedNormals::stillValidFor(
-  vtkPolyData* mesh, const std::string& arrayPrefix, bool orientOutward, bool weld, double featureAngle,
-  double weldTolerance) const
-{
-  // Two inputs can share parts (a vtkPoints) and so a modification time: the identity counts
-  // too. A user who edits an output's normals and calls Modified() changes their time.
-  return this->shading && this->input == mesh && this->inputTime == mesh->GetMTime() &&
-    this->prefix == arrayPrefix && this->orient == orientOutward && this->weld == weld &&
-    this->featureAngle == featureAngle && this->weldTolerance == weldTolerance &&
-    this->shadingTime == this->shading->GetMTime() &&
-    (!this->added || this->addedTime == this->added->GetMTime());
+  return shading;
 }
 
 void vtkLocalReflectanceFilter::PrintSelf(ostream& os, vtkIndent indent)

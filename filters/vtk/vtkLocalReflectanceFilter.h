@@ -15,9 +15,9 @@
 #define vtkLocalReflectanceFilter_h
 
 #include "ShadeLabFiltersModule.h"
+#include "vtkNew.h"
 #include "vtkPolyDataAlgorithm.h"
-#include "vtkSmartPointer.h"
-#include "vtkWeakPointer.h"
+#include "vtkShadingNormalsFilter.h" // the normals step, a member
 
 #include "MethodChoice.h"
 #include "Scene.h"
@@ -111,30 +111,13 @@ private:
   std::optional<shadelab::MethodPlan> MethodPlan;
   std::vector<shadelab::LightMethod> LightMethods;
 
-  /// The normals to shade with and those to add to the output, kept between runs while the
-  /// input (the same object, unmodified), the prefix, the orientation setting and the
-  /// prepared arrays themselves (which outputs share) stay the same: preparing them
-  /// (computing them, and the inward test over every triangle) costs more than shading does.
-  struct PreparedNormals
-  {
-    vtkWeakPointer<vtkPolyData> input;
-    vtkMTimeType inputTime = 0;
-    std::string prefix;
-    bool orient = true;
-    bool weld = true;
-    double featureAngle = 80.0;
-    double weldTolerance = 0.0;
-    vtkSmartPointer<vtkDataArray> added; // computed normals for the output, or null
-    vtkSmartPointer<vtkDataArray> shading;
-    vtkMTimeType addedTime = 0, shadingTime = 0;
-    std::string report;
-
-    bool stillValidFor(
-      vtkPolyData* mesh, const std::string& arrayPrefix, bool orientOutward, bool weld, double featureAngle,
-      double weldTolerance) const;
-  };
-  PreparedNormals Normals;
-  void PrepareNormals(vtkPolyData* input);
+  /// The step that prepares the normals to shade with (the input's own, checked, or computed),
+  /// run as a pipeline of its own: it runs again only when the input or its settings have
+  /// changed since it last ran (their modification times), since preparing normals costs more
+  /// than shading does.
+  vtkNew<vtkShadingNormalsFilter> NormalsStep;
+  /// The normals to shade with, prepared by NormalsStep for this input; fills NormalsReport.
+  vtkDataArray* PrepareNormals(vtkPolyData* input, vtkPolyData* output);
   /// The name of the normals the filter computes when the input has none.
   std::string ComputedNormalsName() const { return this->ArrayPrefix + "Normals"; }
 };
