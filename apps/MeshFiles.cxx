@@ -2,6 +2,7 @@
 
 #include "IsolatedWork.h"
 #include "MeshFileChecks.h"
+#include "MeshHandOver.h"
 #include "ProgressLine.h"
 #include "VtkErrorCapture.h"
 
@@ -121,102 +122,18 @@ vtkSmartPointer<vtkPolyData> readDirectly(const std::string& fileName, const std
   return mesh;
 }
 
-/// Calls rename(array) for every array of the mesh: point, cell and field data.
-template <typename Rename>
-void forEachArray(vtkPolyData* mesh, Rename rename)
-{
-  for (vtkFieldData* data : { static_cast<vtkFieldData*>(mesh->GetPointData()),
-         static_cast<vtkFieldData*>(mesh->GetCellData()), mesh->GetFieldData() })
-  {
-    for (int a = 0; a < data->GetNumberOfArrays(); ++a)
-    {
-      rename(data->GetAbstractArray(a));
-    }
-  }
-}
-
-/// A name as 'x' and the hexadecimal digits of its bytes, which any XML attribute holds.
-std::string encodedName(const char* name)
-{
-  static const char digits[] = "0123456789abcdef";
-  std::string text = "x";
-  for (const char* c = name; *c; ++c)
-  {
-    const unsigned char byte = static_cast<unsigned char>(*c);
-    text += { digits[byte >> 4], digits[byte & 15] };
-  }
-  return text;
-}
-
-std::string decodedName(const char* text)
-{
-  std::string name;
-  auto value = [](char digit) { return digit <= '9' ? digit - '0' : digit - 'a' + 10; };
-  for (const char* c = text + 1; c[0] && c[1]; c += 2)
-  {
-    name += static_cast<char>(value(c[0]) * 16 + value(c[1]));
-  }
-  return name;
-}
-
-/// Renames the array and its components with code(name); unnamed ones stay unnamed.
-template <typename Code>
-void recodeNames(vtkAbstractArray* array, Code code)
-{
-  if (array->GetName())
-  {
-    array->SetName(code(array->GetName()).c_str());
-  }
-  for (int c = 0; c < array->GetNumberOfComponents(); ++c)
-  {
-    if (array->HasAComponentName() && array->GetComponentName(c))
-    {
-      array->SetComponentName(c, code(array->GetComponentName(c)).c_str());
-    }
-  }
-}
-
-/// Writes the mesh as VTK XML with raw appended data (the fastest of VTK's writers and readers
-/// on large meshes: a third of the time of legacy binary, which swaps every byte) into path:
-/// how the reading process hands it over. VTK 9.1 writes names into XML attributes unescaped,
-/// so every name is written hex-encoded and decoded on the other side; array information
-/// keys, which the other side may not know, are dropped.
-void handOver(vtkPolyData* mesh, const std::string& path)
-{
-  forEachArray(mesh,
-    [](vtkAbstractArray* array)
-    {
-      recodeNames(array, encodedName);
-      if (array->HasInformation())
-      {
-        array->GetInformation()->Clear();
-      }
-    });
-  vtkSmartPointer<vtkAlgorithm> writer = vtkWriterFor(mesh, path, ".vtp", Compression::None);
-  vtkXMLPolyDataWriter::SafeDownCast(writer)->SetHeaderTypeToUInt64(); // arrays of more than 4 GB
-  writer->Update(); // writes
-  if (writer->GetErrorCode() != vtkErrorCode::NoError)
-  {
-    throw std::runtime_error("the mesh could not be handed over (out of memory?)");
-  }
-}
-
-/// The mesh handOver wrote. Throws UserError (naming fileName) if it cannot be read back.
+/// The mesh the reading process handed over (MeshHandOver.h). Throws UserError, naming
+/// fileName, if it cannot be taken over.
 vtkSmartPointer<vtkPolyData> takeOver(const std::string& path, const std::string& fileName)
 {
-  vtkNew<vtkXMLPolyDataReader> reader;
-  vtkNew<VtkErrorCapture> errors;
-  errors->watch(reader);
-  reader->SetFileName(path.c_str());
-  reader->Update();
-  if (errors->failed() || reader->GetErrorCode() != vtkErrorCode::NoError)
+  try
   {
-    throw UserError(fileName + ": the mesh read from it could not be taken over: " + printableText(errors->message()));
+    return takeOverMesh(path);
   }
-  auto mesh = vtkSmartPointer<vtkPolyData>::New();
-  mesh->ShallowCopy(reader->GetOutput());
-  forEachArray(mesh, [](vtkAbstractArray* array) { recodeNames(array, decodedName); });
-  return mesh;
+  catch (const std::runtime_error& error)
+  {
+    throw UserError(fileName + ": the mesh read from it could not be taken over: " + printableText(error.what()));
+  }
 }
 }
 
@@ -273,7 +190,7 @@ vtkSmartPointer<vtkPolyData> readMesh(const std::string& fileName)
           channel.warning(printableText(warning));
         }
       }
-      handOver(mesh, channel.resultPath());
+      handOverMesh(mesh, channel.resultPath());
       channel.finished();
     },
     limits);

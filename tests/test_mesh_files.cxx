@@ -4,12 +4,19 @@
 #include "IsolatedWork.h"
 #include "MeshFileChecks.h"
 #include "MeshFiles.h"
+#include "MeshHandOver.h"
 
+#include "vtkCellArray.h"
+#include "vtkCellData.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
 #include "vtkFloatArray.h"
+#include "vtkIntArray.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkStringArray.h"
 
 #include <gtest/gtest.h>
 
@@ -100,6 +107,126 @@ TEST(IsolatedWork, EveryEndingIsReported)
   IsolatedOutcome silent = runIsolated([](ChildChannel&) {}, limits);
   EXPECT_EQ(silent.end, IsolatedOutcome::End::Crashed); // it ended without a word
   EXPECT_EQ(silent.signalName, "exit code 0");
+}
+
+/// A mesh with one of each kind of cell and arrays of several types, names and roles.
+vtkSmartPointer<vtkPolyData> meshOfEveryPart()
+{
+  auto mesh = vtkSmartPointer<vtkPolyData>::New();
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  for (int i = 0; i < 6; ++i)
+  {
+    points->InsertNextPoint(i, i * i, -i);
+  }
+  mesh->SetPoints(points);
+  vtkNew<vtkCellArray> verts, lines, polys, strips;
+  verts->InsertNextCell({ 0 });
+  lines->InsertNextCell({ 0, 1 });
+  polys->InsertNextCell({ 0, 1, 2 });
+  polys->InsertNextCell({ 2, 3, 4, 5 });
+  strips->InsertNextCell({ 1, 2, 3, 4 });
+  mesh->SetVerts(verts);
+  mesh->SetLines(lines);
+  mesh->SetPolys(polys);
+  mesh->SetStrips(strips);
+  vtkNew<vtkFloatArray> normals;
+  normals->SetName("my \"normals\" <&>");
+  normals->SetNumberOfComponents(3);
+  normals->SetComponentName(1, "why");
+  for (int i = 0; i < 6; ++i)
+  {
+    normals->InsertNextTuple3(0, 0, i);
+  }
+  mesh->GetPointData()->SetNormals(normals);
+  vtkNew<vtkIntArray> label;
+  label->SetName("label");
+  for (int c = 0; c < mesh->GetNumberOfCells(); ++c)
+  {
+    label->InsertNextValue(100 + c);
+  }
+  mesh->GetCellData()->SetScalars(label);
+  vtkNew<vtkDoubleArray> time;
+  time->SetName("time");
+  time->InsertNextValue(2.5);
+  mesh->GetFieldData()->AddArray(time);
+  return mesh;
+}
+
+void expectSameMesh(vtkPolyData* a, vtkPolyData* b)
+{
+  ASSERT_EQ(a->GetNumberOfPoints(), b->GetNumberOfPoints());
+  for (vtkIdType i = 0; i < a->GetNumberOfPoints(); ++i)
+  {
+    EXPECT_EQ(a->GetPoint(i)[1], b->GetPoint(i)[1]);
+  }
+  EXPECT_EQ(a->GetPoints()->GetDataType(), b->GetPoints()->GetDataType());
+  for (const auto& [cellsA, cellsB] : { std::make_pair(a->GetVerts(), b->GetVerts()), std::make_pair(a->GetLines(), b->GetLines()),
+         std::make_pair(a->GetPolys(), b->GetPolys()), std::make_pair(a->GetStrips(), b->GetStrips()) })
+  {
+    ASSERT_EQ(cellsA->GetNumberOfCells(), cellsB->GetNumberOfCells());
+    ASSERT_EQ(cellsA->GetNumberOfConnectivityIds(), cellsB->GetNumberOfConnectivityIds());
+    for (vtkIdType k = 0; k < cellsA->GetNumberOfConnectivityIds(); ++k)
+    {
+      EXPECT_EQ(cellsA->GetConnectivityArray()->GetComponent(k, 0), cellsB->GetConnectivityArray()->GetComponent(k, 0));
+    }
+  }
+  vtkDataArray* normals = b->GetPointData()->GetNormals();
+  ASSERT_NE(normals, nullptr);
+  EXPECT_STREQ(normals->GetName(), "my \"normals\" <&>");
+  EXPECT_STREQ(normals->GetComponentName(1), "why");
+  EXPECT_EQ(normals->GetComponent(5, 2), 5.0);
+  ASSERT_NE(b->GetCellData()->GetScalars(), nullptr);
+  EXPECT_EQ(b->GetCellData()->GetScalars()->GetDataType(), VTK_INT);
+  EXPECT_EQ(b->GetCellData()->GetScalars()->GetComponent(4, 0), 104.0);
+  ASSERT_NE(b->GetFieldData()->GetArray("time"), nullptr);
+  EXPECT_EQ(b->GetFieldData()->GetArray("time")->GetComponent(0, 0), 2.5);
+}
+
+TEST(MeshHandOver, EveryPartOfAMeshCrossesAsItWas)
+{
+  const fs::path file = fs::temp_directory_path() / ("shadelab-handover-" + std::to_string(::getpid()));
+  vtkSmartPointer<vtkPolyData> mesh = meshOfEveryPart();
+  std::ofstream(file.string()).close();
+  handOverMesh(mesh, file.string());
+  expectSameMesh(mesh, takeOverMesh(file.string()));
+
+  // A string array cannot go as raw bytes: the whole mesh goes as XML, names and all.
+  vtkNew<vtkStringArray> note;
+  note->SetName("note");
+  note->InsertNextValue("a string");
+  mesh->GetFieldData()->AddArray(note);
+  std::ofstream(file.string(), std::ios::trunc).close();
+  handOverMesh(mesh, file.string());
+  vtkSmartPointer<vtkPolyData> throughXml = takeOverMesh(file.string());
+  expectSameMesh(mesh, throughXml);
+  EXPECT_EQ(vtkStringArray::SafeDownCast(throughXml->GetFieldData()->GetAbstractArray("note"))->GetValue(0), "a string");
+  fs::remove(file);
+}
+
+TEST(MeshHandOver, ADamagedTableIsRefused)
+{
+  const fs::path file = fs::temp_directory_path() / ("shadelab-handover-" + std::to_string(::getpid()));
+  std::ofstream(file.string()).close();
+  handOverMesh(meshOfEveryPart(), file.string());
+  {
+    // An array said to lie beyond the end of the file: the first entry's offset, after the
+    // magic, the table's length, the count and four 4-byte and one 8-byte fields.
+    std::fstream damage(file.string(), std::ios::in | std::ios::out | std::ios::binary);
+    damage.seekp(8 + 8 + 8 + 16 + 8);
+    const std::uint64_t farAway = std::uint64_t(1) << 40;
+    damage.write(reinterpret_cast<const char*>(&farAway), sizeof farAway);
+  }
+  try
+  {
+    takeOverMesh(file.string());
+    ADD_FAILURE() << "a damaged table was taken over";
+  }
+  catch (const std::runtime_error& error)
+  {
+    EXPECT_STREQ(error.what(), "the reading process handed over a damaged mesh");
+  }
+  fs::remove(file);
 }
 
 TEST(ReadMesh, APipeIsRefusedBeforeAnythingWaitsOnIt)

@@ -1,0 +1,21 @@
+#pragma once
+// How the reading process hands its mesh to the parent through the result file (a memfd; see
+// IsolatedWork.h) without a format to encode and decode: each array's bytes as they are in
+// memory, at a page boundary, after a table of what they are. The parent maps the pages
+// (mmap) and wraps them as VTK arrays, so that a mesh of hundreds of megabytes changes
+// process without being parsed or copied. A mesh with an array whose bytes are not one plain
+// block (strings, bits, VTK's other memory layouts) goes as VTK XML instead.
+#include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
+
+#include <string>
+
+namespace shadelab::app
+{
+/// Writes the mesh to the file at path (empty). Throws std::runtime_error.
+void handOverMesh(vtkPolyData* mesh, const std::string& path);
+
+/// The mesh handOverMesh wrote to path. Throws std::runtime_error if what it finds there is
+/// not such a mesh (the parent does not trust the reading process).
+vtkSmartPointer<vtkPolyData> takeOverMesh(const std::string& path);
+}
