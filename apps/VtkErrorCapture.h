@@ -2,6 +2,7 @@
 // Turns VTK's error output into one clean line for the user. VTK formats an error as
 // "ERROR: In <file>, line <n>\n<Class> (<address>): <message>\n\n"; a user wants <message>.
 #include "vtkCommand.h"
+#include "vtkLogger.h"
 #include "vtkObject.h"
 #include "vtkOutputWindow.h"
 #include "vtkSmartPointer.h"
@@ -70,4 +71,12 @@ public:
 private:
   std::vector<std::string> warnings_;
 };
+
+/// Errors reach the user as one line each, from the objects ShadeLab watches; VTK's own log
+/// would repeat them with source locations and pipeline dumps. (--verbose keeps it.)
+inline void quietenVtk()
+{
+  vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
+  vtkOutputWindow::SetInstance(vtkSmartPointer<QuietOutputWindow>::New());
+}
 }

@@ -6,6 +6,7 @@
 #include "MeshFiles.h"
 #include "ProgressLine.h"
 #include "RenderImage.h"
+#include "CommandLineParse.h"
 #include "VtkErrorCapture.h"
 
 #include "ArrayCatalog.h"
@@ -19,7 +20,6 @@
 #include "vtkShadingNormalsFilter.h"
 
 #include "vtkDataArray.h"
-#include "vtkLogger.h"
 #include "vtkPointData.h"
 #include "vtkSMPTools.h"
 
@@ -583,20 +583,9 @@ int main(int argc, char** argv)
   }
 
   // Exit codes: 0 done, 1 bad input or a failed run, 2 a command line that does not parse.
-  try
+  if (const std::optional<int> exitCode = shadelab::app::parseCommandLine(cli, argc, argv, verbose))
   {
-    cli.parse(argc, argv);
-  }
-  catch (const CLI::ParseError& error)
-  {
-    return cli.exit(error) == 0 ? 0 : 2;
-  }
-  if (!verbose)
-  {
-    // Errors reach the user as one line each, from the objects ShadeLab watches; VTK's own
-    // log repeats them with source locations and pipeline dumps.
-    vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
-    vtkOutputWindow::SetInstance(vtkSmartPointer<app::QuietOutputWindow>::New());
+    return *exitCode;
   }
   try
   {

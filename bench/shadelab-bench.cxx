@@ -6,11 +6,10 @@
 #include "Benchmark.h"
 #include "EndToEnd.h"
 #include "MeshFiles.h"
-#include "VtkErrorCapture.h"
+#include "CommandLineParse.h"
 
 #include "SceneFile.h"
 
-#include "vtkLogger.h"
 #include "vtkSMPTools.h"
 
 #include <CLI/CLI.hpp>
@@ -126,18 +125,9 @@ int main(int argc, char** argv)
   cli.add_option("--threads,-j", command.threads, "threads (0: all cores)")->check(CLI::Range(0, 256))->capture_default_str();
   bool verbose = false;
   cli.add_flag("--verbose,-v", verbose, "also show VTK's own log and error output");
-  try
+  if (const std::optional<int> exitCode = shadelab::app::parseCommandLine(cli, argc, argv, verbose))
   {
-    cli.parse(argc, argv);
-  }
-  catch (const CLI::ParseError& error)
-  {
-    return cli.exit(error) == 0 ? 0 : 2;
-  }
-  if (!verbose)
-  {
-    vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
-    vtkOutputWindow::SetInstance(vtkSmartPointer<shadelab::app::QuietOutputWindow>::New());
+    return *exitCode;
   }
   try
   {
