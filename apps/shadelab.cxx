@@ -22,6 +22,7 @@
 #include "vtkDataArray.h"
 #include "vtkPointData.h"
 #include "vtkSMPTools.h"
+#include "vtkUnsignedCharArray.h"
 
 #include <CLI/CLI.hpp>
 
@@ -132,7 +133,7 @@ void printSummary(vtkPolyData* output, const Scene& scene, const std::string& pr
               << std::setw(2) << array->GetNumberOfComponents() << "  " << std::setw(12)
               << std::setprecision(6) << low << std::setw(12) << high << "\n";
   }
-  if (vtkDataArray* flags = pointData->GetArray(flagsArrayName(prefix).c_str()))
+  if (auto* flags = vtkUnsignedCharArray::SafeDownCast(pointData->GetArray(flagsArrayName(prefix).c_str())))
   {
     static const std::pair<ShadingFlag, const char*> meanings[] = {
       { FlagDegenerateNormal, "degenerate normal" },
@@ -143,13 +144,10 @@ void printSummary(vtkPolyData* output, const Scene& scene, const std::string& pr
       { FlagNormalFlipped, "normal flipped to face the viewer" },
     };
     std::cout << "  " << flagsArrayName(prefix) << ":";
+    const unsigned char* values = flags->GetPointer(0);
     for (const auto& [bit, meaning] : meanings)
     {
-      vtkIdType count = 0;
-      for (vtkIdType i = 0; i < flags->GetNumberOfTuples(); ++i)
-      {
-        count += (static_cast<int>(flags->GetComponent(i, 0)) & bit) ? 1 : 0;
-      }
+      const vtkIdType count = std::count_if(values, values + flags->GetNumberOfValues(), [bit = bit](unsigned char v) { return (v & bit) != 0; });
       std::cout << (bit == FlagDegenerateNormal ? " " : ", ") << count << " with " << meaning;
     }
     std::cout << "\n";
