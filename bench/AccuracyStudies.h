@@ -1,5 +1,5 @@
 #pragma once
-// `shadelab bench --charts DIR`: each method's error against its time, as PNG charts and one
+// `shadelab-bench --charts DIR`: each method's error against its time, as PNG charts and one
 // CSV, including every method at the point where it fails.
 #include <string>
 

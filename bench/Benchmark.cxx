@@ -518,7 +518,7 @@ void runBenchmark(const BenchmarkOptions& options)
     const Mesh warmUp = sphereOfAbout(1000);
     measure(warmUp, allCases[0], 1);
   }
-  std::cout << "shadelab bench: " << vtkSMPTools::GetEstimatedNumberOfThreads()
+  std::cout << "shadelab-bench: " << vtkSMPTools::GetEstimatedNumberOfThreads()
             << " threads, float32.\n"
                "first ms: the first run, which also prepares the normals; ms: the median of 3 to "
             << options.maxRepeats

@@ -1,5 +1,5 @@
 #pragma once
-// `shadelab bench`: the filter's speed and memory on meshes from 10 thousand to 10 million
+// `shadelab-bench`: the filter's speed and memory on meshes from 10 thousand to 10 million
 // vertices, against the baselines a user would otherwise have.
 #include <string>
 #include <vector>

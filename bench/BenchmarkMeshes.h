@@ -1,5 +1,5 @@
 #pragma once
-// What `shadelab bench` and its accuracy studies share: the meshes, the timer and the
+// What `shadelab-bench` and its accuracy studies share: the meshes, the timer and the
 // comparison of results.
 #include "vtkDataArray.h"
 #include "vtkPolyData.h"

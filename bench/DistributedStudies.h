@@ -1,5 +1,5 @@
 #pragma once
-// Studies 6 to 8 of `shadelab bench --charts`: the estimators of an area light and of two
+// Studies 6 to 8 of `shadelab-bench --charts`: the estimators of an area light and of two
 // environment maps on the bunny, error against time; and issue 4's two speed requirements.
 #include "AccuracyStudies.h"
 #include "AccuracyStudyParts.h"

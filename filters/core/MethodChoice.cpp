@@ -230,7 +230,7 @@ MethodPlan chooseMethods(
     bool distant;
     PowMethod pow;
   };
-  // Cheapest first, as `shadelab bench` measures them: a pow approximation saves at least as
+  // Cheapest first, as `shadelab-bench` measures them: a pow approximation saves at least as
   // much as the distant approximation (std::pow is a library call per lit vertex, and even the
   // exact power of a whole eta is a pass over the block per bit of eta; the direction and
   // attenuation of a point light are a few vectorised operations).

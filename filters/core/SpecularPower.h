@@ -148,7 +148,7 @@ void wholePowers(const float* x, float* y, std::size_t count, unsigned eta);
 
 /// y[i] = x[i]^eta by the method for i < count: the approximations in the kernel's vectorised
 /// loops, Exact as std::pow a value (the kernel's float path for a non-whole eta). What
-/// `shadelab bench --charts` times.
+/// `shadelab-bench --charts` times.
 void evaluatePowers(PowMethod method, const float* x, float* y, std::size_t count, float eta);
 
 /// The largest |approximation - pow(x, eta)| over x in [0, 1] for this eta, in arithmetic of

@@ -60,7 +60,7 @@ public:
   vtkGetMacro(Tolerance, double);
 
   /// Explicit methods, one per scene light (empty, the default: all exact), used when the
-  /// tolerance is 0: for comparing methods side by side, as `shadelab bench --charts` does.
+  /// tolerance is 0: for comparing methods side by side, as `shadelab-bench --charts` does.
   void SetLightMethods(const std::vector<shadelab::LightMethod>& methods);
   const std::vector<shadelab::LightMethod>& GetLightMethods() const { return this->LightMethods; }
 
