@@ -8,6 +8,7 @@
 // block with the light's branches taken outside it, so the compiler turns it into SIMD
 // instructions. A vertex-at-a-time version with the same formulas ran 3 to 5 times slower.
 #include "ArrayCatalog.h"
+#include "LightMethod.h"
 #include "DistributedLight.h"
 #include "Scene.h"
 #include "ShadingFlags.h"
@@ -31,18 +32,6 @@ struct ShadingOutputs
   std::vector<std::array<T*, LightTermCount>> lights; // follows scene.lights
   std::array<T*, TotalTermCount> totals{};
   ShadingFlags* flags = nullptr;
-};
-
-/// How one light is evaluated: exactly (the default), or by cheaper approximations that a
-/// tolerance chose (MethodChoice.h).
-struct LightMethod
-{
-  /// Point lights only: evaluate the light as a distant one, with the direction and
-  /// attenuation it has at this point (the mesh's centre) used at every vertex.
-  std::optional<glm::dvec3> distantFrom;
-  PowMethod pow = PowMethod::Exact;
-
-  bool operator==(const LightMethod& other) const { return distantFrom == other.distantFrom && pow == other.pow; }
 };
 
 /// Up to `capacity` vertices in structure-of-arrays form; first is the index of the block's

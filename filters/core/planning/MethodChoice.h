@@ -6,7 +6,7 @@
 #include "ArrayCatalog.h"
 #include "MeshExtent.h"
 #include "Scene.h"
-#include "ShadingKernel.h"
+#include "LightMethod.h"
 
 #include <string>
 #include <vector>
