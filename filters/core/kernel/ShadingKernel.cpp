@@ -436,29 +436,24 @@ void ShadingKernel<T>::addLight(const PreparedLight& light, const VertexBlock<T>
   {
     for (std::size_t k = 0; k < count; ++k)
     {
-      // r = 2 (n.s) n - s (Reflectance.h reflectAboutNormal, one component at a time)
-      const T twiceCos = T(2) * w.cosIncidence[k];
-      w.rx[k] = twiceCos * w.nx[k] - w.sx[k];
-      w.ry[k] = twiceCos * w.ny[k] - w.sy[k];
-      w.rz[k] = twiceCos * w.nz[k] - w.sz[k];
-      w.rDotV[k] = w.rx[k] * svx[k] + w.ry[k] * svy[k] + w.rz[k] * svz[k];
+      const Vec3<T> r = reflectAboutNormal(Vec3<T>(w.sx[k], w.sy[k], w.sz[k]), Vec3<T>(w.nx[k], w.ny[k], w.nz[k]), w.cosIncidence[k]);
+      w.rx[k] = r.x;
+      w.ry[k] = r.y;
+      w.rz[k] = r.z;
+      w.rDotV[k] = glm::dot(r, Vec3<T>(svx[k], svy[k], svz[k]));
     }
   }
   if (light.needsHalfVector)
   {
     for (std::size_t k = 0; k < count; ++k)
     {
-      // h = (s + v) / |s + v|, undefined (h = 0, n.h = 0) where s = -v (Reflectance.h halfVector)
-      const T x = w.sx[k] + svx[k];
-      const T y = w.sy[k] + svy[k];
-      const T z = w.sz[k] + svz[k];
-      const T length2 = x * x + y * y + z * z;
-      const bool defined = length2 > halfVectorUndefinedBelow2<T>;
-      const T length = std::sqrt(defined ? length2 : T(1));
-      w.hx[k] = defined ? x / length : T(0);
-      w.hy[k] = defined ? y / length : T(0);
-      w.hz[k] = defined ? z / length : T(0);
-      w.nDotH[k] = w.nx[k] * w.hx[k] + w.ny[k] * w.hy[k] + w.nz[k] * w.hz[k];
+      // Undefined where s = -v: then h = 0, so n.h = 0.
+      bool defined = false;
+      const Vec3<T> h = halfVectorOrZero(Vec3<T>(w.sx[k], w.sy[k], w.sz[k]), Vec3<T>(svx[k], svy[k], svz[k]), defined);
+      w.hx[k] = h.x;
+      w.hy[k] = h.y;
+      w.hz[k] = h.z;
+      w.nDotH[k] = glm::dot(Vec3<T>(w.nx[k], w.ny[k], w.nz[k]), h);
       w.halfVectorDefined[k] = defined ? T(1) : T(0);
       w.flags[k] |= defined ? 0 : FlagHalfVectorUndefined;
     }
@@ -537,8 +532,7 @@ void ShadingKernel<T>::specularLobes(const PreparedLight& light, std::size_t cou
   // A library call per vertex: skipped where the vertex is unlit.
   for (std::size_t k = 0; k < count; ++k)
   {
-    const T power = litAt(k) ? std::pow(std::max(cosine[k], T(0)), shininess_) : T(0);
-    w.specular[k] = power * (w.attenuation[k] * w.spotFactor[k]);
+    w.specular[k] = specularLobe(litAt(k), cosine[k], shininess_) * (w.attenuation[k] * w.spotFactor[k]);
   }
 }
 

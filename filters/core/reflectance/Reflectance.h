@@ -46,26 +46,27 @@ Vec3<T> reflectAboutNormal(const Vec3<T>& s, const Vec3<T>& n, T cosIncidence)
 template <typename T>
 constexpr T halfVectorUndefinedBelow2 = T(1e-12);
 
+// docs/formulas.md section 5 (Blinn 1977): h = (s + v) / |s + v|, or (0, 0, 0) where it is
+// undefined, with `defined` saying which. Without a branch, so that the kernel's loops over
+// blocks of vertices vectorise it.
 template <typename T>
-bool isHalfVectorDefined(const Vec3<T>& s, const Vec3<T>& v)
-{
-  const Vec3<T> sum = s + v;
-  return glm::dot(sum, sum) > halfVectorUndefinedBelow2<T>;
-}
-
-// docs/formulas.md section 5 (Blinn 1977): h = (s + v) / |s + v|. Returns false, leaving h
-// untouched, where it is undefined.
-template <typename T>
-bool halfVector(const Vec3<T>& s, const Vec3<T>& v, Vec3<T>& h)
+Vec3<T> halfVectorOrZero(const Vec3<T>& s, const Vec3<T>& v, bool& defined)
 {
   const Vec3<T> sum = s + v;
   const T length2 = glm::dot(sum, sum);
-  if (!(length2 > halfVectorUndefinedBelow2<T>))
-  {
-    return false;
-  }
-  h = sum / std::sqrt(length2);
-  return true;
+  defined = length2 > halfVectorUndefinedBelow2<T>;
+  const T length = std::sqrt(defined ? length2 : T(1));
+  return defined ? sum / length : Vec3<T>(T(0));
+}
+
+// The same, returning false (and leaving h untouched) where h is undefined.
+template <typename T>
+bool halfVector(const Vec3<T>& s, const Vec3<T>& v, Vec3<T>& h)
+{
+  bool defined = false;
+  const Vec3<T> computed = halfVectorOrZero(s, v, defined);
+  h = defined ? computed : h;
+  return defined;
 }
 
 // docs/formulas.md sections 4 and 5: the specular lobe cos^eta, for Phong (cos = r.v) and
