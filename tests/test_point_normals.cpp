@@ -242,11 +242,21 @@ TEST(PointNormals, SubsetHoldsThePolygonsWithAnEdgeBetweenListedPoints)
   const Triangles solid = tetrahedron();
   // Points 1 and 3 share an edge in faces 1 (0, 3, 1) and 3 (1, 3, 2); 0 and 2 alone share
   // edges with unlisted points only.
-  const PolygonSubset subset(solid.list(), { 1, 3 }, 4);
+  const std::vector<bool> listed{ false, true, false, true };
+  std::vector<std::size_t> chosen;
+  for (std::size_t k = 0; k < solid.list().count; ++k)
+  {
+    if (hasEdgeBetween(solid.list(), k, listed))
+    {
+      chosen.push_back(k);
+    }
+  }
+  EXPECT_EQ(chosen, (std::vector<std::size_t>{ 1, 3 }));
+  const PolygonSubset subset(solid.list(), chosen);
   ASSERT_EQ(subset.list().count, 2u);
   EXPECT_EQ(std::vector<PointId>(subset.list().ids(0), subset.list().ids(0) + 3), (std::vector<PointId>{ 0, 3, 1 }));
   EXPECT_EQ(std::vector<PointId>(subset.list().ids(1), subset.list().ids(1) + 3), (std::vector<PointId>{ 1, 3, 2 }));
-  EXPECT_EQ(PolygonSubset(solid.list(), {}, 4).list().count, 0u);
+  EXPECT_EQ(subset.original(1), 3u);
 }
 
 TEST(PointNormals, CoincidentPointsMapToTheLowestIdAtTheirPosition)

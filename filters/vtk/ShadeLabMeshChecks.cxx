@@ -2,7 +2,9 @@
 
 #include "vtkCellArray.h"
 #include "vtkPolyData.h"
+#include "vtkSMPTools.h"
 
+#include <atomic>
 #include <sstream>
 #include <tuple>
 
@@ -10,6 +12,28 @@ namespace shadelab
 {
 namespace
 {
+/// Whether ok(i) holds for every i in [0, count): a vtkSMPTools loop, since a large mesh has
+/// tens of millions of ids; only where it fails is the first failure looked for, in order.
+template <typename Check>
+bool allHold(vtkIdType count, Check ok)
+{
+  std::atomic<bool> failed{ false };
+  vtkSMPTools::For(0, count,
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      bool holds = true;
+      for (vtkIdType i = begin; i < end; ++i)
+      {
+        holds &= ok(i);
+      }
+      if (!holds)
+      {
+        failed = true;
+      }
+    });
+  return !failed;
+}
+
 /// The problem with one cell array whose offsets and ids are of type Id, or "".
 template <typename Id>
 std::string cellArrayProblem(const Id* offsets, vtkIdType cellCount, const Id* ids, vtkIdType idCount,
@@ -21,20 +45,24 @@ std::string cellArrayProblem(const Id* offsets, vtkIdType cellCount, const Id* i
     problem << "the " << kind << " cells' offsets start at " << offsets[0] << ", not 0: the mesh is corrupt";
     return problem.str();
   }
-  for (vtkIdType c = 0; c < cellCount; ++c)
+  auto sizeProblem = [&](vtkIdType c)
+  { return offsets[c + 1] < offsets[c] || offsets[c + 1] > idCount || offsets[c + 1] - offsets[c] < leastPoints; };
+  if (!allHold(cellCount, [&](vtkIdType c) { return !sizeProblem(c); }))
   {
-    const Id size = offsets[c + 1] - offsets[c];
-    if (offsets[c + 1] < offsets[c] || offsets[c + 1] > idCount)
+    for (vtkIdType c = 0; c < cellCount; ++c)
     {
-      problem << kind << " " << c << "'s points run from " << offsets[c] << " to " << offsets[c + 1]
-              << " in a list of " << idCount << ": the mesh is corrupt";
-      return problem.str();
-    }
-    if (size < leastPoints)
-    {
-      problem << kind << " " << c << " has " << size << " points, and a " << kind << " needs at least "
-              << leastPoints << ": the mesh is corrupt";
-      return problem.str();
+      if (offsets[c + 1] < offsets[c] || offsets[c + 1] > idCount)
+      {
+        problem << kind << " " << c << "'s points run from " << offsets[c] << " to " << offsets[c + 1]
+                << " in a list of " << idCount << ": the mesh is corrupt";
+        return problem.str();
+      }
+      if (offsets[c + 1] - offsets[c] < leastPoints)
+      {
+        problem << kind << " " << c << " has " << offsets[c + 1] - offsets[c] << " points, and a " << kind
+                << " needs at least " << leastPoints << ": the mesh is corrupt";
+        return problem.str();
+      }
     }
   }
   if (cellCount > 0 && offsets[cellCount] != idCount)
@@ -43,13 +71,16 @@ std::string cellArrayProblem(const Id* offsets, vtkIdType cellCount, const Id* i
             << " point ids they hold: the mesh is corrupt";
     return problem.str();
   }
-  for (vtkIdType i = 0; i < idCount; ++i)
+  if (!allHold(idCount, [&](vtkIdType i) { return ids[i] >= 0 && ids[i] < pointCount; }))
   {
-    if (ids[i] < 0 || ids[i] >= pointCount)
+    for (vtkIdType i = 0; i < idCount; ++i)
     {
-      problem << "the mesh's cells use point id " << ids[i] << ", but it has " << pointCount
-              << " points: the mesh is corrupt";
-      return problem.str();
+      if (ids[i] < 0 || ids[i] >= pointCount)
+      {
+        problem << "the mesh's cells use point id " << ids[i] << ", but it has " << pointCount
+                << " points: the mesh is corrupt";
+        return problem.str();
+      }
     }
   }
   return "";

@@ -272,6 +272,44 @@ shadelab::CornerSums sumAtCorners(const shadelab::PolygonList& list, const std::
   return sums;
 }
 
+/// The indices of the polygons with an edge between two of the points, in order: a vtkSMPTools
+/// loop over fixed blocks of polygons, whose findings are joined in block order.
+std::vector<std::size_t> polygonsBetween(
+  const shadelab::PolygonList& list, const std::vector<shadelab::PointId>& points, std::size_t pointCount)
+{
+  if (points.empty())
+  {
+    return {};
+  }
+  std::vector<bool> listed(pointCount, false);
+  for (shadelab::PointId id : points)
+  {
+    listed[static_cast<std::size_t>(id)] = true;
+  }
+  constexpr std::size_t blockSize = 1 << 16;
+  std::vector<std::vector<std::size_t>> found((list.count + blockSize - 1) / blockSize);
+  vtkSMPTools::For(0, static_cast<vtkIdType>(found.size()),
+    [&](vtkIdType firstBlock, vtkIdType endBlock)
+    {
+      for (std::size_t b = static_cast<std::size_t>(firstBlock); b < static_cast<std::size_t>(endBlock); ++b)
+      {
+        for (std::size_t k = b * blockSize; k < std::min(list.count, (b + 1) * blockSize); ++k)
+        {
+          if (shadelab::hasEdgeBetween(list, k, listed))
+          {
+            found[b].push_back(k);
+          }
+        }
+      }
+    });
+  std::vector<std::size_t> polygons;
+  for (const std::vector<std::size_t>& block : found)
+  {
+    polygons.insert(polygons.end(), block.begin(), block.end());
+  }
+  return polygons;
+}
+
 /// Computes area-weighted point normals (PointNormals.h). A worker for vtkArrayDispatch over
 /// the point array, so that points are read from raw memory.
 struct NormalsWorker
@@ -302,7 +340,7 @@ struct NormalsWorker
     const std::vector<shadelab::PointId> candidates = shadelab::unbalancedPoints(sums.points);
     const std::vector<shadelab::PointId> mergeMap =
       weld ? positionMergeMap(mesh, candidates, weldTolerance, pointAt) : std::vector<shadelab::PointId>{};
-    const shadelab::PolygonSubset aroundCandidates(list, candidates, pointCount);
+    const shadelab::PolygonSubset aroundCandidates(list, polygonsBetween(list, candidates, pointCount));
     const shadelab::PolygonEdges edges(aroundCandidates.list(), mergeMap);
     computed.inconsistentEdges = edges.inconsistentCount();
     std::vector<bool> flipped;

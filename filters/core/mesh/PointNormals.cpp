@@ -94,32 +94,13 @@ std::vector<PointId> unbalancedPoints(const std::vector<CornerSum, LargeAllocato
   return points;
 }
 
-PolygonSubset::PolygonSubset(const PolygonList& polygons, const std::vector<PointId>& points, std::size_t pointCount)
+PolygonSubset::PolygonSubset(const PolygonList& polygons, const std::vector<std::size_t>& chosen)
+  : original_(chosen)
 {
-  std::vector<bool> listed(pointCount, false);
-  for (PointId id : points)
+  for (std::size_t k : chosen)
   {
-    listed[static_cast<std::size_t>(id)] = true;
-  }
-  auto isListed = [&](PointId id) { return listed[static_cast<std::size_t>(id)]; };
-  for (std::size_t k = 0; !points.empty() && k < polygons.count; ++k)
-  {
-    const std::size_t size = polygons.size(k);
-    const PointId* ids = polygons.ids(k);
-    bool between = false;
-    bool previousListed = size > 0 && isListed(ids[size - 1]);
-    for (std::size_t i = 0; !between && i < size; ++i)
-    {
-      const bool listedHere = isListed(ids[i]);
-      between = previousListed && listedHere;
-      previousListed = listedHere;
-    }
-    if (between)
-    {
-      connectivity_.insert(connectivity_.end(), ids, ids + size);
-      offsets_.push_back(static_cast<PointId>(connectivity_.size()));
-      original_.push_back(k);
-    }
+    connectivity_.insert(connectivity_.end(), polygons.ids(k), polygons.ids(k) + polygons.size(k));
+    offsets_.push_back(static_cast<PointId>(connectivity_.size()));
   }
   list_ = { offsets_.data(), connectivity_.data(), offsets_.size() - 1 };
 }

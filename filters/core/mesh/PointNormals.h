@@ -182,12 +182,31 @@ void sumAtCorners(const PolygonList& polygons, std::size_t first, std::size_t la
 /// seam, a boundary or an inconsistently wound edge.
 std::vector<PointId> unbalancedPoints(const std::vector<CornerSum, LargeAllocator<CornerSum>>& sums);
 
-/// The polygons that have an edge between two of the given points (ascending ids, out of
-/// pointCount), as a list of their own.
+/// Whether polygon k has an edge between two points for which listed[id] is set.
+inline bool hasEdgeBetween(const PolygonList& polygons, std::size_t k, const std::vector<bool>& listed)
+{
+  const std::size_t size = polygons.size(k);
+  const PointId* ids = polygons.ids(k);
+  bool previousListed = size > 0 && listed[static_cast<std::size_t>(ids[size - 1])];
+  for (std::size_t i = 0; i < size; ++i)
+  {
+    const bool listedHere = listed[static_cast<std::size_t>(ids[i])];
+    if (previousListed && listedHere)
+    {
+      return true;
+    }
+    previousListed = listedHere;
+  }
+  return false;
+}
+
+/// Some of a list's polygons (those with an edge between unbalanced points, say), as a list of
+/// their own.
 class PolygonSubset
 {
 public:
-  PolygonSubset(const PolygonList& polygons, const std::vector<PointId>& points, std::size_t pointCount);
+  /// The polygons whose indices `chosen` holds, in its order.
+  PolygonSubset(const PolygonList& polygons, const std::vector<std::size_t>& chosen);
 
   const PolygonList& list() const { return list_; }
   /// The index, in the whole list, of the subset's polygon k.
