@@ -192,6 +192,30 @@ std::vector<bool> polygonsToTurn(vtkPolyData* mesh, const MeshPolygons& polygons
   return flipped;
 }
 
+/// Polygons are visited in fixed blocks of this many: the blocks do not depend on the number
+/// of threads, so results kept per block and joined in block order are the same on any number.
+constexpr std::size_t polygonBlockSize = 1 << 16;
+
+std::size_t polygonBlockCount(std::size_t count)
+{
+  return (count + polygonBlockSize - 1) / polygonBlockSize;
+}
+
+/// Calls visit(b, first, last) for each block b of count polygons (polygons first..last-1),
+/// in a vtkSMPTools loop.
+template <typename Visit>
+void forEachPolygonBlock(std::size_t count, Visit visit)
+{
+  vtkSMPTools::For(0, static_cast<vtkIdType>(polygonBlockCount(count)),
+    [&](vtkIdType firstBlock, vtkIdType endBlock)
+    {
+      for (std::size_t b = static_cast<std::size_t>(firstBlock); b < static_cast<std::size_t>(endBlock); ++b)
+      {
+        visit(b, b * polygonBlockSize, std::min(count, (b + 1) * polygonBlockSize));
+      }
+    });
+}
+
 /// Feeds every triangle of the mesh's polygons (split into fans) to the orientation test, in
 /// fixed blocks of polygons summed in order, so that the result is the same on any number of
 /// threads. A worker for vtkArrayDispatch, so that points and normals are read from raw
@@ -212,21 +236,17 @@ struct OrientationWorker
     double centre[3];
     mesh->GetCenter(centre); // of the bounding box
     const shadelab::NormalOrientationAccumulator empty({ centre[0], centre[1], centre[2] });
-    constexpr std::size_t blockSize = 1 << 16;
-    std::vector<shadelab::NormalOrientationAccumulator> blocks((polygons.count + blockSize - 1) / blockSize, empty);
-    vtkSMPTools::For(0, static_cast<vtkIdType>(blocks.size()),
-      [&](vtkIdType firstBlock, vtkIdType endBlock)
+    std::vector<shadelab::NormalOrientationAccumulator> blocks(polygonBlockCount(polygons.count), empty);
+    forEachPolygonBlock(polygons.count,
+      [&](std::size_t b, std::size_t first, std::size_t last)
       {
-        for (std::size_t b = static_cast<std::size_t>(firstBlock); b < static_cast<std::size_t>(endBlock); ++b)
+        for (std::size_t k = first; k < last; ++k)
         {
-          for (std::size_t k = b * blockSize; k < std::min(polygons.count, (b + 1) * blockSize); ++k)
+          const shadelab::PointId* ids = polygons.ids(k);
+          for (std::size_t i = 2; i < polygons.size(k); ++i)
           {
-            const shadelab::PointId* ids = polygons.ids(k);
-            for (std::size_t i = 2; i < polygons.size(k); ++i)
-            {
-              blocks[b].addTriangle(vec(points[ids[0]]), vec(points[ids[i - 1]]), vec(points[ids[i]]),
-                vec(normals[ids[0]]), vec(normals[ids[i - 1]]), vec(normals[ids[i]]));
-            }
+            blocks[b].addTriangle(vec(points[ids[0]]), vec(points[ids[i - 1]]), vec(points[ids[i]]),
+              vec(normals[ids[0]]), vec(normals[ids[i - 1]]), vec(normals[ids[i]]));
           }
         }
       });
@@ -286,19 +306,15 @@ std::vector<std::size_t> polygonsBetween(
   {
     listed[static_cast<std::size_t>(id)] = true;
   }
-  constexpr std::size_t blockSize = 1 << 16;
-  std::vector<std::vector<std::size_t>> found((list.count + blockSize - 1) / blockSize);
-  vtkSMPTools::For(0, static_cast<vtkIdType>(found.size()),
-    [&](vtkIdType firstBlock, vtkIdType endBlock)
+  std::vector<std::vector<std::size_t>> found(polygonBlockCount(list.count));
+  forEachPolygonBlock(list.count,
+    [&](std::size_t b, std::size_t first, std::size_t last)
     {
-      for (std::size_t b = static_cast<std::size_t>(firstBlock); b < static_cast<std::size_t>(endBlock); ++b)
+      for (std::size_t k = first; k < last; ++k)
       {
-        for (std::size_t k = b * blockSize; k < std::min(list.count, (b + 1) * blockSize); ++k)
+        if (shadelab::hasEdgeBetween(list, k, listed))
         {
-          if (shadelab::hasEdgeBetween(list, k, listed))
-          {
-            found[b].push_back(k);
-          }
+          found[b].push_back(k);
         }
       }
     });

@@ -77,6 +77,14 @@ glm::dvec3 polygonAreaVector(const PointId* ids, std::size_t size, PointAt point
   return 0.5 * twiceArea;
 }
 
+/// Polygon k's vector area, turned round where flipped[k] is set (flipped may be empty).
+template <typename PointAt>
+glm::dvec3 orientedAreaVector(const PolygonList& polygons, std::size_t k, const std::vector<bool>& flipped, PointAt pointAt)
+{
+  const glm::dvec3 area = polygonAreaVector(polygons.ids(k), polygons.size(k), pointAt);
+  return !flipped.empty() && flipped[k] ? -area : area;
+}
+
 /// Each polygon's vector area, turned round where flipped[k] is set (flipped may be empty).
 template <typename PointAt>
 std::vector<glm::dvec3> polygonAreaVectors(const PolygonList& polygons, const std::vector<bool>& flipped, PointAt pointAt)
@@ -84,8 +92,7 @@ std::vector<glm::dvec3> polygonAreaVectors(const PolygonList& polygons, const st
   std::vector<glm::dvec3> areas(polygons.count);
   for (std::size_t k = 0; k < polygons.count; ++k)
   {
-    const glm::dvec3 area = polygonAreaVector(polygons.ids(k), polygons.size(k), pointAt);
-    areas[k] = !flipped.empty() && flipped[k] ? -area : area;
+    areas[k] = orientedAreaVector(polygons, k, flipped, pointAt);
   }
   return areas;
 }
@@ -158,8 +165,7 @@ void sumAtCorners(const PolygonList& polygons, std::size_t first, std::size_t la
     {
       continue;
     }
-    const glm::dvec3 computed = polygonAreaVector(ids, size, pointAt);
-    const glm::dvec3 area = !flipped.empty() && flipped[k] ? -computed : computed;
+    const glm::dvec3 area = orientedAreaVector(polygons, k, flipped, pointAt);
     // Walks the corners with the previous and next ids at hand (no modulo).
     std::uint64_t previous = idSignature(ids[size - 1]), current = idSignature(ids[0]);
     glm::dvec3 cornerSum(0.0);
