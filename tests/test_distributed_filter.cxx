@@ -179,7 +179,7 @@ TEST(DistributedLightsFilter, RefusedWhereTheyCannotApply)
   Scene lecture = shinyScene();
   lecture.lights = { { "panel", panel } };
   EXPECT_EQ(errorOf(lecture, 1e-3),
-    "a tolerance cannot be met with light 'panel', an area light: its error comes from the estimator the "
+    "a tolerance cannot be met with light 'panel' of type \"sphere\": its error comes from the estimator the "
     "scene names, not from arithmetic a tolerance can choose (Monte Carlo estimators report theirs in "
     "*_std_error arrays); shade without a tolerance");
   EXPECT_EQ(errorOf(lecture, 0), "");

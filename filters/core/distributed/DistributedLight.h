@@ -11,9 +11,8 @@
 // small source: a source of intensity I at distance d gives E = I max(0, n.s) / d^2 and
 // S = I lobe(s) / d^2. So the diffuse term is kd E and the specular term ks S, as
 // kd Ld max(0, n.s) att and ks Ls lobe att are for a point light.
-#include "Lights.h"
+#include "Material.h"
 #include "Reflectance.h"
-#include "Scene.h"
 
 #include <cstdint>
 #include <memory>
@@ -68,14 +67,4 @@ public:
   /// Safe to call concurrently.
   virtual DistributedTerms estimate(const SurfacePoint& point) const = 0;
 };
-
-/// The estimator a distributed light asks for, with its one-off work done (the emitter's
-/// geometry; the map's downsampled level, coefficients or sampling tables). lightIndex seeds
-/// the light's samples. source must be an AreaLight or an EnvironmentLight with a map.
-std::unique_ptr<DistributedLightEstimator> makeEstimator(
-  const LightSource& source, std::uint64_t lightIndex, const LobeModel& lobe);
-
-/// Whether the light's estimator gives a standard error for E, and for S.
-bool estimatesIrradianceError(const LightSource& source);
-bool estimatesSpecularError(const LightSource& source);
 }

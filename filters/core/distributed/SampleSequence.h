@@ -3,10 +3,9 @@
 // onto directions. Each point is a hash of (light, vertex, sample), not a draw from a
 // generator's running state: a vertex's estimate is the same bits whatever thread computes it,
 // in whatever order, and with any number of threads.
-#include "Lights.h"
-
 #include <glm/vec2.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 
@@ -28,6 +27,18 @@ inline double unitInterval(std::uint64_t bits)
 {
   return static_cast<double>(bits >> 11) * 0x1.0p-53;
 }
+
+/// More samples than this per vertex is a mistake (a 100k-vertex mesh would take hours); at
+/// least 2 give a standard error.
+constexpr int maxSamplesPerVertex = 1 << 20;
+
+/// How Monte Carlo estimators place their samples in the unit square they warp.
+struct Sampling
+{
+  int samples = 64;
+  /// One sample in each of `samples` cells of a grid over the square, rather than independent.
+  bool stratified = true;
+};
 
 /// The sample points of one light at one vertex. Stratified: the square is cut into a grid of
 /// rows x columns = samples cells (columns the largest divisor of samples not above its square

@@ -10,6 +10,7 @@
 // valid because the irradiance depends only on dot products of directions: any orthonormal
 // frame works if the projection and eq. 13 use the same one, as both do here.
 #include "EnvironmentMap.h"
+#include "IrradiancePolynomial.h"
 
 #include <glm/mat3x3.hpp>
 
@@ -26,20 +27,6 @@ std::array<double, 9> shBasis9(const glm::dvec3& unitDirection);
 
 /// L_lm = sum over texels of L Y_lm(texel centre direction) texel solid angle.
 ShCoefficients9 projectRadiance(const EnvironmentMap& map);
-
-/// R&H eq. 13 as the coefficients of a quadratic polynomial in the normal's components, so
-/// that a vectorised loop can evaluate it (ShadingKernel):
-/// E(n) = xx x^2 + yy y^2 + zz z^2 + xy x y + xz x z + yz y z + x x + y y + z z + constant.
-struct IrradiancePolynomial
-{
-  Rgb xx{ 0.0 }, yy{ 0.0 }, zz{ 0.0 }, xy{ 0.0 }, xz{ 0.0 }, yz{ 0.0 }, x{ 0.0 }, y{ 0.0 }, z{ 0.0 }, constant{ 0.0 };
-
-  Rgb operator()(const glm::dvec3& n) const
-  {
-    return xx * (n.x * n.x) + yy * (n.y * n.y) + zz * (n.z * n.z) + xy * (n.x * n.y) + xz * (n.x * n.z) +
-      yz * (n.y * n.z) + x * n.x + y * n.y + z * n.z + constant;
-  }
-};
 
 IrradiancePolynomial irradiancePolynomial(const ShCoefficients9& coefficients);
 

@@ -1,6 +1,5 @@
 #include "ShadingKernel.h"
 
-#include "EnvironmentLightEstimator.h"
 #include "Reflectance.h"
 
 #include <algorithm>
@@ -154,6 +153,50 @@ void replaceZeroLengthByNormal(std::size_t undefined, std::size_t count, const L
 }
 
 template <typename T>
+typename ShadingKernel<T>::PreparedLight ShadingKernel<T>::prepareLocal(const LocalEvaluation& evaluation,
+  const std::array<T*, LightTermCount>& out, const Material& m, bool needsSpecular, PowMethod pow) const
+{
+  PreparedLight light;
+  light.geometry = evaluation.geometry;
+  light.toLight = toVec<T>(evaluation.toLight);
+  light.distance = T(evaluation.distance);
+  light.attenuation = T(evaluation.attenuation);
+  light.position = toVec<T>(evaluation.position);
+  light.axis = toVec<T>(evaluation.axis);
+  light.attenuationModel = evaluation.falloff;
+  light.cone = PreparedCone<T>(evaluation.cone);
+  light.diffuseColor = toVec<T>(evaluation.color * m.kd);
+  light.specularColor = toVec<T>(evaluation.color * m.ks);
+  light.pow = pow;
+  light.out = out;
+  light.needsSpecular = needsSpecular;
+  light.needsReflection = out[int(LightTerm::Reflection)] || out[int(LightTerm::RDotV)] ||
+    (needsSpecular && specularModel_ == SpecularModel::Phong);
+  light.needsHalfVector = out[int(LightTerm::HalfVector)] || out[int(LightTerm::NDotH)] ||
+    (needsSpecular && specularModel_ == SpecularModel::BlinnPhong) || outputs_.flags;
+  return light;
+}
+
+template <typename T>
+typename ShadingKernel<T>::DistributedLightSlot ShadingKernel<T>::prepareDistributed(
+  const DistributedEvaluation& evaluation, const std::array<T*, LightTermCount>& out, const Material& m,
+  bool needsSpecular) const
+{
+  DistributedLightSlot light;
+  light.estimator = evaluation.estimator;
+  if (const std::optional<IrradiancePolynomial>& e = evaluation.irradiance)
+  {
+    light.irradiance = PreparedPolynomial{ { toVec<T>(e->xx), toVec<T>(e->yy), toVec<T>(e->zz), toVec<T>(e->xy),
+      toVec<T>(e->xz), toVec<T>(e->yz), toVec<T>(e->x), toVec<T>(e->y), toVec<T>(e->z), toVec<T>(e->constant) } };
+  }
+  light.kd = m.kd;
+  light.ks = m.ks;
+  light.needsSpecular = needsSpecular;
+  light.out = out;
+  return light;
+}
+
+template <typename T>
 ShadingKernel<T>::ShadingKernel(const Scene& scene, ShadingOutputs<T> outputs, const std::vector<LightMethod>& methods)
   : outputs_(std::move(outputs))
 {
@@ -181,88 +224,28 @@ ShadingKernel<T>::ShadingKernel(const Scene& scene, ShadingOutputs<T> outputs, c
   Rgb ambientLight = vtk ? Rgb(1.0) : Rgb(0.0);
   for (std::size_t l = 0; l < scene.lights.size(); ++l)
   {
-    const LightSource& source = scene.lights[l].source;
     const LightMethod method = methods.empty() ? LightMethod{} : methods.at(l);
-    if (const auto* ambient = std::get_if<AmbientLight>(&source))
+    const std::array<T*, LightTermCount>& out = outputs_.lights[l];
+    // Only a light whose specular term some array needs has its lobe evaluated (or integrated).
+    const bool needsSpecular = specularModel_ != SpecularModel::None && (out[int(LightTerm::Specular)] || totalSpecular);
+    EvaluationContext context;
+    context.lineOfSight = scene.viewer.lineOfSight();
+    context.distantFrom = method.distantFrom;
+    context.lightIndex = l;
+    context.lobe = LobeModel{ needsSpecular ? specularModel_ : SpecularModel::None, m.shininess };
+    const LightEvaluation evaluation = prepareEvaluation(scene.lights[l].source, context);
+    if (const auto* ambient = std::get_if<AmbientEvaluation>(&evaluation))
     {
-      ambientLight += emittedColor(*ambient);
-      continue;
+      ambientLight += ambient->radiance;
     }
-    if (isDistributed(source))
+    else if (const auto* distributed = std::get_if<DistributedEvaluation>(&evaluation))
     {
-      DistributedLightSlot light;
-      light.out = outputs_.lights[l];
-      light.kd = m.kd;
-      light.ks = m.ks;
-      light.needsSpecular =
-        specularModel_ != SpecularModel::None && (light.out[int(LightTerm::Specular)] || totalSpecular);
-      const LobeModel lobe{ light.needsSpecular ? specularModel_ : SpecularModel::None, m.shininess };
-      const auto* environment = std::get_if<EnvironmentLight>(&source);
-      if (environment && environment->estimator == EnvironmentEstimator::SphericalHarmonics)
-      {
-        auto estimator = std::make_shared<const EnvironmentLightEstimator>(*environment, l, lobe);
-        const IrradiancePolynomial& e = *estimator->irradiance();
-        light.irradiance = PreparedPolynomial{ { toVec<T>(e.xx), toVec<T>(e.yy), toVec<T>(e.zz), toVec<T>(e.xy),
-          toVec<T>(e.xz), toVec<T>(e.yz), toVec<T>(e.x), toVec<T>(e.y), toVec<T>(e.z), toVec<T>(e.constant) } };
-        // The estimator is still needed for S, which it samples.
-        light.estimator = light.needsSpecular ? std::move(estimator) : nullptr;
-      }
-      else
-      {
-        light.estimator = makeEstimator(source, l, lobe);
-      }
-      distributedLights_.push_back(std::move(light));
-      continue;
+      distributedLights_.push_back(prepareDistributed(*distributed, out, m, needsSpecular));
     }
-    PreparedLight light;
-    light.out = outputs_.lights[l];
-    light.pow = method.pow;
-    const Rgb color = emittedColor(source);
-    if (const auto* distant = std::get_if<DistantLight>(&source))
+    else
     {
-      light.toLight = toVec<T>(-unitVector(distant->direction));
+      lights_.push_back(prepareLocal(std::get<LocalEvaluation>(evaluation), out, m, needsSpecular, method.pow));
     }
-    else if (std::holds_alternative<Headlight>(source))
-    {
-      light.toLight = toVec<T>(-*scene.viewer.lineOfSight());
-    }
-    else if (const auto* point = std::get_if<PointLight>(&source))
-    {
-      if (method.distantFrom)
-      {
-        // The approximation: the direction, distance and attenuation at the mesh's centre.
-        const glm::dvec3 offset = point->position - *method.distantFrom;
-        const double distance = vectorLength(offset);
-        light.toLight = toVec<T>(distance > 0 ? unitVector(offset) : glm::dvec3(0, 0, 1));
-        light.distance = T(distance);
-        light.attenuation = T(attenuationAt(point->attenuation, distance));
-      }
-      else
-      {
-        light.kind = Kind::Point;
-        light.position = toVec<T>(point->position);
-        light.attenuationModel = point->attenuation;
-      }
-    }
-    else if (const auto* spot = std::get_if<SpotLight>(&source))
-    {
-      light.kind = Kind::Spot;
-      light.position = toVec<T>(spot->position);
-      light.axis = toVec<T>(unitVector(spot->axis));
-      light.attenuationModel = spot->attenuation;
-      light.cone = PreparedCone<T>(spot->cone);
-    }
-    light.diffuseColor = toVec<T>(color * m.kd);
-    light.specularColor = toVec<T>(color * m.ks);
-
-    const auto& out = light.out;
-    light.needsSpecular =
-      specularModel_ != SpecularModel::None && (out[int(LightTerm::Specular)] || totalSpecular);
-    light.needsReflection = out[int(LightTerm::Reflection)] || out[int(LightTerm::RDotV)] ||
-      (light.needsSpecular && specularModel_ == SpecularModel::Phong);
-    light.needsHalfVector = out[int(LightTerm::HalfVector)] || out[int(LightTerm::NDotH)] ||
-      (light.needsSpecular && specularModel_ == SpecularModel::BlinnPhong) || outputs_.flags;
-    lights_.push_back(light);
   }
   ambient_ = toVec<T>(m.ka * ambientLight);
   needsViewer_ = twoSided_ || outputs_.flags != nullptr ||
@@ -352,7 +335,7 @@ template <typename T>
 void ShadingKernel<T>::sampleLight(const PreparedLight& light, const VertexBlock<T>& b, Workspace& w) const
 {
   const std::size_t count = b.count;
-  if (light.kind == Kind::Distant)
+  if (light.geometry == LocalEvaluation::Geometry::Distant)
   {
     std::fill_n(w.sx.begin(), count, light.toLight.x);
     std::fill_n(w.sy.begin(), count, light.toLight.y);
@@ -399,7 +382,7 @@ void ShadingKernel<T>::sampleLight(const PreparedLight& light, const VertexBlock
       attenuate([range = T(a.range)](T d) { return gltfRangeFalloff(range, d); });
       break;
   }
-  if (light.kind == Kind::Spot)
+  if (light.geometry == LocalEvaluation::Geometry::Spot)
   {
     const Vec3<T>& axis = light.axis;
     for (std::size_t k = 0; k < count; ++k)

@@ -9,7 +9,7 @@
 // instructions. A vertex-at-a-time version with the same formulas ran 3 to 5 times slower.
 #include "ArrayCatalog.h"
 #include "LightMethod.h"
-#include "DistributedLight.h"
+#include "LightEvaluation.h"
 #include "Scene.h"
 #include "ShadingFlags.h"
 #include "SpecularPower.h"
@@ -78,16 +78,9 @@ public:
   bool hasDistributedLights() const { return !distributedLights_.empty(); }
 
 private:
-  enum class Kind
-  {
-    Distant,
-    Point,
-    Spot,
-  };
-
   struct PreparedLight
   {
-    Kind kind = Kind::Distant;
+    LocalEvaluation::Geometry geometry = LocalEvaluation::Geometry::Distant;
     Vec3<T> toLight{ 0 }; // distant lights: the constant s
     T distance = 0;       // distant lights: the constant distance (0, or the approximated one)
     T attenuation = 1;    // distant lights: the constant attenuation
@@ -123,6 +116,11 @@ private:
   };
 
   struct Workspace;
+
+  PreparedLight prepareLocal(const LocalEvaluation& evaluation, const std::array<T*, LightTermCount>& out,
+    const Material& m, bool needsSpecular, PowMethod pow) const;
+  DistributedLightSlot prepareDistributed(const DistributedEvaluation& evaluation,
+    const std::array<T*, LightTermCount>& out, const Material& m, bool needsSpecular) const;
 
   void prepareNormals(const VertexBlock<T>& block, Workspace& w) const;
   void prepareViewer(const VertexBlock<T>& block, Workspace& w) const;

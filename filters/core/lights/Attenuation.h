@@ -78,6 +78,20 @@ T attenuationAt(const Attenuation& a, T distance)
   return T(1);
 }
 
+class JsonNode;
+class LightChecks;
+
+/// A light's "attenuation" and "min_distance" fields (README.md, "Scene files").
+Attenuation readAttenuation(const JsonNode& light);
+
+/// Its values' problems, at the light's "/attenuation" and "/min_distance".
+void checkAttenuation(const Attenuation& a, LightChecks& checks);
+
+/// A positional light's intensity and attenuation for world distances R d, given them for
+/// mesh-frame distances d (scene/SceneFrame.h): intensity x falloff(R d) equals the mesh
+/// frame's at d.
+void placeFalloff(double& intensity, Attenuation& a, double R);
+
 /// True when the model grows without bound as d -> 0, so a minimum distance of 0 would
 /// let a light at a vertex produce Inf.
 inline bool divergesAtZero(const Attenuation& a)

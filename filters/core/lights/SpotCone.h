@@ -21,6 +21,15 @@ struct SpotCone
   double outerAngleDegrees = 45.0; // Gltf: outerConeAngle (default pi/4)
 };
 
+class JsonNode;
+class LightChecks;
+
+/// A spotlight's "cone" field (README.md, "Scene files").
+SpotCone readCone(const JsonNode& light);
+
+/// Its values' problems, at the light's "/cone".
+void checkCone(const SpotCone& cone, LightChecks& checks);
+
 // VTK 9.1 vtkOpenGLPolyDataMapper, positional lights with ConeAngle < 90:
 // inside (coneDot >= cos(angle)) the factor is coneDot^exponent, outside it is 0.
 template <typename T>

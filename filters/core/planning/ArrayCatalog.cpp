@@ -1,7 +1,5 @@
 #include "ArrayCatalog.h"
 
-#include "DistributedLight.h"
-
 #include <algorithm>
 #include <stdexcept>
 
@@ -47,31 +45,6 @@ const TermInfo& termInfo(LightTerm term)
 const TermInfo& termInfo(TotalTerm term)
 {
   return totalTerms[static_cast<int>(term)];
-}
-
-bool lightHasTerm(const LightSource& source, LightTerm term)
-{
-  if (isAmbient(source))
-  {
-    return false;
-  }
-  if (isDistributed(source))
-  {
-    switch (term)
-    {
-      case LightTerm::Irradiance:
-      case LightTerm::Diffuse:
-      case LightTerm::Specular:
-        return true;
-      case LightTerm::IrradianceStdError:
-        return estimatesIrradianceError(source);
-      case LightTerm::SpecularStdError:
-        return estimatesSpecularError(source);
-      default:
-        return false;
-    }
-  }
-  return term < LightTerm::Irradiance && (term != LightTerm::Distance || isPositional(source));
 }
 
 bool ArrayRequest::any(LightTerm term) const

@@ -1,6 +1,7 @@
 #pragma once
 // The arrays ShadeLab can write for a scene: their names, sizes and meanings, and the choice
 // of which to compute. One table, so the filter, the command line and the README agree.
+#include "LightTerms.h"
 #include "Scene.h"
 
 #include <array>
@@ -9,29 +10,6 @@
 
 namespace shadelab
 {
-/// Quantities computed for each (non-ambient) light.
-enum class LightTerm
-{
-  ToLight,        // s
-  Distance,       // d, positional lights only
-  Attenuation,    // distance attenuation
-  SpotFactor,     // cone factor (1 outside spotlights)
-  CosIncidence,   // n.s
-  IncidenceAngle, // acos(n.s) in degrees
-  Reflection,     // r
-  RDotV,          // r.v
-  HalfVector,     // h
-  NDotH,          // n.h
-  Diffuse,        // RGB
-  Specular,       // RGB
-  // Area lights and environment maps (DistributedLight.h):
-  Irradiance,         // E, RGB
-  IrradianceStdError, // Monte Carlo standard error of E, RGB
-  SpecularStdError,   // Monte Carlo standard error of the specular term, RGB
-};
-constexpr int LightTermCount = 15;
-static_assert(static_cast<int>(LightTerm::SpecularStdError) + 1 == LightTermCount, "LightTermCount is stale");
-
 /// Quantities summed over all lights.
 enum class TotalTerm
 {
@@ -53,11 +31,6 @@ struct TermInfo
 const TermInfo& termInfo(LightTerm term);
 const TermInfo& termInfo(TotalTerm term);
 extern const TermInfo flagsInfo;
-
-/// Whether a light of this type has this term (distance needs a position; ambient lights
-/// have no per-light terms, their light is in the ambient total; area lights and environment
-/// maps have irradiance, diffuse, specular, and the standard errors their estimator gives).
-bool lightHasTerm(const LightSource& source, LightTerm term);
 
 /// Which arrays to compute. lights[i] follows scene.lights[i].
 struct ArrayRequest

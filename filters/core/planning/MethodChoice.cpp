@@ -1,6 +1,6 @@
 #include "MethodChoice.h"
 
-#include "NumberText.h"
+#include "Precision.h"
 
 #include <algorithm>
 #include <cmath>
@@ -18,11 +18,6 @@ constexpr double unbounded = std::numeric_limits<double>::infinity();
 double unitRoundoff(Precision precision)
 {
   return precision == Precision::Float32 ? 0x1p-24 : 0x1p-53;
-}
-
-std::string scientific(double x)
-{
-  return withDigits(x, 2);
 }
 
 /// The largest attenuation at any vertex: every model falls with distance, and no vertex is
@@ -202,9 +197,9 @@ MethodPlan chooseMethods(
   {
     if (isDistributed(light.source))
     {
-      throw std::invalid_argument("a tolerance cannot be met with light '" + light.name + "', " +
-        (std::holds_alternative<AreaLight>(light.source) ? "an area light" : "an environment map") +
-        ": its error comes from the estimator the scene names, not from arithmetic a tolerance can choose "
+      throw std::invalid_argument("a tolerance cannot be met with light '" + light.name + "' of type \"" +
+        lightTypeName(light.source) +
+        "\": its error comes from the estimator the scene names, not from arithmetic a tolerance can choose "
         "(Monte Carlo estimators report theirs in *_std_error arrays); shade without a tolerance");
     }
   }

@@ -1,6 +1,7 @@
 #pragma once
 // Estimators of E and S (DistributedLight.h) for an area light: exact, Monte Carlo over the
 // emitter, or a point light at its centre.
+#include "AreaLight.h"
 #include "DistributedLight.h"
 #include "SampleWarps.h"
 

@@ -2,6 +2,7 @@
 // Estimators of E and S (DistributedLight.h) for an environment map: the brute-force sum
 // over texels, Monte Carlo, or nine spherical-harmonic coefficients.
 #include "DistributedLight.h"
+#include "EnvironmentLight.h"
 #include "EnvironmentMap.h"
 #include "EnvironmentSampler.h"
 #include "SphericalHarmonics.h"

@@ -1,0 +1,195 @@
+#include "AreaLight.h"
+
+#include "AreaLightEstimator.h"
+#include "LightFields.h"
+#include "PolygonIrradiance.h"
+
+
+namespace shadelab
+{
+namespace
+{
+EmitterShape readShape(const JsonNode& node, const std::string& type)
+{
+  if (type == "polygon")
+  {
+    const JsonNode vertices = node.at("vertices");
+    if (!vertices.isArray())
+    {
+      vertices.fail("must be an array of [x, y, z] points");
+    }
+    PolygonEmitter polygon;
+    for (std::size_t i = 0; i < vertices.size(); ++i)
+    {
+      polygon.vertices.push_back(vertices.element(i).vector3());
+    }
+    return polygon;
+  }
+  if (type == "rectangle")
+  {
+    // Corners c - u/2 - v/2, c + u/2 - v/2, c + u/2 + v/2, c - u/2 + v/2: it emits toward u x v.
+    const glm::dvec3 c = node.at("center").vector3();
+    const glm::dvec3 u = 0.5 * node.at("edge_u").vector3();
+    const glm::dvec3 v = 0.5 * node.at("edge_v").vector3();
+    return PolygonEmitter{ { c - u - v, c + u - v, c + u + v, c - u + v } };
+  }
+  if (type == "disk")
+  {
+    return DiskEmitter{ node.at("center").vector3(), node.at("normal").vector3(), node.at("radius").number() };
+  }
+  return SphereEmitter{ node.at("center").vector3(), node.at("radius").number() };
+}
+
+void checkPolygon(const PolygonEmitter& polygon, LightChecks& checks)
+{
+  const auto& v = polygon.vertices;
+  checks.require(v.size() >= 3, "/vertices", "a polygon needs at least 3 vertices");
+  bool inRange = true;
+  for (const glm::dvec3& vertex : v)
+  {
+    inRange = inRange && isWithin(vertex, coordinateLimit(checks.precision));
+  }
+  checks.require(inRange, "/vertices", outOfRange(checks.precision));
+  if (v.size() < 3 || !inRange)
+  {
+    return;
+  }
+  const glm::dvec3 normal = polygonNormal(v);
+  const double area = polygonArea(v);
+  checks.require(area > 0 && normal != glm::dvec3(0.0), "/vertices", "the polygon has no area");
+  if (!(area > 0))
+  {
+    return;
+  }
+  // Planar within a millionth of its size, and convex: every corner turns the same way.
+  const double size = std::sqrt(area);
+  bool planar = true, convex = true;
+  for (std::size_t i = 0; i < v.size(); ++i)
+  {
+    const glm::dvec3& a = v[i];
+    const glm::dvec3& b = v[(i + 1) % v.size()];
+    const glm::dvec3& c = v[(i + 2) % v.size()];
+    planar = planar && std::abs(glm::dot(a - v[0], normal)) <= 1e-6 * size;
+    convex = convex && glm::dot(glm::cross(b - a, c - b), normal) >= 0;
+  }
+  checks.require(planar, "/vertices", "the polygon's vertices must lie in one plane");
+  checks.require(!planar || convex, "/vertices",
+    "the polygon must be convex, its vertices in order around it: split a concave emitter into convex lights");
+}
+
+/// A disk's or sphere's centre and radius.
+void checkRound(const glm::dvec3& centre, double radius, LightChecks& checks)
+{
+  checks.point(centre, "/center");
+  checks.require(std::isfinite(radius) && radius > 0 && radius <= coordinateLimit(checks.precision), "/radius",
+    "must be a number > 0");
+}
+}
+
+const std::vector<SceneFileType>& AreaLight::sceneFileTypes()
+{
+  static const std::vector<SceneFileType> types = {
+    { "polygon", { "vertices", "two_sided", "estimator", "samples", "stratified" } },
+    { "rectangle", { "center", "edge_u", "edge_v", "two_sided", "estimator", "samples", "stratified" } },
+    { "disk", { "center", "normal", "radius", "two_sided", "estimator", "samples", "stratified" } },
+    { "sphere", { "center", "radius", "estimator", "samples", "stratified" } },
+  };
+  return types;
+}
+
+AreaLight AreaLight::read(const JsonNode& node, const SceneFileType& type, const std::string&)
+{
+  AreaLight light;
+  light.shape = readShape(node, type.name);
+  readStrength(node, light);
+  if (node.has("two_sided"))
+  {
+    light.twoSided = node.at("two_sided").boolean();
+  }
+  if (node.has("estimator"))
+  {
+    light.estimator = node.at("estimator").choice<AreaEstimator>({ { "exact", AreaEstimator::Exact },
+      { "monte_carlo", AreaEstimator::MonteCarlo }, { "point", AreaEstimator::Point } });
+  }
+  light.sampling = readSampling(node);
+  return light;
+}
+
+std::string AreaLight::typeName() const
+{
+  // A rectangle is read as the polygon of its corners.
+  struct Namer
+  {
+    std::string operator()(const PolygonEmitter&) const { return "polygon"; }
+    std::string operator()(const DiskEmitter&) const { return "disk"; }
+    std::string operator()(const SphereEmitter&) const { return "sphere"; }
+  };
+  return std::visit(Namer{}, shape);
+}
+
+Rgb AreaLight::emitted() const
+{
+  return color * intensity;
+}
+
+void AreaLight::check(LightChecks& checks) const
+{
+  checks.strength(color, intensity);
+  checks.distributed(sampling);
+  if (const auto* polygon = std::get_if<PolygonEmitter>(&shape))
+  {
+    checkPolygon(*polygon, checks);
+  }
+  else if (const auto* disk = std::get_if<DiskEmitter>(&shape))
+  {
+    checkRound(disk->centre, disk->radius, checks);
+    checks.direction(disk->normal, "/normal");
+  }
+  else
+  {
+    const auto& sphere = std::get<SphereEmitter>(shape);
+    checkRound(sphere.centre, sphere.radius, checks);
+  }
+}
+
+double AreaLight::peakContribution(const Material& m) const
+{
+  return largestComponent(emitted()) * distributedPeakFactor * largestReflectance(m);
+}
+
+bool AreaLight::hasTerm(LightTerm term) const
+{
+  // The point approximation estimates S by the point light, not by sampling.
+  return distributedLightHasTerm(term, estimator == AreaEstimator::MonteCarlo, estimator != AreaEstimator::Point);
+}
+
+void AreaLight::placeOn(const MeshPlacement& placement)
+{
+  // The radiance stays: the irradiance an emitter gives depends only on the solid angle it
+  // fills, which scaling the emitter with the distances keeps.
+  if (auto* polygon = std::get_if<PolygonEmitter>(&shape))
+  {
+    for (glm::dvec3& vertex : polygon->vertices)
+    {
+      vertex = placement.point(vertex);
+    }
+  }
+  else if (auto* disk = std::get_if<DiskEmitter>(&shape))
+  {
+    disk->centre = placement.point(disk->centre);
+    disk->radius *= placement.radius;
+  }
+  else
+  {
+    auto& sphere = std::get<SphereEmitter>(shape);
+    sphere.centre = placement.point(sphere.centre);
+    sphere.radius *= placement.radius;
+  }
+}
+
+LightEvaluation AreaLight::prepare(const EvaluationContext& context) const
+{
+  return DistributedEvaluation{ std::make_shared<const AreaLightEstimator>(*this, context.lightIndex, context.lobe),
+    std::nullopt };
+}
+}

@@ -1,0 +1,136 @@
+#include "EnvironmentLight.h"
+
+#include "EnvironmentLightEstimator.h"
+#include "EnvironmentMap.h"
+#include "LightFields.h"
+
+#include <algorithm>
+#include <filesystem>
+
+namespace shadelab
+{
+namespace
+{
+/// A path in a scene file is relative to the scene file's folder.
+std::string resolvePath(const std::string& path, const std::string& sceneFile)
+{
+  const std::filesystem::path given(path);
+  if (given.is_absolute())
+  {
+    return path;
+  }
+  return (std::filesystem::path(sceneFile).parent_path() / given).lexically_normal().string();
+}
+}
+
+const std::vector<SceneFileType>& EnvironmentLight::sceneFileTypes()
+{
+  static const std::vector<SceneFileType> types = { { "environment",
+    { "file", "rotation", "estimator", "directions", "samples", "stratified", "brute_force_width" } } };
+  return types;
+}
+
+EnvironmentLight EnvironmentLight::read(const JsonNode& node, const SceneFileType&, const std::string& sceneFile)
+{
+  EnvironmentLight light;
+  readStrength(node, light);
+  light.file = resolvePath(node.at("file").text(), sceneFile);
+  if (node.has("rotation"))
+  {
+    light.rotationDegrees = node.at("rotation").number();
+  }
+  if (node.has("estimator"))
+  {
+    light.estimator = node.at("estimator").choice<EnvironmentEstimator>(
+      { { "sh", EnvironmentEstimator::SphericalHarmonics }, { "monte_carlo", EnvironmentEstimator::MonteCarlo },
+        { "brute_force", EnvironmentEstimator::BruteForce } });
+  }
+  if (node.has("directions"))
+  {
+    light.directions = node.at("directions").choice<EnvironmentDirections>(
+      { { "luminance", EnvironmentDirections::Luminance }, { "cosine", EnvironmentDirections::Cosine } });
+  }
+  light.sampling = readSampling(node);
+  if (node.has("brute_force_width"))
+  {
+    light.bruteForceWidth = node.at("brute_force_width").wholeNumber(2, 1 << 20);
+  }
+  try
+  {
+    light.map = std::make_shared<const EnvironmentMap>(readEnvironmentMap(light.file));
+  }
+  catch (const std::runtime_error& error)
+  {
+    node.at("file").fail(error.what());
+  }
+  return light;
+}
+
+std::string EnvironmentLight::typeName() const
+{
+  return "environment";
+}
+
+Rgb EnvironmentLight::emitted() const
+{
+  return color * intensity;
+}
+
+void EnvironmentLight::check(LightChecks& checks) const
+{
+  checks.strength(color, intensity);
+  checks.distributed(sampling);
+  checks.require(std::isfinite(rotationDegrees), "/rotation", "must be a finite angle in degrees");
+  checks.require(map != nullptr, "/file", "no environment map was loaded for this light");
+  if (!map)
+  {
+    return;
+  }
+  // readEnvironmentMap ensures these; a map made in C++ may not.
+  const bool shaped = map->height > 0 && map->width == 2 * map->height &&
+    map->radiance.size() == std::size_t(map->width) * std::size_t(map->height);
+  checks.require(shaped, "/file", "the map must be twice as wide as high, with width x height texels");
+  const bool radiant =
+    std::all_of(map->radiance.begin(), map->radiance.end(), [](const Rgb& t) { return isNonNegative(t); });
+  checks.require(radiant, "/file", "every texel must be a finite non-negative radiance");
+  const int width = bruteForceWidth;
+  checks.require(width >= map->width || (width >= 2 && width % 2 == 0 && map->width % width == 0),
+    "/brute_force_width",
+    "must be an even number that divides the map's width (" + std::to_string(map->width) + "), or at least that width");
+}
+
+double EnvironmentLight::peakContribution(const Material& m) const
+{
+  double brightest = 0;
+  for (const Rgb& texel : map->radiance)
+  {
+    brightest = std::max(brightest, largestComponent(texel));
+  }
+  return largestComponent(emitted()) * brightest * distributedPeakFactor * largestReflectance(m);
+}
+
+bool EnvironmentLight::hasTerm(LightTerm term) const
+{
+  // Every estimator but the brute-force sum samples S.
+  return distributedLightHasTerm(
+    term, estimator == EnvironmentEstimator::MonteCarlo, estimator != EnvironmentEstimator::BruteForce);
+}
+
+void EnvironmentLight::placeOn(const MeshPlacement&)
+{
+  // Directions only: the map is at infinity in every frame.
+}
+
+LightEvaluation EnvironmentLight::prepare(const EvaluationContext& context) const
+{
+  auto estimator = std::make_shared<const EnvironmentLightEstimator>(*this, context.lightIndex, context.lobe);
+  if (estimator->irradiance())
+  {
+    // E is the estimator's polynomial of the normal; the estimator is still needed for S,
+    // which it samples.
+    std::optional<IrradiancePolynomial> irradiance = estimator->irradiance();
+    return DistributedEvaluation{ context.lobe.wanted() ? std::move(estimator) : nullptr, irradiance };
+  }
+  return DistributedEvaluation{ std::move(estimator), std::nullopt };
+}
+}

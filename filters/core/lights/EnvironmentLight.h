@@ -1,0 +1,47 @@
+#pragma once
+// docs/formulas.md section 12: an environment map, where every texel is a distant light of
+// radiance colour x intensity x texel over the texel's solid angle; its estimators are in
+// EnvironmentLightEstimator.
+#include "LightType.h"
+#include "SampleSequence.h"
+
+#include <memory>
+#include <string>
+
+namespace shadelab
+{
+struct EnvironmentMap; // EnvironmentMap.h
+
+/// How the irradiance from an environment map is estimated. The specular term is estimated by
+/// the same sum for BruteForce, by sampling for MonteCarlo and SphericalHarmonics (nine
+/// coefficients hold too little of a map for a lobe sharper than the cosine).
+enum class EnvironmentEstimator
+{
+  BruteForce,         // every texel of the map downsampled to `bruteForceWidth`, as a distant light
+  MonteCarlo,         // `sampling.samples` directions, drawn by `directions`
+  SphericalHarmonics, // 9 coefficients (Ramamoorthi and Hanrahan 2001), diffuse only
+};
+
+/// Where Monte Carlo directions for an environment map come from.
+enum class EnvironmentDirections
+{
+  Luminance, // importance sampling of the map's luminance, good for small bright sources; for S
+             // combined with sampling the lobe (multiple importance sampling)
+  Cosine,    // cosine-weighted about the normal: exact irradiance from a constant map
+};
+
+struct EnvironmentLight
+{
+  std::shared_ptr<const EnvironmentMap> map;
+  std::string file; // where the map came from, for messages and reports
+  double rotationDegrees = 0; // about +y, anticlockwise seen from above
+  Rgb color{ 1, 1, 1 };
+  double intensity = 1.0;
+  EnvironmentEstimator estimator = EnvironmentEstimator::SphericalHarmonics;
+  EnvironmentDirections directions = EnvironmentDirections::Luminance;
+  Sampling sampling;
+  int bruteForceWidth = 128;
+
+  SHADELAB_LIGHT_TYPE(EnvironmentLight, Distributed, false);
+};
+}

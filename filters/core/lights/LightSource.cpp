@@ -1,0 +1,174 @@
+#include "LightSource.h"
+
+#include "JsonNode.h"
+
+#include <algorithm>
+#include <type_traits>
+
+namespace shadelab
+{
+std::string lightTypeName(const LightSource& source)
+{
+  return std::visit([](const auto& light) { return light.typeName(); }, source);
+}
+
+Rgb emittedColor(const LightSource& source)
+{
+  return std::visit([](const auto& light) { return light.emitted(); }, source);
+}
+
+LightRole roleOf(const LightSource& source)
+{
+  return std::visit([](const auto& light) { return std::decay_t<decltype(light)>::role; }, source);
+}
+
+const glm::dvec3* positionOf(const LightSource& source)
+{
+  return std::visit(
+    [](const auto& light) -> const glm::dvec3*
+    {
+      if constexpr (std::decay_t<decltype(light)>::positional)
+      {
+        return &light.position;
+      }
+      return nullptr;
+    },
+    source);
+}
+
+const Attenuation* attenuationOf(const LightSource& source)
+{
+  return std::visit(
+    [](const auto& light) -> const Attenuation*
+    {
+      if constexpr (std::decay_t<decltype(light)>::positional)
+      {
+        return &light.attenuation;
+      }
+      return nullptr;
+    },
+    source);
+}
+
+bool lightHasTerm(const LightSource& source, LightTerm term)
+{
+  return std::visit([term](const auto& light) { return light.hasTerm(term); }, source);
+}
+
+double peakContribution(const LightSource& source, const Material& m)
+{
+  return std::visit([&m](const auto& light) { return light.peakContribution(m); }, source);
+}
+
+void checkLightSource(const LightSource& source, LightChecks& checks)
+{
+  std::visit([&checks](const auto& light) { light.check(checks); }, source);
+}
+
+void placeOnMesh(LightSource& source, const MeshPlacement& placement)
+{
+  std::visit([&placement](auto& light) { light.placeOn(placement); }, source);
+}
+
+LightEvaluation prepareEvaluation(const LightSource& source, const EvaluationContext& context)
+{
+  return std::visit([&context](const auto& light) { return light.prepare(context); }, source);
+}
+
+namespace
+{
+/// One "type" name of a registered light type, and how to read it.
+struct FileTypeEntry
+{
+  const SceneFileType* type;
+  LightSource (*read)(const JsonNode&, const SceneFileType&, const std::string&);
+};
+
+template <typename Light>
+LightSource readAs(const JsonNode& node, const SceneFileType& type, const std::string& sceneFile)
+{
+  return Light::read(node, type, sceneFile);
+}
+
+template <std::size_t... Index>
+std::vector<FileTypeEntry> collectFileTypes(std::index_sequence<Index...>)
+{
+  std::vector<FileTypeEntry> entries;
+  auto add = [&entries](const std::vector<SceneFileType>& types, auto read)
+  {
+    for (const SceneFileType& type : types)
+    {
+      entries.push_back({ &type, read });
+    }
+  };
+  (add(std::variant_alternative_t<Index, LightSource>::sceneFileTypes(),
+     &readAs<std::variant_alternative_t<Index, LightSource>>),
+    ...);
+  return entries;
+}
+
+/// Every registered "type" name, in registration order.
+const std::vector<FileTypeEntry>& fileTypes()
+{
+  static const std::vector<FileTypeEntry> entries =
+    collectFileTypes(std::make_index_sequence<std::variant_size_v<LightSource>>{});
+  return entries;
+}
+
+const std::vector<const char*> commonFields = { "name", "type", "color", "intensity" };
+
+std::vector<const char*> fieldsOf(const SceneFileType& type)
+{
+  std::vector<const char*> fields = commonFields;
+  fields.insert(fields.end(), type.fields.begin(), type.fields.end());
+  return fields;
+}
+
+/// The fields any light may have: the common ones, then each type's in registration order.
+const std::vector<const char*>& anyLightFields()
+{
+  static const std::vector<const char*> fields = []
+  {
+    std::vector<const char*> all = commonFields;
+    for (const FileTypeEntry& entry : fileTypes())
+    {
+      for (const char* field : entry.type->fields)
+      {
+        if (std::none_of(all.begin(), all.end(), [&](const char* known) { return std::string(known) == field; }))
+        {
+          all.push_back(field);
+        }
+      }
+    }
+    return all;
+  }();
+  return fields;
+}
+
+/// Fails with the list of type names unless the node names a registered type.
+const FileTypeEntry& fileTypeNamed(const JsonNode& node)
+{
+  const std::string given = node.text();
+  std::string list;
+  for (const FileTypeEntry& entry : fileTypes())
+  {
+    if (given == entry.type->name)
+    {
+      return entry;
+    }
+    list += (list.empty() ? "\"" : ", \"") + std::string(entry.type->name) + "\"";
+  }
+  node.fail("\"" + given + "\" is not one of " + list);
+}
+}
+
+LightSource readLightSource(const JsonNode& node, const std::string& sceneFile)
+{
+  // First every field any light may have (so that a non-object or a misspelt field is caught
+  // before the type is read), then only those of this light's type.
+  node.expectObject(anyLightFields());
+  const FileTypeEntry& entry = fileTypeNamed(node.at("type"));
+  node.expectObject(fieldsOf(*entry.type));
+  return entry.read(node, *entry.type, sceneFile);
+}
+}

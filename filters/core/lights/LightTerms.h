@@ -1,0 +1,54 @@
+#pragma once
+// The per-light quantities ShadeLab can write as arrays (their names and meanings are in
+// planning/ArrayCatalog), and which of them each kind of light has.
+namespace shadelab
+{
+/// Quantities computed for each (non-ambient) light.
+enum class LightTerm
+{
+  ToLight,        // s
+  Distance,       // d, positional lights only
+  Attenuation,    // distance attenuation
+  SpotFactor,     // cone factor (1 outside spotlights)
+  CosIncidence,   // n.s
+  IncidenceAngle, // acos(n.s) in degrees
+  Reflection,     // r
+  RDotV,          // r.v
+  HalfVector,     // h
+  NDotH,          // n.h
+  Diffuse,        // RGB
+  Specular,       // RGB
+  // Area lights and environment maps (DistributedLight.h):
+  Irradiance,         // E, RGB
+  IrradianceStdError, // Monte Carlo standard error of E, RGB
+  SpecularStdError,   // Monte Carlo standard error of the specular term, RGB
+};
+constexpr int LightTermCount = 15;
+static_assert(static_cast<int>(LightTerm::SpecularStdError) + 1 == LightTermCount, "LightTermCount is stale");
+
+/// A light seen from each vertex as one direction: every term up to the specular one, and the
+/// distance only when the light has a position.
+inline bool localLightHasTerm(LightTerm term, bool positional)
+{
+  return term < LightTerm::Irradiance && (term != LightTerm::Distance || positional);
+}
+
+/// A light integrated over a solid angle: E, the diffuse and specular terms, and the standard
+/// errors its estimator gives.
+inline bool distributedLightHasTerm(LightTerm term, bool irradianceError, bool specularError)
+{
+  switch (term)
+  {
+    case LightTerm::Irradiance:
+    case LightTerm::Diffuse:
+    case LightTerm::Specular:
+      return true;
+    case LightTerm::IrradianceStdError:
+      return irradianceError;
+    case LightTerm::SpecularStdError:
+      return specularError;
+    default:
+      return false;
+  }
+}
+}

@@ -1,0 +1,37 @@
+#pragma once
+// What a surface reflects (docs/formulas.md sections 2 to 7), and which model evaluates it.
+#include "Vec3.h"
+
+namespace shadelab
+{
+enum class SpecularModel
+{
+  None,
+  Phong,      // Phong 1975, docs/formulas.md section 4: max(0, r.v)^eta
+  BlinnPhong, // Blinn 1977, docs/formulas.md section 5: max(0, n.h)^eta
+};
+
+/// docs/formulas.md sections 2 to 7: RGB coefficients and shininess. The defaults follow
+/// section 7 (ambient RGB = diffuse RGB, specular = white).
+struct Material
+{
+  Rgb ka{ 0.8, 0.8, 0.8 };
+  Rgb kd{ 0.8, 0.8, 0.8 };
+  Rgb ks{ 1.0, 1.0, 1.0 };
+  double shininess = 32.0; // eta
+  SpecularModel specular = SpecularModel::BlinnPhong;
+  /// Two-sided: a normal facing away from the viewer is flipped before shading, as VTK's
+  /// renderer does for back faces. One-sided: it is used as it is.
+  bool twoSided = false;
+};
+
+enum class ShadingModel
+{
+  /// The complete local model of the course (docs/formulas.md section 6), with the options above.
+  Lecture,
+  /// What VTK 9.1's OpenGL2 renderer computes at a vertex (docs/vtk-renderer.md):
+  /// Phong with a local viewer, always two-sided, ambient = ka with no ambient light, and a
+  /// lone headlight shaded as df = max(0, n_z), sf = df^p.
+  VtkOpenGL2,
+};
+}
