@@ -227,7 +227,8 @@ ShadingKernel<T>::ShadingKernel(const Scene& scene, ShadingOutputs<T> outputs, c
     const LightMethod method = methods.empty() ? LightMethod{} : methods.at(l);
     const std::array<T*, LightTermCount>& out = outputs_.lights[l];
     // Only a light whose specular term some array needs has its lobe evaluated (or integrated).
-    const bool needsSpecular = specularModel_ != SpecularModel::None && (out[int(LightTerm::Specular)] || totalSpecular);
+    const bool needsSpecular =
+      specularModel_ != SpecularModel::None && (out[int(LightTerm::Specular)] || totalSpecular);
     EvaluationContext context;
     context.lineOfSight = scene.viewer.lineOfSight();
     context.distantFrom = method.distantFrom;
