@@ -172,9 +172,11 @@ vtkSmartPointer<vtkPolyData> readMesh(const std::string& fileName)
     [&](ChildChannel& channel)
     {
       // oneTBB does not support fork(): worker threads the parent may have started are not in
-      // the child. The reading needs none (VTK's readers are serial), so VTK's parallel loops
-      // (array ranges) run here without TBB.
-      vtkSMPTools::SetBackend("Sequential");
+      // the child. So VTK's parallel loops (the cell checks below) run here on threads of
+      // their own (VTK's std::thread backend), started in the child, as many as the parent's.
+      const int threads = vtkSMPTools::GetEstimatedNumberOfThreads();
+      vtkSMPTools::SetBackend("STDThread");
+      vtkSMPTools::Initialize(threads);
       vtkSmartPointer<vtkPolyData> mesh = readDirectly(fileName, extension, channel.terminal());
       // Checked here, before it is handed over: a reader can build cells whose offsets lie,
       // and reading them back would trust the lie.

@@ -343,8 +343,9 @@ int runShade(const ShadeOptions& options)
     }
   }
   printSummary(output, scene, options.prefix);
+  const int threads = vtkSMPTools::GetEstimatedNumberOfThreads();
   std::cout << std::setprecision(3) << "  time: read " << readSeconds << " s, shade "
-            << shadeSeconds << " s (" << vtkSMPTools::GetEstimatedNumberOfThreads() << " threads, "
+            << shadeSeconds << " s (" << threads << (threads == 1 ? " thread, " : " threads, ")
             << (options.tolerance > 0 ? "methods above" : options.precision) << "), write " << writeSeconds << " s\n";
   return 0;
 }

@@ -145,7 +145,7 @@ TEST_F(Cli, ShadesAndSummarises)
   EXPECT_EQ(result.err, "");
   EXPECT_NE(result.out.find("  mesh: 35947 vertices, 69451 polygons and strips\n"), std::string::npos) << result.out;
   EXPECT_NE(result.out.find("    sun_cos_incidence            1     "), std::string::npos) << result.out;
-  EXPECT_NE(result.out.find("(1 threads, float64)"), std::string::npos) << result.out;
+  EXPECT_NE(result.out.find("(1 thread, float64)"), std::string::npos) << result.out;
   EXPECT_NE(result.out.find("flipped them outward."), std::string::npos) << result.out;
   EXPECT_EQ(slurp(out).rfind("<VTKFile type=\"PolyData\"", 0), 0u); // replaced by a VTK XML file
 }

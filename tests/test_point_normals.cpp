@@ -32,7 +32,7 @@ struct Triangles
   CornerSums sums() const
   {
     CornerSums sums(points.size(), glm::dvec3(0.0));
-    sumAtCorners(list(), 0, list().count, {}, [this](PointId id) { return at(id); }, sums);
+    sumAtCorners(list(), 0, list().count, {}, PackedPoints<double>{ &points[0].x }, sums);
     return sums;
   }
   /// Unit normals, welded along edges (nullptr: not welded).
@@ -195,16 +195,16 @@ Triangles tetrahedron()
 TEST(PointNormals, EdgeBalanceIsZeroOnlyWhereTheSurfaceClosesConsistently)
 {
   const Triangles closed = tetrahedron();
-  EXPECT_TRUE(unbalancedPoints(closed.sums().points).empty());
+  EXPECT_TRUE(unbalancedPoints(closed.sums().points, 0, closed.points.size()).empty());
   // Without its last face, the three points of that face's rim are on a boundary.
   Triangles open = closed;
   open.offsets.pop_back();
   open.connectivity.resize(9);
-  EXPECT_EQ(unbalancedPoints(open.sums().points), (std::vector<PointId>{ 1, 2, 3 }));
+  EXPECT_EQ(unbalancedPoints(open.sums().points, 0, open.points.size()), (std::vector<PointId>{ 1, 2, 3 }));
   // One face turned round: every edge of it is traversed twice in one direction.
   Triangles turned = closed;
   std::swap(turned.connectivity[10], turned.connectivity[11]); // 1, 2, 3
-  EXPECT_EQ(unbalancedPoints(turned.sums().points), (std::vector<PointId>{ 1, 2, 3 }));
+  EXPECT_EQ(unbalancedPoints(turned.sums().points, 0, turned.points.size()), (std::vector<PointId>{ 1, 2, 3 }));
   EXPECT_EQ(PolygonEdges(turned.list(), {}).inconsistentCount(), 3u);
 }
 
@@ -242,7 +242,7 @@ TEST(PointNormals, SubsetHoldsThePolygonsWithAnEdgeBetweenListedPoints)
   const Triangles solid = tetrahedron();
   // Points 1 and 3 share an edge in faces 1 (0, 3, 1) and 3 (1, 3, 2); 0 and 2 alone share
   // edges with unlisted points only.
-  const std::vector<bool> listed{ false, true, false, true };
+  const std::vector<std::uint8_t> listed{ 0, 1, 0, 1 };
   std::vector<std::size_t> chosen;
   for (std::size_t k = 0; k < solid.list().count; ++k)
   {

@@ -366,6 +366,7 @@ vtkDataArray* vtkLocalReflectanceFilter::PrepareNormals(vtkPolyData* input, vtkP
   step->SetWeldCoincidentPoints(this->WeldCoincidentPoints);
   step->SetFeatureAngle(this->FeatureAngle);
   step->SetWeldTolerance(this->WeldTolerance);
+  step->CheckCellsOff(); // meshProblem checked them
   // Outputs share the prepared normals: one edited in place since the step ran (and marked
   // modified) is not trusted.
   vtkDataArray* previous = step->GetOutput()->GetPointData()->GetNormals();

@@ -9,6 +9,7 @@
 #include "vtkCellArray.h"
 #include "vtkCellArrayIterator.h"
 #include "vtkDataArrayRange.h"
+#include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkIdTypeArray.h"
@@ -192,28 +193,43 @@ std::vector<bool> polygonsToTurn(vtkPolyData* mesh, const MeshPolygons& polygons
   return flipped;
 }
 
-/// Polygons are visited in fixed blocks of this many: the blocks do not depend on the number
-/// of threads, so results kept per block and joined in block order are the same on any number.
-constexpr std::size_t polygonBlockSize = 1 << 16;
+/// Polygons and points are visited in fixed blocks of this many: the blocks do not depend on
+/// the number of threads, so results kept per block and joined in block order are the same on
+/// any number.
+constexpr std::size_t blockSize = 1 << 16;
 
-std::size_t polygonBlockCount(std::size_t count)
+std::size_t blockCount(std::size_t count)
 {
-  return (count + polygonBlockSize - 1) / polygonBlockSize;
+  return (count + blockSize - 1) / blockSize;
 }
 
-/// Calls visit(b, first, last) for each block b of count polygons (polygons first..last-1),
-/// in a vtkSMPTools loop.
+/// Calls visit(b, first, last) for each block b of count items (items first..last-1), in a
+/// vtkSMPTools loop.
 template <typename Visit>
-void forEachPolygonBlock(std::size_t count, Visit visit)
+void forEachBlock(std::size_t count, Visit visit)
 {
-  vtkSMPTools::For(0, static_cast<vtkIdType>(polygonBlockCount(count)),
+  vtkSMPTools::For(0, static_cast<vtkIdType>(blockCount(count)),
     [&](vtkIdType firstBlock, vtkIdType endBlock)
     {
       for (std::size_t b = static_cast<std::size_t>(firstBlock); b < static_cast<std::size_t>(endBlock); ++b)
       {
-        visit(b, b * polygonBlockSize, std::min(count, (b + 1) * polygonBlockSize));
+        visit(b, b * blockSize, std::min(count, (b + 1) * blockSize));
       }
     });
+}
+
+/// What find(first, last) returns for each block of count items, joined in block order.
+template <typename T, typename Find>
+std::vector<T> foundInBlocks(std::size_t count, Find find)
+{
+  std::vector<std::vector<T>> found(blockCount(count));
+  forEachBlock(count, [&](std::size_t b, std::size_t first, std::size_t last) { found[b] = find(first, last); });
+  std::vector<T> joined;
+  for (const std::vector<T>& block : found)
+  {
+    joined.insert(joined.end(), block.begin(), block.end());
+  }
+  return joined;
 }
 
 /// Feeds every triangle of the mesh's polygons (split into fans) to the orientation test, in
@@ -236,8 +252,8 @@ struct OrientationWorker
     double centre[3];
     mesh->GetCenter(centre); // of the bounding box
     const shadelab::NormalOrientationAccumulator empty({ centre[0], centre[1], centre[2] });
-    std::vector<shadelab::NormalOrientationAccumulator> blocks(polygonBlockCount(polygons.count), empty);
-    forEachPolygonBlock(polygons.count,
+    std::vector<shadelab::NormalOrientationAccumulator> blocks(blockCount(polygons.count), empty);
+    forEachBlock(polygons.count,
       [&](std::size_t b, std::size_t first, std::size_t last)
       {
         for (std::size_t k = first; k < last; ++k)
@@ -278,17 +294,18 @@ struct ComputedNormals
   std::size_t inconsistentEdges = 0;
   shadelab::WeldSummary weld;
   shadelab::NormalOrientation orientation; // of the polygons' winding, which the normals follow
+  bool turnedOutward = false;              // written flipped, the winding pointing in
 };
 
 /// The polygons' sums at their corners (shadelab::sumAtCorners), in polygon order: one
 /// thread, because the pass is bound by memory (scattering to points), and two threads
 /// scattering into two sets of sums ran no faster here.
-template <typename PointAt>
+template <typename Real>
 shadelab::CornerSums sumAtCorners(const shadelab::PolygonList& list, const std::vector<bool>& flipped,
-  std::size_t pointCount, const glm::dvec3& centre, PointAt pointAt)
+  std::size_t pointCount, const glm::dvec3& centre, shadelab::PackedPoints<Real> points)
 {
   shadelab::CornerSums sums(pointCount, centre);
-  shadelab::sumAtCorners(list, 0, list.count, flipped, pointAt, sums);
+  shadelab::sumAtCorners(list, 0, list.count, flipped, points, sums);
   return sums;
 }
 
@@ -301,33 +318,29 @@ std::vector<std::size_t> polygonsBetween(
   {
     return {};
   }
-  std::vector<bool> listed(pointCount, false);
+  std::vector<std::uint8_t> listed(pointCount, 0);
   for (shadelab::PointId id : points)
   {
-    listed[static_cast<std::size_t>(id)] = true;
+    listed[static_cast<std::size_t>(id)] = 1;
   }
-  std::vector<std::vector<std::size_t>> found(polygonBlockCount(list.count));
-  forEachPolygonBlock(list.count,
-    [&](std::size_t b, std::size_t first, std::size_t last)
+  return foundInBlocks<std::size_t>(list.count,
+    [&](std::size_t first, std::size_t last)
     {
+      std::vector<std::size_t> found;
       for (std::size_t k = first; k < last; ++k)
       {
         if (shadelab::hasEdgeBetween(list, k, listed))
         {
-          found[b].push_back(k);
+          found.push_back(k);
         }
       }
+      return found;
     });
-  std::vector<std::size_t> polygons;
-  for (const std::vector<std::size_t>& block : found)
-  {
-    polygons.insert(polygons.end(), block.begin(), block.end());
-  }
-  return polygons;
 }
 
 /// Computes area-weighted point normals (PointNormals.h). A worker for vtkArrayDispatch over
-/// the point array, so that points are read from raw memory.
+/// the point array (float or double, x, y, z after one another), so that points are read from
+/// raw memory.
 struct NormalsWorker
 {
   vtkPolyData* mesh;
@@ -335,17 +348,13 @@ struct NormalsWorker
   bool weld;
   double weldTolerance;
   double featureAngle;
+  bool orientOutward;
   ComputedNormals computed;
 
-  template <typename PointArray>
-  void operator()(PointArray* pointArray)
+  template <typename Real>
+  void operator()(vtkAOSDataArrayTemplate<Real>* pointArray)
   {
-    const auto points = vtk::DataArrayTupleRange<3>(pointArray);
-    auto pointAt = [&points](shadelab::PointId id)
-    {
-      const auto p = points[id];
-      return glm::dvec3(p[0], p[1], p[2]);
-    };
+    const shadelab::PackedPoints<Real> pointAt{ pointArray->GetPointer(0) };
     const shadelab::PolygonList& list = polygons.list();
     const std::size_t pointCount = static_cast<std::size_t>(mesh->GetNumberOfPoints());
     double centre[3];
@@ -353,7 +362,8 @@ struct NormalsWorker
     shadelab::CornerSums sums = sumAtCorners(list, {}, pointCount, { centre[0], centre[1], centre[2] }, pointAt);
     // Only points whose edges do not pair up can be copies on a seam or on an inconsistent
     // edge: the rest of the mesh needs nothing more.
-    const std::vector<shadelab::PointId> candidates = shadelab::unbalancedPoints(sums.points);
+    const std::vector<shadelab::PointId> candidates = foundInBlocks<shadelab::PointId>(
+      pointCount, [&](std::size_t first, std::size_t last) { return shadelab::unbalancedPoints(sums.points, first, last); });
     const std::vector<shadelab::PointId> mergeMap =
       weld ? positionMergeMap(mesh, candidates, weldTolerance, pointAt) : std::vector<shadelab::PointId>{};
     const shadelab::PolygonSubset aroundCandidates(list, polygonsBetween(list, candidates, pointCount));
@@ -377,6 +387,8 @@ struct NormalsWorker
         mergeMap, featureAngle, &computed.weld);
     }
     computed.orientation = sums.winding.result();
+    computed.turnedOutward = orientOutward && computed.orientation.pointsInward();
+    const double sign = computed.turnedOutward ? -1.0 : 1.0; // so that they need no second pass
     computed.normals = vtkSmartPointer<vtkFloatArray>::New();
     computed.normals->SetNumberOfComponents(3);
     if (!shadelab::allocateTuples<float>(computed.normals, static_cast<vtkIdType>(pointCount)))
@@ -389,7 +401,7 @@ struct NormalsWorker
       {
         for (std::size_t i = static_cast<std::size_t>(begin); i < static_cast<std::size_t>(end); ++i)
         {
-          const glm::dvec3 n = shadelab::unitNormal(sums.points[i].area);
+          const glm::dvec3 n = sign * shadelab::unitNormal(sums.points[i].area);
           out[3 * i] = static_cast<float>(n.x);
           out[3 * i + 1] = static_cast<float>(n.y);
           out[3 * i + 2] = static_cast<float>(n.z);
@@ -398,13 +410,19 @@ struct NormalsWorker
   }
 };
 
-ComputedNormals computeNormals(vtkPolyData* mesh, const MeshPolygons& polygons, bool weld, double weldTolerance, double featureAngle)
+using RealArrays = vtkTypeList::Create<vtkAOSDataArrayTemplate<float>, vtkAOSDataArrayTemplate<double>>;
+
+ComputedNormals computeNormals(vtkPolyData* mesh, const MeshPolygons& polygons, bool weld, double weldTolerance,
+  double featureAngle, bool orientOutward)
 {
-  NormalsWorker worker{ mesh, polygons, weld, weldTolerance, featureAngle, {} };
+  NormalsWorker worker{ mesh, polygons, weld, weldTolerance, featureAngle, orientOutward, {} };
   vtkDataArray* points = mesh->GetPoints()->GetData();
-  if (!vtkArrayDispatch::DispatchByValueType<vtkArrayDispatch::Reals>::Execute(points, worker))
+  if (!vtkArrayDispatch::DispatchByArray<RealArrays>::Execute(points, worker))
   {
-    worker(points); // other value types, through the generic vtkDataArray API
+    // Points of another type (integers, say) are read as doubles.
+    vtkNew<vtkDoubleArray> asDoubles;
+    asDoubles->DeepCopy(points);
+    worker(asDoubles.Get());
   }
   return worker.computed;
 }
@@ -443,7 +461,7 @@ int vtkShadingNormalsFilter::RequestData(
   {
     return 1; // an empty mesh has no normals to prepare
   }
-  const std::string cells = shadelab::cellProblem(input);
+  const std::string cells = this->CheckCells ? shadelab::cellProblem(input) : "";
   if (!cells.empty())
   {
     vtkErrorMacro(<< cells);
@@ -451,6 +469,7 @@ int vtkShadingNormalsFilter::RequestData(
   }
   std::ostringstream report;
   std::optional<shadelab::NormalOrientation> orientation; // of computed normals, found with them
+  bool turnedOutward = false;                              // computed normals, written so
   vtkDataArray* inputNormals = input->GetPointData()->GetNormals();
   vtkSmartPointer<vtkDataArray> normals;
   if (this->KeepInputNormals && usableNormals(inputNormals, input->GetNumberOfPoints()))
@@ -479,11 +498,12 @@ int vtkShadingNormalsFilter::RequestData(
   {
     output->ShallowCopy(input);
     const ComputedNormals computed = computeNormals(
-      input, MeshPolygons(input), this->WeldCoincidentPoints, this->WeldTolerance, this->FeatureAngle);
+      input, MeshPolygons(input), this->WeldCoincidentPoints, this->WeldTolerance, this->FeatureAngle, this->OrientOutward);
     computed.normals->SetName(this->NormalsName.c_str());
     const std::size_t inconsistent = computed.inconsistentEdges;
     const shadelab::WeldSummary& weld = computed.weld;
     orientation = computed.orientation;
+    turnedOutward = computed.turnedOutward;
     normals = computed.normals;
     output->GetPointData()->SetNormals(computed.normals);
     report << (inputNormals ? "Replaced the mesh's point normals" : "The mesh has no point normals")
@@ -519,7 +539,7 @@ int vtkShadingNormalsFilter::RequestData(
       {
         output->GetPointData()->SetNormals(flippedCopy(normals)); // the input's own pass through
       }
-      else
+      else if (!turnedOutward)
       {
         flipInPlace(normals);
       }
@@ -548,5 +568,6 @@ void vtkShadingNormalsFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "SplitSharpEdges: " << this->SplitSharpEdges << "\n";
   os << indent << "SplitAngle: " << this->SplitAngle << "\n";
   os << indent << "OrientOutward: " << this->OrientOutward << "\n";
+  os << indent << "CheckCells: " << this->CheckCells << "\n";
   os << indent << "NormalsName: " << this->NormalsName << "\n";
 }

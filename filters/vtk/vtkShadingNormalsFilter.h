@@ -75,6 +75,13 @@ public:
   vtkGetMacro(OrientOutward, bool);
   vtkBooleanMacro(OrientOutward, bool);
 
+  /// Check the cells' offsets and point ids before using them (default on). Off only where
+  /// the caller has checked the same cells already, as vtkLocalReflectanceFilter does before
+  /// it runs this filter: on a large mesh the check reads every id, a tenth of the time here.
+  vtkSetMacro(CheckCells, bool);
+  vtkGetMacro(CheckCells, bool);
+  vtkBooleanMacro(CheckCells, bool);
+
   /// The name of computed normals (default "Normals").
   vtkSetMacro(NormalsName, std::string);
   vtkGetMacro(NormalsName, std::string);
@@ -99,6 +106,7 @@ private:
   bool SplitSharpEdges = false;
   double SplitAngle = 30.0;
   bool OrientOutward = true;
+  bool CheckCells = true;
   std::string NormalsName = "Normals";
   std::string Report;
 };

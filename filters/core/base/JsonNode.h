@@ -125,6 +125,14 @@ public:
   template <typename Value>
   Value choice(std::initializer_list<std::pair<const char*, Value>> options) const
   {
+    return choiceAmong(options);
+  }
+
+  /// One of the names of options (a range of (name, value) pairs); returns the value paired
+  /// with it.
+  template <typename Options>
+  auto choiceAmong(const Options& options) const
+  {
     const std::string given = text();
     std::string list;
     for (const auto& [name, value] : options)

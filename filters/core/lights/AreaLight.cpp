@@ -4,40 +4,62 @@
 #include "LightFields.h"
 #include "PolygonIrradiance.h"
 
+#include <algorithm>
 
 namespace shadelab
 {
 namespace
 {
-EmitterShape readShape(const JsonNode& node, const std::string& type)
+EmitterShape readPolygon(const JsonNode& node)
 {
-  if (type == "polygon")
+  const JsonNode vertices = node.at("vertices");
+  if (!vertices.isArray())
   {
-    const JsonNode vertices = node.at("vertices");
-    if (!vertices.isArray())
-    {
-      vertices.fail("must be an array of [x, y, z] points");
-    }
-    PolygonEmitter polygon;
-    for (std::size_t i = 0; i < vertices.size(); ++i)
-    {
-      polygon.vertices.push_back(vertices.element(i).vector3());
-    }
-    return polygon;
+    vertices.fail("must be an array of [x, y, z] points");
   }
-  if (type == "rectangle")
+  PolygonEmitter polygon;
+  for (std::size_t i = 0; i < vertices.size(); ++i)
   {
-    // Corners c - u/2 - v/2, c + u/2 - v/2, c + u/2 + v/2, c - u/2 + v/2: it emits toward u x v.
-    const glm::dvec3 c = node.at("center").vector3();
-    const glm::dvec3 u = 0.5 * node.at("edge_u").vector3();
-    const glm::dvec3 v = 0.5 * node.at("edge_v").vector3();
-    return PolygonEmitter{ { c - u - v, c + u - v, c + u + v, c - u + v } };
+    polygon.vertices.push_back(vertices.element(i).vector3());
   }
-  if (type == "disk")
-  {
-    return DiskEmitter{ node.at("center").vector3(), node.at("normal").vector3(), node.at("radius").number() };
-  }
+  return polygon;
+}
+
+EmitterShape readRectangle(const JsonNode& node)
+{
+  // Corners c - u/2 - v/2, c + u/2 - v/2, c + u/2 + v/2, c - u/2 + v/2: it emits toward u x v.
+  const glm::dvec3 c = node.at("center").vector3();
+  const glm::dvec3 u = 0.5 * node.at("edge_u").vector3();
+  const glm::dvec3 v = 0.5 * node.at("edge_v").vector3();
+  return PolygonEmitter{ { c - u - v, c + u - v, c + u + v, c - u + v } };
+}
+
+EmitterShape readDisk(const JsonNode& node)
+{
+  return DiskEmitter{ node.at("center").vector3(), node.at("normal").vector3(), node.at("radius").number() };
+}
+
+EmitterShape readSphere(const JsonNode& node)
+{
   return SphereEmitter{ node.at("center").vector3(), node.at("radius").number() };
+}
+
+/// An emitter's "type" name and fields in a scene file, and the function that reads its shape.
+struct ShapeFileType
+{
+  SceneFileType fileType;
+  EmitterShape (*readShape)(const JsonNode& node);
+};
+
+const std::vector<ShapeFileType>& shapeFileTypes()
+{
+  static const std::vector<ShapeFileType> types = {
+    { { "polygon", { "vertices", "two_sided", "estimator", "samples", "stratified" } }, &readPolygon },
+    { { "rectangle", { "center", "edge_u", "edge_v", "two_sided", "estimator", "samples", "stratified" } }, &readRectangle },
+    { { "disk", { "center", "normal", "radius", "two_sided", "estimator", "samples", "stratified" } }, &readDisk },
+    { { "sphere", { "center", "radius", "estimator", "samples", "stratified" } }, &readSphere },
+  };
+  return types;
 }
 
 void checkPolygon(const PolygonEmitter& polygon, LightChecks& checks)
@@ -88,19 +110,25 @@ void checkRound(const glm::dvec3& centre, double radius, LightChecks& checks)
 
 const std::vector<SceneFileType>& AreaLight::sceneFileTypes()
 {
-  static const std::vector<SceneFileType> types = {
-    { "polygon", { "vertices", "two_sided", "estimator", "samples", "stratified" } },
-    { "rectangle", { "center", "edge_u", "edge_v", "two_sided", "estimator", "samples", "stratified" } },
-    { "disk", { "center", "normal", "radius", "two_sided", "estimator", "samples", "stratified" } },
-    { "sphere", { "center", "radius", "estimator", "samples", "stratified" } },
-  };
+  static const std::vector<SceneFileType> types = []
+  {
+    std::vector<SceneFileType> fileTypes;
+    for (const ShapeFileType& shape : shapeFileTypes())
+    {
+      fileTypes.push_back(shape.fileType);
+    }
+    return fileTypes;
+  }();
   return types;
 }
 
 AreaLight AreaLight::read(const JsonNode& node, const SceneFileType& type, const std::string&)
 {
+  const auto& shapes = shapeFileTypes();
+  const auto shape = std::find_if(shapes.begin(), shapes.end(),
+    [&](const ShapeFileType& candidate) { return std::string(candidate.fileType.name) == type.name; });
   AreaLight light;
-  light.shape = readShape(node, type.name);
+  light.shape = shape->readShape(node);
   readStrength(node, light);
   if (node.has("two_sided"))
   {

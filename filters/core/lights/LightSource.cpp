@@ -145,20 +145,19 @@ const std::vector<const char*>& anyLightFields()
   return fields;
 }
 
-/// Fails with the list of type names unless the node names a registered type.
+/// The registered type the node names; fails with the list of names otherwise.
 const FileTypeEntry& fileTypeNamed(const JsonNode& node)
 {
-  const std::string given = node.text();
-  std::string list;
-  for (const FileTypeEntry& entry : fileTypes())
+  static const std::vector<std::pair<const char*, const FileTypeEntry*>> byName = []
   {
-    if (given == entry.type->name)
+    std::vector<std::pair<const char*, const FileTypeEntry*>> names;
+    for (const FileTypeEntry& entry : fileTypes())
     {
-      return entry;
+      names.emplace_back(entry.type->name, &entry);
     }
-    list += (list.empty() ? "\"" : ", \"") + std::string(entry.type->name) + "\"";
-  }
-  node.fail("\"" + given + "\" is not one of " + list);
+    return names;
+  }();
+  return *node.choiceAmong(byName);
 }
 }
 

@@ -81,10 +81,10 @@ std::size_t PolygonEdges::inconsistentCount() const
   return inconsistent;
 }
 
-std::vector<PointId> unbalancedPoints(const std::vector<CornerSum, LargeAllocator<CornerSum>>& sums)
+std::vector<PointId> unbalancedPoints(const CornerSumArray& sums, std::size_t first, std::size_t last)
 {
   std::vector<PointId> points;
-  for (std::size_t i = 0; i < sums.size(); ++i)
+  for (std::size_t i = first; i < last; ++i)
   {
     if (sums[i].edgeBalance != 0)
     {
@@ -112,7 +112,7 @@ glm::dvec3 unitNormal(const glm::dvec3& sum)
   return isFinite(sum) && largestComponent(sum) > 0.0 ? unitVector(sum) : glm::dvec3(0.0);
 }
 
-void weldCopies(std::vector<CornerSum, LargeAllocator<CornerSum>>& sums, const PolygonEdges& edges,
+void weldCopies(CornerSumArray& sums, const PolygonEdges& edges,
   const std::vector<glm::dvec3>& edgePolygonAreas, const std::vector<PointId>& mergeMap,
   double featureAngleDegrees, WeldSummary* summary)
 {
