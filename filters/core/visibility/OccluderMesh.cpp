@@ -1,0 +1,156 @@
+#include "OccluderMesh.h"
+
+#include "RayOrigin.h"
+
+#include <embree3/rtcore.h>
+
+#include <stdexcept>
+#include <utility>
+#include <string>
+
+namespace shadelab
+{
+/// The Embree device and scene, kept out of the header so that users of OccluderMesh need no
+/// Embree headers.
+struct OccluderMesh::Embree
+{
+  RTCDevice device = nullptr;
+  RTCScene scene = nullptr;
+
+  ~Embree()
+  {
+    if (scene)
+    {
+      rtcReleaseScene(scene);
+    }
+    if (device)
+    {
+      rtcReleaseDevice(device);
+    }
+  }
+
+  /// Throws what Embree reports as its last error, if anything.
+  void check(const char* step) const
+  {
+    const RTCError error = rtcGetDeviceError(device);
+    if (error != RTC_ERROR_NONE)
+    {
+      throw std::runtime_error(std::string("Embree failed to ") + step + " (error " + std::to_string(int(error)) + ")");
+    }
+  }
+};
+
+/// A ray in the unit frame, its origin moved off the surface.
+struct OccluderMesh::LocalRay
+{
+  glm::vec3 origin, direction;
+  float maxDistance;
+};
+
+OccluderMesh::OccluderMesh(UnitFrame frame, const PolygonList& polygons)
+  : frame_(std::move(frame))
+{
+  const std::size_t pointCount = frame_.vertices.size() / 3;
+  if (pointCount > std::numeric_limits<std::uint32_t>::max())
+  {
+    throw std::length_error("more than 2^32 points: too many for the ray casting's triangle list");
+  }
+  for (std::size_t k = 0; k < polygons.count; ++k)
+  {
+    const PointId* ids = polygons.ids(k);
+    for (std::size_t i = 2; i < polygons.size(k); ++i)
+    {
+      triangles_.insert(triangles_.end(), { static_cast<std::uint32_t>(ids[0]), static_cast<std::uint32_t>(ids[i - 1]),
+        static_cast<std::uint32_t>(ids[i]) });
+    }
+  }
+  embree_ = std::make_unique<Embree>();
+  embree_->device = rtcNewDevice(nullptr);
+  if (!embree_->device)
+  {
+    throw std::runtime_error("Embree could not start (rtcNewDevice failed): does this processor have SSE2?");
+  }
+  embree_->scene = rtcNewScene(embree_->device);
+  if (triangles_.empty())
+  {
+    rtcCommitScene(embree_->scene); // nothing to hit
+    embree_->check("build an empty scene");
+    return;
+  }
+  // Robust: rays through an edge or a corner shared by triangles hit one of them (no leak
+  // between watertight triangles), at a small cost.
+  rtcSetSceneFlags(embree_->scene, RTC_SCENE_FLAG_ROBUST);
+  RTCGeometry geometry = rtcNewGeometry(embree_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  // Shared buffers: Embree reads ShadeLab's arrays, no copy.
+  rtcSetSharedGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, frame_.vertices.data(), 0,
+    3 * sizeof(float), pointCount);
+  rtcSetSharedGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, triangles_.data(), 0,
+    3 * sizeof(std::uint32_t), triangleCount());
+  rtcCommitGeometry(geometry);
+  rtcAttachGeometry(embree_->scene, geometry);
+  rtcReleaseGeometry(geometry);
+  rtcCommitScene(embree_->scene);
+  embree_->check("build the triangles' BVH");
+}
+
+OccluderMesh::~OccluderMesh() = default;
+
+OccluderMesh::LocalRay OccluderMesh::localRay(const SurfaceRay& ray) const
+{
+  const glm::vec3 point((ray.point - frame_.centre) / frame_.radius);
+  return { offsetRayOrigin(point, glm::vec3(ray.side)), glm::vec3(ray.direction),
+    static_cast<float>(ray.maxDistance / frame_.radius) };
+}
+
+namespace
+{
+void setRay(RTCRay& ray, const glm::vec3& origin, const glm::vec3& direction, float maxDistance)
+{
+  ray.org_x = origin.x;
+  ray.org_y = origin.y;
+  ray.org_z = origin.z;
+  ray.tnear = 0.0f;
+  ray.dir_x = direction.x;
+  ray.dir_y = direction.y;
+  ray.dir_z = direction.z;
+  ray.time = 0.0f;
+  ray.tfar = maxDistance;
+  ray.mask = 0xFFFFFFFFu;
+  ray.id = 0;
+  ray.flags = 0;
+}
+}
+
+bool OccluderMesh::occluded(const SurfaceRay& surfaceRay) const
+{
+  const LocalRay local = localRay(surfaceRay);
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRay ray;
+  setRay(ray, local.origin, local.direction, local.maxDistance);
+  rtcOccluded1(embree_->scene, &context, &ray);
+  return ray.tfar < 0; // Embree sets it to -inf on a hit
+}
+
+OccluderMesh::Hit OccluderMesh::firstHit(const SurfaceRay& surfaceRay) const
+{
+  const LocalRay local = localRay(surfaceRay);
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRayHit rayHit;
+  setRay(rayHit.ray, local.origin, local.direction, local.maxDistance);
+  rayHit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rayHit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(embree_->scene, &context, &rayHit);
+  Hit hit;
+  if (rayHit.hit.geomID != RTC_INVALID_GEOMETRY_ID)
+  {
+    hit.found = true;
+    for (int i = 0; i < 3; ++i)
+    {
+      hit.corners[i] = triangles_[3 * rayHit.hit.primID + i];
+    }
+  }
+  return hit;
+}
+}

@@ -1,0 +1,111 @@
+#pragma once
+// A mesh's triangles as occluders of rays: an Embree 3 BVH, built once, queried from any
+// number of threads at once.
+//
+// Embree works in float32, so the triangles go into a frame where the mesh's bounding sphere
+// is the unit sphere: a mesh far from the origin or of any size keeps float32's relative
+// precision, and the ray offsets (RayOrigin.h) mean the same on every mesh.
+#include "PointNormals.h"
+
+#include <glm/common.hpp>
+#include <glm/vec3.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <vector>
+
+namespace shadelab
+{
+/// Where a ray goes: from a surface point, along a unit direction, up to a distance (infinite:
+/// to the end of the scene). In the mesh's own coordinates.
+struct SurfaceRay
+{
+  glm::dvec3 point{ 0.0 };  // the surface point it leaves
+  glm::dvec3 side{ 0.0 };   // the unit normal of the side it leaves from
+  glm::dvec3 direction{ 0.0 };
+  double maxDistance = std::numeric_limits<double>::infinity();
+};
+
+class OccluderMesh
+{
+public:
+  /// The polygons (split into fans of triangles) over pointCount points; pointAt(id) gives a
+  /// point in the mesh's coordinates.
+  template <typename Real>
+  OccluderMesh(PackedPoints<Real> points, std::size_t pointCount, const PolygonList& polygons)
+    : OccluderMesh(UnitFrame::of(points, pointCount), polygons)
+  {
+  }
+  ~OccluderMesh();
+  OccluderMesh(const OccluderMesh&) = delete;
+  OccluderMesh& operator=(const OccluderMesh&) = delete;
+
+  /// Whether a triangle blocks the ray.
+  bool occluded(const SurfaceRay& ray) const;
+
+  /// The point ids of the first triangle the ray meets, or none.
+  struct Hit
+  {
+    bool found = false;
+    std::array<PointId, 3> corners{};
+  };
+  Hit firstHit(const SurfaceRay& ray) const;
+
+  std::size_t triangleCount() const { return triangles_.size() / 3; }
+
+private:
+  /// The points in the frame where the mesh's bounding sphere is the unit sphere.
+  struct UnitFrame
+  {
+    glm::dvec3 centre{ 0.0 };
+    double radius = 1;
+    std::vector<float> vertices; // x, y, z per point, then one padding float
+
+    template <typename Real>
+    static UnitFrame of(PackedPoints<Real> points, std::size_t pointCount);
+  };
+  OccluderMesh(UnitFrame frame, const PolygonList& polygons);
+  struct LocalRay;
+  LocalRay localRay(const SurfaceRay& ray) const;
+
+  UnitFrame frame_;
+  std::vector<std::uint32_t> triangles_; // three point ids per triangle
+  struct Embree;
+  std::unique_ptr<Embree> embree_;
+};
+
+template <typename Real>
+OccluderMesh::UnitFrame OccluderMesh::UnitFrame::of(PackedPoints<Real> points, std::size_t pointCount)
+{
+  // The bounding box's centre and the largest distance from it.
+  UnitFrame frame;
+  glm::dvec3 low(std::numeric_limits<double>::infinity()), high(-std::numeric_limits<double>::infinity());
+  for (std::size_t i = 0; i < pointCount; ++i)
+  {
+    const glm::dvec3 p = points(static_cast<PointId>(i));
+    low = glm::min(low, p);
+    high = glm::max(high, p);
+  }
+  frame.centre = pointCount > 0 ? 0.5 * (low + high) : glm::dvec3(0.0);
+  double radiusSquared = 0;
+  for (std::size_t i = 0; i < pointCount; ++i)
+  {
+    const glm::dvec3 d = points(static_cast<PointId>(i)) - frame.centre;
+    radiusSquared = std::max(radiusSquared, d.x * d.x + d.y * d.y + d.z * d.z);
+  }
+  frame.radius = radiusSquared > 0 ? std::sqrt(radiusSquared) : 1.0;
+  frame.vertices.resize(3 * pointCount + 1, 0.0f); // Embree reads 16 bytes at the last vertex
+  for (std::size_t i = 0; i < pointCount; ++i)
+  {
+    const glm::dvec3 local = (points(static_cast<PointId>(i)) - frame.centre) / frame.radius;
+    frame.vertices[3 * i] = static_cast<float>(local.x);
+    frame.vertices[3 * i + 1] = static_cast<float>(local.y);
+    frame.vertices[3 * i + 2] = static_cast<float>(local.z);
+  }
+  return frame;
+}
+}

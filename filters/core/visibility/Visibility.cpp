@@ -1,0 +1,92 @@
+#include "Visibility.h"
+
+#include "MonteCarloEstimate.h"
+#include "SampleWarps.h"
+#include "Vec3.h"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace shadelab
+{
+namespace
+{
+/// The seed of ambient occlusion's samples, apart from every light's (lights use their index).
+constexpr std::uint64_t occlusionSeed = 0x414f'0000'0000'0000ull;
+/// The sky view factor's samples, apart from the occlusion's.
+constexpr std::uint64_t skyViewSeed = occlusionSeed + 1;
+
+bool hasNormal(const RayVertex& vertex)
+{
+  return vertex.normal != glm::dvec3(0.0);
+}
+
+/// A direction uniform over the hemisphere about unit n, from a point of the unit square.
+glm::dvec3 uniformHemisphereDirection(const glm::dvec3& n, const glm::dvec2& u)
+{
+  glm::dvec3 t, b;
+  orthonormalBasis(n, t, b);
+  const double cosTheta = u.x;
+  const double sinTheta = std::sqrt(std::max(0.0, 1 - cosTheta * cosTheta));
+  const double phi = 2 * samplePi * u.y;
+  return sinTheta * std::cos(phi) * t + sinTheta * std::sin(phi) * b + cosTheta * n;
+}
+}
+
+LightVisibility lightVisibility(const OccluderMesh& occluders, const RayVertex& vertex, const glm::dvec3& toLight,
+  double distance, bool twoSided)
+{
+  const double cosine = glm::dot(vertex.normal, toLight);
+  if (!hasNormal(vertex) || cosine == 0 || (cosine < 0 && !twoSided))
+  {
+    return {};
+  }
+  const SurfaceRay ray{ vertex.position, cosine > 0 ? vertex.normal : -vertex.normal, toLight, distance };
+  if (!occluders.occluded(ray))
+  {
+    return { true, false };
+  }
+  const OccluderMesh::Hit hit = occluders.firstHit(ray);
+  const bool own = hit.found && std::find(hit.corners.begin(), hit.corners.end(), vertex.id) != hit.corners.end();
+  return { false, own };
+}
+
+OcclusionEstimate ambientOcclusion(const OccluderMesh& occluders, const RayVertex& vertex, const OcclusionSettings& settings)
+{
+  OcclusionEstimate estimate;
+  if (!hasNormal(vertex))
+  {
+    return estimate;
+  }
+  const SampleSequence samples(occlusionSeed, static_cast<std::uint64_t>(vertex.id), settings.sampling);
+  MonteCarloEstimate open(settings.sampling.stratified);
+  glm::dvec3 openDirections(0.0);
+  for (int j = 0; j < samples.count(); ++j)
+  {
+    const glm::dvec3 direction = cosineWeightedDirection(vertex.normal, samples.point(j)).direction;
+    const bool blocked = occluders.occluded({ vertex.position, vertex.normal, direction, settings.maxDistance });
+    open.add(Rgb(blocked ? 0.0 : 1.0));
+    openDirections += blocked ? glm::dvec3(0.0) : direction;
+  }
+  estimate.occlusion = open.mean().x;
+  estimate.standardError = samples.count() >= 2 ? open.standardError().x : 0.0;
+  if (settings.bentNormal && openDirections != glm::dvec3(0.0))
+  {
+    estimate.bentNormal = glm::normalize(openDirections);
+  }
+  if (settings.skyViewFactor)
+  {
+    const SampleSequence skySamples(skyViewSeed, static_cast<std::uint64_t>(vertex.id), settings.sampling);
+    int unblocked = 0;
+    for (int j = 0; j < skySamples.count(); ++j)
+    {
+      const glm::dvec3 direction = uniformHemisphereDirection(vertex.normal, skySamples.point(j));
+      unblocked += occluders.occluded({ vertex.position, vertex.normal, direction, settings.maxDistance }) ? 0 : 1;
+    }
+    estimate.skyViewFactor = double(unblocked) / skySamples.count();
+  }
+  return estimate;
+}
+}

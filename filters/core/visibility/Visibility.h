@@ -1,0 +1,65 @@
+#pragma once
+// What a vertex sees of a light and of the sky past the mesh itself (docs/formulas.md
+// section 18): the visibility of a local light, 0 or 1, and ambient occlusion, the
+// cosine-weighted fraction of the hemisphere above the vertex from which no triangle blocks
+// the sky.
+#include "OccluderMesh.h"
+#include "SampleSequence.h"
+
+#include <glm/vec3.hpp>
+
+#include <cstdint>
+#include <limits>
+
+namespace shadelab
+{
+/// A vertex as the rays see it: its position, its unit shading normal (0 where it has none)
+/// and its point id (which seeds its samples).
+struct RayVertex
+{
+  glm::dvec3 position{ 0.0 };
+  glm::dvec3 normal{ 0.0 };
+  PointId id = 0;
+};
+
+/// Whether the light at unit direction toLight and distance (infinite for a distant light) is
+/// visible from the vertex.
+struct LightVisibility
+{
+  bool visible = false;
+  /// Blocked by a triangle that has the vertex as a corner: on a coarse mesh, the smooth normal
+  /// can face a light that a neighbouring facet hides (the shadow terminator).
+  bool blockedByOwnTriangle = false;
+};
+
+/// The visibility of a light from the vertex. The ray leaves on the side of the normal that
+/// faces the light; where the light is on the normal's back side and the material is not
+/// two-sided, or the vertex has no normal, no ray is cast and the light counts as hidden (the
+/// surface itself hides it, and the terms it multiplies are 0 there).
+LightVisibility lightVisibility(const OccluderMesh& occluders, const RayVertex& vertex, const glm::dvec3& toLight,
+  double distance, bool twoSided);
+
+/// How ambient occlusion is estimated.
+struct OcclusionSettings
+{
+  Sampling sampling{ 64, true };
+  /// Occluders farther than this from the vertex do not count (infinite: all count).
+  double maxDistance = std::numeric_limits<double>::infinity();
+  bool skyViewFactor = false; // also the uniformly weighted fraction, with rays of its own
+  bool bentNormal = false;    // also the mean unoccluded direction
+};
+
+struct OcclusionEstimate
+{
+  double occlusion = 1;     // the cosine-weighted unoccluded fraction: 1 under an open sky
+  double standardError = 0; // of occlusion
+  glm::dvec3 bentNormal{ 0.0 }; // unit; (0, 0, 0) where every ray is blocked or not asked for
+  double skyViewFactor = 1; // the uniformly weighted fraction, when asked for
+};
+
+/// Ambient occlusion at the vertex: settings.sampling.samples cosine-weighted directions about
+/// its normal, each vertex with its own pattern (a hash of its id and the sample), so that the
+/// estimate is the same bits on any number of threads. A vertex without a normal gets the open
+/// sky's values: 1, standard error 0, no bent normal.
+OcclusionEstimate ambientOcclusion(const OccluderMesh& occluders, const RayVertex& vertex, const OcclusionSettings& settings);
+}
