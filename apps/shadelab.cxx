@@ -142,6 +142,7 @@ void printSummary(vtkPolyData* output, const Scene& scene, const std::string& pr
       { FlagHalfVectorUndefined, "half vector undefined" },
       { FlagNonFiniteInput, "non-finite position or normal" },
       { FlagNormalFlipped, "normal flipped to face the viewer" },
+      { FlagHiddenByOwnTriangle, "a shadowed light hidden by its own triangles" },
     };
     std::cout << "  " << flagsArrayName(prefix) << ":";
     const unsigned char* values = flags->GetPointer(0);
@@ -182,7 +183,25 @@ struct ShadeOptions
   double weldTolerance = 0;
   std::optional<double> splitAngle; // split sharp edges at this angle before shading
   EnvironmentOption environment;
+  bool shadows = false;         // every light that can cast shadows casts them
+  int ambientOcclusionRays = 0; // 0: as the scene says
 };
+
+/// The scene with --shadows and --ambient-occlusion applied.
+Scene withVisibilityOptions(Scene scene, const ShadeOptions& options)
+{
+  for (NamedLight& light : scene.lights)
+  {
+    light.shadows = light.shadows || (options.shadows && roleOf(light.source) == LightRole::Local);
+  }
+  if (options.ambientOcclusionRays > 0)
+  {
+    AmbientOcclusion occlusion = scene.ambientOcclusion.value_or(AmbientOcclusion{});
+    occlusion.sampling.samples = options.ambientOcclusionRays;
+    scene.ambientOcclusion = occlusion;
+  }
+  return scene;
+}
 
 /// The scene file's lights, plus the --envmap light. Without --scene: the map alone under the
 /// default material and viewer, or without a map either, the default light kit.
@@ -233,7 +252,7 @@ Scene sceneWithEnvironment(const std::string& sceneFile, const EnvironmentOption
 int runShade(const ShadeOptions& options)
 {
   // Everything that can be checked before the slow work is checked first.
-  const Scene scene = sceneWithEnvironment(options.scene, options.environment);
+  const Scene scene = withVisibilityOptions(sceneWithEnvironment(options.scene, options.environment), options);
   const std::vector<std::string> selection = splitList(options.arrays);
   try
   {
@@ -334,6 +353,10 @@ int runShade(const ShadeOptions& options)
             << scene.lights.size() << " lights)\n"
             << "  normals: " << (options.splitAngle ? splitter->GetReport() + " " : "")
             << filter->GetNormalsReport() << "\n";
+  if (!filter->GetVisibilityReport().empty())
+  {
+    std::cout << "  visibility: " << filter->GetVisibilityReport() << "\n";
+  }
   if (filter->GetMethodPlan())
   {
     std::cout << "  methods:\n";
@@ -508,6 +531,14 @@ CLI::App* addShadeCommand(CLI::App& cli, ShadeOptions& options)
     "that stores such edges' points once; the output then has MORE points than the input, and the "
     "mesh's own normals are replaced")
     ->check(numberFromTo(0, 180));
+  command->add_flag("--shadows", options.shadows,
+    "the mesh casts the shadows of every distant, headlight, point and spot light (rays against its own "
+    "triangles; each light's <light>_visibility array, 0 or 1, multiplies its diffuse and specular terms)");
+  command->add_option("--ambient-occlusion", options.ambientOcclusionRays,
+    "RAYS per vertex: the ambient term becomes ka La times the cosine-weighted fraction of the sky each "
+    "vertex sees past the mesh (arrays ambient_occlusion and its _std_error; bent_normal and "
+    "sky_view_factor on request, -a all); 64 is usual")
+    ->check(CLI::Range(2, maxSamplesPerVertex));
   EnvironmentOption& environment = options.environment;
   CLI::Option* envmapOption = command->add_option("--envmap", environment.file,
     "add an environment light named 'envmap' from this equirectangular map (.hdr, .exr: twice as wide "

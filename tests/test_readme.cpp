@@ -63,7 +63,13 @@ TEST(Readme, ArrayTablesListExactlyTheArraysWritten)
   {
     perLight[termInfo(LightTerm(t)).name] = termInfo(LightTerm(t)).components;
   }
+  Rows occlusion;
+  for (int t = 0; t < OcclusionTermCount; ++t)
+  {
+    occlusion[termInfo(OcclusionTerm(t)).name] = termInfo(OcclusionTerm(t)).components;
+  }
   EXPECT_EQ(tableAfter(text, "Totals (RGB"), totals);
   EXPECT_EQ(tableAfter(text, "Per light, named"), perLight);
+  EXPECT_EQ(tableAfter(text, "Ambient occlusion, with the scene's"), occlusion);
 }
 }

@@ -129,10 +129,11 @@ TEST(SceneFile, WrongTypesAndUnknownFields)
   EXPECT_EQ(errorOf(R"({ "lights": [ { "type": "distant", "direction": [0, 1] } ] })"),
     "scene.json: /lights/0/direction: must be an array of 3 numbers, got [0,1]");
   EXPECT_EQ(errorOf(R"({ "lights": [ { "type": "point", "position": [0, 0, 1], "cone": {} } ] })"),
-    "scene.json: /lights/0/cone: unknown field; allowed here: name, type, color, intensity, "
+    "scene.json: /lights/0/cone: unknown field; allowed here: name, type, color, intensity, shadows, "
     "position, attenuation, min_distance");
   EXPECT_EQ(errorOf(R"({ "lights": [], "materail": {} })"),
-    "scene.json: /materail: unknown field; allowed here: model, frame, viewer, material, lights");
+    "scene.json: /materail: unknown field; allowed here: model, frame, viewer, material, lights, shadows, "
+    "ambient_occlusion");
   // Fields of another model are errors too, not silently ignored.
   EXPECT_EQ(errorOf(R"({ "lights": [ { "type": "point", "position": [0, 0, 1],
       "attenuation": { "model": "inverse", "range": 2 } } ] })"),
@@ -229,7 +230,7 @@ TEST(SceneFile, AreaLightAndEnvironmentMapErrors)
   EXPECT_EQ(errorOf(R"({ "lights": [ { "type": "sphere", "center": [0, 0, 0], "radius": 1, "estimator": "sh" } ] })"),
     "scene.json: /lights/0/estimator: \"sh\" is not one of \"exact\", \"monte_carlo\", \"point\"");
   EXPECT_EQ(errorOf(R"({ "lights": [ { "type": "sphere", "center": [0, 0, 0], "radius": 1, "two_sided": true } ] })"),
-    "scene.json: /lights/0/two_sided: unknown field; allowed here: name, type, color, intensity, center, radius, "
+    "scene.json: /lights/0/two_sided: unknown field; allowed here: name, type, color, intensity, shadows, center, radius, "
     "estimator, samples, stratified");
   EXPECT_EQ(errorOf(R"({ "model": "vtk", "viewer": { "position": [0, 0, 1] },
       "lights": [ { "type": "sphere", "center": [0, 0, 0], "radius": 1 } ] })"),
@@ -241,6 +242,49 @@ TEST(SceneFile, AreaLightAndEnvironmentMapErrors)
   EXPECT_EQ(errorOf(R"({ "lights": [ { "type": "environment", "file": ")" + map + R"(", "brute_force_width": 100 } ] })"),
     "scene.json: /lights/0/brute_force_width: must be an even number that divides the map's width (1024), or at "
     "least that width");
+}
+
+TEST(SceneFile, ShadowsAndAmbientOcclusion)
+{
+  // The scene's "shadows" is the default of the lights that can cast shadows; a light's own
+  // setting wins; area lights and maps keep their unshadowed estimators.
+  const Scene scene = parseScene(R"({
+    "shadows": true,
+    "ambient_occlusion": { "rays": 128, "stratified": false, "max_distance": 0.5 },
+    "lights": [
+      { "name": "sun", "type": "distant", "direction": [0, 0, -1] },
+      { "name": "bulb", "type": "point", "position": [1, 2, 3], "shadows": false },
+      { "name": "panel", "type": "rectangle", "center": [0, 0, 2], "edge_u": [1, 0, 0], "edge_v": [0, -1, 0] },
+      { "type": "ambient", "intensity": 0.1 }
+    ]
+  })", "scene.json");
+  EXPECT_TRUE(scene.lights[0].shadows);
+  EXPECT_FALSE(scene.lights[1].shadows);
+  EXPECT_FALSE(scene.lights[2].shadows);
+  EXPECT_FALSE(scene.lights[3].shadows);
+  ASSERT_TRUE(scene.ambientOcclusion);
+  EXPECT_EQ(scene.ambientOcclusion->sampling.samples, 128);
+  EXPECT_FALSE(scene.ambientOcclusion->sampling.stratified);
+  EXPECT_EQ(scene.ambientOcclusion->maxDistance, 0.5);
+  EXPECT_TRUE(scene.needsVisibility());
+  const ArrayRequest defaults = selectArrays(scene, { "default" });
+  EXPECT_TRUE(defaults.lights[0][int(LightTerm::Visibility)]);
+  EXPECT_FALSE(defaults.lights[1][int(LightTerm::Visibility)]);
+  EXPECT_TRUE(defaults.occlusion[int(OcclusionTerm::AmbientOcclusion)]);
+  EXPECT_FALSE(defaults.occlusion[int(OcclusionTerm::SkyViewFactor)]);
+  EXPECT_FALSE(parseScene(R"({ "lights": [] })", "scene.json").needsVisibility());
+
+  EXPECT_EQ(errorOf(R"({ "lights": [ { "type": "sphere", "center": [0, 0, 0], "radius": 1, "shadows": true } ] })"),
+    "scene.json: /lights/0/shadows: only distant, headlight, point and spot lights cast shadows so far (soft shadows "
+    "of area lights and environment maps are not computed yet): remove \"shadows\" from this light");
+  EXPECT_EQ(errorOf(R"({ "lights": [], "ambient_occlusion": { "max_distance": 0 } })"),
+    "scene.json: /ambient_occlusion/max_distance: must be a number > 0 (leave it out to count occluders at any "
+    "distance)");
+  EXPECT_EQ(errorOf(R"({ "lights": [], "ambient_occlusion": { "rays": 1 } })"),
+    "scene.json: /ambient_occlusion/rays: must be a whole number from 2 to 1048576");
+  EXPECT_EQ(errorOf(R"({ "lights": [], "ambient_occlusion": { "samples": 64 } })"),
+    "scene.json: /ambient_occlusion/samples: unknown field; allowed here: rays, stratified, max_distance");
+  EXPECT_EQ(errorOf(R"({ "lights": [], "shadows": 1 })"), "scene.json: /shadows: must be true or false, got 1");
 }
 
 TEST(SceneFile, MissingFile)

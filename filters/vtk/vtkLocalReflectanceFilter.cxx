@@ -149,10 +149,11 @@ struct ShadeAllPoints
 template <typename T>
 std::vector<vtkSmartPointer<vtkDataArray>> shade(const shadelab::Scene& scene,
   const shadelab::ArrayRequest& request, const std::vector<shadelab::LightMethod>& methods,
-  const std::string& prefix, vtkDataArray* points, vtkDataArray* normals, vtkAlgorithm* progressOwner)
+  const std::string& prefix, vtkDataArray* points, vtkDataArray* normals, const shadelab::ShadingInputs& inputs,
+  vtkAlgorithm* progressOwner)
 {
   OutputArrays<T> arrays(scene, request, prefix, points->GetNumberOfTuples());
-  const shadelab::ShadingKernel<T> kernel(scene, arrays.outputs, methods);
+  const shadelab::ShadingKernel<T> kernel(scene, arrays.outputs, methods, inputs);
   ShadeAllPoints<T> worker{ kernel, progressOwner };
   using Reals = vtkArrayDispatch::Reals;
   if (!vtkArrayDispatch::Dispatch2ByValueType<Reals, Reals>::Execute(points, normals, worker))
@@ -235,6 +236,7 @@ int vtkLocalReflectanceFilter::RequestData(
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   this->NormalsReport.clear();
+  this->VisibilityReport.clear();
 
   if (input->GetNumberOfPoints() == 0)
   {
@@ -272,6 +274,12 @@ int vtkLocalReflectanceFilter::RequestData(
   if (!problems.empty())
   {
     vtkErrorMacro("scene " << problems.front().path << ": " << problems.front().message);
+    return 0;
+  }
+  if (chooseByTolerance && scene.needsVisibility())
+  {
+    vtkErrorMacro("a tolerance cannot be used with shadows or ambient occlusion yet: its error bounds do not "
+                  "cover the rays' estimates; shade with exact methods (tolerance 0)");
     return 0;
   }
   shadelab::ArrayRequest request;
@@ -325,9 +333,37 @@ int vtkLocalReflectanceFilter::RequestData(
   std::vector<vtkSmartPointer<vtkDataArray>> arrays;
   try
   {
-    arrays = precision == shadelab::Precision::Float64
-      ? shade<double>(scene, request, methods, this->ArrayPrefix, points, shadingNormals, this)
-      : shade<float>(scene, request, methods, this->ArrayPrefix, points, shadingNormals, this);
+    shadelab::ShadingInputs inputs;
+    if (vtkPolyData* seen = this->PrepareVisibility(input, shadingNormals, scene, request))
+    {
+      vtkPointData* data = seen->GetPointData();
+      auto floats = [&](const std::string& name)
+      { return vtkFloatArray::SafeDownCast(data->GetArray(name.c_str())); };
+      for (const shadelab::NamedLight& light : scene.lights)
+      {
+        vtkFloatArray* visibility =
+          floats(shadelab::lightArrayName(this->ArrayPrefix, light.name, shadelab::LightTerm::Visibility));
+        inputs.lightVisibility.push_back(light.shadows ? visibility->GetPointer(0) : nullptr);
+      }
+      for (int t = 0; scene.ambientOcclusion && t < shadelab::OcclusionTermCount; ++t)
+      {
+        vtkFloatArray* quantity = floats(shadelab::occlusionArrayName(this->ArrayPrefix, shadelab::OcclusionTerm(t)));
+        if (t == int(shadelab::OcclusionTerm::AmbientOcclusion))
+        {
+          inputs.ambientOcclusion = quantity->GetPointer(0);
+        }
+        if (request.occlusion[t])
+        {
+          arrays.push_back(quantity); // float32 whatever the precision: estimates, not exact terms
+        }
+      }
+      inputs.flags = vtkUnsignedCharArray::SafeDownCast(data->GetArray((this->ArrayPrefix + "visibility_flags").c_str()))
+                       ->GetPointer(0);
+    }
+    const auto shaded = precision == shadelab::Precision::Float64
+      ? shade<double>(scene, request, methods, this->ArrayPrefix, points, shadingNormals, inputs, this)
+      : shade<float>(scene, request, methods, this->ArrayPrefix, points, shadingNormals, inputs, this);
+    arrays.insert(arrays.begin(), shaded.begin(), shaded.end());
   }
   catch (const std::exception& error) // an array, or anything else, that could not be allocated
   {
@@ -344,6 +380,13 @@ int vtkLocalReflectanceFilter::RequestData(
   note->SetName("shadelab_normals");
   note->InsertNextValue(this->NormalsReport);
   output->GetFieldData()->AddArray(note);
+  if (!this->VisibilityReport.empty())
+  {
+    auto rays = vtkSmartPointer<vtkStringArray>::New();
+    rays->SetName("shadelab_visibility");
+    rays->InsertNextValue(this->VisibilityReport);
+    output->GetFieldData()->AddArray(rays);
+  }
   if (chooseByTolerance)
   {
     auto choices = vtkSmartPointer<vtkStringArray>::New();
@@ -389,6 +432,35 @@ vtkDataArray* vtkLocalReflectanceFilter::PrepareNormals(vtkPolyData* input, vtkP
     this->NormalsReport += " Shaded with the flipped copy; the input's array passes through unchanged.";
   }
   return shading;
+}
+
+vtkPolyData* vtkLocalReflectanceFilter::PrepareVisibility(
+  vtkPolyData* input, vtkDataArray* shadingNormals, const shadelab::Scene& scene, const shadelab::ArrayRequest& request)
+{
+  if (!scene.needsVisibility())
+  {
+    return nullptr;
+  }
+  // The mesh's surface and the normals to shade with, and nothing else (no name can clash).
+  vtkNew<vtkPolyData> surface;
+  surface->SetPoints(input->GetPoints());
+  surface->SetPolys(input->GetPolys());
+  surface->SetStrips(input->GetStrips());
+  surface->GetPointData()->SetNormals(shadingNormals);
+  vtkMeshVisibilityFilter* step = this->VisibilityStep;
+  step->SetInputData(surface);
+  step->SetScene(scene);
+  step->SetArrayPrefix(this->ArrayPrefix);
+  step->SetComputeBentNormal(request.occlusion[int(shadelab::OcclusionTerm::BentNormal)]);
+  step->SetComputeSkyViewFactor(request.occlusion[int(shadelab::OcclusionTerm::SkyViewFactor)]);
+  step->Update();
+  vtkPolyData* seen = step->GetOutput();
+  if (!seen->GetPointData()->GetArray((this->ArrayPrefix + "visibility_flags").c_str()))
+  {
+    throw std::runtime_error("casting the rays for shadows and ambient occlusion failed (see the error above)");
+  }
+  this->VisibilityReport = step->GetReport();
+  return seen;
 }
 
 void vtkLocalReflectanceFilter::PrintSelf(ostream& os, vtkIndent indent)

@@ -9,7 +9,9 @@
  * vtkShadingNormalsFilter (smooth, shared by coincident points, point ids and count unchanged)
  * and added as "<ArrayPrefix>Normals". Normals that point into a closed or nearly closed mesh
  * are used flipped unless OrientNormalsOutward is off; GetNormalsReport() says what happened,
- * and so does the output's field data array "shadelab_normals".
+ * and so does the output's field data array "shadelab_normals". Where the scene has shadows or
+ * ambient occlusion, vtkMeshVisibilityFilter casts the rays first: each shadowed light's
+ * visibility multiplies its diffuse and specular terms, and the occlusion the ambient term.
  */
 #ifndef vtkLocalReflectanceFilter_h
 #define vtkLocalReflectanceFilter_h
@@ -17,6 +19,7 @@
 #include "ShadeLabFiltersModule.h"
 #include "vtkNew.h"
 #include "vtkPolyDataAlgorithm.h"
+#include "vtkMeshVisibilityFilter.h" // the visibility step, a member
 #include "vtkShadingNormalsFilter.h" // the normals step, a member
 
 #include "MethodChoice.h"
@@ -88,6 +91,9 @@ public:
   /// What the last run did about normals, in one or two sentences.
   const std::string& GetNormalsReport() const { return this->NormalsReport; }
 
+  /// What the last run's rays did (vtkMeshVisibilityFilter), or "" without shadows and occlusion.
+  const std::string& GetVisibilityReport() const { return this->VisibilityReport; }
+
 protected:
   vtkLocalReflectanceFilter();
   ~vtkLocalReflectanceFilter() override;
@@ -108,6 +114,7 @@ private:
   double WeldTolerance = 0.0;
   double Tolerance = 0;
   std::string NormalsReport;
+  std::string VisibilityReport;
   std::optional<shadelab::MethodPlan> MethodPlan;
   std::vector<shadelab::LightMethod> LightMethods;
 
@@ -118,6 +125,13 @@ private:
   vtkNew<vtkShadingNormalsFilter> NormalsStep;
   /// The normals to shade with, prepared by NormalsStep for this input; fills NormalsReport.
   vtkDataArray* PrepareNormals(vtkPolyData* input, vtkPolyData* output);
+  /// The step that casts rays for the scene's shadows and ambient occlusion, on the input with
+  /// the normals to shade with.
+  vtkNew<vtkMeshVisibilityFilter> VisibilityStep;
+  /// Runs VisibilityStep when the scene needs it; returns its output (nullptr: not needed), or
+  /// throws std::runtime_error when it failed.
+  vtkPolyData* PrepareVisibility(vtkPolyData* input, vtkDataArray* shadingNormals, const shadelab::Scene& scene,
+    const shadelab::ArrayRequest& request);
   /// The name of the normals the filter computes when the input has none.
   std::string ComputedNormalsName() const { return this->ArrayPrefix + "Normals"; }
 };

@@ -4,12 +4,12 @@
 #include "PointNormals.h"
 #include "ShadeLabLargeArrays.h"
 #include "ShadeLabMeshChecks.h"
+#include "ShadeLabMeshPolygons.h"
 
 #include "vtkArrayDispatch.h"
 #include "vtkCellArray.h"
 #include "vtkCellArrayIterator.h"
 #include "vtkDataArrayRange.h"
-#include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkIdTypeArray.h"
@@ -34,79 +34,6 @@ static_assert(std::is_same<vtkIdType, shadelab::PointId>::value, "ShadeLab needs
 
 namespace
 {
-/// The mesh's polygons, and its strips as triangles, as one shadelab::PolygonList. Uses the
-/// mesh's own arrays where they are 64-bit and there are no strips, and a copy otherwise.
-class MeshPolygons
-{
-public:
-  explicit MeshPolygons(vtkPolyData* mesh)
-  {
-    vtkCellArray* polys = mesh->GetPolys();
-    if (polys->IsStorage64Bit() && mesh->GetNumberOfStrips() == 0)
-    {
-      list_.offsets = polys->GetOffsetsArray64()->GetPointer(0);
-      list_.connectivity = polys->GetConnectivityArray64()->GetPointer(0);
-      list_.count = static_cast<std::size_t>(polys->GetNumberOfCells());
-      return;
-    }
-    offsets_.push_back(0);
-    auto cell = vtk::TakeSmartPointer(polys->NewIterator());
-    for (cell->GoToFirstCell(); !cell->IsDoneWithTraversal(); cell->GoToNextCell())
-    {
-      vtkIdType size;
-      const vtkIdType* ids;
-      cell->GetCurrentCell(size, ids);
-      connectivity_.insert(connectivity_.end(), ids, ids + size);
-      offsets_.push_back(static_cast<shadelab::PointId>(connectivity_.size()));
-    }
-    auto strip = vtk::TakeSmartPointer(mesh->GetStrips()->NewIterator());
-    for (strip->GoToFirstCell(); !strip->IsDoneWithTraversal(); strip->GoToNextCell())
-    {
-      vtkIdType size;
-      const vtkIdType* ids;
-      strip->GetCurrentCell(size, ids);
-      for (vtkIdType k = 2; k < size; ++k)
-      {
-        // A strip's triangles alternate in winding: every second one is turned back.
-        const bool even = k % 2 == 0;
-        connectivity_.insert(connectivity_.end(), { even ? ids[k - 2] : ids[k - 1], even ? ids[k - 1] : ids[k - 2], ids[k] });
-        offsets_.push_back(static_cast<shadelab::PointId>(connectivity_.size()));
-      }
-    }
-    list_.offsets = offsets_.data();
-    list_.connectivity = connectivity_.data();
-    list_.count = offsets_.size() - 1;
-  }
-
-  const shadelab::PolygonList& list() const { return list_; }
-
-  /// The same polygons as a vtkCellArray with their ids replaced by mergeMap's.
-  vtkSmartPointer<vtkCellArray> welded(const std::vector<shadelab::PointId>& mergeMap) const
-  {
-    vtkNew<vtkIdTypeArray> offsets, connectivity;
-    offsets->SetNumberOfValues(static_cast<vtkIdType>(list_.count + 1));
-    for (std::size_t k = 0; k <= list_.count; ++k)
-    {
-      offsets->SetValue(static_cast<vtkIdType>(k), list_.offsets[k]);
-    }
-    const shadelab::PointId idCount = list_.offsets[list_.count];
-    connectivity->SetNumberOfValues(idCount);
-    for (shadelab::PointId i = 0; i < idCount; ++i)
-    {
-      const shadelab::PointId id = list_.connectivity[i];
-      connectivity->SetValue(i, mergeMap.empty() ? id : mergeMap[static_cast<std::size_t>(id)]);
-    }
-    auto cells = vtkSmartPointer<vtkCellArray>::New();
-    cells->SetData(offsets, connectivity);
-    return cells;
-  }
-
-private:
-  shadelab::PolygonList list_;
-  std::vector<shadelab::PointId> offsets_;
-  std::vector<shadelab::PointId> connectivity_;
-};
-
 /// For the candidate points (ascending), the id of the point that stands for each one's
 /// position (an empty map: no two share one): with a tolerance of 0, exactly coincident
 /// points (shadelab::coincidentPointMap); otherwise each candidate not yet placed stands for
@@ -161,7 +88,7 @@ std::vector<shadelab::PointId> positionMergeMap(
 
 /// flipped[k] for every polygon that vtkPolyDataNormals' consistency pass turns round, on the
 /// welded mesh (so that seams join the pieces they separate).
-std::vector<bool> polygonsToTurn(vtkPolyData* mesh, const MeshPolygons& polygons, const std::vector<shadelab::PointId>& mergeMap)
+std::vector<bool> polygonsToTurn(vtkPolyData* mesh, const shadelab::MeshPolygons& polygons, const std::vector<shadelab::PointId>& mergeMap)
 {
   vtkNew<vtkPolyData> welded;
   welded->SetPoints(mesh->GetPoints());
@@ -338,13 +265,11 @@ std::vector<std::size_t> polygonsBetween(
     });
 }
 
-/// Computes area-weighted point normals (PointNormals.h). A worker for vtkArrayDispatch over
-/// the point array (float or double, x, y, z after one another), so that points are read from
-/// raw memory.
+/// Computes area-weighted point normals (PointNormals.h) from the points' raw memory.
 struct NormalsWorker
 {
   vtkPolyData* mesh;
-  const MeshPolygons& polygons;
+  const shadelab::MeshPolygons& polygons;
   bool weld;
   double weldTolerance;
   double featureAngle;
@@ -352,9 +277,8 @@ struct NormalsWorker
   ComputedNormals computed;
 
   template <typename Real>
-  void operator()(vtkAOSDataArrayTemplate<Real>* pointArray)
+  void operator()(shadelab::PackedPoints<Real> pointAt)
   {
-    const shadelab::PackedPoints<Real> pointAt{ pointArray->GetPointer(0) };
     const shadelab::PolygonList& list = polygons.list();
     const std::size_t pointCount = static_cast<std::size_t>(mesh->GetNumberOfPoints());
     double centre[3];
@@ -410,20 +334,11 @@ struct NormalsWorker
   }
 };
 
-using RealArrays = vtkTypeList::Create<vtkAOSDataArrayTemplate<float>, vtkAOSDataArrayTemplate<double>>;
-
-ComputedNormals computeNormals(vtkPolyData* mesh, const MeshPolygons& polygons, bool weld, double weldTolerance,
+ComputedNormals computeNormals(vtkPolyData* mesh, const shadelab::MeshPolygons& polygons, bool weld, double weldTolerance,
   double featureAngle, bool orientOutward)
 {
   NormalsWorker worker{ mesh, polygons, weld, weldTolerance, featureAngle, orientOutward, {} };
-  vtkDataArray* points = mesh->GetPoints()->GetData();
-  if (!vtkArrayDispatch::DispatchByArray<RealArrays>::Execute(points, worker))
-  {
-    // Points of another type (integers, say) are read as doubles.
-    vtkNew<vtkDoubleArray> asDoubles;
-    asDoubles->DeepCopy(points);
-    worker(asDoubles.Get());
-  }
+  shadelab::visitPackedPoints(mesh->GetPoints()->GetData(), worker);
   return worker.computed;
 }
 
@@ -498,7 +413,7 @@ int vtkShadingNormalsFilter::RequestData(
   {
     output->ShallowCopy(input);
     const ComputedNormals computed = computeNormals(
-      input, MeshPolygons(input), this->WeldCoincidentPoints, this->WeldTolerance, this->FeatureAngle, this->OrientOutward);
+      input, shadelab::MeshPolygons(input), this->WeldCoincidentPoints, this->WeldTolerance, this->FeatureAngle, this->OrientOutward);
     computed.normals->SetName(this->NormalsName.c_str());
     const std::size_t inconsistent = computed.inconsistentEdges;
     const shadelab::WeldSummary& weld = computed.weld;
@@ -528,7 +443,7 @@ int vtkShadingNormalsFilter::RequestData(
 
   if (!orientation)
   {
-    orientation = assessOrientation(output, MeshPolygons(output).list(), normals);
+    orientation = assessOrientation(output, shadelab::MeshPolygons(output).list(), normals);
   }
   if (orientation->pointsInward())
   {

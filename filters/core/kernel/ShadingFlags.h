@@ -22,5 +22,9 @@ enum ShadingFlag : ShadingFlags
   FlagNonFiniteInput = 1u << 4,
   /// Two-sided shading flipped the normal to face the viewer.
   FlagNormalFlipped = 1u << 5,
+  /// A shadowed light that the normal faces is hidden by a triangle that has the vertex as a
+  /// corner: a concave crease, or the shadow terminator of a coarse mesh, where the smooth
+  /// normal faces a light that a neighbouring facet hides (visibility/Visibility.h).
+  FlagHiddenByOwnTriangle = 1u << 6,
 };
 }

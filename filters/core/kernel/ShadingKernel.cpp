@@ -24,6 +24,16 @@ constexpr T degenerateNormalLength2 = T(1e-12);
 template <typename T>
 using Lane = std::array<T, VertexBlock<T>::capacity>;
 
+/// Multiplies a term by a light's visibility, where it has shadows (visibility not null).
+template <typename T>
+void applyVisibility(const float* visibility, const VertexBlock<T>& b, Lane<T>& term)
+{
+  for (std::size_t k = 0; visibility && k < b.count; ++k)
+  {
+    term[k] *= T(visibility[b.first + k]);
+  }
+}
+
 template <typename T>
 void store(T* out, std::size_t first, std::size_t count, const Lane<T>& values)
 {
@@ -197,8 +207,10 @@ typename ShadingKernel<T>::DistributedLightSlot ShadingKernel<T>::prepareDistrib
 }
 
 template <typename T>
-ShadingKernel<T>::ShadingKernel(const Scene& scene, ShadingOutputs<T> outputs, const std::vector<LightMethod>& methods)
+ShadingKernel<T>::ShadingKernel(
+  const Scene& scene, ShadingOutputs<T> outputs, const std::vector<LightMethod>& methods, ShadingInputs inputs)
   : outputs_(std::move(outputs))
+  , inputs_(std::move(inputs))
 {
   const Material& m = scene.material;
   const bool vtk = scene.model == ShadingModel::VtkOpenGL2;
@@ -246,6 +258,7 @@ ShadingKernel<T>::ShadingKernel(const Scene& scene, ShadingOutputs<T> outputs, c
     else
     {
       lights_.push_back(prepareLocal(std::get<LocalEvaluation>(evaluation), out, m, needsSpecular, method.pow));
+      lights_.back().visibility = l < inputs_.lightVisibility.size() ? inputs_.lightVisibility[l] : nullptr;
     }
   }
   ambient_ = toVec<T>(m.ka * ambientLight);
@@ -408,6 +421,10 @@ void ShadingKernel<T>::addLight(const PreparedLight& light, const VertexBlock<T>
     w.cosIncidence[k] = cosIncidence;
     w.flags[k] |= cosIncidence > T(0) ? 0 : FlagLightBelowHorizon;
     w.diffuse[k] = lambertFactor(cosIncidence) * (w.attenuation[k] * w.spotFactor[k]);
+  }
+  applyVisibility(light.visibility, b, w.diffuse);
+  for (std::size_t k = 0; k < count; ++k)
+  {
     w.diffuseR[k] += w.diffuse[k] * light.diffuseColor.x;
     w.diffuseG[k] += w.diffuse[k] * light.diffuseColor.y;
     w.diffuseB[k] += w.diffuse[k] * light.diffuseColor.z;
@@ -445,6 +462,7 @@ void ShadingKernel<T>::addLight(const PreparedLight& light, const VertexBlock<T>
   if (light.needsSpecular)
   {
     specularLobes(light, count, w);
+    applyVisibility(light.visibility, b, w.specular);
     for (std::size_t k = 0; k < count; ++k)
     {
       w.specularR[k] += w.specular[k] * light.specularColor.x;
@@ -544,6 +562,11 @@ void ShadingKernel<T>::storeLight(const PreparedLight& light, const VertexBlock<
   else if (T* specular = out[int(LightTerm::Specular)])
   {
     std::fill_n(specular + 3 * first, 3 * count, T(0)); // SpecularModel::None
+  }
+  if (T* visibility = out[int(LightTerm::Visibility)])
+  {
+    std::transform(light.visibility + first, light.visibility + first + count, visibility + first,
+      [](float v) { return T(v); });
   }
 }
 
@@ -658,11 +681,14 @@ void ShadingKernel<T>::storeTotals(const VertexBlock<T>& b, Workspace& w) const
   const auto& totals = outputs_.totals;
   const std::size_t first = b.first;
   const std::size_t count = b.count;
+  auto ambientAt = [&](std::size_t k)
+  { return inputs_.ambientOcclusion ? ambient_ * T(inputs_.ambientOcclusion[first + k]) : ambient_; };
   if (T* ambient = totals[int(TotalTerm::Ambient)])
   {
     for (std::size_t k = 0; k < count; ++k)
     {
-      std::copy_n(&ambient_.x, 3, ambient + 3 * (first + k));
+      const Vec3<T> a = ambientAt(k);
+      std::copy_n(&a.x, 3, ambient + 3 * (first + k));
     }
   }
   store(totals[int(TotalTerm::Diffuse)], first, count, w.diffuseR, w.diffuseG, w.diffuseB);
@@ -671,9 +697,17 @@ void ShadingKernel<T>::storeTotals(const VertexBlock<T>& b, Workspace& w) const
   {
     for (std::size_t k = 0; k < count; ++k)
     {
-      total[3 * (first + k)] = ambient_.x + w.diffuseR[k] + w.specularR[k];
-      total[3 * (first + k) + 1] = ambient_.y + w.diffuseG[k] + w.specularG[k];
-      total[3 * (first + k) + 2] = ambient_.z + w.diffuseB[k] + w.specularB[k];
+      const Vec3<T> a = ambientAt(k);
+      total[3 * (first + k)] = a.x + w.diffuseR[k] + w.specularR[k];
+      total[3 * (first + k) + 1] = a.y + w.diffuseG[k] + w.specularG[k];
+      total[3 * (first + k) + 2] = a.z + w.diffuseB[k] + w.specularB[k];
+    }
+  }
+  if (outputs_.flags && inputs_.flags)
+  {
+    for (std::size_t k = 0; k < count; ++k)
+    {
+      w.flags[k] |= inputs_.flags[first + k];
     }
   }
   if (outputs_.flags)

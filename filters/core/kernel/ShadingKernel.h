@@ -34,6 +34,16 @@ struct ShadingOutputs
   ShadingFlags* flags = nullptr;
 };
 
+/// What the mesh hides, computed before shading (visibility/Visibility.h), one value per
+/// vertex: each shadowed light's visibility multiplies its diffuse and specular terms, and the
+/// ambient occlusion the ambient term.
+struct ShadingInputs
+{
+  std::vector<const float*> lightVisibility; // follows scene.lights; nullptr (or empty): not shadowed
+  const float* ambientOcclusion = nullptr;   // nullptr: the open sky, 1
+  const ShadingFlags* flags = nullptr;       // flags the rays found (FlagHiddenByOwnTriangle)
+};
+
 /// Up to `capacity` vertices in structure-of-arrays form; first is the index of the block's
 /// first vertex in the output arrays.
 template <typename T>
@@ -66,8 +76,10 @@ class ShadingKernel
 {
 public:
   /// scene must have no sceneProblems(); outputs.lights must have one entry per scene light,
-  /// and methods one per scene light or none (every light exact).
-  ShadingKernel(const Scene& scene, ShadingOutputs<T> outputs, const std::vector<LightMethod>& methods = {});
+  /// and methods one per scene light or none (every light exact). inputs must have the
+  /// visibility of every light with shadows, and the occlusion if the scene has it.
+  ShadingKernel(const Scene& scene, ShadingOutputs<T> outputs, const std::vector<LightMethod>& methods = {},
+    ShadingInputs inputs = {});
 
   /// Shades the block's vertices. Normals need not be unit length. Concurrent calls for
   /// different vertices are safe.
@@ -94,6 +106,7 @@ private:
     bool needsSpecular = false;
     bool needsReflection = false;
     bool needsHalfVector = false;
+    const float* visibility = nullptr; // per vertex, for a light with shadows
     std::array<T*, LightTermCount> out{};
   };
 
@@ -135,7 +148,8 @@ private:
   std::vector<PreparedLight> lights_;
   std::vector<DistributedLightSlot> distributedLights_;
   ShadingOutputs<T> outputs_;
-  Vec3<T> ambient_{ 0 }; // ka La, the same at every vertex
+  ShadingInputs inputs_;
+  Vec3<T> ambient_{ 0 }; // ka La, times the occlusion where there is one
   SpecularModel specularModel_ = SpecularModel::None;
   T shininess_ = 0;
   bool twoSided_ = false;

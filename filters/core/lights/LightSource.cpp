@@ -55,6 +55,11 @@ bool lightHasTerm(const LightSource& source, LightTerm term)
   return std::visit([term](const auto& light) { return light.hasTerm(term); }, source);
 }
 
+bool lightHasTerm(const NamedLight& light, LightTerm term)
+{
+  return term == LightTerm::Visibility ? light.shadows : lightHasTerm(light.source, term);
+}
+
 double peakContribution(const LightSource& source, const Material& m)
 {
   return std::visit([&m](const auto& light) { return light.peakContribution(m); }, source);
@@ -115,7 +120,7 @@ const std::vector<FileTypeEntry>& fileTypes()
   return entries;
 }
 
-const std::vector<const char*> commonFields = { "name", "type", "color", "intensity" };
+const std::vector<const char*> commonFields = { "name", "type", "color", "intensity", "shadows" };
 
 std::vector<const char*> fieldsOf(const SceneFileType& type)
 {

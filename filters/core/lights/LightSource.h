@@ -24,6 +24,8 @@ struct NamedLight
 {
   std::string name;
   LightSource source;
+  /// Whether the mesh casts this light's shadows (local lights only; visibility/).
+  bool shadows = false;
 };
 
 /// The light's "type" name, as a scene file spells it.
@@ -60,6 +62,9 @@ inline bool isPositional(const LightSource& source)
 
 /// Whether the light has this per-light term (LightTerms.h).
 bool lightHasTerm(const LightSource& source, LightTerm term);
+/// Whether the light has the term's array: its type's terms, and its visibility when it casts
+/// shadows.
+bool lightHasTerm(const NamedLight& light, LightTerm term);
 
 /// The largest RGB value the light can add at a vertex of this material.
 double peakContribution(const LightSource& source, const Material& m);

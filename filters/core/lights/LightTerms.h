@@ -22,9 +22,11 @@ enum class LightTerm
   Irradiance,         // E, RGB
   IrradianceStdError, // Monte Carlo standard error of E, RGB
   SpecularStdError,   // Monte Carlo standard error of the specular term, RGB
+  // Lights that cast shadows (NamedLight::shadows):
+  Visibility, // 1 where the mesh does not hide the light, 0 where it does
 };
-constexpr int LightTermCount = 15;
-static_assert(static_cast<int>(LightTerm::SpecularStdError) + 1 == LightTermCount, "LightTermCount is stale");
+constexpr int LightTermCount = 16;
+static_assert(static_cast<int>(LightTerm::Visibility) + 1 == LightTermCount, "LightTermCount is stale");
 
 /// A light seen from each vertex as one direction: every term up to the specular one, and the
 /// distance only when the light has a position.

@@ -23,6 +23,7 @@ const std::array<TermInfo, LightTermCount> lightTerms = { {
   { "irradiance", 3, "E: irradiance, the integral of L max(0, n.w) over the light's solid angle, RGB" },
   { "irradiance_std_error", 3, "Monte Carlo standard error of the irradiance, RGB" },
   { "specular_std_error", 3, "Monte Carlo standard error of the specular term, RGB" },
+  { "visibility", 1, "1 where the mesh does not hide the light, 0 where it does (lights with shadows)" },
 } };
 
 const std::array<TermInfo, TotalTermCount> totalTerms = { {
@@ -31,11 +32,19 @@ const std::array<TermInfo, TotalTermCount> totalTerms = { {
   { "specular", 3, "specular terms summed over lights, RGB" },
   { "total", 3, "the complete model: ambient + diffuse + specular, RGB" },
 } };
+
+const std::array<TermInfo, OcclusionTermCount> occlusionTerms = { {
+  { "ambient_occlusion", 1, "the cosine-weighted fraction of the hemisphere from which the mesh does not hide the sky" },
+  { "ambient_occlusion_std_error", 1, "Monte Carlo standard error of ambient_occlusion" },
+  { "bent_normal", 3, "the mean direction from which the sky is seen (0 where it is not)" },
+  { "sky_view_factor", 1, "the uniformly weighted fraction of the hemisphere from which the sky is seen" },
+} };
 }
 
 const TermInfo flagsInfo = { "shading_flags", 1,
   "diagnostic bits: 1 degenerate normal, 2 light at minimum distance, 4 light below horizon, "
-  "8 half vector undefined, 16 non-finite input, 32 normal flipped to face the viewer" };
+  "8 half vector undefined, 16 non-finite input, 32 normal flipped to face the viewer, "
+  "64 a shadowed light it faces hidden by a triangle around it" };
 
 const TermInfo& termInfo(LightTerm term)
 {
@@ -45,6 +54,11 @@ const TermInfo& termInfo(LightTerm term)
 const TermInfo& termInfo(TotalTerm term)
 {
   return totalTerms[static_cast<int>(term)];
+}
+
+const TermInfo& termInfo(OcclusionTerm term)
+{
+  return occlusionTerms[static_cast<int>(term)];
 }
 
 bool ArrayRequest::any(LightTerm term) const
@@ -68,6 +82,11 @@ std::string flagsArrayName(const std::string& prefix)
   return prefix + flagsInfo.name;
 }
 
+std::string occlusionArrayName(const std::string& prefix, OcclusionTerm term)
+{
+  return prefix + termInfo(term).name;
+}
+
 std::vector<ArrayDescription> availableArrays(const Scene& scene, const std::string& prefix)
 {
   std::vector<ArrayDescription> arrays;
@@ -77,11 +96,16 @@ std::vector<ArrayDescription> availableArrays(const Scene& scene, const std::str
     arrays.push_back({ totalArrayName(prefix, TotalTerm(t)), info.components, info.description });
   }
   arrays.push_back({ flagsArrayName(prefix), flagsInfo.components, flagsInfo.description });
+  for (int t = 0; scene.ambientOcclusion && t < OcclusionTermCount; ++t)
+  {
+    const TermInfo& info = occlusionTerms[t];
+    arrays.push_back({ occlusionArrayName(prefix, OcclusionTerm(t)), info.components, info.description });
+  }
   for (const NamedLight& light : scene.lights)
   {
     for (int t = 0; t < LightTermCount; ++t)
     {
-      if (lightHasTerm(light.source, LightTerm(t)))
+      if (lightHasTerm(light, LightTerm(t)))
       {
         const TermInfo& info = lightTerms[t];
         arrays.push_back({ lightArrayName(prefix, light.name, LightTerm(t)), info.components,
@@ -98,11 +122,12 @@ void requestAll(const Scene& scene, ArrayRequest& request)
 {
   request.totals.fill(true);
   request.flags = true;
+  request.occlusion.fill(scene.ambientOcclusion.has_value());
   for (std::size_t l = 0; l < scene.lights.size(); ++l)
   {
     for (int t = 0; t < LightTermCount; ++t)
     {
-      request.lights[l][t] = lightHasTerm(scene.lights[l].source, LightTerm(t));
+      request.lights[l][t] = lightHasTerm(scene.lights[l], LightTerm(t));
     }
   }
 }
@@ -116,7 +141,7 @@ bool requestTermOnEveryLight(const Scene& scene, const std::string& term, ArrayR
     {
       for (std::size_t l = 0; l < scene.lights.size(); ++l)
       {
-        request.lights[l][t] = request.lights[l][t] || lightHasTerm(scene.lights[l].source, LightTerm(t));
+        request.lights[l][t] = request.lights[l][t] || lightHasTerm(scene.lights[l], LightTerm(t));
       }
       return true;
     }
@@ -140,11 +165,19 @@ bool requestByName(const Scene& scene, const std::string& name, ArrayRequest& re
     request.flags = true;
     return true;
   }
+  for (int t = 0; scene.ambientOcclusion && t < OcclusionTermCount; ++t)
+  {
+    if (name == occlusionTerms[t].name)
+    {
+      request.occlusion[t] = true;
+      return true;
+    }
+  }
   for (std::size_t l = 0; l < scene.lights.size(); ++l)
   {
     for (int t = 0; t < LightTermCount; ++t)
     {
-      if (lightHasTerm(scene.lights[l].source, LightTerm(t)) &&
+      if (lightHasTerm(scene.lights[l], LightTerm(t)) &&
         name == lightArrayName("", scene.lights[l].name, LightTerm(t)))
       {
         request.lights[l][t] = true;
@@ -185,10 +218,17 @@ ArrayRequest selectArrays(const Scene& scene, const std::vector<std::string>& se
     {
       requestAll(scene, request);
     }
-    else if (entry == "default" || entry == "totals")
+    else if (entry == "totals")
     {
       request.totals.fill(true);
-      request.flags = request.flags || entry == "default";
+    }
+    else if (entry == "default")
+    {
+      // What a scene asks for when it turns visibility on is shown by default.
+      request.totals.fill(true);
+      request.flags = true;
+      request.occlusion[int(OcclusionTerm::AmbientOcclusion)] |= scene.ambientOcclusion.has_value();
+      requestTermOnEveryLight(scene, termInfo(LightTerm::Visibility).name, request);
     }
     else if (entry.rfind("*_", 0) == 0)
     {

@@ -21,6 +21,17 @@ enum class TotalTerm
 constexpr int TotalTermCount = 4;
 static_assert(static_cast<int>(TotalTerm::Total) + 1 == TotalTermCount, "TotalTermCount is stale");
 
+/// Scene-wide quantities of ambient occlusion (Scene::ambientOcclusion).
+enum class OcclusionTerm
+{
+  AmbientOcclusion,
+  AmbientOcclusionStdError,
+  BentNormal,
+  SkyViewFactor,
+};
+constexpr int OcclusionTermCount = 4;
+static_assert(static_cast<int>(OcclusionTerm::SkyViewFactor) + 1 == OcclusionTermCount, "OcclusionTermCount is stale");
+
 struct TermInfo
 {
   const char* name;
@@ -30,6 +41,7 @@ struct TermInfo
 
 const TermInfo& termInfo(LightTerm term);
 const TermInfo& termInfo(TotalTerm term);
+const TermInfo& termInfo(OcclusionTerm term);
 extern const TermInfo flagsInfo;
 
 /// Which arrays to compute. lights[i] follows scene.lights[i].
@@ -38,6 +50,7 @@ struct ArrayRequest
   std::vector<std::array<bool, LightTermCount>> lights;
   std::array<bool, TotalTermCount> totals{};
   bool flags = false;
+  std::array<bool, OcclusionTermCount> occlusion{};
 
   bool any(LightTerm term) const;
 };
@@ -59,9 +72,12 @@ std::string lightArrayName(const std::string& prefix, const std::string& light, 
 /// The array name of a total or the flags: <prefix><name>.
 std::string totalArrayName(const std::string& prefix, TotalTerm term);
 std::string flagsArrayName(const std::string& prefix);
+/// The array name of an occlusion quantity: <prefix><name>.
+std::string occlusionArrayName(const std::string& prefix, OcclusionTerm term);
 
 /// The selection the command line documents:
-///   "default"  the totals and shading_flags
+///   "default"  the totals and shading_flags, and where the scene has them, ambient_occlusion
+///              and each shadowed light's visibility
 ///   "totals"   ambient, diffuse, specular, total
 ///   "all"      every array the scene has
 ///   "*_TERM"   TERM for every light that has it, e.g. "*_cos_incidence"

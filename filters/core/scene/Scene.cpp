@@ -64,6 +64,11 @@ void checkLightName(const std::string& name, const std::string& at, ProblemList&
 }
 }
 
+bool Scene::needsVisibility() const
+{
+  return ambientOcclusion || std::any_of(lights.begin(), lights.end(), [](const NamedLight& light) { return light.shadows; });
+}
+
 std::vector<SceneProblem> sceneProblems(const Scene& scene, Precision precision)
 {
   ProblemList list;
@@ -101,6 +106,15 @@ std::vector<SceneProblem> sceneProblems(const Scene& scene, Precision precision)
     checkLightSource(light.source, checks);
     list.check(lightNames.insert(light.name).second, at + "/name",
       "another light is already named '" + light.name + "'");
+    list.check(!light.shadows || roleOf(light.source) == LightRole::Local, at + "/shadows",
+      "only distant, headlight, point and spot lights cast shadows so far (soft shadows of area lights and "
+      "environment maps are not computed yet): remove \"shadows\" from this light");
+  }
+  if (scene.ambientOcclusion)
+  {
+    const double maxDistance = scene.ambientOcclusion->maxDistance;
+    list.check((maxDistance > 0 && maxDistance <= coordinateLimit(precision)) || maxDistance == std::numeric_limits<double>::infinity(),
+      "/ambient_occlusion/max_distance", "must be a number > 0 (leave it out to count occluders at any distance)");
   }
 
   // Only a scene that is otherwise valid has meaningful peaks.

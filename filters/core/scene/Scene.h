@@ -4,9 +4,11 @@
 #include "LightSource.h"
 #include "Material.h"
 #include "Precision.h"
+#include "SampleSequence.h"
 #include "Vec3.h"
 
 #include <cstddef>
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -35,6 +37,15 @@ enum class SceneFrame
   Mesh,
 };
 
+/// Ambient occlusion (visibility/Visibility.h): the ambient term becomes ka La times the
+/// cosine-weighted fraction of the sky each vertex sees past the mesh.
+struct AmbientOcclusion
+{
+  Sampling sampling{ 64, true };
+  /// Occluders farther than this do not count (infinite: all do). In the scene's frame.
+  double maxDistance = std::numeric_limits<double>::infinity();
+};
+
 struct Scene
 {
   ShadingModel model = ShadingModel::Lecture;
@@ -46,6 +57,10 @@ struct Scene
   /// SceneFromVtk sets it by VTK's own rule; the scene file sets it when the only light is a
   /// headlight.
   bool vtkLoneHeadlight = false;
+  std::optional<AmbientOcclusion> ambientOcclusion;
+
+  /// Whether anything needs rays cast against the mesh: a light's shadows or occlusion.
+  bool needsVisibility() const;
 };
 
 /// The specular model actually evaluated: the material's, or VTK's (docs/vtk-renderer.md section 5:

@@ -13,12 +13,35 @@ namespace shadelab
 {
 namespace
 {
-NamedLight readLight(const JsonNode& node, std::size_t index, const std::string& sceneFile)
+/// A light; shadowsByDefault is the scene's "shadows", which lights that can cast shadows take
+/// unless they say otherwise.
+NamedLight readLight(const JsonNode& node, std::size_t index, const std::string& sceneFile, bool shadowsByDefault)
 {
   NamedLight light;
   light.source = readLightSource(node, sceneFile);
   light.name = node.has("name") ? node.at("name").text() : lightTypeName(light.source) + std::to_string(index);
+  light.shadows = node.has("shadows") ? node.at("shadows").boolean()
+                                      : shadowsByDefault && roleOf(light.source) == LightRole::Local;
   return light;
+}
+
+AmbientOcclusion readAmbientOcclusion(const JsonNode& node)
+{
+  node.expectObject({ "rays", "stratified", "max_distance" });
+  AmbientOcclusion occlusion;
+  if (node.has("rays"))
+  {
+    occlusion.sampling.samples = node.at("rays").wholeNumber(2, maxSamplesPerVertex);
+  }
+  if (node.has("stratified"))
+  {
+    occlusion.sampling.stratified = node.at("stratified").boolean();
+  }
+  if (node.has("max_distance"))
+  {
+    occlusion.maxDistance = node.at("max_distance").number();
+  }
+  return occlusion;
 }
 
 Material readMaterial(const JsonNode& node, ShadingModel model)
@@ -84,7 +107,7 @@ Viewer readViewer(const JsonNode& node)
 Scene readScene(const Json& document, const std::string& sceneFile)
 {
   const JsonNode root(document, "");
-  root.expectObject({ "model", "frame", "viewer", "material", "lights" });
+  root.expectObject({ "model", "frame", "viewer", "material", "lights", "shadows", "ambient_occlusion" });
   Scene scene;
   if (root.has("model"))
   {
@@ -105,9 +128,14 @@ Scene readScene(const Json& document, const std::string& sceneFile)
   {
     lights.fail("must be an array of lights");
   }
+  const bool shadowsByDefault = root.has("shadows") && root.at("shadows").boolean();
   for (std::size_t i = 0; i < lights.size(); ++i)
   {
-    scene.lights.push_back(readLight(lights.element(i), i, sceneFile));
+    scene.lights.push_back(readLight(lights.element(i), i, sceneFile, shadowsByDefault));
+  }
+  if (root.has("ambient_occlusion"))
+  {
+    scene.ambientOcclusion = readAmbientOcclusion(root.at("ambient_occlusion"));
   }
   if (scene.model == ShadingModel::VtkOpenGL2)
   {

@@ -23,6 +23,10 @@ Scene placedOnMesh(const Scene& scene, const MeshExtent& extent)
   {
     placeOnMesh(light.source, placement);
   }
+  if (placed.ambientOcclusion)
+  {
+    placed.ambientOcclusion->maxDistance *= placement.radius; // infinity stays infinite
+  }
   placed.frame = SceneFrame::World;
   return placed;
 }

@@ -132,6 +132,41 @@ bool OccluderMesh::occluded(const SurfaceRay& surfaceRay) const
   return ray.tfar < 0; // Embree sets it to -inf on a hit
 }
 
+unsigned OccluderMesh::occludedBundle(const glm::dvec3& point, const glm::dvec3& side, const glm::dvec3* directions,
+  int count, double maxDistance) const
+{
+  static_assert(bundleSize == 16, "the bundle is an RTCRay16");
+  const LocalRay first = localRay({ point, side, glm::dvec3(0.0), maxDistance });
+  alignas(64) int valid[16];
+  RTCRay16 rays;
+  for (int j = 0; j < 16; ++j)
+  {
+    valid[j] = j < count ? -1 : 0;
+    const glm::vec3 d = j < count ? glm::vec3(directions[j]) : glm::vec3(0, 0, 1);
+    rays.org_x[j] = first.origin.x;
+    rays.org_y[j] = first.origin.y;
+    rays.org_z[j] = first.origin.z;
+    rays.tnear[j] = 0.0f;
+    rays.dir_x[j] = d.x;
+    rays.dir_y[j] = d.y;
+    rays.dir_z[j] = d.z;
+    rays.time[j] = 0.0f;
+    rays.tfar[j] = first.maxDistance;
+    rays.mask[j] = 0xFFFFFFFFu;
+    rays.id[j] = static_cast<unsigned>(j);
+    rays.flags[j] = 0;
+  }
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  rtcOccluded16(valid, embree_->scene, &context, &rays);
+  unsigned blocked = 0;
+  for (int j = 0; j < count; ++j)
+  {
+    blocked |= rays.tfar[j] < 0 ? 1u << j : 0u;
+  }
+  return blocked;
+}
+
 OccluderMesh::Hit OccluderMesh::firstHit(const SurfaceRay& surfaceRay) const
 {
   const LocalRay local = localRay(surfaceRay);

@@ -33,6 +33,28 @@ glm::dvec3 uniformHemisphereDirection(const glm::dvec3& n, const glm::dvec2& u)
   const double phi = 2 * samplePi * u.y;
   return sinTheta * std::cos(phi) * t + sinTheta * std::sin(phi) * b + cosTheta * n;
 }
+
+/// Casts a ray along direction(u) for each sample point u, in bundles, and calls
+/// seen(direction, hidden) for each in sample order.
+template <typename Direction, typename Seen>
+void forEachRay(const OccluderMesh& occluders, const RayVertex& vertex, const SampleSequence& samples,
+  double maxDistance, Direction direction, Seen seen)
+{
+  for (int first = 0; first < samples.count(); first += OccluderMesh::bundleSize)
+  {
+    glm::dvec3 directions[OccluderMesh::bundleSize];
+    const int count = std::min(OccluderMesh::bundleSize, samples.count() - first);
+    for (int j = 0; j < count; ++j)
+    {
+      directions[j] = direction(samples.point(first + j));
+    }
+    const unsigned hidden = occluders.occludedBundle(vertex.position, vertex.normal, directions, count, maxDistance);
+    for (int j = 0; j < count; ++j)
+    {
+      seen(directions[j], ((hidden >> j) & 1u) != 0);
+    }
+  }
+}
 }
 
 LightVisibility lightVisibility(const OccluderMesh& occluders, const RayVertex& vertex, const glm::dvec3& toLight,
@@ -63,13 +85,13 @@ OcclusionEstimate ambientOcclusion(const OccluderMesh& occluders, const RayVerte
   const SampleSequence samples(occlusionSeed, static_cast<std::uint64_t>(vertex.id), settings.sampling);
   MonteCarloEstimate open(settings.sampling.stratified);
   glm::dvec3 openDirections(0.0);
-  for (int j = 0; j < samples.count(); ++j)
-  {
-    const glm::dvec3 direction = cosineWeightedDirection(vertex.normal, samples.point(j)).direction;
-    const bool blocked = occluders.occluded({ vertex.position, vertex.normal, direction, settings.maxDistance });
-    open.add(Rgb(blocked ? 0.0 : 1.0));
-    openDirections += blocked ? glm::dvec3(0.0) : direction;
-  }
+  forEachRay(occluders, vertex, samples, settings.maxDistance,
+    [&](const glm::dvec2& u) { return cosineWeightedDirection(vertex.normal, u).direction; },
+    [&](const glm::dvec3& direction, bool hidden)
+    {
+      open.add(Rgb(hidden ? 0.0 : 1.0));
+      openDirections += hidden ? glm::dvec3(0.0) : direction;
+    });
   estimate.occlusion = open.mean().x;
   estimate.standardError = samples.count() >= 2 ? open.standardError().x : 0.0;
   if (settings.bentNormal && openDirections != glm::dvec3(0.0))
@@ -80,11 +102,9 @@ OcclusionEstimate ambientOcclusion(const OccluderMesh& occluders, const RayVerte
   {
     const SampleSequence skySamples(skyViewSeed, static_cast<std::uint64_t>(vertex.id), settings.sampling);
     int unblocked = 0;
-    for (int j = 0; j < skySamples.count(); ++j)
-    {
-      const glm::dvec3 direction = uniformHemisphereDirection(vertex.normal, skySamples.point(j));
-      unblocked += occluders.occluded({ vertex.position, vertex.normal, direction, settings.maxDistance }) ? 0 : 1;
-    }
+    forEachRay(occluders, vertex, skySamples, settings.maxDistance,
+      [&](const glm::dvec2& u) { return uniformHemisphereDirection(vertex.normal, u); },
+      [&](const glm::dvec3&, bool hidden) { unblocked += hidden ? 0 : 1; });
     estimate.skyViewFactor = double(unblocked) / skySamples.count();
   }
   return estimate;

@@ -1,0 +1,66 @@
+#ifndef ShadeLabMeshPolygons_h
+#define ShadeLabMeshPolygons_h
+// A VTK mesh's polygons as the core reads them (shadelab::PolygonList), and its points as
+// packed numbers (shadelab::PackedPoints): what the normals and the ray casting walk.
+#include "PointNormals.h"
+
+#include "vtkAOSDataArrayTemplate.h"
+#include "vtkArrayDispatch.h"
+#include "vtkCellArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkNew.h"
+#include "vtkSmartPointer.h"
+
+#include <vector>
+
+class vtkPolyData;
+
+namespace shadelab
+{
+/// The mesh's polygons, and its strips as triangles, as one shadelab::PolygonList. Uses the
+/// mesh's own arrays where they are 64-bit and there are no strips, and a copy otherwise.
+class MeshPolygons
+{
+public:
+  explicit MeshPolygons(vtkPolyData* mesh);
+
+  const PolygonList& list() const { return list_; }
+
+  /// The same polygons as a vtkCellArray with their ids replaced by mergeMap's.
+  vtkSmartPointer<vtkCellArray> welded(const std::vector<PointId>& mergeMap) const;
+
+private:
+  PolygonList list_;
+  std::vector<PointId> offsets_;
+  std::vector<PointId> connectivity_;
+};
+
+/// Hands a float or double array's memory to visit as PackedPoints (for vtkArrayDispatch).
+template <typename Visit>
+struct PackedPointsWorker
+{
+  Visit& visit;
+  template <typename Real>
+  void operator()(vtkAOSDataArrayTemplate<Real>* array)
+  {
+    visit(PackedPoints<Real>{ array->GetPointer(0) });
+  }
+};
+
+/// Calls visit(PackedPoints<Real>) with the points' own memory where they are float or double
+/// (x, y, z after one another), and with a double copy otherwise (integer points, say).
+template <typename Visit>
+void visitPackedPoints(vtkDataArray* points, Visit&& visit)
+{
+  using RealArrays = vtkTypeList::Create<vtkAOSDataArrayTemplate<float>, vtkAOSDataArrayTemplate<double>>;
+  PackedPointsWorker<Visit> worker{ visit };
+  if (!vtkArrayDispatch::DispatchByArray<RealArrays>::Execute(points, worker))
+  {
+    vtkNew<vtkDoubleArray> asDoubles;
+    asDoubles->DeepCopy(points);
+    worker(asDoubles.Get());
+  }
+}
+}
+
+#endif

@@ -1,0 +1,260 @@
+#include "vtkMeshVisibilityFilter.h"
+
+#include "ArrayCatalog.h"
+#include "ShadeLabLargeArrays.h"
+#include "ShadeLabMeshChecks.h"
+#include "ShadeLabMeshExtent.h"
+#include "ShadeLabMeshPolygons.h"
+#include "ShadingFlags.h"
+#include "SceneFrame.h"
+#include "Visibility.h"
+
+#include "vtkDataArrayRange.h"
+#include "vtkFieldData.h"
+#include "vtkFloatArray.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkSMPTools.h"
+#include "vtkStringArray.h"
+#include "vtkUnsignedCharArray.h"
+
+#include <glm/geometric.hpp>
+
+#include <chrono>
+#include <memory>
+#include <optional>
+#include <sstream>
+
+vtkStandardNewMacro(vtkMeshVisibilityFilter);
+
+namespace
+{
+/// A light whose shadows the mesh casts, as the rays see it.
+struct ShadowedLight
+{
+  std::string name;
+  shadelab::LocalEvaluation evaluation;
+  vtkSmartPointer<vtkFloatArray> visibility;
+
+  /// The unit direction to the light from p, and how far it is.
+  std::pair<glm::dvec3, double> towardLight(const glm::dvec3& p) const
+  {
+    if (evaluation.geometry == shadelab::LocalEvaluation::Geometry::Distant)
+    {
+      return { evaluation.toLight, std::numeric_limits<double>::infinity() };
+    }
+    const glm::dvec3 d = evaluation.position - p;
+    const double distance = glm::length(d);
+    return { distance > 0 ? d / distance : glm::dvec3(0.0), distance };
+  }
+};
+
+/// A float32 array of count tuples in huge pages; throws std::runtime_error naming it when
+/// there is not enough memory.
+vtkSmartPointer<vtkFloatArray> floatArray(const std::string& name, int components, vtkIdType count)
+{
+  auto array = vtkSmartPointer<vtkFloatArray>::New();
+  array->SetName(name.c_str());
+  array->SetNumberOfComponents(components);
+  if (!shadelab::allocateTuples<float>(array, count))
+  {
+    throw std::runtime_error("not enough memory for the array '" + name + "'");
+  }
+  return array;
+}
+
+double secondsSince(std::chrono::steady_clock::time_point start)
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+}
+
+void vtkMeshVisibilityFilter::SetScene(const shadelab::Scene& scene)
+{
+  this->Scene = scene;
+  this->Modified();
+}
+
+int vtkMeshVisibilityFilter::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
+  vtkPolyData* output = vtkPolyData::GetData(outputVector);
+  this->Report.clear();
+  output->ShallowCopy(input);
+  const vtkIdType count = input->GetNumberOfPoints();
+  if (count == 0)
+  {
+    return 1; // nothing to see, and no error: VTK's convention
+  }
+  const std::string cells = shadelab::cellProblem(input);
+  if (!cells.empty())
+  {
+    vtkErrorMacro(<< cells);
+    return 0;
+  }
+  vtkDataArray* normalArray = input->GetPointData()->GetNormals();
+  if (!normalArray || normalArray->GetNumberOfComponents() != 3 || normalArray->GetNumberOfTuples() != count)
+  {
+    vtkErrorMacro("the mesh needs one 3-component point normal per point to cast rays from: run "
+                  "vtkShadingNormalsFilter first (vtkLocalReflectanceFilter does)");
+    return 0;
+  }
+  const shadelab::Scene scene = shadelab::placedOnMesh(this->Scene, shadelab::meshExtentOf(input));
+  const std::vector<shadelab::SceneProblem> problems = shadelab::sceneProblems(scene);
+  if (!problems.empty())
+  {
+    vtkErrorMacro("scene " << problems.front().path << ": " << problems.front().message);
+    return 0;
+  }
+  std::vector<ShadowedLight> lights;
+  shadelab::EvaluationContext context;
+  context.lineOfSight = scene.viewer.lineOfSight();
+  for (std::size_t l = 0; l < scene.lights.size(); ++l)
+  {
+    if (scene.lights[l].shadows)
+    {
+      context.lightIndex = l;
+      // sceneProblems allows shadows on local lights only.
+      lights.push_back({ scene.lights[l].name,
+        std::get<shadelab::LocalEvaluation>(shadelab::prepareEvaluation(scene.lights[l].source, context)), nullptr });
+    }
+  }
+  if (lights.empty() && !scene.ambientOcclusion)
+  {
+    this->Report = "Nothing to cast rays for: no light has shadows and the scene has no ambient occlusion.";
+    return 1;
+  }
+
+  const auto buildStart = std::chrono::steady_clock::now();
+  std::unique_ptr<shadelab::OccluderMesh> occluders;
+  const shadelab::MeshPolygons polygons(input);
+  shadelab::visitPackedPoints(input->GetPoints()->GetData(),
+    [&](auto points) { occluders = std::make_unique<shadelab::OccluderMesh>(points, static_cast<std::size_t>(count), polygons.list()); });
+  const double buildSeconds = secondsSince(buildStart);
+
+  std::vector<vtkSmartPointer<vtkDataArray>> written;
+  vtkSmartPointer<vtkFloatArray> occlusion, standardError, bentNormal, skyView;
+  vtkSmartPointer<vtkUnsignedCharArray> flags;
+  shadelab::OcclusionSettings settings;
+  try
+  {
+    for (ShadowedLight& light : lights)
+    {
+      light.visibility = floatArray(
+        shadelab::lightArrayName(this->ArrayPrefix, light.name, shadelab::LightTerm::Visibility), 1, count);
+      written.push_back(light.visibility);
+    }
+    if (scene.ambientOcclusion)
+    {
+      settings.sampling = scene.ambientOcclusion->sampling;
+      settings.maxDistance = scene.ambientOcclusion->maxDistance;
+      settings.bentNormal = this->ComputeBentNormal;
+      settings.skyViewFactor = this->ComputeSkyViewFactor;
+      using shadelab::OcclusionTerm;
+      occlusion = floatArray(shadelab::occlusionArrayName(this->ArrayPrefix, OcclusionTerm::AmbientOcclusion), 1, count);
+      standardError = floatArray(shadelab::occlusionArrayName(this->ArrayPrefix, OcclusionTerm::AmbientOcclusionStdError), 1, count);
+      written.insert(written.end(), { occlusion, standardError });
+      if (settings.bentNormal)
+      {
+        bentNormal = floatArray(shadelab::occlusionArrayName(this->ArrayPrefix, OcclusionTerm::BentNormal), 3, count);
+        written.push_back(bentNormal);
+      }
+      if (settings.skyViewFactor)
+      {
+        skyView = floatArray(shadelab::occlusionArrayName(this->ArrayPrefix, OcclusionTerm::SkyViewFactor), 1, count);
+        written.push_back(skyView);
+      }
+    }
+    flags = vtkSmartPointer<vtkUnsignedCharArray>::New();
+    flags->SetName((this->ArrayPrefix + "visibility_flags").c_str());
+    if (!shadelab::allocateTuples<unsigned char>(flags, count))
+    {
+      throw std::runtime_error("not enough memory for the visibility flags");
+    }
+    written.push_back(flags);
+  }
+  catch (const std::exception& error)
+  {
+    output->Initialize();
+    vtkErrorMacro(<< error.what());
+    return 0;
+  }
+
+  const bool twoSided = scene.material.twoSided || scene.model == shadelab::ShadingModel::VtkOpenGL2;
+  const auto points = vtk::DataArrayTupleRange<3>(input->GetPoints()->GetData());
+  const auto normals = vtk::DataArrayTupleRange<3>(normalArray);
+  const auto raysStart = std::chrono::steady_clock::now();
+  // Tenths of the mesh at a time, so that progress is reported between them.
+  const vtkIdType block = std::max<vtkIdType>(count / 10, 1000);
+  for (vtkIdType first = 0; first < count; first += block)
+  {
+    const vtkIdType last = std::min(count, first + block);
+    vtkSMPTools::For(first, last,
+      [&](vtkIdType begin, vtkIdType end)
+      {
+        for (vtkIdType i = begin; i < end; ++i)
+        {
+          const auto p = points[i];
+          const auto n = normals[i];
+          shadelab::RayVertex vertex{ { p[0], p[1], p[2] }, { n[0], n[1], n[2] }, i };
+          const double length = glm::length(vertex.normal);
+          vertex.normal = std::isfinite(length) && length > 0 ? vertex.normal / length : glm::dvec3(0.0);
+          shadelab::ShadingFlags found = 0;
+          for (const ShadowedLight& light : lights)
+          {
+            const auto [toLight, distance] = light.towardLight(vertex.position);
+            const shadelab::LightVisibility v = shadelab::lightVisibility(*occluders, vertex, toLight, distance, twoSided);
+            light.visibility->SetValue(i, v.visible ? 1.0f : 0.0f);
+            found |= v.blockedByOwnTriangle ? shadelab::FlagHiddenByOwnTriangle : 0;
+          }
+          flags->SetValue(i, found);
+          if (occlusion)
+          {
+            const shadelab::OcclusionEstimate ao = shadelab::ambientOcclusion(*occluders, vertex, settings);
+            occlusion->SetValue(i, static_cast<float>(ao.occlusion));
+            standardError->SetValue(i, static_cast<float>(ao.standardError));
+            if (bentNormal)
+            {
+              const glm::vec3 bent(ao.bentNormal);
+              bentNormal->SetTypedTuple(i, &bent.x);
+            }
+            if (skyView)
+            {
+              skyView->SetValue(i, static_cast<float>(ao.skyViewFactor));
+            }
+          }
+        }
+      });
+    this->UpdateProgress(static_cast<double>(last) / count);
+  }
+  const double raySeconds = secondsSince(raysStart);
+  for (const auto& array : written)
+  {
+    output->GetPointData()->AddArray(array);
+  }
+  const double raysPerVertex = static_cast<double>(lights.size()) +
+    (occlusion ? settings.sampling.samples * (settings.skyViewFactor ? 2.0 : 1.0) : 0.0);
+  std::ostringstream report;
+  report << "Cast up to " << raysPerVertex * static_cast<double>(count) << " rays (" << raysPerVertex
+         << " per vertex) against " << occluders->triangleCount() << " triangles: BVH " << buildSeconds
+         << " s, rays " << raySeconds << " s.";
+  this->Report = report.str();
+  auto note = vtkSmartPointer<vtkStringArray>::New();
+  note->SetName("shadelab_visibility");
+  note->InsertNextValue(this->Report);
+  output->GetFieldData()->AddArray(note);
+  return 1;
+}
+
+void vtkMeshVisibilityFilter::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Lights: " << this->Scene.lights.size() << "\n";
+  os << indent << "ArrayPrefix: " << this->ArrayPrefix << "\n";
+  os << indent << "ComputeBentNormal: " << this->ComputeBentNormal << "\n";
+  os << indent << "ComputeSkyViewFactor: " << this->ComputeSkyViewFactor << "\n";
+}

@@ -1,0 +1,75 @@
+/**
+ * @class vtkMeshVisibilityFilter
+ * @brief What a mesh hides from itself: each shadowed light's visibility, and ambient
+ * occlusion, by casting rays against its own triangles (Embree 3).
+ *
+ * Reads points, polygons (and triangle strips) and point normals. For every light of the scene
+ * with shadows (shadelab::NamedLight::shadows) adds "<ArrayPrefix><light>_visibility": 1 where
+ * the mesh does not block the segment to the light (a distant light's ray goes to infinity),
+ * 0 where it does or where the light is behind the surface. With the scene's ambient
+ * occlusion, adds "ambient_occlusion", its "ambient_occlusion_std_error" and, if asked for,
+ * "bent_normal" and "sky_view_factor" (docs/formulas.md section 18). The arrays are float32.
+ * "visibility_flags" has FlagHiddenByOwnTriangle (64) where a shadowed light that the normal
+ * faces is hidden by a triangle around the vertex. Every input array passes through. The
+ * BVH is built once per run; GetReport() and the field data array "shadelab_visibility" say
+ * how many rays were cast and how long the BVH and the rays took.
+ *
+ * Results are the same bits on any number of threads: each vertex's samples are a hash of its
+ * id, and a ray's answer does not depend on the order the BVH is traversed in.
+ */
+#ifndef vtkMeshVisibilityFilter_h
+#define vtkMeshVisibilityFilter_h
+
+#include "ShadeLabFiltersModule.h"
+#include "vtkPolyDataAlgorithm.h"
+
+#include "Scene.h"
+
+#include <string>
+
+class SHADELABFILTERS_EXPORT vtkMeshVisibilityFilter : public vtkPolyDataAlgorithm
+{
+public:
+  static vtkMeshVisibilityFilter* New();
+  vtkTypeMacro(vtkMeshVisibilityFilter, vtkPolyDataAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /// The lights (those with shadows count) and the ambient occlusion settings. A scene in the
+  /// mesh's frame is placed on the input.
+  void SetScene(const shadelab::Scene& scene);
+  const shadelab::Scene& GetScene() const { return this->Scene; }
+
+  /// Prepended to the visibility arrays' names (default "").
+  vtkSetMacro(ArrayPrefix, std::string);
+  vtkGetMacro(ArrayPrefix, std::string);
+
+  /// Also the bent normal, and the sky view factor (which casts as many rays again) with the
+  /// ambient occlusion (defaults on).
+  vtkSetMacro(ComputeBentNormal, bool);
+  vtkGetMacro(ComputeBentNormal, bool);
+  vtkBooleanMacro(ComputeBentNormal, bool);
+  vtkSetMacro(ComputeSkyViewFactor, bool);
+  vtkGetMacro(ComputeSkyViewFactor, bool);
+  vtkBooleanMacro(ComputeSkyViewFactor, bool);
+
+  /// What the last run did, in one sentence.
+  const std::string& GetReport() const { return this->Report; }
+
+protected:
+  vtkMeshVisibilityFilter() = default;
+  ~vtkMeshVisibilityFilter() override = default;
+
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+private:
+  vtkMeshVisibilityFilter(const vtkMeshVisibilityFilter&) = delete;
+  void operator=(const vtkMeshVisibilityFilter&) = delete;
+
+  shadelab::Scene Scene;
+  std::string ArrayPrefix;
+  bool ComputeBentNormal = true;
+  bool ComputeSkyViewFactor = true;
+  std::string Report;
+};
+
+#endif

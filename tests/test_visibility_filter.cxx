@@ -1,0 +1,171 @@
+// Shadows and ambient occlusion through the filters: vtkMeshVisibilityFilter's arrays, and
+// vtkLocalReflectanceFilter multiplying each shadowed light's terms by its visibility and the
+// ambient term by the occlusion, bit for bit the unshadowed terms where nothing is hidden.
+#include "ArrayComparison.h"
+#include "FilterRun.h"
+#include "TestMeshes.h"
+#include "VtkErrorCapture.h"
+
+#include "ShadingFlags.h"
+#include "vtkMeshVisibilityFilter.h"
+
+#include "vtkAppendPolyData.h"
+#include "vtkFloatArray.h"
+#include "vtkPlaneSource.h"
+#include "vtkPointData.h"
+#include "vtkSMPTools.h"
+#include "vtkTriangleFilter.h"
+#include "vtkUnsignedCharArray.h"
+
+#include <gtest/gtest.h>
+
+#include <glm/geometric.hpp>
+
+namespace
+{
+using namespace shadelab;
+
+/// A sphere of radius 0.5 at height 1 over the square [-2, 2]^2 at z = 0, all triangles, with
+/// exact normals on the sphere and +z on the plane.
+vtkSmartPointer<vtkPolyData> sphereOverPlane()
+{
+  vtkNew<vtkPlaneSource> plane;
+  plane->SetOrigin(-2, -2, 0);
+  plane->SetPoint1(2, -2, 0);
+  plane->SetPoint2(-2, 2, 0);
+  plane->SetResolution(60, 60);
+  vtkNew<vtkTriangleFilter> triangles;
+  triangles->SetInputConnection(plane->GetOutputPort());
+  vtkNew<vtkAppendPolyData> both;
+  both->AddInputConnection(triangles->GetOutputPort());
+  both->AddInputData(shadelab::testing::exactSphere(60, { 0, 0, 1 }, 0.5));
+  both->Update();
+  auto mesh = vtkSmartPointer<vtkPolyData>::New();
+  mesh->ShallowCopy(both->GetOutput());
+  return mesh;
+}
+
+Scene pointLightAbove(bool shadows)
+{
+  Scene scene;
+  scene.material.ka = Rgb(0.2);
+  scene.viewer.position = glm::dvec3(0, -6, 4);
+  PointLight bulb;
+  bulb.position = { 0.3, 0.2, 3.0 };
+  scene.lights = { { "ambient", AmbientLight{ Rgb(1.0), 1.0 } }, { "bulb", bulb, shadows } };
+  return scene;
+}
+
+float valueOf(vtkPolyData* mesh, const char* name, vtkIdType i, int component = 0)
+{
+  vtkDataArray* array = mesh->GetPointData()->GetArray(name);
+  return array ? static_cast<float>(array->GetComponent(i, component)) : NAN;
+}
+
+TEST(Shadows, ALightsTermsAreItsUnshadowedTermsTimesItsVisibility)
+{
+  vtkSmartPointer<vtkPolyData> mesh = sphereOverPlane();
+  const std::vector<std::string> arrays = { "default", "bulb_diffuse", "bulb_specular", "bulb_cos_incidence" };
+  vtkSmartPointer<vtkPolyData> lit = shadelab::testing::shadeWithFilter(mesh, pointLightAbove(false), arrays);
+  vtkSmartPointer<vtkPolyData> shadowed = shadelab::testing::shadeWithFilter(mesh, pointLightAbove(true), arrays);
+  ASSERT_NE(shadowed->GetPointData()->GetArray("bulb_visibility"), nullptr);
+  EXPECT_EQ(lit->GetPointData()->GetArray("bulb_visibility"), nullptr);
+  std::size_t hidden = 0;
+  for (vtkIdType i = 0; i < mesh->GetNumberOfPoints(); ++i)
+  {
+    const float v = valueOf(shadowed, "bulb_visibility", i);
+    ASSERT_TRUE(v == 0.0f || v == 1.0f);
+    hidden += v == 0.0f && valueOf(lit, "bulb_cos_incidence", i) > 0 ? 1 : 0;
+    for (int c = 0; c < 3; ++c)
+    {
+      EXPECT_EQ(valueOf(shadowed, "bulb_diffuse", i, c), v * valueOf(lit, "bulb_diffuse", i, c));
+      EXPECT_EQ(valueOf(shadowed, "bulb_specular", i, c), v * valueOf(lit, "bulb_specular", i, c));
+      EXPECT_EQ(valueOf(shadowed, "ambient", i, c), valueOf(lit, "ambient", i, c)); // no occlusion asked for
+    }
+    // Terms that do not depend on visibility are unchanged.
+    EXPECT_EQ(valueOf(shadowed, "bulb_cos_incidence", i), valueOf(lit, "bulb_cos_incidence", i));
+  }
+  EXPECT_GT(hidden, 100u); // the sphere's shadow on the plane, facing the light
+}
+
+TEST(AmbientOcclusion, ScalesTheAmbientTermAndComesWithItsArrays)
+{
+  vtkSmartPointer<vtkPolyData> mesh = sphereOverPlane();
+  Scene scene = pointLightAbove(false);
+  scene.ambientOcclusion = AmbientOcclusion{};
+  vtkSmartPointer<vtkPolyData> shaded = shadelab::testing::shadeWithFilter(mesh, scene, { "all" });
+  for (const char* name : { "ambient_occlusion", "ambient_occlusion_std_error", "bent_normal", "sky_view_factor" })
+  {
+    ASSERT_NE(shaded->GetPointData()->GetArray(name), nullptr) << name;
+  }
+  for (vtkIdType i = 0; i < mesh->GetNumberOfPoints(); i += 7)
+  {
+    const float ao = valueOf(shaded, "ambient_occlusion", i);
+    ASSERT_GE(ao, 0.0f);
+    ASSERT_LE(ao, 1.0f);
+    EXPECT_EQ(valueOf(shaded, "ambient", i), static_cast<float>(0.2 * double(ao)));
+  }
+  // The plane under the sphere's centre sees less sky: 1 - r^2 h / d^3 = 0.75 there.
+  vtkIdType centre = 0;
+  double nearest = INFINITY;
+  for (vtkIdType i = 0; i < mesh->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    mesh->GetPoint(i, p);
+    if (p[2] == 0 && std::hypot(p[0], p[1]) < nearest)
+    {
+      nearest = std::hypot(p[0], p[1]);
+      centre = i;
+    }
+  }
+  EXPECT_NEAR(valueOf(shaded, "ambient_occlusion", centre), 0.75f,
+    4 * valueOf(shaded, "ambient_occlusion_std_error", centre) + 0.02f); // and the tessellation
+}
+
+TEST(Visibility, OneAndTwoThreadsGiveTheSameBits)
+{
+  vtkSmartPointer<vtkPolyData> mesh = sphereOverPlane();
+  Scene scene = pointLightAbove(true);
+  scene.ambientOcclusion = AmbientOcclusion{};
+  vtkSmartPointer<vtkPolyData> one, two;
+  vtkSMPTools::LocalScope(vtkSMPTools::Config{ 1 }, [&] { one = shadelab::testing::shadeWithFilter(mesh, scene, { "all" }); });
+  vtkSMPTools::LocalScope(vtkSMPTools::Config{ 2 }, [&] { two = shadelab::testing::shadeWithFilter(mesh, scene, { "all" }); });
+  shadelab::testing::expectSamePointArrays(one, two);
+}
+
+std::string filterError(vtkPolyData* mesh, const Scene& scene, double tolerance = 0)
+{
+  vtkNew<vtkLocalReflectanceFilter> filter;
+  vtkNew<app::VtkErrorCapture> errors;
+  errors->watch(filter);
+  filter->SetInputData(mesh);
+  filter->SetScene(scene);
+  filter->SetTolerance(tolerance);
+  filter->Update();
+  return errors->message();
+}
+
+TEST(Visibility, WhatIsRefusedAndWhy)
+{
+  vtkSmartPointer<vtkPolyData> mesh = sphereOverPlane();
+  EXPECT_EQ(filterError(mesh, pointLightAbove(true), 1e-3),
+    "a tolerance cannot be used with shadows or ambient occlusion yet: its error bounds do not cover the rays' "
+    "estimates; shade with exact methods (tolerance 0)");
+  Scene area = pointLightAbove(false);
+  AreaLight panel;
+  panel.shape = DiskEmitter{ { 0, 0, 3 }, { 0, 0, -1 }, 0.5 };
+  area.lights.push_back({ "panel", panel, true });
+  EXPECT_EQ(filterError(mesh, area),
+    "scene /lights/2/shadows: only distant, headlight, point and spot lights cast shadows so far (soft shadows of "
+    "area lights and environment maps are not computed yet): remove \"shadows\" from this light");
+
+  vtkNew<vtkMeshVisibilityFilter> alone;
+  vtkNew<app::VtkErrorCapture> errors;
+  errors->watch(alone);
+  alone->SetInputData(mesh); // no point normals
+  alone->SetScene(pointLightAbove(true));
+  alone->Update();
+  EXPECT_EQ(errors->message(), "the mesh needs one 3-component point normal per point to cast rays from: run "
+                               "vtkShadingNormalsFilter first (vtkLocalReflectanceFilter does)");
+}
+}
