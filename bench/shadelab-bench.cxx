@@ -2,9 +2,11 @@
 //   shadelab-bench                         the filter's speed against baselines, by mesh size
 //   shadelab-bench --end-to-end MESH       what shadelab shade spends on one mesh, stage by stage
 //   shadelab-bench --charts DIR            the accuracy studies, as CSV and PNG charts
+//   shadelab-bench --visibility DIR        what casting rays costs, and ambient occlusion's error
 #include "AccuracyStudies.h"
 #include "Benchmark.h"
 #include "EndToEnd.h"
+#include "RayBenchmark.h"
 #include "MeshFiles.h"
 #include "CommandLineParse.h"
 
@@ -44,6 +46,7 @@ long long parseCount(const std::string& text)
 struct BenchCommand
 {
   std::string chartsFolder;
+  std::string visibilityFolder;
   std::vector<std::string> sizes{ "10k", "100k", "1M", "10M" };
   std::string bunny = "data/meshes/bunny_zipper.ply";
   bool noBunny = false;
@@ -77,6 +80,11 @@ int run(BenchCommand& command)
                                       "run from the repository's top folder, give --bunny FILE, or pass --no-bunny)");
     }
     command.options.bunnyFile = command.bunny;
+  }
+  if (!command.visibilityFolder.empty())
+  {
+    shadelab::app::runRayBenchmark({ command.visibilityFolder, command.bunny, command.options.maxRepeats });
+    return 0;
   }
   if (!command.chartsFolder.empty())
   {
@@ -121,6 +129,12 @@ int main(int argc, char** argv)
     "Blinn-Phong, tessellation, each at its failure point; the estimators of an area light and of two "
     "environment maps, and the SH estimator's speed) and write accuracy.csv and one PNG chart per study into "
     "this folder; reads data/scenes/area_lights.json and data/envmaps/; needs an X display (xvfb-run -a)")
+    ->excludes(endToEnd);
+  cli.add_option("--visibility", command.visibilityFolder,
+    "instead, time ray casting (the BVH, shadow rays, ambient occlusion at 16, 64 and 256 rays) on the bunny "
+    "and the bunny subdivided to 2.2M vertices against vtkStaticCellLocator, and ambient occlusion's error "
+    "against its time (4 to 1024 rays against 4096); writes visibility.csv and 9_ambient_occlusion.png "
+    "into this folder; needs an X display (xvfb-run -a); about a minute")
     ->excludes(endToEnd);
   cli.add_option("--threads,-j", command.threads, "threads (0: all cores)")->check(CLI::Range(0, 256))->capture_default_str();
   bool verbose = false;

@@ -150,6 +150,30 @@ TEST_F(Cli, ShadesAndSummarises)
   EXPECT_EQ(slurp(out).rfind("<VTKFile type=\"PolyData\"", 0), 0u); // replaced by a VTK XML file
 }
 
+TEST_F(Cli, ShadowsAndAmbientOcclusion)
+{
+  // --shadows gives every light that can cast shadows its visibility; --ambient-occlusion the
+  // occlusion arrays, in the default selection, and the rays' report.
+  const std::string out = (folder / "shadows.vtp").string();
+  const Result result = shadelab("shade " + goodMesh() + " -o " + out + " --shadows --ambient-occlusion 16");
+  EXPECT_EQ(result.exitCode, 0) << result.err;
+  for (const char* line : { "    ambient_occlusion            1 ", "    ambient_occlusion_std_error  1 ",
+         "    key_visibility               1             0           1\n", "  visibility: Cast up to " })
+  {
+    EXPECT_NE(result.out.find(line), std::string::npos) << line << "\n" << result.out;
+  }
+  EXPECT_EQ(result.out.find("sky_view_factor"), std::string::npos) << "only on request";
+  EXPECT_NE(result.out.find("with a shadowed light hidden by its own triangles\n"), std::string::npos) << result.out;
+  const Result tolerance = shadelab("shade " + goodMesh() + " -o " + out + " --shadows --tolerance 1e-3");
+  EXPECT_EQ(tolerance.exitCode, 1);
+  EXPECT_EQ(tolerance.err, "shadelab: " + goodMesh() + ": a tolerance cannot be used with shadows or ambient "
+                           "occlusion yet: its error bounds do not cover the rays' estimates; shade with exact "
+                           "methods (tolerance 0)\n");
+  const Result rays = shadelab("shade " + goodMesh() + " -o " + out + " --ambient-occlusion 1");
+  EXPECT_EQ(rays.exitCode, 2);
+  EXPECT_NE(rays.err.find("--ambient-occlusion"), std::string::npos) << rays.err;
+}
+
 TEST_F(Cli, ToleranceChoosesAndReportsMethods)
 {
   const std::string scene = SHADELAB_SOURCE_DIR "/data/scenes/three_lights.json";

@@ -271,6 +271,8 @@ TEST(SceneFile, ShadowsAndAmbientOcclusion)
   EXPECT_TRUE(defaults.lights[0][int(LightTerm::Visibility)]);
   EXPECT_FALSE(defaults.lights[1][int(LightTerm::Visibility)]);
   EXPECT_TRUE(defaults.occlusion[int(OcclusionTerm::AmbientOcclusion)]);
+  EXPECT_TRUE(defaults.occlusion[int(OcclusionTerm::AmbientOcclusionStdError)]);
+  EXPECT_FALSE(defaults.occlusion[int(OcclusionTerm::BentNormal)]);
   EXPECT_FALSE(defaults.occlusion[int(OcclusionTerm::SkyViewFactor)]);
   EXPECT_FALSE(parseScene(R"({ "lights": [] })", "scene.json").needsVisibility());
 

@@ -159,6 +159,15 @@ double openBoxOcclusion(const glm::dvec3& p, const glm::dvec3& n)
   return polygonProjectedSolidAngle(opening, p, n) / M_PI;
 }
 
+/// The visibility of one light from one vertex.
+LightVisibility visibilityOf(const OccluderMesh& occluders, const RayVertex& vertex, const glm::dvec3& toLight, double distance)
+{
+  LightVisibility visibility;
+  const LightDirection direction{ toLight, distance };
+  lightVisibility(occluders, &vertex, &direction, 1, false, &visibility);
+  return visibility;
+}
+
 TEST(Visibility, AConvexMeshNeverHidesALightOrTheSkyFromItself)
 {
   // A coarse sphere: its points on the sphere, so each radial normal is the normal of a plane
@@ -183,7 +192,7 @@ TEST(Visibility, AConvexMeshNeverHidesALightOrTheSkyFromItself)
       for (double z : { -0.9, -0.3, 0.0, 0.4, 0.95 })
       {
         const glm::dvec3 s(std::sqrt(1 - z * z) * std::cos(azimuth), std::sqrt(1 - z * z) * std::sin(azimuth), z);
-        const LightVisibility distant = lightVisibility(occluders, sphere.vertex(i), s, INFINITY, false);
+        const LightVisibility distant = visibilityOf(occluders, sphere.vertex(i), s, INFINITY);
         EXPECT_EQ(distant.visible, glm::dot(s, sphere.normals[i]) > 0) << "point " << i;
         EXPECT_FALSE(distant.blockedByOwnTriangle);
       }
@@ -219,8 +228,7 @@ TEST(Visibility, ASpheresShadowOnAPlaneIsTheSegmentSphereTestAwayFromItsEdge)
     for (std::size_t i = 0; i < planePoints; ++i)
     {
       const glm::dvec3 toLight = light - scene.points[i];
-      const LightVisibility v =
-        lightVisibility(occluders, scene.vertex(i), glm::normalize(toLight), glm::length(toLight), false);
+      const LightVisibility v = visibilityOf(occluders, scene.vertex(i), glm::normalize(toLight), glm::length(toLight));
       const double miss = distanceToSegment(centre, scene.points[i], light);
       if (miss < innerRadius)
       {
@@ -240,6 +248,40 @@ TEST(Visibility, ASpheresShadowOnAPlaneIsTheSegmentSphereTestAwayFromItsEdge)
     EXPECT_GT(shadowed, 100u);               // the test has a shadow to look at
     EXPECT_LT(undecided, planePoints / 100); // and the tessellation's band is thin
   }
+}
+
+TEST(Visibility, RaysInPacketsGiveWhatRaysOneByOneGive)
+{
+  // The filter traces the rays of 16 neighbouring vertices to a light as one packet.
+  Mesh scene;
+  addPlane(scene, 2.0, 40);
+  addSphere(scene, { 0, 0, 1 }, 0.5, 24, 48);
+  const OccluderMesh occluders = scene.occluders();
+  const glm::dvec3 light(0.3, 0.2, 3.0);
+  std::size_t hidden = 0;
+  for (std::size_t first = 0; first < scene.points.size(); first += OccluderMesh::bundleSize)
+  {
+    const int count = static_cast<int>(std::min<std::size_t>(OccluderMesh::bundleSize, scene.points.size() - first));
+    RayVertex vertices[OccluderMesh::bundleSize];
+    LightDirection directions[OccluderMesh::bundleSize];
+    LightVisibility together[OccluderMesh::bundleSize];
+    for (int k = 0; k < count; ++k)
+    {
+      vertices[k] = scene.vertex(first + k);
+      const glm::dvec3 d = light - vertices[k].position;
+      directions[k] = { glm::normalize(d), glm::length(d) };
+    }
+    lightVisibility(occluders, vertices, directions, count, true, together);
+    for (int k = 0; k < count; ++k)
+    {
+      LightVisibility alone;
+      lightVisibility(occluders, &vertices[k], &directions[k], 1, true, &alone);
+      EXPECT_EQ(together[k].visible, alone.visible) << "point " << first + k;
+      EXPECT_EQ(together[k].blockedByOwnTriangle, alone.blockedByOwnTriangle) << "point " << first + k;
+      hidden += alone.visible ? 0 : 1;
+    }
+  }
+  EXPECT_GT(hidden, 100u);
 }
 
 /// Standard errors are calibrated when about 68% of the estimates are within one of the
@@ -412,6 +454,23 @@ TEST(Visibility, MaxDistanceLeavesOutFartherOccluders)
   EXPECT_NEAR(far.occlusion, openBoxOcclusion(floorCentre.position, floorCentre.normal), 4 * far.standardError);
 }
 
+TEST(Visibility, AVertexInsideAClosedMeshSeesNoSky)
+{
+  // A point inside a closed sphere, facing any way: every ray meets the sphere, so AO is 0
+  // with no spread, and no light is visible.
+  Mesh scene;
+  addSphere(scene, { 0, 0, 0 }, 1.0, 16, 32);
+  const OccluderMesh occluders = scene.occluders();
+  const RayVertex inside{ { 0.1, -0.2, 0.3 }, glm::normalize(glm::dvec3(1, 1, 0)), 0 };
+  OcclusionSettings settings;
+  settings.skyViewFactor = true;
+  const OcclusionEstimate ao = ambientOcclusion(occluders, inside, settings);
+  EXPECT_EQ(ao.occlusion, 0.0);
+  EXPECT_EQ(ao.standardError, 0.0);
+  EXPECT_EQ(ao.skyViewFactor, 0.0);
+  EXPECT_FALSE(visibilityOf(occluders, inside, glm::normalize(glm::dvec3(1, 0, 0)), INFINITY).visible);
+}
+
 TEST(Visibility, ALightBehindAWallAtAConcaveCornerIsBlockedByTheCornersOwnTriangles)
 {
   // At the box's floor corner (0, 0, 0), the mean normal points into the box; a light whose
@@ -426,11 +485,11 @@ TEST(Visibility, ALightBehindAWallAtAConcaveCornerIsBlockedByTheCornersOwnTriang
   }
   const glm::dvec3 behindWall = glm::normalize(glm::dvec3(-0.2, 1.0, 1.0));
   ASSERT_GT(glm::dot(behindWall, box.normals[corner]), 0.0);
-  const LightVisibility v = lightVisibility(occluders, box.vertex(corner), behindWall, INFINITY, false);
+  const LightVisibility v = visibilityOf(occluders, box.vertex(corner), behindWall, INFINITY);
   EXPECT_FALSE(v.visible);
   EXPECT_TRUE(v.blockedByOwnTriangle);
   // Into the box, past the opposite rim: visible.
-  const LightVisibility open = lightVisibility(occluders, box.vertex(corner), glm::normalize(glm::dvec3(0.3, 0.3, 1.0)), INFINITY, false);
+  const LightVisibility open = visibilityOf(occluders, box.vertex(corner), glm::normalize(glm::dvec3(0.3, 0.3, 1.0)), INFINITY);
   EXPECT_TRUE(open.visible);
 }
 }

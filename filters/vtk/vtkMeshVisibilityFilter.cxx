@@ -40,7 +40,7 @@ struct ShadowedLight
   vtkSmartPointer<vtkFloatArray> visibility;
 
   /// The unit direction to the light from p, and how far it is.
-  std::pair<glm::dvec3, double> towardLight(const glm::dvec3& p) const
+  shadelab::LightDirection towardLight(const glm::dvec3& p) const
   {
     if (evaluation.geometry == shadelab::LocalEvaluation::Geometry::Distant)
     {
@@ -196,25 +196,44 @@ int vtkMeshVisibilityFilter::RequestData(
     vtkSMPTools::For(first, last,
       [&](vtkIdType begin, vtkIdType end)
       {
-        for (vtkIdType i = begin; i < end; ++i)
+        // Vertices in bundles, so that each light's rays from neighbours are one packet.
+        constexpr int bundle = shadelab::OccluderMesh::bundleSize;
+        shadelab::RayVertex vertices[bundle];
+        shadelab::LightDirection directions[bundle];
+        shadelab::LightVisibility seen[bundle];
+        for (vtkIdType first = begin; first < end; first += bundle)
         {
-          const auto p = points[i];
-          const auto n = normals[i];
-          shadelab::RayVertex vertex{ { p[0], p[1], p[2] }, { n[0], n[1], n[2] }, i };
-          const double length = glm::length(vertex.normal);
-          vertex.normal = std::isfinite(length) && length > 0 ? vertex.normal / length : glm::dvec3(0.0);
-          shadelab::ShadingFlags found = 0;
+          const int size = static_cast<int>(std::min<vtkIdType>(bundle, end - first));
+          for (int k = 0; k < size; ++k)
+          {
+            const vtkIdType i = first + k;
+            const auto p = points[i];
+            const auto n = normals[i];
+            vertices[k] = { { p[0], p[1], p[2] }, { n[0], n[1], n[2] }, i };
+            const double length = glm::length(vertices[k].normal);
+            vertices[k].normal = std::isfinite(length) && length > 0 ? vertices[k].normal / length : glm::dvec3(0.0);
+            flags->SetValue(i, 0);
+          }
           for (const ShadowedLight& light : lights)
           {
-            const auto [toLight, distance] = light.towardLight(vertex.position);
-            const shadelab::LightVisibility v = shadelab::lightVisibility(*occluders, vertex, toLight, distance, twoSided);
-            light.visibility->SetValue(i, v.visible ? 1.0f : 0.0f);
-            found |= v.blockedByOwnTriangle ? shadelab::FlagHiddenByOwnTriangle : 0;
+            for (int k = 0; k < size; ++k)
+            {
+              directions[k] = light.towardLight(vertices[k].position);
+            }
+            shadelab::lightVisibility(*occluders, vertices, directions, size, twoSided, seen);
+            for (int k = 0; k < size; ++k)
+            {
+              light.visibility->SetValue(first + k, seen[k].visible ? 1.0f : 0.0f);
+              if (seen[k].blockedByOwnTriangle)
+              {
+                flags->SetValue(first + k, flags->GetValue(first + k) | shadelab::FlagHiddenByOwnTriangle);
+              }
+            }
           }
-          flags->SetValue(i, found);
-          if (occlusion)
+          for (int k = 0; occlusion && k < size; ++k)
           {
-            const shadelab::OcclusionEstimate ao = shadelab::ambientOcclusion(*occluders, vertex, settings);
+            const vtkIdType i = first + k;
+            const shadelab::OcclusionEstimate ao = shadelab::ambientOcclusion(*occluders, vertices[k], settings);
             occlusion->SetValue(i, static_cast<float>(ao.occlusion));
             standardError->SetValue(i, static_cast<float>(ao.standardError));
             if (bentNormal)

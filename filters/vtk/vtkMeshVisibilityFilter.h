@@ -8,7 +8,7 @@
  * the mesh does not block the segment to the light (a distant light's ray goes to infinity),
  * 0 where it does or where the light is behind the surface. With the scene's ambient
  * occlusion, adds "ambient_occlusion", its "ambient_occlusion_std_error" and, if asked for,
- * "bent_normal" and "sky_view_factor" (docs/formulas.md section 18). The arrays are float32.
+ * "bent_normal" and "sky_view_factor" (docs/formulas.md section 20). The arrays are float32.
  * "visibility_flags" has FlagHiddenByOwnTriangle (64) where a shadowed light that the normal
  * faces is hidden by a triangle around the vertex. Every input array passes through. The
  * BVH is built once per run; GetReport() and the field data array "shadelab_visibility" say

@@ -227,7 +227,9 @@ ArrayRequest selectArrays(const Scene& scene, const std::vector<std::string>& se
       // What a scene asks for when it turns visibility on is shown by default.
       request.totals.fill(true);
       request.flags = true;
+      // An estimate comes with its standard error.
       request.occlusion[int(OcclusionTerm::AmbientOcclusion)] |= scene.ambientOcclusion.has_value();
+      request.occlusion[int(OcclusionTerm::AmbientOcclusionStdError)] |= scene.ambientOcclusion.has_value();
       requestTermOnEveryLight(scene, termInfo(LightTerm::Visibility).name, request);
     }
     else if (entry.rfind("*_", 0) == 0)

@@ -77,7 +77,7 @@ std::string occlusionArrayName(const std::string& prefix, OcclusionTerm term);
 
 /// The selection the command line documents:
 ///   "default"  the totals and shading_flags, and where the scene has them, ambient_occlusion
-///              and each shadowed light's visibility
+///              with its standard error and each shadowed light's visibility
 ///   "totals"   ambient, diffuse, specular, total
 ///   "all"      every array the scene has
 ///   "*_TERM"   TERM for every light that has it, e.g. "*_cos_incidence"

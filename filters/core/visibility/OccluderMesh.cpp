@@ -121,43 +121,38 @@ void setRay(RTCRay& ray, const glm::vec3& origin, const glm::vec3& direction, fl
 }
 }
 
-bool OccluderMesh::occluded(const SurfaceRay& surfaceRay) const
-{
-  const LocalRay local = localRay(surfaceRay);
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
-  RTCRay ray;
-  setRay(ray, local.origin, local.direction, local.maxDistance);
-  rtcOccluded1(embree_->scene, &context, &ray);
-  return ray.tfar < 0; // Embree sets it to -inf on a hit
-}
-
-unsigned OccluderMesh::occludedBundle(const glm::dvec3& point, const glm::dvec3& side, const glm::dvec3* directions,
-  int count, double maxDistance) const
+unsigned OccluderMesh::occluded(const SurfaceRay* surfaceRays, int count) const
 {
   static_assert(bundleSize == 16, "the bundle is an RTCRay16");
-  const LocalRay first = localRay({ point, side, glm::dvec3(0.0), maxDistance });
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  if (count == 1)
+  {
+    const LocalRay local = localRay(surfaceRays[0]);
+    RTCRay ray;
+    setRay(ray, local.origin, local.direction, local.maxDistance);
+    rtcOccluded1(embree_->scene, &context, &ray);
+    return ray.tfar < 0 ? 1u : 0u; // Embree sets it to -inf on a hit
+  }
   alignas(64) int valid[16];
   RTCRay16 rays;
   for (int j = 0; j < 16; ++j)
   {
     valid[j] = j < count ? -1 : 0;
-    const glm::vec3 d = j < count ? glm::vec3(directions[j]) : glm::vec3(0, 0, 1);
-    rays.org_x[j] = first.origin.x;
-    rays.org_y[j] = first.origin.y;
-    rays.org_z[j] = first.origin.z;
+    const LocalRay local = localRay(surfaceRays[j < count ? j : 0]);
+    rays.org_x[j] = local.origin.x;
+    rays.org_y[j] = local.origin.y;
+    rays.org_z[j] = local.origin.z;
     rays.tnear[j] = 0.0f;
-    rays.dir_x[j] = d.x;
-    rays.dir_y[j] = d.y;
-    rays.dir_z[j] = d.z;
+    rays.dir_x[j] = local.direction.x;
+    rays.dir_y[j] = local.direction.y;
+    rays.dir_z[j] = local.direction.z;
     rays.time[j] = 0.0f;
-    rays.tfar[j] = first.maxDistance;
+    rays.tfar[j] = local.maxDistance;
     rays.mask[j] = 0xFFFFFFFFu;
     rays.id[j] = static_cast<unsigned>(j);
     rays.flags[j] = 0;
   }
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
   rtcOccluded16(valid, embree_->scene, &context, &rays);
   unsigned blocked = 0;
   for (int j = 0; j < count; ++j)

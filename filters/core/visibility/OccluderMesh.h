@@ -44,19 +44,15 @@ public:
   OccluderMesh(const OccluderMesh&) = delete;
   OccluderMesh& operator=(const OccluderMesh&) = delete;
 
-  /// Whether a triangle blocks the ray.
-  bool occluded(const SurfaceRay& ray) const;
-
-  /// Rays that leave one surface point together: Embree traces them as one packet, which is
-  /// faster than one by one where their paths begin alike (64 ambient occlusion rays on the
-  /// bunny: 0.42 s one by one, 0.31 s in packets of 8, 0.27 s in packets of 16, on 2 cores).
-  /// Embree emulates 16-wide packets where the processor has no AVX-512.
+  /// Rays traced together: Embree traces them as one packet, which is faster than one by one
+  /// where their paths begin alike (rays from one vertex, or from neighbours to one light). 64
+  /// ambient occlusion rays per vertex on the bunny took 0.42 s one by one, 0.31 s in packets
+  /// of 8 and 0.27 s in packets of 16, on 2 cores; Embree emulates 16-wide packets where the
+  /// processor has no AVX-512.
   static constexpr int bundleSize = 16;
-  /// Which of the rays from point (leaving on the side of the unit normal side, up to
-  /// maxDistance) along directions[0..count-1] (count <= bundleSize) triangles block: bit j
-  /// for directions[j].
-  unsigned occludedBundle(const glm::dvec3& point, const glm::dvec3& side, const glm::dvec3* directions, int count,
-    double maxDistance) const;
+
+  /// Which of rays[0..count-1] (count <= bundleSize) triangles block: bit j for rays[j].
+  unsigned occluded(const SurfaceRay* rays, int count) const;
 
   /// The point ids of the first triangle the ray meets, or none.
   struct Hit

@@ -3,7 +3,7 @@
 //
 // A fixed distance fails at some scale: too small far from the origin, where float32 rounds a
 // point by more than it, too large on a small mesh, where it jumps over real occluders
-// (docs/visibility.md). Following C. Wachter and N. Binder, "A Fast and Robust Method for
+// (docs/formulas.md section 20). Following C. Wachter and N. Binder, "A Fast and Robust Method for
 // Avoiding Self-Intersection", Ray Tracing Gems (2019), chapter 6, the origin moves along the
 // normal by a fixed number of float32 units in the last place of each coordinate (so by a
 // distance in proportion to the coordinate's own rounding error), and by a small absolute

@@ -48,7 +48,12 @@ void forEachRay(const OccluderMesh& occluders, const RayVertex& vertex, const Sa
     {
       directions[j] = direction(samples.point(first + j));
     }
-    const unsigned hidden = occluders.occludedBundle(vertex.position, vertex.normal, directions, count, maxDistance);
+    SurfaceRay rays[OccluderMesh::bundleSize];
+    for (int j = 0; j < count; ++j)
+    {
+      rays[j] = { vertex.position, vertex.normal, directions[j], maxDistance };
+    }
+    const unsigned hidden = occluders.occluded(rays, count);
     for (int j = 0; j < count; ++j)
     {
       seen(directions[j], ((hidden >> j) & 1u) != 0);
@@ -57,22 +62,36 @@ void forEachRay(const OccluderMesh& occluders, const RayVertex& vertex, const Sa
 }
 }
 
-LightVisibility lightVisibility(const OccluderMesh& occluders, const RayVertex& vertex, const glm::dvec3& toLight,
-  double distance, bool twoSided)
+void lightVisibility(const OccluderMesh& occluders, const RayVertex* vertices, const LightDirection* directions,
+  int count, bool twoSided, LightVisibility* visibility)
 {
-  const double cosine = glm::dot(vertex.normal, toLight);
-  if (!hasNormal(vertex) || cosine == 0 || (cosine < 0 && !twoSided))
+  SurfaceRay rays[OccluderMesh::bundleSize];
+  int cast[OccluderMesh::bundleSize]; // the vertex of each ray
+  int rayCount = 0;
+  for (int k = 0; k < count; ++k)
   {
-    return {};
+    const RayVertex& vertex = vertices[k];
+    const double cosine = glm::dot(vertex.normal, directions[k].toLight);
+    visibility[k] = {};
+    if (hasNormal(vertex) && cosine != 0 && (cosine > 0 || twoSided))
+    {
+      rays[rayCount] = { vertex.position, cosine > 0 ? vertex.normal : -vertex.normal, directions[k].toLight,
+        directions[k].distance };
+      cast[rayCount++] = k;
+    }
   }
-  const SurfaceRay ray{ vertex.position, cosine > 0 ? vertex.normal : -vertex.normal, toLight, distance };
-  if (!occluders.occluded(ray))
+  const unsigned hidden = rayCount > 0 ? occluders.occluded(rays, rayCount) : 0u;
+  for (int j = 0; j < rayCount; ++j)
   {
-    return { true, false };
+    LightVisibility& seen = visibility[cast[j]];
+    seen.visible = ((hidden >> j) & 1u) == 0;
+    if (!seen.visible)
+    {
+      const OccluderMesh::Hit hit = occluders.firstHit(rays[j]);
+      const PointId id = vertices[cast[j]].id;
+      seen.blockedByOwnTriangle = hit.found && std::find(hit.corners.begin(), hit.corners.end(), id) != hit.corners.end();
+    }
   }
-  const OccluderMesh::Hit hit = occluders.firstHit(ray);
-  const bool own = hit.found && std::find(hit.corners.begin(), hit.corners.end(), vertex.id) != hit.corners.end();
-  return { false, own };
 }
 
 OcclusionEstimate ambientOcclusion(const OccluderMesh& occluders, const RayVertex& vertex, const OcclusionSettings& settings)

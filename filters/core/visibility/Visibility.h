@@ -1,6 +1,6 @@
 #pragma once
 // What a vertex sees of a light and of the sky past the mesh itself (docs/formulas.md
-// section 18): the visibility of a local light, 0 or 1, and ambient occlusion, the
+// section 20): the visibility of a local light, 0 or 1, and ambient occlusion, the
 // cosine-weighted fraction of the hemisphere above the vertex from which no triangle blocks
 // the sky.
 #include "OccluderMesh.h"
@@ -32,12 +32,22 @@ struct LightVisibility
   bool blockedByOwnTriangle = false;
 };
 
-/// The visibility of a light from the vertex. The ray leaves on the side of the normal that
-/// faces the light; where the light is on the normal's back side and the material is not
-/// two-sided, or the vertex has no normal, no ray is cast and the light counts as hidden (the
-/// surface itself hides it, and the terms it multiplies are 0 there).
-LightVisibility lightVisibility(const OccluderMesh& occluders, const RayVertex& vertex, const glm::dvec3& toLight,
-  double distance, bool twoSided);
+/// Where a light is seen from a vertex: its unit direction, and its distance (infinite for a
+/// distant light).
+struct LightDirection
+{
+  glm::dvec3 toLight{ 0.0 };
+  double distance = std::numeric_limits<double>::infinity();
+};
+
+/// The visibility of a light from vertices[0..count-1] (count <= OccluderMesh::bundleSize,
+/// traced as one packet: neighbours' rays to one light begin alike), into visibility. Each
+/// ray leaves on the side of the normal that faces the light; where the light is on the
+/// normal's back side and the material is not two-sided, or the vertex has no normal, no ray
+/// is cast and the light counts as hidden (the surface itself hides it, and the terms it
+/// multiplies are 0 there).
+void lightVisibility(const OccluderMesh& occluders, const RayVertex* vertices, const LightDirection* directions,
+  int count, bool twoSided, LightVisibility* visibility);
 
 /// How ambient occlusion is estimated.
 struct OcclusionSettings

@@ -1,0 +1,278 @@
+#include "RayBenchmark.h"
+
+#include "BenchmarkMeshes.h"
+#include "Chart.h"
+#include "MeshFiles.h"
+
+#include "OccluderMesh.h"
+#include "Visibility.h"
+#include "vtkShadingNormalsFilter.h"
+
+#include "vtkCellArray.h"
+#include "vtkFloatArray.h"
+#include "vtkIdTypeArray.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkSMPTools.h"
+#include "vtkStaticCellLocator.h"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+
+namespace shadelab::app
+{
+namespace
+{
+namespace fs = std::filesystem;
+
+/// A mesh as the rays see it: its vertices (unit normals) and its occluders.
+struct RayMesh
+{
+  std::string name;
+  vtkSmartPointer<vtkPolyData> data;
+  std::vector<RayVertex> vertices;
+  std::unique_ptr<OccluderMesh> occluders;
+  double buildMilliseconds = 0;
+  double radius = 1;
+  glm::dvec3 centre{ 0.0 };
+};
+
+RayMesh rayMesh(const std::string& name, vtkPolyData* mesh, int repeats)
+{
+  vtkNew<vtkShadingNormalsFilter> normals;
+  normals->SetInputData(mesh);
+  normals->Update();
+  RayMesh prepared{ name, normals->GetOutput(), {}, nullptr };
+  vtkPolyData* data = prepared.data;
+  vtkDataArray* n = data->GetPointData()->GetNormals();
+  double bounds[6];
+  data->GetBounds(bounds);
+  prepared.centre = { 0.5 * (bounds[0] + bounds[1]), 0.5 * (bounds[2] + bounds[3]), 0.5 * (bounds[4] + bounds[5]) };
+  prepared.radius = 0.5 * data->GetLength();
+  for (vtkIdType i = 0; i < data->GetNumberOfPoints(); ++i)
+  {
+    double p[3], normal[3];
+    data->GetPoint(i, p);
+    n->GetTuple(i, normal);
+    const glm::dvec3 unit(normal[0], normal[1], normal[2]);
+    prepared.vertices.push_back({ { p[0], p[1], p[2] }, glm::length(unit) > 0 ? glm::normalize(unit) : unit, i });
+  }
+  // The polygons as the core reads them: VTK 9 keeps 64-bit offsets and ids for these meshes.
+  vtkCellArray* polys = data->GetPolys();
+  const PolygonList list{ polys->GetOffsetsArray64()->GetPointer(0), polys->GetConnectivityArray64()->GetPointer(0),
+    static_cast<std::size_t>(polys->GetNumberOfCells()) };
+  auto* xyz = vtkFloatArray::SafeDownCast(data->GetPoints()->GetData());
+  if (!xyz)
+  {
+    throw UserError(name + ": the benchmark expects float points");
+  }
+  prepared.buildMilliseconds = medianMilliseconds(
+    [&] {
+      prepared.occluders = std::make_unique<OccluderMesh>(PackedPoints<float>{ xyz->GetPointer(0) },
+        prepared.vertices.size(), list);
+    },
+    repeats, repeats);
+  return prepared;
+}
+
+/// Seconds that body(i) takes for every i in [0, count), in a vtkSMPTools loop.
+template <typename Body>
+double parallelSeconds(std::size_t count, Body body)
+{
+  const auto start = std::chrono::steady_clock::now();
+  vtkSMPTools::For(0, static_cast<vtkIdType>(count),
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      for (vtkIdType i = begin; i < end; ++i)
+      {
+        body(static_cast<std::size_t>(i));
+      }
+    });
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+/// The point light of the benchmark's shadows: above and to the side of the mesh.
+glm::dvec3 lightOf(const RayMesh& mesh)
+{
+  return mesh.centre + mesh.radius * glm::dvec3(1.0, 2.0, 1.5);
+}
+
+/// Shadow rays per second, to the light from every vertex that faces it, in packets of
+/// neighbouring vertices as the filter casts them.
+double shadowRaysPerSecond(const RayMesh& mesh, std::size_t& rays)
+{
+  const glm::dvec3 light = lightOf(mesh);
+  constexpr std::size_t bundle = OccluderMesh::bundleSize;
+  const std::size_t bundles = (mesh.vertices.size() + bundle - 1) / bundle;
+  // The median of several runs: the bunny's take a few milliseconds each.
+  std::vector<double> runs;
+  for (int run = 0; run < 7; ++run)
+  {
+    runs.push_back(parallelSeconds(bundles,
+    [&](std::size_t b)
+    {
+      const int count = static_cast<int>(std::min(bundle, mesh.vertices.size() - b * bundle));
+      LightDirection directions[bundle];
+      LightVisibility seen[bundle];
+      for (int k = 0; k < count; ++k)
+      {
+        const glm::dvec3 d = light - mesh.vertices[b * bundle + k].position;
+        directions[k] = { glm::normalize(d), glm::length(d) };
+      }
+      lightVisibility(*mesh.occluders, &mesh.vertices[b * bundle], directions, count, false, seen);
+    }));
+  }
+  std::sort(runs.begin(), runs.end());
+  const double seconds = runs[runs.size() / 2];
+  rays = 0;
+  for (const RayVertex& v : mesh.vertices)
+  {
+    rays += glm::dot(light - v.position, v.normal) > 0 ? 1 : 0; // the vertices that cast one
+  }
+  return static_cast<double>(rays) / seconds;
+}
+
+/// The same shadow rays with VTK's vtkStaticCellLocator, on one thread, over every stride-th
+/// vertex: rays per second.
+double locatorRaysPerSecond(const RayMesh& mesh, std::size_t stride, double& buildMilliseconds)
+{
+  vtkNew<vtkStaticCellLocator> locator;
+  buildMilliseconds = medianMilliseconds(
+    [&] {
+      locator->SetDataSet(mesh.data);
+      locator->Modified();
+      locator->BuildLocator();
+    },
+    1, 1);
+  const glm::dvec3 light = lightOf(mesh);
+  std::size_t rays = 0;
+  const auto start = std::chrono::steady_clock::now();
+  for (std::size_t i = 0; i < mesh.vertices.size(); i += stride)
+  {
+    const RayVertex& v = mesh.vertices[i];
+    if (glm::dot(light - v.position, v.normal) <= 0)
+    {
+      continue;
+    }
+    // From just off the surface, as the rays above start (1e-5 of the mesh's size).
+    const glm::dvec3 from = v.position + 1e-5 * mesh.radius * v.normal;
+    double p1[3] = { from.x, from.y, from.z }, p2[3] = { light.x, light.y, light.z };
+    double t, x[3], pcoords[3];
+    int subId;
+    vtkIdType cellId;
+    locator->IntersectWithLine(p1, p2, 0.0, t, x, pcoords, subId, cellId);
+    ++rays;
+  }
+  return static_cast<double>(rays) / std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+/// Ambient occlusion at every stride-th vertex with `rays` rays: its values and the seconds.
+std::vector<double> occlusionAt(const RayMesh& mesh, int rays, std::size_t stride, double& seconds)
+{
+  OcclusionSettings settings;
+  settings.sampling.samples = rays;
+  std::vector<double> values((mesh.vertices.size() + stride - 1) / stride);
+  seconds = parallelSeconds(values.size(),
+    [&](std::size_t k) { values[k] = ambientOcclusion(*mesh.occluders, mesh.vertices[k * stride], settings).occlusion; });
+  return values;
+}
+
+void printRow(const std::string& label, double value, const std::string& unit, const std::string& note = "")
+{
+  std::cout << "  " << std::left << std::setw(44) << label << std::right << std::setw(10) << std::fixed
+            << std::setprecision(2) << value << " " << std::left << std::setw(8) << unit << note << "\n";
+}
+}
+
+void runRayBenchmark(const RayBenchmarkOptions& options)
+{
+  fs::create_directories(options.folder);
+  const int threads = vtkSMPTools::GetEstimatedNumberOfThreads();
+  std::ofstream csv(options.folder + "/visibility.csv");
+  csv << "mesh,vertices,triangles,quantity,value,unit\n";
+  const vtkSmartPointer<vtkPolyData> clean = cleanBunny(options.bunnyFile);
+  std::vector<RayMesh> meshes;
+  meshes.push_back(rayMesh("bunny", clean, options.repeats));
+  meshes.push_back(rayMesh("bunny x64", bunnyOfAbout(clean, 2200000)->data, options.repeats));
+  std::cout << "shadelab-bench --visibility: rays against the mesh's own triangles (Embree 3), " << threads
+            << " threads\n";
+  for (const RayMesh& mesh : meshes)
+  {
+    const std::size_t vertices = mesh.vertices.size();
+    std::cout << mesh.name << ": " << vertices << " vertices, " << mesh.occluders->triangleCount() << " triangles\n";
+    auto record = [&](const std::string& quantity, double value, const std::string& unit, const std::string& note = "")
+    {
+      printRow(quantity, value, unit, note);
+      csv << mesh.name << "," << vertices << "," << mesh.occluders->triangleCount() << "," << quantity << "," << value
+          << "," << unit << "\n";
+    };
+    record("BVH build", mesh.buildMilliseconds, "ms");
+    std::size_t shadowRays = 0;
+    const double embree = shadowRaysPerSecond(mesh, shadowRays);
+    record("shadow rays to a point light", embree / 1e6, "Mrays/s", std::to_string(shadowRays) + " rays, packets of 16 vertices");
+    const std::size_t stride = std::max<std::size_t>(1, vertices / 2000);
+    double locatorBuild = 0;
+    const double vtk = locatorRaysPerSecond(mesh, stride, locatorBuild);
+    record("  vtkStaticCellLocator build", locatorBuild, "ms");
+    record("  vtkStaticCellLocator, one thread", vtk / 1e3, "krays/s",
+      "IntersectWithLine, the same rays from every " + std::to_string(stride) + "th vertex");
+    record("  Embree per core / VTK's locator", embree / threads / vtk, "x", "target 100");
+    // Ambient occlusion on every vertex of the bunny, every 16th of the large one.
+    const std::size_t aoStride = vertices > 1000000 ? 16 : 1;
+    for (int rays : { 16, 64, 256 })
+    {
+      double seconds = 0;
+      const std::vector<double> values = occlusionAt(mesh, rays, aoStride, seconds);
+      const double cast = static_cast<double>(values.size()) * rays;
+      record("ambient occlusion, " + std::to_string(rays) + " rays: rays", cast / seconds / 1e6, "Mrays/s",
+        "in packets of " + std::to_string(OccluderMesh::bundleSize));
+      record("ambient occlusion, " + std::to_string(rays) + " rays: time", seconds * 1e3 * aoStride, "ms",
+        aoStride > 1 ? "for the whole mesh, from every 16th vertex" : (rays == 64 ? "target 300 ms" : ""));
+    }
+  }
+
+  // Error against time on the bunny, each ray count against 4096 rays per vertex.
+  const RayMesh& bunny = meshes.front();
+  double referenceSeconds = 0;
+  const std::vector<double> reference = occlusionAt(bunny, 4096, 1, referenceSeconds);
+  ChartSeries largest{ "largest error", {}, {}, true, { 200, 40, 40 }, true };
+  ChartSeries rms{ "RMS error", {}, {}, true, { 40, 40, 200 }, true, true };
+  std::cout << "ambient occlusion on the bunny against 4096 rays per vertex (" << std::setprecision(1)
+            << referenceSeconds << " s):\n";
+  for (int rays : { 4, 16, 64, 256, 1024 })
+  {
+    double seconds = 0;
+    const std::vector<double> values = occlusionAt(bunny, rays, 1, seconds);
+    double worst = 0, squares = 0;
+    for (std::size_t i = 0; i < values.size(); ++i)
+    {
+      const double error = std::abs(values[i] - reference[i]);
+      worst = std::max(worst, error);
+      squares += error * error;
+    }
+    const double rmsError = std::sqrt(squares / static_cast<double>(values.size()));
+    std::cout << "  " << std::setw(5) << rays << " rays: " << std::setprecision(1) << seconds * 1e3
+              << " ms, largest error " << std::setprecision(4) << worst << ", RMS " << rmsError << "\n";
+    csv << "bunny," << values.size() << "," << bunny.occluders->triangleCount() << ",ao_" << rays << "_rays_ms,"
+        << seconds * 1e3 << ",ms\n";
+    csv << "bunny," << values.size() << "," << bunny.occluders->triangleCount() << ",ao_" << rays << "_rays_largest_error,"
+        << worst << ",\n";
+    csv << "bunny," << values.size() << "," << bunny.occluders->triangleCount() << ",ao_" << rays << "_rays_rms_error,"
+        << rmsError << ",\n";
+    largest.x.push_back(seconds * 1e3);
+    largest.y.push_back(worst);
+    rms.x.push_back(seconds * 1e3);
+    rms.y.push_back(rmsError);
+  }
+  ChartSpec chart{ "Ambient occlusion on the bunny: 4 to 1024 rays per vertex against 4096",
+    "time for the mesh (ms)", "error in ambient_occlusion", true, true, false, { largest, rms } };
+  writeChartPng(chart, options.folder + "/9_ambient_occlusion.png");
+  std::cout << "wrote " << options.folder << "/visibility.csv and 9_ambient_occlusion.png\n";
+}
+}
