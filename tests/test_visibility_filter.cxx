@@ -133,6 +133,35 @@ TEST(Visibility, OneAndTwoThreadsGiveTheSameBits)
   shadelab::testing::expectSamePointArrays(one, two);
 }
 
+TEST(Visibility, TheBvhIsBuiltOnceWhileTheMeshIsUnchanged)
+{
+  vtkSmartPointer<vtkPolyData> mesh = sphereOverPlane();
+  vtkNew<vtkLocalReflectanceFilter> filter;
+  filter->SetInputData(mesh);
+  filter->SetScene(pointLightAbove(true));
+  filter->Update();
+  EXPECT_NE(filter->GetVisibilityReport().find("BVH built in "), std::string::npos) << filter->GetVisibilityReport();
+  const std::vector<float> first(static_cast<float*>(filter->GetOutput()->GetPointData()->GetArray("bulb_visibility")->GetVoidPointer(0)),
+    static_cast<float*>(filter->GetOutput()->GetPointData()->GetArray("bulb_visibility")->GetVoidPointer(0)) + mesh->GetNumberOfPoints());
+  // Another material: the same mesh, the same BVH, the same visibility.
+  Scene shinier = pointLightAbove(true);
+  shinier.material.shininess = 80;
+  filter->SetScene(shinier);
+  filter->Update();
+  EXPECT_NE(filter->GetVisibilityReport().find("BVH reused"), std::string::npos) << filter->GetVisibilityReport();
+  for (vtkIdType i = 0; i < mesh->GetNumberOfPoints(); ++i)
+  {
+    ASSERT_EQ(valueOf(filter->GetOutput(), "bulb_visibility", i), first[static_cast<std::size_t>(i)]);
+  }
+  // The mesh moved: a new BVH, and the shadow moves with it.
+  double p[3];
+  mesh->GetPoints()->GetPoint(0, p);
+  mesh->GetPoints()->SetPoint(0, p[0], p[1], p[2] + 0.01);
+  mesh->GetPoints()->Modified();
+  filter->Update();
+  EXPECT_NE(filter->GetVisibilityReport().find("BVH built in "), std::string::npos) << filter->GetVisibilityReport();
+}
+
 std::string filterError(vtkPolyData* mesh, const Scene& scene, double tolerance = 0)
 {
   vtkNew<vtkLocalReflectanceFilter> filter;

@@ -23,6 +23,7 @@
 
 #include <glm/geometric.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <memory>
 #include <optional>
@@ -70,6 +71,42 @@ double secondsSince(std::chrono::steady_clock::time_point start)
 {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
+}
+
+vtkMeshVisibilityFilter::vtkMeshVisibilityFilter() = default;
+vtkMeshVisibilityFilter::~vtkMeshVisibilityFilter() = default;
+
+namespace
+{
+/// The newest modification time of what the rays see of the mesh.
+vtkMTimeType geometryTime(vtkPolyData* mesh)
+{
+  return std::max({ mesh->GetPoints()->GetMTime(), mesh->GetPoints()->GetData()->GetMTime(),
+    mesh->GetPolys()->GetMTime(), mesh->GetStrips()->GetMTime() });
+}
+}
+
+const shadelab::OccluderMesh& vtkMeshVisibilityFilter::OccludersFor(vtkPolyData* mesh, bool& reused)
+{
+  BuiltOccluders& built = this->Built;
+  reused = built.occluders && built.points == mesh->GetPoints() && built.polys == mesh->GetPolys() &&
+    built.strips == mesh->GetStrips() && geometryTime(mesh) <= built.builtAfter;
+  if (!reused)
+  {
+    built = {};
+    const shadelab::MeshPolygons polygons(mesh);
+    shadelab::visitPackedPoints(mesh->GetPoints()->GetData(),
+      [&](auto points)
+      {
+        built.occluders = std::make_unique<shadelab::OccluderMesh>(
+          points, static_cast<std::size_t>(mesh->GetNumberOfPoints()), polygons.list());
+      });
+    built.points = mesh->GetPoints();
+    built.polys = mesh->GetPolys();
+    built.strips = mesh->GetStrips();
+    built.builtAfter = geometryTime(mesh);
+  }
+  return *built.occluders;
 }
 
 void vtkMeshVisibilityFilter::SetScene(const shadelab::Scene& scene)
@@ -130,10 +167,8 @@ int vtkMeshVisibilityFilter::RequestData(
   }
 
   const auto buildStart = std::chrono::steady_clock::now();
-  std::unique_ptr<shadelab::OccluderMesh> occluders;
-  const shadelab::MeshPolygons polygons(input);
-  shadelab::visitPackedPoints(input->GetPoints()->GetData(),
-    [&](auto points) { occluders = std::make_unique<shadelab::OccluderMesh>(points, static_cast<std::size_t>(count), polygons.list()); });
+  bool reused = false;
+  const shadelab::OccluderMesh* occluders = &this->OccludersFor(input, reused);
   const double buildSeconds = secondsSince(buildStart);
 
   std::vector<vtkSmartPointer<vtkDataArray>> written;
@@ -259,8 +294,8 @@ int vtkMeshVisibilityFilter::RequestData(
     (occlusion ? settings.sampling.samples * (settings.skyViewFactor ? 2.0 : 1.0) : 0.0);
   std::ostringstream report;
   report << "Cast up to " << raysPerVertex * static_cast<double>(count) << " rays (" << raysPerVertex
-         << " per vertex) against " << occluders->triangleCount() << " triangles: BVH " << buildSeconds
-         << " s, rays " << raySeconds << " s.";
+         << " per vertex) against " << occluders->triangleCount() << " triangles: BVH "
+         << (reused ? "reused" : "built in " + std::to_string(buildSeconds) + " s") << ", rays " << raySeconds << " s.";
   this->Report = report.str();
   auto note = vtkSmartPointer<vtkStringArray>::New();
   note->SetName("shadelab_visibility");

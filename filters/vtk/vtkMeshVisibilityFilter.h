@@ -11,8 +11,9 @@
  * "bent_normal" and "sky_view_factor" (docs/formulas.md section 20). The arrays are float32.
  * "visibility_flags" has FlagHiddenByOwnTriangle (64) where a shadowed light that the normal
  * faces is hidden by a triangle around the vertex. Every input array passes through. The
- * BVH is built once per run; GetReport() and the field data array "shadelab_visibility" say
- * how many rays were cast and how long the BVH and the rays took.
+ * BVH is built once and kept while the input's points and polygons are the same objects,
+ * unmodified (a new scene or material reuses it); GetReport() and the field data array
+ * "shadelab_visibility" say how many rays were cast and how long the BVH and the rays took.
  *
  * Results are the same bits on any number of threads: each vertex's samples are a hash of its
  * id, and a ray's answer does not depend on the order the BVH is traversed in.
@@ -23,9 +24,19 @@
 #include "ShadeLabFiltersModule.h"
 #include "vtkPolyDataAlgorithm.h"
 
+#include "vtkSmartPointer.h"
+
 #include "Scene.h"
 
+#include <memory>
 #include <string>
+
+class vtkCellArray;
+class vtkPoints;
+namespace shadelab
+{
+class OccluderMesh;
+}
 
 class SHADELABFILTERS_EXPORT vtkMeshVisibilityFilter : public vtkPolyDataAlgorithm
 {
@@ -56,8 +67,8 @@ public:
   const std::string& GetReport() const { return this->Report; }
 
 protected:
-  vtkMeshVisibilityFilter() = default;
-  ~vtkMeshVisibilityFilter() override = default;
+  vtkMeshVisibilityFilter();
+  ~vtkMeshVisibilityFilter() override;
 
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
@@ -70,6 +81,18 @@ private:
   bool ComputeBentNormal = true;
   bool ComputeSkyViewFactor = true;
   std::string Report;
+
+  /// The BVH of the mesh it was built for: the same point and cell objects, none modified since.
+  struct BuiltOccluders
+  {
+    std::unique_ptr<shadelab::OccluderMesh> occluders;
+    vtkSmartPointer<vtkPoints> points;
+    vtkSmartPointer<vtkCellArray> polys, strips;
+    vtkMTimeType builtAfter = 0; // the newest of their modification times when it was built
+  };
+  BuiltOccluders Built;
+  /// Built's BVH when it is for this mesh, or a new one; says which in reused.
+  const shadelab::OccluderMesh& OccludersFor(vtkPolyData* mesh, bool& reused);
 };
 
 #endif
