@@ -128,8 +128,9 @@ Mesh openBox(int cells)
     { glm::dvec3(1, 0, 0), glm::dvec3(0, 0, 1), glm::dvec3(0, 1, 0) }, // x = 1, normal -x
   };
   std::vector<std::array<PointId, 3>> triangles;
-  for (const auto& [origin, u, v] : faces)
+  for (const auto& face : faces)
   {
+    const glm::dvec3 origin = face[0], u = face[1], v = face[2];
     const glm::dvec3 n = glm::cross(u, v);
     auto id = [&](int i, int j) { return pointAt(origin + (double(i) / cells) * u + (double(j) / cells) * v, n); };
     for (int i = 0; i < cells; ++i)
