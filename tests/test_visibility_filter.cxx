@@ -8,6 +8,7 @@
 
 #include "ShadingFlags.h"
 #include "vtkMeshVisibilityFilter.h"
+#include "vtkShadingNormalsFilter.h"
 
 #include "vtkAppendPolyData.h"
 #include "vtkFloatArray.h"
@@ -160,6 +161,73 @@ TEST(Visibility, TheBvhIsBuiltOnceWhileTheMeshIsUnchanged)
   mesh->GetPoints()->Modified();
   filter->Update();
   EXPECT_NE(filter->GetVisibilityReport().find("BVH built in "), std::string::npos) << filter->GetVisibilityReport();
+}
+
+/// vtkMeshVisibilityFilter's output for the mesh with these point normals.
+vtkSmartPointer<vtkPolyData> seen(vtkPolyData* mesh, const Scene& scene)
+{
+  vtkNew<vtkShadingNormalsFilter> normals;
+  normals->SetInputData(mesh);
+  normals->OrientOutwardOff();
+  vtkNew<vtkMeshVisibilityFilter> visibility;
+  visibility->SetInputConnection(normals->GetOutputPort());
+  visibility->SetScene(scene);
+  visibility->Update();
+  auto output = vtkSmartPointer<vtkPolyData>::New();
+  output->ShallowCopy(visibility->GetOutput());
+  return output;
+}
+
+TEST(Visibility, APointAtInfinityCastsNoRaysAndHidesNothingElse)
+{
+  vtkSmartPointer<vtkPolyData> mesh = sphereOverPlane();
+  const vtkSmartPointer<vtkPolyData> before = seen(mesh, pointLightAbove(true));
+  auto points = vtkSmartPointer<vtkPoints>::New();
+  points->DeepCopy(mesh->GetPoints());
+  points->SetPoint(0, INFINITY, 0, 0); // a corner of the plane
+  auto broken = vtkSmartPointer<vtkPolyData>::New();
+  broken->ShallowCopy(mesh);
+  broken->SetPoints(points);
+  const vtkSmartPointer<vtkPolyData> after = seen(broken, pointLightAbove(true));
+  ASSERT_NE(after->GetPointData()->GetArray("bulb_visibility"), nullptr);
+  EXPECT_EQ(valueOf(after, "bulb_visibility", 0), 0.0f);
+  std::size_t differing = 0, hidden = 0;
+  for (vtkIdType i = 1; i < mesh->GetNumberOfPoints(); ++i)
+  {
+    differing += valueOf(after, "bulb_visibility", i) != valueOf(before, "bulb_visibility", i) ? 1 : 0;
+    hidden += valueOf(after, "bulb_visibility", i) == 0.0f ? 1 : 0;
+  }
+  // Only the rays that passed through the corner's two triangles can change.
+  EXPECT_LE(differing, 2u);
+  EXPECT_GT(hidden, 100u);
+}
+
+TEST(AmbientOcclusion, TwoSidedShadingTakesTheSideTheViewerSees)
+{
+  // The plane under the sphere seen from below with a two-sided material: the kernel shades
+  // its underside, which sees the open sky below, so its occlusion is 1 everywhere; seen
+  // from above it is the sphere's form factor.
+  vtkSmartPointer<vtkPolyData> mesh = sphereOverPlane();
+  Scene scene = pointLightAbove(false);
+  scene.ambientOcclusion = AmbientOcclusion{};
+  scene.material.twoSided = true;
+  scene.viewer.position = glm::dvec3(0, 0, -6);
+  const vtkSmartPointer<vtkPolyData> below = seen(mesh, scene);
+  scene.viewer.position = glm::dvec3(0, 0, 6);
+  const vtkSmartPointer<vtkPolyData> above = seen(mesh, scene);
+  double smallestBelow = 1, smallestAbove = 1;
+  for (vtkIdType i = 0; i < mesh->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    mesh->GetPoint(i, p);
+    if (p[2] == 0)
+    {
+      smallestBelow = std::min<double>(smallestBelow, valueOf(below, "ambient_occlusion", i));
+      smallestAbove = std::min<double>(smallestAbove, valueOf(above, "ambient_occlusion", i));
+    }
+  }
+  EXPECT_EQ(smallestBelow, 1.0);
+  EXPECT_LT(smallestAbove, 0.8);
 }
 
 std::string filterError(vtkPolyData* mesh, const Scene& scene, double tolerance = 0)

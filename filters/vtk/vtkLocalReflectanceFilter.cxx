@@ -364,6 +364,8 @@ int vtkLocalReflectanceFilter::RequestData(
       ? shade<double>(scene, request, methods, this->ArrayPrefix, points, shadingNormals, inputs, this)
       : shade<float>(scene, request, methods, this->ArrayPrefix, points, shadingNormals, inputs, this);
     arrays.insert(arrays.begin(), shaded.begin(), shaded.end());
+    // The rays' arrays have been used (those asked for are in `arrays`): not kept until the next run.
+    this->VisibilityStep->GetOutput()->Initialize();
   }
   catch (const std::exception& error) // an array, or anything else, that could not be allocated
   {

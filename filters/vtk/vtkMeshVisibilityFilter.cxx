@@ -81,8 +81,14 @@ namespace
 /// The newest modification time of what the rays see of the mesh.
 vtkMTimeType geometryTime(vtkPolyData* mesh)
 {
-  return std::max({ mesh->GetPoints()->GetMTime(), mesh->GetPoints()->GetData()->GetMTime(),
-    mesh->GetPolys()->GetMTime(), mesh->GetStrips()->GetMTime() });
+  vtkMTimeType newest = std::max(mesh->GetPoints()->GetMTime(), mesh->GetPoints()->GetData()->GetMTime());
+  for (vtkCellArray* cells : { mesh->GetPolys(), mesh->GetStrips() })
+  {
+    // VTK 9.1's vtkCellArray::GetMTime does not look at its arrays.
+    newest = std::max({ newest, cells->GetMTime(), cells->GetOffsetsArray()->GetMTime(),
+      cells->GetConnectivityArray()->GetMTime() });
+  }
+  return newest;
 }
 }
 
@@ -168,7 +174,17 @@ int vtkMeshVisibilityFilter::RequestData(
 
   const auto buildStart = std::chrono::steady_clock::now();
   bool reused = false;
-  const shadelab::OccluderMesh* occluders = &this->OccludersFor(input, reused);
+  const shadelab::OccluderMesh* occluders = nullptr;
+  try
+  {
+    occluders = &this->OccludersFor(input, reused);
+  }
+  catch (const std::exception& error) // Embree's, or no memory for the triangles
+  {
+    output->Initialize();
+    vtkErrorMacro(<< error.what());
+    return 0;
+  }
   const double buildSeconds = secondsSince(buildStart);
 
   std::vector<vtkSmartPointer<vtkDataArray>> written;
@@ -222,68 +238,93 @@ int vtkMeshVisibilityFilter::RequestData(
   const bool twoSided = scene.material.twoSided || scene.model == shadelab::ShadingModel::VtkOpenGL2;
   const auto points = vtk::DataArrayTupleRange<3>(input->GetPoints()->GetData());
   const auto normals = vtk::DataArrayTupleRange<3>(normalArray);
-  const auto raysStart = std::chrono::steady_clock::now();
-  // Tenths of the mesh at a time, so that progress is reported between them.
-  const vtkIdType block = std::max<vtkIdType>(count / 10, 1000);
-  for (vtkIdType first = 0; first < count; first += block)
+  // Vertex i as the rays see it: no normal (so no ray) where the kernel sees none or the
+  // position is not finite; for occlusion under two-sided shading, the normal turned toward
+  // the viewer, as the kernel turns it.
+  auto rayVertex = [&](vtkIdType i, shadelab::RayVertex& vertex, glm::dvec3& occlusionNormal)
   {
-    const vtkIdType last = std::min(count, first + block);
-    vtkSMPTools::For(first, last,
-      [&](vtkIdType begin, vtkIdType end)
-      {
-        // Vertices in bundles, so that each light's rays from neighbours are one packet.
-        constexpr int bundle = shadelab::OccluderMesh::bundleSize;
-        shadelab::RayVertex vertices[bundle];
-        shadelab::LightDirection directions[bundle];
-        shadelab::LightVisibility seen[bundle];
-        for (vtkIdType first = begin; first < end; first += bundle)
+    const auto p = points[i];
+    const auto n = normals[i];
+    vertex = { { p[0], p[1], p[2] }, { n[0], n[1], n[2] }, i };
+    const double length2 = glm::dot(vertex.normal, vertex.normal);
+    const glm::dvec3& q = vertex.position;
+    const bool usable = length2 > 1e-12 && std::isfinite(length2) && std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z);
+    vertex.normal = usable ? vertex.normal / std::sqrt(length2) : glm::dvec3(0.0);
+    const glm::dvec3 towardViewer = scene.viewer.position ? *scene.viewer.position - vertex.position : -scene.viewer.viewDirection;
+    occlusionNormal = twoSided && glm::dot(vertex.normal, towardViewer) < 0 ? -vertex.normal : vertex.normal;
+  };
+  const auto raysStart = std::chrono::steady_clock::now();
+  // Vertices in fixed groups of 16 (not split by the threads' ranges), each light's rays from a
+  // group traced as one packet: the same packets, and so the same bits, on any thread count.
+  // Tenths of the mesh at a time, so that progress is reported between them.
+  constexpr int group = shadelab::OccluderMesh::bundleSize;
+  const vtkIdType groups = (count + group - 1) / group;
+  const vtkIdType block = std::max<vtkIdType>(groups / 10, 64);
+  try
+  {
+    for (vtkIdType firstGroup = 0; firstGroup < groups; firstGroup += block)
+    {
+      const vtkIdType lastGroup = std::min(groups, firstGroup + block);
+      vtkSMPTools::For(firstGroup, lastGroup,
+        [&](vtkIdType beginGroup, vtkIdType endGroup)
         {
-          const int size = static_cast<int>(std::min<vtkIdType>(bundle, end - first));
-          for (int k = 0; k < size; ++k)
+          shadelab::RayVertex vertices[group];
+          glm::dvec3 occlusionNormals[group];
+          shadelab::LightDirection directions[group];
+          shadelab::LightVisibility seen[group];
+          for (vtkIdType g = beginGroup; g < endGroup; ++g)
           {
-            const vtkIdType i = first + k;
-            const auto p = points[i];
-            const auto n = normals[i];
-            vertices[k] = { { p[0], p[1], p[2] }, { n[0], n[1], n[2] }, i };
-            const double length = glm::length(vertices[k].normal);
-            vertices[k].normal = std::isfinite(length) && length > 0 ? vertices[k].normal / length : glm::dvec3(0.0);
-            flags->SetValue(i, 0);
-          }
-          for (const ShadowedLight& light : lights)
-          {
+            const vtkIdType first = g * group;
+            const int size = static_cast<int>(std::min<vtkIdType>(group, count - first));
             for (int k = 0; k < size; ++k)
             {
-              directions[k] = light.towardLight(vertices[k].position);
+              rayVertex(first + k, vertices[k], occlusionNormals[k]);
+              flags->SetValue(first + k, 0);
             }
-            shadelab::lightVisibility(*occluders, vertices, directions, size, twoSided, seen);
-            for (int k = 0; k < size; ++k)
+            for (const ShadowedLight& light : lights)
             {
-              light.visibility->SetValue(first + k, seen[k].visible ? 1.0f : 0.0f);
-              if (seen[k].blockedByOwnTriangle)
+              for (int k = 0; k < size; ++k)
               {
-                flags->SetValue(first + k, flags->GetValue(first + k) | shadelab::FlagHiddenByOwnTriangle);
+                directions[k] = light.towardLight(vertices[k].position);
+              }
+              shadelab::lightVisibility(*occluders, vertices, directions, size, twoSided, seen);
+              for (int k = 0; k < size; ++k)
+              {
+                light.visibility->SetValue(first + k, seen[k].visible ? 1.0f : 0.0f);
+                if (seen[k].blockedByOwnTriangle)
+                {
+                  flags->SetValue(first + k, flags->GetValue(first + k) | shadelab::FlagHiddenByOwnTriangle);
+                }
+              }
+            }
+            for (int k = 0; occlusion && k < size; ++k)
+            {
+              const vtkIdType i = first + k;
+              const shadelab::OcclusionEstimate ao = shadelab::ambientOcclusion(
+                *occluders, { vertices[k].position, occlusionNormals[k], vertices[k].id }, settings);
+              occlusion->SetValue(i, static_cast<float>(ao.occlusion));
+              standardError->SetValue(i, static_cast<float>(ao.standardError));
+              if (bentNormal)
+              {
+                const glm::vec3 bent(ao.bentNormal);
+                bentNormal->SetTypedTuple(i, &bent.x);
+              }
+              if (skyView)
+              {
+                skyView->SetValue(i, static_cast<float>(ao.skyViewFactor));
               }
             }
           }
-          for (int k = 0; occlusion && k < size; ++k)
-          {
-            const vtkIdType i = first + k;
-            const shadelab::OcclusionEstimate ao = shadelab::ambientOcclusion(*occluders, vertices[k], settings);
-            occlusion->SetValue(i, static_cast<float>(ao.occlusion));
-            standardError->SetValue(i, static_cast<float>(ao.standardError));
-            if (bentNormal)
-            {
-              const glm::vec3 bent(ao.bentNormal);
-              bentNormal->SetTypedTuple(i, &bent.x);
-            }
-            if (skyView)
-            {
-              skyView->SetValue(i, static_cast<float>(ao.skyViewFactor));
-            }
-          }
-        }
-      });
-    this->UpdateProgress(static_cast<double>(last) / count);
+        });
+      this->UpdateProgress(static_cast<double>(lastGroup) / groups);
+    }
+    occluders->checkTracing();
+  }
+  catch (const std::exception& error)
+  {
+    output->Initialize();
+    vtkErrorMacro(<< error.what());
+    return 0;
   }
   const double raySeconds = secondsSince(raysStart);
   for (const auto& array : written)

@@ -565,8 +565,10 @@ void ShadingKernel<T>::storeLight(const PreparedLight& light, const VertexBlock<
   }
   if (T* visibility = out[int(LightTerm::Visibility)])
   {
-    std::transform(light.visibility + first, light.visibility + first + count, visibility + first,
-      [](float v) { return T(v); });
+    for (std::size_t k = 0; k < count; ++k)
+    {
+      visibility[first + k] = light.visibility ? T(light.visibility[first + k]) : T(1); // 1: no rays were cast
+    }
   }
 }
 

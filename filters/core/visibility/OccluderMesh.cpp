@@ -95,6 +95,11 @@ OccluderMesh::OccluderMesh(UnitFrame frame, const PolygonList& polygons)
 
 OccluderMesh::~OccluderMesh() = default;
 
+void OccluderMesh::checkTracing() const
+{
+  embree_->check("trace the rays");
+}
+
 OccluderMesh::LocalRay OccluderMesh::localRay(const SurfaceRay& ray) const
 {
   const glm::vec3 point((ray.point - frame_.centre) / frame_.radius);

@@ -64,6 +64,10 @@ public:
 
   std::size_t triangleCount() const { return triangles_.size() / 3; }
 
+  /// Throws std::runtime_error if Embree reported an error since the BVH was built (a ray it
+  /// could not trace reads as unblocked, so a run checks this after casting).
+  void checkTracing() const;
+
 private:
   /// The points in the frame where the mesh's bounding sphere is the unit sphere.
   struct UnitFrame
@@ -88,27 +92,31 @@ private:
 template <typename Real>
 OccluderMesh::UnitFrame OccluderMesh::UnitFrame::of(PackedPoints<Real> points, std::size_t pointCount)
 {
-  // The bounding box's centre and the largest distance from it.
+  // The bounding box's centre and the largest distance from it, over the finite points: a
+  // point with a NaN or Inf coordinate goes into the frame as NaN, which Embree's builder
+  // leaves out with its triangles.
+  auto finite = [](const glm::dvec3& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); };
   UnitFrame frame;
   glm::dvec3 low(std::numeric_limits<double>::infinity()), high(-std::numeric_limits<double>::infinity());
   for (std::size_t i = 0; i < pointCount; ++i)
   {
     const glm::dvec3 p = points(static_cast<PointId>(i));
-    low = glm::min(low, p);
-    high = glm::max(high, p);
+    low = finite(p) ? glm::min(low, p) : low;
+    high = finite(p) ? glm::max(high, p) : high;
   }
-  frame.centre = pointCount > 0 ? 0.5 * (low + high) : glm::dvec3(0.0);
+  frame.centre = low.x <= high.x ? 0.5 * (low + high) : glm::dvec3(0.0);
   double radiusSquared = 0;
   for (std::size_t i = 0; i < pointCount; ++i)
   {
     const glm::dvec3 d = points(static_cast<PointId>(i)) - frame.centre;
-    radiusSquared = std::max(radiusSquared, d.x * d.x + d.y * d.y + d.z * d.z);
+    radiusSquared = finite(d) ? std::max(radiusSquared, d.x * d.x + d.y * d.y + d.z * d.z) : radiusSquared;
   }
-  frame.radius = radiusSquared > 0 ? std::sqrt(radiusSquared) : 1.0;
+  frame.radius = radiusSquared > 0 && std::isfinite(radiusSquared) ? std::sqrt(radiusSquared) : 1.0;
   frame.vertices.resize(3 * pointCount + 1, 0.0f); // Embree reads 16 bytes at the last vertex
   for (std::size_t i = 0; i < pointCount; ++i)
   {
-    const glm::dvec3 local = (points(static_cast<PointId>(i)) - frame.centre) / frame.radius;
+    const glm::dvec3 p = points(static_cast<PointId>(i));
+    const glm::dvec3 local = finite(p) ? (p - frame.centre) / frame.radius : glm::dvec3(std::numeric_limits<double>::quiet_NaN());
     frame.vertices[3 * i] = static_cast<float>(local.x);
     frame.vertices[3 * i + 1] = static_cast<float>(local.y);
     frame.vertices[3 * i + 2] = static_cast<float>(local.z);
