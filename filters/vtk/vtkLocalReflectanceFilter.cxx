@@ -357,7 +357,7 @@ int vtkLocalReflectanceFilter::RequestData(
           arrays.push_back(quantity); // float32 whatever the precision: estimates, not exact terms
         }
       }
-      inputs.flags = vtkUnsignedCharArray::SafeDownCast(data->GetArray((this->ArrayPrefix + "visibility_flags").c_str()))
+      inputs.flags = vtkUnsignedCharArray::SafeDownCast(data->GetArray(shadelab::visibilityFlagsArrayName(this->ArrayPrefix).c_str()))
                        ->GetPointer(0);
     }
     const auto shaded = precision == shadelab::Precision::Float64
@@ -457,7 +457,7 @@ vtkPolyData* vtkLocalReflectanceFilter::PrepareVisibility(
   step->SetComputeSkyViewFactor(request.occlusion[int(shadelab::OcclusionTerm::SkyViewFactor)]);
   step->Update();
   vtkPolyData* seen = step->GetOutput();
-  if (!seen->GetPointData()->GetArray((this->ArrayPrefix + "visibility_flags").c_str()))
+  if (!seen->GetPointData()->GetArray(shadelab::visibilityFlagsArrayName(this->ArrayPrefix).c_str()))
   {
     throw std::runtime_error("casting the rays for shadows and ambient occlusion failed (see the error above)");
   }

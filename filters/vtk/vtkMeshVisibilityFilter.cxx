@@ -221,7 +221,7 @@ int vtkMeshVisibilityFilter::RequestData(
       }
     }
     flags = vtkSmartPointer<vtkUnsignedCharArray>::New();
-    flags->SetName((this->ArrayPrefix + "visibility_flags").c_str());
+    flags->SetName(shadelab::visibilityFlagsArrayName(this->ArrayPrefix).c_str());
     if (!shadelab::allocateTuples<unsigned char>(flags, count))
     {
       throw std::runtime_error("not enough memory for the visibility flags");

@@ -82,6 +82,11 @@ std::string flagsArrayName(const std::string& prefix)
   return prefix + flagsInfo.name;
 }
 
+std::string visibilityFlagsArrayName(const std::string& prefix)
+{
+  return prefix + "visibility_flags";
+}
+
 std::string occlusionArrayName(const std::string& prefix, OcclusionTerm term)
 {
   return prefix + termInfo(term).name;

@@ -72,6 +72,9 @@ std::string lightArrayName(const std::string& prefix, const std::string& light, 
 /// The array name of a total or the flags: <prefix><name>.
 std::string totalArrayName(const std::string& prefix, TotalTerm term);
 std::string flagsArrayName(const std::string& prefix);
+/// The name of vtkMeshVisibilityFilter's flags (FlagHiddenByOwnTriangle), which the kernel
+/// folds into shading_flags: <prefix>visibility_flags.
+std::string visibilityFlagsArrayName(const std::string& prefix);
 /// The array name of an occlusion quantity: <prefix><name>.
 std::string occlusionArrayName(const std::string& prefix, OcclusionTerm term);
 
