@@ -331,11 +331,11 @@ TEST(Visibility, ASphereOccludesThePlaneBelowByItsFormFactor)
       calibration.add(ao.occlusion, ao.standardError, exact, tessellationBias);
       largestError = std::max(largestError, std::abs(ao.occlusion - exact));
     }
-    // Measured: independent 68.1% and 99.2%, largest error 0.085; stratified 68.9% and 98.7%,
-    // largest error 0.039. A stratified estimate's variance comes from the few strata its
-    // silhouette crosses, so its standard error rests on few pairs: its tails are heavier.
+    // Measured: independent 69.0% and 99.5%, largest error 0.085; stratified 72.5% and 99.6%,
+    // largest error 0.039. Without one ray's variance added to the pairs' (Visibility.cpp),
+    // stratified gave 68.9% and 98.7%: its variance rests on the few cells the silhouette crosses.
     EXPECT_NEAR(calibration.one(), 0.68, 0.05);
-    EXPECT_GE(calibration.three(), stratified ? 0.98 : 0.99);
+    EXPECT_GE(calibration.three(), 0.99);
     EXPECT_LT(largestError, stratified ? 0.05 : 0.1);
   }
 }
@@ -369,9 +369,9 @@ TEST(Visibility, AnOpenBoxIsOccludedExactlyButForItsOpening)
     }
   }
   EXPECT_GT(creasePoints, 40u);
-  // Stratified (the default): 98.4% within three standard errors here (see the sphere's test).
-  EXPECT_NEAR(calibration.one(), 0.68, 0.08);
-  EXPECT_GE(calibration.three(), 0.98);
+  // Stratified (the default): 71.5% within one standard error and 99.4% within three.
+  EXPECT_NEAR(calibration.one(), 0.68, 0.05);
+  EXPECT_GE(calibration.three(), 0.99);
 }
 
 TEST(Visibility, StandardErrorsFallAsOneOverTheRootOfTheRays)

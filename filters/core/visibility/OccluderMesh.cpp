@@ -40,13 +40,6 @@ struct OccluderMesh::Embree
   }
 };
 
-/// A ray in the unit frame, its origin moved off the surface.
-struct OccluderMesh::LocalRay
-{
-  glm::vec3 origin, direction;
-  float maxDistance;
-};
-
 OccluderMesh::OccluderMesh(UnitFrame frame, const PolygonList& polygons)
   : frame_(std::move(frame))
 {
@@ -100,7 +93,7 @@ void OccluderMesh::checkTracing() const
   embree_->check("trace the rays");
 }
 
-OccluderMesh::LocalRay OccluderMesh::localRay(const SurfaceRay& ray) const
+OccluderMesh::FrameRay OccluderMesh::inFrame(const SurfaceRay& ray) const
 {
   const glm::vec3 point((ray.point - frame_.centre) / frame_.radius);
   return { offsetRayOrigin(point, glm::vec3(ray.side)), glm::vec3(ray.direction),
@@ -126,14 +119,14 @@ void setRay(RTCRay& ray, const glm::vec3& origin, const glm::vec3& direction, fl
 }
 }
 
-unsigned OccluderMesh::occluded(const SurfaceRay* surfaceRays, int count) const
+unsigned OccluderMesh::occluded(const FrameRay* frameRays, int count) const
 {
   static_assert(bundleSize == 16, "the bundle is an RTCRay16");
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   if (count == 1)
   {
-    const LocalRay local = localRay(surfaceRays[0]);
+    const FrameRay& local = frameRays[0];
     RTCRay ray;
     setRay(ray, local.origin, local.direction, local.maxDistance);
     rtcOccluded1(embree_->scene, &context, &ray);
@@ -144,7 +137,7 @@ unsigned OccluderMesh::occluded(const SurfaceRay* surfaceRays, int count) const
   for (int j = 0; j < 16; ++j)
   {
     valid[j] = j < count ? -1 : 0;
-    const LocalRay local = localRay(surfaceRays[j < count ? j : 0]);
+    const FrameRay& local = frameRays[j < count ? j : 0];
     rays.org_x[j] = local.origin.x;
     rays.org_y[j] = local.origin.y;
     rays.org_z[j] = local.origin.z;
@@ -167,9 +160,8 @@ unsigned OccluderMesh::occluded(const SurfaceRay* surfaceRays, int count) const
   return blocked;
 }
 
-OccluderMesh::Hit OccluderMesh::firstHit(const SurfaceRay& surfaceRay) const
+OccluderMesh::Hit OccluderMesh::firstHit(const FrameRay& local) const
 {
-  const LocalRay local = localRay(surfaceRay);
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRayHit rayHit;

@@ -51,8 +51,19 @@ public:
   /// processor has no AVX-512.
   static constexpr int bundleSize = 16;
 
+  /// A ray in the BVH's frame, its origin moved off the surface (RayOrigin.h). The frame only
+  /// moves and scales, so directions are the same in both: the rays of one vertex differ only
+  /// in their direction, and its start is computed once for all of them.
+  struct FrameRay
+  {
+    glm::vec3 origin{ 0.0f };
+    glm::vec3 direction{ 0.0f };
+    float maxDistance = std::numeric_limits<float>::infinity();
+  };
+  FrameRay inFrame(const SurfaceRay& ray) const;
+
   /// Which of rays[0..count-1] (count <= bundleSize) triangles block: bit j for rays[j].
-  unsigned occluded(const SurfaceRay* rays, int count) const;
+  unsigned occluded(const FrameRay* rays, int count) const;
 
   /// The point ids of the first triangle the ray meets, or none.
   struct Hit
@@ -60,7 +71,7 @@ public:
     bool found = false;
     std::array<PointId, 3> corners{};
   };
-  Hit firstHit(const SurfaceRay& ray) const;
+  Hit firstHit(const FrameRay& ray) const;
 
   std::size_t triangleCount() const { return triangles_.size() / 3; }
 
@@ -80,8 +91,6 @@ private:
     static UnitFrame of(PackedPoints<Real> points, std::size_t pointCount);
   };
   OccluderMesh(UnitFrame frame, const PolygonList& polygons);
-  struct LocalRay;
-  LocalRay localRay(const SurfaceRay& ray) const;
 
   UnitFrame frame_;
   std::vector<std::uint32_t> triangles_; // three point ids per triangle
