@@ -3,6 +3,7 @@
 #include "AccuracyStudyParts.h"
 #include "BenchmarkMeshes.h"
 #include "Chart.h"
+#include "CsvText.h"
 #include "DistributedStudies.h"
 #include "MeshFiles.h"
 
@@ -408,11 +409,10 @@ void writeCsv(const std::vector<AccuracyRow>& rows, const std::string& file)
     {
       std::ofstream csv(temporary);
       csv << "study,method,parameter,value,vertices,ms,max error,rms error,predicted bound,note\n";
-      auto quoted = [](const std::string& text) { return "\"" + text + "\""; };
       csv << std::setprecision(9);
       for (const AccuracyRow& r : rows)
       {
-        csv << quoted(r.study) << "," << quoted(r.method) << "," << quoted(r.parameter) << "," << r.value << ","
+        csv << csvText(r.study) << "," << csvText(r.method) << "," << csvText(r.parameter) << "," << r.value << ","
             << r.vertices;
         for (const std::optional<double>& value : { r.milliseconds, r.maxError, r.rmsError, r.predicted })
         {
@@ -422,7 +422,7 @@ void writeCsv(const std::vector<AccuracyRow>& rows, const std::string& file)
             csv << *value;
           }
         }
-        csv << "," << quoted(r.note) << "\n";
+        csv << "," << csvText(r.note) << "\n";
       }
       csv.close();
       return csv ? "" : "the CSV could not be written (disk full?)";

@@ -2,6 +2,7 @@
 
 #include "BenchmarkMeshes.h"
 #include "CalculatorBaseline.h"
+#include "CsvText.h"
 #include "MemoryProbe.h"
 #include "MeshFiles.h"
 
@@ -448,7 +449,7 @@ std::string tableCell(const Column& column, const Row& row)
   return text.str();
 }
 
-/// RFC 4180: quoted when it holds a comma or a quote, quotes doubled; numbers in full.
+/// Numbers in full.
 std::string csvCell(const Column& column, const Row& row)
 {
   if (column.number)
@@ -461,17 +462,7 @@ std::string csvCell(const Column& column, const Row& row)
     }
     return text.str();
   }
-  std::string text = column.text(row);
-  if (text.find_first_of(",\"") == std::string::npos)
-  {
-    return text;
-  }
-  std::string quoted = "\"";
-  for (char character : text)
-  {
-    quoted += character == '"' ? "\"\"" : std::string(1, character);
-  }
-  return quoted + "\"";
+  return csvText(column.text(row));
 }
 
 void printRow(const Row& row)
