@@ -168,7 +168,7 @@ std::vector<OccluderMesh::FrameRay> shadowFrameRays(const RayMesh& mesh)
     const glm::dvec3 d = light - v.position;
     if (glm::dot(d, v.normal) > 0)
     {
-      rays.push_back(mesh.occluders->inFrame({ v.position, v.normal, glm::normalize(d), glm::length(d) }));
+      rays.push_back(mesh.occluders->inFrame({ v.position, v.normal, glm::normalize(d), glm::length(d), v.id }));
     }
   }
   return rays;
@@ -188,7 +188,7 @@ std::vector<OccluderMesh::FrameRay> occlusionFrameRays(const RayMesh& mesh, int 
       continue;
     }
     const SampleSequence samples(0, static_cast<std::uint64_t>(i), { rays, true });
-    OccluderMesh::FrameRay ray = mesh.occluders->inFrame({ v.position, v.normal, {}, INFINITY });
+    OccluderMesh::FrameRay ray = mesh.occluders->inFrame({ v.position, v.normal, {}, INFINITY, v.id });
     for (int j = 0; j < rays; ++j)
     {
       ray.direction = glm::vec3(cosineWeightedDirection(v.normal, samples.point(j)).direction);

@@ -331,10 +331,10 @@ int vtkMeshVisibilityFilter::RequestData(
   {
     output->GetPointData()->AddArray(array);
   }
-  const double raysPerVertex = static_cast<double>(lights.size()) +
-    (occlusion ? settings.sampling.samples * (settings.skyViewFactor ? 2.0 : 1.0) : 0.0);
+  const std::uint64_t raysPerVertex = lights.size() +
+    (occlusion ? static_cast<std::uint64_t>(settings.sampling.samples) * (settings.skyViewFactor ? 2 : 1) : 0);
   std::ostringstream report;
-  report << "Cast up to " << raysPerVertex * static_cast<double>(count) << " rays (" << raysPerVertex
+  report << "Cast up to " << raysPerVertex * static_cast<std::uint64_t>(count) << " rays (" << raysPerVertex
          << " per vertex) against " << occluders->triangleCount() << " triangles: BVH "
          << (reused ? "reused" : "built in " + std::to_string(buildSeconds) + " s") << ", rays " << raySeconds << " s.";
   this->Report = report.str();

@@ -1,15 +1,95 @@
 #include "OccluderMesh.h"
 
 #include "RayOrigin.h"
+#include "SampleSequence.h"
 
 #include <embree3/rtcore.h>
 
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cstring>
 #include <stdexcept>
 #include <utility>
 #include <string>
 
 namespace shadelab
 {
+namespace
+{
+/// A key equal for equal coordinates (-0 and +0 alike), from their bits.
+std::uint64_t coordinateKey(const float* p)
+{
+  std::uint64_t key = 0x9e3779b97f4a7c15ull;
+  for (int i = 0; i < 3; ++i)
+  {
+    const float zeroSigned = p[i] + 0.0f; // -0 + 0 is +0
+    std::uint32_t bits;
+    std::memcpy(&bits, &zeroSigned, sizeof bits);
+    key = mix64(key ^ bits);
+  }
+  return key;
+}
+
+/// OccluderMesh::jointNormals_ for these points (x, y, z per point, in the unit frame) and
+/// triangles.
+std::vector<glm::vec3> jointNormalsOf(const std::vector<float>& xyz, std::size_t pointCount,
+  const std::vector<std::uint32_t>& triangles)
+{
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> keys;
+  keys.reserve(pointCount);
+  for (std::size_t i = 0; i < pointCount; ++i)
+  {
+    if (std::isfinite(xyz[3 * i]))
+    {
+      keys.emplace_back(coordinateKey(&xyz[3 * i]), static_cast<std::uint32_t>(i));
+    }
+  }
+  std::sort(keys.begin(), keys.end());
+  constexpr std::uint32_t noGroup = std::numeric_limits<std::uint32_t>::max();
+  std::vector<std::uint32_t> group; // per point, filled once a copy is found
+  std::uint32_t groups = 0;
+  auto same = [&](std::uint32_t a, std::uint32_t b) { return std::equal(&xyz[3 * a], &xyz[3 * a + 3], &xyz[3 * b]); };
+  for (std::size_t k = 1; k < keys.size(); ++k)
+  {
+    const std::uint32_t previous = keys[k - 1].second, point = keys[k].second;
+    if (keys[k].first == keys[k - 1].first && same(previous, point))
+    {
+      group.resize(pointCount, noGroup);
+      if (group[previous] == noGroup)
+      {
+        group[previous] = groups++;
+      }
+      group[point] = group[previous];
+    }
+  }
+  if (groups == 0)
+  {
+    return {};
+  }
+  std::vector<glm::dvec3> sums(groups, glm::dvec3(0.0));
+  auto at = [&](std::uint32_t id) { return glm::dvec3(xyz[3 * id], xyz[3 * id + 1], xyz[3 * id + 2]); };
+  for (std::size_t t = 0; t < triangles.size(); t += 3)
+  {
+    const glm::dvec3 a = at(triangles[t]), area = glm::cross(at(triangles[t + 1]) - a, at(triangles[t + 2]) - a);
+    for (std::size_t c = t; c < t + 3; ++c)
+    {
+      if (group[triangles[c]] != noGroup && std::isfinite(area.x + area.y + area.z))
+      {
+        sums[group[triangles[c]]] += area;
+      }
+    }
+  }
+  std::vector<glm::vec3> normals(pointCount, glm::vec3(0.0f));
+  for (std::size_t i = 0; i < pointCount; ++i)
+  {
+    const double length = group[i] == noGroup ? 0.0 : glm::length(sums[group[i]]);
+    normals[i] = length > 0 ? glm::vec3(sums[group[i]] / length) : glm::vec3(0.0f);
+  }
+  return normals;
+}
+}
+
 /// The Embree device and scene, kept out of the header so that users of OccluderMesh need no
 /// Embree headers.
 struct OccluderMesh::Embree
@@ -57,6 +137,7 @@ OccluderMesh::OccluderMesh(UnitFrame frame, const PolygonList& polygons)
         static_cast<std::uint32_t>(ids[i]) });
     }
   }
+  jointNormals_ = jointNormalsOf(frame_.vertices, pointCount, triangles_);
   embree_ = std::make_unique<Embree>();
   embree_->device = rtcNewDevice(nullptr);
   if (!embree_->device)
@@ -95,8 +176,16 @@ void OccluderMesh::checkTracing() const
 
 OccluderMesh::FrameRay OccluderMesh::inFrame(const SurfaceRay& ray) const
 {
-  const glm::vec3 point((ray.point - frame_.centre) / frame_.radius);
-  return { offsetRayOrigin(point, glm::vec3(ray.side)), glm::vec3(ray.direction),
+  const glm::vec3 point(frame_.toUnit(ray.point));
+  glm::vec3 side(ray.side);
+  if (ray.vertex >= 0 && static_cast<std::size_t>(ray.vertex) < jointNormals_.size())
+  {
+    // Off the faces of every copy, on the side the ray leaves from.
+    const glm::vec3 joint = jointNormals_[static_cast<std::size_t>(ray.vertex)];
+    const float along = glm::dot(joint, side);
+    side = along > 0 ? joint : along < 0 ? -joint : side;
+  }
+  return { offsetRayOrigin(point, side), glm::vec3(ray.direction),
     static_cast<float>(ray.maxDistance / frame_.radius) };
 }
 
@@ -160,24 +249,29 @@ unsigned OccluderMesh::occluded(const FrameRay* frameRays, int count) const
   return blocked;
 }
 
-OccluderMesh::Hit OccluderMesh::firstHit(const FrameRay& local) const
+bool OccluderMesh::firstHitHasCorner(const FrameRay& ray, const glm::dvec3& point) const
 {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRayHit rayHit;
-  setRay(rayHit.ray, local.origin, local.direction, local.maxDistance);
+  setRay(rayHit.ray, ray.origin, ray.direction, ray.maxDistance);
   rayHit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rayHit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(embree_->scene, &context, &rayHit);
-  Hit hit;
-  if (rayHit.hit.geomID != RTC_INVALID_GEOMETRY_ID)
+  if (rayHit.hit.geomID == RTC_INVALID_GEOMETRY_ID)
   {
-    hit.found = true;
-    for (int i = 0; i < 3; ++i)
+    return false;
+  }
+  // The corners as the BVH holds them, against the point taken into the frame the same way.
+  const glm::vec3 unitPoint(frame_.toUnit(point));
+  for (int i = 0; i < 3; ++i)
+  {
+    const float* corner = &frame_.vertices[3 * std::size_t(triangles_[3 * rayHit.hit.primID + i])];
+    if (corner[0] == unitPoint.x && corner[1] == unitPoint.y && corner[2] == unitPoint.z)
     {
-      hit.corners[i] = triangles_[3 * rayHit.hit.primID + i];
+      return true;
     }
   }
-  return hit;
+  return false;
 }
 }

@@ -28,6 +28,9 @@ struct SurfaceRay
   glm::dvec3 side{ 0.0 };   // the unit normal of the side it leaves from
   glm::dvec3 direction{ 0.0 };
   double maxDistance = std::numeric_limits<double>::infinity();
+  /// The point id of the vertex it leaves, or -1. Where the point has copies (a seam, or a hard
+  /// edge written with a point per face), the ray leaves off the faces of all of them.
+  PointId vertex = -1;
 };
 
 class OccluderMesh
@@ -65,13 +68,10 @@ public:
   /// Which of rays[0..count-1] (count <= bundleSize) triangles block: bit j for rays[j].
   unsigned occluded(const FrameRay* rays, int count) const;
 
-  /// The point ids of the first triangle the ray meets, or none.
-  struct Hit
-  {
-    bool found = false;
-    std::array<PointId, 3> corners{};
-  };
-  Hit firstHit(const FrameRay& ray) const;
+  /// Whether the first triangle the ray meets has a corner at `point` (in the mesh's
+  /// coordinates): the vertex itself, or a copy of it where the mesh is split at a seam or a
+  /// hard edge, which has another point id but the same coordinates.
+  bool firstHitHasCorner(const FrameRay& ray, const glm::dvec3& point) const;
 
   std::size_t triangleCount() const { return triangles_.size() / 3; }
 
@@ -87,6 +87,7 @@ private:
     double radius = 1;
     std::vector<float> vertices; // x, y, z per point, then one padding float
 
+    glm::dvec3 toUnit(const glm::dvec3& p) const { return (p - centre) / radius; }
     template <typename Real>
     static UnitFrame of(PackedPoints<Real> points, std::size_t pointCount);
   };
@@ -94,6 +95,11 @@ private:
 
   UnitFrame frame_;
   std::vector<std::uint32_t> triangles_; // three point ids per triangle
+  /// Per point with copies (points of the same coordinates), the unit sum of the area vectors
+  /// of the triangles around it and its copies; (0, 0, 0) elsewhere. Empty when no point has a
+  /// copy. At a concave hard edge, the floor's copy of a point lies in the wall's plane: a ray
+  /// moved off the floor alone would start on the wall and meet it at once.
+  std::vector<glm::vec3> jointNormals_;
   struct Embree;
   std::unique_ptr<Embree> embree_;
 };
@@ -125,7 +131,7 @@ OccluderMesh::UnitFrame OccluderMesh::UnitFrame::of(PackedPoints<Real> points, s
   for (std::size_t i = 0; i < pointCount; ++i)
   {
     const glm::dvec3 p = points(static_cast<PointId>(i));
-    const glm::dvec3 local = finite(p) ? (p - frame.centre) / frame.radius : glm::dvec3(std::numeric_limits<double>::quiet_NaN());
+    const glm::dvec3 local = finite(p) ? frame.toUnit(p) : glm::dvec3(std::numeric_limits<double>::quiet_NaN());
     frame.vertices[3 * i] = static_cast<float>(local.x);
     frame.vertices[3 * i + 1] = static_cast<float>(local.y);
     frame.vertices[3 * i + 2] = static_cast<float>(local.z);

@@ -76,7 +76,7 @@ void forEachRay(const OccluderMesh& occluders, const RayVertex& vertex, const Ra
   double maxDistance, Direction direction, Seen seen)
 {
   OccluderMesh::FrameRay rays[OccluderMesh::bundleSize];
-  std::fill(std::begin(rays), std::end(rays), occluders.inFrame({ vertex.position, vertex.normal, {}, maxDistance }));
+  std::fill(std::begin(rays), std::end(rays), occluders.inFrame({ vertex.position, vertex.normal, {}, maxDistance, vertex.id }));
   for (int first = 0; first < samples.count(); first += OccluderMesh::bundleSize)
   {
     glm::dvec3 directions[OccluderMesh::bundleSize];
@@ -109,7 +109,7 @@ void lightVisibility(const OccluderMesh& occluders, const RayVertex* vertices, c
     if (hasNormal(vertex) && cosine != 0 && (cosine > 0 || twoSided))
     {
       rays[rayCount] = occluders.inFrame({ vertex.position, cosine > 0 ? vertex.normal : -vertex.normal,
-        directions[k].toLight, directions[k].distance });
+        directions[k].toLight, directions[k].distance, vertex.id });
       cast[rayCount++] = k;
     }
   }
@@ -118,12 +118,7 @@ void lightVisibility(const OccluderMesh& occluders, const RayVertex* vertices, c
   {
     LightVisibility& seen = visibility[cast[j]];
     seen.visible = ((hidden >> j) & 1u) == 0;
-    if (!seen.visible)
-    {
-      const OccluderMesh::Hit hit = occluders.firstHit(rays[j]);
-      const PointId id = vertices[cast[j]].id;
-      seen.blockedByOwnTriangle = hit.found && std::find(hit.corners.begin(), hit.corners.end(), id) != hit.corners.end();
-    }
+    seen.blockedByOwnTriangle = !seen.visible && occluders.firstHitHasCorner(rays[j], vertices[cast[j]].position);
   }
 }
 

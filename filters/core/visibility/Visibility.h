@@ -27,8 +27,9 @@ struct RayVertex
 struct LightVisibility
 {
   bool visible = false;
-  /// Blocked by a triangle that has the vertex as a corner: on a coarse mesh, the smooth normal
-  /// can face a light that a neighbouring facet hides (the shadow terminator).
+  /// Blocked by a triangle that has the vertex, or a copy of it at a seam, as a corner: a
+  /// concave crease, or, on a coarse mesh, a light the smooth normal faces but a neighbouring
+  /// facet hides (the shadow terminator).
   bool blockedByOwnTriangle = false;
 };
 
