@@ -11,6 +11,7 @@
 #include "vtkShadingNormalsFilter.h"
 
 #include "vtkAppendPolyData.h"
+#include "vtkCellArray.h"
 #include "vtkFloatArray.h"
 #include "vtkPlaneSource.h"
 #include "vtkPointData.h"
@@ -264,5 +265,22 @@ TEST(Visibility, WhatIsRefusedAndWhy)
   alone->Update();
   EXPECT_EQ(errors->message(), "the mesh needs one 3-component point normal per point to cast rays from: run "
                                "vtkShadingNormalsFilter first (vtkLocalReflectanceFilter does)");
+
+  // A cell with a point id past the points, alone (the filter checks its cells by default).
+  vtkNew<vtkShadingNormalsFilter> normals;
+  normals->SetInputData(mesh);
+  normals->Update();
+  vtkNew<vtkPolyData> broken;
+  broken->DeepCopy(normals->GetOutput());
+  const vtkIdType pastTheEnd[3] = { 0, 1, broken->GetNumberOfPoints() + 4 };
+  broken->GetPolys()->InsertNextCell(3, pastTheEnd);
+  vtkNew<vtkMeshVisibilityFilter> checking;
+  vtkNew<app::VtkErrorCapture> cellErrors;
+  cellErrors->watch(checking);
+  checking->SetInputData(broken);
+  checking->SetScene(pointLightAbove(true));
+  checking->Update();
+  EXPECT_EQ(cellErrors->message(), "the mesh's cells use point id 7207, but it has 7203 points: the mesh is corrupt");
+  ASSERT_EQ(broken->GetNumberOfPoints(), 7203);
 }
 }

@@ -2,6 +2,7 @@
 
 #include "ArrayCatalog.h"
 #include "MethodChoice.h"
+#include "ShadeLabFieldNotes.h"
 #include "ShadeLabLargeArrays.h"
 #include "SceneFrame.h"
 #include "ShadeLabMeshChecks.h"
@@ -13,7 +14,6 @@
 #include "vtkCellArrayIterator.h"
 #include "vtkDataArrayRange.h"
 #include "vtkDoubleArray.h"
-#include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
@@ -23,7 +23,6 @@
 #include "vtkPolyData.h"
 #include "vtkSMPTools.h"
 #include "vtkSmartPointer.h"
-#include "vtkStringArray.h"
 #include "vtkUnsignedCharArray.h"
 
 #include <cmath>
@@ -378,26 +377,14 @@ int vtkLocalReflectanceFilter::RequestData(
     output->GetPointData()->AddArray(array);
   }
 
-  auto note = vtkSmartPointer<vtkStringArray>::New();
-  note->SetName("shadelab_normals");
-  note->InsertNextValue(this->NormalsReport);
-  output->GetFieldData()->AddArray(note);
+  shadelab::addFieldNote(output, shadelab::normalsNoteName, { this->NormalsReport });
   if (!this->VisibilityReport.empty())
   {
-    auto rays = vtkSmartPointer<vtkStringArray>::New();
-    rays->SetName("shadelab_visibility");
-    rays->InsertNextValue(this->VisibilityReport);
-    output->GetFieldData()->AddArray(rays);
+    shadelab::addFieldNote(output, shadelab::visibilityNoteName, { this->VisibilityReport });
   }
   if (chooseByTolerance)
   {
-    auto choices = vtkSmartPointer<vtkStringArray>::New();
-    choices->SetName("shadelab_methods");
-    for (const std::string& line : this->MethodPlan->describe())
-    {
-      choices->InsertNextValue(line);
-    }
-    output->GetFieldData()->AddArray(choices);
+    shadelab::addFieldNote(output, shadelab::methodsNoteName, this->MethodPlan->describe());
   }
   return 1;
 }
@@ -450,6 +437,7 @@ vtkPolyData* vtkLocalReflectanceFilter::PrepareVisibility(
   surface->SetStrips(input->GetStrips());
   surface->GetPointData()->SetNormals(shadingNormals);
   vtkMeshVisibilityFilter* step = this->VisibilityStep;
+  step->CheckCellsOff(); // meshProblem checked them
   step->SetInputData(surface);
   step->SetScene(scene);
   step->SetArrayPrefix(this->ArrayPrefix);

@@ -1,6 +1,7 @@
 #include "vtkMeshVisibilityFilter.h"
 
 #include "ArrayCatalog.h"
+#include "ShadeLabFieldNotes.h"
 #include "ShadeLabLargeArrays.h"
 #include "ShadeLabMeshChecks.h"
 #include "ShadeLabMeshExtent.h"
@@ -10,7 +11,6 @@
 #include "Visibility.h"
 
 #include "vtkDataArrayRange.h"
-#include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
@@ -18,7 +18,6 @@
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkSMPTools.h"
-#include "vtkStringArray.h"
 #include "vtkUnsignedCharArray.h"
 
 #include <glm/geometric.hpp>
@@ -133,7 +132,7 @@ int vtkMeshVisibilityFilter::RequestData(
   {
     return 1; // nothing to see, and no error: VTK's convention
   }
-  const std::string cells = shadelab::cellProblem(input);
+  const std::string cells = this->CheckCells ? shadelab::cellProblem(input) : std::string();
   if (!cells.empty())
   {
     vtkErrorMacro(<< cells);
@@ -146,7 +145,10 @@ int vtkMeshVisibilityFilter::RequestData(
                   "vtkShadingNormalsFilter first (vtkLocalReflectanceFilter does)");
     return 0;
   }
-  const shadelab::Scene scene = shadelab::placedOnMesh(this->Scene, shadelab::meshExtentOf(input));
+  // The mesh's extent only where the scene is in its frame (a pass over the points).
+  const shadelab::Scene scene = this->Scene.frame == shadelab::SceneFrame::Mesh
+    ? shadelab::placedOnMesh(this->Scene, shadelab::meshExtentOf(input))
+    : this->Scene;
   const std::vector<shadelab::SceneProblem> problems = shadelab::sceneProblems(scene);
   if (!problems.empty())
   {
@@ -338,10 +340,7 @@ int vtkMeshVisibilityFilter::RequestData(
          << " per vertex) against " << occluders->triangleCount() << " triangles: BVH "
          << (reused ? "reused" : "built in " + std::to_string(buildSeconds) + " s") << ", rays " << raySeconds << " s.";
   this->Report = report.str();
-  auto note = vtkSmartPointer<vtkStringArray>::New();
-  note->SetName("shadelab_visibility");
-  note->InsertNextValue(this->Report);
-  output->GetFieldData()->AddArray(note);
+  shadelab::addFieldNote(output, shadelab::visibilityNoteName, { this->Report });
   return 1;
 }
 
@@ -352,4 +351,5 @@ void vtkMeshVisibilityFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ArrayPrefix: " << this->ArrayPrefix << "\n";
   os << indent << "ComputeBentNormal: " << this->ComputeBentNormal << "\n";
   os << indent << "ComputeSkyViewFactor: " << this->ComputeSkyViewFactor << "\n";
+  os << indent << "CheckCells: " << this->CheckCells << "\n";
 }

@@ -2,6 +2,7 @@
 
 #include "NormalOrientation.h"
 #include "PointNormals.h"
+#include "ShadeLabFieldNotes.h"
 #include "ShadeLabLargeArrays.h"
 #include "ShadeLabMeshChecks.h"
 #include "ShadeLabMeshPolygons.h"
@@ -10,7 +11,6 @@
 #include "vtkCellArray.h"
 #include "vtkCellArrayIterator.h"
 #include "vtkDataArrayRange.h"
-#include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkIdTypeArray.h"
 #include "vtkInformation.h"
@@ -22,7 +22,6 @@
 #include "vtkPolyDataNormals.h"
 #include "vtkSMPTools.h"
 #include "vtkStaticPointLocator.h"
-#include "vtkStringArray.h"
 
 #include <optional>
 #include <numeric>
@@ -466,10 +465,7 @@ int vtkShadingNormalsFilter::RequestData(
     }
   }
   this->Report = report.str();
-  auto note = vtkSmartPointer<vtkStringArray>::New();
-  note->SetName("shadelab_normals");
-  note->InsertNextValue(this->Report);
-  output->GetFieldData()->AddArray(note);
+  shadelab::addFieldNote(output, shadelab::normalsNoteName, { this->Report });
   return 1;
 }
 
