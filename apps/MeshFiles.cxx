@@ -14,12 +14,21 @@
 #include "vtkInformation.h"
 #include "vtkCellData.h"
 #include "vtkErrorCode.h"
+#include "vtkGenericDataObjectReader.h"
 #include "vtkOBJReader.h"
 #include "vtkPLYReader.h"
 #include "vtkPolyDataReader.h"
 #include "vtkPolyDataWriter.h"
 #include "vtkSMPTools.h"
 #include "vtkSTLReader.h"
+#include "vtkRectilinearGridReader.h"
+#include "vtkStructuredGridReader.h"
+#include "vtkStructuredPointsReader.h"
+#include "vtkUnstructuredGridReader.h"
+#include "vtkXMLImageDataReader.h"
+#include "vtkXMLRectilinearGridReader.h"
+#include "vtkXMLStructuredGridReader.h"
+#include "vtkXMLUnstructuredGridReader.h"
 #include "vtkXMLPolyDataReader.h"
 #include "vtkXMLPolyDataWriter.h"
 
@@ -27,6 +36,7 @@
 #include <cctype>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <sstream>
 #include <stdexcept>
 #include <csignal>
@@ -100,46 +110,44 @@ vtkSmartPointer<vtkAlgorithm> readerFor(const std::string& fileName, const std::
     readableExtensions);
 }
 
-/// Reads the file with VTK's reader for its extension, in this process, showing progress on
-/// terminal (null: nowhere). Throws UserError.
-vtkSmartPointer<vtkPolyData> readDirectly(const std::string& fileName, const std::string& extension, std::FILE* terminal)
+/// Runs the reader of the file, in this process, showing progress on terminal (null:
+/// nowhere), and returns its output as a Data (kind names it in the message where it is not
+/// one). Throws UserError with VTK's reason.
+template <typename Data>
+vtkSmartPointer<Data> outputOf(vtkAlgorithm* reader, const std::string& fileName, const std::string& extension,
+  std::FILE* terminal, const char* kind)
 {
-  vtkSmartPointer<vtkAlgorithm> reader = readerFor(fileName, extension);
   vtkNew<VtkErrorCapture> errors;
   errors->watch(reader);
   vtkNew<ProgressLine> progress;
   progress->watch(reader, "reading", terminal);
   reader->Update();
-  auto mesh = vtkPolyData::SafeDownCast(reader->GetOutputDataObject(0));
+  auto* data = Data::SafeDownCast(reader->GetOutputDataObject(0));
   const unsigned long code = reader->GetErrorCode();
-  if (errors->failed() || code != vtkErrorCode::NoError || !mesh)
+  if (errors->failed() || code != vtkErrorCode::NoError || !data)
   {
     const std::string reason = errors->failed() ? errors->message()
       : code != vtkErrorCode::NoError           ? vtkErrorCode::GetStringFromErrorCode(code)
-                                                : "the reader produced no polydata";
+                                                : std::string("the reader produced no ") + kind;
     throw UserError(fileName + ": cannot be read as " + extension + ": " + printableText(reason));
   }
-  return mesh;
+  return data;
 }
 
-/// The mesh the reading process handed over (MeshHandOver.h). Throws UserError, naming
-/// fileName, if it cannot be taken over.
-vtkSmartPointer<vtkPolyData> takeOver(const std::string& path, const std::string& fileName)
+/// Reads the file with VTK's reader for its extension, in this process, showing progress on
+/// terminal (null: nowhere). Throws UserError.
+vtkSmartPointer<vtkPolyData> readDirectly(const std::string& fileName, const std::string& extension, std::FILE* terminal)
 {
-  try
-  {
-    return takeOverMesh(path);
-  }
-  catch (const std::runtime_error& error)
-  {
-    throw UserError(fileName + ": the mesh read from it could not be taken over: " + printableText(error.what()));
-  }
+  return outputOf<vtkPolyData>(readerFor(fileName, extension), fileName, extension, terminal, "polydata");
 }
 }
 
-vtkSmartPointer<vtkPolyData> readMesh(const std::string& fileName)
+namespace
 {
-  const std::string extension = lowerExtension(fileName);
+/// The size of the file, once it is known to be a regular file that can be opened. Throws
+/// UserError.
+std::uintmax_t readableFileSize(const std::string& fileName)
+{
   std::error_code error;
   if (!fs::exists(fileName, error))
   {
@@ -155,14 +163,17 @@ vtkSmartPointer<vtkPolyData> readMesh(const std::string& fileName)
     throw UserError(fileName + ": cannot be read (is it a readable file?)");
   }
   const std::uintmax_t size = fs::file_size(fileName, error);
-  const std::string problem = fileProblem(fileName, extension, error ? 0 : size);
-  if (!problem.empty())
-  {
-    throw UserError(fileName + ": " + problem);
-  }
-  // VTK's readers are not hardened against damaged files: the reading runs in a process of
-  // its own, bounded in processor time and memory by the file's size (a reader asking for far
-  // more is answering a lie in the file), so that a crash there is an error here.
+  return error ? 0 : size;
+}
+
+/// Runs read(channel), which reads the file and hands its dataset over, in a process of its
+/// own, and takes the dataset over. VTK's readers are not hardened against damaged files: the
+/// process is bounded in processor time and memory by the file's size (a reader asking for far
+/// more is answering a lie in the file), so that a crash there is an error here. reader names
+/// the reader in messages ("VTK's .ply reader"). Throws UserError.
+vtkSmartPointer<vtkDataSet> readIsolated(const std::string& fileName, const std::string& reader, std::uintmax_t size,
+  const std::function<void(ChildChannel&)>& read)
+{
   const double megabytes = static_cast<double>(size) / 1e6;
   IsolationLimits limits;
   limits.cpuSeconds = 10 + 2 * megabytes;
@@ -172,19 +183,12 @@ vtkSmartPointer<vtkPolyData> readMesh(const std::string& fileName)
     [&](ChildChannel& channel)
     {
       // oneTBB does not support fork(): worker threads the parent may have started are not in
-      // the child. So VTK's parallel loops (the cell checks below) run here on threads of
-      // their own (VTK's std::thread backend), started in the child, as many as the parent's.
+      // the child. So VTK's parallel loops (the cell checks) run here on threads of their own
+      // (VTK's std::thread backend), started in the child, as many as the parent's.
       const int threads = vtkSMPTools::GetEstimatedNumberOfThreads();
       vtkSMPTools::SetBackend("STDThread");
       vtkSMPTools::Initialize(threads);
-      vtkSmartPointer<vtkPolyData> mesh = readDirectly(fileName, extension, channel.terminal());
-      // Checked here, before it is handed over: a reader can build cells whose offsets lie,
-      // and reading them back would trust the lie.
-      const std::string cells = cellProblem(mesh);
-      if (!cells.empty())
-      {
-        throw std::runtime_error(fileName + ": " + cells);
-      }
+      read(channel);
       if (auto* window = QuietOutputWindow::SafeDownCast(vtkOutputWindow::GetInstance()))
       {
         for (const std::string& warning : window->takeWarnings())
@@ -192,7 +196,6 @@ vtkSmartPointer<vtkPolyData> readMesh(const std::string& fileName)
           channel.warning(printableText(warning));
         }
       }
-      handOverMesh(mesh, channel.resultPath());
       channel.finished();
     },
     limits);
@@ -207,15 +210,20 @@ vtkSmartPointer<vtkPolyData> readMesh(const std::string& fileName)
     case IsolatedOutcome::End::Finished:
       try
       {
-        return takeOver(outcome.resultPath, fileName);
+        return takeOverDataSet(outcome.resultPath);
       }
       catch (const std::bad_alloc&)
       {
         message << "not enough memory to take over the mesh read from it";
         break;
       }
+      catch (const std::runtime_error& error)
+      {
+        message << "the mesh read from it could not be taken over: " << printableText(error.what());
+        break;
+      }
     case IsolatedOutcome::End::Failed:
-      throw UserError(printableText(outcome.error, 400)); // readDirectly's message names the file
+      throw UserError(printableText(outcome.error, 400)); // the reading's message names the file
     case IsolatedOutcome::End::OutOfMemory:
       message << "reading it needs more than " << limits.memoryBytes / (1 << 20)
               << " MB, far more than a file of this size can hold: it declares more data than it has";
@@ -225,15 +233,142 @@ vtkSmartPointer<vtkPolyData> readMesh(const std::string& fileName)
               << " s of processor time, far more than a file of this size needs: it is damaged";
       break;
     case IsolatedOutcome::End::Stalled:
-      message << "VTK's " << extension << " reader had not finished after " << limits.wallSeconds
+      message << reader << " had not finished after " << limits.wallSeconds
               << " s, and was stopped: is the file on a slow or stalled disk?";
       break;
     case IsolatedOutcome::End::Crashed:
-      message << "VTK's " << extension << " reader crashed on it (" << outcome.signalName
-              << "): the file is damaged or not a valid " << extension << " file";
+      message << reader << " crashed on it (" << outcome.signalName << "): the file is damaged or not a valid "
+              << fs::path(fileName).extension().string() << " file";
       break;
   }
   throw UserError(message.str());
+}
+
+/// Checked before a mesh is handed over: a reader can build cells whose offsets lie, and
+/// reading them back would trust the lie.
+void checkCells(vtkPolyData* mesh, const std::string& fileName)
+{
+  const std::string cells = cellProblem(mesh);
+  if (!cells.empty())
+  {
+    throw std::runtime_error(fileName + ": " + cells);
+  }
+}
+}
+
+vtkSmartPointer<vtkPolyData> readMesh(const std::string& fileName)
+{
+  const std::string extension = lowerExtension(fileName);
+  const std::uintmax_t size = readableFileSize(fileName);
+  const std::string problem = fileProblem(fileName, extension, size);
+  if (!problem.empty())
+  {
+    throw UserError(fileName + ": " + problem);
+  }
+  vtkSmartPointer<vtkDataSet> data = readIsolated(fileName, "VTK's " + extension + " reader", size,
+    [&](ChildChannel& channel)
+    {
+      vtkSmartPointer<vtkPolyData> mesh = readDirectly(fileName, extension, channel.terminal());
+      checkCells(mesh, fileName);
+      handOverMesh(mesh, channel.resultPath());
+    });
+  auto* mesh = vtkPolyData::SafeDownCast(data);
+  if (!mesh)
+  {
+    throw UserError(fileName + ": the mesh read from it could not be taken over: it is not polydata");
+  }
+  return mesh;
+}
+
+namespace
+{
+/// VTK's reader of the dataset type the extension (or, for legacy .vtk, the file's header) names.
+/// Throws UserError.
+vtkSmartPointer<vtkAlgorithm> datasetReaderFor(const std::string& fileName, const std::string& extension)
+{
+  auto withFile = [&](auto reader) -> vtkSmartPointer<vtkAlgorithm>
+  {
+    reader->SetFileName(fileName.c_str());
+    return reader;
+  };
+  auto xml = [&](auto reader, const char* type) -> vtkSmartPointer<vtkAlgorithm>
+  {
+    if (!reader->CanReadFile(fileName.c_str()))
+    {
+      throw UserError(fileName + ": not a VTK XML " + type + " file (a " + extension + " must be VTK XML of type " + type + ")");
+    }
+    return withFile(reader);
+  };
+  if (extension == ".vtu")
+  {
+    return xml(vtkSmartPointer<vtkXMLUnstructuredGridReader>::New(), "UnstructuredGrid");
+  }
+  if (extension == ".vti")
+  {
+    return xml(vtkSmartPointer<vtkXMLImageDataReader>::New(), "ImageData");
+  }
+  if (extension == ".vts")
+  {
+    return xml(vtkSmartPointer<vtkXMLStructuredGridReader>::New(), "StructuredGrid");
+  }
+  if (extension == ".vtr")
+  {
+    return xml(vtkSmartPointer<vtkXMLRectilinearGridReader>::New(), "RectilinearGrid");
+  }
+  // Legacy: the header says which dataset follows.
+  vtkNew<vtkGenericDataObjectReader> header;
+  header->SetFileName(fileName.c_str());
+  switch (header->ReadOutputType())
+  {
+    case VTK_POLY_DATA:
+      return withFile(vtkSmartPointer<vtkPolyDataReader>::New());
+    case VTK_UNSTRUCTURED_GRID:
+      return withFile(vtkSmartPointer<vtkUnstructuredGridReader>::New());
+    case VTK_STRUCTURED_POINTS:
+    case VTK_IMAGE_DATA:
+      return withFile(vtkSmartPointer<vtkStructuredPointsReader>::New());
+    case VTK_STRUCTURED_GRID:
+      return withFile(vtkSmartPointer<vtkStructuredGridReader>::New());
+    case VTK_RECTILINEAR_GRID:
+      return withFile(vtkSmartPointer<vtkRectilinearGridReader>::New());
+    case -1:
+      throw UserError(fileName + ": not a legacy VTK file (its header does not name a dataset)");
+    default:
+      break;
+  }
+  throw UserError(fileName + ": the legacy VTK file holds no dataset of a type ShadeLab compares (polydata, "
+                             "unstructured, structured or rectilinear grid, image)");
+}
+}
+
+const char* const readableDataSetExtensions = ".vtp, .vtu, .vti, .vts, .vtr, .vtk (legacy), .ply, .obj, .stl";
+
+vtkSmartPointer<vtkDataSet> readDataSet(const std::string& fileName)
+{
+  const std::string extension = lowerExtension(fileName);
+  static const std::vector<std::string> xml = { ".vtu", ".vti", ".vts", ".vtr" };
+  const bool generic = extension == ".vtk" || std::find(xml.begin(), xml.end(), extension) != xml.end();
+  if (!generic)
+  {
+    if (extension != ".vtp" && extension != ".ply" && extension != ".obj" && extension != ".stl")
+    {
+      throw UserError(fileName + ": unknown dataset format '" + extension + "'; ShadeLab reads " +
+        readableDataSetExtensions);
+    }
+    return readMesh(fileName);
+  }
+  const std::uintmax_t size = readableFileSize(fileName);
+  return readIsolated(fileName, "VTK's " + extension + " reader", size,
+    [&](ChildChannel& channel)
+    {
+      vtkSmartPointer<vtkDataSet> data =
+        outputOf<vtkDataSet>(datasetReaderFor(fileName, extension), fileName, extension, channel.terminal(), "dataset");
+      if (auto* mesh = vtkPolyData::SafeDownCast(data))
+      {
+        checkCells(mesh, fileName);
+      }
+      handOverDataSet(data, channel.resultPath());
+    });
 }
 
 void checkOutputFile(const std::string& fileName, std::initializer_list<const char*> extensions)

@@ -33,6 +33,14 @@ void writeThroughTemporary(
 /// Throws UserError.
 vtkSmartPointer<vtkPolyData> readMesh(const std::string& fileName);
 
+/// The extensions readDataSet understands, for messages.
+extern const char* const readableDataSetExtensions;
+
+/// Reads any VTK dataset (.vtu, .vti, .vts, .vtr, legacy .vtk of any type) as readMesh reads a
+/// mesh, in a reading process of its own; .vtp, .ply, .obj and .stl through readMesh. Throws
+/// UserError.
+vtkSmartPointer<vtkDataSet> readDataSet(const std::string& fileName);
+
 /// Throws UserError unless fileName ends in one of the extensions (in any case) and its
 /// folder exists.
 void checkOutputFile(const std::string& fileName, std::initializer_list<const char*> extensions);

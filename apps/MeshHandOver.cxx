@@ -12,8 +12,9 @@
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
-#include "vtkXMLPolyDataReader.h"
-#include "vtkXMLPolyDataWriter.h"
+#include "vtkPolyData.h"
+#include "vtkXMLDataSetWriter.h"
+#include "vtkXMLGenericDataObjectReader.h"
 
 #include <cstdint>
 #include <cstring>
@@ -413,7 +414,7 @@ vtkSmartPointer<vtkPolyData> takeOverRaw(const std::string& table, int fd, std::
 
 /// Calls rename(array) for every array of the mesh: point, cell and field data.
 template <typename Rename>
-void forEachArray(vtkPolyData* mesh, Rename rename)
+void forEachArray(vtkDataSet* mesh, Rename rename)
 {
   for (vtkFieldData* data : { static_cast<vtkFieldData*>(mesh->GetPointData()),
          static_cast<vtkFieldData*>(mesh->GetCellData()), mesh->GetFieldData() })
@@ -466,11 +467,12 @@ void recodeNames(vtkAbstractArray* array, Code code)
   }
 }
 
-/// Writes the mesh as VTK XML with raw appended data (the fastest of VTK's writers and readers
-/// on large meshes: a third of the time of legacy binary, which swaps every byte) into path. VTK 9.1 writes names into XML attributes unescaped,
-/// so every name is written hex-encoded and decoded on the other side; array information
-/// keys, which the other side may not know, are dropped.
-void handOverXml(vtkPolyData* mesh, const std::string& path)
+/// Writes the dataset as VTK XML with raw appended data (the fastest of VTK's writers and
+/// readers on large meshes: a third of the time of legacy binary, which swaps every byte) into
+/// path. VTK 9.1 writes names into XML attributes unescaped, so every name is written
+/// hex-encoded and decoded on the other side; array information keys, which the other side
+/// may not know, are dropped.
+void handOverXml(vtkDataSet* mesh, const std::string& path)
 {
   forEachArray(mesh,
     [](vtkAbstractArray* array)
@@ -481,8 +483,13 @@ void handOverXml(vtkPolyData* mesh, const std::string& path)
         array->GetInformation()->Clear();
       }
     });
-  vtkSmartPointer<vtkAlgorithm> writer = vtkWriterFor(mesh, path, ".vtp", Compression::None);
-  vtkXMLPolyDataWriter::SafeDownCast(writer)->SetHeaderTypeToUInt64(); // arrays of more than 4 GB
+  vtkNew<vtkXMLDataSetWriter> writer; // the writer of the dataset's type
+  writer->SetInputData(mesh);
+  writer->SetFileName(path.c_str());
+  writer->SetDataModeToAppended();
+  writer->EncodeAppendedDataOff();
+  writer->SetCompressorTypeToNone();
+  writer->SetHeaderTypeToUInt64(); // arrays of more than 4 GB
   writer->Update(); // writes
   if (writer->GetErrorCode() != vtkErrorCode::NoError)
   {
@@ -490,23 +497,35 @@ void handOverXml(vtkPolyData* mesh, const std::string& path)
   }
 }
 
-/// The mesh handOverXml wrote. Throws std::runtime_error if it cannot be read back.
-vtkSmartPointer<vtkPolyData> takeOverXml(const std::string& path)
+/// The dataset handOverXml wrote. Throws std::runtime_error if it cannot be read back.
+vtkSmartPointer<vtkDataSet> takeOverXml(const std::string& path)
 {
-  vtkNew<vtkXMLPolyDataReader> reader;
+  vtkNew<vtkXMLGenericDataObjectReader> reader;
   vtkNew<VtkErrorCapture> errors;
   errors->watch(reader);
   reader->SetFileName(path.c_str());
   reader->Update();
-  if (errors->failed() || reader->GetErrorCode() != vtkErrorCode::NoError)
+  vtkDataSet* read = vtkDataSet::SafeDownCast(reader->GetOutputDataObject(0));
+  if (errors->failed() || reader->GetErrorCode() != vtkErrorCode::NoError || !read)
   {
-    throw std::runtime_error(errors->message());
+    throw std::runtime_error(errors->failed() ? errors->message() : "it holds no dataset");
   }
-  auto mesh = vtkSmartPointer<vtkPolyData>::New();
-  mesh->ShallowCopy(reader->GetOutput());
+  vtkSmartPointer<vtkDataSet> mesh;
+  mesh.TakeReference(read->NewInstance());
+  mesh->ShallowCopy(read);
   forEachArray(mesh, [](vtkAbstractArray* array) { recodeNames(array, decodedName); });
   return mesh;
 }
+}
+
+void handOverDataSet(vtkDataSet* data, const std::string& path)
+{
+  if (auto* mesh = vtkPolyData::SafeDownCast(data))
+  {
+    handOverMesh(mesh, path);
+    return;
+  }
+  handOverXml(data, path);
 }
 
 void handOverMesh(vtkPolyData* mesh, const std::string& path)
@@ -521,6 +540,17 @@ void handOverMesh(vtkPolyData* mesh, const std::string& path)
 }
 
 vtkSmartPointer<vtkPolyData> takeOverMesh(const std::string& path)
+{
+  vtkSmartPointer<vtkDataSet> data = takeOverDataSet(path);
+  auto* mesh = vtkPolyData::SafeDownCast(data);
+  if (!mesh)
+  {
+    throw std::runtime_error("it holds a dataset that is not polydata");
+  }
+  return mesh;
+}
+
+vtkSmartPointer<vtkDataSet> takeOverDataSet(const std::string& path)
 {
   const int fd = ::open(path.c_str(), O_RDONLY);
   struct stat status;
@@ -551,7 +581,7 @@ vtkSmartPointer<vtkPolyData> takeOverMesh(const std::string& path)
     {
       TableReader::fail();
     }
-    vtkSmartPointer<vtkPolyData> mesh = takeOverRaw(content, fd, fileSize);
+    vtkSmartPointer<vtkDataSet> mesh = takeOverRaw(content, fd, fileSize);
     ::close(fd);
     return mesh;
   }

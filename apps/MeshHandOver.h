@@ -5,6 +5,7 @@
 // (mmap) and wraps them as VTK arrays, so that a mesh of hundreds of megabytes changes
 // process without being parsed or copied. A mesh with an array whose bytes are not one plain
 // block (strings, bits, VTK's other memory layouts) goes as VTK XML instead.
+#include "vtkDataSet.h"
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
 
@@ -18,4 +19,9 @@ void handOverMesh(vtkPolyData* mesh, const std::string& path);
 /// The mesh handOverMesh wrote to path. Throws std::runtime_error if what it finds there is
 /// not such a mesh (the parent does not trust the reading process).
 vtkSmartPointer<vtkPolyData> takeOverMesh(const std::string& path);
+
+/// Any dataset: polydata as handOverMesh does, others (unstructured, image, structured,
+/// rectilinear grids) as VTK XML.
+void handOverDataSet(vtkDataSet* data, const std::string& path);
+vtkSmartPointer<vtkDataSet> takeOverDataSet(const std::string& path);
 }

@@ -2,10 +2,13 @@
 //   shadelab shade MESH --scene SCENE.json -o OUT.vtp   per-vertex lighting arrays
 //   shadelab arrays --scene SCENE.json                  the arrays a scene can produce
 //   shadelab render MESH -o OUT.png                     a picture of one array
+//   shadelab compare BASELINE RESULT                    two files' arrays value by value
 // (The developers' benchmark and studies are bench/shadelab-bench.)
+#include "CompareCommand.h"
 #include "MeshFiles.h"
 #include "ProgressLine.h"
 #include "RenderImage.h"
+#include "RunWarnings.h"
 #include "CommandLineParse.h"
 #include "VtkErrorCapture.h"
 
@@ -40,37 +43,9 @@
 namespace
 {
 using namespace shadelab;
+using app::RunWarnings;
 using app::UserError;
 using Clock = std::chrono::steady_clock;
-
-/// The warnings VTK gives during a run (a reader's complaint about a truncated block, say),
-/// each naming the file it concerns. Shown once the run has succeeded: a run that fails ends
-/// in its one line, the error.
-class RunWarnings
-{
-public:
-  /// Takes the warnings VTK gave since the last call, as being about this file.
-  void collect(const std::string& about)
-  {
-    if (auto* window = app::QuietOutputWindow::SafeDownCast(vtkOutputWindow::GetInstance()))
-    {
-      for (const std::string& warning : window->takeWarnings())
-      {
-        lines_.push_back("shadelab: warning: " + about + ": " + warning);
-      }
-    }
-  }
-  void show() const
-  {
-    for (const std::string& line : lines_)
-    {
-      std::cerr << line << "\n";
-    }
-  }
-
-private:
-  std::vector<std::string> lines_;
-};
 
 double secondsSince(Clock::time_point start)
 {
@@ -135,21 +110,13 @@ void printSummary(vtkPolyData* output, const Scene& scene, const std::string& pr
   }
   if (auto* flags = vtkUnsignedCharArray::SafeDownCast(pointData->GetArray(flagsArrayName(prefix).c_str())))
   {
-    static const std::pair<ShadingFlag, const char*> meanings[] = {
-      { FlagDegenerateNormal, "degenerate normal" },
-      { FlagLightAtMinimumDistance, "a light at its minimum distance" },
-      { FlagLightBelowHorizon, "a light below the horizon" },
-      { FlagHalfVectorUndefined, "half vector undefined" },
-      { FlagNonFiniteInput, "non-finite position or normal" },
-      { FlagNormalFlipped, "normal flipped to face the viewer" },
-      { FlagHiddenByOwnTriangle, "a shadowed light hidden by its own triangles" },
-    };
     std::cout << "  " << flagsArrayName(prefix) << ":";
     const unsigned char* values = flags->GetPointer(0);
-    for (const auto& [bit, meaning] : meanings)
+    for (const FlagMeaning& flag : flagMeanings)
     {
-      const vtkIdType count = std::count_if(values, values + flags->GetNumberOfValues(), [bit = bit](unsigned char v) { return (v & bit) != 0; });
-      std::cout << (bit == FlagDegenerateNormal ? " " : ", ") << count << " with " << meaning;
+      const vtkIdType count = std::count_if(values, values + flags->GetNumberOfValues(),
+        [bit = flag.flag](unsigned char v) { return (v & bit) != 0; });
+      std::cout << (flag.flag == FlagDegenerateNormal ? " " : ", ") << count << " with " << flag.meaning;
     }
     std::cout << "\n";
   }
@@ -605,14 +572,17 @@ int main(int argc, char** argv)
   CLI::App* arraysCommand = addArraysCommand(cli, arraysScene);
   RenderCommand render;
   CLI::App* renderCommand = addRenderCommand(cli, render);
+  shadelab::app::CompareOptions compare;
+  CLI::App* compareCommand = shadelab::app::addCompareCommand(cli, compare);
 
   bool verbose = false;
-  for (CLI::App* command : { shadeCommand, arraysCommand, renderCommand })
+  for (CLI::App* command : { shadeCommand, arraysCommand, renderCommand, compareCommand })
   {
     command->add_flag("--verbose,-v", verbose, "also show VTK's own log and error output");
   }
 
-  // Exit codes: 0 done, 1 bad input or a failed run, 2 a command line that does not parse.
+  // Exit codes: 0 done, 1 bad input or a failed run, 2 a command line that does not parse
+  // (compare: 0 the files agree, 1 they differ, 2 one cannot be read or an option is wrong).
   if (const std::optional<int> exitCode = shadelab::app::parseCommandLine(cli, argc, argv, verbose))
   {
     return *exitCode;
@@ -626,6 +596,10 @@ int main(int argc, char** argv)
     if (renderCommand->parsed())
     {
       return runRender(render);
+    }
+    if (compareCommand->parsed())
+    {
+      return shadelab::app::runCompare(compare);
     }
     return runArrays(arraysScene);
   }

@@ -27,4 +27,20 @@ enum ShadingFlag : ShadingFlags
   /// normal faces a light that a neighbouring facet hides (visibility/Visibility.h).
   FlagHiddenByOwnTriangle = 1u << 6,
 };
+
+/// Each flag and what it means, in the words the command line prints.
+struct FlagMeaning
+{
+  ShadingFlag flag;
+  const char* meaning;
+};
+inline constexpr FlagMeaning flagMeanings[] = {
+  { FlagDegenerateNormal, "degenerate normal" },
+  { FlagLightAtMinimumDistance, "a light at its minimum distance" },
+  { FlagLightBelowHorizon, "a light below the horizon" },
+  { FlagHalfVectorUndefined, "half vector undefined" },
+  { FlagNonFiniteInput, "non-finite position or normal" },
+  { FlagNormalFlipped, "normal flipped to face the viewer" },
+  { FlagHiddenByOwnTriangle, "a shadowed light hidden by its own triangles" },
+};
 }

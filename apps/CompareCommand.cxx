@@ -1,0 +1,673 @@
+#include "CompareCommand.h"
+
+#include "MeshFiles.h"
+#include "RunWarnings.h"
+
+#include "ShadingFlags.h"
+#include "ToleranceRules.h"
+#include "ValueComparison.h"
+
+#include "vtkArrayDispatch.h"
+#include "vtkCellData.h"
+#include "vtkDataArray.h"
+#include "vtkDataArrayRange.h"
+#include "vtkDataSet.h"
+#include "vtkFieldData.h"
+#include "vtkPointData.h"
+#include "vtkPointSet.h"
+#include "vtkPoints.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+#include <type_traits>
+
+namespace shadelab::app
+{
+namespace
+{
+/// Where an array lives in a dataset.
+enum class Association
+{
+  Points,
+  PointData,
+  CellData,
+  FieldData,
+};
+
+const char* associationName(Association association)
+{
+  switch (association)
+  {
+    case Association::Points:
+      return "points";
+    case Association::PointData:
+      return "point";
+    case Association::CellData:
+      return "cell";
+    case Association::FieldData:
+      break;
+  }
+  return "field";
+}
+
+/// An array of one file, its values copied out.
+struct FileArray
+{
+  std::string name;
+  Association association = Association::PointData;
+  ArrayValues values;
+};
+
+const char* typeName(ValueType type)
+{
+  switch (type)
+  {
+    case ValueType::Float32:
+      return "float32";
+    case ValueType::Float64:
+      return "float64";
+    case ValueType::Integer:
+      break;
+  }
+  return "integer";
+}
+
+/// Copies a VTK array's values: integers exactly (as 64-bit), floating-point ones as doubles.
+struct CopyValues
+{
+  ArrayValues& out;
+
+  template <typename Array>
+  void operator()(Array* array)
+  {
+    using Value = vtk::GetAPIType<Array>;
+    const auto range = vtk::DataArrayValueRange(array);
+    if constexpr (std::is_integral_v<Value>)
+    {
+      out.integers.assign(range.begin(), range.end());
+    }
+    else
+    {
+      out.reals.assign(range.begin(), range.end());
+    }
+  }
+};
+
+ArrayValues valuesOf(vtkDataArray* array)
+{
+  ArrayValues values;
+  const int type = array->GetDataType();
+  values.type = type == VTK_FLOAT ? ValueType::Float32 : type == VTK_DOUBLE ? ValueType::Float64 : ValueType::Integer;
+  values.components = array->GetNumberOfComponents();
+  CopyValues copy{ values };
+  if (!vtkArrayDispatch::Dispatch::Execute(array, copy))
+  {
+    // Arrays the dispatcher does not know (bits, say), through the generic interface.
+    const auto range = vtk::DataArrayValueRange(array);
+    if (values.type == ValueType::Integer)
+    {
+      for (const double v : range)
+      {
+        values.integers.push_back(static_cast<std::int64_t>(v));
+      }
+    }
+    else
+    {
+      values.reals.assign(range.begin(), range.end());
+    }
+  }
+  return values;
+}
+
+/// An array that is not numbers (text, say): its name, and what it is.
+struct SkippedArray
+{
+  std::string name, description;
+};
+
+/// The dataset's point coordinates and its numeric arrays; the arrays it holds that are not
+/// numbers go to skipped.
+std::vector<FileArray> arraysOf(vtkDataSet* data, bool withPoints, std::vector<SkippedArray>& skipped)
+{
+  std::vector<FileArray> arrays;
+  if (withPoints)
+  {
+    FileArray points{ "points", Association::Points, {} };
+    auto* pointSet = vtkPointSet::SafeDownCast(data);
+    if (pointSet && pointSet->GetPoints())
+    {
+      points.values = valuesOf(pointSet->GetPoints()->GetData());
+    }
+    else
+    {
+      // Implicit points (an image, a rectilinear grid), as VTK computes them.
+      points.values.components = 3;
+      for (vtkIdType i = 0; i < data->GetNumberOfPoints(); ++i)
+      {
+        double p[3];
+        data->GetPoint(i, p);
+        points.values.reals.insert(points.values.reals.end(), p, p + 3);
+      }
+    }
+    arrays.push_back(std::move(points));
+  }
+  const std::pair<Association, vtkFieldData*> groups[] = { { Association::PointData, data->GetPointData() },
+    { Association::CellData, data->GetCellData() }, { Association::FieldData, data->GetFieldData() } };
+  for (const auto& [association, group] : groups)
+  {
+    for (int i = 0; group && i < group->GetNumberOfArrays(); ++i)
+    {
+      vtkAbstractArray* array = group->GetAbstractArray(i);
+      const std::string name = array->GetName() && *array->GetName()
+        ? array->GetName()
+        : std::string("(unnamed ") + associationName(association) + " array " + std::to_string(i) + ")";
+      auto* numbers = vtkDataArray::SafeDownCast(array);
+      if (!numbers)
+      {
+        skipped.push_back({ name, name + " (" + associationName(association) + " data, " + array->GetClassName() + ")" });
+        continue;
+      }
+      arrays.push_back({ name, association, valuesOf(numbers) });
+    }
+  }
+  return arrays;
+}
+
+bool matchesAny(const std::vector<std::string>& patterns, const std::string& name)
+{
+  return std::any_of(patterns.begin(), patterns.end(), [&](const std::string& p) { return wildcardMatches(p, name); });
+}
+
+const FileArray* find(const std::vector<FileArray>& arrays, const std::string& name, Association association)
+{
+  for (const FileArray& array : arrays)
+  {
+    if (array.name == name && array.association == association)
+    {
+      return &array;
+    }
+  }
+  return nullptr;
+}
+
+/// The tolerance rules of the command line, parsed.
+struct Rules
+{
+  PatternRules<ToleranceValue> absolute, relative;
+  PatternRules<long long> ulps;
+
+  /// The rule for an array of the baseline.
+  ValueRule ruleFor(const FileArray& array, std::optional<double> standardErrors) const
+  {
+    ValueRule rule;
+    const double range = array.values.range();
+    rule.absolute = absolute.find(array.name).value_or(ToleranceValue{}).of(range);
+    const std::optional<ToleranceValue> given = relative.find(array.name);
+    rule.relative = given ? given->of(range) : defaultRelativeTolerance(array.values.type);
+    rule.ulps = ulps.find(array.name);
+    rule.standardErrors = standardErrors;
+    return rule;
+  }
+};
+
+Rules parseRules(const CompareOptions& options)
+{
+  Rules rules;
+  try
+  {
+    for (const std::string& text : options.absolute)
+    {
+      const auto [pattern, value] = splitRule(text);
+      rules.absolute.add(pattern, parseToleranceValue(value));
+    }
+    for (const std::string& text : options.relative)
+    {
+      const auto [pattern, value] = splitRule(text);
+      rules.relative.add(pattern, parseToleranceValue(value));
+    }
+    for (const std::string& text : options.ulps)
+    {
+      const auto [pattern, value] = splitRule(text);
+      rules.ulps.add(pattern, parseUlps(value));
+    }
+  }
+  catch (const std::invalid_argument& error)
+  {
+    throw UserError(error.what());
+  }
+  if (options.standardErrors && !(*options.standardErrors > 0 && std::isfinite(*options.standardErrors)))
+  {
+    throw UserError("--standard-errors must be a number > 0 (3 is usual)");
+  }
+  return rules;
+}
+
+/// One array's verdict.
+struct ArrayReport
+{
+  const FileArray* baseline = nullptr;
+  std::string name;
+  Association association = Association::PointData;
+  std::string problem; // why it could not be compared
+  ValueRule rule;
+  std::optional<ArrayDifference> difference;
+  bool flags = false;
+
+  bool passes() const { return problem.empty() && difference && difference->passes(); }
+};
+
+/// What a person reads: a number with few digits.
+std::string brief(double x)
+{
+  std::ostringstream text;
+  text << std::setprecision(3) << x;
+  return text.str();
+}
+
+std::string exact(double x)
+{
+  std::ostringstream text;
+  text << std::setprecision(17) << x;
+  return text.str();
+}
+
+std::string valueText(const ArrayValues& values, std::size_t i)
+{
+  return values.type == ValueType::Integer ? std::to_string(values.integers[i]) : exact(values.reals[i]);
+}
+
+std::string ruleText(const ArrayReport& report)
+{
+  const ValueType type = report.baseline->values.type;
+  if (type == ValueType::Integer)
+  {
+    return "equal";
+  }
+  std::string text = report.rule.ulps ? "within " + std::to_string(*report.rule.ulps) + " ULP"
+                                      : "atol " + brief(report.rule.absolute) + ", rtol " + brief(report.rule.relative);
+  if (report.rule.standardErrors)
+  {
+    text += ", or within " + brief(*report.rule.standardErrors) + " standard errors";
+  }
+  return text;
+}
+
+/// Where value i of the array is: "point 12 (x, y, z), component 1".
+std::string placeOf(const ArrayReport& report, std::size_t i, const std::vector<FileArray>& baseline)
+{
+  const ArrayValues& values = report.baseline->values;
+  const std::size_t tuple = i / static_cast<std::size_t>(values.components);
+  std::ostringstream text;
+  switch (report.association)
+  {
+    case Association::Points:
+    case Association::PointData:
+    {
+      text << "point " << tuple;
+      const FileArray* points = find(baseline, "points", Association::Points);
+      if (points && (tuple + 1) * 3 <= points->values.reals.size())
+      {
+        const double* p = &points->values.reals[3 * tuple];
+        text << " (" << brief(p[0]) << ", " << brief(p[1]) << ", " << brief(p[2]) << ")";
+      }
+      break;
+    }
+    case Association::CellData:
+      text << "cell " << tuple;
+      break;
+    case Association::FieldData:
+      text << "tuple " << tuple;
+      break;
+  }
+  if (values.components > 1)
+  {
+    text << ", component " << i % static_cast<std::size_t>(values.components);
+  }
+  return text.str();
+}
+
+/// The bits of ShadeLab's flags, by their meanings; other bits by number.
+std::string bitName(int bit, bool flags)
+{
+  if (flags)
+  {
+    for (const FlagMeaning& meaning : flagMeanings)
+    {
+      if (meaning.flag == (1u << bit))
+      {
+        return std::to_string(1u << bit) + " (" + meaning.meaning + ")";
+      }
+    }
+  }
+  return "bit " + std::to_string(bit);
+}
+
+/// The table's columns: widths, and the heading.
+constexpr int nameWidth = 30, dataWidth = 7, typeWidth = 11, failingWidth = 18, numberWidth = 11;
+
+void printHeading()
+{
+  std::cout << "  " << std::left << std::setw(7) << "" << std::setw(nameWidth) << "array" << " " << std::setw(dataWidth)
+            << "data" << std::setw(typeWidth) << "type" << std::setw(failingWidth) << "failing / values"
+            << std::setw(numberWidth) << "max |diff|" << std::setw(numberWidth) << "RMS" << std::setw(numberWidth)
+            << "L2" << "rule" << std::right << "\n";
+}
+
+/// The array's row of the table, then what a person needs to see about its differences.
+void printReport(const ArrayReport& report, const std::vector<FileArray>& baseline, const std::vector<FileArray>& result)
+{
+  std::string type;
+  if (report.baseline)
+  {
+    type = std::string(typeName(report.baseline->values.type)) + " x" + std::to_string(report.baseline->values.components);
+  }
+  std::cout << "  " << std::left << std::setw(7) << (report.passes() ? "ok" : "DIFFER") << std::setw(nameWidth)
+            << report.name << " " << std::setw(dataWidth) << associationName(report.association) << std::setw(typeWidth) << type;
+  if (!report.problem.empty())
+  {
+    std::cout << report.problem << std::right << "\n";
+    return;
+  }
+  const ArrayDifference& d = *report.difference;
+  std::cout << std::setw(failingWidth) << (std::to_string(d.failing) + " / " + std::to_string(d.values))
+            << std::setw(numberWidth) << brief(d.largest) << std::setw(numberWidth) << brief(d.rms())
+            << std::setw(numberWidth) << brief(d.l2()) << ruleText(report) << std::right << "\n";
+  const std::string indent(9, ' ');
+  if (d.worst && d.largest > 0)
+  {
+    const FileArray* other = find(result, report.name, report.association);
+    std::cout << indent << (d.failing > 0 ? "worst failing" : "largest difference") << " at "
+              << placeOf(report, *d.worst, baseline) << ": " << valueText(report.baseline->values, *d.worst)
+              << " in the baseline, " << valueText(other->values, *d.worst) << " in the result\n";
+  }
+  if (d.nanInBoth + d.nanInOne > 0)
+  {
+    std::cout << indent << "NaN in both files at " << d.nanInBoth << " values (equal), in one only at " << d.nanInOne
+              << " (they fail)\n";
+  }
+  if (report.baseline->values.type == ValueType::Integer && d.failing > 0)
+  {
+    std::cout << indent << "bits that differ:";
+    const char* separator = " ";
+    for (int bit = 0; bit < 64; ++bit)
+    {
+      if (d.bitCounts[static_cast<std::size_t>(bit)] > 0)
+      {
+        std::cout << separator << bitName(bit, report.flags) << " in " << d.bitCounts[static_cast<std::size_t>(bit)];
+        separator = ", ";
+      }
+    }
+    std::cout << "\n";
+  }
+  if (report.rule.standardErrors && d.withStandardError > 0)
+  {
+    const double n = static_cast<double>(d.withStandardError);
+    std::cout << indent << "within 1, 2, 3 combined standard errors: " << std::fixed << std::setprecision(1)
+              << 100 * d.withinStandardErrors[0] / n << "%, " << 100 * d.withinStandardErrors[1] / n << "%, "
+              << 100 * d.withinStandardErrors[2] / n << "% of " << d.withStandardError
+              << " values (a normal error: 68.3%, 95.4%, 99.7%)" << std::defaultfloat << "\n";
+  }
+}
+
+/// A double as JSON: a number where finite, else its text ("nan", "inf"), which JSON has no
+/// number for.
+nlohmann::json jsonNumber(double x)
+{
+  return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(exact(x));
+}
+
+nlohmann::json jsonOf(const ArrayReport& report, const std::vector<FileArray>& baseline, const std::vector<FileArray>& result)
+{
+  nlohmann::json entry = { { "name", report.name }, { "data", associationName(report.association) },
+    { "passed", report.passes() } };
+  if (report.baseline)
+  {
+    entry["type"] = typeName(report.baseline->values.type);
+    entry["components"] = report.baseline->values.components;
+  }
+  if (!report.problem.empty())
+  {
+    entry["problem"] = report.problem;
+    return entry;
+  }
+  const ArrayDifference& d = *report.difference;
+  entry["values"] = d.values;
+  entry["failing"] = d.failing;
+  entry["max_difference"] = jsonNumber(d.largest);
+  entry["rms"] = d.rms();
+  entry["l2"] = d.l2();
+  entry["nan_in_both"] = d.nanInBoth;
+  entry["nan_in_one"] = d.nanInOne;
+  entry["rule"] = report.rule.ulps ? nlohmann::json{ { "ulps", *report.rule.ulps } }
+                                   : nlohmann::json{ { "absolute", report.rule.absolute }, { "relative", report.rule.relative } };
+  if (d.worst && d.largest > 0)
+  {
+    const FileArray* other = find(result, report.name, report.association);
+    const std::size_t components = static_cast<std::size_t>(report.baseline->values.components);
+    auto value = [](const ArrayValues& values, std::size_t i)
+    { return values.type == ValueType::Integer ? nlohmann::json(values.integers[i]) : jsonNumber(values.reals[i]); };
+    entry["worst"] = { { "tuple", *d.worst / components }, { "component", *d.worst % components },
+      { "where", placeOf(report, *d.worst, baseline) }, { "baseline", value(report.baseline->values, *d.worst) },
+      { "result", value(other->values, *d.worst) } };
+  }
+  if (report.baseline->values.type == ValueType::Integer)
+  {
+    nlohmann::json bits = nlohmann::json::array();
+    for (int bit = 0; bit < 64; ++bit)
+    {
+      if (d.bitCounts[static_cast<std::size_t>(bit)] > 0)
+      {
+        bits.push_back({ { "bit", bit }, { "name", bitName(bit, report.flags) }, { "values", d.bitCounts[static_cast<std::size_t>(bit)] } });
+      }
+    }
+    entry["bits_that_differ"] = bits;
+  }
+  if (report.rule.standardErrors)
+  {
+    entry["standard_errors"] = { { "k", *report.rule.standardErrors }, { "values", d.withStandardError },
+      { "within_1", d.withinStandardErrors[0] }, { "within_2", d.withinStandardErrors[1] },
+      { "within_3", d.withinStandardErrors[2] } };
+  }
+  return entry;
+}
+
+std::string datasetText(vtkDataSet* data)
+{
+  return std::to_string(data->GetNumberOfPoints()) + " points, " + std::to_string(data->GetNumberOfCells()) + " cells";
+}
+}
+
+CLI::App* addCompareCommand(CLI::App& cli, CompareOptions& options)
+{
+  CLI::App* command = cli.add_subcommand("compare",
+    "Compare two files' arrays value by value, for regression tests: point, cell and field data and the "
+    "points, each value passing when |a - b| <= max(rtol * max(|a|, |b|), atol). Exit code 0 when they agree, 1 "
+    "when they differ, 2 when a file cannot be read or an option is wrong.");
+  command->add_option("baseline", options.baseline, "the file to compare against (.vtp, .vtu, .vti, .vts, .vtr, .vtk, .ply, .obj, .stl)")->required();
+  command->add_option("result", options.result, "the file to judge")->required();
+  command->add_option("--atol", options.absolute,
+    "absolute tolerance, for every array (1e-6) or by name with wildcards ('total:1e-6', '*_cos_incidence:1e-7'), "
+    "or relative to the baseline array's range ('1e-3*range'); the last rule that matches wins; default 0");
+  command->add_option("--rtol", options.relative,
+    "relative tolerance, written as --atol; default 4 units in the last place of the array's type "
+    "(4.8e-7 for float32, 8.9e-16 for float64)");
+  command->add_option("--ulps", options.ulps,
+    "judge floating-point values by units in the last place instead ('3', 'total:4'): pass when at most that many "
+    "numbers of the array's type apart");
+  command->add_option("--standard-errors", options.standardErrors,
+    "statistical mode: where both files hold NAME_std_error beside NAME, a value also passes within K combined "
+    "standard errors sqrt(e_a^2 + e_b^2), and the fractions within 1, 2 and 3 are reported");
+  command->add_option("--arrays", options.arrays, "compare only the arrays whose names match these wildcards (default *)")
+    ->delimiter(',');
+  command->add_option("--exclude", options.exclude, "leave out the arrays whose names match these wildcards")->delimiter(',');
+  command->add_option("--flags", options.flagArrays,
+    "integer arrays whose bits are ShadeLab's shading flags, named in the report (default *shading_flags)")
+    ->delimiter(',');
+  command->add_flag("--no-points", options.noPoints, "do not compare the point coordinates");
+  command->add_option("--json", options.json, "also write the report as JSON to this file");
+  return command;
+}
+
+int runCompare(const CompareOptions& options)
+{
+  std::vector<ArrayReport> reports;
+  std::vector<SkippedArray> skippedBaseline, skippedResult;
+  std::vector<FileArray> baseline, result;
+  vtkSmartPointer<vtkDataSet> baselineData, resultData;
+  RunWarnings warnings; // a reader's warning says the file is damaged: its values may be too
+  try
+  {
+    const Rules rules = parseRules(options);
+    if (!options.json.empty())
+    {
+      checkOutputFile(options.json, { ".json" });
+    }
+    baselineData = readDataSet(options.baseline);
+    warnings.collect(options.baseline);
+    resultData = readDataSet(options.result);
+    warnings.collect(options.result);
+    baseline = arraysOf(baselineData, !options.noPoints, skippedBaseline);
+    result = arraysOf(resultData, !options.noPoints, skippedResult);
+    auto selected = [&](const FileArray& array)
+    { return array.association == Association::Points || (matchesAny(options.arrays, array.name) && !matchesAny(options.exclude, array.name)); };
+    for (std::vector<SkippedArray>* skipped : { &skippedBaseline, &skippedResult })
+    {
+      skipped->erase(std::remove_if(skipped->begin(), skipped->end(),
+                       [&](const SkippedArray& a) { return !matchesAny(options.arrays, a.name) || matchesAny(options.exclude, a.name); }),
+        skipped->end());
+    }
+    for (const FileArray& array : baseline)
+    {
+      if (!selected(array))
+      {
+        continue;
+      }
+      ArrayReport report;
+      report.baseline = &array;
+      report.name = array.name;
+      report.association = array.association;
+      report.flags = array.values.type == ValueType::Integer && matchesAny(options.flagArrays, array.name);
+      const FileArray* other = find(result, array.name, array.association);
+      const ArrayValues& a = array.values;
+      if (!other)
+      {
+        report.problem = std::string("missing from ") + options.result;
+      }
+      else if (other->values.type != a.type)
+      {
+        report.problem = std::string(typeName(a.type)) + " in " + options.baseline + ", " + typeName(other->values.type) + " in " + options.result;
+      }
+      else if (other->values.components != a.components)
+      {
+        report.problem = std::to_string(a.components) + " components in " + options.baseline + ", " + std::to_string(other->values.components) + " in " + options.result;
+      }
+      else if (other->values.tuples() != a.tuples())
+      {
+        report.problem = std::to_string(a.tuples()) + " tuples in " + options.baseline + ", " + std::to_string(other->values.tuples()) + " in " + options.result;
+      }
+      else
+      {
+        report.rule = rules.ruleFor(array, options.standardErrors);
+        const FileArray* errorsA = find(baseline, array.name + "_std_error", array.association);
+        const FileArray* errorsB = find(result, array.name + "_std_error", array.association);
+        const bool statistical = options.standardErrors && errorsA && errorsB && errorsA->values.type != ValueType::Integer &&
+          errorsA->values.size() == a.size() && errorsB->values.size() == a.size();
+        if (!statistical)
+        {
+          report.rule.standardErrors.reset();
+        }
+        report.difference = compareArrays(a, other->values, report.rule, statistical ? &errorsA->values : nullptr,
+          statistical ? &errorsB->values : nullptr);
+      }
+      reports.push_back(std::move(report));
+    }
+    for (const FileArray& array : result)
+    {
+      if (selected(array) && !find(baseline, array.name, array.association))
+      {
+        ArrayReport report;
+        report.name = array.name;
+        report.association = array.association;
+        report.problem = std::string("not in ") + options.baseline;
+        reports.push_back(std::move(report));
+      }
+    }
+  }
+  catch (const UserError& error)
+  {
+    std::cerr << "shadelab compare: " << error.what() << "\n";
+    return 2;
+  }
+
+  const std::size_t differing = static_cast<std::size_t>(std::count_if(reports.begin(), reports.end(), [](const ArrayReport& r) { return !r.passes(); }));
+  std::cout << "shadelab compare: the result " << options.result << " (" << datasetText(resultData)
+            << ") against the baseline " << options.baseline << " (" << datasetText(baselineData) << ")\n";
+  printHeading();
+  for (const ArrayReport& report : reports)
+  {
+    printReport(report, baseline, result);
+  }
+  for (const auto& [file, skipped] : { std::pair{ "the baseline", &skippedBaseline }, std::pair{ "the result", &skippedResult } })
+  {
+    if (!skipped->empty())
+    {
+      std::cout << "  not compared in " << file << " (not numbers):";
+      for (std::size_t k = 0; k < skipped->size(); ++k)
+      {
+        std::cout << (k == 0 ? " " : ", ") << (*skipped)[k].description;
+      }
+      std::cout << "\n";
+    }
+  }
+  if (reports.empty())
+  {
+    std::cout << "FAIL: no array to compare (see --arrays and --exclude)\n";
+  }
+  else if (differing == 0)
+  {
+    std::cout << "PASS: " << reports.size() << (reports.size() == 1 ? " array agrees" : " arrays agree") << "\n";
+  }
+  else
+  {
+    std::cout << "FAIL: " << differing << " of " << reports.size() << " arrays differ\n";
+  }
+  const bool passed = !reports.empty() && differing == 0;
+  warnings.show();
+  if (!options.json.empty())
+  {
+    nlohmann::json report = { { "baseline", options.baseline }, { "result", options.result }, { "passed", passed },
+      { "arrays", nlohmann::json::array() }, { "not_compared", nlohmann::json::array() } };
+    for (const ArrayReport& r : reports)
+    {
+      report["arrays"].push_back(jsonOf(r, baseline, result));
+    }
+    for (const SkippedArray& skipped : skippedBaseline)
+    {
+      report["not_compared"].push_back(skipped.description);
+    }
+    try
+    {
+      writeThroughTemporary(options.json,
+        [&](const std::string& temporary) -> std::string
+        {
+          std::ofstream file(temporary);
+          file << report.dump(2) << "\n";
+          file.close();
+          return file ? "" : "the report could not be written (disk full?)";
+        });
+    }
+    catch (const UserError& error)
+    {
+      std::cerr << "shadelab compare: " << error.what() << "\n";
+      return 2;
+    }
+  }
+  return passed ? 0 : 1;
+}
+}

@@ -1,0 +1,357 @@
+// shadelab compare as a user runs it: hand-made pairs of files with known differences, each
+// option, each kind of mismatch and its message, the exit codes, and the JSON report.
+#include "CliFixture.h"
+
+#include "vtkCellArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkFloatArray.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkUnsignedCharArray.h"
+#include "vtkUnstructuredGrid.h"
+#include "vtkXMLPolyDataWriter.h"
+#include "vtkXMLUnstructuredGridWriter.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <functional>
+#include <iomanip>
+#include <sstream>
+
+namespace
+{
+using shadelab::testing::Cli;
+using shadelab::testing::Result;
+
+/// A square of 4 points and 2 triangles with the arrays edit adds.
+vtkSmartPointer<vtkPolyData> square(const std::function<void(vtkPolyData*)>& edit)
+{
+  auto mesh = vtkSmartPointer<vtkPolyData>::New();
+  vtkNew<vtkPoints> points;
+  points->InsertNextPoint(0, 0, 0);
+  points->InsertNextPoint(1, 0, 0);
+  points->InsertNextPoint(1, 1, 0);
+  points->InsertNextPoint(0, 1, 0);
+  mesh->SetPoints(points);
+  vtkNew<vtkCellArray> triangles;
+  const vtkIdType first[3] = { 0, 1, 2 }, second[3] = { 0, 2, 3 };
+  triangles->InsertNextCell(3, first);
+  triangles->InsertNextCell(3, second);
+  mesh->SetPolys(triangles);
+  edit(mesh);
+  return mesh;
+}
+
+template <typename Array>
+void addArray(vtkPolyData* mesh, const char* name, int components, const std::vector<double>& values)
+{
+  vtkNew<Array> array;
+  array->SetName(name);
+  array->SetNumberOfComponents(components);
+  array->SetNumberOfTuples(static_cast<vtkIdType>(values.size()) / components);
+  for (std::size_t i = 0; i < values.size(); ++i)
+  {
+    array->SetValue(static_cast<vtkIdType>(i), static_cast<typename Array::ValueType>(values[i]));
+  }
+  mesh->GetPointData()->AddArray(array);
+}
+
+/// The arrays of a shaded square: total (float32 x 3) and shading_flags.
+void shaded(vtkPolyData* mesh)
+{
+  addArray<vtkFloatArray>(mesh, "total", 3, { 0.5, 0.25, 0.125, 0.5, 0.5, 0.5, 1, 0, 0, 0.75, 0.75, 0.75 });
+  addArray<vtkUnsignedCharArray>(mesh, "shading_flags", 1, { 0, 64, 4, 0 });
+}
+
+std::string digits17(double x)
+{
+  std::ostringstream text;
+  text << std::setprecision(17) << x;
+  return text.str();
+}
+
+class Compare : public Cli
+{
+protected:
+  std::string write(const std::string& name, vtkPolyData* mesh)
+  {
+    const std::string path = (folder / name).string();
+    vtkNew<vtkXMLPolyDataWriter> writer;
+    writer->SetInputData(mesh);
+    writer->SetFileName(path.c_str());
+    writer->Write();
+    return path;
+  }
+
+  /// The lines of the report that mention the array, after the heading.
+  static std::string linesAbout(const std::string& report, const std::string& name)
+  {
+    std::istringstream lines(report);
+    std::string line, found;
+    bool inArray = false;
+    while (std::getline(lines, line))
+    {
+      const bool row = line.rfind("  ok ", 0) == 0 || line.rfind("  DIFFER ", 0) == 0;
+      if (row)
+      {
+        std::istringstream words(line);
+        std::string verdict, array;
+        words >> verdict >> array;
+        inArray = array == name;
+      }
+      else if (line.rfind("         ", 0) != 0)
+      {
+        inArray = false;
+      }
+      if (inArray)
+      {
+        found += line + "\n";
+      }
+    }
+    return found;
+  }
+};
+
+TEST_F(Compare, IdenticalFilesAgree)
+{
+  const std::string a = write("a.vtp", square(shaded)), b = write("b.vtp", square(shaded));
+  const Result result = shadelab("compare " + a + " " + b);
+  EXPECT_EQ(result.exitCode, 0) << result.out << result.err;
+  EXPECT_EQ(result.err, "");
+  EXPECT_NE(result.out.find("\nPASS: 3 arrays agree\n"), std::string::npos) << result.out;
+  EXPECT_EQ(linesAbout(result.out, "total"),
+    "  ok     total                          point  float32 x3 0 / 12            0          0          0          "
+    "atol 0, rtol 4.77e-07\n");
+}
+
+TEST_F(Compare, ADifferenceBeyondTheDefaultToleranceFailsAndTheWorstIsShown)
+{
+  // 0.5 + 1e-7 is within 4 ULP of float32 (rtol 4.8e-7); 0.75 + 1e-3 is not.
+  const std::string a = write("a.vtp", square(shaded));
+  const std::string b = write("b.vtp", square([](vtkPolyData* mesh)
+    {
+      addArray<vtkFloatArray>(mesh, "total", 3, { 0.5 + 1e-7, 0.25, 0.125, 0.5, 0.5, 0.5, 1, 0, 0, 0.75, 0.751, 0.75 });
+      addArray<vtkUnsignedCharArray>(mesh, "shading_flags", 1, { 0, 64, 4, 0 });
+    }));
+  const Result result = shadelab("compare " + a + " " + b);
+  EXPECT_EQ(result.exitCode, 1);
+  const float changed = 0.751f;
+  EXPECT_EQ(linesAbout(result.out, "total"),
+    "  DIFFER total                          point  float32 x3 1 / 12            0.001      0.000289   0.001      "
+    "atol 0, rtol 4.77e-07\n"
+    "         worst failing at point 3 (0, 1, 0), component 1: 0.75 in the baseline, " +
+      digits17(changed) + " in the result\n");
+  EXPECT_NE(result.out.find("\nFAIL: 1 of 3 arrays differ\n"), std::string::npos) << result.out;
+  // Loosened for that array, by name or by pattern, or relative to its range (1 here).
+  EXPECT_EQ(shadelab("compare " + a + " " + b + " --atol total:2e-3").exitCode, 0);
+  EXPECT_EQ(shadelab("compare " + a + " " + b + " --rtol 't*:2e-3'").exitCode, 0);
+  EXPECT_EQ(shadelab("compare " + a + " " + b + " --atol '2e-3*range'").exitCode, 0);
+  EXPECT_EQ(shadelab("compare " + a + " " + b + " --atol '5e-4*range'").exitCode, 1);
+  // The last rule that matches wins.
+  EXPECT_EQ(shadelab("compare " + a + " " + b + " --atol 1 --atol total:0").exitCode, 1);
+  // Or left out.
+  EXPECT_EQ(shadelab("compare " + a + " " + b + " --exclude total").exitCode, 0);
+  EXPECT_EQ(shadelab("compare " + a + " " + b + " --arrays shading_flags").exitCode, 0);
+}
+
+TEST_F(Compare, UlpModeCountsTheFloatsBetween)
+{
+  const std::string a = write("a.vtp", square(shaded));
+  // 5 floats above 0.125: beyond the default (4 ULP), within --ulps 5.
+  float up = 0.125f;
+  for (int k = 0; k < 5; ++k)
+  {
+    up = std::nextafter(up, 1.0f);
+  }
+  const std::string b = write("b.vtp", square([&](vtkPolyData* mesh)
+    {
+      addArray<vtkFloatArray>(mesh, "total", 3, { 0.5, 0.25, up, 0.5, 0.5, 0.5, 1, 0, 0, 0.75, 0.75, 0.75 });
+      addArray<vtkUnsignedCharArray>(mesh, "shading_flags", 1, { 0, 64, 4, 0 });
+    }));
+  EXPECT_EQ(shadelab("compare " + a + " " + b).exitCode, 1);
+  EXPECT_EQ(shadelab("compare " + a + " " + b + " --ulps 5").exitCode, 0);
+  const Result four = shadelab("compare " + a + " " + b + " --ulps total:4");
+  EXPECT_EQ(four.exitCode, 1);
+  EXPECT_NE(linesAbout(four.out, "total").find("within 4 ULP\n"), std::string::npos) << four.out;
+}
+
+TEST_F(Compare, FlagsAreComparedExactlyAndTheirBitsNamed)
+{
+  const std::string a = write("a.vtp", square(shaded));
+  const std::string b = write("b.vtp", square([](vtkPolyData* mesh)
+    {
+      addArray<vtkFloatArray>(mesh, "total", 3, { 0.5, 0.25, 0.125, 0.5, 0.5, 0.5, 1, 0, 0, 0.75, 0.75, 0.75 });
+      addArray<vtkUnsignedCharArray>(mesh, "shading_flags", 1, { 64, 64, 0, 0 });
+    }));
+  const Result result = shadelab("compare " + a + " " + b + " --atol 1");
+  EXPECT_EQ(result.exitCode, 1);
+  EXPECT_EQ(linesAbout(result.out, "shading_flags"),
+    "  DIFFER shading_flags                  point  integer x1 2 / 4             64         32.1       64.1       equal\n"
+    "         worst failing at point 0 (0, 0, 0): 0 in the baseline, 64 in the result\n"
+    "         bits that differ: 4 (a light below the horizon) in 1, 64 (a shadowed light hidden by its own triangles) "
+    "in 1\n");
+  // Other integer arrays: bits by number.
+  const Result plain = shadelab("compare " + a + " " + b + " --flags none");
+  EXPECT_NE(plain.out.find("bits that differ: bit 2 in 1, bit 6 in 1\n"), std::string::npos) << plain.out;
+}
+
+TEST_F(Compare, EachMismatchIsAClearFailure)
+{
+  const std::string a = write("a.vtp", square(shaded));
+  const std::string missing = write("missing.vtp", square([](vtkPolyData* mesh)
+    { addArray<vtkUnsignedCharArray>(mesh, "shading_flags", 1, { 0, 64, 4, 0 }); }));
+  const std::string extra = write("extra.vtp", square([](vtkPolyData* mesh)
+    {
+      shaded(mesh);
+      addArray<vtkFloatArray>(mesh, "key_diffuse", 1, { 0, 0, 0, 0 });
+    }));
+  const std::string doubles = write("doubles.vtp", square([](vtkPolyData* mesh)
+    {
+      addArray<vtkDoubleArray>(mesh, "total", 3, { 0.5, 0.25, 0.125, 0.5, 0.5, 0.5, 1, 0, 0, 0.75, 0.75, 0.75 });
+      addArray<vtkUnsignedCharArray>(mesh, "shading_flags", 1, { 0, 64, 4, 0 });
+    }));
+  const std::string flat = write("flat.vtp", square([](vtkPolyData* mesh)
+    {
+      addArray<vtkFloatArray>(mesh, "total", 4, { 0.5, 0.25, 0.125, 0, 0.5, 0.5, 0.5, 0, 1, 0, 0, 0, 0.75, 0.75, 0.75, 0 });
+      addArray<vtkUnsignedCharArray>(mesh, "shading_flags", 1, { 0, 64, 4, 0 });
+    }));
+  auto row = [&](const std::string& result, const std::string& name)
+  {
+    const Result run = shadelab("compare " + a + " " + result);
+    EXPECT_EQ(run.exitCode, 1) << run.out;
+    return linesAbout(run.out, name);
+  };
+  EXPECT_EQ(row(missing, "total"), "  DIFFER total                          point  float32 x3 missing from " + missing + "\n");
+  EXPECT_EQ(row(extra, "key_diffuse"), "  DIFFER key_diffuse                    point             not in " + a + "\n");
+  EXPECT_EQ(row(doubles, "total"),
+    "  DIFFER total                          point  float32 x3 float32 in " + a + ", float64 in " + doubles + "\n");
+  EXPECT_EQ(row(flat, "total"), "  DIFFER total                          point  float32 x3 3 components in " + a + ", 4 in " + flat + "\n");
+  // Another number of points: every point array says so.
+  const std::string five = write("five.vtp", square([](vtkPolyData* mesh)
+    {
+      mesh->GetPoints()->InsertNextPoint(2, 2, 0);
+      addArray<vtkFloatArray>(mesh, "total", 3, { 0.5, 0.25, 0.125, 0.5, 0.5, 0.5, 1, 0, 0, 0.75, 0.75, 0.75, 0, 0, 0 });
+      addArray<vtkUnsignedCharArray>(mesh, "shading_flags", 1, { 0, 64, 4, 0, 0 });
+    }));
+  EXPECT_EQ(row(five, "points"), "  DIFFER points                         points float32 x3 4 tuples in " + a + ", 5 in " + five + "\n");
+  EXPECT_EQ(row(five, "shading_flags"),
+    "  DIFFER shading_flags                  point  integer x1 4 tuples in " + a + ", 5 in " + five + "\n");
+}
+
+TEST_F(Compare, NanEqualsNanOnlyInBothFiles)
+{
+  const double nan = std::nan("");
+  const std::string a = write("a.vtp", square([&](vtkPolyData* mesh)
+    { addArray<vtkFloatArray>(mesh, "value", 1, { nan, 1, nan, 2 }); }));
+  const std::string b = write("b.vtp", square([&](vtkPolyData* mesh)
+    { addArray<vtkFloatArray>(mesh, "value", 1, { nan, nan, 3, 2 }); }));
+  const Result result = shadelab("compare " + a + " " + b);
+  EXPECT_EQ(result.exitCode, 1);
+  EXPECT_NE(linesAbout(result.out, "value").find("         NaN in both files at 1 values (equal), in one only at 2 (they fail)\n"),
+    std::string::npos) << result.out;
+  EXPECT_EQ(shadelab("compare " + a + " " + a).exitCode, 0);
+}
+
+TEST_F(Compare, StatisticalModeJudgesByTheStandardErrors)
+{
+  // Combined errors sqrt(0.03^2 + 0.04^2) = 0.05: gaps 0.02, 0.07, 0.12 and 0.2 lie within 1,
+  // 2, 3 and 4 of them.
+  const std::string a = write("a.vtp", square([](vtkPolyData* mesh)
+    {
+      addArray<vtkDoubleArray>(mesh, "ambient_occlusion", 1, { 0.5, 0.5, 0.5, 0.5 });
+      addArray<vtkDoubleArray>(mesh, "ambient_occlusion_std_error", 1, { 0.03, 0.03, 0.03, 0.03 });
+    }));
+  const std::string b = write("b.vtp", square([](vtkPolyData* mesh)
+    {
+      addArray<vtkDoubleArray>(mesh, "ambient_occlusion", 1, { 0.52, 0.57, 0.62, 0.7 });
+      addArray<vtkDoubleArray>(mesh, "ambient_occlusion_std_error", 1, { 0.04, 0.04, 0.04, 0.04 });
+    }));
+  const Result three = shadelab("compare " + a + " " + b + " --standard-errors 3 --exclude '*_std_error'");
+  EXPECT_EQ(three.exitCode, 1);
+  EXPECT_EQ(linesAbout(three.out, "ambient_occlusion"),
+    "  DIFFER ambient_occlusion              point  float64 x1 1 / 4             0.2        0.122      0.244      "
+    "atol 0, rtol 8.88e-16, or within 3 standard errors\n"
+    "         worst failing at point 3 (0, 1, 0): 0.5 in the baseline, 0.69999999999999996 in the result\n"
+    "         within 1, 2, 3 combined standard errors: 25.0%, 50.0%, 75.0% of 4 values (a normal error: 68.3%, "
+    "95.4%, 99.7%)\n");
+  EXPECT_EQ(shadelab("compare " + a + " " + b + " --standard-errors 4.5 --exclude '*_std_error'").exitCode, 0);
+  const Result bad = shadelab("compare " + a + " " + b + " --standard-errors 0");
+  EXPECT_EQ(bad.exitCode, 2);
+  EXPECT_EQ(bad.err, "shadelab compare: --standard-errors must be a number > 0 (3 is usual)\n");
+}
+
+TEST_F(Compare, TheJsonReportHoldsWhatTheTableSays)
+{
+  const std::string a = write("a.vtp", square(shaded));
+  const std::string b = write("b.vtp", square([](vtkPolyData* mesh)
+    {
+      addArray<vtkFloatArray>(mesh, "total", 3, { 0.5, 0.25, 0.125, 0.5, 0.5, 0.5, 1, 0, 0, 0.75, 0.751, 0.75 });
+      addArray<vtkUnsignedCharArray>(mesh, "shading_flags", 1, { 64, 64, 4, 0 });
+    }));
+  const std::string report = (folder / "report.json").string();
+  EXPECT_EQ(shadelab("compare " + a + " " + b + " --json " + report).exitCode, 1);
+  const nlohmann::json json = nlohmann::json::parse(slurp(report));
+  EXPECT_EQ(json["passed"], false);
+  ASSERT_EQ(json["arrays"].size(), 3u);
+  const nlohmann::json& total = json["arrays"][1];
+  EXPECT_EQ(total["name"], "total");
+  EXPECT_EQ(total["data"], "point");
+  EXPECT_EQ(total["type"], "float32");
+  EXPECT_EQ(total["failing"], 1);
+  EXPECT_EQ(total["values"], 12);
+  EXPECT_EQ(total["worst"]["tuple"], 3);
+  EXPECT_EQ(total["worst"]["component"], 1);
+  EXPECT_EQ(total["worst"]["baseline"], 0.75);
+  EXPECT_EQ(total["worst"]["result"], double(0.751f));
+  EXPECT_NEAR(total["max_difference"].get<double>(), 0.001, 1e-7);
+  const nlohmann::json& flags = json["arrays"][2];
+  const nlohmann::json bits = nlohmann::json::array(
+    { { { "bit", 6 }, { "name", "64 (a shadowed light hidden by its own triangles)" }, { "values", 1 } } });
+  EXPECT_EQ(flags["bits_that_differ"], bits);
+  EXPECT_EQ(json["arrays"][0]["passed"], true);
+}
+
+TEST_F(Compare, AnyDatasetIsRead)
+{
+  // An unstructured grid with the square's points and arrays agrees with the polydata.
+  vtkSmartPointer<vtkPolyData> mesh = square(shaded);
+  vtkNew<vtkUnstructuredGrid> grid;
+  grid->SetPoints(mesh->GetPoints());
+  grid->GetPointData()->ShallowCopy(mesh->GetPointData());
+  const vtkIdType triangle[3] = { 0, 1, 2 };
+  grid->InsertNextCell(VTK_TRIANGLE, 3, triangle);
+  const std::string vtu = (folder / "grid.vtu").string();
+  vtkNew<vtkXMLUnstructuredGridWriter> writer;
+  writer->SetInputData(grid);
+  writer->SetFileName(vtu.c_str());
+  writer->Write();
+  const Result result = shadelab("compare " + vtu + " " + write("a.vtp", mesh));
+  EXPECT_EQ(result.exitCode, 0) << result.out << result.err;
+  EXPECT_NE(result.out.find("(4 points, 2 cells) against the baseline " + vtu + " (4 points, 1 cells)"), std::string::npos)
+    << result.out;
+}
+
+TEST_F(Compare, UnreadableFilesAndBadOptionsExitWithTwo)
+{
+  const std::string a = write("a.vtp", square(shaded));
+  const std::string absent = (folder / "absent.vtp").string();
+  const Result missing = shadelab("compare " + a + " " + absent);
+  EXPECT_EQ(missing.exitCode, 2);
+  EXPECT_EQ(missing.err, "shadelab compare: " + absent + ": no such file\n");
+  const std::string garbage = file("garbage.vtu", "<VTKFile type=\"UnstructuredGrid\"> not really\n");
+  const Result broken = shadelab("compare " + garbage + " " + a);
+  EXPECT_EQ(broken.exitCode, 2);
+  EXPECT_EQ(broken.err.rfind("shadelab compare: " + garbage + ": cannot be read as .vtu: ", 0), 0u) << broken.err;
+  const std::string unknown = file("data.xyz", "1 2 3\n");
+  EXPECT_EQ(shadelab("compare " + unknown + " " + a).err, "shadelab compare: " + unknown +
+    ": unknown dataset format '.xyz'; ShadeLab reads .vtp, .vtu, .vti, .vts, .vtr, .vtk (legacy), .ply, .obj, .stl\n");
+  const Result tolerance = shadelab("compare " + a + " " + a + " --atol total:lots");
+  EXPECT_EQ(tolerance.exitCode, 2);
+  EXPECT_EQ(tolerance.err,
+    "shadelab compare: 'lots' is not a tolerance: write a number >= 0 (1e-6), or one times the array's range (1e-3*range)\n");
+  EXPECT_EQ(shadelab("compare " + a).exitCode, 2); // CLI11: the result is required
+}
+}
