@@ -12,6 +12,10 @@
 #include "vtkDataArray.h"
 #include "vtkDataArrayRange.h"
 #include "vtkDataSet.h"
+#include "vtkDoubleArray.h"
+#include "vtkPolyData.h"
+#include "vtkTypeInt64Array.h"
+#include "vtkUnsignedCharArray.h"
 #include "vtkFieldData.h"
 #include "vtkPointData.h"
 #include "vtkPointSet.h"
@@ -360,6 +364,69 @@ void printHeading()
 }
 
 /// The array's row of the table, then what a person needs to see about its differences.
+/// What a person needs to see about an array's differences beyond its row: the worst value,
+/// NaNs, the bits, the standard errors. One line each.
+std::vector<std::string> detailsOf(const ArrayReport& report, const std::vector<FileArray>& baseline,
+  const std::vector<FileArray>& result)
+{
+  std::vector<std::string> lines;
+  if (!report.difference)
+  {
+    return lines;
+  }
+  const ArrayDifference& d = *report.difference;
+  if (d.worst && d.largest > 0)
+  {
+    const FileArray* other = find(result, report.name, report.association);
+    lines.push_back(std::string(d.failing > 0 ? "worst failing" : "largest difference") + " at " +
+      placeOf(report, *d.worst, baseline) + ": " + valueText(report.baseline->values, *d.worst) + " in the baseline, " +
+      valueText(other->values, *d.worst) + " in the result");
+  }
+  if (d.nanInBoth + d.nanInOne > 0)
+  {
+    lines.push_back("NaN in both files at " + std::to_string(d.nanInBoth) + " values (equal), in one only at " +
+      std::to_string(d.nanInOne) + " (they fail)");
+  }
+  if (report.baseline->values.type == ValueType::Integer && d.failing > 0)
+  {
+    std::string text = "bits that differ:";
+    const char* separator = " ";
+    for (int bit = 0; bit < 64; ++bit)
+    {
+      if (d.bitCounts[static_cast<std::size_t>(bit)] > 0)
+      {
+        text += separator + bitName(bit, report.flags) + " in " + std::to_string(d.bitCounts[static_cast<std::size_t>(bit)]);
+        separator = ", ";
+      }
+    }
+    lines.push_back(text);
+  }
+  if (report.rule.standardErrors && d.withStandardError > 0)
+  {
+    const double n = static_cast<double>(d.withStandardError);
+    std::ostringstream text;
+    text << "within 1, 2, 3 combined standard errors: " << std::fixed << std::setprecision(1)
+         << 100 * d.withinStandardErrors[0] / n << "%, " << 100 * d.withinStandardErrors[1] / n << "%, "
+         << 100 * d.withinStandardErrors[2] / n << "% of " << d.withStandardError
+         << " values (a normal error: 68.3%, 95.4%, 99.7%)";
+    lines.push_back(text.str());
+  }
+  return lines;
+}
+
+/// The verdict in a few words: the reason it could not be compared, or the count that fails.
+std::string verdictOf(const ArrayReport& report)
+{
+  if (!report.problem.empty())
+  {
+    return report.problem;
+  }
+  const ArrayDifference& d = *report.difference;
+  return std::to_string(d.failing) + " of " + std::to_string(d.values) + " values fail (" + ruleText(report) +
+    "); max |diff| " + brief(d.largest);
+}
+
+/// The array's row of the table, then its details.
 void printReport(const ArrayReport& report, const std::vector<FileArray>& baseline, const std::vector<FileArray>& result)
 {
   std::string type;
@@ -378,41 +445,75 @@ void printReport(const ArrayReport& report, const std::vector<FileArray>& baseli
   std::cout << std::setw(failingWidth) << (std::to_string(d.failing) + " / " + std::to_string(d.values))
             << std::setw(numberWidth) << brief(d.largest) << std::setw(numberWidth) << brief(d.rms())
             << std::setw(numberWidth) << brief(d.l2()) << ruleText(report) << std::right << "\n";
-  const std::string indent(9, ' ');
-  if (d.worst && d.largest > 0)
+  for (const std::string& line : detailsOf(report, baseline, result))
   {
-    const FileArray* other = find(result, report.name, report.association);
-    std::cout << indent << (d.failing > 0 ? "worst failing" : "largest difference") << " at "
-              << placeOf(report, *d.worst, baseline) << ": " << valueText(report.baseline->values, *d.worst)
-              << " in the baseline, " << valueText(other->values, *d.worst) << " in the result\n";
+    std::cout << "         " << line << "\n";
   }
-  if (d.nanInBoth + d.nanInOne > 0)
+}
+
+/// Text in XML: the five characters XML reserves, escaped, and other control characters
+/// (which XML 1.0 cannot hold) as '?'.
+std::string xmlText(const std::string& text)
+{
+  std::string escaped;
+  for (const char c : text)
   {
-    std::cout << indent << "NaN in both files at " << d.nanInBoth << " values (equal), in one only at " << d.nanInOne
-              << " (they fail)\n";
-  }
-  if (report.baseline->values.type == ValueType::Integer && d.failing > 0)
-  {
-    std::cout << indent << "bits that differ:";
-    const char* separator = " ";
-    for (int bit = 0; bit < 64; ++bit)
+    switch (c)
     {
-      if (d.bitCounts[static_cast<std::size_t>(bit)] > 0)
-      {
-        std::cout << separator << bitName(bit, report.flags) << " in " << d.bitCounts[static_cast<std::size_t>(bit)];
-        separator = ", ";
-      }
+      case '&': escaped += "&amp;"; break;
+      case '<': escaped += "&lt;"; break;
+      case '>': escaped += "&gt;"; break;
+      case '"': escaped += "&quot;"; break;
+      case '\'': escaped += "&apos;"; break;
+      default:
+        escaped += static_cast<unsigned char>(c) < 0x20 && c != '\n' && c != '\t' ? '?' : c;
     }
-    std::cout << "\n";
   }
-  if (report.rule.standardErrors && d.withStandardError > 0)
+  return escaped;
+}
+
+/// The report as JUnit XML, one test case per array, so that CI systems show each.
+std::string junitOf(const std::vector<ArrayReport>& reports, const CompareOptions& options,
+  const std::vector<FileArray>& baseline, const std::vector<FileArray>& result)
+{
+  const std::size_t failures = static_cast<std::size_t>(
+    std::count_if(reports.begin(), reports.end(), [](const ArrayReport& r) { return !r.passes(); }));
+  std::ostringstream xml;
+  xml << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+      << "<testsuites name=\"shadelab compare\" tests=\"" << reports.size() << "\" failures=\"" << failures << "\">\n"
+      << "  <testsuite name=\"" << xmlText(options.result + " against " + options.baseline) << "\" tests=\""
+      << reports.size() << "\" failures=\"" << failures << "\">\n";
+  for (const ArrayReport& report : reports)
   {
-    const double n = static_cast<double>(d.withStandardError);
-    std::cout << indent << "within 1, 2, 3 combined standard errors: " << std::fixed << std::setprecision(1)
-              << 100 * d.withinStandardErrors[0] / n << "%, " << 100 * d.withinStandardErrors[1] / n << "%, "
-              << 100 * d.withinStandardErrors[2] / n << "% of " << d.withStandardError
-              << " values (a normal error: 68.3%, 95.4%, 99.7%)" << std::defaultfloat << "\n";
+    xml << "    <testcase classname=\"shadelab.compare." << associationName(report.association) << "\" name=\""
+        << xmlText(report.name) << "\"";
+    if (report.passes())
+    {
+      xml << "/>\n";
+      continue;
+    }
+    xml << ">\n      <failure message=\"" << xmlText(verdictOf(report)) << "\">";
+    for (const std::string& line : detailsOf(report, baseline, result))
+    {
+      xml << xmlText(line) << "\n";
+    }
+    xml << "</failure>\n    </testcase>\n";
   }
+  xml << "  </testsuite>\n</testsuites>\n";
+  return xml.str();
+}
+
+/// Writes text to fileName whole, through a temporary file. Throws UserError.
+void writeReport(const std::string& fileName, const std::string& text)
+{
+  writeThroughTemporary(fileName,
+    [&](const std::string& temporary) -> std::string
+    {
+      std::ofstream file(temporary);
+      file << text;
+      file.close();
+      return file ? "" : "the report could not be written (disk full?)";
+    });
 }
 
 /// A double as JSON: a number where finite, else its text ("nan", "inf"), which JSON has no
@@ -477,6 +578,96 @@ nlohmann::json jsonOf(const ArrayReport& report, const std::vector<FileArray>& b
   return entry;
 }
 
+std::string jsonReport(const std::vector<ArrayReport>& reports, bool passed, const std::vector<SkippedArray>& skipped,
+  const CompareOptions& options, const std::vector<FileArray>& baseline, const std::vector<FileArray>& result)
+{
+  nlohmann::json report = { { "baseline", options.baseline }, { "result", options.result }, { "passed", passed },
+    { "arrays", nlohmann::json::array() }, { "not_compared", nlohmann::json::array() } };
+  for (const ArrayReport& r : reports)
+  {
+    report["arrays"].push_back(jsonOf(r, baseline, result));
+  }
+  for (const SkippedArray& array : skipped)
+  {
+    report["not_compared"].push_back(array.description);
+  }
+  return report.dump(2) + "\n";
+}
+
+/// The name of the pass/fail arrays of the difference mesh, in its point and cell data.
+constexpr const char* passedArrayName = "compare_passed";
+
+/// The result's mesh, with, for each array compared value by value, NAME_difference (result
+/// less baseline: float64, or 64-bit integers) beside it, and compare_passed in its point and
+/// cell data: 1 where every compared value of the point (or cell) passes, 0 where one fails.
+/// Throws UserError for a result that is not polydata.
+vtkSmartPointer<vtkPolyData> differenceMesh(vtkDataSet* resultData, const std::vector<ArrayReport>& reports,
+  const std::vector<FileArray>& result)
+{
+  auto* resultMesh = vtkPolyData::SafeDownCast(resultData);
+  if (!resultMesh)
+  {
+    throw UserError(std::string("--diff writes a mesh (.vtp or .vtk), and the result is a ") +
+      resultData->GetClassName() + ": leave --diff out for it");
+  }
+  auto mesh = vtkSmartPointer<vtkPolyData>::New();
+  mesh->ShallowCopy(resultMesh);
+  auto passedArray = [](vtkIdType count)
+  {
+    auto passed = vtkSmartPointer<vtkUnsignedCharArray>::New();
+    passed->SetName(passedArrayName);
+    passed->SetNumberOfTuples(count);
+    passed->FillValue(1);
+    return passed;
+  };
+  vtkSmartPointer<vtkUnsignedCharArray> pointsPassed = passedArray(mesh->GetNumberOfPoints());
+  vtkSmartPointer<vtkUnsignedCharArray> cellsPassed = passedArray(mesh->GetNumberOfCells());
+  for (const ArrayReport& report : reports)
+  {
+    if (!report.difference || report.association == Association::FieldData)
+    {
+      continue;
+    }
+    const ArrayValues& a = report.baseline->values;
+    const ArrayValues& b = find(result, report.name, report.association)->values;
+    vtkSmartPointer<vtkDataArray> difference;
+    if (a.type == ValueType::Integer)
+    {
+      auto integers = vtkSmartPointer<vtkTypeInt64Array>::New();
+      integers->SetNumberOfComponents(a.components);
+      integers->SetNumberOfTuples(static_cast<vtkIdType>(a.tuples()));
+      for (std::size_t i = 0; i < a.size(); ++i)
+      {
+        integers->SetValue(static_cast<vtkIdType>(i), b.integers[i] - a.integers[i]);
+      }
+      difference = integers;
+    }
+    else
+    {
+      auto reals = vtkSmartPointer<vtkDoubleArray>::New();
+      reals->SetNumberOfComponents(a.components);
+      reals->SetNumberOfTuples(static_cast<vtkIdType>(a.tuples()));
+      for (std::size_t i = 0; i < a.size(); ++i)
+      {
+        reals->SetValue(static_cast<vtkIdType>(i), b.reals[i] - a.reals[i]);
+      }
+      difference = reals;
+    }
+    difference->SetName((report.name + "_difference").c_str());
+    const bool onCells = report.association == Association::CellData;
+    (onCells ? static_cast<vtkFieldData*>(mesh->GetCellData()) : mesh->GetPointData())->AddArray(difference);
+    vtkUnsignedCharArray* passed = onCells ? cellsPassed : pointsPassed;
+    const std::vector<unsigned char>& tuplePasses = report.difference->tuplePasses;
+    for (std::size_t t = 0; t < tuplePasses.size() && t < static_cast<std::size_t>(passed->GetNumberOfValues()); ++t)
+    {
+      passed->SetValue(static_cast<vtkIdType>(t), passed->GetValue(static_cast<vtkIdType>(t)) & tuplePasses[t]);
+    }
+  }
+  mesh->GetPointData()->AddArray(pointsPassed);
+  mesh->GetCellData()->AddArray(cellsPassed);
+  return mesh;
+}
+
 std::string datasetText(vtkDataSet* data)
 {
   return std::to_string(data->GetNumberOfPoints()) + " points, " + std::to_string(data->GetNumberOfCells()) + " cells";
@@ -511,6 +702,10 @@ CLI::App* addCompareCommand(CLI::App& cli, CompareOptions& options)
     ->delimiter(',');
   command->add_flag("--no-points", options.noPoints, "do not compare the point coordinates");
   command->add_option("--json", options.json, "also write the report as JSON to this file");
+  command->add_option("--junit", options.junit, "also write the report as JUnit XML to this file (.xml), one test case per array, for CI systems");
+  command->add_option("--diff", options.diff,
+    "also write the result's mesh (.vtp or .vtk) with NAME_difference (result - baseline) for each array compared "
+    "and compare_passed (1 where every compared value of a point or cell passes, 0 where one fails), to open in ParaView");
   return command;
 }
 
@@ -527,6 +722,14 @@ int runCompare(const CompareOptions& options)
     if (!options.json.empty())
     {
       checkOutputFile(options.json, { ".json" });
+    }
+    if (!options.junit.empty())
+    {
+      checkOutputFile(options.junit, { ".xml" });
+    }
+    if (!options.diff.empty())
+    {
+      checkOutputFile(options.diff, meshExtensions);
     }
     baselineData = readDataSet(options.baseline);
     warnings.collect(options.baseline);
@@ -639,34 +842,25 @@ int runCompare(const CompareOptions& options)
   }
   const bool passed = !reports.empty() && differing == 0;
   warnings.show();
-  if (!options.json.empty())
+  try
   {
-    nlohmann::json report = { { "baseline", options.baseline }, { "result", options.result }, { "passed", passed },
-      { "arrays", nlohmann::json::array() }, { "not_compared", nlohmann::json::array() } };
-    for (const ArrayReport& r : reports)
+    if (!options.json.empty())
     {
-      report["arrays"].push_back(jsonOf(r, baseline, result));
+      writeReport(options.json, jsonReport(reports, passed, skippedBaseline, options, baseline, result));
     }
-    for (const SkippedArray& skipped : skippedBaseline)
+    if (!options.junit.empty())
     {
-      report["not_compared"].push_back(skipped.description);
+      writeReport(options.junit, junitOf(reports, options, baseline, result));
     }
-    try
+    if (!options.diff.empty())
     {
-      writeThroughTemporary(options.json,
-        [&](const std::string& temporary) -> std::string
-        {
-          std::ofstream file(temporary);
-          file << report.dump(2) << "\n";
-          file.close();
-          return file ? "" : "the report could not be written (disk full?)";
-        });
+      writeMesh(differenceMesh(resultData, reports, result), options.diff, Compression::LZ4);
     }
-    catch (const UserError& error)
-    {
-      std::cerr << "shadelab compare: " << error.what() << "\n";
-      return 2;
-    }
+  }
+  catch (const UserError& error)
+  {
+    std::cerr << "shadelab compare: " << error.what() << "\n";
+    return 2;
   }
   return passed ? 0 : 1;
 }

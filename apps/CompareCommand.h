@@ -18,7 +18,7 @@ struct CompareOptions
   std::vector<std::string> flagArrays{ "*shading_flags" }; // integers whose bits are ShadeLab's flags
   std::optional<double> standardErrors;              // statistical mode: k
   bool noPoints = false;
-  std::string json;
+  std::string json, junit, diff; // report files, and the difference mesh
 };
 
 CLI::App* addCompareCommand(CLI::App& cli, CompareOptions& options);

@@ -3,6 +3,7 @@
 #include "CliFixture.h"
 
 #include "vtkCellArray.h"
+#include "vtkCellData.h"
 #include "vtkDoubleArray.h"
 #include "vtkFloatArray.h"
 #include "vtkNew.h"
@@ -11,6 +12,9 @@
 #include "vtkPolyData.h"
 #include "vtkUnsignedCharArray.h"
 #include "vtkUnstructuredGrid.h"
+#include "vtkXMLDataElement.h"
+#include "vtkXMLDataParser.h"
+#include "vtkXMLPolyDataReader.h"
 #include "vtkXMLPolyDataWriter.h"
 #include "vtkXMLUnstructuredGridWriter.h"
 
@@ -332,6 +336,11 @@ TEST_F(Compare, AnyDatasetIsRead)
   EXPECT_EQ(result.exitCode, 0) << result.out << result.err;
   EXPECT_NE(result.out.find("(4 points, 2 cells) against the baseline " + vtu + " (4 points, 1 cells)"), std::string::npos)
     << result.out;
+  const Result diff = shadelab("compare " + vtu + " " + vtu + " --diff " + (folder / "diff.vtp").string());
+  EXPECT_EQ(diff.exitCode, 2);
+  EXPECT_EQ(diff.err, "shadelab compare: --diff writes a mesh (.vtp or .vtk), and the result is a vtkUnstructuredGrid: "
+                      "leave --diff out for it\n");
+  EXPECT_FALSE(std::filesystem::exists(folder / "diff.vtp"));
 }
 
 TEST_F(Compare, UnreadableFilesAndBadOptionsExitWithTwo)
@@ -353,5 +362,60 @@ TEST_F(Compare, UnreadableFilesAndBadOptionsExitWithTwo)
   EXPECT_EQ(tolerance.err,
     "shadelab compare: 'lots' is not a tolerance: write a number >= 0 (1e-6), or one times the array's range (1e-3*range)\n");
   EXPECT_EQ(shadelab("compare " + a).exitCode, 2); // CLI11: the result is required
+}
+}
+
+namespace
+{
+TEST_F(Compare, JunitAndTheDifferenceMeshShowWhereTheFilesDiffer)
+{
+  const std::string a = write("a.vtp", square(shaded));
+  const std::string b = write("b.vtp", square([](vtkPolyData* mesh)
+    {
+      addArray<vtkFloatArray>(mesh, "total", 3, { 0.5, 0.25, 0.125, 0.5, 0.5, 0.5, 1, 0, 0, 0.75, 0.751, 0.75 });
+      addArray<vtkUnsignedCharArray>(mesh, "shading_flags", 1, { 64, 64, 4, 0 });
+    }));
+  const std::string junit = (folder / "report.xml").string(), diff = (folder / "diff.vtp").string();
+  EXPECT_EQ(shadelab("compare " + a + " " + b + " --junit " + junit + " --diff " + diff).exitCode, 1);
+
+  // JUnit: a test case per array, a failure with the verdict and the details where it differs.
+  vtkNew<vtkXMLDataParser> parser;
+  parser->SetFileName(junit.c_str());
+  ASSERT_EQ(parser->Parse(), 1);
+  vtkXMLDataElement* suites = parser->GetRootElement();
+  EXPECT_STREQ(suites->GetName(), "testsuites");
+  EXPECT_STREQ(suites->GetAttribute("tests"), "3");
+  EXPECT_STREQ(suites->GetAttribute("failures"), "2");
+  vtkXMLDataElement* suite = suites->GetNestedElement(0);
+  ASSERT_EQ(suite->GetNumberOfNestedElements(), 3);
+  EXPECT_STREQ(suite->GetNestedElement(0)->GetAttribute("name"), "points");
+  EXPECT_EQ(suite->GetNestedElement(0)->GetNumberOfNestedElements(), 0);
+  vtkXMLDataElement* total = suite->GetNestedElement(1);
+  EXPECT_STREQ(total->GetAttribute("classname"), "shadelab.compare.point");
+  ASSERT_EQ(total->GetNumberOfNestedElements(), 1);
+  EXPECT_STREQ(total->GetNestedElement(0)->GetName(), "failure");
+  EXPECT_STREQ(total->GetNestedElement(0)->GetAttribute("message"),
+    "1 of 12 values fail (atol 0, rtol 4.77e-07); max |diff| 0.001");
+
+  // The difference mesh: result - baseline for each array, and where it fails.
+  vtkNew<vtkXMLPolyDataReader> reader;
+  reader->SetFileName(diff.c_str());
+  reader->Update();
+  vtkPointData* data = reader->GetOutput()->GetPointData();
+  auto* totalDifference = vtkDoubleArray::SafeDownCast(data->GetArray("total_difference"));
+  ASSERT_NE(totalDifference, nullptr);
+  EXPECT_EQ(totalDifference->GetComponent(3, 1), double(0.751f) - double(0.75f));
+  EXPECT_EQ(totalDifference->GetComponent(0, 0), 0.0);
+  vtkDataArray* flagsDifference = data->GetArray("shading_flags_difference");
+  ASSERT_NE(flagsDifference, nullptr);
+  EXPECT_EQ(flagsDifference->GetComponent(0, 0), 64.0);
+  auto* passed = vtkUnsignedCharArray::SafeDownCast(data->GetArray("compare_passed"));
+  ASSERT_NE(passed, nullptr);
+  EXPECT_EQ(std::vector<int>({ passed->GetValue(0), passed->GetValue(1), passed->GetValue(2), passed->GetValue(3) }),
+    std::vector<int>({ 0, 1, 1, 0 }));
+  ASSERT_NE(data->GetArray("total"), nullptr); // the result's own arrays stay beside them
+  auto* cellsPassed = vtkUnsignedCharArray::SafeDownCast(reader->GetOutput()->GetCellData()->GetArray("compare_passed"));
+  ASSERT_NE(cellsPassed, nullptr);
+  EXPECT_EQ(cellsPassed->GetNumberOfValues(), 2);
 }
 }
