@@ -8,6 +8,10 @@
 #include "ValueComparison.h"
 
 #include "vtkArrayDispatch.h"
+#include "vtkCellCenters.h"
+#include "vtkIdList.h"
+#include "vtkMath.h"
+#include "vtkStaticPointLocator.h"
 #include "vtkCellData.h"
 #include "vtkDataArray.h"
 #include "vtkDataArrayRange.h"
@@ -28,6 +32,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 #include <sstream>
 #include <type_traits>
 
@@ -578,6 +583,116 @@ nlohmann::json jsonOf(const ArrayReport& report, const std::vector<FileArray>& b
   return entry;
 }
 
+/// For each point of `from`, the nearest point of `to` not yet matched (points with the same
+/// coordinates, copies at a seam, match one to one in the order of their ids), where every one
+/// lies within tolerance. Throws UserError naming the first that has none, with what (points or
+/// cell centres) it is.
+std::vector<vtkIdType> nearestMatches(vtkDataSet* from, vtkDataSet* to, double tolerance, const std::string& what,
+  double& farthest)
+{
+  vtkNew<vtkStaticPointLocator> locator;
+  locator->SetDataSet(to);
+  locator->BuildLocator();
+  std::vector<vtkIdType> matches(static_cast<std::size_t>(from->GetNumberOfPoints()));
+  std::vector<vtkIdType> takenBy(static_cast<std::size_t>(to->GetNumberOfPoints()), -1);
+  farthest = 0;
+  for (vtkIdType i = 0; i < from->GetNumberOfPoints(); ++i)
+  {
+    double p[3], q[3];
+    from->GetPoint(i, p);
+    // The nearest few, nearest first and equal distances by id: the first not yet matched.
+    constexpr int candidates = 16;
+    vtkNew<vtkIdList> near;
+    locator->FindClosestNPoints(candidates, p, near);
+    std::vector<std::pair<double, vtkIdType>> byDistance;
+    for (vtkIdType k = 0; k < near->GetNumberOfIds(); ++k)
+    {
+      to->GetPoint(near->GetId(k), q);
+      byDistance.emplace_back(std::sqrt(vtkMath::Distance2BetweenPoints(p, q)), near->GetId(k));
+    }
+    std::sort(byDistance.begin(), byDistance.end());
+    vtkIdType chosen = -1;
+    double distance = byDistance.empty() ? std::numeric_limits<double>::infinity() : byDistance.front().first;
+    for (const auto& [d, id] : byDistance)
+    {
+      if (takenBy[static_cast<std::size_t>(id)] < 0 && d <= tolerance)
+      {
+        chosen = id;
+        distance = d;
+        break;
+      }
+    }
+    if (chosen < 0)
+    {
+      const bool taken = distance <= tolerance;
+      throw UserError("the result's " + what + " " + std::to_string(i) + " (" + brief(p[0]) + ", " + brief(p[1]) + ", " +
+        brief(p[2]) + ") has no match in the baseline within " + brief(tolerance) +
+        (taken ? std::string(": its " + std::to_string(candidates) + " nearest are matched to others")
+               : " (the nearest is " + brief(distance) + " away)") + ": raise --nearest, or compare by id");
+    }
+    takenBy[static_cast<std::size_t>(chosen)] = i;
+    matches[static_cast<std::size_t>(i)] = chosen;
+    farthest = std::max(farthest, distance);
+  }
+  return matches;
+}
+
+/// The values moved so that tuple i of the result lands where its match, matches[i], is.
+void moveTuples(ArrayValues& values, const std::vector<vtkIdType>& matches)
+{
+  const std::size_t components = static_cast<std::size_t>(values.components);
+  auto move = [&](auto& v)
+  {
+    auto moved = v;
+    for (std::size_t i = 0; i < matches.size() && (i + 1) * components <= v.size(); ++i)
+    {
+      std::copy_n(&v[i * components], components, &moved[static_cast<std::size_t>(matches[i]) * components]);
+    }
+    v = std::move(moved);
+  };
+  values.type == ValueType::Integer ? move(values.integers) : move(values.reals);
+}
+
+/// The cells' centres, as points.
+vtkSmartPointer<vtkDataSet> cellCentres(vtkDataSet* data)
+{
+  vtkNew<vtkCellCenters> centres;
+  centres->SetInputData(data);
+  centres->VertexCellsOff();
+  centres->Update();
+  return centres->GetOutput();
+}
+
+/// The result's point and cell arrays put in the baseline's order, matching points (and cells,
+/// by their centres) by nearest point within the tolerance. Returns what it did, in words.
+/// Throws UserError where no such match exists.
+std::string matchByNearest(vtkDataSet* baseline, vtkDataSet* result, std::vector<FileArray>& arrays, double tolerance)
+{
+  std::ostringstream done;
+  for (const bool cells : { false, true })
+  {
+    vtkSmartPointer<vtkDataSet> from = cells ? cellCentres(result) : vtkSmartPointer<vtkDataSet>(result);
+    vtkSmartPointer<vtkDataSet> to = cells ? cellCentres(baseline) : vtkSmartPointer<vtkDataSet>(baseline);
+    if (from->GetNumberOfPoints() != to->GetNumberOfPoints() || from->GetNumberOfPoints() == 0)
+    {
+      continue; // the arrays' counts differ, which their rows will say
+    }
+    double farthest = 0;
+    const std::vector<vtkIdType> matches = nearestMatches(from, to, tolerance, cells ? "cell centre" : "point", farthest);
+    for (FileArray& array : arrays)
+    {
+      const bool onCells = array.association == Association::CellData;
+      if (array.association != Association::FieldData && onCells == cells)
+      {
+        moveTuples(array.values, matches);
+      }
+    }
+    done << (cells ? "; cells by their centres, " : "points matched by nearest point, ") << "the farthest "
+         << brief(farthest) << " away";
+  }
+  return done.str();
+}
+
 std::string jsonReport(const std::vector<ArrayReport>& reports, bool passed, const std::vector<SkippedArray>& skipped,
   const CompareOptions& options, const std::vector<FileArray>& baseline, const std::vector<FileArray>& result)
 {
@@ -701,6 +816,9 @@ CLI::App* addCompareCommand(CLI::App& cli, CompareOptions& options)
     "integer arrays whose bits are ShadeLab's shading flags, named in the report (default *shading_flags)")
     ->delimiter(',');
   command->add_flag("--no-points", options.noPoints, "do not compare the point coordinates");
+  command->add_option("--nearest", options.nearest,
+    "match the result's points to the baseline's by nearest point within this distance, and its cells by their "
+    "centres, instead of by id (for meshes whose points were re-ordered)");
   command->add_option("--json", options.json, "also write the report as JSON to this file");
   command->add_option("--junit", options.junit, "also write the report as JUnit XML to this file (.xml), one test case per array, for CI systems");
   command->add_option("--diff", options.diff,
@@ -716,6 +834,7 @@ int runCompare(const CompareOptions& options)
   std::vector<FileArray> baseline, result;
   vtkSmartPointer<vtkDataSet> baselineData, resultData;
   RunWarnings warnings; // a reader's warning says the file is damaged: its values may be too
+  std::string matching = "points and cells matched by id";
   try
   {
     const Rules rules = parseRules(options);
@@ -737,6 +856,14 @@ int runCompare(const CompareOptions& options)
     warnings.collect(options.result);
     baseline = arraysOf(baselineData, !options.noPoints, skippedBaseline);
     result = arraysOf(resultData, !options.noPoints, skippedResult);
+    if (options.nearest)
+    {
+      if (!(*options.nearest >= 0))
+      {
+        throw UserError("--nearest must be a distance >= 0");
+      }
+      matching = matchByNearest(baselineData, resultData, result, *options.nearest);
+    }
     auto selected = [&](const FileArray& array)
     { return array.association == Association::Points || (matchesAny(options.arrays, array.name) && !matchesAny(options.exclude, array.name)); };
     for (std::vector<SkippedArray>* skipped : { &skippedBaseline, &skippedResult })
@@ -810,7 +937,8 @@ int runCompare(const CompareOptions& options)
 
   const std::size_t differing = static_cast<std::size_t>(std::count_if(reports.begin(), reports.end(), [](const ArrayReport& r) { return !r.passes(); }));
   std::cout << "shadelab compare: the result " << options.result << " (" << datasetText(resultData)
-            << ") against the baseline " << options.baseline << " (" << datasetText(baselineData) << ")\n";
+            << ") against the baseline " << options.baseline << " (" << datasetText(baselineData) << "); " << matching
+            << "\n";
   printHeading();
   for (const ArrayReport& report : reports)
   {

@@ -18,6 +18,7 @@ struct CompareOptions
   std::vector<std::string> flagArrays{ "*shading_flags" }; // integers whose bits are ShadeLab's flags
   std::optional<double> standardErrors;              // statistical mode: k
   bool noPoints = false;
+  std::optional<double> nearest; // match by nearest point within this distance, not by id
   std::string json, junit, diff; // report files, and the difference mesh
 };
 

@@ -419,3 +419,80 @@ TEST_F(Compare, JunitAndTheDifferenceMeshShowWhereTheFilesDiffer)
   EXPECT_EQ(cellsPassed->GetNumberOfValues(), 2);
 }
 }
+
+namespace
+{
+/// The shaded square with its points in reverse order (and its arrays and triangles with them),
+/// the point that was 3 moved by `shift` along x.
+vtkSmartPointer<vtkPolyData> reversedSquare(double shift)
+{
+  vtkSmartPointer<vtkPolyData> mesh = square(shaded);
+  auto reversed = vtkSmartPointer<vtkPolyData>::New();
+  vtkNew<vtkPoints> points;
+  for (vtkIdType i = 3; i >= 0; --i)
+  {
+    double p[3];
+    mesh->GetPoint(i, p);
+    p[0] += i == 3 ? shift : 0.0;
+    points->InsertNextPoint(p);
+  }
+  reversed->SetPoints(points);
+  vtkNew<vtkCellArray> triangles;
+  const vtkIdType second[3] = { 3, 1, 0 }, first[3] = { 3, 2, 1 }; // the cells swapped too
+  triangles->InsertNextCell(3, second);
+  triangles->InsertNextCell(3, first);
+  reversed->SetPolys(triangles);
+  for (int a = 0; a < mesh->GetPointData()->GetNumberOfArrays(); ++a)
+  {
+    vtkDataArray* array = mesh->GetPointData()->GetArray(a);
+    vtkSmartPointer<vtkDataArray> copy;
+    copy.TakeReference(array->NewInstance());
+    copy->SetName(array->GetName());
+    copy->SetNumberOfComponents(array->GetNumberOfComponents());
+    for (vtkIdType i = 3; i >= 0; --i)
+    {
+      copy->InsertNextTuple(array->GetTuple(i));
+    }
+    reversed->GetPointData()->AddArray(copy);
+  }
+  vtkNew<vtkFloatArray> area;
+  area->SetName("cell_value");
+  area->InsertNextValue(2.0f); // the baseline's cell 1, now first
+  area->InsertNextValue(1.0f);
+  reversed->GetCellData()->AddArray(area);
+  return reversed;
+}
+
+TEST_F(Compare, ReorderedMeshesMatchByNearestPoint)
+{
+  vtkSmartPointer<vtkPolyData> baseline = square(shaded);
+  vtkNew<vtkFloatArray> cellValue;
+  cellValue->SetName("cell_value");
+  cellValue->InsertNextValue(1.0f);
+  cellValue->InsertNextValue(2.0f);
+  baseline->GetCellData()->AddArray(cellValue);
+  const std::string a = write("a.vtp", baseline), b = write("b.vtp", reversedSquare(0.0));
+  // By id, everything differs; by nearest point, nothing does.
+  EXPECT_EQ(shadelab("compare " + a + " " + b).exitCode, 1);
+  const Result nearest = shadelab("compare " + a + " " + b + " --nearest 1e-9");
+  EXPECT_EQ(nearest.exitCode, 0) << nearest.out;
+  EXPECT_NE(nearest.out.find("; points matched by nearest point, the farthest 0 away; cells by their centres, the farthest 0 away\n"),
+    std::string::npos) << nearest.out;
+  // A point moved by 0.01: within 0.1 it matches and its coordinate differs; within 0.001 it
+  // has no match.
+  const std::string moved = write("moved.vtp", reversedSquare(0.01));
+  const Result within = shadelab("compare " + moved + " " + moved + " --nearest 0.1");
+  EXPECT_EQ(within.exitCode, 0);
+  const Result loose = shadelab("compare " + a + " " + moved + " --nearest 0.1");
+  EXPECT_EQ(loose.exitCode, 1);
+  EXPECT_NE(linesAbout(loose.out, "points").find("worst failing at point 3 (0, 1, 0), component 0: 0 in the baseline, 0.0099999997764825821 in the result"),
+    std::string::npos) << loose.out;
+  const Result tight = shadelab("compare " + a + " " + moved + " --nearest 0.001");
+  EXPECT_EQ(tight.exitCode, 2);
+  EXPECT_EQ(tight.err, "shadelab compare: the result's point 0 (0.01, 1, 0) has no match in the baseline within 0.001 (the "
+                       "nearest is 0.01 away): raise --nearest, or compare by id\n");
+  // Copies of a point (a seam: spot.obj has a point per corner) match one to one.
+  const std::string spot = SHADELAB_SOURCE_DIR "/data/meshes/spot.obj";
+  EXPECT_EQ(shadelab("compare " + spot + " " + spot + " --nearest 0").exitCode, 0);
+}
+}
