@@ -797,24 +797,29 @@ CLI::App* addCompareCommand(CLI::App& cli, CompareOptions& options)
     "when they differ, 2 when a file cannot be read or an option is wrong.");
   command->add_option("baseline", options.baseline, "the file to compare against (.vtp, .vtu, .vti, .vts, .vtr, .vtk, .ply, .obj, .stl)")->required();
   command->add_option("result", options.result, "the file to judge")->required();
+  // One value to each occurrence (repeat the option for more), so that an option before the
+  // files does not take them as its values.
   command->add_option("--atol", options.absolute,
     "absolute tolerance, for every array (1e-6) or by name with wildcards ('total:1e-6', '*_cos_incidence:1e-7'), "
-    "or relative to the baseline array's range ('1e-3*range'); the last rule that matches wins; default 0");
+    "or relative to the baseline array's range ('1e-3*range'); the last rule that matches wins; default 0")
+    ->allow_extra_args(false);
   command->add_option("--rtol", options.relative,
     "relative tolerance, written as --atol; default 4 units in the last place of the array's type "
-    "(4.8e-7 for float32, 8.9e-16 for float64)");
+    "(4.8e-7 for float32, 8.9e-16 for float64)")
+    ->allow_extra_args(false);
   command->add_option("--ulps", options.ulps,
     "judge floating-point values by units in the last place instead ('3', 'total:4'): pass when at most that many "
-    "numbers of the array's type apart");
+    "numbers of the array's type apart")
+    ->allow_extra_args(false);
   command->add_option("--standard-errors", options.standardErrors,
     "statistical mode: where both files hold NAME_std_error beside NAME, a value also passes within K combined "
     "standard errors sqrt(e_a^2 + e_b^2), and the fractions within 1, 2 and 3 are reported");
   command->add_option("--arrays", options.arrays, "compare only the arrays whose names match these wildcards (default *)")
-    ->delimiter(',');
-  command->add_option("--exclude", options.exclude, "leave out the arrays whose names match these wildcards")->delimiter(',');
+    ->delimiter(',')->allow_extra_args(false);
+  command->add_option("--exclude", options.exclude, "leave out the arrays whose names match these wildcards")->delimiter(',')->allow_extra_args(false);
   command->add_option("--flags", options.flagArrays,
     "integer arrays whose bits are ShadeLab's shading flags, named in the report (default *shading_flags)")
-    ->delimiter(',');
+    ->delimiter(',')->allow_extra_args(false);
   command->add_flag("--no-points", options.noPoints, "do not compare the point coordinates");
   command->add_option("--nearest", options.nearest,
     "match the result's points to the baseline's by nearest point within this distance, and its cells by their "

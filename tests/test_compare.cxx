@@ -154,6 +154,8 @@ TEST_F(Compare, ADifferenceBeyondTheDefaultToleranceFailsAndTheWorstIsShown)
   EXPECT_EQ(shadelab("compare " + a + " " + b + " --rtol 't*:2e-3'").exitCode, 0);
   EXPECT_EQ(shadelab("compare " + a + " " + b + " --atol '2e-3*range'").exitCode, 0);
   EXPECT_EQ(shadelab("compare " + a + " " + b + " --atol '5e-4*range'").exitCode, 1);
+  // Options before the files take one value each, not the files.
+  EXPECT_EQ(shadelab("compare --atol total:2e-3 --arrays total,shading_flags " + a + " " + b).exitCode, 0);
   // The last rule that matches wins.
   EXPECT_EQ(shadelab("compare " + a + " " + b + " --atol 1 --atol total:0").exitCode, 1);
   // Or left out.
