@@ -485,6 +485,12 @@ TEST_F(Compare, ReorderedMeshesMatchByNearestPoint)
   const std::string moved = write("moved.vtp", reversedSquare(0.01));
   const Result within = shadelab("compare " + moved + " " + moved + " --nearest 0.1");
   EXPECT_EQ(within.exitCode, 0);
+  // By id, with the points left out: the moved point no longer counts, the reversed arrays do.
+  const std::string once = write("once.vtp", reversedSquare(0.0));
+  const Result noPoints = shadelab("compare " + once + " " + moved + " --no-points");
+  EXPECT_EQ(noPoints.exitCode, 0) << noPoints.out;
+  EXPECT_EQ(linesAbout(noPoints.out, "points"), "");
+  EXPECT_EQ(shadelab("compare " + once + " " + moved).exitCode, 1);
   const Result loose = shadelab("compare " + a + " " + moved + " --nearest 0.1");
   EXPECT_EQ(loose.exitCode, 1);
   EXPECT_NE(linesAbout(loose.out, "points").find("worst failing at point 3 (0, 1, 0), component 0: 0 in the baseline, 0.0099999997764825821 in the result"),
