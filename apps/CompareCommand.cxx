@@ -238,7 +238,13 @@ Rules parseRules(const CompareOptions& options)
     for (const std::string& text : options.relative)
     {
       const auto [pattern, value] = splitRule(text);
-      rules.relative.add(pattern, parseToleranceValue(value));
+      const ToleranceValue tolerance = parseToleranceValue(value);
+      if (tolerance.timesRange)
+      {
+        throw UserError("--rtol '" + text + "': a relative tolerance is a plain number (a fraction of the values); "
+                        "a tolerance relative to the range is --atol's");
+      }
+      rules.relative.add(pattern, tolerance);
     }
     for (const std::string& text : options.ulps)
     {
@@ -344,14 +350,11 @@ std::string placeOf(const ArrayReport& report, std::size_t i, const std::vector<
 /// The bits of ShadeLab's flags, by their meanings; other bits by number.
 std::string bitName(int bit, bool flags)
 {
-  if (flags)
+  for (const FlagMeaning& meaning : flagMeanings)
   {
-    for (const FlagMeaning& meaning : flagMeanings)
+    if (flags && bit < 8 && meaning.flag == (1u << bit))
     {
-      if (meaning.flag == (1u << bit))
-      {
-        return std::to_string(1u << bit) + " (" + meaning.meaning + ")";
-      }
+      return std::to_string(1u << bit) + " (" + meaning.meaning + ")";
     }
   }
   return "bit " + std::to_string(bit);
@@ -456,13 +459,48 @@ void printReport(const ArrayReport& report, const std::vector<FileArray>& baseli
   }
 }
 
-/// Text in XML: the five characters XML reserves, escaped, and other control characters
-/// (which XML 1.0 cannot hold) as '?'.
+/// The length of the UTF-8 sequence at text[i] if it is a character XML 1.0 may hold
+/// (shortest form, no surrogate, not U+FFFE or U+FFFF), else 0.
+std::size_t xmlCharacterLength(const std::string& text, std::size_t i)
+{
+  const auto byte = [&](std::size_t k) { return k < text.size() ? static_cast<unsigned char>(text[k]) : 0u; };
+  const unsigned lead = byte(i);
+  const std::size_t length = lead < 0x80 ? 1 : lead >= 0xC2 && lead <= 0xDF ? 2 : lead >= 0xE0 && lead <= 0xEF ? 3
+    : lead >= 0xF0 && lead <= 0xF4 ? 4 : 0;
+  if (length == 0)
+  {
+    return 0;
+  }
+  unsigned code = length == 1 ? lead : lead & (0x7Fu >> length);
+  for (std::size_t k = 1; k < length; ++k)
+  {
+    if ((byte(i + k) & 0xC0u) != 0x80u)
+    {
+      return 0;
+    }
+    code = (code << 6) | (byte(i + k) & 0x3Fu);
+  }
+  const unsigned smallest[] = { 0, 0, 0x80, 0x800, 0x10000 };
+  const bool allowed = (code >= 0x20 || code == '\t' || code == '\n' || code == '\r') && code >= smallest[length] &&
+    !(code >= 0xD800 && code <= 0xDFFF) && code != 0xFFFE && code != 0xFFFF && code <= 0x10FFFF;
+  return allowed ? length : 0;
+}
+
+/// Text in XML: the five characters XML reserves escaped, and each byte that is not part of a
+/// character XML may hold (a name that is not UTF-8, a control character) as '?'.
 std::string xmlText(const std::string& text)
 {
   std::string escaped;
-  for (const char c : text)
+  for (std::size_t i = 0; i < text.size();)
   {
+    const std::size_t length = xmlCharacterLength(text, i);
+    if (length == 0)
+    {
+      escaped += '?';
+      ++i;
+      continue;
+    }
+    const char c = text[i];
     switch (c)
     {
       case '&': escaped += "&amp;"; break;
@@ -470,9 +508,9 @@ std::string xmlText(const std::string& text)
       case '>': escaped += "&gt;"; break;
       case '"': escaped += "&quot;"; break;
       case '\'': escaped += "&apos;"; break;
-      default:
-        escaped += static_cast<unsigned char>(c) < 0x20 && c != '\n' && c != '\t' ? '?' : c;
+      default: escaped.append(text, i, length);
     }
+    i += length;
   }
   return escaped;
 }
@@ -546,8 +584,8 @@ nlohmann::json jsonOf(const ArrayReport& report, const std::vector<FileArray>& b
   entry["values"] = d.values;
   entry["failing"] = d.failing;
   entry["max_difference"] = jsonNumber(d.largest);
-  entry["rms"] = d.rms();
-  entry["l2"] = d.l2();
+  entry["rms"] = jsonNumber(d.rms());
+  entry["l2"] = jsonNumber(d.l2());
   entry["nan_in_both"] = d.nanInBoth;
   entry["nan_in_one"] = d.nanInOne;
   entry["rule"] = report.rule.ulps ? nlohmann::json{ { "ulps", *report.rule.ulps } }
@@ -583,18 +621,35 @@ nlohmann::json jsonOf(const ArrayReport& report, const std::vector<FileArray>& b
   return entry;
 }
 
+/// How the result's points and cells were matched to the baseline's.
+struct Matching
+{
+  std::string description = "points and cells matched by id";
+  /// With --nearest: the baseline's tuple for each of the result's, once moved to it.
+  std::vector<vtkIdType> points, cells;
+  /// Why the points (or cells) found no match: their arrays are then not compared.
+  std::string pointProblem, cellProblem;
+
+  /// The baseline's tuple that the result's tuple moved to.
+  std::size_t baselineOf(bool onCells, std::size_t tuple) const
+  {
+    const std::vector<vtkIdType>& moved = onCells ? cells : points;
+    return moved.empty() ? tuple : static_cast<std::size_t>(moved[tuple]);
+  }
+};
+
 /// For each point of `from`, the nearest point of `to` not yet matched (points with the same
-/// coordinates, copies at a seam, match one to one in the order of their ids), where every one
-/// lies within tolerance. Throws UserError naming the first that has none, with what (points or
-/// cell centres) it is.
+/// coordinates, copies at a seam, match one to one in the order of their ids), within
+/// tolerance: a greedy search among each point's 16 nearest. Empty, with the reason in
+/// problem, where a point finds none; what says what the points are.
 std::vector<vtkIdType> nearestMatches(vtkDataSet* from, vtkDataSet* to, double tolerance, const std::string& what,
-  double& farthest)
+  double& farthest, std::string& problem)
 {
   vtkNew<vtkStaticPointLocator> locator;
   locator->SetDataSet(to);
   locator->BuildLocator();
   std::vector<vtkIdType> matches(static_cast<std::size_t>(from->GetNumberOfPoints()));
-  std::vector<vtkIdType> takenBy(static_cast<std::size_t>(to->GetNumberOfPoints()), -1);
+  std::vector<bool> taken(static_cast<std::size_t>(to->GetNumberOfPoints()), false);
   farthest = 0;
   for (vtkIdType i = 0; i < from->GetNumberOfPoints(); ++i)
   {
@@ -615,7 +670,7 @@ std::vector<vtkIdType> nearestMatches(vtkDataSet* from, vtkDataSet* to, double t
     double distance = byDistance.empty() ? std::numeric_limits<double>::infinity() : byDistance.front().first;
     for (const auto& [d, id] : byDistance)
     {
-      if (takenBy[static_cast<std::size_t>(id)] < 0 && d <= tolerance)
+      if (!taken[static_cast<std::size_t>(id)] && d <= tolerance)
       {
         chosen = id;
         distance = d;
@@ -624,13 +679,14 @@ std::vector<vtkIdType> nearestMatches(vtkDataSet* from, vtkDataSet* to, double t
     }
     if (chosen < 0)
     {
-      const bool taken = distance <= tolerance;
-      throw UserError("the result's " + what + " " + std::to_string(i) + " (" + brief(p[0]) + ", " + brief(p[1]) + ", " +
+      const bool allTaken = distance <= tolerance;
+      problem = "the result's " + what + " " + std::to_string(i) + " (" + brief(p[0]) + ", " + brief(p[1]) + ", " +
         brief(p[2]) + ") has no match in the baseline within " + brief(tolerance) +
-        (taken ? std::string(": its " + std::to_string(candidates) + " nearest are matched to others")
-               : " (the nearest is " + brief(distance) + " away)") + ": raise --nearest, or compare by id");
+        (allTaken ? ": its " + std::to_string(candidates) + " nearest are matched to others"
+                  : " (the nearest is " + brief(distance) + " away)");
+      return {};
     }
-    takenBy[static_cast<std::size_t>(chosen)] = i;
+    taken[static_cast<std::size_t>(chosen)] = true;
     matches[static_cast<std::size_t>(i)] = chosen;
     farthest = std::max(farthest, distance);
   }
@@ -653,7 +709,7 @@ void moveTuples(ArrayValues& values, const std::vector<vtkIdType>& matches)
   values.type == ValueType::Integer ? move(values.integers) : move(values.reals);
 }
 
-/// The cells' centres, as points.
+/// The cells' centres, as points (none for a cell without points).
 vtkSmartPointer<vtkDataSet> cellCentres(vtkDataSet* data)
 {
   vtkNew<vtkCellCenters> centres;
@@ -664,21 +720,31 @@ vtkSmartPointer<vtkDataSet> cellCentres(vtkDataSet* data)
 }
 
 /// The result's point and cell arrays put in the baseline's order, matching points (and cells,
-/// by their centres) by nearest point within the tolerance. Returns what it did, in words.
-/// Throws UserError where no such match exists.
-std::string matchByNearest(vtkDataSet* baseline, vtkDataSet* result, std::vector<FileArray>& arrays, double tolerance)
+/// by their centres) by nearest point within the tolerance.
+Matching matchByNearest(vtkDataSet* baseline, vtkDataSet* result, std::vector<FileArray>& arrays, double tolerance)
 {
+  Matching matching;
   std::ostringstream done;
   for (const bool cells : { false, true })
   {
     vtkSmartPointer<vtkDataSet> from = cells ? cellCentres(result) : vtkSmartPointer<vtkDataSet>(result);
     vtkSmartPointer<vtkDataSet> to = cells ? cellCentres(baseline) : vtkSmartPointer<vtkDataSet>(baseline);
+    std::string& problem = cells ? matching.cellProblem : matching.pointProblem;
+    if (cells && (from->GetNumberOfPoints() != result->GetNumberOfCells() || to->GetNumberOfPoints() != baseline->GetNumberOfCells()))
+    {
+      problem = "cells without points have no centre, so the cells cannot be matched by their centres";
+      continue;
+    }
     if (from->GetNumberOfPoints() != to->GetNumberOfPoints() || from->GetNumberOfPoints() == 0)
     {
       continue; // the arrays' counts differ, which their rows will say
     }
     double farthest = 0;
-    const std::vector<vtkIdType> matches = nearestMatches(from, to, tolerance, cells ? "cell centre" : "point", farthest);
+    std::vector<vtkIdType> matches = nearestMatches(from, to, tolerance, cells ? "cell centre" : "point", farthest, problem);
+    if (!problem.empty())
+    {
+      continue;
+    }
     for (FileArray& array : arrays)
     {
       const bool onCells = array.association == Association::CellData;
@@ -689,8 +755,10 @@ std::string matchByNearest(vtkDataSet* baseline, vtkDataSet* result, std::vector
     }
     done << (cells ? "; cells by their centres, " : "points matched by nearest point, ") << "the farthest "
          << brief(farthest) << " away";
+    (cells ? matching.cells : matching.points) = std::move(matches);
   }
-  return done.str();
+  matching.description = done.str().empty() ? "no points or cells matched by nearest point" : done.str();
+  return matching;
 }
 
 std::string jsonReport(const std::vector<ArrayReport>& reports, bool passed, const std::vector<SkippedArray>& skipped,
@@ -706,7 +774,8 @@ std::string jsonReport(const std::vector<ArrayReport>& reports, bool passed, con
   {
     report["not_compared"].push_back(array.description);
   }
-  return report.dump(2) + "\n";
+  // Names that are not UTF-8 (a legacy file may hold any bytes) with U+FFFD for each bad byte.
+  return report.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
 
 /// The name of the pass/fail arrays of the difference mesh, in its point and cell data.
@@ -715,9 +784,10 @@ constexpr const char* passedArrayName = "compare_passed";
 /// The result's mesh, with, for each array compared value by value, NAME_difference (result
 /// less baseline: float64, or 64-bit integers) beside it, and compare_passed in its point and
 /// cell data: 1 where every compared value of the point (or cell) passes, 0 where one fails.
-/// Throws UserError for a result that is not polydata.
+/// Values compared in the baseline's order (--nearest) go back to the result's points. Throws
+/// UserError for a result that is not polydata.
 vtkSmartPointer<vtkPolyData> differenceMesh(vtkDataSet* resultData, const std::vector<ArrayReport>& reports,
-  const std::vector<FileArray>& result)
+  const std::vector<FileArray>& result, const Matching& matching)
 {
   auto* resultMesh = vtkPolyData::SafeDownCast(resultData);
   if (!resultMesh)
@@ -745,37 +815,51 @@ vtkSmartPointer<vtkPolyData> differenceMesh(vtkDataSet* resultData, const std::v
     }
     const ArrayValues& a = report.baseline->values;
     const ArrayValues& b = find(result, report.name, report.association)->values;
+    const bool onCells = report.association == Association::CellData;
+    const std::size_t components = static_cast<std::size_t>(a.components);
+    // Value c of the result's tuple t: its match's, in the baseline's order.
+    auto valueIndex = [&](std::size_t t, std::size_t c) { return matching.baselineOf(onCells, t) * components + c; };
     vtkSmartPointer<vtkDataArray> difference;
     if (a.type == ValueType::Integer)
     {
       auto integers = vtkSmartPointer<vtkTypeInt64Array>::New();
+      difference = integers;
       integers->SetNumberOfComponents(a.components);
       integers->SetNumberOfTuples(static_cast<vtkIdType>(a.tuples()));
-      for (std::size_t i = 0; i < a.size(); ++i)
+      for (std::size_t t = 0; t < a.tuples(); ++t)
       {
-        integers->SetValue(static_cast<vtkIdType>(i), b.integers[i] - a.integers[i]);
+        for (std::size_t c = 0; c < components; ++c)
+        {
+          // Wrapping, as a difference of 64-bit values may not fit in 64 bits.
+          const std::size_t i = valueIndex(t, c);
+          integers->SetValue(static_cast<vtkIdType>(t * components + c),
+            static_cast<std::int64_t>(static_cast<std::uint64_t>(b.integers[i]) - static_cast<std::uint64_t>(a.integers[i])));
+        }
       }
-      difference = integers;
     }
     else
     {
       auto reals = vtkSmartPointer<vtkDoubleArray>::New();
+      difference = reals;
       reals->SetNumberOfComponents(a.components);
       reals->SetNumberOfTuples(static_cast<vtkIdType>(a.tuples()));
-      for (std::size_t i = 0; i < a.size(); ++i)
+      for (std::size_t t = 0; t < a.tuples(); ++t)
       {
-        reals->SetValue(static_cast<vtkIdType>(i), b.reals[i] - a.reals[i]);
+        for (std::size_t c = 0; c < components; ++c)
+        {
+          const std::size_t i = valueIndex(t, c);
+          reals->SetValue(static_cast<vtkIdType>(t * components + c), b.reals[i] - a.reals[i]);
+        }
       }
-      difference = reals;
     }
     difference->SetName((report.name + "_difference").c_str());
-    const bool onCells = report.association == Association::CellData;
     (onCells ? static_cast<vtkFieldData*>(mesh->GetCellData()) : mesh->GetPointData())->AddArray(difference);
     vtkUnsignedCharArray* passed = onCells ? cellsPassed : pointsPassed;
     const std::vector<unsigned char>& tuplePasses = report.difference->tuplePasses;
     for (std::size_t t = 0; t < tuplePasses.size() && t < static_cast<std::size_t>(passed->GetNumberOfValues()); ++t)
     {
-      passed->SetValue(static_cast<vtkIdType>(t), passed->GetValue(static_cast<vtkIdType>(t)) & tuplePasses[t]);
+      passed->SetValue(static_cast<vtkIdType>(t), passed->GetValue(static_cast<vtkIdType>(t)) &
+        tuplePasses[matching.baselineOf(onCells, t)]);
     }
   }
   mesh->GetPointData()->AddArray(pointsPassed);
@@ -804,12 +888,12 @@ CLI::App* addCompareCommand(CLI::App& cli, CompareOptions& options)
     "or relative to the baseline array's range ('1e-3*range'); the last rule that matches wins; default 0")
     ->allow_extra_args(false);
   command->add_option("--rtol", options.relative,
-    "relative tolerance, written as --atol; default 4 units in the last place of the array's type "
+    "relative tolerance, a number, for every array or by name as --atol; default 4 units in the last place of the array's type "
     "(4.8e-7 for float32, 8.9e-16 for float64)")
     ->allow_extra_args(false);
   command->add_option("--ulps", options.ulps,
     "judge floating-point values by units in the last place instead ('3', 'total:4'): pass when at most that many "
-    "numbers of the array's type apart")
+    "numbers of the array's type apart; where a ULP rule matches, it replaces --atol and --rtol")
     ->allow_extra_args(false);
   command->add_option("--standard-errors", options.standardErrors,
     "statistical mode: where both files hold NAME_std_error beside NAME, a value also passes within K combined "
@@ -839,7 +923,7 @@ int runCompare(const CompareOptions& options)
   std::vector<FileArray> baseline, result;
   vtkSmartPointer<vtkDataSet> baselineData, resultData;
   RunWarnings warnings; // a reader's warning says the file is damaged: its values may be too
-  std::string matching = "points and cells matched by id";
+  Matching matching;
   try
   {
     const Rules rules = parseRules(options);
@@ -869,6 +953,27 @@ int runCompare(const CompareOptions& options)
       }
       matching = matchByNearest(baselineData, resultData, result, *options.nearest);
     }
+    // Each array's problem where its points or cells found no match.
+    auto matchingProblem = [&](Association association) -> const std::string&
+    {
+      static const std::string none;
+      return association == Association::CellData ? matching.cellProblem
+        : association == Association::FieldData  ? none
+                                                  : matching.pointProblem;
+    };
+    for (const std::string& pattern : options.arrays)
+    {
+      auto matches = [&](const FileArray& array) { return wildcardMatches(pattern, array.name); };
+      if (std::none_of(baseline.begin(), baseline.end(), matches) && std::none_of(result.begin(), result.end(), matches))
+      {
+        throw UserError("--arrays '" + pattern + "' matches no array of either file");
+      }
+    }
+    if (!options.diff.empty() && !vtkPolyData::SafeDownCast(resultData))
+    {
+      throw UserError(std::string("--diff writes a mesh (.vtp or .vtk), and the result is a ") +
+        resultData->GetClassName() + ": leave --diff out for it");
+    }
     auto selected = [&](const FileArray& array)
     { return array.association == Association::Points || (matchesAny(options.arrays, array.name) && !matchesAny(options.exclude, array.name)); };
     for (std::vector<SkippedArray>* skipped : { &skippedBaseline, &skippedResult })
@@ -894,6 +999,10 @@ int runCompare(const CompareOptions& options)
       {
         report.problem = std::string("missing from ") + options.result;
       }
+      else if (!matchingProblem(array.association).empty())
+      {
+        report.problem = "not compared: " + matchingProblem(array.association);
+      }
       else if (other->values.type != a.type)
       {
         report.problem = std::string(typeName(a.type)) + " in " + options.baseline + ", " + typeName(other->values.type) + " in " + options.result;
@@ -911,7 +1020,8 @@ int runCompare(const CompareOptions& options)
         report.rule = rules.ruleFor(array, options.standardErrors);
         const FileArray* errorsA = find(baseline, array.name + "_std_error", array.association);
         const FileArray* errorsB = find(result, array.name + "_std_error", array.association);
-        const bool statistical = options.standardErrors && errorsA && errorsB && errorsA->values.type != ValueType::Integer &&
+        const bool statistical = options.standardErrors && errorsA && errorsB &&
+          errorsA->values.type != ValueType::Integer && errorsB->values.type != ValueType::Integer &&
           errorsA->values.size() == a.size() && errorsB->values.size() == a.size();
         if (!statistical)
         {
@@ -939,11 +1049,16 @@ int runCompare(const CompareOptions& options)
     std::cerr << "shadelab compare: " << error.what() << "\n";
     return 2;
   }
+  if (reports.empty())
+  {
+    std::cerr << "shadelab compare: no array to compare (see --arrays, --exclude and --no-points)\n";
+    return 2;
+  }
 
   const std::size_t differing = static_cast<std::size_t>(std::count_if(reports.begin(), reports.end(), [](const ArrayReport& r) { return !r.passes(); }));
   std::cout << "shadelab compare: the result " << options.result << " (" << datasetText(resultData)
-            << ") against the baseline " << options.baseline << " (" << datasetText(baselineData) << "); " << matching
-            << "\n";
+            << ") against the baseline " << options.baseline << " (" << datasetText(baselineData) << "); "
+            << matching.description << "\n";
   printHeading();
   for (const ArrayReport& report : reports)
   {
@@ -961,11 +1076,7 @@ int runCompare(const CompareOptions& options)
       std::cout << "\n";
     }
   }
-  if (reports.empty())
-  {
-    std::cout << "FAIL: no array to compare (see --arrays and --exclude)\n";
-  }
-  else if (differing == 0)
+  if (differing == 0)
   {
     std::cout << "PASS: " << reports.size() << (reports.size() == 1 ? " array agrees" : " arrays agree") << "\n";
   }
@@ -973,7 +1084,7 @@ int runCompare(const CompareOptions& options)
   {
     std::cout << "FAIL: " << differing << " of " << reports.size() << " arrays differ\n";
   }
-  const bool passed = !reports.empty() && differing == 0;
+  const bool passed = differing == 0;
   warnings.show();
   try
   {
@@ -987,10 +1098,10 @@ int runCompare(const CompareOptions& options)
     }
     if (!options.diff.empty())
     {
-      writeMesh(differenceMesh(resultData, reports, result), options.diff, Compression::LZ4);
+      writeMesh(differenceMesh(resultData, reports, result, matching), options.diff, Compression::LZ4);
     }
   }
-  catch (const UserError& error)
+  catch (const std::exception& error)
   {
     std::cerr << "shadelab compare: " << error.what() << "\n";
     return 2;

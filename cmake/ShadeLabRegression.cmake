@@ -6,7 +6,8 @@
 #     [NEAREST distance] [SHADE_ARGS arg...])
 #
 # ARRAYS is shade's --arrays (default "default"); ATOL, RTOL and ULPS are compare's rules
-# ("1e-6", "total:1e-6", "1e-3*range"). The test writes name.vtp and name.xml (JUnit) in the
+# ("1e-6", "total:1e-6", "1e-3*range"), which cannot hold ';' or '|' (CMake's lists, and the
+# separator the rules travel to the test with). Relative paths are from the calling folder. The test writes name.vtp and name.xml (JUnit) in the
 # build folder. With the environment variable SHADELAB_UPDATE_BASELINES=1 it writes the result
 # over the baseline instead (through a temporary file, renamed when complete) and says so:
 #   SHADELAB_UPDATE_BASELINES=1 ctest -R name
@@ -27,6 +28,10 @@ function(shadelab_add_regression_test)
   if(NOT arg_ARRAYS)
     set(arg_ARRAYS "default")
   endif()
+  # Paths relative to the folder of the CMakeLists.txt that calls this, as add_test's are.
+  foreach(path MESH SCENE BASELINE)
+    get_filename_component(arg_${path} "${arg_${path}}" ABSOLUTE BASE_DIR "${CMAKE_CURRENT_SOURCE_DIR}")
+  endforeach()
   set(compare_args "")
   foreach(kind ATOL RTOL ULPS)
     string(TOLOWER "${kind}" option)
@@ -34,10 +39,10 @@ function(shadelab_add_regression_test)
       list(APPEND compare_args "--${option}" "${rule}")
     endforeach()
   endforeach()
-  if(arg_STANDARD_ERRORS)
+  if(DEFINED arg_STANDARD_ERRORS)
     list(APPEND compare_args "--standard-errors" "${arg_STANDARD_ERRORS}")
   endif()
-  if(arg_NEAREST)
+  if(DEFINED arg_NEAREST) # NEAREST 0 too
     list(APPEND compare_args "--nearest" "${arg_NEAREST}")
   endif()
   if(SHADELAB_EXECUTABLE)

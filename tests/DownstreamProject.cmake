@@ -1,7 +1,7 @@
 # README.md's downstream project (a CMakeLists.txt that finds ShadeLab's package), built against
 # this build installed into a folder of its own, and its tests run. Run by CTest with BUILD,
-# SOURCE (the folder of the extracted CMakeLists.txt), EXAMPLE (readme_example.cxx), DATA, WORK
-# and GENERATOR.
+# SOURCE (the folder of the extracted CMakeLists.txt), EXAMPLE (readme_example.cxx), DATA, WORK,
+# GENERATOR, COMPILER and FLAGS (the sanitizers of the sanitizer build).
 file(REMOVE_RECURSE "${WORK}")
 function(step what)
   execute_process(COMMAND ${ARGN} RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
@@ -13,7 +13,8 @@ endfunction()
 step("installing ShadeLab" "${CMAKE_COMMAND}" --install "${BUILD}" --prefix "${WORK}/prefix")
 file(COPY "${SOURCE}/CMakeLists.txt" "${EXAMPLE}" DESTINATION "${WORK}/source")
 step("configuring the downstream project" "${CMAKE_COMMAND}" -S "${WORK}/source" -B "${WORK}/build" -G "${GENERATOR}"
-  "-DCMAKE_PREFIX_PATH=${WORK}/prefix" "-DDATA=${DATA}" -DCMAKE_BUILD_TYPE=Release)
+  "-DCMAKE_PREFIX_PATH=${WORK}/prefix" "-DDATA=${DATA}" -DCMAKE_BUILD_TYPE=Release "-DCMAKE_CXX_COMPILER=${COMPILER}"
+  "-DCMAKE_CXX_FLAGS=${FLAGS}" "-DCMAKE_EXE_LINKER_FLAGS=${FLAGS}")
 step("building the downstream project" "${CMAKE_COMMAND}" --build "${WORK}/build")
 step("testing the downstream project" "${CMAKE_CTEST_COMMAND}" --test-dir "${WORK}/build" --output-on-failure)
 if(NOT step_output MATCHES "100% tests passed, 0 tests failed out of 2")

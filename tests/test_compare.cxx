@@ -364,6 +364,16 @@ TEST_F(Compare, UnreadableFilesAndBadOptionsExitWithTwo)
   EXPECT_EQ(tolerance.err,
     "shadelab compare: 'lots' is not a tolerance: write a number >= 0 (1e-6), or one times the array's range (1e-3*range)\n");
   EXPECT_EQ(shadelab("compare " + a).exitCode, 2); // CLI11: the result is required
+  const Result typo = shadelab("compare " + a + " " + a + " --arrays totl");
+  EXPECT_EQ(typo.exitCode, 2);
+  EXPECT_EQ(typo.err, "shadelab compare: --arrays 'totl' matches no array of either file\n");
+  const Result nothing = shadelab("compare " + a + " " + a + " --no-points --exclude '*'");
+  EXPECT_EQ(nothing.exitCode, 2);
+  EXPECT_EQ(nothing.err, "shadelab compare: no array to compare (see --arrays, --exclude and --no-points)\n");
+  const Result ranged = shadelab("compare " + a + " " + a + " --rtol 'total:1e-3*range'");
+  EXPECT_EQ(ranged.exitCode, 2);
+  EXPECT_EQ(ranged.err, "shadelab compare: --rtol 'total:1e-3*range': a relative tolerance is a plain number (a fraction "
+                        "of the values); a tolerance relative to the range is --atol's\n");
 }
 }
 
@@ -495,12 +505,52 @@ TEST_F(Compare, ReorderedMeshesMatchByNearestPoint)
   EXPECT_EQ(loose.exitCode, 1);
   EXPECT_NE(linesAbout(loose.out, "points").find("worst failing at point 3 (0, 1, 0), component 0: 0 in the baseline, 0.0099999997764825821 in the result"),
     std::string::npos) << loose.out;
+  // The difference mesh is the result's: the moved point is its point 0.
+  const std::string diff = (folder / "diff.vtp").string();
+  EXPECT_EQ(shadelab("compare " + a + " " + moved + " --nearest 0.1 --diff " + diff).exitCode, 1);
+  vtkNew<vtkXMLPolyDataReader> reader;
+  reader->SetFileName(diff.c_str());
+  reader->Update();
+  vtkDataArray* pointsDifference = reader->GetOutput()->GetPointData()->GetArray("points_difference");
+  ASSERT_NE(pointsDifference, nullptr);
+  EXPECT_EQ(pointsDifference->GetComponent(0, 0), double(0.01f));
+  EXPECT_EQ(pointsDifference->GetComponent(3, 0), 0.0);
+  auto* passed = vtkUnsignedCharArray::SafeDownCast(reader->GetOutput()->GetPointData()->GetArray("compare_passed"));
+  ASSERT_NE(passed, nullptr);
+  EXPECT_EQ(passed->GetValue(0), 0);
+  EXPECT_EQ(passed->GetValue(3), 1);
+  // Within 0.001 the moved point has no match: a difference, and the point arrays say why.
   const Result tight = shadelab("compare " + a + " " + moved + " --nearest 0.001");
-  EXPECT_EQ(tight.exitCode, 2);
-  EXPECT_EQ(tight.err, "shadelab compare: the result's point 0 (0.01, 1, 0) has no match in the baseline within 0.001 (the "
-                       "nearest is 0.01 away): raise --nearest, or compare by id\n");
+  EXPECT_EQ(tight.exitCode, 1);
+  EXPECT_EQ(linesAbout(tight.out, "total"),
+    "  DIFFER total                          point  float32 x3 not compared: the result's point 0 (0.01, 1, 0) has no "
+    "match in the baseline within 0.001 (the nearest is 0.01 away)\n");
+  // The cells it is a corner of moved their centres by a third of it.
+  EXPECT_EQ(linesAbout(tight.out, "cell_value"),
+    "  DIFFER cell_value                     cell   float32 x1 not compared: the result's cell centre 0 (0.337, 0.667, "
+    "0) has no match in the baseline within 0.001 (the nearest is 0.00333 away)\n");
   // Copies of a point (a seam: spot.obj has a point per corner) match one to one.
   const std::string spot = SHADELAB_SOURCE_DIR "/data/meshes/spot.obj";
   EXPECT_EQ(shadelab("compare " + spot + " " + spot + " --nearest 0").exitCode, 0);
+}
+}
+
+namespace
+{
+TEST_F(Compare, NamesThatAreNotUtf8GiveValidReports)
+{
+  // A legacy file may name an array with any bytes: here Latin-1's "café".
+  const std::string legacy = file("latin1.vtk",
+    "# vtk DataFile Version 3.0\nt\nASCII\nDATASET POLYDATA\nPOINTS 3 float\n0 0 0 1 0 0 0 1 0\n"
+    "POLYGONS 1 4\n3 0 1 2\nPOINT_DATA 3\nSCALARS caf\xe9 float 1\nLOOKUP_TABLE default\n1 2 3\n");
+  const std::string json = (folder / "r.json").string(), junit = (folder / "r.xml").string();
+  const Result result = shadelab("compare " + legacy + " " + legacy + " --json " + json + " --junit " + junit);
+  EXPECT_EQ(result.exitCode, 0) << result.out << result.err;
+  const nlohmann::json report = nlohmann::json::parse(slurp(json));
+  EXPECT_EQ(report["arrays"][1]["name"], "caf\xef\xbf\xbd"); // U+FFFD for the byte that is not UTF-8
+  vtkNew<vtkXMLDataParser> parser;
+  parser->SetFileName(junit.c_str());
+  ASSERT_EQ(parser->Parse(), 1);
+  EXPECT_STREQ(parser->GetRootElement()->GetNestedElement(0)->GetNestedElement(1)->GetAttribute("name"), "caf?");
 }
 }

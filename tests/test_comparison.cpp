@@ -118,6 +118,11 @@ TEST(Comparison, IntegersMustBeEqualAndTheirDifferingBitsAreCounted)
   EXPECT_EQ(d.bitCounts[0], 0u);
   EXPECT_EQ(d.worst, 4u);
   EXPECT_EQ(d.largest, std::ldexp(1.0, 40));
+  // Values of another sign differ in the top bit too.
+  const ArrayDifference signs = compareArrays(integers({ -1, 0 }), integers({ 1, std::numeric_limits<std::int64_t>::min() }), ValueRule{});
+  EXPECT_EQ(signs.failing, 2u);
+  EXPECT_EQ(signs.bitCounts[63], 2u);
+  EXPECT_EQ(signs.bitCounts[1], 1u);
   // Large 64-bit values are compared exactly, not as doubles.
   const std::int64_t big = (1ll << 62) + 1;
   EXPECT_EQ(compareArrays(integers({ big }), integers({ big - 1 }), ValueRule{}).failing, 1u);

@@ -90,7 +90,8 @@ ArrayDifference compareArrays(const ArrayValues& a, const ArrayValues& b, const 
   const std::size_t components = static_cast<std::size_t>(std::max(a.components, 1));
   difference.values = count;
   difference.tuplePasses.assign(count / components, 1);
-  const bool statistical = rule.standardErrors && errorsA && errorsB && errorsA->size() == count && errorsB->size() == count;
+  const bool statistical = rule.standardErrors && errorsA && errorsB && errorsA->type != ValueType::Integer &&
+    errorsB->type != ValueType::Integer && errorsA->reals.size() == count && errorsB->reals.size() == count;
   // The largest gap among failing values, and among all; infinite for a NaN against a number.
   double worstFailingGap = -1, worstGap = 0;
   std::optional<std::size_t> worstFailing, worstOverall;
@@ -117,9 +118,9 @@ ArrayDifference compareArrays(const ArrayValues& a, const ArrayValues& b, const 
       passes = x == y;
       gap = std::abs(static_cast<double>(x) - static_cast<double>(y));
       const std::uint64_t bits = static_cast<std::uint64_t>(x) ^ static_cast<std::uint64_t>(y);
-      for (int bit = 0; bits >> bit; ++bit)
+      for (std::size_t bit = 0; bit < 64; ++bit)
       {
-        difference.bitCounts[static_cast<std::size_t>(bit)] += (bits >> bit) & 1u;
+        difference.bitCounts[bit] += (bits >> bit) & 1u;
       }
     }
     else

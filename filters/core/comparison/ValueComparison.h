@@ -77,11 +77,13 @@ struct ArrayDifference
 };
 
 /// Compares a and b (the same type, components and size) by the rule. errorsA and errorsB are
-/// the standard errors of each value (the same shape), used in statistical mode.
+/// the standard errors of each value (floating-point, the same shape), used in statistical
+/// mode; other error arrays are ignored.
 ArrayDifference compareArrays(const ArrayValues& a, const ArrayValues& b, const ValueRule& rule,
   const ArrayValues* errorsA = nullptr, const ArrayValues* errorsB = nullptr);
 
 /// The number of representable values of the type from a to b (0 where equal, -0 and +0
-/// alike); a NaN or a difference beyond 2^62 gives 2^62.
+/// alike); a NaN or a difference beyond 2^62 gives 2^62. For Float32, a and b are the array's
+/// values, floats held as doubles (others are rounded to float first).
 long long ulpDistance(double a, double b, ValueType type);
 }
