@@ -11,7 +11,12 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkUnsignedCharArray.h"
+#include "vtkImageData.h"
+#include "vtkStructuredGrid.h"
 #include "vtkUnstructuredGrid.h"
+#include "vtkUnstructuredGridWriter.h"
+#include "vtkXMLImageDataWriter.h"
+#include "vtkXMLStructuredGridWriter.h"
 #include "vtkXMLDataElement.h"
 #include "vtkXMLDataParser.h"
 #include "vtkXMLPolyDataReader.h"
@@ -338,6 +343,47 @@ TEST_F(Compare, AnyDatasetIsRead)
   EXPECT_EQ(result.exitCode, 0) << result.out << result.err;
   EXPECT_NE(result.out.find("(4 points, 2 cells) against the baseline " + vtu + " (4 points, 1 cells)"), std::string::npos)
     << result.out;
+  // The same grid as legacy .vtk agrees with its .vtu.
+  const std::string legacy = (folder / "grid.vtk").string();
+  vtkNew<vtkUnstructuredGridWriter> legacyWriter;
+  legacyWriter->SetInputData(grid);
+  legacyWriter->SetFileName(legacy.c_str());
+  legacyWriter->Write();
+  const Result legacyRun = shadelab("compare " + vtu + " " + legacy);
+  EXPECT_EQ(legacyRun.exitCode, 0) << legacyRun.out << legacyRun.err;
+  // An image (its points implicit) and a structured grid with the same points and values agree.
+  vtkNew<vtkImageData> image;
+  image->SetDimensions(2, 2, 1);
+  vtkNew<vtkFloatArray> value;
+  value->SetName("value");
+  for (float v : { 1.0f, 2.0f, 3.0f, 4.0f })
+  {
+    value->InsertNextValue(v);
+  }
+  image->GetPointData()->AddArray(value);
+  const std::string vti = (folder / "image.vti").string(), vts = (folder / "grid.vts").string();
+  vtkNew<vtkXMLImageDataWriter> imageWriter;
+  imageWriter->SetInputData(image);
+  imageWriter->SetFileName(vti.c_str());
+  imageWriter->Write();
+  vtkNew<vtkStructuredGrid> structured;
+  structured->SetDimensions(2, 2, 1);
+  vtkNew<vtkPoints> gridPoints;
+  gridPoints->SetDataTypeToDouble();
+  for (vtkIdType i = 0; i < 4; ++i)
+  {
+    gridPoints->InsertNextPoint(image->GetPoint(i));
+  }
+  structured->SetPoints(gridPoints);
+  structured->GetPointData()->AddArray(value);
+  vtkNew<vtkXMLStructuredGridWriter> gridWriter;
+  gridWriter->SetInputData(structured);
+  gridWriter->SetFileName(vts.c_str());
+  gridWriter->Write();
+  const Result grids = shadelab("compare " + vti + " " + vts);
+  EXPECT_EQ(grids.exitCode, 0) << grids.out << grids.err;
+  EXPECT_NE(grids.out.find("  ok     value "), std::string::npos) << grids.out;
+  EXPECT_NE(grids.out.find("  ok     points                         points float64 x3 0 / 12"), std::string::npos) << grids.out;
   const Result diff = shadelab("compare " + vtu + " " + vtu + " --diff " + (folder / "diff.vtp").string());
   EXPECT_EQ(diff.exitCode, 2);
   EXPECT_EQ(diff.err, "shadelab compare: --diff writes a mesh (.vtp or .vtk), and the result is a vtkUnstructuredGrid: "
