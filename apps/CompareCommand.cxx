@@ -3,6 +3,7 @@
 #include "MeshFiles.h"
 #include "RunWarnings.h"
 
+#include "NumberText.h"
 #include "ShadingFlags.h"
 #include "ToleranceRules.h"
 #include "ValueComparison.h"
@@ -277,19 +278,15 @@ struct ArrayReport
   bool passes() const { return problem.empty() && difference && difference->passes(); }
 };
 
-/// What a person reads: a number with few digits.
+/// What a person reads: a number with few digits; and one with all of them.
 std::string brief(double x)
 {
-  std::ostringstream text;
-  text << std::setprecision(3) << x;
-  return text.str();
+  return withDigits(x, 3);
 }
 
 std::string exact(double x)
 {
-  std::ostringstream text;
-  text << std::setprecision(17) << x;
-  return text.str();
+  return withDigits(x, 17);
 }
 
 std::string valueText(const ArrayValues& values, std::size_t i)
@@ -544,19 +541,6 @@ std::string junitOf(const std::vector<ArrayReport>& reports, const CompareOption
   }
   xml << "  </testsuite>\n</testsuites>\n";
   return xml.str();
-}
-
-/// Writes text to fileName whole, through a temporary file. Throws UserError.
-void writeReport(const std::string& fileName, const std::string& text)
-{
-  writeThroughTemporary(fileName,
-    [&](const std::string& temporary) -> std::string
-    {
-      std::ofstream file(temporary);
-      file << text;
-      file.close();
-      return file ? "" : "the report could not be written (disk full?)";
-    });
 }
 
 /// A double as JSON: a number where finite, else its text ("nan", "inf"), which JSON has no
@@ -1090,11 +1074,11 @@ int runCompare(const CompareOptions& options)
   {
     if (!options.json.empty())
     {
-      writeReport(options.json, jsonReport(reports, passed, skippedBaseline, options, baseline, result));
+      writeTextFile(options.json, jsonReport(reports, passed, skippedBaseline, options, baseline, result));
     }
     if (!options.junit.empty())
     {
-      writeReport(options.junit, junitOf(reports, options, baseline, result));
+      writeTextFile(options.junit, junitOf(reports, options, baseline, result));
     }
     if (!options.diff.empty())
     {

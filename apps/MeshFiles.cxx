@@ -528,6 +528,18 @@ std::string nameXmlCannotHold(vtkPolyData* mesh)
 }
 }
 
+void writeTextFile(const std::string& fileName, const std::string& text)
+{
+  writeThroughTemporary(fileName,
+    [&](const std::string& temporary) -> std::string
+    {
+      std::ofstream file(temporary);
+      file << text;
+      file.close();
+      return file ? "" : "it could not be written (disk full?)";
+    });
+}
+
 vtkSmartPointer<vtkAlgorithm> vtkWriterFor(vtkPolyData* mesh, const std::string& path, const std::string& extension, Compression compression)
 {
   if (extension == ".vtp")

@@ -29,6 +29,9 @@ constexpr std::initializer_list<const char*> meshExtensions = { ".vtp", ".vtk" }
 void writeThroughTemporary(
   const std::string& fileName, const std::function<std::string(const std::string& temporary)>& write);
 
+/// Writes text to fileName whole, through a temporary file (a report, a CSV). Throws UserError.
+void writeTextFile(const std::string& fileName, const std::string& text);
+
 /// Reads .vtp, .vtk (legacy polydata), .ply, .obj or .stl, showing progress on a terminal.
 /// Throws UserError.
 vtkSmartPointer<vtkPolyData> readMesh(const std::string& fileName);

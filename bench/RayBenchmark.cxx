@@ -338,14 +338,7 @@ void runRayBenchmark(const RayBenchmarkOptions& options)
   ChartSpec chart{ "Ambient occlusion on the bunny: 4 to 1024 rays per vertex against 4096",
     "time for the mesh (ms)", "error in ambient_occlusion", true, true, false, { largest, rms } };
   writeChartPng(chart, options.folder + "/9_ambient_occlusion.png");
-  writeThroughTemporary(options.folder + "/visibility.csv",
-    [&](const std::string& temporary) -> std::string
-    {
-      std::ofstream file(temporary);
-      file << csv.str();
-      file.close();
-      return file ? "" : "the CSV could not be written (disk full?)";
-    });
+  writeTextFile(options.folder + "/visibility.csv", csv.str());
   std::cout << "wrote " << options.folder << "/visibility.csv and 9_ambient_occlusion.png\n";
 }
 }
