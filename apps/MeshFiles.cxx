@@ -536,7 +536,7 @@ void writeTextFile(const std::string& fileName, const std::string& text)
       std::ofstream file(temporary);
       file << text;
       file.close();
-      return file ? "" : "it could not be written (disk full?)";
+      return file ? "" : "the disk is full, or the file system refuses it";
     });
 }
 
