@@ -187,7 +187,7 @@ std::vector<OccluderMesh::FrameRay> occlusionFrameRays(const RayMesh& mesh, int 
     {
       continue;
     }
-    const SampleSequence samples(0, static_cast<std::uint64_t>(i), { rays, true });
+    const SampleSequence samples(0, static_cast<std::uint64_t>(v.id), { rays, true });
     OccluderMesh::FrameRay ray = mesh.occluders->inFrame({ v.position, v.normal, {}, INFINITY, v.id });
     for (int j = 0; j < rays; ++j)
     {

@@ -3,13 +3,7 @@
 # SOURCE (the folder of the extracted CMakeLists.txt), EXAMPLE (readme_example.cxx), DATA, WORK,
 # GENERATOR, COMPILER and FLAGS (the sanitizers of the sanitizer build).
 file(REMOVE_RECURSE "${WORK}")
-function(step what)
-  execute_process(COMMAND ${ARGN} RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT code EQUAL 0)
-    message(FATAL_ERROR "${what} failed (exit code ${code}):\n${out}${err}")
-  endif()
-  set(step_output "${out}" PARENT_SCOPE)
-endfunction()
+include("${CMAKE_CURRENT_LIST_DIR}/ScriptStep.cmake")
 step("installing ShadeLab" "${CMAKE_COMMAND}" --install "${BUILD}" --prefix "${WORK}/prefix")
 file(COPY "${SOURCE}/CMakeLists.txt" "${EXAMPLE}" DESTINATION "${WORK}/source")
 step("configuring the downstream project" "${CMAKE_COMMAND}" -S "${WORK}/source" -B "${WORK}/build" -G "${GENERATOR}"

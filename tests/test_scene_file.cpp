@@ -3,6 +3,8 @@
 #include "ArrayCatalog.h"
 #include "EnvironmentMap.h"
 #include "SceneFile.h"
+#include "SceneSource.h"
+#include "DefaultLightKit.h"
 
 #include <gtest/gtest.h>
 
@@ -392,5 +394,58 @@ TEST(ScenePrecision, ValuesThatWouldOverflowFloat32AreRefused)
   EXPECT_EQ(errorOf(R"({ "lights": [ { "type": "ambient", "color": 1e200, "intensity": 1e200 } ] })"),
     "scene.json: /lights: together the lights can reach inf at a vertex (colour x intensity x k "
     "x attenuation at min_distance), beyond what float64 holds: use smaller values");
+}
+
+// Where a filter's scene comes from: JSON text, else a file, else a Scene set in C++, else the
+// default light kit; and the set one last among a Scene and the strings is the one used.
+TEST(SceneSource, JsonTextThenFileThenSceneThenTheDefaultLightKit)
+{
+  SceneSource source;
+  EXPECT_EQ(source.scene().lights.size(), defaultLightKit().lights.size());
+  EXPECT_EQ(source.scene().lights.front().name, defaultLightKit().lights.front().name);
+
+  Scene made;
+  made.lights.push_back({ "made", AmbientLight{} });
+  source.setScene(made);
+  EXPECT_EQ(source.scene().lights.front().name, "made");
+
+  const std::string studio = SHADELAB_SOURCE_DIR "/data/scenes/studio.json";
+  EXPECT_TRUE(source.setFileName(studio));
+  EXPECT_FALSE(source.setFileName(studio)); // no change
+  EXPECT_EQ(source.scene().lights.front().name, "key");
+
+  EXPECT_TRUE(source.setJson(R"({ "lights": [ { "name": "text", "type": "ambient" } ] })"));
+  EXPECT_EQ(source.scene().lights.front().name, "text");
+
+  source.setScene(made); // forgets both strings
+  EXPECT_EQ(source.fileName(), "");
+  EXPECT_EQ(source.json(), "");
+  EXPECT_EQ(source.scene().lights.front().name, "made");
+}
+
+TEST(SceneSource, ErrorsAreTheSceneFilesWithSceneJsonForTheText)
+{
+  SceneSource source;
+  source.setJson(R"({ "lights": [ { "type": "ambient", "intensity": -1 } ] })");
+  try
+  {
+    source.scene();
+    FAIL() << "a negative intensity was accepted";
+  }
+  catch (const SceneFileError& error)
+  {
+    EXPECT_STREQ(error.what(), "SceneJson: /lights/0/intensity: must be a number >= 0");
+  }
+  source.setJson("");
+  source.setFileName("no_such_scene.json");
+  try
+  {
+    source.scene();
+    FAIL() << "a missing file was accepted";
+  }
+  catch (const SceneFileError& error)
+  {
+    EXPECT_STREQ(error.what(), "no_such_scene.json: cannot open the scene file (does it exist, and is it readable?)");
+  }
 }
 }

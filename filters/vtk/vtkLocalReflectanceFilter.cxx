@@ -3,6 +3,8 @@
 #include "ArrayCatalog.h"
 #include "MethodChoice.h"
 #include "ShadeLabFieldNotes.h"
+#include "ShadeLabSceneRead.h"
+#include "ShadeLabThreadCount.h"
 #include "ShadeLabLargeArrays.h"
 #include "SceneFrame.h"
 #include "ShadeLabMeshChecks.h"
@@ -168,7 +170,7 @@ vtkLocalReflectanceFilter::~vtkLocalReflectanceFilter() = default;
 
 void vtkLocalReflectanceFilter::SetScene(const shadelab::Scene& scene)
 {
-  this->Scene = scene;
+  this->Scene.setScene(scene);
   this->Modified();
 }
 
@@ -182,6 +184,26 @@ void vtkLocalReflectanceFilter::SetArraySelection(const std::vector<std::string>
 {
   this->ArraySelection = selection;
   this->Modified();
+}
+
+void vtkLocalReflectanceFilter::ClearArraySelection()
+{
+  if (!this->ArraySelection.empty())
+  {
+    this->ArraySelection.clear();
+    this->Modified();
+  }
+}
+
+void vtkLocalReflectanceFilter::AddToArraySelection(const std::string& entry)
+{
+  this->ArraySelection.push_back(entry);
+  this->Modified();
+}
+
+std::string vtkLocalReflectanceFilter::GetArraySelectionEntry(int i) const
+{
+  return i >= 0 && i < this->GetNumberOfArraySelectionEntries() ? this->ArraySelection[i] : std::string();
 }
 
 namespace
@@ -232,6 +254,7 @@ std::string takenName(vtkPolyData* input, const std::vector<std::string>& names)
 int vtkLocalReflectanceFilter::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
+  const shadelab::ThreadCountWhileRunning threads(this->NumberOfThreads);
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   this->NormalsReport.clear();
@@ -267,8 +290,13 @@ int vtkLocalReflectanceFilter::RequestData(
     vtkErrorMacro(<< problem);
     return 0;
   }
+  const std::optional<shadelab::Scene> given = shadelab::readSceneFor(this, this->Scene);
+  if (!given)
+  {
+    return 0;
+  }
   // A scene written relative to the mesh is placed on it here, and checked where it lands.
-  const shadelab::Scene scene = shadelab::placedOnMesh(this->Scene, extent);
+  const shadelab::Scene scene = shadelab::placedOnMesh(*given, extent);
   const std::vector<shadelab::SceneProblem> problems = shadelab::sceneProblems(scene, precision);
   if (!problems.empty())
   {
@@ -456,7 +484,15 @@ vtkPolyData* vtkLocalReflectanceFilter::PrepareVisibility(
 void vtkLocalReflectanceFilter::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "Lights: " << this->Scene.lights.size() << "\n";
+  os << indent << "SceneFileName: " << this->Scene.fileName() << "\n";
+  os << indent << "SceneJson: " << (this->Scene.json().empty() ? "(none)" : "(set)") << "\n";
+  os << indent << "ArraySelection:";
+  for (const std::string& entry : this->ArraySelection)
+  {
+    os << " " << entry;
+  }
+  os << "\n";
+  os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
   os << indent << "ArrayPrefix: " << this->ArrayPrefix << "\n";
   os << indent << "OutputPrecision: " << this->OutputPrecision << "\n";
   os << indent << "OrientNormalsOutward: " << this->OrientNormalsOutward << "\n";

@@ -23,7 +23,7 @@
 #include "vtkShadingNormalsFilter.h" // the normals step, a member
 
 #include "MethodChoice.h"
-#include "Scene.h"
+#include "SceneSource.h"
 
 #include <optional>
 #include <string>
@@ -36,14 +36,33 @@ public:
   vtkTypeMacro(vtkLocalReflectanceFilter, vtkPolyDataAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
-  /// Lights, material and viewer. Checked by shadelab::sceneProblems when the filter runs.
+  /// Lights, material and viewer: from SceneJson if it is set, else from SceneFileName, else
+  /// the scene given to SetScene, else the default light kit, as `shadelab shade` without
+  /// --scene (shadelab::SceneSource). Read and checked by shadelab::sceneProblems when the
+  /// filter runs; a scene that cannot be used is an error with the command line's message.
   void SetScene(const shadelab::Scene& scene);
-  const shadelab::Scene& GetScene() const { return this->Scene; }
+  /// A scene file (README.md, "Scene files"); "" for none.
+  void SetSceneFileName(const std::string& fileName) { this->Scene.setFileName(fileName) ? this->Modified() : void(); }
+  std::string GetSceneFileName() const { return this->Scene.fileName(); }
+  /// A scene as the JSON text of a scene file; "" for none.
+  void SetSceneJson(const std::string& json) { this->Scene.setJson(json) ? this->Modified() : void(); }
+  std::string GetSceneJson() const { return this->Scene.json(); }
 
   /// Which arrays to compute, as shadelab::selectArrays reads them. Default: {"default"},
   /// the totals and the flags.
   void SetArraySelection(const std::vector<std::string>& selection);
   const std::vector<std::string>& GetArraySelection() const { return this->ArraySelection; }
+  /// The same one entry at a time, for wrappers that cannot carry a vector (ParaView's):
+  /// ClearArraySelection() then AddToArraySelection("key_diffuse") and so on.
+  void ClearArraySelection();
+  void AddToArraySelection(const std::string& entry);
+  int GetNumberOfArraySelectionEntries() const { return static_cast<int>(this->ArraySelection.size()); }
+  std::string GetArraySelectionEntry(int i) const;
+
+  /// Threads for the filter's loops (0, the default: vtkSMPTools' setting). vtkSMPTools has
+  /// one thread count for the process: the filter sets it while it runs, then gives it back.
+  vtkSetClampMacro(NumberOfThreads, int, 0, VTK_INT_MAX);
+  vtkGetMacro(NumberOfThreads, int);
 
   /// Prepended to every array name written, to keep clear of names the input already has.
   vtkSetMacro(ArrayPrefix, std::string);
@@ -104,8 +123,9 @@ private:
   vtkLocalReflectanceFilter(const vtkLocalReflectanceFilter&) = delete;
   void operator=(const vtkLocalReflectanceFilter&) = delete;
 
-  shadelab::Scene Scene;
+  shadelab::SceneSource Scene;
   std::vector<std::string> ArraySelection{ "default" };
+  int NumberOfThreads = 0;
   std::string ArrayPrefix;
   int OutputPrecision = SINGLE_PRECISION;
   bool OrientNormalsOutward = true;

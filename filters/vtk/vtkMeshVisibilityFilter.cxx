@@ -2,6 +2,8 @@
 
 #include "ArrayCatalog.h"
 #include "ShadeLabFieldNotes.h"
+#include "ShadeLabSceneRead.h"
+#include "ShadeLabThreadCount.h"
 #include "ShadeLabLargeArrays.h"
 #include "ShadeLabMeshChecks.h"
 #include "ShadeLabMeshExtent.h"
@@ -116,20 +118,21 @@ const shadelab::OccluderMesh& vtkMeshVisibilityFilter::OccludersFor(vtkPolyData*
 
 void vtkMeshVisibilityFilter::SetScene(const shadelab::Scene& scene)
 {
-  this->Scene = scene;
+  this->Scene.setScene(scene);
   this->Modified();
 }
 
 int vtkMeshVisibilityFilter::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
+  const shadelab::ThreadCountWhileRunning threads(this->NumberOfThreads);
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   this->Report.clear();
-  output->ShallowCopy(input);
   const vtkIdType count = input->GetNumberOfPoints();
   if (count == 0)
   {
+    output->ShallowCopy(input);
     return 1; // nothing to see, and no error: VTK's convention
   }
   const std::string cells = this->CheckCells ? shadelab::cellProblem(input) : std::string();
@@ -145,16 +148,21 @@ int vtkMeshVisibilityFilter::RequestData(
                   "vtkShadingNormalsFilter first (vtkLocalReflectanceFilter does)");
     return 0;
   }
+  const std::optional<shadelab::Scene> given = shadelab::readSceneFor(this, this->Scene);
+  if (!given)
+  {
+    return 0;
+  }
   // The mesh's extent only where the scene is in its frame (a pass over the points).
-  const shadelab::Scene scene = this->Scene.frame == shadelab::SceneFrame::Mesh
-    ? shadelab::placedOnMesh(this->Scene, shadelab::meshExtentOf(input))
-    : this->Scene;
+  const shadelab::Scene scene =
+    given->frame == shadelab::SceneFrame::Mesh ? shadelab::placedOnMesh(*given, shadelab::meshExtentOf(input)) : *given;
   const std::vector<shadelab::SceneProblem> problems = shadelab::sceneProblems(scene);
   if (!problems.empty())
   {
     vtkErrorMacro("scene " << problems.front().path << ": " << problems.front().message);
     return 0;
   }
+  output->ShallowCopy(input); // checked: every input array passes through
   std::vector<ShadowedLight> lights;
   shadelab::EvaluationContext context;
   context.lineOfSight = scene.viewer.lineOfSight();
@@ -347,7 +355,9 @@ int vtkMeshVisibilityFilter::RequestData(
 void vtkMeshVisibilityFilter::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "Lights: " << this->Scene.lights.size() << "\n";
+  os << indent << "SceneFileName: " << this->Scene.fileName() << "\n";
+  os << indent << "SceneJson: " << (this->Scene.json().empty() ? "(none)" : "(set)") << "\n";
+  os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
   os << indent << "ArrayPrefix: " << this->ArrayPrefix << "\n";
   os << indent << "ComputeBentNormal: " << this->ComputeBentNormal << "\n";
   os << indent << "ComputeSkyViewFactor: " << this->ComputeSkyViewFactor << "\n";

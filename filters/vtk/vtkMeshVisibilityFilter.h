@@ -26,7 +26,7 @@
 
 #include "vtkSmartPointer.h"
 
-#include "Scene.h"
+#include "SceneSource.h"
 
 #include <memory>
 #include <string>
@@ -45,10 +45,21 @@ public:
   vtkTypeMacro(vtkMeshVisibilityFilter, vtkPolyDataAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
-  /// The lights (those with shadows count) and the ambient occlusion settings. A scene in the
-  /// mesh's frame is placed on the input.
+  /// The lights (those with shadows count) and the ambient occlusion settings: from SceneJson
+  /// if it is set, else from SceneFileName, else the scene given to SetScene, else the default
+  /// light kit (shadelab::SceneSource). A scene in the mesh's frame is placed on the input. A
+  /// scene that cannot be read is an error when the filter runs, with the command line's message.
   void SetScene(const shadelab::Scene& scene);
-  const shadelab::Scene& GetScene() const { return this->Scene; }
+  /// A scene file (README.md, "Scene files"); "" for none.
+  void SetSceneFileName(const std::string& fileName) { this->Scene.setFileName(fileName) ? this->Modified() : void(); }
+  std::string GetSceneFileName() const { return this->Scene.fileName(); }
+  /// A scene as the JSON text of a scene file; "" for none.
+  void SetSceneJson(const std::string& json) { this->Scene.setJson(json) ? this->Modified() : void(); }
+  std::string GetSceneJson() const { return this->Scene.json(); }
+
+  /// Threads for the rays (0, the default: vtkSMPTools' setting, which is given back after).
+  vtkSetClampMacro(NumberOfThreads, int, 0, VTK_INT_MAX);
+  vtkGetMacro(NumberOfThreads, int);
 
   /// Prepended to the visibility arrays' names (default "").
   vtkSetMacro(ArrayPrefix, std::string);
@@ -83,7 +94,8 @@ private:
   vtkMeshVisibilityFilter(const vtkMeshVisibilityFilter&) = delete;
   void operator=(const vtkMeshVisibilityFilter&) = delete;
 
-  shadelab::Scene Scene;
+  shadelab::SceneSource Scene;
+  int NumberOfThreads = 0;
   std::string ArrayPrefix;
   bool ComputeBentNormal = true;
   bool ComputeSkyViewFactor = true;

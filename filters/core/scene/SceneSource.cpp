@@ -1,0 +1,41 @@
+#include "SceneSource.h"
+
+#include "DefaultLightKit.h"
+#include "SceneFile.h"
+
+namespace shadelab
+{
+void SceneSource::setScene(const Scene& scene)
+{
+  madeInCpp_ = scene;
+  fileName_.clear();
+  json_.clear();
+}
+
+bool SceneSource::setFileName(const std::string& fileName)
+{
+  const bool changed = fileName != fileName_;
+  fileName_ = fileName;
+  return changed;
+}
+
+bool SceneSource::setJson(const std::string& json)
+{
+  const bool changed = json != json_;
+  json_ = json;
+  return changed;
+}
+
+Scene SceneSource::scene() const
+{
+  if (!json_.empty())
+  {
+    return parseScene(json_, "SceneJson");
+  }
+  if (!fileName_.empty())
+  {
+    return readSceneFile(fileName_);
+  }
+  return madeInCpp_ ? *madeInCpp_ : defaultLightKit();
+}
+}

@@ -1,0 +1,36 @@
+#pragma once
+// Where a filter's scene comes from. VTK's Python wrapping and ParaView's server-manager XML
+// can carry strings but not a Scene, so a scene can be given as JSON text or as a scene file's
+// name, as well as made in C++.
+#include "Scene.h"
+
+#include <optional>
+#include <string>
+
+namespace shadelab
+{
+class SceneSource
+{
+public:
+  /// A scene made in C++. Forgets a file name or JSON text given before, so that the scene set
+  /// last is the one used.
+  void setScene(const Scene& scene);
+  /// These return whether the value changed. "" means none.
+  bool setFileName(const std::string& fileName);
+  bool setJson(const std::string& json);
+  const std::string& fileName() const { return fileName_; }
+  const std::string& json() const { return json_; }
+
+  /// The scene to use: from the JSON text if there is any, else from the named file, else the
+  /// one set in C++, else the default light kit (as `shadelab shade` without --scene). Throws
+  /// SceneFileError with the message the command line gives for the same scene; JSON text is
+  /// called "SceneJson" there, and an environment map named in it relative to the working
+  /// folder (a file's are relative to the file).
+  Scene scene() const;
+
+private:
+  std::optional<Scene> madeInCpp_;
+  std::string fileName_;
+  std::string json_;
+};
+}

@@ -1,0 +1,28 @@
+#ifndef ShadeLabSceneRead_h
+#define ShadeLabSceneRead_h
+// The scene a filter runs with, read from where its properties say (shadelab::SceneSource).
+#include "SceneSource.h"
+
+#include "vtkAlgorithm.h"
+
+#include <optional>
+
+namespace shadelab
+{
+/// The scene, or nothing once the reason it cannot be read (the command line's message) is
+/// reported as the filter's error.
+inline std::optional<Scene> readSceneFor(vtkAlgorithm* filter, const SceneSource& source)
+{
+  try
+  {
+    return source.scene();
+  }
+  catch (const std::exception& error) // a scene file or JSON text that cannot be used
+  {
+    vtkErrorWithObjectMacro(filter, << error.what());
+    return std::nullopt;
+  }
+}
+}
+
+#endif

@@ -1,0 +1,21 @@
+# The Python package as `cmake --install` leaves it: installed into a folder of its own, then
+# imported by PYTHON with only that prefix's package folder on PYTHONPATH, from outside the build
+# tree, and README.md's Python example run with it. Run by CTest with BUILD, PYTHON, DESTINATION
+# (SHADELAB_PYTHON_DESTINATION), EXAMPLE, SOURCE (the repository, the example's working folder)
+# and WORK.
+file(REMOVE_RECURSE "${WORK}")
+include("${CMAKE_CURRENT_LIST_DIR}/ScriptStep.cmake")
+step("installing ShadeLab" "${CMAKE_COMMAND}" --install "${BUILD}" --prefix "${WORK}/prefix")
+set(packages "${WORK}/prefix/${DESTINATION}")
+file(MAKE_DIRECTORY "${WORK}/elsewhere")
+step("importing shadelab" "${CMAKE_COMMAND}" -E chdir "${WORK}/elsewhere" env "PYTHONPATH=${packages}" "${PYTHON}" -c
+  "import shadelab\nprint(shadelab.__file__)") # a newline: CMake would split the arguments at a ';'
+if(NOT step_output MATCHES "^${packages}/shadelab/__init__.py")
+  message(FATAL_ERROR "shadelab was imported from ${step_output}, not from ${packages}")
+endif()
+step("running README.md's Python example" "${CMAKE_COMMAND}" -E chdir "${SOURCE}" env "PYTHONPATH=${packages}"
+  "${PYTHON}" "${EXAMPLE}")
+if(NOT step_output MATCHES "total = ambient \\+ diffuse \\+ specular at every vertex")
+  message(FATAL_ERROR "README.md's Python example did not finish:\n${step_output}")
+endif()
+message(STATUS "the package was imported from the install prefix and ran README.md's Python example")

@@ -1,0 +1,209 @@
+"""The Python package against the command line: the same arrays, bit for bit, and the same messages.
+
+Run by CTest with /usr/bin/python3, PYTHONPATH on the package's folder, SHADELAB (the command
+line's executable), SHADELAB_DATA (the repository's data/) and SHADELAB_WORK (a scratch folder).
+"""
+import os
+import subprocess
+import unittest
+
+import numpy as np
+from vtkmodules.util.numpy_support import vtk_to_numpy
+from vtkmodules.vtkCommonCore import vtkLogger, vtkOutputWindow, vtkSMPTools, vtkStringOutputWindow
+from vtkmodules.vtkCommonExecutionModel import vtkAlgorithm
+from vtkmodules.vtkIOPLY import vtkPLYReader
+from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
+
+import shadelab
+
+SHADELAB = os.environ["SHADELAB"]
+DATA = os.environ["SHADELAB_DATA"]
+WORK = os.environ["SHADELAB_WORK"]
+BUNNY = os.path.join(DATA, "meshes", "bunny_zipper.ply")
+STUDIO = os.path.join(DATA, "scenes", "studio.json")
+SHADOWS = os.path.join(DATA, "scenes", "shadows_occlusion.json")
+
+
+def read_bunny():
+    reader = vtkPLYReader()
+    reader.SetFileName(BUNNY)
+    reader.Update()
+    return reader.GetOutput()
+
+
+def command_line(name, *arguments):
+    """The point arrays `shadelab shade` writes for the bunny with these arguments."""
+    output = os.path.join(WORK, name + ".vtp")
+    subprocess.run([SHADELAB, "shade", BUNNY, "-o", output, *arguments], check=True, capture_output=True)
+    reader = vtkXMLPolyDataReader()
+    reader.SetFileName(output)
+    reader.Update()
+    return arrays_of(reader.GetOutput())
+
+
+def arrays_of(mesh):
+    point_data = mesh.GetPointData()
+    return {point_data.GetArrayName(a): vtk_to_numpy(point_data.GetArray(a)).copy()
+            for a in range(point_data.GetNumberOfArrays())}
+
+
+def shaded(configure):
+    """The point arrays of vtkLocalReflectanceFilter on the bunny, set up by configure(filter)."""
+    shade = shadelab.vtkLocalReflectanceFilter()
+    shade.SetInputData(read_bunny())
+    configure(shade)
+    shade.Update()
+    return arrays_of(shade.GetOutput())
+
+
+def select(shade, *entries):
+    shade.ClearArraySelection()
+    for entry in entries:
+        shade.AddToArraySelection(entry)
+
+
+class ErrorText:
+    """What VTK reports while in a with block, instead of printing it."""
+
+    def __enter__(self):
+        self.window = vtkStringOutputWindow()
+        self.previous = vtkOutputWindow.GetInstance()
+        vtkOutputWindow.SetInstance(self.window)
+        self.verbosity = vtkLogger.GetCurrentVerbosityCutoff()
+        vtkLogger.SetStderrVerbosity(vtkLogger.VERBOSITY_OFF)  # VTK's logger would print it too
+        return self
+
+    def __exit__(self, *exception):
+        vtkOutputWindow.SetInstance(self.previous)
+        vtkLogger.SetStderrVerbosity(self.verbosity)
+
+    def text(self):
+        return self.window.GetOutput()
+
+
+class SameAsTheCommandLine(unittest.TestCase):
+    def assertSameArrays(self, expected, actual):
+        self.assertEqual(sorted(expected), sorted(actual))
+        for name in expected:
+            self.assertEqual(expected[name].dtype, actual[name].dtype, name)
+            self.assertTrue(np.array_equal(expected[name], actual[name], equal_nan=True), name)
+
+    def test_a_scene_file_gives_every_array_bit_for_bit(self):
+        expected = command_line("studio_all", "-s", STUDIO, "-a", "all", "--precision", "float64")
+        def configure(shade):
+            shade.SetSceneFileName(STUDIO)
+            select(shade, "all")
+            shade.SetOutputPrecision(vtkAlgorithm.DOUBLE_PRECISION)
+        actual = shaded(configure)
+        self.assertGreater(len(actual), 30)
+        self.assertSameArrays(expected, actual)
+
+    def test_json_text_gives_what_its_file_gives_and_wins_over_a_file_name(self):
+        expected = command_line("studio_default", "-s", STUDIO)
+        with open(STUDIO) as scene:
+            text = scene.read()
+        def configure(shade):
+            shade.SetSceneFileName(os.path.join(DATA, "scenes", "sun.json"))
+            shade.SetSceneJson(text)
+        self.assertSameArrays(expected, shaded(configure))
+
+    def test_without_a_scene_the_default_light_kit(self):
+        self.assertSameArrays(command_line("kit", "-a", "totals"), shaded(lambda shade: select(shade, "totals")))
+
+    def test_shadows_and_occlusion_and_a_prefix(self):
+        expected = command_line("shadows", "-s", SHADOWS, "-a", "all", "--prefix", "sl_")
+        def configure(shade):
+            shade.SetSceneFileName(SHADOWS)
+            select(shade, "all")
+            shade.SetArrayPrefix("sl_")
+        actual = shaded(configure)
+        self.assertIn("sl_ambient_occlusion", actual)
+        self.assertSameArrays(expected, actual)
+
+    def test_a_tolerance_chooses_as_the_command_line_does(self):
+        expected = command_line("tolerance", "-s", STUDIO, "-a", "totals", "--tolerance", "1e-3")
+        def configure(shade):
+            shade.SetSceneFileName(STUDIO)
+            select(shade, "totals")
+            shade.SetTolerance(1e-3)
+        self.assertSameArrays(expected, shaded(configure))
+
+
+class Errors(unittest.TestCase):
+    def run_with_error(self, configure):
+        shade = shadelab.vtkLocalReflectanceFilter()
+        shade.SetInputData(read_bunny())
+        configure(shade)
+        with ErrorText() as errors:
+            shade.Update()
+        self.assertEqual(shade.GetOutput().GetNumberOfPoints(), 0)
+        return errors.text()
+
+    def command_line_message(self, *arguments):
+        """The command line's message for these arguments, without its 'shadelab: '."""
+        run = subprocess.run([SHADELAB, "shade", BUNNY, "-o", os.path.join(WORK, "unwritten.vtp"), *arguments],
+                             capture_output=True, text=True)
+        self.assertEqual(run.returncode, 1, run.stderr)
+        self.assertTrue(run.stderr.startswith("shadelab: "), run.stderr)
+        return run.stderr[len("shadelab: "):].strip()
+
+    def test_a_missing_scene_file(self):
+        missing = os.path.join(WORK, "no_such_scene.json")
+        message = self.command_line_message("-s", missing)
+        self.assertEqual(message, missing + ": cannot open the scene file (does it exist, and is it readable?)")
+        self.assertIn(message, self.run_with_error(lambda shade: shade.SetSceneFileName(missing)))
+
+    def test_a_wrong_field_in_json_text(self):
+        text = '{"lights": [{"type": "point", "position": [0, 1, 0], "intensity": -2}]}'
+        scene_file = os.path.join(WORK, "negative_intensity.json")
+        with open(scene_file, "w") as scene:
+            scene.write(text)
+        message = self.command_line_message("-s", scene_file)
+        self.assertTrue(message.startswith(scene_file + ": /lights/0/intensity: "), message)
+        expected = "SceneJson" + message[len(scene_file):]
+        self.assertIn(expected, self.run_with_error(lambda shade: shade.SetSceneJson(text)))
+
+    def test_an_unknown_array(self):
+        errors = self.run_with_error(lambda shade: select(shade, "key_nonsense"))
+        self.assertIn("key_nonsense", errors)
+
+
+class Properties(unittest.TestCase):
+    def test_the_selection_one_entry_at_a_time(self):
+        shade = shadelab.vtkLocalReflectanceFilter()
+        self.assertEqual(shade.GetNumberOfArraySelectionEntries(), 1)
+        self.assertEqual(shade.GetArraySelectionEntry(0), "default")
+        select(shade, "totals", "*_cos_incidence")
+        self.assertEqual([shade.GetArraySelectionEntry(i) for i in range(shade.GetNumberOfArraySelectionEntries())],
+                         ["totals", "*_cos_incidence"])
+        self.assertEqual(shade.GetArraySelectionEntry(2), "")
+
+    def test_one_thread_gives_the_same_bits_and_gives_the_count_back(self):
+        before = vtkSMPTools.GetEstimatedNumberOfThreads()
+        def on(threads):
+            def configure(shade):
+                shade.SetSceneFileName(SHADOWS)
+                select(shade, "all")
+                shade.SetNumberOfThreads(threads)
+            return shaded(configure)
+        one, every = on(1), on(0)
+        self.assertEqual(vtkSMPTools.GetEstimatedNumberOfThreads(), before)
+        SameAsTheCommandLine.assertSameArrays(self, every, one)
+
+    def test_the_visibility_filter_from_json_text(self):
+        normals = shadelab.vtkShadingNormalsFilter()
+        normals.SetInputData(read_bunny())
+        seen = shadelab.vtkMeshVisibilityFilter()
+        seen.SetInputConnection(normals.GetOutputPort())
+        with open(SHADOWS) as scene:
+            seen.SetSceneJson(scene.read())
+        seen.Update()
+        arrays = arrays_of(seen.GetOutput())
+        expected = command_line("shadows_occlusion", "-s", SHADOWS, "-a", "all")
+        for name in ("ambient_occlusion", "ambient_occlusion_std_error", "bent_normal", "sky_view_factor"):
+            self.assertTrue(np.array_equal(arrays[name], expected[name]), name)
+        self.assertIn("Cast up to", seen.GetReport())
+
+
+if __name__ == "__main__":
+    unittest.main(verbosity=2)
