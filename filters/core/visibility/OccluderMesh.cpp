@@ -99,13 +99,19 @@ struct OccluderMesh::Embree
 
   ~Embree()
   {
-    if (scene)
+    try
     {
-      rtcReleaseScene(scene);
+      if (scene)
+      {
+        rtcReleaseScene(scene);
+      }
+      if (device)
+      {
+        rtcReleaseDevice(device);
+      }
     }
-    if (device)
+    catch (...)
     {
-      rtcReleaseDevice(device);
     }
   }
 
