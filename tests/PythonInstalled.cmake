@@ -10,7 +10,8 @@ set(packages "${WORK}/prefix/${DESTINATION}")
 file(MAKE_DIRECTORY "${WORK}/elsewhere")
 step("importing shadelab" "${CMAKE_COMMAND}" -E chdir "${WORK}/elsewhere" env "PYTHONPATH=${packages}" "${PYTHON}" -c
   "import shadelab\nprint(shadelab.__file__)") # a newline: CMake would split the arguments at a ';'
-if(NOT step_output MATCHES "^${packages}/shadelab/__init__.py")
+string(FIND "${step_output}" "${packages}/shadelab/__init__.py" found)
+if(NOT found EQUAL 0)
   message(FATAL_ERROR "shadelab was imported from ${step_output}, not from ${packages}")
 endif()
 step("running README.md's Python example" "${CMAKE_COMMAND}" -E chdir "${SOURCE}" env "PYTHONPATH=${packages}"

@@ -63,11 +63,16 @@ def same_arrays(what, expected, actual, names=None):
 
 bunny = OpenDataFile(bunny_file)
 
+as_it_comes = LocalReflectance(Input=bunny)  # every property as the panel first shows it
+same_arrays("Local Reflectance as it comes: the default light kit and arrays", command_line("defaults"),
+            arrays_of(as_it_comes))
+
 shade = LocalReflectance(Input=bunny)
 shade.SceneFileName = studio
 shade.ArraySelection = ["all"]
 shade.OutputPrecision = "float64"
-same_arrays("Local Reflectance, studio.json, all arrays, float64",
+shade.NumberOfThreads = 1
+same_arrays("Local Reflectance, studio.json, all arrays, float64, one thread",
             command_line("studio", "-s", studio, "-a", "all", "--precision", "float64"), arrays_of(shade))
 
 shadowed = LocalReflectance(Input=bunny)
@@ -91,7 +96,8 @@ with open(shadows) as scene:
 shadow_arrays = command_line("shadows_all", "-s", shadows, "-a", "all")
 same_arrays("Shading Normals", shadow_arrays, arrays_of(normals), ["Normals"])
 same_arrays("Mesh Visibility from Scene JSON", shadow_arrays, arrays_of(seen),
-            ["ambient_occlusion", "ambient_occlusion_std_error", "bent_normal", "sky_view_factor"])
+            ["ambient_occlusion", "ambient_occlusion_std_error", "bent_normal", "sky_view_factor"]
+            + sorted(name for name in shadow_arrays if name.endswith("_visibility")))
 
 # A scene error reaches ParaView's output with the command line's message.
 bad_scene = os.path.join(work, "negative_intensity.json")

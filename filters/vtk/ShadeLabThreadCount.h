@@ -1,39 +1,32 @@
 #ifndef ShadeLabThreadCount_h
 #define ShadeLabThreadCount_h
-// A filter's NumberOfThreads: vtkSMPTools' thread count is one setting for the whole process
-// (VTK 9.1 has no scoped one), so a filter that asks for its own count sets it while it runs
-// and gives back the count it found.
+// A filter's NumberOfThreads: vtkSMPTools' count is one setting for the whole process, so a
+// filter that asks for its own runs within vtkSMPTools::LocalScope, and VTK's count is as
+// before afterwards.
 #include "vtkSMPTools.h"
 
 namespace shadelab
 {
-class ThreadCountWhileRunning
+/// body() run with at most `threads` threads in vtkSMPTools' loops (0: as VTK is set); what
+/// it returns.
+template <typename Body>
+int runWithThreads(int threads, Body&& body)
 {
-public:
-  /// threads 0 leaves VTK's setting as it is.
-  explicit ThreadCountWhileRunning(int threads)
-    : previous_(vtkSMPTools::GetEstimatedNumberOfThreads())
-    , changed_(threads > 0 && threads != previous_)
+  if (threads <= 0)
   {
-    if (changed_)
-    {
-      vtkSMPTools::Initialize(threads);
-    }
+    return body();
   }
-  ~ThreadCountWhileRunning()
+  const int before = vtkSMPTools::GetEstimatedNumberOfThreads();
+  int result = 0;
+  vtkSMPTools::LocalScope(vtkSMPTools::Config{ threads }, [&] { result = body(); });
+  // VTK 9.1's LocalScope gives back the setting it found, but where that is 0 (VTK's default)
+  // its TBB backend keeps the scope's count: then the count is given back too.
+  if (vtkSMPTools::GetEstimatedNumberOfThreads() != before)
   {
-    if (changed_)
-    {
-      vtkSMPTools::Initialize(previous_);
-    }
+    vtkSMPTools::Initialize(before);
   }
-  ThreadCountWhileRunning(const ThreadCountWhileRunning&) = delete;
-  ThreadCountWhileRunning& operator=(const ThreadCountWhileRunning&) = delete;
-
-private:
-  int previous_;
-  bool changed_;
-};
+  return result;
+}
 }
 
 #endif

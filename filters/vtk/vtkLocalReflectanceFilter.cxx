@@ -254,7 +254,11 @@ std::string takenName(vtkPolyData* input, const std::vector<std::string>& names)
 int vtkLocalReflectanceFilter::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
-  const shadelab::ThreadCountWhileRunning threads(this->NumberOfThreads);
+  return shadelab::runWithThreads(this->NumberOfThreads, [&] { return this->Shade(inputVector, outputVector); });
+}
+
+int vtkLocalReflectanceFilter::Shade(vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   this->NormalsReport.clear();
@@ -485,7 +489,7 @@ void vtkLocalReflectanceFilter::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "SceneFileName: " << this->Scene.fileName() << "\n";
-  os << indent << "SceneJson: " << (this->Scene.json().empty() ? "(none)" : "(set)") << "\n";
+  os << indent << "SceneJson: " << (this->Scene.hasJson() ? "(set)" : "(none)") << "\n";
   os << indent << "ArraySelection:";
   for (const std::string& entry : this->ArraySelection)
   {

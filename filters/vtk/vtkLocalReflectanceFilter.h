@@ -59,9 +59,10 @@ public:
   int GetNumberOfArraySelectionEntries() const { return static_cast<int>(this->ArraySelection.size()); }
   std::string GetArraySelectionEntry(int i) const;
 
-  /// Threads for the filter's loops (0, the default: vtkSMPTools' setting). vtkSMPTools has
-  /// one thread count for the process: the filter sets it while it runs, then gives it back.
-  vtkSetClampMacro(NumberOfThreads, int, 0, VTK_INT_MAX);
+  /// The most threads the filter's vtkSMPTools loops use (0, the default: as vtkSMPTools is
+  /// set; at most 1024), through vtkSMPTools::LocalScope, which leaves VTK's own setting as it
+  /// was. Embree builds the BVH for shadows and occlusion on threads of its own.
+  vtkSetClampMacro(NumberOfThreads, int, 0, 1024);
   vtkGetMacro(NumberOfThreads, int);
 
   /// Prepended to every array name written, to keep clear of names the input already has.
@@ -118,6 +119,8 @@ protected:
   ~vtkLocalReflectanceFilter() override;
 
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  /// RequestData within the filter's thread count.
+  int Shade(vtkInformationVector** inputVector, vtkInformationVector* outputVector);
 
 private:
   vtkLocalReflectanceFilter(const vtkLocalReflectanceFilter&) = delete;

@@ -125,7 +125,11 @@ void vtkMeshVisibilityFilter::SetScene(const shadelab::Scene& scene)
 int vtkMeshVisibilityFilter::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
-  const shadelab::ThreadCountWhileRunning threads(this->NumberOfThreads);
+  return shadelab::runWithThreads(this->NumberOfThreads, [&] { return this->CastRays(inputVector, outputVector); });
+}
+
+int vtkMeshVisibilityFilter::CastRays(vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   this->Report.clear();
@@ -356,7 +360,7 @@ void vtkMeshVisibilityFilter::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "SceneFileName: " << this->Scene.fileName() << "\n";
-  os << indent << "SceneJson: " << (this->Scene.json().empty() ? "(none)" : "(set)") << "\n";
+  os << indent << "SceneJson: " << (this->Scene.hasJson() ? "(set)" : "(none)") << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
   os << indent << "ArrayPrefix: " << this->ArrayPrefix << "\n";
   os << indent << "ComputeBentNormal: " << this->ComputeBentNormal << "\n";

@@ -57,8 +57,9 @@ public:
   void SetSceneJson(const std::string& json) { this->Scene.setJson(json) ? this->Modified() : void(); }
   std::string GetSceneJson() const { return this->Scene.json(); }
 
-  /// Threads for the rays (0, the default: vtkSMPTools' setting, which is given back after).
-  vtkSetClampMacro(NumberOfThreads, int, 0, VTK_INT_MAX);
+  /// The most threads the rays use (0, the default: as vtkSMPTools is set; at most 1024), as
+  /// vtkLocalReflectanceFilter's. Embree builds the BVH on threads of its own.
+  vtkSetClampMacro(NumberOfThreads, int, 0, 1024);
   vtkGetMacro(NumberOfThreads, int);
 
   /// Prepended to the visibility arrays' names (default "").
@@ -89,6 +90,8 @@ protected:
   ~vtkMeshVisibilityFilter() override;
 
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  /// RequestData within the filter's thread count.
+  int CastRays(vtkInformationVector** inputVector, vtkInformationVector* outputVector);
 
 private:
   vtkMeshVisibilityFilter(const vtkMeshVisibilityFilter&) = delete;

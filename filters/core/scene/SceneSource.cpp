@@ -26,9 +26,14 @@ bool SceneSource::setJson(const std::string& json)
   return changed;
 }
 
+bool SceneSource::hasJson() const
+{
+  return json_.find_first_not_of(" \t\r\n") != std::string::npos;
+}
+
 Scene SceneSource::scene() const
 {
-  if (!json_.empty())
+  if (hasJson())
   {
     return parseScene(json_, "SceneJson");
   }

@@ -12,20 +12,22 @@ namespace shadelab
 class SceneSource
 {
 public:
-  /// A scene made in C++. Forgets a file name or JSON text given before, so that the scene set
-  /// last is the one used.
+  /// A scene made in C++. Forgets a file name or JSON text given before.
   void setScene(const Scene& scene);
-  /// These return whether the value changed. "" means none.
+  /// These return whether the value changed. "" means none; so does JSON text of white space
+  /// alone (a text box a user emptied).
   bool setFileName(const std::string& fileName);
   bool setJson(const std::string& json);
   const std::string& fileName() const { return fileName_; }
   const std::string& json() const { return json_; }
+  bool hasJson() const;
 
-  /// The scene to use: from the JSON text if there is any, else from the named file, else the
-  /// one set in C++, else the default light kit (as `shadelab shade` without --scene). Throws
-  /// SceneFileError with the message the command line gives for the same scene; JSON text is
-  /// called "SceneJson" there, and an environment map named in it relative to the working
-  /// folder (a file's are relative to the file).
+  /// The scene to use: from the JSON text if there is any, else from the named file (read
+  /// now: a file edited since the last call is read as it is now), else the one set in C++,
+  /// else the default light kit (as `shadelab shade` without --scene). Throws SceneFileError
+  /// with the message the command line gives for the same scene; JSON text is called
+  /// "SceneJson" there, and an environment map named in it is relative to the working folder
+  /// (a file's are relative to the file).
   Scene scene() const;
 
 private:
