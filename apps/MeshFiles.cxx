@@ -540,15 +540,23 @@ void writeTextFile(const std::string& fileName, const std::string& text)
     });
 }
 
-vtkSmartPointer<vtkAlgorithm> vtkWriterFor(vtkPolyData* mesh, const std::string& path, const std::string& extension, Compression compression)
+vtkSmartPointer<vtkAlgorithm> vtkWriterFor(vtkPolyData* mesh, const std::string& path, const std::string& extension,
+  Compression compression, VtpLayout layout)
 {
   if (extension == ".vtp")
   {
     auto writer = vtkSmartPointer<vtkXMLPolyDataWriter>::New();
     writer->SetInputData(mesh);
     writer->SetFileName(path.c_str());
-    writer->SetDataModeToAppended();
-    writer->EncodeAppendedDataOff(); // raw binary, not base64
+    if (layout == VtpLayout::RawAppended)
+    {
+      writer->SetDataModeToAppended();
+      writer->EncodeAppendedDataOff();
+    }
+    else
+    {
+      writer->SetDataModeToBinary(); // base64 in each array's element
+    }
     writer->SetCompressorType(compression == Compression::LZ4 ? vtkXMLWriterBase::LZ4
         : compression == Compression::ZLib                   ? vtkXMLWriterBase::ZLIB
                                                              : vtkXMLWriterBase::NONE);
@@ -566,7 +574,7 @@ vtkSmartPointer<vtkAlgorithm> vtkReaderFor(const std::string& fileName)
   return readerFor(fileName, lowerExtension(fileName));
 }
 
-void writeMesh(vtkPolyData* mesh, const std::string& fileName, Compression compression)
+void writeMesh(vtkPolyData* mesh, const std::string& fileName, Compression compression, VtpLayout layout)
 {
   checkOutputFile(fileName, meshExtensions);
   const std::string unsafeName = lowerExtension(fileName) == ".vtp" ? nameXmlCannotHold(mesh) : "";
@@ -579,7 +587,7 @@ void writeMesh(vtkPolyData* mesh, const std::string& fileName, Compression compr
   writeThroughTemporary(fileName,
     [&](const std::string& temporary) -> std::string
     {
-      vtkSmartPointer<vtkAlgorithm> writer = vtkWriterFor(mesh, temporary, lowerExtension(fileName), compression);
+      vtkSmartPointer<vtkAlgorithm> writer = vtkWriterFor(mesh, temporary, lowerExtension(fileName), compression, layout);
       vtkNew<VtkErrorCapture> errors;
       errors->watch(writer);
       vtkNew<ProgressLine> progress;

@@ -58,15 +58,27 @@ enum class Compression
   None,
 };
 
+/// Where a .vtp keeps its arrays' bytes: in base64 inside each array's element (Inline, the
+/// default), or raw in one block at the end (RawAppended: a quarter smaller, and written in
+/// about two thirds of the time, but Debian 12's ParaView 5.11 reads such a file as empty since
+/// its Expat security update: docs/packaging.md section 3).
+enum class VtpLayout
+{
+  Inline,
+  RawAppended,
+};
+
 /// VTK's reader for the file's extension, set to read it: without ShadeLab's checks and
 /// without a process of its own (the benchmark's floor). Throws UserError for an unknown one.
 vtkSmartPointer<vtkAlgorithm> vtkReaderFor(const std::string& fileName);
 
 /// VTK's writer of mesh to path, as writeMesh writes extension (".vtp" or ".vtk"): Update()
 /// writes, and GetErrorCode() tells whether it could.
-vtkSmartPointer<vtkAlgorithm> vtkWriterFor(vtkPolyData* mesh, const std::string& path, const std::string& extension, Compression compression);
+vtkSmartPointer<vtkAlgorithm> vtkWriterFor(vtkPolyData* mesh, const std::string& path, const std::string& extension,
+  Compression compression, VtpLayout layout = VtpLayout::Inline);
 
-/// Writes .vtp (binary, appended raw) or legacy .vtk (binary), through a temporary file,
-/// showing progress on a terminal. Throws UserError.
-void writeMesh(vtkPolyData* mesh, const std::string& fileName, Compression compression = Compression::LZ4);
+/// Writes .vtp (binary) or legacy .vtk (binary), through a temporary file, showing progress on
+/// a terminal. Throws UserError.
+void writeMesh(vtkPolyData* mesh, const std::string& fileName, Compression compression = Compression::LZ4,
+  VtpLayout layout = VtpLayout::Inline);
 }

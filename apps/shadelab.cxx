@@ -142,6 +142,7 @@ struct ShadeOptions
   std::string precision = "float32";
   std::string prefix;
   std::string compression = "lz4";
+  bool rawAppended = false;
   double tolerance = 0;
   int threads = 0;
   bool keepNormals = false;
@@ -303,7 +304,8 @@ int runShade(const ShadeOptions& options)
   const app::Compression compression = options.compression == "zlib" ? app::Compression::ZLib
     : options.compression == "none"                                    ? app::Compression::None
                                                                        : app::Compression::LZ4;
-  app::writeMesh(output, options.output, compression);
+  app::writeMesh(output, options.output, compression,
+    options.rawAppended ? app::VtpLayout::RawAppended : app::VtpLayout::Inline);
   warnings.collect(options.output);
   const double writeSeconds = secondsSince(writeStart);
 
@@ -474,6 +476,9 @@ CLI::App* addShadeCommand(CLI::App& cli, ShadeOptions& options)
     ".vtp compression: lz4 is fastest, zlib gives files about a third smaller")
     ->check(CLI::IsMember({ "lz4", "zlib", "none" }))
     ->capture_default_str();
+  command->add_flag("--raw-appended", options.rawAppended,
+    ".vtp with its data raw in one block at the end: a quarter smaller and faster to write, but "
+    "Debian 12's ParaView 5.11 reads it as empty since its Expat security update (README.md, 'The command line')");
   command->add_option("--prefix", options.prefix,
     "prepended to every array name written (to keep clear of the input's own arrays): letters, digits and _")
     ->check(arrayNamePrefix());

@@ -67,9 +67,14 @@ as_it_comes = LocalReflectance(Input=bunny)  # every property as the panel first
 same_arrays("Local Reflectance as it comes: the default light kit and arrays", command_line("defaults"),
             arrays_of(as_it_comes))
 
+def tick_every_array(proxy):
+    proxy.UpdatePipelineInformation()  # the list of the scene's arrays
+    proxy.ArraySelection = proxy.ArraySelection.Available
+
+
 shade = LocalReflectance(Input=bunny)
 shade.SceneFileName = studio
-shade.ArraySelection = ["all"]
+tick_every_array(shade)
 shade.OutputPrecision = "float64"
 shade.NumberOfThreads = 1
 same_arrays("Local Reflectance, studio.json, all arrays, float64, one thread",
@@ -77,14 +82,24 @@ same_arrays("Local Reflectance, studio.json, all arrays, float64, one thread",
 
 shadowed = LocalReflectance(Input=bunny)
 shadowed.SceneFileName = shadows
-shadowed.ArraySelection = ["default", "*_visibility", "bent_normal", "sky_view_factor"]
+shadowed.UpdatePipelineInformation()
+# What the filter ticks for this scene's list (name, status pairs), as the panel shows it: the
+# default arrays.
+listed = list(shadowed.GetProperty("ArraySelectionInfo"))
+ticked = [listed[i] for i in range(0, len(listed), 2) if listed[i + 1] == "1"]
+check("at first the default arrays are ticked",
+      ticked == ["ambient", "diffuse", "specular", "total", "shading_flags", "ambient_occlusion",
+                 "ambient_occlusion_std_error", "key_visibility"], f"ticked: {ticked}")
+shadowed.ArraySelection = ticked + ["bent_normal", "sky_view_factor"]
 shadowed.ArrayPrefix = "pv_"
-same_arrays("Local Reflectance, shadows_occlusion.json, with a prefix",
-            command_line("shadows", "-s", shadows, "-a", "default,*_visibility,bent_normal,sky_view_factor",
+same_arrays("Local Reflectance, shadows_occlusion.json, two more boxes ticked, with a prefix",
+            command_line("shadows", "-s", shadows, "-a", "default,bent_normal,sky_view_factor",
                          "--prefix", "pv_"), arrays_of(shadowed))
 
 kit = LocalReflectance(Input=bunny)
-kit.ArraySelection = ["totals", "*_cos_incidence"]
+kit.UpdatePipelineInformation()
+kit.ArraySelection = ["ambient", "diffuse", "specular", "total"] + [
+    name for name in kit.ArraySelection.Available if name.endswith("_cos_incidence")]
 kit.Tolerance = 1e-3
 same_arrays("Local Reflectance, the default light kit under a tolerance",
             command_line("kit", "-a", "totals,*_cos_incidence", "--tolerance", "1e-3"), arrays_of(kit))

@@ -147,7 +147,14 @@ TEST_F(Cli, ShadesAndSummarises)
   EXPECT_NE(result.out.find("    sun_cos_incidence            1     "), std::string::npos) << result.out;
   EXPECT_NE(result.out.find("(1 thread, float64)"), std::string::npos) << result.out;
   EXPECT_NE(result.out.find("flipped them outward."), std::string::npos) << result.out;
-  EXPECT_EQ(slurp(out).rfind("<VTKFile type=\"PolyData\"", 0), 0u); // replaced by a VTK XML file
+  // Replaced by a VTK XML file whose arrays hold their own data, which Debian 12's ParaView reads.
+  const std::string written = slurp(out);
+  EXPECT_EQ(written.rfind("<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\"", 0), 0u);
+  EXPECT_EQ(written.find("<AppendedData"), std::string::npos);
+  EXPECT_NE(written.find("format=\"binary\""), std::string::npos);
+  // --raw-appended: the data raw in one block at the end.
+  ASSERT_EQ(shadelab("shade " + goodMesh() + " -o " + out + " --raw-appended").exitCode, 0);
+  EXPECT_NE(slurp(out).find("<AppendedData encoding=\"raw\">"), std::string::npos);
 }
 
 TEST_F(Cli, ShadowsAndAmbientOcclusion)

@@ -197,6 +197,37 @@ class Properties(unittest.TestCase):
                          ["totals", "*_cos_incidence"])
         self.assertEqual(shade.GetArraySelectionEntry(2), "")
 
+    def test_the_list_of_the_scenes_arrays(self):
+        shade = shadelab.vtkLocalReflectanceFilter()
+        shade.SetInputData(read_bunny())
+        shade.SetSceneFileName(STUDIO)
+        shade.UpdateInformation()
+        listed = shade.GetAvailableArrays()
+        names = [listed.GetArrayName(i) for i in range(listed.GetNumberOfArrays())]
+        self.assertEqual(len(names), 40)  # "all" but the computed normals
+        ticked = [name for name in names if listed.ArrayIsEnabled(name)]
+        self.assertEqual(ticked, ["ambient", "diffuse", "specular", "total", "shading_flags"])
+        # Boxes ticked and unticked become the selection.
+        listed.DisableArray("total")
+        listed.EnableArray("key_diffuse")
+        shade.Update()
+        self.assertEqual(sorted(arrays_of(shade.GetOutput())),
+                         sorted(["Normals", "ambient", "diffuse", "specular", "shading_flags", "key_diffuse"]))
+        self.assertEqual([shade.GetArraySelectionEntry(i) for i in range(shade.GetNumberOfArraySelectionEntries())],
+                         ["ambient", "diffuse", "specular", "shading_flags", "key_diffuse"])
+        # Another scene: the names it lacks leave the selection, and its list is its own.
+        shade.SetSceneFileName(os.path.join(DATA, "scenes", "sun.json"))
+        shade.Update()
+        self.assertEqual(sorted(arrays_of(shade.GetOutput())),
+                         sorted(["Normals", "ambient", "diffuse", "specular", "shading_flags"]))
+        self.assertFalse(any(listed.GetArrayName(i).startswith("key_") for i in range(listed.GetNumberOfArrays())))
+        # The selection's own setters, used after the list, win over it.
+        listed.DisableArray("ambient")
+        select(shade, "totals")
+        shade.Update()
+        self.assertEqual(sorted(arrays_of(shade.GetOutput())), sorted(["Normals", "ambient", "diffuse", "specular", "total"]))
+        self.assertTrue(listed.ArrayIsEnabled("ambient") and not listed.ArrayIsEnabled("shading_flags"))
+
     def test_one_thread_gives_the_same_bits_and_gives_the_count_back(self):
         before = vtkSMPTools.GetEstimatedNumberOfThreads()
         self.assertGreater(before, 1, "this test needs a machine with more than one core")

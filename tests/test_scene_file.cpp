@@ -305,6 +305,20 @@ TEST(SceneFile, MissingFile)
   }
 }
 
+// The names a selection ticks in a list of the scene's arrays (ParaView's panel).
+TEST(ArraySelection, SelectedNamesInOutputOrder)
+{
+  const Scene scene = parseScene(R"({ "lights": [
+      { "name": "sun", "type": "distant", "direction": [0, 0, -1] },
+      { "name": "bulb", "type": "point", "position": [0, 0, 1] } ] })", "scene.json");
+  EXPECT_EQ(selectedArrayNames(scene, { "default" }),
+    (std::vector<std::string>{ "ambient", "diffuse", "specular", "total", "shading_flags" }));
+  EXPECT_EQ(selectedArrayNames(scene, { "*_distance", "total", "sun_diffuse" }),
+    (std::vector<std::string>{ "total", "sun_diffuse", "bulb_distance" }));
+  EXPECT_EQ(selectedArrayNames(scene, { "all" }).size(), availableArrays(scene).size());
+  EXPECT_THROW(selectedArrayNames(scene, { "moon_diffuse" }), std::invalid_argument);
+}
+
 TEST(ArraySelection, PatternsAndNames)
 {
   const Scene scene = parseScene(R"({ "lights": [

@@ -12,6 +12,7 @@
 #include "ShadingKernel.h"
 
 #include "vtkArrayDispatch.h"
+#include "vtkCommand.h"
 #include "vtkCellArray.h"
 #include "vtkCellArrayIterator.h"
 #include "vtkDataArrayRange.h"
@@ -27,6 +28,7 @@
 #include "vtkSmartPointer.h"
 #include "vtkUnsignedCharArray.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -165,7 +167,78 @@ std::vector<vtkSmartPointer<vtkDataArray>> shade(const shadelab::Scene& scene,
 }
 }
 
-vtkLocalReflectanceFilter::vtkLocalReflectanceFilter() = default;
+vtkLocalReflectanceFilter::vtkLocalReflectanceFilter()
+{
+  this->AvailableArrays->AddObserver(vtkCommand::ModifiedEvent, this, &vtkLocalReflectanceFilter::AvailableArraysChanged);
+}
+
+void vtkLocalReflectanceFilter::AvailableArraysChanged()
+{
+  if (!this->FillingAvailableArrays)
+  {
+    this->Modified();
+  }
+}
+
+int vtkLocalReflectanceFilter::RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*)
+{
+  vtkDataArraySelection* list = this->AvailableArrays;
+  // An empty list changed is no choice: ParaView sets the list it has before the first fill.
+  const bool chosenInList = list->GetNumberOfArrays() > 0 && list->GetMTime() > this->AvailableArraysFilledAt;
+  shadelab::Scene scene;
+  try
+  {
+    scene = this->Scene.scene();
+  }
+  catch (const std::exception&)
+  {
+    return 1; // RequestData reports it
+  }
+  std::vector<std::string> available;
+  for (const auto& array : shadelab::availableArrays(scene))
+  {
+    available.push_back(array.name);
+  }
+  auto isAvailable = [&](const std::string& name)
+  { return std::find(available.begin(), available.end(), name) != available.end(); };
+  if (chosenInList)
+  {
+    // The names enabled in the list become the selection.
+    this->ArraySelection.clear();
+    for (int i = 0; i < list->GetNumberOfArrays(); ++i)
+    {
+      if (list->GetArraySetting(i))
+      {
+        this->ArraySelection.push_back(list->GetArrayName(i));
+      }
+    }
+    this->SelectionFromList = true;
+  }
+  if (this->SelectionFromList)
+  {
+    // Names from the list, of another scene's arrays, that this scene lacks.
+    this->ArraySelection.erase(std::remove_if(this->ArraySelection.begin(), this->ArraySelection.end(),
+      [&](const std::string& name) { return !isAvailable(name); }), this->ArraySelection.end());
+  }
+  std::vector<std::string> selected;
+  try
+  {
+    selected = shadelab::selectedArrayNames(scene, this->ArraySelection);
+  }
+  catch (const std::invalid_argument&)
+  {
+    // RequestData reports it; the list shows nothing ticked.
+  }
+  this->FillingAvailableArrays = true;
+  list->RemoveAllArrays();
+  for (const std::string& name : available)
+  {
+    list->AddArray(name.c_str(), std::find(selected.begin(), selected.end(), name) != selected.end());
+  }
+  this->FillingAvailableArrays = false;
+  this->AvailableArraysFilledAt = list->GetMTime();
+  return 1;
+}
 vtkLocalReflectanceFilter::~vtkLocalReflectanceFilter() = default;
 
 void vtkLocalReflectanceFilter::SetScene(const shadelab::Scene& scene)
@@ -183,7 +256,7 @@ void vtkLocalReflectanceFilter::SetLightMethods(const std::vector<shadelab::Ligh
 void vtkLocalReflectanceFilter::SetArraySelection(const std::vector<std::string>& selection)
 {
   this->ArraySelection = selection;
-  this->Modified();
+  this->SelectionSetHere();
 }
 
 void vtkLocalReflectanceFilter::ClearArraySelection()
@@ -191,13 +264,21 @@ void vtkLocalReflectanceFilter::ClearArraySelection()
   if (!this->ArraySelection.empty())
   {
     this->ArraySelection.clear();
-    this->Modified();
+    this->SelectionSetHere();
   }
 }
 
 void vtkLocalReflectanceFilter::AddToArraySelection(const std::string& entry)
 {
   this->ArraySelection.push_back(entry);
+  this->SelectionSetHere();
+}
+
+void vtkLocalReflectanceFilter::SelectionSetHere()
+{
+  // Set after any choice in AvailableArrays, so it is the one used.
+  this->AvailableArraysFilledAt = this->AvailableArrays->GetMTime();
+  this->SelectionFromList = false;
   this->Modified();
 }
 

@@ -17,6 +17,7 @@
 #define vtkLocalReflectanceFilter_h
 
 #include "ShadeLabFiltersModule.h"
+#include "vtkDataArraySelection.h" // the scene's arrays, a member
 #include "vtkNew.h"
 #include "vtkPolyDataAlgorithm.h"
 #include "vtkMeshVisibilityFilter.h" // the visibility step, a member
@@ -58,6 +59,13 @@ public:
   void AddToArraySelection(const std::string& entry);
   int GetNumberOfArraySelectionEntries() const { return static_cast<int>(this->ArraySelection.size()); }
   std::string GetArraySelectionEntry(int i) const;
+
+  /// The scene's arrays as a list with a status each, for GUIs (ParaView's panel shows a box
+  /// for each): every array the scene can produce, enabled where the selection computes it.
+  /// It is filled when the pipeline's information is updated (UpdateInformation, or Update).
+  /// Enabling or disabling arrays in it afterwards makes the enabled names the selection, at
+  /// the next update; names the scene then lacks (after another scene) are left out of it.
+  vtkDataArraySelection* GetAvailableArrays() { return this->AvailableArrays; }
 
   /// The most threads the filter's vtkSMPTools loops use (0, the default: as vtkSMPTools is
   /// set; at most 1024), through vtkSMPTools::LocalScope, which leaves VTK's own setting as it
@@ -118,6 +126,7 @@ protected:
   vtkLocalReflectanceFilter();
   ~vtkLocalReflectanceFilter() override;
 
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   /// RequestData within the filter's thread count.
   int Shade(vtkInformationVector** inputVector, vtkInformationVector* outputVector);
@@ -129,6 +138,17 @@ private:
   shadelab::SceneSource Scene;
   std::vector<std::string> ArraySelection{ "default" };
   int NumberOfThreads = 0;
+  vtkNew<vtkDataArraySelection> AvailableArrays;
+  /// AvailableArrays' modification time when RequestInformation last filled it: a later one
+  /// is a user's choice.
+  vtkMTimeType AvailableArraysFilledAt = 0;
+  bool FillingAvailableArrays = false;
+  /// Whether ArraySelection holds names ticked in AvailableArrays (rather than set by its setters).
+  bool SelectionFromList = false;
+  /// AvailableArrays changed: the filter is modified, unless it is filling the list itself.
+  void AvailableArraysChanged();
+  /// The selection was set by its own setters: it wins over earlier choices in AvailableArrays.
+  void SelectionSetHere();
   std::string ArrayPrefix;
   int OutputPrecision = SINGLE_PRECISION;
   bool OrientNormalsOutward = true;

@@ -255,4 +255,45 @@ ArrayRequest selectArrays(const Scene& scene, const std::vector<std::string>& se
   }
   return request;
 }
+
+namespace
+{
+/// Whether every array inner asks for, outer asks for too.
+bool covers(const ArrayRequest& outer, const ArrayRequest& inner)
+{
+  auto all = [](const auto& big, const auto& small)
+  {
+    for (std::size_t i = 0; i < small.size(); ++i)
+    {
+      if (small[i] && !big[i])
+      {
+        return false;
+      }
+    }
+    return true;
+  };
+  for (std::size_t l = 0; l < inner.lights.size(); ++l)
+  {
+    if (!all(outer.lights[l], inner.lights[l]))
+    {
+      return false;
+    }
+  }
+  return all(outer.totals, inner.totals) && (outer.flags || !inner.flags) && all(outer.occlusion, inner.occlusion);
+}
+}
+
+std::vector<std::string> selectedArrayNames(const Scene& scene, const std::vector<std::string>& selection)
+{
+  const ArrayRequest request = selectArrays(scene, selection);
+  std::vector<std::string> names;
+  for (const ArrayDescription& array : availableArrays(scene))
+  {
+    if (covers(request, selectArrays(scene, { array.name })))
+    {
+      names.push_back(array.name);
+    }
+  }
+  return names;
+}
 }

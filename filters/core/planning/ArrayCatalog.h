@@ -88,4 +88,8 @@ std::string occlusionArrayName(const std::string& prefix, OcclusionTerm term);
 /// Throws std::invalid_argument naming the first unknown entry and listing what exists, or
 /// saying that the selection is empty.
 ArrayRequest selectArrays(const Scene& scene, const std::vector<std::string>& selection);
+
+/// The names (without a prefix) of the arrays a selection computes, in output order: what a
+/// list of the scene's arrays with a box for each shows ticked. Throws as selectArrays does.
+std::vector<std::string> selectedArrayNames(const Scene& scene, const std::vector<std::string>& selection);
 }
