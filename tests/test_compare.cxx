@@ -85,15 +85,19 @@ std::string digits17(double x)
 class Compare : public Cli
 {
 protected:
-  std::string write(const std::string& name, vtkPolyData* mesh)
+  /// data written to name in the test's folder by a VTK writer of type Writer; its path.
+  template <typename Writer>
+  std::string writeWith(const std::string& name, vtkDataObject* data)
   {
     const std::string path = (folder / name).string();
-    vtkNew<vtkXMLPolyDataWriter> writer;
-    writer->SetInputData(mesh);
+    vtkNew<Writer> writer;
+    writer->SetInputData(data);
     writer->SetFileName(path.c_str());
     writer->Write();
     return path;
   }
+
+  std::string write(const std::string& name, vtkPolyData* mesh) { return writeWith<vtkXMLPolyDataWriter>(name, mesh); }
 
   /// The lines of the report that mention the array, after the heading.
   static std::string linesAbout(const std::string& report, const std::string& name)
@@ -334,21 +338,13 @@ TEST_F(Compare, AnyDatasetIsRead)
   grid->GetPointData()->ShallowCopy(mesh->GetPointData());
   const vtkIdType triangle[3] = { 0, 1, 2 };
   grid->InsertNextCell(VTK_TRIANGLE, 3, triangle);
-  const std::string vtu = (folder / "grid.vtu").string();
-  vtkNew<vtkXMLUnstructuredGridWriter> writer;
-  writer->SetInputData(grid);
-  writer->SetFileName(vtu.c_str());
-  writer->Write();
+  const std::string vtu = writeWith<vtkXMLUnstructuredGridWriter>("grid.vtu", grid);
   const Result result = shadelab("compare " + vtu + " " + write("a.vtp", mesh));
   EXPECT_EQ(result.exitCode, 0) << result.out << result.err;
   EXPECT_NE(result.out.find("(4 points, 2 cells) against the baseline " + vtu + " (4 points, 1 cells)"), std::string::npos)
     << result.out;
   // The same grid as legacy .vtk agrees with its .vtu.
-  const std::string legacy = (folder / "grid.vtk").string();
-  vtkNew<vtkUnstructuredGridWriter> legacyWriter;
-  legacyWriter->SetInputData(grid);
-  legacyWriter->SetFileName(legacy.c_str());
-  legacyWriter->Write();
+  const std::string legacy = writeWith<vtkUnstructuredGridWriter>("grid.vtk", grid);
   const Result legacyRun = shadelab("compare " + vtu + " " + legacy);
   EXPECT_EQ(legacyRun.exitCode, 0) << legacyRun.out << legacyRun.err;
   // An image (its points implicit) and a structured grid with the same points and values agree.
@@ -361,11 +357,7 @@ TEST_F(Compare, AnyDatasetIsRead)
     value->InsertNextValue(v);
   }
   image->GetPointData()->AddArray(value);
-  const std::string vti = (folder / "image.vti").string(), vts = (folder / "grid.vts").string();
-  vtkNew<vtkXMLImageDataWriter> imageWriter;
-  imageWriter->SetInputData(image);
-  imageWriter->SetFileName(vti.c_str());
-  imageWriter->Write();
+  const std::string vti = writeWith<vtkXMLImageDataWriter>("image.vti", image);
   vtkNew<vtkStructuredGrid> structured;
   structured->SetDimensions(2, 2, 1);
   vtkNew<vtkPoints> gridPoints;
@@ -376,10 +368,7 @@ TEST_F(Compare, AnyDatasetIsRead)
   }
   structured->SetPoints(gridPoints);
   structured->GetPointData()->AddArray(value);
-  vtkNew<vtkXMLStructuredGridWriter> gridWriter;
-  gridWriter->SetInputData(structured);
-  gridWriter->SetFileName(vts.c_str());
-  gridWriter->Write();
+  const std::string vts = writeWith<vtkXMLStructuredGridWriter>("grid.vts", structured);
   const Result grids = shadelab("compare " + vti + " " + vts);
   EXPECT_EQ(grids.exitCode, 0) << grids.out << grids.err;
   EXPECT_NE(grids.out.find("  ok     value "), std::string::npos) << grids.out;

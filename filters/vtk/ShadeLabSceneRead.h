@@ -9,24 +9,26 @@
 
 namespace shadelab
 {
-/// The scene, or nothing once the reason it cannot be read (the command line's message) is
-/// reported as the filter's error. A scene file that JSON text overrides is warned of.
-inline std::optional<Scene> readSceneFor(vtkAlgorithm* filter, const SceneSource& source)
+/// The scene read, or nothing once the reason it could not be is reported as the filter's
+/// error. A scene file that JSON text overrides is warned of.
+inline std::optional<Scene> reportedScene(vtkAlgorithm* filter, const SceneSource& source, const SceneReading& reading)
 {
   if (source.hasJson() && !source.fileName().empty())
   {
     vtkWarningWithObjectMacro(filter, "both SceneJson and SceneFileName are set: the JSON text is used, not "
         << source.fileName() << " (set SceneJson to \"\" to use the file)");
   }
-  try
+  if (!reading.scene)
   {
-    return source.scene();
+    vtkErrorWithObjectMacro(filter, << reading.problem);
   }
-  catch (const std::exception& error) // a scene file or JSON text that cannot be used
-  {
-    vtkErrorWithObjectMacro(filter, << error.what());
-    return std::nullopt;
-  }
+  return reading.scene;
+}
+
+/// The scene, read now, or nothing once why it cannot be is reported (reportedScene).
+inline std::optional<Scene> readSceneFor(vtkAlgorithm* filter, const SceneSource& source)
+{
+  return reportedScene(filter, source, source.read());
 }
 }
 

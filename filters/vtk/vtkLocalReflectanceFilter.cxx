@@ -185,15 +185,13 @@ int vtkLocalReflectanceFilter::RequestInformation(vtkInformation*, vtkInformatio
   vtkDataArraySelection* list = this->AvailableArrays;
   // An empty list changed is no choice: ParaView sets the list it has before the first fill.
   const bool chosenInList = list->GetNumberOfArrays() > 0 && list->GetMTime() > this->AvailableArraysFilledAt;
-  shadelab::Scene scene;
-  try
-  {
-    scene = this->Scene.scene();
-  }
-  catch (const std::exception&)
+  // Read once for the update: RequestData shades with it, or reports why it could not be read.
+  this->SceneOfThisUpdate = this->Scene.read();
+  if (!this->SceneOfThisUpdate.scene)
   {
     return 1; // RequestData reports it
   }
+  const shadelab::Scene& scene = *this->SceneOfThisUpdate.scene;
   std::vector<std::string> available;
   for (const auto& array : shadelab::availableArrays(scene))
   {
@@ -375,7 +373,7 @@ int vtkLocalReflectanceFilter::Shade(vtkInformationVector** inputVector, vtkInfo
     vtkErrorMacro(<< problem);
     return 0;
   }
-  const std::optional<shadelab::Scene> given = shadelab::readSceneFor(this, this->Scene);
+  const std::optional<shadelab::Scene> given = shadelab::reportedScene(this, this->Scene, this->SceneOfThisUpdate);
   if (!given)
   {
     return 0;

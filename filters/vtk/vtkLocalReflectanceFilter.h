@@ -143,6 +143,9 @@ private:
   /// is a user's choice.
   vtkMTimeType AvailableArraysFilledAt = 0;
   bool FillingAvailableArrays = false;
+  /// The scene as RequestInformation read it, for RequestData: a scene file (and its
+  /// environment maps) is read once per update.
+  shadelab::SceneReading SceneOfThisUpdate;
   /// Whether ArraySelection holds names ticked in AvailableArrays (rather than set by its setters).
   bool SelectionFromList = false;
   /// AvailableArrays changed: the filter is modified, unless it is filling the list itself.

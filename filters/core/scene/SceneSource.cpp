@@ -43,4 +43,16 @@ Scene SceneSource::scene() const
   }
   return madeInCpp_ ? *madeInCpp_ : defaultLightKit();
 }
+
+SceneReading SceneSource::read() const
+{
+  try
+  {
+    return { scene(), "" };
+  }
+  catch (const std::exception& error) // a scene file or JSON text that cannot be used
+  {
+    return { std::nullopt, error.what() };
+  }
+}
 }

@@ -9,6 +9,13 @@
 
 namespace shadelab
 {
+/// A scene as read, or why it could not be (the command line's message).
+struct SceneReading
+{
+  std::optional<Scene> scene;
+  std::string problem;
+};
+
 class SceneSource
 {
 public:
@@ -29,6 +36,8 @@ public:
   /// "SceneJson" there, and an environment map named in it is relative to the working folder
   /// (a file's are relative to the file).
   Scene scene() const;
+  /// The same, with the error's message in place of the exception.
+  SceneReading read() const;
 
 private:
   std::optional<Scene> madeInCpp_;
