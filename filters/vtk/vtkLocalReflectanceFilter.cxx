@@ -5,6 +5,7 @@
 #include "ShadeLabFieldNotes.h"
 #include "ShadeLabSceneRead.h"
 #include "ShadeLabThreadCount.h"
+#include "ShadeLabWholeMesh.h"
 #include "ShadeLabLargeArrays.h"
 #include "SceneFrame.h"
 #include "ShadeLabMeshChecks.h"
@@ -168,7 +169,11 @@ std::vector<vtkSmartPointer<vtkDataArray>> shade(const shadelab::Scene& scene,
 }
 
 vtkLocalReflectanceFilter::vtkLocalReflectanceFilter()
+  : Controller(vtkMultiProcessController::GetGlobalController())
 {
+  // The steps run on a whole mesh: this filter gathers a split one itself.
+  this->NormalsStep->SetController(nullptr);
+  this->VisibilityStep->SetController(nullptr);
   this->AvailableArrays->AddObserver(vtkCommand::ModifiedEvent, this, &vtkLocalReflectanceFilter::AvailableArraysChanged);
 }
 
@@ -342,7 +347,55 @@ int vtkLocalReflectanceFilter::Shade(vtkInformationVector** inputVector, vtkInfo
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   this->NormalsReport.clear();
   this->VisibilityReport.clear();
+  if (!shadelab::isPieceOfSplitMesh(this->Controller, input))
+  {
+    return this->ShadeMesh(input, output, input, nullptr);
+  }
+  // Every process finds the same problems: the cells' of one is shared, and the rest are
+  // found on the whole mesh, which every process has.
+  const std::string cells = shadelab::agreedProblem(this->Controller, shadelab::cellProblem(input));
+  if (!cells.empty())
+  {
+    vtkErrorMacro(<< cells);
+    return 0;
+  }
+  const shadelab::WholeMesh whole = shadelab::gatherWholeMesh(this->Controller, input, true);
+  if (!whole.problem.empty())
+  {
+    vtkErrorMacro(<< whole.problem);
+    return 0;
+  }
+  if (!whole.mesh || whole.pieceIds.empty()) // an empty piece, or the whole mesh
+  {
+    return this->ShadeMesh(input, output, input, nullptr);
+  }
+  vtkNew<vtkPolyData> shaded;
+  if (!this->ShadeMesh(whole.mesh, shaded, input, &whole.pieceIds))
+  {
+    return 0;
+  }
+  output->ShallowCopy(input);
+  // The arrays written, one value per point of the piece; computed normals are the whole mesh's.
+  vtkPointData* written = shaded->GetPointData();
+  for (int a = 0; a < written->GetNumberOfArrays(); ++a)
+  {
+    vtkDataArray* array = written->GetArray(a);
+    if (array == written->GetNormals() && array != whole.mesh->GetPointData()->GetNormals())
+    {
+      output->GetPointData()->SetNormals(shadelab::tuplesAt(array, whole.pieceIds));
+    }
+    else if (!whole.mesh->GetPointData()->HasArray(array->GetName()))
+    {
+      output->GetPointData()->AddArray(array);
+    }
+  }
+  output->GetFieldData()->PassData(shaded->GetFieldData());
+  return 1;
+}
 
+int vtkLocalReflectanceFilter::ShadeMesh(
+  vtkPolyData* input, vtkPolyData* output, vtkPolyData* namesFrom, const std::vector<vtkIdType>* pieceIds)
+{
   if (input->GetNumberOfPoints() == 0)
   {
     output->ShallowCopy(input); // nothing in, nothing out, and no error: VTK's convention
@@ -428,7 +481,7 @@ int vtkLocalReflectanceFilter::Shade(vtkInformationVector** inputVector, vtkInfo
   {
     written.push_back(this->ComputedNormalsName());
   }
-  const std::string taken = takenName(input, written);
+  const std::string taken = takenName(namesFrom, written);
   if (!taken.empty())
   {
     vtkErrorMacro("the input already has a point array named '"
@@ -439,12 +492,21 @@ int vtkLocalReflectanceFilter::Shade(vtkInformationVector** inputVector, vtkInfo
   output->ShallowCopy(input);
   vtkDataArray* shadingNormals = this->PrepareNormals(input, output);
 
-  vtkDataArray* points = input->GetPoints()->GetData();
+  // The points to shade, with their normals: all of them, or a piece's.
+  vtkSmartPointer<vtkDataArray> points = input->GetPoints()->GetData();
+  vtkSmartPointer<vtkDataArray> normals = shadingNormals;
   std::vector<vtkSmartPointer<vtkDataArray>> arrays;
   try
   {
     shadelab::ShadingInputs inputs;
-    if (vtkPolyData* seen = this->PrepareVisibility(input, shadingNormals, scene, request))
+    if (pieceIds)
+    {
+      points = shadelab::tuplesAt(points, *pieceIds);
+      normals = shadelab::tuplesAt(shadingNormals, *pieceIds);
+      static_assert(sizeof(vtkIdType) == sizeof(long long), "ids seed samples as 64-bit integers");
+      inputs.sampleIds = reinterpret_cast<const long long*>(pieceIds->data());
+    }
+    if (vtkPolyData* seen = this->PrepareVisibility(input, shadingNormals, scene, request, pieceIds))
     {
       vtkPointData* data = seen->GetPointData();
       auto floats = [&](const std::string& name)
@@ -471,8 +533,8 @@ int vtkLocalReflectanceFilter::Shade(vtkInformationVector** inputVector, vtkInfo
                        ->GetPointer(0);
     }
     const auto shaded = precision == shadelab::Precision::Float64
-      ? shade<double>(scene, request, methods, this->ArrayPrefix, points, shadingNormals, inputs, this)
-      : shade<float>(scene, request, methods, this->ArrayPrefix, points, shadingNormals, inputs, this);
+      ? shade<double>(scene, request, methods, this->ArrayPrefix, points, normals, inputs, this)
+      : shade<float>(scene, request, methods, this->ArrayPrefix, points, normals, inputs, this);
     arrays.insert(arrays.begin(), shaded.begin(), shaded.end());
     // The rays' arrays have been used (those asked for are in `arrays`): not kept until the next run.
     this->VisibilityStep->GetOutput()->Initialize();
@@ -534,8 +596,8 @@ vtkDataArray* vtkLocalReflectanceFilter::PrepareNormals(vtkPolyData* input, vtkP
   return shading;
 }
 
-vtkPolyData* vtkLocalReflectanceFilter::PrepareVisibility(
-  vtkPolyData* input, vtkDataArray* shadingNormals, const shadelab::Scene& scene, const shadelab::ArrayRequest& request)
+vtkPolyData* vtkLocalReflectanceFilter::PrepareVisibility(vtkPolyData* input, vtkDataArray* shadingNormals,
+  const shadelab::Scene& scene, const shadelab::ArrayRequest& request, const std::vector<vtkIdType>* rayPoints)
 {
   if (!scene.needsVisibility())
   {
@@ -554,6 +616,11 @@ vtkPolyData* vtkLocalReflectanceFilter::PrepareVisibility(
   step->SetArrayPrefix(this->ArrayPrefix);
   step->SetComputeBentNormal(request.occlusion[int(shadelab::OcclusionTerm::BentNormal)]);
   step->SetComputeSkyViewFactor(request.occlusion[int(shadelab::OcclusionTerm::SkyViewFactor)]);
+  if (step->RayPointIds != rayPoints)
+  {
+    step->RayPointIds = rayPoints;
+    step->Modified();
+  }
   step->Update();
   vtkPolyData* seen = step->GetOutput();
   if (!seen->GetPointData()->GetArray(shadelab::visibilityFlagsArrayName(this->ArrayPrefix).c_str()))

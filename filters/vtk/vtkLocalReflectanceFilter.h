@@ -12,12 +12,18 @@
  * and so does the output's field data array "shadelab_normals". Where the scene has shadows or
  * ambient occlusion, vtkMeshVisibilityFilter casts the rays first: each shadowed light's
  * visibility multiplies its diffuse and specular terms, and the occlusion the ambient term.
+ *
+ * A piece of a mesh split over processes (see SetController) is shaded as its points are in
+ * the whole mesh, bit for bit: the normals, the outward test, the extent that places the scene
+ * and plans the tolerance, and the occluders are the whole mesh's, and each point's samples
+ * are seeded by its id in it (ShadeLabWholeMesh.h).
  */
 #ifndef vtkLocalReflectanceFilter_h
 #define vtkLocalReflectanceFilter_h
 
 #include "ShadeLabFiltersModule.h"
 #include "vtkDataArraySelection.h" // the scene's arrays, a member
+#include "vtkMultiProcessController.h" // the controller, a member
 #include "vtkNew.h"
 #include "vtkPolyDataAlgorithm.h"
 #include "vtkMeshVisibilityFilter.h" // the visibility step, a member
@@ -122,6 +128,13 @@ public:
   /// What the last run's rays did (vtkMeshVisibilityFilter), or "" without shadows and occlusion.
   const std::string& GetVisibilityReport() const { return this->VisibilityReport; }
 
+  /// The processes over which the mesh may be split (default: the global controller, MPI's
+  /// under pvbatch or mpirun; nullptr: this process alone). Where there are several, or the
+  /// input's points have global ids, the input is taken as a piece of a mesh whose points are
+  /// numbered by their global ids, and its cells by their global cell ids.
+  vtkSetSmartPointerMacro(Controller, vtkMultiProcessController);
+  vtkGetSmartPointerMacro(Controller, vtkMultiProcessController);
+
 protected:
   vtkLocalReflectanceFilter();
   ~vtkLocalReflectanceFilter() override;
@@ -130,6 +143,10 @@ protected:
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   /// RequestData within the filter's thread count.
   int Shade(vtkInformationVector** inputVector, vtkInformationVector* outputVector);
+  /// Shades input as a whole mesh into output: every point, or (pieceIds) only those of a
+  /// piece, whose arrays then have a value per point of the piece. Names already taken are
+  /// looked for in namesFrom (the input, or the piece).
+  int ShadeMesh(vtkPolyData* input, vtkPolyData* output, vtkPolyData* namesFrom, const std::vector<vtkIdType>* pieceIds);
 
 private:
   vtkLocalReflectanceFilter(const vtkLocalReflectanceFilter&) = delete;
@@ -163,6 +180,7 @@ private:
   std::string VisibilityReport;
   std::optional<shadelab::MethodPlan> MethodPlan;
   std::vector<shadelab::LightMethod> LightMethods;
+  vtkSmartPointer<vtkMultiProcessController> Controller;
 
   /// The step that prepares the normals to shade with (the input's own, checked, or computed),
   /// run as a pipeline of its own: it runs again only when the input or its settings have
@@ -174,10 +192,10 @@ private:
   /// The step that casts rays for the scene's shadows and ambient occlusion, on the input with
   /// the normals to shade with.
   vtkNew<vtkMeshVisibilityFilter> VisibilityStep;
-  /// Runs VisibilityStep when the scene needs it; returns its output (nullptr: not needed), or
-  /// throws std::runtime_error when it failed.
+  /// Runs VisibilityStep when the scene needs it, with rays from rayPoints (nullptr: every
+  /// point); returns its output (nullptr: not needed), or throws std::runtime_error when it failed.
   vtkPolyData* PrepareVisibility(vtkPolyData* input, vtkDataArray* shadingNormals, const shadelab::Scene& scene,
-    const shadelab::ArrayRequest& request);
+    const shadelab::ArrayRequest& request, const std::vector<vtkIdType>* rayPoints);
   /// The name of the normals the filter computes when the input has none.
   std::string ComputedNormalsName() const { return this->ArrayPrefix + "Normals"; }
 };

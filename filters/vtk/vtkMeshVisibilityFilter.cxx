@@ -8,6 +8,7 @@
 #include "ShadeLabMeshChecks.h"
 #include "ShadeLabMeshExtent.h"
 #include "ShadeLabMeshPolygons.h"
+#include "ShadeLabWholeMesh.h"
 #include "ShadingFlags.h"
 #include "SceneFrame.h"
 #include "Visibility.h"
@@ -16,6 +17,7 @@
 #include "vtkFloatArray.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
+#include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
@@ -74,7 +76,10 @@ double secondsSince(std::chrono::steady_clock::time_point start)
 }
 }
 
-vtkMeshVisibilityFilter::vtkMeshVisibilityFilter() = default;
+vtkMeshVisibilityFilter::vtkMeshVisibilityFilter()
+  : Controller(vtkMultiProcessController::GetGlobalController())
+{
+}
 vtkMeshVisibilityFilter::~vtkMeshVisibilityFilter() = default;
 
 namespace
@@ -133,7 +138,43 @@ int vtkMeshVisibilityFilter::CastRays(vtkInformationVector** inputVector, vtkInf
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   this->Report.clear();
-  const vtkIdType count = input->GetNumberOfPoints();
+  if (this->RayPointIds || !shadelab::isPieceOfSplitMesh(this->Controller, input))
+  {
+    return this->CastRaysFrom(input, output, this->RayPointIds);
+  }
+  const shadelab::WholeMesh whole = shadelab::gatherWholeMesh(this->Controller, input, true);
+  if (!whole.problem.empty())
+  {
+    vtkErrorMacro(<< whole.problem);
+    return 0;
+  }
+  if (!whole.mesh || whole.pieceIds.empty()) // an empty piece, or the whole mesh
+  {
+    return this->CastRaysFrom(input, output, nullptr);
+  }
+  vtkNew<vtkPolyData> seen;
+  if (!this->CastRaysFrom(whole.mesh, seen, &whole.pieceIds))
+  {
+    return 0;
+  }
+  output->ShallowCopy(input);
+  // The rays' arrays, one value per point of the piece.
+  for (int a = 0; a < seen->GetPointData()->GetNumberOfArrays(); ++a)
+  {
+    vtkAbstractArray* array = seen->GetPointData()->GetAbstractArray(a);
+    if (!whole.mesh->GetPointData()->HasArray(array->GetName()))
+    {
+      output->GetPointData()->AddArray(array);
+    }
+  }
+  shadelab::addFieldNote(output, shadelab::visibilityNoteName, { this->Report });
+  return 1;
+}
+
+int vtkMeshVisibilityFilter::CastRaysFrom(vtkPolyData* input, vtkPolyData* output, const std::vector<vtkIdType>* rayPoints)
+{
+  const vtkIdType pointCount = input->GetNumberOfPoints();
+  const vtkIdType count = rayPoints ? static_cast<vtkIdType>(rayPoints->size()) : pointCount;
   if (count == 0)
   {
     output->ShallowCopy(input);
@@ -146,7 +187,7 @@ int vtkMeshVisibilityFilter::CastRays(vtkInformationVector** inputVector, vtkInf
     return 0;
   }
   vtkDataArray* normalArray = input->GetPointData()->GetNormals();
-  if (!normalArray || normalArray->GetNumberOfComponents() != 3 || normalArray->GetNumberOfTuples() != count)
+  if (!normalArray || normalArray->GetNumberOfComponents() != 3 || normalArray->GetNumberOfTuples() != pointCount)
   {
     vtkErrorMacro("the mesh needs one 3-component point normal per point to cast rays from: run "
                   "vtkShadingNormalsFilter first (vtkLocalReflectanceFilter does)");
@@ -257,9 +298,10 @@ int vtkMeshVisibilityFilter::CastRays(vtkInformationVector** inputVector, vtkInf
   // the viewer, as the kernel turns it.
   auto rayVertex = [&](vtkIdType i, shadelab::RayVertex& vertex, glm::dvec3& occlusionNormal)
   {
-    const auto p = points[i];
-    const auto n = normals[i];
-    vertex = { { p[0], p[1], p[2] }, { n[0], n[1], n[2] }, i };
+    const vtkIdType id = rayPoints ? (*rayPoints)[static_cast<std::size_t>(i)] : i;
+    const auto p = points[id];
+    const auto n = normals[id];
+    vertex = { { p[0], p[1], p[2] }, { n[0], n[1], n[2] }, id };
     const double length2 = glm::dot(vertex.normal, vertex.normal);
     const glm::dvec3& q = vertex.position;
     const bool usable = length2 > 1e-12 && std::isfinite(length2) && std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z);

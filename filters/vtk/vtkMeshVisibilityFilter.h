@@ -16,12 +16,15 @@
  * "shadelab_visibility" say how many rays were cast and how long the BVH and the rays took.
  *
  * Results are the same bits on any number of threads: each vertex's samples are a hash of its
- * id, and a ray's answer does not depend on the order the BVH is traversed in.
+ * id, and a ray's answer does not depend on the order the BVH is traversed in. A piece of a
+ * mesh split over processes (see SetController) casts its points' rays against the whole
+ * mesh's triangles, with the samples of their ids in the whole mesh (ShadeLabWholeMesh.h).
  */
 #ifndef vtkMeshVisibilityFilter_h
 #define vtkMeshVisibilityFilter_h
 
 #include "ShadeLabFiltersModule.h"
+#include "vtkMultiProcessController.h" // the controller, a member
 #include "vtkPolyDataAlgorithm.h"
 
 #include "vtkSmartPointer.h"
@@ -30,6 +33,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 class vtkCellArray;
 class vtkPoints;
@@ -85,6 +89,11 @@ public:
   /// What the last run did, in one sentence.
   const std::string& GetReport() const { return this->Report; }
 
+  /// The processes over which the mesh may be split, as vtkShadingNormalsFilter's (default:
+  /// the global controller; nullptr: this process alone).
+  vtkSetSmartPointerMacro(Controller, vtkMultiProcessController);
+  vtkGetSmartPointerMacro(Controller, vtkMultiProcessController);
+
 protected:
   vtkMeshVisibilityFilter();
   ~vtkMeshVisibilityFilter() override;
@@ -92,6 +101,9 @@ protected:
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   /// RequestData within the filter's thread count.
   int CastRays(vtkInformationVector** inputVector, vtkInformationVector* outputVector);
+  /// The rays from the points rayPoints lists (nullptr: every point) against input's triangles;
+  /// output's arrays have a value for each of those points.
+  int CastRaysFrom(vtkPolyData* input, vtkPolyData* output, const std::vector<vtkIdType>* rayPoints);
 
 private:
   vtkMeshVisibilityFilter(const vtkMeshVisibilityFilter&) = delete;
@@ -104,6 +116,11 @@ private:
   bool ComputeSkyViewFactor = true;
   bool CheckCells = true;
   std::string Report;
+  vtkSmartPointer<vtkMultiProcessController> Controller;
+  /// The points to cast rays from, as vtkLocalReflectanceFilter sets it for a piece of a split
+  /// mesh (its input then is the whole mesh); nullptr: every point.
+  const std::vector<vtkIdType>* RayPointIds = nullptr;
+  friend class vtkLocalReflectanceFilter;
 
   /// The BVH of the mesh it was built for: the same point and cell objects, none modified since.
   struct BuiltOccluders

@@ -6,6 +6,7 @@
 #include "ShadeLabLargeArrays.h"
 #include "ShadeLabMeshChecks.h"
 #include "ShadeLabMeshPolygons.h"
+#include "ShadeLabWholeMesh.h"
 
 #include "vtkArrayDispatch.h"
 #include "vtkCellArray.h"
@@ -365,12 +366,58 @@ bool usableNormals(vtkDataArray* normals, vtkIdType pointCount)
 }
 }
 
+vtkShadingNormalsFilter::vtkShadingNormalsFilter()
+  : Controller(vtkMultiProcessController::GetGlobalController())
+{
+}
+
 int vtkShadingNormalsFilter::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   this->Report.clear();
+  if (!shadelab::isPieceOfSplitMesh(this->Controller, input))
+  {
+    return this->ComputeNormals(input, output);
+  }
+  // Every process finds the same problems (the settings are the same, or the text is shared).
+  const std::string problem = this->SplitSharpEdges
+    ? "splitting sharp edges adds points, which the pieces of a mesh split over processes cannot share: "
+      "split them before the mesh is split"
+    : shadelab::agreedProblem(this->Controller, this->CheckCells ? shadelab::cellProblem(input) : "");
+  if (!problem.empty())
+  {
+    vtkErrorMacro(<< problem);
+    return 0;
+  }
+  const shadelab::WholeMesh whole = shadelab::gatherWholeMesh(this->Controller, input, this->KeepInputNormals);
+  if (!whole.problem.empty())
+  {
+    vtkErrorMacro(<< whole.problem);
+    return 0;
+  }
+  if (!whole.mesh || whole.pieceIds.empty()) // an empty piece, or the whole mesh
+  {
+    return this->ComputeNormals(input, output);
+  }
+  vtkNew<vtkPolyData> wholeWithNormals;
+  if (!this->ComputeNormals(whole.mesh, wholeWithNormals))
+  {
+    return 0;
+  }
+  output->ShallowCopy(input);
+  vtkDataArray* normals = wholeWithNormals->GetPointData()->GetNormals();
+  if (normals != whole.mesh->GetPointData()->GetNormals()) // not the input's own, as they are
+  {
+    output->GetPointData()->SetNormals(shadelab::tuplesAt(normals, whole.pieceIds));
+  }
+  shadelab::addFieldNote(output, shadelab::normalsNoteName, { this->Report });
+  return 1;
+}
+
+int vtkShadingNormalsFilter::ComputeNormals(vtkPolyData* input, vtkPolyData* output)
+{
   if (input->GetNumberOfPoints() == 0)
   {
     return 1; // an empty mesh has no normals to prepare

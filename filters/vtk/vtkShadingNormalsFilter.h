@@ -19,12 +19,18 @@
  * flipped unless OrientOutward is off; the input's own normals are then replaced by a flipped
  * copy. GetReport() says what was done, and so does the output's field data array
  * "shadelab_normals". Every other array passes through.
+ *
+ * A piece of a mesh split over processes (see SetController) gets the normals the whole mesh
+ * has at its points: the whole mesh is gathered and its normals computed as in one process
+ * (ShadeLabWholeMesh.h).
  */
 #ifndef vtkShadingNormalsFilter_h
 #define vtkShadingNormalsFilter_h
 
 #include "ShadeLabFiltersModule.h"
+#include "vtkMultiProcessController.h" // the controller, a member
 #include "vtkPolyDataAlgorithm.h"
+#include "vtkSmartPointer.h"
 
 #include <string>
 
@@ -89,11 +95,20 @@ public:
   /// What the last run did, in one or a few sentences.
   const std::string& GetReport() const { return this->Report; }
 
+  /// The processes over which the mesh may be split (default: the global controller, MPI's
+  /// under pvbatch or mpirun; nullptr: this process alone). Where there are several, or the
+  /// input's points have global ids, the input is taken as a piece of a mesh whose points are
+  /// numbered by their global ids (ShadeLabWholeMesh.h).
+  vtkSetSmartPointerMacro(Controller, vtkMultiProcessController);
+  vtkGetSmartPointerMacro(Controller, vtkMultiProcessController);
+
 protected:
-  vtkShadingNormalsFilter() = default;
+  vtkShadingNormalsFilter();
   ~vtkShadingNormalsFilter() override = default;
 
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  /// The normals of `input` taken as a whole mesh, in `output`.
+  int ComputeNormals(vtkPolyData* input, vtkPolyData* output);
 
 private:
   vtkShadingNormalsFilter(const vtkShadingNormalsFilter&) = delete;
@@ -109,6 +124,7 @@ private:
   bool CheckCells = true;
   std::string NormalsName = "Normals";
   std::string Report;
+  vtkSmartPointer<vtkMultiProcessController> Controller;
 };
 
 #endif

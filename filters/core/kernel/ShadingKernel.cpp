@@ -596,7 +596,7 @@ void ShadingKernel<T>::estimateDistributedLight(const DistributedLightSlot& ligh
       point.position = { b.px[k], b.py[k], b.pz[k] };
       point.normal = { w.nx[k], w.ny[k], w.nz[k] };
       point.toViewer = needsViewer_ ? glm::dvec3(w.vx[k], w.vy[k], w.vz[k]) : glm::dvec3(0.0);
-      point.index = b.first + k;
+      point.index = inputs_.sampleIds ? static_cast<std::uint64_t>(inputs_.sampleIds[b.first + k]) : b.first + k;
       terms = light.estimator->estimate(point);
     }
     if (!light.irradiance)

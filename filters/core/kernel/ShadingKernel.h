@@ -42,6 +42,9 @@ struct ShadingInputs
   std::vector<const float*> lightVisibility; // follows scene.lights; nullptr (or empty): not shadowed
   const float* ambientOcclusion = nullptr;   // nullptr: the open sky, 1
   const ShadingFlags* flags = nullptr;       // flags the rays found (FlagHiddenByOwnTriangle)
+  /// Each vertex's id in the whole mesh, which seeds its samples, where the arrays hold some
+  /// of its vertices (a piece of a mesh split over processes); nullptr: the vertex's index.
+  const long long* sampleIds = nullptr;
 };
 
 /// Up to `capacity` vertices in structure-of-arrays form; first is the index of the block's

@@ -1,0 +1,387 @@
+#include "ShadeLabWholeMesh.h"
+
+#include "vtkCellArray.h"
+#include "vtkCellData.h"
+#include "vtkCommunicator.h"
+#include "vtkDataArray.h"
+#include "vtkDataSetAttributes.h"
+#include "vtkIdTypeArray.h"
+#include "vtkMultiProcessController.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkUnsignedCharArray.h"
+
+#include <algorithm>
+#include <cstring>
+#include <numeric>
+#include <sstream>
+
+namespace shadelab
+{
+namespace
+{
+int processCount(vtkMultiProcessController* controller)
+{
+  return controller ? controller->GetNumberOfProcesses() : 1;
+}
+
+/// Every process's `mine`, one after another in process order; counts[p] is process p's size.
+template <typename T>
+std::vector<T> allGather(vtkMultiProcessController* controller, const std::vector<T>& mine,
+  std::vector<vtkIdType>* counts = nullptr)
+{
+  const int processes = processCount(controller);
+  std::vector<vtkIdType> lengths(processes, static_cast<vtkIdType>(mine.size()));
+  if (processes == 1)
+  {
+    if (counts)
+    {
+      *counts = lengths;
+    }
+    return mine;
+  }
+  const vtkIdType length = static_cast<vtkIdType>(mine.size());
+  controller->AllGather(&length, lengths.data(), 1);
+  std::vector<vtkIdType> offsets(processes, 0);
+  std::partial_sum(lengths.begin(), lengths.end() - 1, offsets.begin() + 1);
+  std::vector<T> all(static_cast<std::size_t>(offsets.back() + lengths.back()));
+  controller->AllGatherV(mine.data(), all.data(), length, lengths.data(), offsets.data());
+  if (counts)
+  {
+    *counts = lengths;
+  }
+  return all;
+}
+
+/// The raw bytes of an array's tuples (its components interleaved, as VTK stores them).
+std::vector<char> bytesOf(vtkDataArray* values)
+{
+  std::vector<char> bytes;
+  if (values && values->GetNumberOfTuples() > 0)
+  {
+    const char* first = static_cast<const char*>(values->GetVoidPointer(0));
+    bytes.assign(first, first + values->GetNumberOfValues() * values->GetDataTypeSize());
+  }
+  return bytes;
+}
+
+std::vector<vtkIdType> idsOf(vtkDataArray* ids)
+{
+  std::vector<vtkIdType> values(static_cast<std::size_t>(ids ? ids->GetNumberOfTuples() : 0));
+  if (vtkIdTypeArray* typed = vtkIdTypeArray::FastDownCast(ids))
+  {
+    std::copy_n(typed->GetPointer(0), values.size(), values.begin());
+  }
+  else
+  {
+    for (std::size_t i = 0; i < values.size(); ++i)
+    {
+      values[i] = static_cast<vtkIdType>(ids->GetTuple1(static_cast<vtkIdType>(i)));
+    }
+  }
+  return values;
+}
+
+/// One kind of cells (polygons or strips) of every piece: each cell's order key (its global
+/// cell id), its size and its points' global ids.
+struct GatheredCells
+{
+  std::vector<vtkIdType> keys, sizes, corners;
+};
+
+GatheredCells cellsOf(vtkCellArray* cells, vtkIdType firstCellId, vtkDataArray* cellGlobalIds,
+  vtkUnsignedCharArray* ghosts, vtkIdType keyBase, const std::vector<vtkIdType>& pointGlobalIds)
+{
+  GatheredCells mine;
+  vtkIdType size = 0;
+  const vtkIdType* ids = nullptr;
+  vtkIdType cellId = firstCellId;
+  for (cells->InitTraversal(); cells->GetNextCell(size, ids); ++cellId)
+  {
+    if (ghosts && (ghosts->GetValue(cellId) & vtkDataSetAttributes::DUPLICATECELL))
+    {
+      continue; // another piece owns it
+    }
+    mine.keys.push_back(cellGlobalIds ? static_cast<vtkIdType>(cellGlobalIds->GetTuple1(cellId)) : keyBase + cellId);
+    mine.sizes.push_back(size);
+    for (vtkIdType i = 0; i < size; ++i)
+    {
+      mine.corners.push_back(pointGlobalIds[static_cast<std::size_t>(ids[i])]);
+    }
+  }
+  return mine;
+}
+
+/// Every piece's cells of one kind, in the order of their keys, with their points' whole-mesh
+/// indices; or a problem.
+vtkSmartPointer<vtkCellArray> wholeCells(vtkMultiProcessController* controller, const GatheredCells& mine,
+  const std::vector<vtkIdType>& wholeIndex, const char* kind, std::string& problem)
+{
+  const std::vector<vtkIdType> keys = allGather(controller, mine.keys);
+  const std::vector<vtkIdType> sizes = allGather(controller, mine.sizes);
+  const std::vector<vtkIdType> corners = allGather(controller, mine.corners);
+  std::vector<vtkIdType> firstCorner(sizes.size() + 1, 0);
+  std::partial_sum(sizes.begin(), sizes.end(), firstCorner.begin() + 1);
+  std::vector<std::size_t> order(keys.size());
+  std::iota(order.begin(), order.end(), std::size_t(0));
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return keys[a] < keys[b]; });
+  vtkNew<vtkIdTypeArray> offsets, connectivity;
+  offsets->SetNumberOfValues(static_cast<vtkIdType>(order.size() + 1));
+  connectivity->SetNumberOfValues(static_cast<vtkIdType>(corners.size()));
+  vtkIdType written = 0;
+  for (std::size_t k = 0; k < order.size(); ++k)
+  {
+    const std::size_t c = order[k];
+    if (k > 0 && keys[c] == keys[order[k - 1]])
+    {
+      std::ostringstream text;
+      text << "the global cell id " << keys[c] << " is on two pieces' " << kind
+           << ": mark the copies as ghost cells (vtkGhostType) or give each cell its own id";
+      problem = text.str();
+      return nullptr;
+    }
+    offsets->SetValue(static_cast<vtkIdType>(k), written);
+    for (vtkIdType i = firstCorner[c]; i < firstCorner[c + 1]; ++i)
+    {
+      connectivity->SetValue(written++, wholeIndex[static_cast<std::size_t>(corners[static_cast<std::size_t>(i)])]);
+    }
+  }
+  offsets->SetValue(static_cast<vtkIdType>(order.size()), written);
+  auto cells = vtkSmartPointer<vtkCellArray>::New();
+  cells->SetData(offsets, connectivity);
+  return cells;
+}
+
+/// An array rebuilt in whole-mesh order from every piece's tuples (gathered as bytes), or a
+/// problem where two pieces give one point different values.
+vtkSmartPointer<vtkDataArray> wholeTuples(vtkMultiProcessController* controller, vtkDataArray* mine,
+  int dataType, const std::vector<vtkIdType>& allGlobalIds, const std::vector<vtkIdType>& wholeIndex,
+  vtkIdType wholeCount, const char* what, std::string& problem)
+{
+  const std::vector<char> bytes = allGather(controller, bytesOf(mine));
+  auto whole = vtk::TakeSmartPointer(vtkDataArray::CreateDataArray(dataType));
+  whole->SetNumberOfComponents(3);
+  whole->SetNumberOfTuples(wholeCount);
+  const std::size_t tupleBytes = 3 * static_cast<std::size_t>(whole->GetDataTypeSize());
+  char* target = static_cast<char*>(whole->GetVoidPointer(0));
+  std::vector<bool> filled(static_cast<std::size_t>(wholeCount), false);
+  for (std::size_t i = 0; i < allGlobalIds.size(); ++i)
+  {
+    const std::size_t w = static_cast<std::size_t>(wholeIndex[static_cast<std::size_t>(allGlobalIds[i])]);
+    const char* source = bytes.data() + i * tupleBytes;
+    if (filled[w] && std::memcmp(target + w * tupleBytes, source, tupleBytes) != 0)
+    {
+      std::ostringstream text;
+      text << "the point with global id " << allGlobalIds[i] << " has two different " << what
+           << " in two pieces: the pieces are not of one mesh, or their global ids are wrong";
+      problem = text.str();
+      return nullptr;
+    }
+    std::memcpy(target + w * tupleBytes, source, tupleBytes);
+    filled[w] = true;
+  }
+  return whole;
+}
+
+/// What sharedValue is given for an array a piece lacks.
+constexpr int absent = 1000; // above every VTK type code
+
+/// The one value (above 0) every non-empty piece has (a type code, say): 0 where every piece is
+/// empty, -1 where they differ.
+int sharedValue(vtkMultiProcessController* controller, bool empty, int value)
+{
+  int shared = 0;
+  for (int v : allGather(controller, std::vector<int>{ empty ? 0 : value }))
+  {
+    if (v != 0 && shared != 0 && v != shared)
+    {
+      return -1;
+    }
+    shared = v != 0 ? v : shared;
+  }
+  return shared;
+}
+}
+
+bool isPieceOfSplitMesh(vtkMultiProcessController* controller, vtkPolyData* piece)
+{
+  // Several processes call alike; one process decides for itself.
+  return processCount(controller) > 1 || piece->GetPointData()->GetGlobalIds() != nullptr;
+}
+
+namespace
+{
+/// The first process's text that is not empty ("" where all are), on every process.
+std::string firstText(vtkMultiProcessController* controller, const std::string& text)
+{
+  std::vector<vtkIdType> lengths;
+  const std::vector<char> all = allGather(controller, std::vector<char>(text.begin(), text.end()), &lengths);
+  const auto first = std::find_if(lengths.begin(), lengths.end(), [](vtkIdType length) { return length > 0; });
+  if (first == lengths.end())
+  {
+    return "";
+  }
+  const vtkIdType start = std::accumulate(lengths.begin(), first, vtkIdType(0));
+  return std::string(all.begin() + start, all.begin() + start + *first);
+}
+}
+
+std::string agreedProblem(vtkMultiProcessController* controller, const std::string& problem)
+{
+  return firstText(controller, problem);
+}
+
+WholeMesh gatherWholeMesh(vtkMultiProcessController* controller, vtkPolyData* piece, bool withNormals)
+{
+  WholeMesh whole;
+  vtkPointData* pointData = piece->GetPointData();
+  vtkDataArray* pointGlobalIds = pointData->GetGlobalIds();
+  const vtkIdType pointCount = piece->GetNumberOfPoints();
+  const bool empty = pointCount == 0;
+  const std::vector<int> withPoints = allGather(controller, std::vector<int>{ empty ? 0 : 1 });
+  const int piecesWithPoints = std::accumulate(withPoints.begin(), withPoints.end(), 0);
+  const int globalIdsState = sharedValue(controller, empty, pointGlobalIds ? 1 : absent);
+  if (piecesWithPoints == 0)
+  {
+    return whole;
+  }
+  if (piecesWithPoints == 1 && globalIdsState == absent)
+  {
+    // One process read the mesh (a serial reader in pvbatch): its piece is the whole.
+    whole.mesh = empty ? nullptr : piece;
+    return whole;
+  }
+  std::ostringstream problem;
+  if (globalIdsState != 1)
+  {
+    problem << "the mesh is in " << piecesWithPoints << " pieces but "
+            << (globalIdsState == absent ? "their points have" : "some pieces' points have")
+            << " no global ids (vtkGlobalIds), which say which points of different pieces are one: "
+               "give them global ids (VTK's vtkGenerateGlobalIds), or read pieces written by shadelab, which have them";
+  }
+  vtkDataArray* normals = pointData->GetNormals();
+  if (problem.str().empty() && pointGlobalIds && pointGlobalIds->GetNumberOfTuples() != pointCount)
+  {
+    problem << "a piece has " << pointGlobalIds->GetNumberOfTuples() << " global point ids for " << pointCount << " points";
+  }
+  if (problem.str().empty() && withNormals && normals &&
+    (normals->GetNumberOfTuples() != pointCount || normals->GetNumberOfComponents() != 3))
+  {
+    problem << "the point normals '" << (normals->GetName() ? normals->GetName() : "") << "' of a piece have "
+            << normals->GetNumberOfTuples() << " tuples of " << normals->GetNumberOfComponents()
+            << " components: there must be one 3-component normal per point (" << pointCount << ")";
+  }
+  vtkDataArray* points = empty ? nullptr : piece->GetPoints()->GetData();
+  const int pointType = sharedValue(controller, empty, points ? points->GetDataType() : 0);
+  const int normalsState = withNormals ? sharedValue(controller, empty, normals ? normals->GetDataType() : absent) : absent;
+  if (problem.str().empty() && pointType < 0)
+  {
+    problem << "the pieces store their points in different types: read them alike";
+  }
+  if (problem.str().empty() && normalsState < 0)
+  {
+    problem << "some pieces have point normals and others do not, or in other types: give every piece the same";
+  }
+  vtkDataArray* cellGlobalIds = piece->GetCellData()->GetGlobalIds();
+  const int cellIdsState = sharedValue(controller, empty, cellGlobalIds ? 1 : absent);
+  if (problem.str().empty() && cellIdsState < 0)
+  {
+    problem << "some pieces have global cell ids and others do not: give every piece the same";
+  }
+  whole.problem = agreedProblem(controller, problem.str());
+  if (!whole.problem.empty())
+  {
+    return whole;
+  }
+
+  const std::vector<vtkIdType> mineGlobalIds = idsOf(pointGlobalIds);
+  const std::vector<vtkIdType> allGlobalIds = allGather(controller, mineGlobalIds);
+  const vtkIdType largest = allGlobalIds.empty() ? 0 : *std::max_element(allGlobalIds.begin(), allGlobalIds.end());
+  const vtkIdType smallest = allGlobalIds.empty() ? 0 : *std::min_element(allGlobalIds.begin(), allGlobalIds.end());
+  if (smallest < 0 || largest >= 4 * static_cast<vtkIdType>(allGlobalIds.size()) + 1024)
+  {
+    std::ostringstream text;
+    text << "the pieces' global point ids run from " << smallest << " to " << largest << " for "
+         << allGlobalIds.size() << " points: they must be 0 or more, and number the mesh's points";
+    whole.problem = text.str(); // every process finds the same
+    return whole;
+  }
+  // Whole-mesh indices in the order of the global ids: the ids themselves where they are 0 to n-1.
+  std::vector<vtkIdType> wholeIndex(static_cast<std::size_t>(largest) + 1, -1);
+  for (vtkIdType id : allGlobalIds)
+  {
+    wholeIndex[static_cast<std::size_t>(id)] = 0;
+  }
+  vtkIdType wholeCount = 0;
+  for (vtkIdType& index : wholeIndex)
+  {
+    index = index < 0 ? -1 : wholeCount++;
+  }
+
+  std::string found;
+  vtkNew<vtkPolyData> mesh;
+  vtkSmartPointer<vtkDataArray> coordinates =
+    wholeTuples(controller, points, pointType, allGlobalIds, wholeIndex, wholeCount, "positions", found);
+  if (coordinates)
+  {
+    vtkNew<vtkPoints> wholePoints;
+    wholePoints->SetData(coordinates);
+    mesh->SetPoints(wholePoints);
+  }
+  if (found.empty() && normalsState != absent)
+  {
+    vtkSmartPointer<vtkDataArray> wholeNormals =
+      wholeTuples(controller, normals, normalsState, allGlobalIds, wholeIndex, wholeCount, "normals", found);
+    if (wholeNormals)
+    {
+      // The name the single process would see: the first piece's.
+      const std::string name = normals && normals->GetName() ? normals->GetName() : "";
+      wholeNormals->SetName(firstText(controller, name).c_str());
+      mesh->GetPointData()->SetNormals(wholeNormals);
+    }
+  }
+  const vtkIdType keyBase = static_cast<vtkIdType>(controller ? controller->GetLocalProcessId() : 0) << 40;
+  auto* ghosts = vtkUnsignedCharArray::SafeDownCast(piece->GetCellData()->GetArray(vtkDataSetAttributes::GhostArrayName()));
+  const vtkIdType firstPolygon = piece->GetNumberOfVerts() + piece->GetNumberOfLines();
+  const GatheredCells polygons =
+    cellsOf(piece->GetPolys(), firstPolygon, cellGlobalIds, ghosts, keyBase, mineGlobalIds);
+  const GatheredCells strips =
+    cellsOf(piece->GetStrips(), firstPolygon + piece->GetNumberOfPolys(), cellGlobalIds, ghosts, keyBase, mineGlobalIds);
+  // Every process makes both gathers, whatever it found, so that none waits for the others.
+  std::string cellProblem;
+  vtkSmartPointer<vtkCellArray> wholePolygons = wholeCells(controller, polygons, wholeIndex, "polygons", cellProblem);
+  vtkSmartPointer<vtkCellArray> wholeStrips = wholeCells(controller, strips, wholeIndex, "strips", cellProblem);
+  whole.problem = !found.empty() ? found : cellProblem;
+  if (!whole.problem.empty())
+  {
+    return whole;
+  }
+  mesh->SetPolys(wholePolygons);
+  if (wholeStrips->GetNumberOfCells() > 0)
+  {
+    mesh->SetStrips(wholeStrips);
+  }
+  whole.mesh = mesh;
+  whole.pieceIds.resize(mineGlobalIds.size());
+  for (std::size_t i = 0; i < mineGlobalIds.size(); ++i)
+  {
+    whole.pieceIds[i] = wholeIndex[static_cast<std::size_t>(mineGlobalIds[i])];
+  }
+  return whole;
+}
+
+vtkSmartPointer<vtkDataArray> tuplesAt(vtkDataArray* values, const std::vector<vtkIdType>& ids)
+{
+  auto taken = vtk::TakeSmartPointer(values->NewInstance());
+  taken->SetName(values->GetName());
+  taken->SetNumberOfComponents(values->GetNumberOfComponents());
+  taken->SetNumberOfTuples(static_cast<vtkIdType>(ids.size()));
+  for (std::size_t i = 0; i < ids.size(); ++i)
+  {
+    taken->SetTuple(static_cast<vtkIdType>(i), ids[i], values);
+  }
+  return taken;
+}
+}

@@ -1,0 +1,279 @@
+// The filters on a mesh split over MPI processes: each process's piece is shaded as its points
+// are in the whole mesh, bit for bit. Run by CTest under mpiexec with 1, 2 and 4 processes;
+// every process checks its own piece against the whole mesh shaded in one process.
+#include "ArrayComparison.h"
+#include "MeshFiles.h"
+#include "MeshPieces.h"
+#include "ShadeLabWholeMesh.h"
+#include "vtkLocalReflectanceFilter.h"
+#include "vtkMeshVisibilityFilter.h"
+#include "vtkShadingNormalsFilter.h"
+
+#include "vtkCellData.h"
+#include "vtkMPIController.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkXMLPPolyDataReader.h"
+#include "vtkXMLPPolyDataWriter.h"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace
+{
+vtkMultiProcessController* processes()
+{
+  return vtkMultiProcessController::GetGlobalController();
+}
+
+std::string dataPath(const std::string& relative)
+{
+  return std::string(SHADELAB_SOURCE_DIR) + "/data/" + relative;
+}
+
+/// The piece's global point ids.
+std::vector<vtkIdType> globalIdsOf(vtkPolyData* piece)
+{
+  vtkDataArray* ids = piece->GetPointData()->GetGlobalIds();
+  std::vector<vtkIdType> values(static_cast<std::size_t>(piece->GetNumberOfPoints()));
+  for (std::size_t i = 0; i < values.size(); ++i)
+  {
+    values[i] = static_cast<vtkIdType>(ids->GetTuple1(static_cast<vtkIdType>(i)));
+  }
+  return values;
+}
+
+/// Every point array of `whole` (one process's output) equals the piece's, bit for bit, at
+/// the piece's points; returns how many arrays were compared.
+int expectPieceOfWhole(vtkPolyData* whole, vtkPolyData* piece)
+{
+  const std::vector<vtkIdType> ids = globalIdsOf(piece);
+  vtkPointData* expected = whole->GetPointData();
+  for (int a = 0; a < expected->GetNumberOfArrays(); ++a)
+  {
+    const std::string name = expected->GetArrayName(a);
+    shadelab::testing::expectSameBits(shadelab::tuplesAt(expected->GetArray(a), ids),
+      piece->GetPointData()->GetArray(name.c_str()), name);
+  }
+  return expected->GetNumberOfArrays();
+}
+
+/// The filter's output for `mesh` in float64 with these arrays, through `controller`.
+vtkSmartPointer<vtkPolyData> shaded(vtkPolyData* mesh, const std::string& scene, const std::vector<std::string>& arrays,
+  vtkMultiProcessController* controller, double tolerance = 0)
+{
+  vtkNew<vtkLocalReflectanceFilter> filter;
+  filter->SetController(controller);
+  filter->SetInputData(mesh);
+  filter->SetSceneFileName(dataPath("scenes/" + scene));
+  filter->SetArraySelection(arrays);
+  filter->SetOutputPrecision(vtkAlgorithm::DOUBLE_PRECISION);
+  filter->SetTolerance(tolerance);
+  filter->SetNumberOfThreads(1);
+  filter->Update();
+  auto output = vtkSmartPointer<vtkPolyData>::New();
+  output->ShallowCopy(filter->GetOutput());
+  return output;
+}
+
+/// This process's piece of a mesh file, with a layer of ghost cells.
+vtkSmartPointer<vtkPolyData> myPiece(vtkPolyData* mesh, int ghostLevels = 1)
+{
+  return shadelab::testing::meshPiece(mesh, processes()->GetLocalProcessId(), processes()->GetNumberOfProcesses(), ghostLevels);
+}
+
+struct SplitMesh : ::testing::TestWithParam<const char*>
+{
+  vtkSmartPointer<vtkPolyData> mesh = shadelab::app::readMesh(dataPath(std::string("meshes/") + GetParam()));
+};
+
+// Every array in float64: of studio.json (41), and of area_lights.json, whose Monte Carlo
+// light's samples are seeded by each point's id in the whole mesh.
+TEST_P(SplitMesh, ShadesEachPieceAsTheWholeMesh)
+{
+  for (const auto& [scene, arrays] : { std::pair{ "studio.json", 41 }, std::pair{ "area_lights.json", 18 } })
+  {
+    const vtkSmartPointer<vtkPolyData> whole = shaded(mesh, scene, { "all" }, nullptr);
+    const vtkSmartPointer<vtkPolyData> piece = shaded(myPiece(mesh), scene, { "all" }, processes());
+    ASSERT_GT(piece->GetNumberOfPoints(), 0);
+    EXPECT_GE(expectPieceOfWhole(whole, piece), arrays) << scene;
+  }
+}
+
+// A scene placed on the mesh's extent, under a tolerance that plans on it too.
+TEST_P(SplitMesh, PlacesTheSceneOnTheWholeMesh)
+{
+  const vtkSmartPointer<vtkPolyData> whole = shaded(mesh, "studio_mesh.json", { "totals" }, nullptr, 1e-3);
+  const vtkSmartPointer<vtkPolyData> piece = shaded(myPiece(mesh), "studio_mesh.json", { "totals" }, processes(), 1e-3);
+  EXPECT_GT(expectPieceOfWhole(whole, piece), 3);
+}
+
+// The normals filter alone, computed and flipped outward on the whole mesh.
+TEST_P(SplitMesh, NormalsAreTheWholeMeshs)
+{
+  vtkNew<vtkShadingNormalsFilter> whole, split;
+  whole->SetController(nullptr);
+  whole->SetInputData(mesh);
+  whole->Update();
+  split->SetInputData(myPiece(mesh));
+  split->Update();
+  EXPECT_EQ(split->GetReport(), whole->GetReport());
+  EXPECT_EQ(expectPieceOfWhole(whole->GetOutput(), split->GetOutput()), whole->GetOutput()->GetPointData()->GetNumberOfArrays());
+  EXPECT_NE(split->GetOutput()->GetPointData()->GetNormals(), nullptr);
+}
+
+INSTANTIATE_TEST_SUITE_P(BundledMeshes, SplitMesh,
+  ::testing::Values("bunny_zipper.ply", "spot.obj", "teapot.obj", "xyzrgb_dragon_50k.ply", "owl_scan.vtp"),
+  [](const auto& info)
+  {
+    std::string name = info.param;
+    return name.substr(0, name.find('.'));
+  });
+
+vtkSmartPointer<vtkPolyData> bunny()
+{
+  return shadelab::app::readMesh(dataPath("meshes/bunny_zipper.ply"));
+}
+
+// Shadows and ambient occlusion: each piece's rays meet the whole mesh's triangles.
+TEST(SplitMeshVisibility, CastsAgainstTheWholeMesh)
+{
+  const vtkSmartPointer<vtkPolyData> mesh = bunny();
+  const vtkSmartPointer<vtkPolyData> whole = shaded(mesh, "shadows_occlusion.json", { "all" }, nullptr);
+  const vtkSmartPointer<vtkPolyData> piece = shaded(myPiece(mesh), "shadows_occlusion.json", { "all" }, processes());
+  EXPECT_GT(expectPieceOfWhole(whole, piece), 10);
+
+  // The visibility filter alone, on normals the mesh has.
+  vtkNew<vtkMeshVisibilityFilter> alone, split;
+  alone->SetController(nullptr);
+  alone->SetInputData(whole);
+  alone->SetSceneFileName(dataPath("scenes/shadows_occlusion.json"));
+  alone->Update();
+  split->SetInputData(myPiece(whole));
+  split->SetSceneFileName(dataPath("scenes/shadows_occlusion.json"));
+  split->Update();
+  EXPECT_GT(expectPieceOfWhole(alone->GetOutput(), split->GetOutput()), 10);
+}
+
+// What the whole mesh buys: the same filter on each piece alone (its points' ids taken away)
+// finds other normals at the pieces' edges and places the scene on the piece's extent.
+TEST(SplitMeshVisibility, PiecesAloneWouldShadeOtherwise)
+{
+  const int count = processes()->GetNumberOfProcesses();
+  if (count == 1)
+  {
+    GTEST_SKIP() << "one process has one piece, the whole mesh";
+  }
+  const vtkSmartPointer<vtkPolyData> mesh = bunny();
+  const vtkSmartPointer<vtkPolyData> whole = shaded(mesh, "studio_mesh.json", { "totals" }, nullptr);
+  vtkSmartPointer<vtkPolyData> alone = myPiece(mesh, 0);
+  const std::vector<vtkIdType> ids = globalIdsOf(alone);
+  alone->GetPointData()->SetGlobalIds(nullptr);
+  const vtkSmartPointer<vtkPolyData> shadedAlone = shaded(alone, "studio_mesh.json", { "totals" }, nullptr);
+  vtkDataArray* expected = whole->GetPointData()->GetArray("total");
+  vtkDataArray* actual = shadedAlone->GetPointData()->GetArray("total");
+  ASSERT_NE(actual, nullptr);
+  vtkIdType differing = 0;
+  for (std::size_t i = 0; i < ids.size(); ++i)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      differing += expected->GetComponent(ids[i], c) != actual->GetComponent(static_cast<vtkIdType>(i), c) ? 1 : 0;
+    }
+  }
+  // The scene moves with the piece's extent: nearly every value changes.
+  EXPECT_GT(differing, static_cast<vtkIdType>(ids.size()));
+}
+
+// Pieces written as a .pvtp (each process its own) and read back whole in one process: the
+// pieces' shared points are there once per piece, and their global ids put them back together.
+TEST(SplitMeshFiles, PiecesWrittenAndReadBack)
+{
+  const vtkSmartPointer<vtkPolyData> mesh = bunny();
+  const vtkSmartPointer<vtkPolyData> piece = shaded(myPiece(mesh, 0), "studio.json", { "default" }, processes());
+  // One file per process count: CTest may run the three at once.
+  const std::string file = std::filesystem::temp_directory_path() /
+    ("shadelab_split_mesh_np" + std::to_string(processes()->GetNumberOfProcesses()) + ".pvtp");
+  vtkNew<vtkXMLPPolyDataWriter> writer;
+  writer->SetController(processes());
+  writer->SetInputData(piece);
+  writer->SetFileName(file.c_str());
+  writer->SetNumberOfPieces(processes()->GetNumberOfProcesses());
+  writer->SetStartPiece(processes()->GetLocalProcessId());
+  writer->SetEndPiece(processes()->GetLocalProcessId());
+  ASSERT_EQ(writer->Write(), 1);
+  processes()->Barrier();
+  if (processes()->GetLocalProcessId() != 0)
+  {
+    return;
+  }
+  vtkNew<vtkXMLPPolyDataReader> reader;
+  reader->SetFileName(file.c_str());
+  reader->Update();
+  vtkPolyData* read = reader->GetOutput();
+  EXPECT_EQ(read->GetNumberOfCells(), mesh->GetNumberOfCells());
+  const vtkSmartPointer<vtkPolyData> whole = shaded(mesh, "studio.json", { "default" }, nullptr);
+  EXPECT_GT(expectPieceOfWhole(whole, read), 2);
+  // Shaded again in one process, from the pieces as read: the same bits.
+  vtkNew<vtkPolyData> geometry;
+  geometry->SetPoints(read->GetPoints());
+  geometry->SetPolys(read->GetPolys());
+  geometry->GetPointData()->SetGlobalIds(read->GetPointData()->GetGlobalIds());
+  geometry->GetCellData()->SetGlobalIds(read->GetCellData()->GetGlobalIds());
+  EXPECT_GT(expectPieceOfWhole(whole, shaded(geometry, "studio.json", { "default" }, nullptr)), 2);
+}
+
+// Pieces that cannot be put together: every process stops with the same message.
+TEST(SplitMeshErrors, PiecesWithoutGlobalIds)
+{
+  const int count = processes()->GetNumberOfProcesses();
+  if (count == 1)
+  {
+    GTEST_SKIP() << "one process's piece without ids is the whole mesh";
+  }
+  vtkSmartPointer<vtkPolyData> piece = myPiece(bunny(), 0);
+  piece->GetPointData()->SetGlobalIds(nullptr);
+  const shadelab::WholeMesh whole = shadelab::gatherWholeMesh(processes(), piece, true);
+  EXPECT_EQ(whole.mesh, nullptr);
+  EXPECT_EQ(whole.problem,
+    "the mesh is in " + std::to_string(count) +
+      " pieces but their points have no global ids (vtkGlobalIds), which say which points of different pieces "
+      "are one: give them global ids (VTK's vtkGenerateGlobalIds), or read pieces written by shadelab, which have them");
+}
+
+TEST(SplitMeshErrors, CellOnTwoPieces)
+{
+  vtkSmartPointer<vtkPolyData> piece = myPiece(bunny(), 1);
+  piece->GetCellData()->RemoveArray(vtkDataSetAttributes::GhostArrayName()); // ghosts counted as owned
+  const shadelab::WholeMesh whole = shadelab::gatherWholeMesh(processes(), piece, true);
+  if (processes()->GetNumberOfProcesses() == 1)
+  {
+    EXPECT_EQ(whole.problem, ""); // one piece has no ghost cells
+    return;
+  }
+  EXPECT_EQ(whole.problem.rfind("the global cell id ", 0), 0u) << whole.problem;
+  EXPECT_NE(whole.problem.find(" is on two pieces' polygons: mark the copies as ghost cells (vtkGhostType)"),
+    std::string::npos)
+    << whole.problem;
+}
+}
+
+int main(int argc, char** argv)
+{
+  vtkNew<vtkMPIController> controller;
+  controller->Initialize(&argc, &argv);
+  vtkMultiProcessController::SetGlobalController(controller);
+  ::testing::InitGoogleTest(&argc, argv);
+  // Every process prints its own results; any process's failure fails the run.
+  int failed = RUN_ALL_TESTS();
+  int anyFailed = 0;
+  controller->AllReduce(&failed, &anyFailed, 1, vtkCommunicator::MAX_OP);
+  controller->Finalize();
+  return anyFailed;
+}
