@@ -2,8 +2,9 @@
 
   pvpython paraview_split_check.py pieces MESH.ply PIECES.pvtp COUNT
       the mesh in COUNT pieces with global point and cell ids (each one's index in the mesh);
-  mpiexec -np N pvbatch paraview_split_check.py shade PLUGIN PIECES.pvtp SCENE SHADED.pvtp
-      Local Reflectance on the pieces, each process shading those it reads, written as a .pvtp;
+  mpiexec -np N pvbatch paraview_split_check.py shade PLUGIN PIECES.pvtp SCENE SHADED.pvtp [default]
+      Local Reflectance on the pieces, each process shading those it reads, written as a .pvtp:
+      every array of the scene in float64, or with "default" the default arrays in float32;
   pvpython paraview_split_check.py check SHADED.pvtp REFERENCE.vtp N
       ParaView opens the .pvtp (N pieces), and at every point every array of the command line's
       output for the whole mesh (REFERENCE.vtp) equals the pieces' at that point, bit for bit.
@@ -61,13 +62,15 @@ elif step == "shade":
     from vtkmodules.vtkParallelCore import vtkMultiProcessController
 
     plugin, pieces_file, scene, shaded_file = sys.argv[2:6]
+    every_array = sys.argv[6:] != ["default"]
     LoadPlugin(plugin, remote=False, ns=globals())
     pieces = OpenDataFile(pieces_file)  # each process reads its share of the pieces
     shade = LocalReflectance(Input=pieces)  # noqa: F821 (the plugin's, in globals)
     shade.SceneFileName = scene
-    shade.UpdatePipelineInformation()
-    shade.ArraySelection = shade.ArraySelection.Available
-    shade.OutputPrecision = "float64"
+    if every_array:
+        shade.UpdatePipelineInformation()
+        shade.ArraySelection = shade.ArraySelection.Available
+        shade.OutputPrecision = "float64"
     SaveData(shaded_file, proxy=shade, DataMode="Binary")
     processes = vtkMultiProcessController.GetGlobalController().GetNumberOfProcesses()
     print(f"shaded {pieces_file} on {processes} processes into {shaded_file}")

@@ -10,6 +10,7 @@
 #include "vtkShadingNormalsFilter.h"
 
 #include "vtkCellData.h"
+#include "vtkDoubleArray.h"
 #include "vtkMPIController.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
@@ -245,6 +246,81 @@ TEST(SplitMeshErrors, PiecesWithoutGlobalIds)
     "the mesh is in " + std::to_string(count) +
       " pieces but their points have no global ids (vtkGlobalIds), which say which points of different pieces "
       "are one: give them global ids (VTK's vtkGenerateGlobalIds), or read pieces written by shadelab, which have them");
+}
+
+TEST(SplitMeshErrors, PiecesWithoutCellIds)
+{
+  vtkSmartPointer<vtkPolyData> piece = myPiece(bunny(), 0);
+  piece->GetCellData()->SetGlobalIds(nullptr);
+  const shadelab::WholeMesh whole = shadelab::gatherWholeMesh(processes(), piece, true);
+  if (processes()->GetNumberOfProcesses() == 1)
+  {
+    EXPECT_EQ(whole.problem, ""); // one piece's cells are in its own order
+    return;
+  }
+  EXPECT_EQ(whole.problem,
+    "the pieces' cells have no global ids (vtkGlobalIds), which put the polygons in the mesh's order: give every "
+    "piece's cells global ids");
+}
+
+// Ids that do not number the points 0 to n-1 (here, each doubled): several processes cannot
+// put the mesh together; one process shades its piece as it is.
+TEST(SplitMeshErrors, IdsOfAnotherNumbering)
+{
+  const vtkSmartPointer<vtkPolyData> mesh = bunny();
+  vtkSmartPointer<vtkPolyData> piece = myPiece(mesh, 0);
+  vtkDataArray* ids = piece->GetPointData()->GetGlobalIds();
+  for (vtkIdType i = 0; i < ids->GetNumberOfTuples(); ++i)
+  {
+    ids->SetTuple1(i, 2 * ids->GetTuple1(i));
+  }
+  const shadelab::WholeMesh whole = shadelab::gatherWholeMesh(processes(), piece, true);
+  if (processes()->GetNumberOfProcesses() == 1)
+  {
+    EXPECT_EQ(whole.problem, "");
+    EXPECT_EQ(whole.mesh, piece);
+    EXPECT_TRUE(whole.pieceIds.empty());
+    return;
+  }
+  EXPECT_EQ(whole.problem, "the pieces' global point ids run from 0 to " +
+      std::to_string(2 * (mesh->GetNumberOfPoints() - 1)) +
+      " but do not number the points 0 to n-1, each at least once: give the points global ids that do");
+}
+
+// One process's piece cannot be shaded (it has an array of a name the filter writes): every
+// process stops, none waits for it.
+TEST(SplitMeshErrors, OneProcessFailsAndAllStop)
+{
+  vtkSmartPointer<vtkPolyData> piece = myPiece(bunny());
+  if (processes()->GetLocalProcessId() == 0)
+  {
+    vtkNew<vtkDoubleArray> taken;
+    taken->SetName("total");
+    taken->SetNumberOfTuples(piece->GetNumberOfPoints());
+    taken->Fill(0);
+    piece->GetPointData()->AddArray(taken);
+  }
+  const vtkSmartPointer<vtkPolyData> output = shaded(piece, "studio.json", { "default" }, processes());
+  EXPECT_EQ(output->GetNumberOfPoints(), 0);
+  // The processes are still in step: a gathering after it completes.
+  EXPECT_EQ(shaded(myPiece(bunny()), "studio.json", { "default" }, processes())->GetNumberOfPoints(),
+    myPiece(bunny())->GetNumberOfPoints());
+}
+
+// Splitting at sharp edges adds points: refused on a split mesh, done on pieces in one process.
+TEST(SplitMeshErrors, SplittingSharpEdges)
+{
+  vtkNew<vtkShadingNormalsFilter> normals;
+  normals->SplitSharpEdgesOn();
+  normals->SetInputData(myPiece(bunny(), 0));
+  normals->Update();
+  const vtkIdType pieceCount = myPiece(bunny(), 0)->GetNumberOfPoints();
+  if (processes()->GetNumberOfProcesses() == 1)
+  {
+    EXPECT_GT(normals->GetOutput()->GetNumberOfPoints(), pieceCount);
+    return;
+  }
+  EXPECT_EQ(normals->GetOutput()->GetNumberOfPoints(), 0);
 }
 
 TEST(SplitMeshErrors, CellOnTwoPieces)

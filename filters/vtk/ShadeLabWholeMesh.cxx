@@ -1,10 +1,14 @@
 #include "ShadeLabWholeMesh.h"
 
+#include "ShadeLabMeshChecks.h"
+
+#include "vtkAlgorithm.h"
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkCommunicator.h"
 #include "vtkDataArray.h"
 #include "vtkDataSetAttributes.h"
+#include "vtkFieldData.h"
 #include "vtkIdTypeArray.h"
 #include "vtkMultiProcessController.h"
 #include "vtkNew.h"
@@ -15,6 +19,8 @@
 
 #include <algorithm>
 #include <cstring>
+#include <limits>
+#include <stdexcept>
 #include <numeric>
 #include <sstream>
 
@@ -46,8 +52,18 @@ std::vector<T> allGather(vtkMultiProcessController* controller, const std::vecto
   controller->AllGather(&length, lengths.data(), 1);
   std::vector<vtkIdType> offsets(processes, 0);
   std::partial_sum(lengths.begin(), lengths.end() - 1, offsets.begin() + 1);
-  std::vector<T> all(static_cast<std::size_t>(offsets.back() + lengths.back()));
-  controller->AllGatherV(mine.data(), all.data(), length, lengths.data(), offsets.data());
+  const vtkIdType total = offsets.back() + lengths.back();
+  // MPI counts are ints: every process finds the same total, and stops alike.
+  if (total > std::numeric_limits<int>::max())
+  {
+    throw std::overflow_error("the mesh is too large to gather: " + std::to_string(total) +
+      " values in one exchange, more than MPI's 2^31 - 1");
+  }
+  std::vector<T> all(static_cast<std::size_t>(total));
+  if (controller->AllGatherV(mine.data(), all.data(), length, lengths.data(), offsets.data()) == 0)
+  {
+    throw std::runtime_error("gathering the mesh's pieces failed (MPI's AllGatherV)");
+  }
   if (counts)
   {
     *counts = lengths;
@@ -114,10 +130,10 @@ GatheredCells cellsOf(vtkCellArray* cells, vtkIdType firstCellId, vtkDataArray* 
   return mine;
 }
 
-/// Every piece's cells of one kind, in the order of their keys, with their points' whole-mesh
-/// indices; or a problem.
+/// Every piece's cells of one kind, in the order of their keys, with their points' global ids
+/// (their indices in the whole mesh); or a problem.
 vtkSmartPointer<vtkCellArray> wholeCells(vtkMultiProcessController* controller, const GatheredCells& mine,
-  const std::vector<vtkIdType>& wholeIndex, const char* kind, std::string& problem)
+  const char* kind, std::string& problem)
 {
   const std::vector<vtkIdType> keys = allGather(controller, mine.keys);
   const std::vector<vtkIdType> sizes = allGather(controller, mine.sizes);
@@ -145,7 +161,7 @@ vtkSmartPointer<vtkCellArray> wholeCells(vtkMultiProcessController* controller, 
     offsets->SetValue(static_cast<vtkIdType>(k), written);
     for (vtkIdType i = firstCorner[c]; i < firstCorner[c + 1]; ++i)
     {
-      connectivity->SetValue(written++, wholeIndex[static_cast<std::size_t>(corners[static_cast<std::size_t>(i)])]);
+      connectivity->SetValue(written++, corners[static_cast<std::size_t>(i)]);
     }
   }
   offsets->SetValue(static_cast<vtkIdType>(order.size()), written);
@@ -157,8 +173,7 @@ vtkSmartPointer<vtkCellArray> wholeCells(vtkMultiProcessController* controller, 
 /// An array rebuilt in whole-mesh order from every piece's tuples (gathered as bytes), or a
 /// problem where two pieces give one point different values.
 vtkSmartPointer<vtkDataArray> wholeTuples(vtkMultiProcessController* controller, vtkDataArray* mine,
-  int dataType, const std::vector<vtkIdType>& allGlobalIds, const std::vector<vtkIdType>& wholeIndex,
-  vtkIdType wholeCount, const char* what, std::string& problem)
+  int dataType, const std::vector<vtkIdType>& allGlobalIds, vtkIdType wholeCount, const char* what, std::string& problem)
 {
   const std::vector<char> bytes = allGather(controller, bytesOf(mine));
   auto whole = vtk::TakeSmartPointer(vtkDataArray::CreateDataArray(dataType));
@@ -169,7 +184,7 @@ vtkSmartPointer<vtkDataArray> wholeTuples(vtkMultiProcessController* controller,
   std::vector<bool> filled(static_cast<std::size_t>(wholeCount), false);
   for (std::size_t i = 0; i < allGlobalIds.size(); ++i)
   {
-    const std::size_t w = static_cast<std::size_t>(wholeIndex[static_cast<std::size_t>(allGlobalIds[i])]);
+    const std::size_t w = static_cast<std::size_t>(allGlobalIds[i]);
     const char* source = bytes.data() + i * tupleBytes;
     if (filled[w] && std::memcmp(target + w * tupleBytes, source, tupleBytes) != 0)
     {
@@ -213,7 +228,8 @@ bool isPieceOfSplitMesh(vtkMultiProcessController* controller, vtkPolyData* piec
 
 namespace
 {
-/// The first process's text that is not empty ("" where all are), on every process.
+/// The first process's text that is not empty ("" where all are), on every process: the
+/// first process's problem, where any has one, so that every process stops with its message.
 std::string firstText(vtkMultiProcessController* controller, const std::string& text)
 {
   std::vector<vtkIdType> lengths;
@@ -228,12 +244,80 @@ std::string firstText(vtkMultiProcessController* controller, const std::string& 
 }
 }
 
-std::string agreedProblem(vtkMultiProcessController* controller, const std::string& problem)
+
+namespace
 {
-  return firstText(controller, problem);
+/// What a filter's RequestData returns for its piece (a collective call): 1 where every process
+/// succeeded. Where another failed, this one stops too, with an error saying so and its output
+/// emptied, so that no process waits for a failed one in a later collective call.
+int agreedOutcome(vtkMultiProcessController* controller, vtkAlgorithm* filter, vtkPolyData* output, bool succeeded)
+{
+  const std::vector<int> all = allGather(controller, std::vector<int>{ succeeded ? 1 : 0 });
+  if (std::find(all.begin(), all.end(), 0) == all.end())
+  {
+    return 1;
+  }
+  if (succeeded)
+  {
+    output->Initialize();
+    vtkErrorWithObjectMacro(filter, "another process failed on its piece (see its error), so this one stops too");
+  }
+  return 0;
 }
 
-WholeMesh gatherWholeMesh(vtkMultiProcessController* controller, vtkPolyData* piece, bool withNormals)
+/// The piece with what was computed for its points on the whole mesh: arrays of a value per
+/// piece point as they are, normals of the whole mesh (computed, or flipped) at the piece's
+/// points, and the field data's notes.
+void keepPiece(const WholeMesh& whole, vtkPolyData* computed, vtkPolyData* piece, vtkPolyData* output)
+{
+  output->ShallowCopy(piece);
+  vtkPointData* written = computed->GetPointData();
+  vtkPointData* gathered = whole.mesh->GetPointData();
+  for (int a = 0; a < written->GetNumberOfArrays(); ++a)
+  {
+    vtkDataArray* array = written->GetArray(a);
+    if (array == written->GetNormals() && array != gathered->GetNormals())
+    {
+      output->GetPointData()->SetNormals(tuplesAt(array, whole.pieceIds));
+    }
+    else if (!gathered->HasArray(array->GetName()))
+    {
+      output->GetPointData()->AddArray(array);
+    }
+  }
+  output->GetFieldData()->PassData(computed->GetFieldData());
+}
+}
+
+int computeOnPiece(vtkMultiProcessController* controller, vtkAlgorithm* filter, vtkPolyData* piece,
+  vtkPolyData* output, bool withNormals, const PieceComputation& compute)
+{
+  const WholeMesh whole = gatherWholeMesh(controller, piece, withNormals);
+  if (!whole.problem.empty())
+  {
+    vtkErrorWithObjectMacro(filter, << whole.problem);
+    return 0;
+  }
+  bool succeeded = false;
+  if (!whole.mesh || whole.pieceIds.empty()) // an empty piece, or the whole mesh
+  {
+    succeeded = compute(piece, output, nullptr);
+  }
+  else
+  {
+    vtkNew<vtkPolyData> computed;
+    succeeded = compute(whole.mesh, computed, &whole.pieceIds);
+    if (succeeded)
+    {
+      keepPiece(whole, computed, piece, output);
+    }
+  }
+  return agreedOutcome(controller, filter, output, succeeded);
+}
+
+namespace
+{
+WholeMesh gatherPieces(vtkMultiProcessController* controller, vtkPolyData* piece, bool withNormals)
 {
   WholeMesh whole;
   vtkPointData* pointData = piece->GetPointData();
@@ -286,11 +370,27 @@ WholeMesh gatherWholeMesh(vtkMultiProcessController* controller, vtkPolyData* pi
   }
   vtkDataArray* cellGlobalIds = piece->GetCellData()->GetGlobalIds();
   const int cellIdsState = sharedValue(controller, empty, cellGlobalIds ? 1 : absent);
-  if (problem.str().empty() && cellIdsState < 0)
+  if (problem.str().empty() && cellIdsState != 1 && piecesWithPoints > 1)
   {
-    problem << "some pieces have global cell ids and others do not: give every piece the same";
+    // Sums over a point's polygons are taken in the polygons' order, which only the ids keep.
+    problem << (cellIdsState < 0 ? "some pieces' cells have global ids and others' do not"
+                                 : "the pieces' cells have no global ids")
+            << " (vtkGlobalIds), which put the polygons in the mesh's order: give every piece's cells global ids";
   }
-  whole.problem = agreedProblem(controller, problem.str());
+  auto* ghosts = vtkUnsignedCharArray::SafeDownCast(piece->GetCellData()->GetArray(vtkDataSetAttributes::GhostArrayName()));
+  for (vtkDataArray* cellArray : { cellGlobalIds, static_cast<vtkDataArray*>(ghosts) })
+  {
+    if (problem.str().empty() && cellArray && cellArray->GetNumberOfTuples() != piece->GetNumberOfCells())
+    {
+      problem << "a piece's cell array '" << (cellArray->GetName() ? cellArray->GetName() : "") << "' has "
+              << cellArray->GetNumberOfTuples() << " values for " << piece->GetNumberOfCells() << " cells";
+    }
+  }
+  if (problem.str().empty())
+  {
+    problem << cellProblem(piece); // ids out of range, which the gathering would follow
+  }
+  whole.problem = firstText(controller, problem.str());
   if (!whole.problem.empty())
   {
     return whole;
@@ -298,32 +398,36 @@ WholeMesh gatherWholeMesh(vtkMultiProcessController* controller, vtkPolyData* pi
 
   const std::vector<vtkIdType> mineGlobalIds = idsOf(pointGlobalIds);
   const std::vector<vtkIdType> allGlobalIds = allGather(controller, mineGlobalIds);
+  // The ids must number the mesh's points 0 to n-1: each point's id is its index in the whole
+  // mesh, and seeds its samples as its index does in one process.
   const vtkIdType largest = allGlobalIds.empty() ? 0 : *std::max_element(allGlobalIds.begin(), allGlobalIds.end());
   const vtkIdType smallest = allGlobalIds.empty() ? 0 : *std::min_element(allGlobalIds.begin(), allGlobalIds.end());
-  if (smallest < 0 || largest >= 4 * static_cast<vtkIdType>(allGlobalIds.size()) + 1024)
+  std::vector<bool> present(smallest >= 0 && largest < static_cast<vtkIdType>(allGlobalIds.size()) ? largest + 1 : 0, false);
+  for (std::size_t i = 0; !present.empty() && i < allGlobalIds.size(); ++i)
   {
-    std::ostringstream text;
-    text << "the pieces' global point ids run from " << smallest << " to " << largest << " for "
-         << allGlobalIds.size() << " points: they must be 0 or more, and number the mesh's points";
-    whole.problem = text.str(); // every process finds the same
+    present[static_cast<std::size_t>(allGlobalIds[i])] = true;
+  }
+  const vtkIdType wholeCount = largest + 1;
+  const bool numbered = !present.empty() && std::find(present.begin(), present.end(), false) == present.end();
+  if (!numbered && processCount(controller) == 1)
+  {
+    // Ids of some other numbering (one piece's file, read alone): the piece is the mesh.
+    whole.mesh = piece;
     return whole;
   }
-  // Whole-mesh indices in the order of the global ids: the ids themselves where they are 0 to n-1.
-  std::vector<vtkIdType> wholeIndex(static_cast<std::size_t>(largest) + 1, -1);
-  for (vtkIdType id : allGlobalIds)
+  if (!numbered)
   {
-    wholeIndex[static_cast<std::size_t>(id)] = 0;
-  }
-  vtkIdType wholeCount = 0;
-  for (vtkIdType& index : wholeIndex)
-  {
-    index = index < 0 ? -1 : wholeCount++;
+    std::ostringstream text;
+    text << "the pieces' global point ids run from " << smallest << " to " << largest
+         << " but do not number the points 0 to n-1, each at least once: give the points global ids that do";
+    whole.problem = text.str(); // every process finds the same
+    return whole;
   }
 
   std::string found;
   vtkNew<vtkPolyData> mesh;
   vtkSmartPointer<vtkDataArray> coordinates =
-    wholeTuples(controller, points, pointType, allGlobalIds, wholeIndex, wholeCount, "positions", found);
+    wholeTuples(controller, points, pointType, allGlobalIds, wholeCount, "positions", found);
   if (coordinates)
   {
     vtkNew<vtkPoints> wholePoints;
@@ -333,7 +437,7 @@ WholeMesh gatherWholeMesh(vtkMultiProcessController* controller, vtkPolyData* pi
   if (found.empty() && normalsState != absent)
   {
     vtkSmartPointer<vtkDataArray> wholeNormals =
-      wholeTuples(controller, normals, normalsState, allGlobalIds, wholeIndex, wholeCount, "normals", found);
+      wholeTuples(controller, normals, normalsState, allGlobalIds, wholeCount, "normals", found);
     if (wholeNormals)
     {
       // The name the single process would see: the first piece's.
@@ -343,17 +447,16 @@ WholeMesh gatherWholeMesh(vtkMultiProcessController* controller, vtkPolyData* pi
     }
   }
   const vtkIdType keyBase = static_cast<vtkIdType>(controller ? controller->GetLocalProcessId() : 0) << 40;
-  auto* ghosts = vtkUnsignedCharArray::SafeDownCast(piece->GetCellData()->GetArray(vtkDataSetAttributes::GhostArrayName()));
   const vtkIdType firstPolygon = piece->GetNumberOfVerts() + piece->GetNumberOfLines();
   const GatheredCells polygons =
     cellsOf(piece->GetPolys(), firstPolygon, cellGlobalIds, ghosts, keyBase, mineGlobalIds);
   const GatheredCells strips =
     cellsOf(piece->GetStrips(), firstPolygon + piece->GetNumberOfPolys(), cellGlobalIds, ghosts, keyBase, mineGlobalIds);
   // Every process makes both gathers, whatever it found, so that none waits for the others.
-  std::string cellProblem;
-  vtkSmartPointer<vtkCellArray> wholePolygons = wholeCells(controller, polygons, wholeIndex, "polygons", cellProblem);
-  vtkSmartPointer<vtkCellArray> wholeStrips = wholeCells(controller, strips, wholeIndex, "strips", cellProblem);
-  whole.problem = !found.empty() ? found : cellProblem;
+  std::string cellsFound;
+  vtkSmartPointer<vtkCellArray> wholePolygons = wholeCells(controller, polygons, "polygons", cellsFound);
+  vtkSmartPointer<vtkCellArray> wholeStrips = wholeCells(controller, strips, "strips", cellsFound);
+  whole.problem = !found.empty() ? found : cellsFound;
   if (!whole.problem.empty())
   {
     return whole;
@@ -364,12 +467,24 @@ WholeMesh gatherWholeMesh(vtkMultiProcessController* controller, vtkPolyData* pi
     mesh->SetStrips(wholeStrips);
   }
   whole.mesh = mesh;
-  whole.pieceIds.resize(mineGlobalIds.size());
-  for (std::size_t i = 0; i < mineGlobalIds.size(); ++i)
-  {
-    whole.pieceIds[i] = wholeIndex[static_cast<std::size_t>(mineGlobalIds[i])];
-  }
+  whole.pieceIds = mineGlobalIds;
   return whole;
+}
+
+}
+
+WholeMesh gatherWholeMesh(vtkMultiProcessController* controller, vtkPolyData* piece, bool withNormals)
+{
+  try
+  {
+    return gatherPieces(controller, piece, withNormals);
+  }
+  catch (const std::exception& error) // too large for MPI, or out of memory: on every process alike
+  {
+    WholeMesh failed;
+    failed.problem = error.what();
+    return failed;
+  }
 }
 
 vtkSmartPointer<vtkDataArray> tuplesAt(vtkDataArray* values, const std::vector<vtkIdType>& ids)

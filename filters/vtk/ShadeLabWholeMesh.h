@@ -14,9 +14,11 @@
 #include "vtkSmartPointer.h"
 #include "vtkType.h"
 
+#include <functional>
 #include <string>
 #include <vector>
 
+class vtkAlgorithm;
 class vtkDataArray;
 class vtkMultiProcessController;
 class vtkPolyData;
@@ -31,24 +33,36 @@ SHADELABFILTERS_EXPORT bool isPieceOfSplitMesh(vtkMultiProcessController* contro
 /// The whole mesh a piece belongs to, and where the piece's points are in it.
 struct WholeMesh
 {
-  /// Points in the order of their global ids, polygons and strips in the order of their global
-  /// cell ids (without cell ids: by process, then as in the piece); ghost cells are left out.
-  /// Point normals when asked for and the pieces have them. nullptr when this process's piece
-  /// is empty and another holds the whole mesh.
+  /// The points in the order of their global ids, which must number them 0 to n-1 (each
+  /// point's id is its index here, and seeds its samples); polygons and strips in the order of
+  /// their global cell ids; ghost cells left out; point normals where asked for and the pieces
+  /// have them. nullptr where every piece is empty, and on the empty pieces where one process
+  /// holds the whole mesh.
   vtkSmartPointer<vtkPolyData> mesh;
-  /// For each point of the piece, its index in mesh (empty when the piece is the whole).
+  /// Each point of the piece's index in mesh: its global id. Empty where the piece is the
+  /// whole mesh or is empty.
   std::vector<vtkIdType> pieceIds;
   /// Why the pieces do not make one mesh; the same text on every process.
   std::string problem;
 };
 
-/// Gathers the whole mesh from every process's piece (a collective call). Where only one
-/// process has points, its piece is the whole mesh and nothing is exchanged.
+/// Gathers the whole mesh from every process's piece (a collective call). Where one process
+/// has all the points and they have no global ids, its piece is the whole mesh and only a few
+/// counts are exchanged. Several pieces with points need global point and cell ids.
 SHADELABFILTERS_EXPORT WholeMesh gatherWholeMesh(vtkMultiProcessController* controller, vtkPolyData* piece, bool withNormals);
 
-/// The first process's problem where any process has one ("" where none has): every process
-/// stops, or none does, with the same message (a collective call).
-SHADELABFILTERS_EXPORT std::string agreedProblem(vtkMultiProcessController* controller, const std::string& problem);
+/// A filter's work on a mesh taken whole: into result, at the points pieceIds lists (nullptr:
+/// every point); arrays it adds have a value per listed point, except computed normals, which
+/// have one per point. Returns whether it succeeded (having reported why not).
+using PieceComputation =
+  std::function<bool(vtkPolyData* mesh, vtkPolyData* result, const std::vector<vtkIdType>* pieceIds)>;
+
+/// A filter's RequestData for a piece of a split mesh (a collective call): gathers the whole
+/// mesh, computes on it for the piece's points, and gives output the piece with what was
+/// computed. Returns 1, or 0 on every process where any failed (each failure reported through
+/// `filter`), so that no process waits for a failed one in a later collective call.
+SHADELABFILTERS_EXPORT int computeOnPiece(vtkMultiProcessController* controller, vtkAlgorithm* filter,
+  vtkPolyData* piece, vtkPolyData* output, bool withNormals, const PieceComputation& compute);
 
 /// values' tuples at ids, in a new array of the same type and name.
 SHADELABFILTERS_EXPORT vtkSmartPointer<vtkDataArray> tuplesAt(vtkDataArray* values, const std::vector<vtkIdType>& ids);

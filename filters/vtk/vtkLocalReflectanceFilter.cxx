@@ -351,46 +351,10 @@ int vtkLocalReflectanceFilter::Shade(vtkInformationVector** inputVector, vtkInfo
   {
     return this->ShadeMesh(input, output, input, nullptr);
   }
-  // Every process finds the same problems: the cells' of one is shared, and the rest are
-  // found on the whole mesh, which every process has.
-  const std::string cells = shadelab::agreedProblem(this->Controller, shadelab::cellProblem(input));
-  if (!cells.empty())
-  {
-    vtkErrorMacro(<< cells);
-    return 0;
-  }
-  const shadelab::WholeMesh whole = shadelab::gatherWholeMesh(this->Controller, input, true);
-  if (!whole.problem.empty())
-  {
-    vtkErrorMacro(<< whole.problem);
-    return 0;
-  }
-  if (!whole.mesh || whole.pieceIds.empty()) // an empty piece, or the whole mesh
-  {
-    return this->ShadeMesh(input, output, input, nullptr);
-  }
-  vtkNew<vtkPolyData> shaded;
-  if (!this->ShadeMesh(whole.mesh, shaded, input, &whole.pieceIds))
-  {
-    return 0;
-  }
-  output->ShallowCopy(input);
-  // The arrays written, one value per point of the piece; computed normals are the whole mesh's.
-  vtkPointData* written = shaded->GetPointData();
-  for (int a = 0; a < written->GetNumberOfArrays(); ++a)
-  {
-    vtkDataArray* array = written->GetArray(a);
-    if (array == written->GetNormals() && array != whole.mesh->GetPointData()->GetNormals())
-    {
-      output->GetPointData()->SetNormals(shadelab::tuplesAt(array, whole.pieceIds));
-    }
-    else if (!whole.mesh->GetPointData()->HasArray(array->GetName()))
-    {
-      output->GetPointData()->AddArray(array);
-    }
-  }
-  output->GetFieldData()->PassData(shaded->GetFieldData());
-  return 1;
+  // Names already taken are the piece's: the whole mesh has only its geometry.
+  return shadelab::computeOnPiece(this->Controller, this, input, output, true,
+    [this, input](vtkPolyData* mesh, vtkPolyData* result, const std::vector<vtkIdType>* pieceIds)
+    { return this->ShadeMesh(mesh, result, input, pieceIds) == 1; });
 }
 
 int vtkLocalReflectanceFilter::ShadeMesh(

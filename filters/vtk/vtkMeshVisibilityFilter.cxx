@@ -17,7 +17,6 @@
 #include "vtkFloatArray.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
-#include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
@@ -142,33 +141,9 @@ int vtkMeshVisibilityFilter::CastRays(vtkInformationVector** inputVector, vtkInf
   {
     return this->CastRaysFrom(input, output, this->RayPointIds);
   }
-  const shadelab::WholeMesh whole = shadelab::gatherWholeMesh(this->Controller, input, true);
-  if (!whole.problem.empty())
-  {
-    vtkErrorMacro(<< whole.problem);
-    return 0;
-  }
-  if (!whole.mesh || whole.pieceIds.empty()) // an empty piece, or the whole mesh
-  {
-    return this->CastRaysFrom(input, output, nullptr);
-  }
-  vtkNew<vtkPolyData> seen;
-  if (!this->CastRaysFrom(whole.mesh, seen, &whole.pieceIds))
-  {
-    return 0;
-  }
-  output->ShallowCopy(input);
-  // The rays' arrays, one value per point of the piece.
-  for (int a = 0; a < seen->GetPointData()->GetNumberOfArrays(); ++a)
-  {
-    vtkAbstractArray* array = seen->GetPointData()->GetAbstractArray(a);
-    if (!whole.mesh->GetPointData()->HasArray(array->GetName()))
-    {
-      output->GetPointData()->AddArray(array);
-    }
-  }
-  shadelab::addFieldNote(output, shadelab::visibilityNoteName, { this->Report });
-  return 1;
+  return shadelab::computeOnPiece(this->Controller, this, input, output, true,
+    [this](vtkPolyData* mesh, vtkPolyData* result, const std::vector<vtkIdType>* pieceIds)
+    { return this->CastRaysFrom(mesh, result, pieceIds) == 1; });
 }
 
 int vtkMeshVisibilityFilter::CastRaysFrom(vtkPolyData* input, vtkPolyData* output, const std::vector<vtkIdType>* rayPoints)

@@ -377,43 +377,21 @@ int vtkShadingNormalsFilter::RequestData(
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   this->Report.clear();
-  if (!shadelab::isPieceOfSplitMesh(this->Controller, input))
+  const bool alone = !this->Controller || this->Controller->GetNumberOfProcesses() == 1;
+  // Splitting changes the points, so pieces read in one process are taken as they are then.
+  if (!shadelab::isPieceOfSplitMesh(this->Controller, input) || (this->SplitSharpEdges && alone))
   {
     return this->ComputeNormals(input, output);
   }
-  // Every process finds the same problems (the settings are the same, or the text is shared).
-  const std::string problem = this->SplitSharpEdges
-    ? "splitting sharp edges adds points, which the pieces of a mesh split over processes cannot share: "
-      "split them before the mesh is split"
-    : shadelab::agreedProblem(this->Controller, this->CheckCells ? shadelab::cellProblem(input) : "");
-  if (!problem.empty())
+  if (this->SplitSharpEdges) // the same on every process
   {
-    vtkErrorMacro(<< problem);
+    vtkErrorMacro("splitting sharp edges adds points, which the pieces of a mesh split over processes cannot "
+                  "share: split them before the mesh is split");
     return 0;
   }
-  const shadelab::WholeMesh whole = shadelab::gatherWholeMesh(this->Controller, input, this->KeepInputNormals);
-  if (!whole.problem.empty())
-  {
-    vtkErrorMacro(<< whole.problem);
-    return 0;
-  }
-  if (!whole.mesh || whole.pieceIds.empty()) // an empty piece, or the whole mesh
-  {
-    return this->ComputeNormals(input, output);
-  }
-  vtkNew<vtkPolyData> wholeWithNormals;
-  if (!this->ComputeNormals(whole.mesh, wholeWithNormals))
-  {
-    return 0;
-  }
-  output->ShallowCopy(input);
-  vtkDataArray* normals = wholeWithNormals->GetPointData()->GetNormals();
-  if (normals != whole.mesh->GetPointData()->GetNormals()) // not the input's own, as they are
-  {
-    output->GetPointData()->SetNormals(shadelab::tuplesAt(normals, whole.pieceIds));
-  }
-  shadelab::addFieldNote(output, shadelab::normalsNoteName, { this->Report });
-  return 1;
+  return shadelab::computeOnPiece(this->Controller, this, input, output, this->KeepInputNormals,
+    [this](vtkPolyData* mesh, vtkPolyData* result, const std::vector<vtkIdType>*)
+    { return this->ComputeNormals(mesh, result) == 1; }); // every point's: the piece's are taken from them
 }
 
 int vtkShadingNormalsFilter::ComputeNormals(vtkPolyData* input, vtkPolyData* output)
