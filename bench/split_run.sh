@@ -1,55 +1,54 @@
 #!/usr/bin/env bash
 # Time and peak memory per MPI rank of Local Reflectance under pvbatch, on 1, 2 and 4 ranks
 # (README, "A mesh split over MPI processes"): studio.json's default arrays, in float32, read
-# from the pieces and written as a .pvtp. The mesh: the bunny and the dragon, each
-# Loop-subdivided LEVELS times (default 4: 22M vertices), side by side in one mesh, cut into 4
-# pieces with global ids. Needs .ci/paraview to have run (ParaView unpacked, the plugin built).
-#   bash bench/split_run.sh [LEVELS] [WORK]
+# from the pieces and written as a .pvtp. The mesh: COPIES bunnies side by side, each
+# Loop-subdivided LEVELS times (defaults 1 and 4: 8.9M vertices; 3 copies: 26.7M), cut into
+# 4 pieces with global ids. Needs .ci/paraview to have run (ParaView unpacked, the plugin built).
+#   bash bench/split_run.sh [LEVELS] [COPIES] [WORK]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 levels=${1:-4}
-work=${2:-/tmp/shadelab-split-run}
+copies=${2:-1}
+work=${3:-/tmp/shadelab-split-run}
 paraview=$PWD/build/paraview-5.11
 plugin=build/paraview-plugin/lib/paraview-5.11/plugins/ShadeLab/ShadeLab.so
 [ -x "$paraview/usr/bin/pvbatch" ] && [ -f "$plugin" ] || { echo "split_run: run bash .ci/paraview first"; exit 1; }
 mkdir -p "$work"
-mesh="$work/bunny_dragon_loop$levels.ply"
+mesh="$work/bunnies_${copies}_loop$levels.ply"
 if [ ! -f "$mesh" ]; then
-  /usr/bin/python3 - "$levels" "$mesh" <<'PYTHON'
+  /usr/bin/python3 - "$levels" "$copies" "$mesh" <<'PYTHON'
 import sys
 from vtkmodules.vtkFiltersCore import vtkAppendPolyData, vtkCleanPolyData
 from vtkmodules.vtkFiltersGeneral import vtkTransformPolyDataFilter
 from vtkmodules.vtkFiltersModeling import vtkLoopSubdivisionFilter
 from vtkmodules.vtkCommonTransforms import vtkTransform
 from vtkmodules.vtkIOPLY import vtkPLYReader, vtkPLYWriter
-levels, output = int(sys.argv[1]), sys.argv[2]
+levels, copies, output = int(sys.argv[1]), int(sys.argv[2]), sys.argv[3]
+reader = vtkPLYReader()
+reader.SetFileName("data/meshes/bunny_zipper.ply")
+clean = vtkCleanPolyData()  # the file's unused points stop Loop subdivision
+clean.SetInputConnection(reader.GetOutputPort())
+loop = vtkLoopSubdivisionFilter()
+loop.SetNumberOfSubdivisions(levels)
+loop.SetInputConnection(clean.GetOutputPort())
+loop.Update()
+if loop.GetOutput().GetNumberOfPoints() == 0:
+    sys.exit("split_run: the subdivision failed")
 append = vtkAppendPolyData()
-for name, shift in (("bunny_zipper.ply", 0.0), ("xyzrgb_dragon_50k.ply", 0.25)):
-    reader = vtkPLYReader()
-    reader.SetFileName("data/meshes/" + name)
-    clean = vtkCleanPolyData()  # Loop subdivision needs shared points
-    clean.SetInputConnection(reader.GetOutputPort())
-    loop = vtkLoopSubdivisionFilter()
-    loop.SetNumberOfSubdivisions(levels)
-    loop.SetInputConnection(clean.GetOutputPort())
-    loop.Update()
-    bounds = loop.GetOutput().GetBounds()
-    place = vtkTransform()  # side by side, each scaled to the bunny's height
-    scale = 0.15 / (bounds[3] - bounds[2])
-    place.Translate(shift, 0, 0)
-    place.Scale(scale, scale, scale)
-    place.Translate(-0.5 * (bounds[0] + bounds[1]), -bounds[2], -0.5 * (bounds[4] + bounds[5]))
+for copy in range(copies):
+    shift = vtkTransform()
+    shift.Translate(0.2 * copy, 0, 0)  # side by side: the bunny is 0.16 wide
     moved = vtkTransformPolyDataFilter()
-    moved.SetTransform(place)
+    moved.SetTransform(shift)
     moved.SetInputConnection(loop.GetOutputPort())
-    moved.Update()
-    append.AddInputData(moved.GetOutput())
+    append.AddInputConnection(moved.GetOutputPort())
 append.Update()
 writer = vtkPLYWriter()
 writer.SetFileName(output)
 writer.SetFileTypeToBinary()
 writer.SetInputConnection(append.GetOutputPort())
-writer.Write()
+if writer.Write() != 1:
+    sys.exit("split_run: could not write " + output)
 print(f"{output}: {append.GetOutput().GetNumberOfPoints()} points, {append.GetOutput().GetNumberOfPolys()} triangles")
 PYTHON
 fi
