@@ -1,15 +1,17 @@
 #!/usr/bin/env bash
 # Time and peak memory per MPI rank of Local Reflectance under pvbatch, on 1, 2 and 4 ranks
-# (README, "A mesh split over MPI processes"): studio.json's default arrays, in float32, read
-# from the pieces and written as a .pvtp. The mesh: COPIES bunnies side by side, each
-# Loop-subdivided LEVELS times (defaults 1 and 4: 8.9M vertices; 3 copies: 26.7M), cut into
-# 4 pieces with global ids. Needs .ci/paraview to have run (ParaView unpacked, the plugin built).
-#   bash bench/split_run.sh [LEVELS] [COPIES] [WORK]
+# (README, "A mesh split over MPI processes"): studio.json's default arrays in float32 (or, with
+# ARRAYS "all", every array in float64), read from the pieces and written as a .pvtp. The mesh:
+# COPIES bunnies side by side, each Loop-subdivided LEVELS times (defaults 4 and 1: 8.9M
+# vertices; 3 copies: 26.7M), cut into 4 pieces with global ids. Needs .ci/paraview to have
+# run (ParaView unpacked, the plugin built).
+#   bash bench/split_run.sh [LEVELS] [COPIES] [WORK] [ARRAYS]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 levels=${1:-4}
 copies=${2:-1}
 work=${3:-/tmp/shadelab-split-run}
+arrays=$([ "${4:-default}" = all ] || echo default) # the check script's "default", or nothing for all
 paraview=$PWD/build/paraview-5.11
 plugin=build/paraview-plugin/lib/paraview-5.11/plugins/ShadeLab/ShadeLab.so
 [ -x "$paraview/usr/bin/pvbatch" ] && [ -f "$plugin" ] || { echo "split_run: run bash .ci/paraview first"; exit 1; }
@@ -61,7 +63,7 @@ for processes in 1 2 4; do
   mpiexec --allow-run-as-root --oversubscribe -np "$processes" -x LD_LIBRARY_PATH \
     sh -c 'exec /usr/bin/time -o "$0/rank_$OMPI_COMM_WORLD_RANK.time" -f "%e %M" "$@"' "$work" \
     "$paraview/usr/bin/pvbatch" tests/paraview_split_check.py shade "$plugin" "$work/pieces.pvtp" \
-    data/scenes/studio.json "$work/shaded.pvtp" default > "$work/np$processes.log" 2>&1 ||
+    data/scenes/studio.json "$work/shaded.pvtp" $arrays > "$work/np$processes.log" 2>&1 ||
     { echo "split_run: $processes ranks failed:"; tail -20 "$work/np$processes.log"; exit 1; }
   rm -rf "$work"/shaded*
   echo "| $processes | $(cat "$work"/rank_*.time | awk '{printf "%s%.1f s", (NR > 1 ? ", " : ""), $1}') | $(cat "$work"/rank_*.time | awk '{printf "%s%.2f GB", (NR > 1 ? ", " : ""), $2 / 1048576}') |"

@@ -23,18 +23,21 @@ namespace detail
 inline std::string globalIdsAsArray(vtkDataSetAttributes* attributes, vtkIdType count)
 {
   vtkSmartPointer<vtkDataArray> ids = attributes->GetGlobalIds();
-  if (!ids || !ids->GetName())
+  if (!ids)
   {
     auto indices = vtkSmartPointer<vtkIdTypeArray>::New();
-    indices->SetName("GlobalIds");
     indices->SetNumberOfValues(count);
     std::iota(indices->GetPointer(0), indices->GetPointer(0) + count, vtkIdType(0));
-    if (ids)
-    {
-      indices->DeepCopy(ids); // the mesh's own, under a name
-      indices->SetName("GlobalIds");
-    }
     ids = indices;
+  }
+  else if (!ids->GetName())
+  {
+    ids = vtk::TakeSmartPointer(ids->NewInstance()); // the mesh's own, under a name of their own
+    ids->DeepCopy(attributes->GetGlobalIds());
+  }
+  if (!ids->GetName())
+  {
+    ids->SetName("GlobalIds");
   }
   attributes->SetActiveAttribute(-1, vtkDataSetAttributes::GLOBALIDS);
   attributes->AddArray(ids);

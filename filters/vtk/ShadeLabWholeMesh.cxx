@@ -9,6 +9,7 @@
 #include "vtkDataArray.h"
 #include "vtkDataSetAttributes.h"
 #include "vtkFieldData.h"
+#include "vtkIdList.h"
 #include "vtkIdTypeArray.h"
 #include "vtkMultiProcessController.h"
 #include "vtkNew.h"
@@ -218,16 +219,7 @@ int sharedValue(vtkMultiProcessController* controller, bool empty, int value)
   }
   return shared;
 }
-}
 
-bool isPieceOfSplitMesh(vtkMultiProcessController* controller, vtkPolyData* piece)
-{
-  // Several processes call alike; one process decides for itself.
-  return processCount(controller) > 1 || piece->GetPointData()->GetGlobalIds() != nullptr;
-}
-
-namespace
-{
 /// The first process's text that is not empty ("" where all are), on every process: the
 /// first process's problem, where any has one, so that every process stops with its message.
 std::string firstText(vtkMultiProcessController* controller, const std::string& text)
@@ -242,11 +234,7 @@ std::string firstText(vtkMultiProcessController* controller, const std::string& 
   const vtkIdType start = std::accumulate(lengths.begin(), first, vtkIdType(0));
   return std::string(all.begin() + start, all.begin() + start + *first);
 }
-}
 
-
-namespace
-{
 /// What a filter's RequestData returns for its piece (a collective call): 1 where every process
 /// succeeded. Where another failed, this one stops too, with an error saying so and its output
 /// emptied, so that no process waits for a failed one in a later collective call.
@@ -287,6 +275,12 @@ void keepPiece(const WholeMesh& whole, vtkPolyData* computed, vtkPolyData* piece
   }
   output->GetFieldData()->PassData(computed->GetFieldData());
 }
+}
+
+bool isPieceOfSplitMesh(vtkMultiProcessController* controller, vtkPolyData* piece)
+{
+  // Several processes call alike; one process decides for itself.
+  return processCount(controller) > 1 || piece->GetPointData()->GetGlobalIds() != nullptr;
 }
 
 int computeOnPiece(vtkMultiProcessController* controller, vtkAlgorithm* filter, vtkPolyData* piece,
@@ -489,14 +483,14 @@ WholeMesh gatherWholeMesh(vtkMultiProcessController* controller, vtkPolyData* pi
 
 vtkSmartPointer<vtkDataArray> tuplesAt(vtkDataArray* values, const std::vector<vtkIdType>& ids)
 {
+  vtkNew<vtkIdList> list;
+  list->SetNumberOfIds(static_cast<vtkIdType>(ids.size()));
+  std::copy(ids.begin(), ids.end(), list->GetPointer(0));
   auto taken = vtk::TakeSmartPointer(values->NewInstance());
   taken->SetName(values->GetName());
   taken->SetNumberOfComponents(values->GetNumberOfComponents());
-  taken->SetNumberOfTuples(static_cast<vtkIdType>(ids.size()));
-  for (std::size_t i = 0; i < ids.size(); ++i)
-  {
-    taken->SetTuple(static_cast<vtkIdType>(i), ids[i], values);
-  }
+  taken->SetNumberOfTuples(list->GetNumberOfIds());
+  values->GetTuples(list, taken);
   return taken;
 }
 }

@@ -351,14 +351,13 @@ int vtkLocalReflectanceFilter::Shade(vtkInformationVector** inputVector, vtkInfo
   {
     return this->ShadeMesh(input, output, input, nullptr);
   }
-  // Names already taken are the piece's: the whole mesh has only its geometry.
   return shadelab::computeOnPiece(this->Controller, this, input, output, true,
     [this, input](vtkPolyData* mesh, vtkPolyData* result, const std::vector<vtkIdType>* pieceIds)
     { return this->ShadeMesh(mesh, result, input, pieceIds) == 1; });
 }
 
 int vtkLocalReflectanceFilter::ShadeMesh(
-  vtkPolyData* input, vtkPolyData* output, vtkPolyData* namesFrom, const std::vector<vtkIdType>* pieceIds)
+  vtkPolyData* input, vtkPolyData* output, vtkPolyData* piece, const std::vector<vtkIdType>* pieceIds)
 {
   if (input->GetNumberOfPoints() == 0)
   {
@@ -445,7 +444,7 @@ int vtkLocalReflectanceFilter::ShadeMesh(
   {
     written.push_back(this->ComputedNormalsName());
   }
-  const std::string taken = takenName(namesFrom, written);
+  const std::string taken = takenName(piece, written);
   if (!taken.empty())
   {
     vtkErrorMacro("the input already has a point array named '"
@@ -456,8 +455,9 @@ int vtkLocalReflectanceFilter::ShadeMesh(
   output->ShallowCopy(input);
   vtkDataArray* shadingNormals = this->PrepareNormals(input, output);
 
-  // The points to shade, with their normals: all of them, or a piece's.
-  vtkSmartPointer<vtkDataArray> points = input->GetPoints()->GetData();
+  // The points to shade, with their normals: all of them, or a piece's (the same coordinates
+  // as the whole mesh has there: it was gathered from them).
+  vtkDataArray* points = piece->GetPoints()->GetData();
   vtkSmartPointer<vtkDataArray> normals = shadingNormals;
   std::vector<vtkSmartPointer<vtkDataArray>> arrays;
   try
@@ -465,7 +465,6 @@ int vtkLocalReflectanceFilter::ShadeMesh(
     shadelab::ShadingInputs inputs;
     if (pieceIds)
     {
-      points = shadelab::tuplesAt(points, *pieceIds);
       normals = shadelab::tuplesAt(shadingNormals, *pieceIds);
       static_assert(sizeof(vtkIdType) == sizeof(long long), "ids seed samples as 64-bit integers");
       inputs.sampleIds = reinterpret_cast<const long long*>(pieceIds->data());

@@ -143,10 +143,11 @@ protected:
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   /// RequestData within the filter's thread count.
   int Shade(vtkInformationVector** inputVector, vtkInformationVector* outputVector);
-  /// Shades input as a whole mesh into output: every point, or (pieceIds) only those of a
-  /// piece, whose arrays then have a value per point of the piece. Names already taken are
-  /// looked for in namesFrom (the input, or the piece).
-  int ShadeMesh(vtkPolyData* input, vtkPolyData* output, vtkPolyData* namesFrom, const std::vector<vtkIdType>* pieceIds);
+  /// Shades input as a whole mesh into output, at the points of `piece`: input itself
+  /// (pieceIds nullptr), or a piece of it whose points are input's pieceIds, and whose output
+  /// arrays then have a value per point of the piece. The piece's points are the ones shaded,
+  /// and its arrays' names are the ones already taken.
+  int ShadeMesh(vtkPolyData* input, vtkPolyData* output, vtkPolyData* piece, const std::vector<vtkIdType>* pieceIds);
 
 private:
   vtkLocalReflectanceFilter(const vtkLocalReflectanceFilter&) = delete;
