@@ -17,24 +17,36 @@ if(SHADELAB_NATIVE_ARCH)
   include(CheckCXXCompilerFlag)
   check_cxx_compiler_flag(-march=native compiler_accepts_march_native)
   if(compiler_accepts_march_native)
-    add_compile_options(-march=native)
-    # GCC 12.2 (Debian 12's compiler) builds some vectors of doubles wrongly with AVX-512:
-    # {x, x, 0, 0} becomes {x, x, x, x} (a 256-bit broadcast where a 128-bit one was meant),
-    # which struck the tests' own arrays. Where this program shows it on the machine that
-    # builds, AVX-512 is left out of ShadeLab's code (AVX2 stays; the results are the same bits,
-    # as there is no fused multiply-add; Embree keeps its own AVX-512 kernels).
-    include(CheckCXXSourceRuns)
-    set(CMAKE_REQUIRED_FLAGS "-O2 -march=native")
-    check_cxx_source_runs([=[
+    # GCC 12.2 (Debian 12's compiler) builds some vectors of doubles wrongly for processors
+    # with AVX-512: {x, x, 0, 0} becomes {x, x, x, x} (a 256-bit broadcast where a 128-bit one
+    # was meant), which struck the tests' own arrays. It comes of AVX-512 and, on some
+    # processors (Rocket Lake), of the tuning for them even without AVX-512. Where this program
+    # shows it on the machine that builds, ShadeLab's code is built without AVX-512 and tuned
+    # generically (AVX2 stays; the results are the same bits, as there is no fused multiply-add;
+    # Embree keeps its own AVX-512 kernels); where that is not enough, for the x86-64 baseline.
+    set(vectors_check [=[
       #include <vector>
       struct Values { int type = 1; std::vector<double> reals; };
       Values made(std::vector<double> values) { Values v; v.reals = std::move(values); return v; }
       int main() { const double x = 1.0; return made({ x, x, 0.0, 0.0 }).reals[2] == 0.0 ? 0 : 1; }
-    ]=] shadelab_avx512_vectors_built_right)
+    ]=])
+    include(CheckCXXSourceRuns)
+    set(CMAKE_REQUIRED_FLAGS "-O2 -march=native")
+    check_cxx_source_runs("${vectors_check}" shadelab_native_vectors_built_right)
+    set(CMAKE_REQUIRED_FLAGS "-O2 -march=native -mno-avx512f -mtune=generic")
+    if(NOT shadelab_native_vectors_built_right)
+      check_cxx_source_runs("${vectors_check}" shadelab_generic_tuned_vectors_built_right)
+    endif()
     unset(CMAKE_REQUIRED_FLAGS)
-    if(NOT shadelab_avx512_vectors_built_right)
-      message(STATUS "ShadeLab: this compiler builds some AVX-512 vectors wrongly; compiling with -mno-avx512f")
-      add_compile_options(-mno-avx512f)
+    if(shadelab_native_vectors_built_right)
+      add_compile_options(-march=native)
+    elseif(shadelab_generic_tuned_vectors_built_right)
+      message(STATUS "ShadeLab: this compiler builds some vectors wrongly for this processor; compiling with "
+        "-march=native -mno-avx512f -mtune=generic")
+      add_compile_options(-march=native -mno-avx512f -mtune=generic)
+    else()
+      message(STATUS "ShadeLab: this compiler builds some vectors wrongly for this processor, even without "
+        "AVX-512; compiling for the x86-64 baseline")
     endif()
   endif()
 endif()

@@ -192,6 +192,59 @@ TEST(SplitMeshVisibility, PiecesAloneWouldShadeOtherwise)
   EXPECT_GT(differing, static_cast<vtkIdType>(ids.size()));
 }
 
+// More processes than pieces: the last process's piece is empty. It takes part in every
+// exchange, shades nothing, and the others' pieces are still the whole mesh's, with shadows and
+// occlusion (which gather the mesh on every process) and without (normals from the first).
+TEST(SplitMeshVisibility, AProcessWithAnEmptyPiece)
+{
+  const int count = processes()->GetNumberOfProcesses();
+  if (count == 1)
+  {
+    GTEST_SKIP() << "one process holds the only piece";
+  }
+  const vtkSmartPointer<vtkPolyData> mesh = bunny();
+  const int rank = processes()->GetLocalProcessId();
+  const bool holdsNone = rank == count - 1;
+  vtkSmartPointer<vtkPolyData> piece = holdsNone ? vtkSmartPointer<vtkPolyData>::New()
+                                                 : shadelab::testing::meshPiece(mesh, rank, count - 1, 1);
+  for (const auto& [scene, arrays] : { std::pair{ "shadows_occlusion.json", 10 }, std::pair{ "studio.json", 40 } })
+  {
+    const vtkSmartPointer<vtkPolyData> shadedPiece = shaded(piece, scene, { "all" }, processes());
+    if (holdsNone)
+    {
+      EXPECT_EQ(shadedPiece->GetNumberOfPoints(), 0) << scene;
+      continue;
+    }
+    EXPECT_GT(expectPieceOfWhole(shaded(mesh, scene, { "all" }, nullptr), shadedPiece), arrays) << scene;
+  }
+}
+
+// The normals' mesh is gathered on the first process alone: the others hold only their pieces.
+TEST(SplitMeshMemory, NormalsGatherOnTheFirstProcessOnly)
+{
+  const vtkSmartPointer<vtkPolyData> mesh = bunny();
+  const vtkSmartPointer<vtkPolyData> piece = myPiece(mesh);
+  const shadelab::WholeMesh whole =
+    shadelab::gatherWholeMesh(processes(), piece, false, shadelab::WholeMeshOn::FirstProcess);
+  EXPECT_EQ(whole.problem, "");
+  EXPECT_TRUE(whole.putTogether);
+  EXPECT_EQ(whole.pieceIds, globalIdsOf(piece));
+  vtkIdType pieceSize = piece->GetNumberOfPoints(), piecesSize = 0;
+  processes()->AllReduce(&pieceSize, &piecesSize, 1, vtkCommunicator::SUM_OP);
+  if (processes()->GetLocalProcessId() == 0)
+  {
+    ASSERT_NE(whole.mesh, nullptr);
+    EXPECT_EQ(whole.mesh->GetNumberOfPoints(), mesh->GetNumberOfPoints());
+    EXPECT_EQ(whole.mesh->GetNumberOfPolys(), mesh->GetNumberOfPolys());
+    EXPECT_EQ(whole.everyPieceIds.size(), static_cast<std::size_t>(piecesSize));
+  }
+  else
+  {
+    EXPECT_EQ(whole.mesh, nullptr);
+    EXPECT_TRUE(whole.everyPieceIds.empty());
+  }
+}
+
 // Pieces written as a .pvtp (each process its own) and read back whole in one process: the
 // pieces' shared points are there once per piece, and their global ids put them back together.
 TEST(SplitMeshFiles, PiecesWrittenAndReadBack)

@@ -10,8 +10,20 @@ class vtkPolyData;
 
 namespace shadelab
 {
-/// The bounding box's centre and half diagonal, and the largest |coordinate|, over the finite
-/// points (NaN and Inf points are flagged by shading, not refused). The mesh has points.
+/// A bounding box, corner to corner.
+struct PointBox
+{
+  glm::dvec3 low, high;
+};
+
+/// The bounding box of the finite points (NaN and Inf points are flagged by shading, not
+/// refused); with none, VTK's empty range in each coordinate. The mesh has points.
+SHADELABFILTERS_EXPORT PointBox finitePointBox(vtkPolyData* mesh);
+
+/// The box's centre and half diagonal, and the largest |coordinate| of its corners.
+SHADELABFILTERS_EXPORT MeshExtent extentOfBox(const PointBox& box);
+
+/// The extent of the mesh's finite points. The mesh has points.
 SHADELABFILTERS_EXPORT MeshExtent meshExtentOf(vtkPolyData* mesh);
 }
 

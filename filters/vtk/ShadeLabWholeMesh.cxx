@@ -1,6 +1,7 @@
 #include "ShadeLabWholeMesh.h"
 
 #include "ShadeLabMeshChecks.h"
+#include "ShadeLabMeshExtent.h"
 
 #include "vtkAlgorithm.h"
 #include "vtkCellArray.h"
@@ -34,9 +35,21 @@ int processCount(vtkMultiProcessController* controller)
   return controller ? controller->GetNumberOfProcesses() : 1;
 }
 
-/// Every process's `mine`, one after another in process order; counts[p] is process p's size.
+bool isFirstProcess(vtkMultiProcessController* controller)
+{
+  return !controller || controller->GetLocalProcessId() == 0;
+}
+
+/// Whether this process receives what is gathered `where`.
+bool receives(vtkMultiProcessController* controller, WholeMeshOn where)
+{
+  return where == WholeMeshOn::EveryProcess || isFirstProcess(controller);
+}
+
+/// Every process's `mine`, one after another in process order, on every process or on the
+/// first only (the others get nothing); counts[p] is process p's size, on every process.
 template <typename T>
-std::vector<T> allGather(vtkMultiProcessController* controller, const std::vector<T>& mine,
+std::vector<T> gathered(vtkMultiProcessController* controller, const std::vector<T>& mine, WholeMeshOn where,
   std::vector<vtkIdType>* counts = nullptr)
 {
   const int processes = processCount(controller);
@@ -60,16 +73,26 @@ std::vector<T> allGather(vtkMultiProcessController* controller, const std::vecto
     throw std::overflow_error("the mesh is too large to gather: " + std::to_string(total) +
       " values in one exchange, more than MPI's 2^31 - 1");
   }
-  std::vector<T> all(static_cast<std::size_t>(total));
-  if (controller->AllGatherV(mine.data(), all.data(), length, lengths.data(), offsets.data()) == 0)
-  {
-    throw std::runtime_error("gathering the mesh's pieces failed (MPI's AllGatherV)");
-  }
   if (counts)
   {
     *counts = lengths;
   }
+  std::vector<T> all(receives(controller, where) ? static_cast<std::size_t>(total) : 0);
+  const int exchanged = where == WholeMeshOn::EveryProcess
+    ? controller->AllGatherV(mine.data(), all.data(), length, lengths.data(), offsets.data())
+    : controller->GatherV(mine.data(), all.data(), length, lengths.data(), offsets.data(), 0);
+  if (exchanged == 0)
+  {
+    throw std::runtime_error("gathering the mesh's pieces failed (MPI's gather)");
+  }
   return all;
+}
+
+template <typename T>
+std::vector<T> allGather(vtkMultiProcessController* controller, const std::vector<T>& mine,
+  std::vector<vtkIdType>* counts = nullptr)
+{
+  return gathered(controller, mine, WholeMeshOn::EveryProcess, counts);
 }
 
 /// The raw bytes of an array's tuples (its components interleaved, as VTK stores them).
@@ -132,13 +155,18 @@ GatheredCells cellsOf(vtkCellArray* cells, vtkIdType firstCellId, vtkDataArray* 
 }
 
 /// Every piece's cells of one kind, in the order of their keys, with their points' global ids
-/// (their indices in the whole mesh); or a problem.
+/// (their indices in the whole mesh), where they are gathered `where` (nullptr elsewhere); or a
+/// problem.
 vtkSmartPointer<vtkCellArray> wholeCells(vtkMultiProcessController* controller, const GatheredCells& mine,
-  const char* kind, std::string& problem)
+  WholeMeshOn where, const char* kind, std::string& problem)
 {
-  const std::vector<vtkIdType> keys = allGather(controller, mine.keys);
-  const std::vector<vtkIdType> sizes = allGather(controller, mine.sizes);
-  const std::vector<vtkIdType> corners = allGather(controller, mine.corners);
+  const std::vector<vtkIdType> keys = gathered(controller, mine.keys, where);
+  const std::vector<vtkIdType> sizes = gathered(controller, mine.sizes, where);
+  const std::vector<vtkIdType> corners = gathered(controller, mine.corners, where);
+  if (!receives(controller, where))
+  {
+    return nullptr;
+  }
   std::vector<vtkIdType> firstCorner(sizes.size() + 1, 0);
   std::partial_sum(sizes.begin(), sizes.end(), firstCorner.begin() + 1);
   std::vector<std::size_t> order(keys.size());
@@ -171,12 +199,16 @@ vtkSmartPointer<vtkCellArray> wholeCells(vtkMultiProcessController* controller, 
   return cells;
 }
 
-/// An array rebuilt in whole-mesh order from every piece's tuples (gathered as bytes), or a
-/// problem where two pieces give one point different values.
-vtkSmartPointer<vtkDataArray> wholeTuples(vtkMultiProcessController* controller, vtkDataArray* mine,
+/// An array rebuilt in whole-mesh order from every piece's tuples (gathered as bytes `where`:
+/// nullptr elsewhere), or a problem where two pieces give one point different values.
+vtkSmartPointer<vtkDataArray> wholeTuples(vtkMultiProcessController* controller, vtkDataArray* mine, WholeMeshOn where,
   int dataType, const std::vector<vtkIdType>& allGlobalIds, vtkIdType wholeCount, const char* what, std::string& problem)
 {
-  const std::vector<char> bytes = allGather(controller, bytesOf(mine));
+  const std::vector<char> bytes = gathered(controller, bytesOf(mine), where);
+  if (!receives(controller, where))
+  {
+    return nullptr;
+  }
   auto whole = vtk::TakeSmartPointer(vtkDataArray::CreateDataArray(dataType));
   whole->SetNumberOfComponents(3);
   whole->SetNumberOfTuples(wholeCount);
@@ -220,8 +252,8 @@ int sharedValue(vtkMultiProcessController* controller, bool empty, int value)
   return shared;
 }
 
-/// The first process's text that is not empty ("" where all are), on every process: the
-/// first process's problem, where any has one, so that every process stops with its message.
+}
+
 std::string firstText(vtkMultiProcessController* controller, const std::string& text)
 {
   std::vector<vtkIdType> lengths;
@@ -235,9 +267,6 @@ std::string firstText(vtkMultiProcessController* controller, const std::string& 
   return std::string(all.begin() + start, all.begin() + start + *first);
 }
 
-/// What a filter's RequestData returns for its piece (a collective call): 1 where every process
-/// succeeded. Where another failed, this one stops too, with an error saying so and its output
-/// emptied, so that no process waits for a failed one in a later collective call.
 int agreedOutcome(vtkMultiProcessController* controller, vtkAlgorithm* filter, vtkPolyData* output, bool succeeded)
 {
   const std::vector<int> all = allGather(controller, std::vector<int>{ succeeded ? 1 : 0 });
@@ -253,6 +282,8 @@ int agreedOutcome(vtkMultiProcessController* controller, vtkAlgorithm* filter, v
   return 0;
 }
 
+namespace
+{
 /// The piece with what was computed for its points on the whole mesh: arrays of a value per
 /// piece point as they are, normals of the whole mesh (computed, or flipped) at the piece's
 /// points, and the field data's notes.
@@ -260,60 +291,116 @@ void keepPiece(const WholeMesh& whole, vtkPolyData* computed, vtkPolyData* piece
 {
   output->ShallowCopy(piece);
   vtkPointData* written = computed->GetPointData();
-  vtkPointData* gathered = whole.mesh->GetPointData();
+  vtkPointData* brought = whole.mesh->GetPointData();
   for (int a = 0; a < written->GetNumberOfArrays(); ++a)
   {
     vtkDataArray* array = written->GetArray(a);
-    if (array == written->GetNormals() && array != gathered->GetNormals())
+    if (array == written->GetNormals() && array != brought->GetNormals())
     {
       output->GetPointData()->SetNormals(tuplesAt(array, whole.pieceIds));
     }
-    else if (!gathered->HasArray(array->GetName()))
+    else if (!brought->HasArray(array->GetName()))
     {
       output->GetPointData()->AddArray(array);
     }
   }
   output->GetFieldData()->PassData(computed->GetFieldData());
 }
-}
 
-bool isPieceOfSplitMesh(vtkMultiProcessController* controller, vtkPolyData* piece)
+/// What the first process computed on the whole mesh, sent to every piece (a collective call):
+/// the piece with each point array the computation wrote (not those gathered), its points'
+/// tuples only, and the computation's field data.
+void shareFromFirst(vtkMultiProcessController* controller, const WholeMesh& whole, vtkPolyData* computed,
+  vtkPolyData* piece, vtkPolyData* output)
 {
-  // Several processes call alike; one process decides for itself.
-  return processCount(controller) > 1 || piece->GetPointData()->GetGlobalIds() != nullptr;
-}
-
-int computeOnPiece(vtkMultiProcessController* controller, vtkAlgorithm* filter, vtkPolyData* piece,
-  vtkPolyData* output, bool withNormals, const PieceComputation& compute)
-{
-  const WholeMesh whole = gatherWholeMesh(controller, piece, withNormals);
-  if (!whole.problem.empty())
+  const bool first = isFirstProcess(controller);
+  std::vector<vtkDataArray*> written;
+  std::ostringstream header; // each array's type, components, whether it is the normals, and name
+  for (int a = 0; first && a < computed->GetPointData()->GetNumberOfArrays(); ++a)
   {
-    vtkErrorWithObjectMacro(filter, << whole.problem);
-    return 0;
-  }
-  bool succeeded = false;
-  if (!whole.mesh || whole.pieceIds.empty()) // an empty piece, or the whole mesh
-  {
-    succeeded = compute(piece, output, nullptr);
-  }
-  else
-  {
-    vtkNew<vtkPolyData> computed;
-    succeeded = compute(whole.mesh, computed, &whole.pieceIds);
-    if (succeeded)
+    vtkDataArray* array = computed->GetPointData()->GetArray(a);
+    const bool normals = array == computed->GetPointData()->GetNormals();
+    if (!whole.mesh->GetPointData()->HasArray(array->GetName()) ||
+      (normals && array != whole.mesh->GetPointData()->GetNormals()))
     {
-      keepPiece(whole, computed, piece, output);
+      written.push_back(array);
+      header << array->GetDataType() << " " << array->GetNumberOfComponents() << " "
+             << normals << " " << (array->GetName() ? array->GetName() : "")
+             << "\n";
     }
   }
-  return agreedOutcome(controller, filter, output, succeeded);
+  const vtkIdType pointCount = piece->GetNumberOfPoints();
+  const std::vector<vtkIdType> pieceSizes = allGather(controller, std::vector<vtkIdType>{ pointCount });
+  const vtkIdType wholeTuplesSent = std::accumulate(pieceSizes.begin(), pieceSizes.end(), vtkIdType(0));
+  std::istringstream described(firstText(controller, header.str()));
+  output->ShallowCopy(piece);
+  int type = 0, components = 0, isNormals = 0;
+  std::string name;
+  for (std::size_t a = 0; described >> type >> components >> isNormals && std::getline(described >> std::ws, name); ++a)
+  {
+    auto mine = vtk::TakeSmartPointer(vtkDataArray::CreateDataArray(type));
+    mine->SetName(name.c_str());
+    mine->SetNumberOfComponents(components);
+    mine->SetNumberOfTuples(pointCount);
+    const vtkIdType tupleBytes = components * mine->GetDataTypeSize();
+    if (wholeTuplesSent * tupleBytes > std::numeric_limits<int>::max()) // every process finds the same
+    {
+      throw std::overflow_error("the mesh is too large to send its pieces their '" + name + "': " +
+        std::to_string(wholeTuplesSent * tupleBytes) + " bytes in one exchange, more than MPI's 2^31 - 1");
+    }
+    std::vector<vtkIdType> lengths(pieceSizes.size()), offsets(pieceSizes.size(), 0);
+    std::transform(pieceSizes.begin(), pieceSizes.end(), lengths.begin(), [&](vtkIdType n) { return n * tupleBytes; });
+    std::partial_sum(lengths.begin(), lengths.end() - 1, offsets.begin() + 1);
+    // The first process sends every piece's tuples, piece after piece, as each piece's ids list them.
+    const vtkSmartPointer<vtkDataArray> everyPiece = first ? tuplesAt(written[a], whole.everyPieceIds) : nullptr;
+    if (processCount(controller) == 1)
+    {
+      mine = everyPiece;
+    }
+    else if (controller->ScatterV(everyPiece ? static_cast<const char*>(everyPiece->GetVoidPointer(0)) : nullptr,
+               static_cast<char*>(mine->GetVoidPointer(0)), lengths.data(), offsets.data(), pointCount * tupleBytes, 0) == 0)
+    {
+      throw std::runtime_error("sending the pieces their '" + name + "' failed (MPI's ScatterV)");
+    }
+    if (isNormals)
+    {
+      output->GetPointData()->SetNormals(mine);
+    }
+    else
+    {
+      output->GetPointData()->AddArray(mine);
+    }
+  }
+  vtkNew<vtkPolyData> notes; // only its field data travels
+  if (first)
+  {
+    notes->GetFieldData()->ShallowCopy(computed->GetFieldData());
+  }
+  if (processCount(controller) > 1)
+  {
+    controller->Broadcast(notes, 0);
+  }
+  output->GetFieldData()->PassData(notes->GetFieldData());
 }
 
-namespace
+/// The pieces' layout: whether they can be put together, and how.
+struct Layout
 {
-WholeMesh gatherPieces(vtkMultiProcessController* controller, vtkPolyData* piece, bool withNormals)
+  std::string problem;
+  /// The pieces are put together (the same on every process); otherwise the mesh is `piece`
+  /// where wholeIsPiece, and nothing elsewhere.
+  bool putTogether = false;
+  bool wholeIsPiece = false;
+  std::vector<vtkIdType> pieceIds;     // the piece's points' global ids
+  std::vector<vtkIdType> allGlobalIds; // every piece's, piece after piece
+  vtkIdType wholeCount = 0;
+  int pointType = 0;
+  int normalsState = 0; // the normals' shared type, or `absent`
+};
+
+Layout layoutOf(vtkMultiProcessController* controller, vtkPolyData* piece, bool withNormals)
 {
-  WholeMesh whole;
+  Layout layout;
   vtkPointData* pointData = piece->GetPointData();
   vtkDataArray* pointGlobalIds = pointData->GetGlobalIds();
   const vtkIdType pointCount = piece->GetNumberOfPoints();
@@ -323,13 +410,13 @@ WholeMesh gatherPieces(vtkMultiProcessController* controller, vtkPolyData* piece
   const int globalIdsState = sharedValue(controller, empty, pointGlobalIds ? 1 : absent);
   if (piecesWithPoints == 0)
   {
-    return whole;
+    return layout;
   }
   if (piecesWithPoints == 1 && globalIdsState == absent)
   {
     // One process read the mesh (a serial reader in pvbatch): its piece is the whole.
-    whole.mesh = empty ? nullptr : piece;
-    return whole;
+    layout.wholeIsPiece = !empty;
+    return layout;
   }
   std::ostringstream problem;
   if (globalIdsState != 1)
@@ -352,13 +439,13 @@ WholeMesh gatherPieces(vtkMultiProcessController* controller, vtkPolyData* piece
             << " components: there must be one 3-component normal per point (" << pointCount << ")";
   }
   vtkDataArray* points = empty ? nullptr : piece->GetPoints()->GetData();
-  const int pointType = sharedValue(controller, empty, points ? points->GetDataType() : 0);
-  const int normalsState = withNormals ? sharedValue(controller, empty, normals ? normals->GetDataType() : absent) : absent;
-  if (problem.str().empty() && pointType < 0)
+  layout.pointType = sharedValue(controller, empty, points ? points->GetDataType() : 0);
+  layout.normalsState = withNormals ? sharedValue(controller, empty, normals ? normals->GetDataType() : absent) : absent;
+  if (problem.str().empty() && layout.pointType < 0)
   {
     problem << "the pieces store their points in different types: read them alike";
   }
-  if (problem.str().empty() && normalsState < 0)
+  if (problem.str().empty() && layout.normalsState < 0)
   {
     problem << "some pieces have point normals and others do not, or in other types: give every piece the same";
   }
@@ -371,8 +458,7 @@ WholeMesh gatherPieces(vtkMultiProcessController* controller, vtkPolyData* piece
                                  : "the pieces' cells have no global ids")
             << " (vtkGlobalIds), which put the polygons in the mesh's order: give every piece's cells global ids";
   }
-  auto* ghosts = vtkUnsignedCharArray::SafeDownCast(piece->GetCellData()->GetArray(vtkDataSetAttributes::GhostArrayName()));
-  for (vtkDataArray* cellArray : { cellGlobalIds, static_cast<vtkDataArray*>(ghosts) })
+  for (vtkDataArray* cellArray : { cellGlobalIds, piece->GetCellData()->GetArray(vtkDataSetAttributes::GhostArrayName()) })
   {
     if (problem.str().empty() && cellArray && cellArray->GetNumberOfTuples() != piece->GetNumberOfCells())
     {
@@ -384,14 +470,15 @@ WholeMesh gatherPieces(vtkMultiProcessController* controller, vtkPolyData* piece
   {
     problem << cellProblem(piece); // ids out of range, which the gathering would follow
   }
-  whole.problem = firstText(controller, problem.str());
-  if (!whole.problem.empty())
+  layout.problem = firstText(controller, problem.str());
+  if (!layout.problem.empty())
   {
-    return whole;
+    return layout;
   }
 
-  const std::vector<vtkIdType> mineGlobalIds = idsOf(pointGlobalIds);
-  const std::vector<vtkIdType> allGlobalIds = allGather(controller, mineGlobalIds);
+  layout.pieceIds = idsOf(pointGlobalIds);
+  layout.allGlobalIds = allGather(controller, layout.pieceIds);
+  const std::vector<vtkIdType>& allGlobalIds = layout.allGlobalIds;
   // The ids must number the mesh's points 0 to n-1: each point's id is its index in the whole
   // mesh, and seeds its samples as its index does in one process.
   const vtkIdType largest = allGlobalIds.empty() ? 0 : *std::max_element(allGlobalIds.begin(), allGlobalIds.end());
@@ -401,57 +488,82 @@ WholeMesh gatherPieces(vtkMultiProcessController* controller, vtkPolyData* piece
   {
     present[static_cast<std::size_t>(allGlobalIds[i])] = true;
   }
-  const vtkIdType wholeCount = largest + 1;
+  layout.wholeCount = largest + 1;
   const bool numbered = !present.empty() && std::find(present.begin(), present.end(), false) == present.end();
   if (!numbered && processCount(controller) == 1)
   {
     // Ids of some other numbering (one piece's file, read alone): the piece is the mesh.
-    whole.mesh = piece;
-    return whole;
+    layout.wholeIsPiece = true;
+    return layout;
   }
   if (!numbered)
   {
     std::ostringstream text;
     text << "the pieces' global point ids run from " << smallest << " to " << largest
          << " but do not number the points 0 to n-1, each at least once: give the points global ids that do";
-    whole.problem = text.str(); // every process finds the same
+    layout.problem = text.str(); // every process finds the same
+    return layout;
+  }
+  layout.putTogether = true;
+  return layout;
+}
+
+WholeMesh gatherPieces(vtkMultiProcessController* controller, vtkPolyData* piece, bool withNormals, WholeMeshOn where)
+{
+  Layout layout = layoutOf(controller, piece, withNormals);
+  WholeMesh whole;
+  whole.problem = layout.problem;
+  if (!layout.problem.empty() || !layout.putTogether)
+  {
+    whole.mesh = layout.wholeIsPiece ? piece : nullptr;
     return whole;
   }
-
+  const bool here = receives(controller, where);
   std::string found;
   vtkNew<vtkPolyData> mesh;
+  vtkDataArray* points = piece->GetNumberOfPoints() > 0 ? piece->GetPoints()->GetData() : nullptr;
   vtkSmartPointer<vtkDataArray> coordinates =
-    wholeTuples(controller, points, pointType, allGlobalIds, wholeCount, "positions", found);
+    wholeTuples(controller, points, where, layout.pointType, layout.allGlobalIds, layout.wholeCount, "positions", found);
   if (coordinates)
   {
     vtkNew<vtkPoints> wholePoints;
     wholePoints->SetData(coordinates);
     mesh->SetPoints(wholePoints);
   }
-  if (found.empty() && normalsState != absent)
+  vtkDataArray* normals = piece->GetPointData()->GetNormals();
+  if (layout.normalsState != absent)
   {
-    vtkSmartPointer<vtkDataArray> wholeNormals =
-      wholeTuples(controller, normals, normalsState, allGlobalIds, wholeCount, "normals", found);
+    vtkSmartPointer<vtkDataArray> wholeNormals = wholeTuples(
+      controller, normals, where, layout.normalsState, layout.allGlobalIds, layout.wholeCount, "normals", found);
+    // The name the single process would see: the first piece's (every process takes part).
+    const std::string name = firstText(controller, normals && normals->GetName() ? normals->GetName() : "");
     if (wholeNormals)
     {
-      // The name the single process would see: the first piece's.
-      const std::string name = normals && normals->GetName() ? normals->GetName() : "";
-      wholeNormals->SetName(firstText(controller, name).c_str());
+      wholeNormals->SetName(name.c_str());
       mesh->GetPointData()->SetNormals(wholeNormals);
     }
   }
   const vtkIdType keyBase = static_cast<vtkIdType>(controller ? controller->GetLocalProcessId() : 0) << 40;
   const vtkIdType firstPolygon = piece->GetNumberOfVerts() + piece->GetNumberOfLines();
+  vtkDataArray* cellGlobalIds = piece->GetCellData()->GetGlobalIds();
+  auto* ghosts = vtkUnsignedCharArray::SafeDownCast(piece->GetCellData()->GetArray(vtkDataSetAttributes::GhostArrayName()));
   const GatheredCells polygons =
-    cellsOf(piece->GetPolys(), firstPolygon, cellGlobalIds, ghosts, keyBase, mineGlobalIds);
+    cellsOf(piece->GetPolys(), firstPolygon, cellGlobalIds, ghosts, keyBase, layout.pieceIds);
   const GatheredCells strips =
-    cellsOf(piece->GetStrips(), firstPolygon + piece->GetNumberOfPolys(), cellGlobalIds, ghosts, keyBase, mineGlobalIds);
+    cellsOf(piece->GetStrips(), firstPolygon + piece->GetNumberOfPolys(), cellGlobalIds, ghosts, keyBase, layout.pieceIds);
   // Every process makes both gathers, whatever it found, so that none waits for the others.
   std::string cellsFound;
-  vtkSmartPointer<vtkCellArray> wholePolygons = wholeCells(controller, polygons, "polygons", cellsFound);
-  vtkSmartPointer<vtkCellArray> wholeStrips = wholeCells(controller, strips, "strips", cellsFound);
-  whole.problem = !found.empty() ? found : cellsFound;
+  vtkSmartPointer<vtkCellArray> wholePolygons = wholeCells(controller, polygons, where, "polygons", cellsFound);
+  vtkSmartPointer<vtkCellArray> wholeStrips = wholeCells(controller, strips, where, "strips", cellsFound);
+  // Where only the first process gathers, only it can find a problem: it tells the others.
+  whole.problem = firstText(controller, !found.empty() ? found : cellsFound);
   if (!whole.problem.empty())
+  {
+    return whole;
+  }
+  whole.putTogether = true;
+  whole.pieceIds = std::move(layout.pieceIds);
+  if (!here)
   {
     return whole;
   }
@@ -461,17 +573,25 @@ WholeMesh gatherPieces(vtkMultiProcessController* controller, vtkPolyData* piece
     mesh->SetStrips(wholeStrips);
   }
   whole.mesh = mesh;
-  whole.pieceIds = mineGlobalIds;
+  if (where == WholeMeshOn::FirstProcess)
+  {
+    whole.everyPieceIds = std::move(layout.allGlobalIds);
+  }
   return whole;
 }
-
 }
 
-WholeMesh gatherWholeMesh(vtkMultiProcessController* controller, vtkPolyData* piece, bool withNormals)
+bool isPieceOfSplitMesh(vtkMultiProcessController* controller, vtkPolyData* piece)
+{
+  // Several processes call alike; one process decides for itself.
+  return processCount(controller) > 1 || piece->GetPointData()->GetGlobalIds() != nullptr;
+}
+
+WholeMesh gatherWholeMesh(vtkMultiProcessController* controller, vtkPolyData* piece, bool withNormals, WholeMeshOn where)
 {
   try
   {
-    return gatherPieces(controller, piece, withNormals);
+    return gatherPieces(controller, piece, withNormals, where);
   }
   catch (const std::exception& error) // too large for MPI, or out of memory: on every process alike
   {
@@ -479,6 +599,83 @@ WholeMesh gatherWholeMesh(vtkMultiProcessController* controller, vtkPolyData* pi
     failed.problem = error.what();
     return failed;
   }
+}
+
+PieceLayout pieceLayout(vtkMultiProcessController* controller, vtkPolyData* piece)
+{
+  PieceLayout layout;
+  try
+  {
+    Layout found = layoutOf(controller, piece, true);
+    layout.problem = found.problem;
+    layout.putTogether = found.putTogether;
+    layout.pieceIds = std::move(found.pieceIds);
+  }
+  catch (const std::exception& error) // too large for MPI, or out of memory: on every process alike
+  {
+    layout.problem = error.what();
+  }
+  return layout;
+}
+
+int computeOnPiece(vtkMultiProcessController* controller, vtkAlgorithm* filter, vtkPolyData* piece,
+  vtkPolyData* output, bool withNormals, WholeMeshOn where, const PieceComputation& compute)
+{
+  const WholeMesh whole = gatherWholeMesh(controller, piece, withNormals, where);
+  if (!whole.problem.empty())
+  {
+    vtkErrorWithObjectMacro(filter, << whole.problem);
+    return 0;
+  }
+  if (where == WholeMeshOn::FirstProcess && whole.putTogether)
+  {
+    vtkNew<vtkPolyData> computed;
+    const bool succeeded = !whole.mesh || compute(whole.mesh, computed, nullptr); // on the first process
+    if (agreedOutcome(controller, filter, output, succeeded) == 0)
+    {
+      return 0;
+    }
+    try
+    {
+      shareFromFirst(controller, whole, computed, piece, output);
+    }
+    catch (const std::exception& error) // too large for MPI, or out of memory: on every process alike
+    {
+      output->Initialize();
+      vtkErrorWithObjectMacro(filter, << error.what());
+      return 0;
+    }
+    return 1;
+  }
+  bool succeeded = false;
+  if (!whole.mesh || whole.pieceIds.empty()) // an empty piece, or the whole mesh
+  {
+    succeeded = compute(piece, output, nullptr);
+  }
+  else
+  {
+    vtkNew<vtkPolyData> computed;
+    succeeded = compute(whole.mesh, computed, &whole.pieceIds);
+    if (succeeded)
+    {
+      keepPiece(whole, computed, piece, output);
+    }
+  }
+  return agreedOutcome(controller, filter, output, succeeded);
+}
+
+MeshExtent wholeMeshExtent(vtkMultiProcessController* controller, vtkPolyData* piece)
+{
+  // An empty piece's box is VTK's empty range, which the others' replace.
+  PointBox box = piece->GetNumberOfPoints() > 0 ? finitePointBox(piece)
+                                                : PointBox{ glm::dvec3(VTK_DOUBLE_MAX), glm::dvec3(VTK_DOUBLE_MIN) };
+  if (processCount(controller) > 1)
+  {
+    const PointBox mine = box;
+    controller->AllReduce(&mine.low[0], &box.low[0], 3, vtkCommunicator::MIN_OP);
+    controller->AllReduce(&mine.high[0], &box.high[0], 3, vtkCommunicator::MAX_OP);
+  }
+  return extentOfBox(box);
 }
 
 vtkSmartPointer<vtkDataArray> tuplesAt(vtkDataArray* values, const std::vector<vtkIdType>& ids)

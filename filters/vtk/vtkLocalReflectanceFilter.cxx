@@ -16,6 +16,7 @@
 #include "vtkCommand.h"
 #include "vtkCellArray.h"
 #include "vtkCellArrayIterator.h"
+#include "vtkCellData.h"
 #include "vtkDataArrayRange.h"
 #include "vtkDoubleArray.h"
 #include "vtkFloatArray.h"
@@ -349,21 +350,31 @@ int vtkLocalReflectanceFilter::Shade(vtkInformationVector** inputVector, vtkInfo
   this->VisibilityReport.clear();
   if (!shadelab::isPieceOfSplitMesh(this->Controller, input))
   {
-    return this->ShadeMesh(input, output, input, nullptr);
+    return this->ShadeMesh(input, output, nullptr);
   }
-  return shadelab::computeOnPiece(this->Controller, this, input, output, true,
-    [this, input](vtkPolyData* mesh, vtkPolyData* result, const std::vector<vtkIdType>* pieceIds)
-    { return this->ShadeMesh(mesh, result, input, pieceIds) == 1; });
+  const shadelab::PieceLayout layout = shadelab::pieceLayout(this->Controller, input);
+  if (!layout.problem.empty())
+  {
+    vtkErrorMacro(<< layout.problem); // on every process alike
+    return 0;
+  }
+  // Pieces not put together: one process holds the whole mesh, and shades it alone.
+  const bool shaded = this->ShadeMesh(input, output, layout.putTogether ? &layout : nullptr) == 1;
+  return shadelab::agreedOutcome(this->Controller, this, output, shaded);
 }
 
-int vtkLocalReflectanceFilter::ShadeMesh(
-  vtkPolyData* input, vtkPolyData* output, vtkPolyData* piece, const std::vector<vtkIdType>* pieceIds)
+int vtkLocalReflectanceFilter::ShadeMesh(vtkPolyData* input, vtkPolyData* output, const shadelab::PieceLayout* split)
 {
-  if (input->GetNumberOfPoints() == 0)
+  // A piece without points still takes part in its steps' exchanges, and shades nothing.
+  const bool empty = input->GetNumberOfPoints() == 0;
+  if (empty && !split)
   {
     output->ShallowCopy(input); // nothing in, nothing out, and no error: VTK's convention
     return 1;
   }
+  vtkMultiProcessController* processes = split ? this->Controller.Get() : nullptr;
+  this->NormalsStep->SetController(processes);
+  this->VisibilityStep->SetController(processes);
   // Everything is checked before anything is written.
   if (!(this->Tolerance >= 0 && std::isfinite(this->Tolerance)))
   {
@@ -377,11 +388,17 @@ int vtkLocalReflectanceFilter::ShadeMesh(
   shadelab::Precision precision = this->OutputPrecision == DOUBLE_PRECISION || chooseByTolerance
     ? shadelab::Precision::Float64
     : shadelab::Precision::Float32;
-  std::string problem = meshProblem(input);
+  // Until the steps run, what differs between pieces is agreed, so that every process stops
+  // alike; the rest (the settings, the scene, the extent) is the same on every process.
+  std::string problem = empty ? "" : meshProblem(input);
   shadelab::MeshExtent extent;
+  if (split)
+  {
+    problem = shadelab::firstText(processes, problem);
+  }
   if (problem.empty())
   {
-    extent = shadelab::meshExtentOf(input);
+    extent = split ? shadelab::wholeMeshExtent(processes, input) : shadelab::meshExtentOf(input);
     problem = shadelab::meshCoordinateProblem(extent.reach, precision);
   }
   if (!problem.empty())
@@ -444,32 +461,44 @@ int vtkLocalReflectanceFilter::ShadeMesh(
   {
     written.push_back(this->ComputedNormalsName());
   }
-  const std::string taken = takenName(piece, written);
-  if (!taken.empty())
+  const std::string taken = takenName(input, written);
+  std::string takenProblem = taken.empty() ? "" : "the input already has a point array named '" + taken +
+      "', which this filter would write: set an array prefix (shadelab shade --prefix) to keep both";
+  if (split)
   {
-    vtkErrorMacro("the input already has a point array named '"
-      << taken << "', which this filter would write: set an array prefix (shadelab shade --prefix) to keep both");
+    takenProblem = shadelab::firstText(processes, takenProblem);
+  }
+  if (!takenProblem.empty())
+  {
+    vtkErrorMacro(<< takenProblem);
     return 0;
   }
 
   output->ShallowCopy(input);
   vtkDataArray* shadingNormals = this->PrepareNormals(input, output);
+  if (!shadingNormals) // the step failed on a split mesh, on every process, and said why
+  {
+    output->Initialize();
+    vtkErrorMacro("preparing the normals failed (see the error above)");
+    return 0;
+  }
 
-  // The points to shade, with their normals: all of them, or a piece's (the same coordinates
-  // as the whole mesh has there: it was gathered from them).
-  vtkDataArray* points = piece->GetPoints()->GetData();
-  vtkSmartPointer<vtkDataArray> normals = shadingNormals;
   std::vector<vtkSmartPointer<vtkDataArray>> arrays;
   try
   {
     shadelab::ShadingInputs inputs;
-    if (pieceIds)
+    if (split) // each point's samples are seeded by its index in the whole mesh
     {
-      normals = shadelab::tuplesAt(shadingNormals, *pieceIds);
       static_assert(sizeof(vtkIdType) == sizeof(long long), "ids seed samples as 64-bit integers");
-      inputs.sampleIds = reinterpret_cast<const long long*>(pieceIds->data());
+      inputs.sampleIds = reinterpret_cast<const long long*>(split->pieceIds.data());
     }
-    if (vtkPolyData* seen = this->PrepareVisibility(input, shadingNormals, scene, request, pieceIds))
+    vtkPolyData* seen = this->PrepareVisibility(input, shadingNormals, scene, request, split != nullptr);
+    if (empty)
+    {
+      return 1;
+    }
+    vtkDataArray* points = input->GetPoints()->GetData();
+    if (seen)
     {
       vtkPointData* data = seen->GetPointData();
       auto floats = [&](const std::string& name)
@@ -496,8 +525,8 @@ int vtkLocalReflectanceFilter::ShadeMesh(
                        ->GetPointer(0);
     }
     const auto shaded = precision == shadelab::Precision::Float64
-      ? shade<double>(scene, request, methods, this->ArrayPrefix, points, normals, inputs, this)
-      : shade<float>(scene, request, methods, this->ArrayPrefix, points, normals, inputs, this);
+      ? shade<double>(scene, request, methods, this->ArrayPrefix, points, shadingNormals, inputs, this)
+      : shade<float>(scene, request, methods, this->ArrayPrefix, points, shadingNormals, inputs, this);
     arrays.insert(arrays.begin(), shaded.begin(), shaded.end());
     // The rays' arrays have been used (those asked for are in `arrays`): not kept until the next run.
     this->VisibilityStep->GetOutput()->Initialize();
@@ -560,7 +589,7 @@ vtkDataArray* vtkLocalReflectanceFilter::PrepareNormals(vtkPolyData* input, vtkP
 }
 
 vtkPolyData* vtkLocalReflectanceFilter::PrepareVisibility(vtkPolyData* input, vtkDataArray* shadingNormals,
-  const shadelab::Scene& scene, const shadelab::ArrayRequest& request, const std::vector<vtkIdType>* rayPoints)
+  const shadelab::Scene& scene, const shadelab::ArrayRequest& request, bool split)
 {
   if (!scene.needsVisibility())
   {
@@ -572,6 +601,15 @@ vtkPolyData* vtkLocalReflectanceFilter::PrepareVisibility(vtkPolyData* input, vt
   surface->SetPolys(input->GetPolys());
   surface->SetStrips(input->GetStrips());
   surface->GetPointData()->SetNormals(shadingNormals);
+  if (split) // what puts the pieces together
+  {
+    surface->GetPointData()->SetGlobalIds(input->GetPointData()->GetGlobalIds());
+    surface->GetCellData()->SetGlobalIds(input->GetCellData()->GetGlobalIds());
+    if (vtkDataArray* ghosts = input->GetCellData()->GetArray(vtkDataSetAttributes::GhostArrayName()))
+    {
+      surface->GetCellData()->AddArray(ghosts);
+    }
+  }
   vtkMeshVisibilityFilter* step = this->VisibilityStep;
   step->CheckCellsOff(); // meshProblem checked them
   step->SetInputData(surface);
@@ -579,14 +617,9 @@ vtkPolyData* vtkLocalReflectanceFilter::PrepareVisibility(vtkPolyData* input, vt
   step->SetArrayPrefix(this->ArrayPrefix);
   step->SetComputeBentNormal(request.occlusion[int(shadelab::OcclusionTerm::BentNormal)]);
   step->SetComputeSkyViewFactor(request.occlusion[int(shadelab::OcclusionTerm::SkyViewFactor)]);
-  if (step->RayPointIds != rayPoints)
-  {
-    step->RayPointIds = rayPoints;
-    step->Modified();
-  }
   step->Update();
   vtkPolyData* seen = step->GetOutput();
-  if (!seen->GetPointData()->GetArray(shadelab::visibilityFlagsArrayName(this->ArrayPrefix).c_str()))
+  if (input->GetNumberOfPoints() > 0 && !seen->GetPointData()->GetArray(shadelab::visibilityFlagsArrayName(this->ArrayPrefix).c_str()))
   {
     throw std::runtime_error("casting the rays for shadows and ambient occlusion failed (see the error above)");
   }

@@ -36,6 +36,11 @@
 #include <string>
 #include <vector>
 
+namespace shadelab
+{
+struct PieceLayout;
+}
+
 class SHADELABFILTERS_EXPORT vtkLocalReflectanceFilter : public vtkPolyDataAlgorithm
 {
 public:
@@ -143,11 +148,10 @@ protected:
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   /// RequestData within the filter's thread count.
   int Shade(vtkInformationVector** inputVector, vtkInformationVector* outputVector);
-  /// Shades input as a whole mesh into output, at the points of `piece`: input itself
-  /// (pieceIds nullptr), or a piece of it whose points are input's pieceIds, and whose output
-  /// arrays then have a value per point of the piece. The piece's points are the ones shaded,
-  /// and its arrays' names are the ones already taken.
-  int ShadeMesh(vtkPolyData* input, vtkPolyData* output, vtkPolyData* piece, const std::vector<vtkIdType>* pieceIds);
+  /// Shades input into output: the whole mesh (split nullptr), or a piece of a split mesh laid
+  /// out as `split` says, shaded as its points are in the whole mesh (a collective call; the
+  /// steps then run over the controller's processes).
+  int ShadeMesh(vtkPolyData* input, vtkPolyData* output, const shadelab::PieceLayout* split);
 
 private:
   vtkLocalReflectanceFilter(const vtkLocalReflectanceFilter&) = delete;
@@ -193,10 +197,11 @@ private:
   /// The step that casts rays for the scene's shadows and ambient occlusion, on the input with
   /// the normals to shade with.
   vtkNew<vtkMeshVisibilityFilter> VisibilityStep;
-  /// Runs VisibilityStep when the scene needs it, with rays from rayPoints (nullptr: every
-  /// point); returns its output (nullptr: not needed), or throws std::runtime_error when it failed.
+  /// Runs VisibilityStep when the scene needs it (a collective call where the input is a piece
+  /// of a split mesh); returns its output (nullptr: not needed), or throws std::runtime_error
+  /// when it failed.
   vtkPolyData* PrepareVisibility(vtkPolyData* input, vtkDataArray* shadingNormals, const shadelab::Scene& scene,
-    const shadelab::ArrayRequest& request, const std::vector<vtkIdType>* rayPoints);
+    const shadelab::ArrayRequest& request, bool split);
   /// The name of the normals the filter computes when the input has none.
   std::string ComputedNormalsName() const { return this->ArrayPrefix + "Normals"; }
 };

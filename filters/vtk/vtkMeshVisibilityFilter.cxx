@@ -137,11 +137,12 @@ int vtkMeshVisibilityFilter::CastRays(vtkInformationVector** inputVector, vtkInf
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   this->Report.clear();
-  if (this->RayPointIds || !shadelab::isPieceOfSplitMesh(this->Controller, input))
+  if (!shadelab::isPieceOfSplitMesh(this->Controller, input))
   {
-    return this->CastRaysFrom(input, output, this->RayPointIds);
+    return this->CastRaysFrom(input, output, nullptr);
   }
-  return shadelab::computeOnPiece(this->Controller, this, input, output, true,
+  // Every process holds every triangle, which its own points' rays may meet.
+  return shadelab::computeOnPiece(this->Controller, this, input, output, true, shadelab::WholeMeshOn::EveryProcess,
     [this](vtkPolyData* mesh, vtkPolyData* result, const std::vector<vtkIdType>* pieceIds)
     { return this->CastRaysFrom(mesh, result, pieceIds) == 1; });
 }

@@ -117,10 +117,6 @@ private:
   bool CheckCells = true;
   std::string Report;
   vtkSmartPointer<vtkMultiProcessController> Controller;
-  /// The points to cast rays from, as vtkLocalReflectanceFilter sets it for a piece of a split
-  /// mesh (its input then is the whole mesh); nullptr: every point.
-  const std::vector<vtkIdType>* RayPointIds = nullptr;
-  friend class vtkLocalReflectanceFilter;
 
   /// The BVH of the mesh it was built for: the same point and cell objects, none modified since.
   struct BuiltOccluders

@@ -389,9 +389,13 @@ int vtkShadingNormalsFilter::RequestData(
                   "share: split them before the mesh is split");
     return 0;
   }
-  return shadelab::computeOnPiece(this->Controller, this, input, output, this->KeepInputNormals,
-    [this](vtkPolyData* mesh, vtkPolyData* result, const std::vector<vtkIdType>*)
-    { return this->ComputeNormals(mesh, result) == 1; }); // every point's: the piece's are taken from them
+  // Computed once, on the first process, which sends each piece its points' normals.
+  const int succeeded = shadelab::computeOnPiece(this->Controller, this, input, output, this->KeepInputNormals,
+    shadelab::WholeMeshOn::FirstProcess, [this](vtkPolyData* mesh, vtkPolyData* result, const std::vector<vtkIdType>*)
+    { return this->ComputeNormals(mesh, result) == 1; });
+  auto* note = vtkStringArray::SafeDownCast(output->GetFieldData()->GetAbstractArray(shadelab::normalsNoteName));
+  this->Report = succeeded && note && note->GetNumberOfValues() > 0 ? note->GetValue(0) : "";
+  return succeeded;
 }
 
 int vtkShadingNormalsFilter::ComputeNormals(vtkPolyData* input, vtkPolyData* output)
