@@ -1,5 +1,6 @@
 #include "ShadeLabWholeMesh.h"
 
+#include "ShadeLabFieldNotes.h"
 #include "ShadeLabMeshChecks.h"
 #include "ShadeLabMeshExtent.h"
 
@@ -13,6 +14,7 @@
 #include "vtkIdList.h"
 #include "vtkIdTypeArray.h"
 #include "vtkMultiProcessController.h"
+#include "vtkMultiProcessStream.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
@@ -77,7 +79,20 @@ std::vector<T> gathered(vtkMultiProcessController* controller, const std::vector
   {
     *counts = lengths;
   }
-  std::vector<T> all(receives(controller, where) ? static_cast<std::size_t>(total) : 0);
+  std::vector<T> all;
+  bool allocated = true;
+  try
+  {
+    all.resize(receives(controller, where) ? static_cast<std::size_t>(total) : 0);
+  }
+  catch (const std::bad_alloc&)
+  {
+    allocated = false;
+  }
+  if (!everyProcessHolds(controller, allocated)) // so that every process stops alike
+  {
+    throw std::runtime_error("out of memory gathering the mesh's pieces (" + std::to_string(total) + " values)");
+  }
   const int exchanged = where == WholeMeshOn::EveryProcess
     ? controller->AllGatherV(mine.data(), all.data(), length, lengths.data(), offsets.data())
     : controller->GatherV(mine.data(), all.data(), length, lengths.data(), offsets.data(), 0);
@@ -167,36 +182,49 @@ vtkSmartPointer<vtkCellArray> wholeCells(vtkMultiProcessController* controller, 
   {
     return nullptr;
   }
-  std::vector<vtkIdType> firstCorner(sizes.size() + 1, 0);
-  std::partial_sum(sizes.begin(), sizes.end(), firstCorner.begin() + 1);
-  std::vector<std::size_t> order(keys.size());
-  std::iota(order.begin(), order.end(), std::size_t(0));
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return keys[a] < keys[b]; });
-  vtkNew<vtkIdTypeArray> offsets, connectivity;
-  offsets->SetNumberOfValues(static_cast<vtkIdType>(order.size() + 1));
-  connectivity->SetNumberOfValues(static_cast<vtkIdType>(corners.size()));
-  vtkIdType written = 0;
-  for (std::size_t k = 0; k < order.size(); ++k)
+  try // where the first process alone gathers, it alone could fail: it says so in `problem`
   {
-    const std::size_t c = order[k];
-    if (k > 0 && keys[c] == keys[order[k - 1]])
+    std::vector<vtkIdType> firstCorner(sizes.size() + 1, 0);
+    std::partial_sum(sizes.begin(), sizes.end(), firstCorner.begin() + 1);
+    std::vector<std::size_t> order(keys.size());
+    std::iota(order.begin(), order.end(), std::size_t(0));
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return keys[a] < keys[b]; });
+    vtkNew<vtkIdTypeArray> offsets, connectivity;
+    offsets->SetNumberOfValues(static_cast<vtkIdType>(order.size() + 1));
+    connectivity->SetNumberOfValues(static_cast<vtkIdType>(corners.size()));
+    if (offsets->GetNumberOfValues() != static_cast<vtkIdType>(order.size() + 1) ||
+      connectivity->GetNumberOfValues() != static_cast<vtkIdType>(corners.size()))
     {
-      std::ostringstream text;
-      text << "the global cell id " << keys[c] << " is on two pieces' " << kind
-           << ": mark the copies as ghost cells (vtkGhostType) or give each cell its own id";
-      problem = text.str();
-      return nullptr;
+      throw std::bad_alloc();
     }
-    offsets->SetValue(static_cast<vtkIdType>(k), written);
-    for (vtkIdType i = firstCorner[c]; i < firstCorner[c + 1]; ++i)
+    vtkIdType written = 0;
+    for (std::size_t k = 0; k < order.size(); ++k)
     {
-      connectivity->SetValue(written++, corners[static_cast<std::size_t>(i)]);
+      const std::size_t c = order[k];
+      if (k > 0 && keys[c] == keys[order[k - 1]])
+      {
+        std::ostringstream text;
+        text << "the global cell id " << keys[c] << " is on two pieces' " << kind
+             << ": mark the copies as ghost cells (vtkGhostType) or give each cell its own id";
+        problem = text.str();
+        return nullptr;
+      }
+      offsets->SetValue(static_cast<vtkIdType>(k), written);
+      for (vtkIdType i = firstCorner[c]; i < firstCorner[c + 1]; ++i)
+      {
+        connectivity->SetValue(written++, corners[static_cast<std::size_t>(i)]);
+      }
     }
+    offsets->SetValue(static_cast<vtkIdType>(order.size()), written);
+    auto cells = vtkSmartPointer<vtkCellArray>::New();
+    cells->SetData(offsets, connectivity);
+    return cells;
   }
-  offsets->SetValue(static_cast<vtkIdType>(order.size()), written);
-  auto cells = vtkSmartPointer<vtkCellArray>::New();
-  cells->SetData(offsets, connectivity);
-  return cells;
+  catch (const std::bad_alloc&)
+  {
+    problem = std::string("out of memory putting the pieces' ") + kind + " together";
+    return nullptr;
+  }
 }
 
 /// An array rebuilt in whole-mesh order from every piece's tuples (gathered as bytes `where`:
@@ -209,12 +237,28 @@ vtkSmartPointer<vtkDataArray> wholeTuples(vtkMultiProcessController* controller,
   {
     return nullptr;
   }
+  // Where the first process alone gathers, it alone could run out of memory: it says so in
+  // `problem`, which every process then learns.
+  const std::string outOfMemory = std::string("out of memory putting the pieces' ") + what + " together";
   auto whole = vtk::TakeSmartPointer(vtkDataArray::CreateDataArray(dataType));
   whole->SetNumberOfComponents(3);
   whole->SetNumberOfTuples(wholeCount);
+  std::vector<bool> filled;
+  try
+  {
+    filled.assign(static_cast<std::size_t>(wholeCount), false);
+  }
+  catch (const std::bad_alloc&)
+  {
+    filled.clear();
+  }
+  if (whole->GetNumberOfTuples() != wholeCount || filled.size() != static_cast<std::size_t>(wholeCount))
+  {
+    problem = outOfMemory;
+    return nullptr;
+  }
   const std::size_t tupleBytes = 3 * static_cast<std::size_t>(whole->GetDataTypeSize());
   char* target = static_cast<char*>(whole->GetVoidPointer(0));
-  std::vector<bool> filled(static_cast<std::size_t>(wholeCount), false);
   for (std::size_t i = 0; i < allGlobalIds.size(); ++i)
   {
     const std::size_t w = static_cast<std::size_t>(allGlobalIds[i]);
@@ -252,38 +296,6 @@ int sharedValue(vtkMultiProcessController* controller, bool empty, int value)
   return shared;
 }
 
-}
-
-std::string firstText(vtkMultiProcessController* controller, const std::string& text)
-{
-  std::vector<vtkIdType> lengths;
-  const std::vector<char> all = allGather(controller, std::vector<char>(text.begin(), text.end()), &lengths);
-  const auto first = std::find_if(lengths.begin(), lengths.end(), [](vtkIdType length) { return length > 0; });
-  if (first == lengths.end())
-  {
-    return "";
-  }
-  const vtkIdType start = std::accumulate(lengths.begin(), first, vtkIdType(0));
-  return std::string(all.begin() + start, all.begin() + start + *first);
-}
-
-int agreedOutcome(vtkMultiProcessController* controller, vtkAlgorithm* filter, vtkPolyData* output, bool succeeded)
-{
-  const std::vector<int> all = allGather(controller, std::vector<int>{ succeeded ? 1 : 0 });
-  if (std::find(all.begin(), all.end(), 0) == all.end())
-  {
-    return 1;
-  }
-  if (succeeded)
-  {
-    output->Initialize();
-    vtkErrorWithObjectMacro(filter, "another process failed on its piece (see its error), so this one stops too");
-  }
-  return 0;
-}
-
-namespace
-{
 /// The piece with what was computed for its points on the whole mesh: arrays of a value per
 /// piece point as they are, normals of the whole mesh (computed, or flipped) at the piece's
 /// points, and the field data's notes.
@@ -309,51 +321,101 @@ void keepPiece(const WholeMesh& whole, vtkPolyData* computed, vtkPolyData* piece
 
 /// What the first process computed on the whole mesh, sent to every piece (a collective call):
 /// the piece with each point array the computation wrote (not those gathered), its points'
-/// tuples only, and the computation's field data.
+/// tuples only, and the computation's field notes. Throws on every process alike.
 void shareFromFirst(vtkMultiProcessController* controller, const WholeMesh& whole, vtkPolyData* computed,
   vtkPolyData* piece, vtkPolyData* output)
 {
   const bool first = isFirstProcess(controller);
+  // What is sent: each written array's type, components, name and whether it is the normals;
+  // then each field note's name and lines.
   std::vector<vtkDataArray*> written;
-  std::ostringstream header; // each array's type, components, whether it is the normals, and name
-  for (int a = 0; first && a < computed->GetPointData()->GetNumberOfArrays(); ++a)
+  vtkMultiProcessStream described;
+  if (first)
   {
-    vtkDataArray* array = computed->GetPointData()->GetArray(a);
-    const bool normals = array == computed->GetPointData()->GetNormals();
-    if (!whole.mesh->GetPointData()->HasArray(array->GetName()) ||
-      (normals && array != whole.mesh->GetPointData()->GetNormals()))
+    vtkPointData* brought = whole.mesh->GetPointData();
+    vtkPointData* made = computed->GetPointData();
+    for (int a = 0; a < made->GetNumberOfArrays(); ++a)
     {
-      written.push_back(array);
-      header << array->GetDataType() << " " << array->GetNumberOfComponents() << " "
-             << normals << " " << (array->GetName() ? array->GetName() : "")
-             << "\n";
+      vtkDataArray* array = made->GetArray(a);
+      const bool normals = array == made->GetNormals();
+      if (!brought->HasArray(array->GetName()) || (normals && array != brought->GetNormals()))
+      {
+        written.push_back(array);
+      }
     }
+    described << static_cast<int>(written.size());
+    for (vtkDataArray* array : written)
+    {
+      described << array->GetDataType() << array->GetNumberOfComponents()
+                << std::string(array->GetName() ? array->GetName() : "") << (array == made->GetNormals());
+    }
+    vtkFieldData* fields = computed->GetFieldData();
+    std::vector<vtkStringArray*> notes;
+    for (int a = 0; a < fields->GetNumberOfArrays(); ++a)
+    {
+      if (auto* note = vtkStringArray::SafeDownCast(fields->GetAbstractArray(a)))
+      {
+        notes.push_back(note);
+      }
+    }
+    described << static_cast<int>(notes.size());
+    for (vtkStringArray* note : notes)
+    {
+      described << std::string(note->GetName() ? note->GetName() : "") << static_cast<vtkTypeInt64>(note->GetNumberOfValues());
+      for (vtkIdType i = 0; i < note->GetNumberOfValues(); ++i)
+      {
+        described << note->GetValue(i);
+      }
+    }
+  }
+  const int processes = processCount(controller);
+  if (processes > 1 && controller->Broadcast(described, 0) == 0)
+  {
+    throw std::runtime_error("sending the pieces what was computed failed (MPI's broadcast)");
   }
   const vtkIdType pointCount = piece->GetNumberOfPoints();
   const std::vector<vtkIdType> pieceSizes = allGather(controller, std::vector<vtkIdType>{ pointCount });
-  const vtkIdType wholeTuplesSent = std::accumulate(pieceSizes.begin(), pieceSizes.end(), vtkIdType(0));
-  std::istringstream described(firstText(controller, header.str()));
+  const vtkIdType sentTuples = std::accumulate(pieceSizes.begin(), pieceSizes.end(), vtkIdType(0));
   output->ShallowCopy(piece);
-  int type = 0, components = 0, isNormals = 0;
-  std::string name;
-  for (std::size_t a = 0; described >> type >> components >> isNormals && std::getline(described >> std::ws, name); ++a)
+  int arrayCount = 0;
+  described >> arrayCount;
+  for (int a = 0; a < arrayCount; ++a)
   {
+    int type = 0, components = 0;
+    std::string name;
+    bool isNormals = false;
+    described >> type >> components >> name >> isNormals;
     auto mine = vtk::TakeSmartPointer(vtkDataArray::CreateDataArray(type));
-    mine->SetName(name.c_str());
-    mine->SetNumberOfComponents(components);
-    mine->SetNumberOfTuples(pointCount);
     const vtkIdType tupleBytes = components * mine->GetDataTypeSize();
-    if (wholeTuplesSent * tupleBytes > std::numeric_limits<int>::max()) // every process finds the same
+    if (sentTuples * tupleBytes > std::numeric_limits<int>::max()) // every process finds the same
     {
       throw std::overflow_error("the mesh is too large to send its pieces their '" + name + "': " +
-        std::to_string(wholeTuplesSent * tupleBytes) + " bytes in one exchange, more than MPI's 2^31 - 1");
+        std::to_string(sentTuples * tupleBytes) + " bytes in one exchange, more than MPI's 2^31 - 1");
+    }
+    // The first process sends every piece's tuples, piece after piece, as each piece's ids list
+    // them. Making them, or a piece's array, may fail on one process: all learn it first.
+    vtkSmartPointer<vtkDataArray> everyPiece;
+    bool ready = true;
+    try
+    {
+      everyPiece = first ? tuplesAt(written[static_cast<std::size_t>(a)], whole.everyPieceIds) : nullptr;
+      mine->SetName(name.c_str());
+      mine->SetNumberOfComponents(components);
+      mine->SetNumberOfTuples(pointCount);
+      ready = mine->GetNumberOfTuples() == pointCount;
+    }
+    catch (const std::bad_alloc&)
+    {
+      ready = false;
+    }
+    if (!everyProcessHolds(controller, ready))
+    {
+      throw std::runtime_error("out of memory sending the pieces their '" + name + "'");
     }
     std::vector<vtkIdType> lengths(pieceSizes.size()), offsets(pieceSizes.size(), 0);
     std::transform(pieceSizes.begin(), pieceSizes.end(), lengths.begin(), [&](vtkIdType n) { return n * tupleBytes; });
     std::partial_sum(lengths.begin(), lengths.end() - 1, offsets.begin() + 1);
-    // The first process sends every piece's tuples, piece after piece, as each piece's ids list them.
-    const vtkSmartPointer<vtkDataArray> everyPiece = first ? tuplesAt(written[a], whole.everyPieceIds) : nullptr;
-    if (processCount(controller) == 1)
+    if (processes == 1)
     {
       mine = everyPiece;
     }
@@ -371,16 +433,36 @@ void shareFromFirst(vtkMultiProcessController* controller, const WholeMesh& whol
       output->GetPointData()->AddArray(mine);
     }
   }
-  vtkNew<vtkPolyData> notes; // only its field data travels
-  if (first)
+  int noteCount = 0;
+  described >> noteCount;
+  for (int n = 0; n < noteCount; ++n)
   {
-    notes->GetFieldData()->ShallowCopy(computed->GetFieldData());
+    std::string name;
+    vtkTypeInt64 lineCount = 0;
+    described >> name >> lineCount;
+    std::vector<std::string> lines(static_cast<std::size_t>(lineCount));
+    for (std::string& line : lines)
+    {
+      described >> line;
+    }
+    addFieldNote(output, name.c_str(), lines);
   }
-  if (processCount(controller) > 1)
+}
+
+/// What `work` returns, or false where it throws (out of memory, say), reported through
+/// `filter`: a process that fails alone must still reach the outcome every process agrees on.
+template <typename Work>
+bool guarded(vtkAlgorithm* filter, const Work& work)
+{
+  try
   {
-    controller->Broadcast(notes, 0);
+    return work();
   }
-  output->GetFieldData()->PassData(notes->GetFieldData());
+  catch (const std::exception& error)
+  {
+    vtkErrorWithObjectMacro(filter, << error.what());
+    return false;
+  }
 }
 
 /// The pieces' layout: whether they can be put together, and how.
@@ -593,7 +675,7 @@ WholeMesh gatherWholeMesh(vtkMultiProcessController* controller, vtkPolyData* pi
   {
     return gatherPieces(controller, piece, withNormals, where);
   }
-  catch (const std::exception& error) // too large for MPI, or out of memory: on every process alike
+  catch (const std::exception& error) // too large for MPI, or no memory for the gathered mesh: alike everywhere
   {
     WholeMesh failed;
     failed.problem = error.what();
@@ -611,7 +693,7 @@ PieceLayout pieceLayout(vtkMultiProcessController* controller, vtkPolyData* piec
     layout.putTogether = found.putTogether;
     layout.pieceIds = std::move(found.pieceIds);
   }
-  catch (const std::exception& error) // too large for MPI, or out of memory: on every process alike
+  catch (const std::exception& error) // too large for MPI, or no memory for the gathered mesh: alike everywhere
   {
     layout.problem = error.what();
   }
@@ -630,7 +712,7 @@ int computeOnPiece(vtkMultiProcessController* controller, vtkAlgorithm* filter, 
   if (where == WholeMeshOn::FirstProcess && whole.putTogether)
   {
     vtkNew<vtkPolyData> computed;
-    const bool succeeded = !whole.mesh || compute(whole.mesh, computed, nullptr); // on the first process
+    const bool succeeded = !whole.mesh || guarded(filter, [&] { return compute(whole.mesh, computed, nullptr); });
     if (agreedOutcome(controller, filter, output, succeeded) == 0)
     {
       return 0;
@@ -639,7 +721,7 @@ int computeOnPiece(vtkMultiProcessController* controller, vtkAlgorithm* filter, 
     {
       shareFromFirst(controller, whole, computed, piece, output);
     }
-    catch (const std::exception& error) // too large for MPI, or out of memory: on every process alike
+    catch (const std::exception& error) // too large for MPI, or no memory for the gathered mesh: alike everywhere
     {
       output->Initialize();
       vtkErrorWithObjectMacro(filter, << error.what());
@@ -647,20 +729,21 @@ int computeOnPiece(vtkMultiProcessController* controller, vtkAlgorithm* filter, 
     }
     return 1;
   }
-  bool succeeded = false;
-  if (!whole.mesh || whole.pieceIds.empty()) // an empty piece, or the whole mesh
-  {
-    succeeded = compute(piece, output, nullptr);
-  }
-  else
-  {
-    vtkNew<vtkPolyData> computed;
-    succeeded = compute(whole.mesh, computed, &whole.pieceIds);
-    if (succeeded)
+  const bool succeeded = guarded(filter,
+    [&]
     {
+      if (!whole.mesh || whole.pieceIds.empty()) // an empty piece, or the whole mesh
+      {
+        return compute(piece, output, nullptr);
+      }
+      vtkNew<vtkPolyData> computed;
+      if (!compute(whole.mesh, computed, &whole.pieceIds))
+      {
+        return false;
+      }
       keepPiece(whole, computed, piece, output);
-    }
-  }
+      return true;
+    });
   return agreedOutcome(controller, filter, output, succeeded);
 }
 
@@ -689,5 +772,44 @@ vtkSmartPointer<vtkDataArray> tuplesAt(vtkDataArray* values, const std::vector<v
   taken->SetNumberOfTuples(list->GetNumberOfIds());
   values->GetTuples(list, taken);
   return taken;
+}
+
+std::string firstText(vtkMultiProcessController* controller, const std::string& text)
+{
+  std::vector<vtkIdType> lengths;
+  const std::vector<char> all = allGather(controller, std::vector<char>(text.begin(), text.end()), &lengths);
+  const auto first = std::find_if(lengths.begin(), lengths.end(), [](vtkIdType length) { return length > 0; });
+  if (first == lengths.end())
+  {
+    return "";
+  }
+  const vtkIdType start = std::accumulate(lengths.begin(), first, vtkIdType(0));
+  return std::string(all.begin() + start, all.begin() + start + *first);
+}
+
+int agreedOutcome(vtkMultiProcessController* controller, vtkAlgorithm* filter, vtkPolyData* output, bool succeeded)
+{
+  const std::vector<int> all = allGather(controller, std::vector<int>{ succeeded ? 1 : 0 });
+  if (std::find(all.begin(), all.end(), 0) == all.end())
+  {
+    return 1;
+  }
+  if (succeeded)
+  {
+    output->Initialize();
+    vtkErrorWithObjectMacro(filter, "another process failed on its piece (see its error), so this one stops too");
+  }
+  return 0;
+}
+
+bool everyProcessHolds(vtkMultiProcessController* controller, bool mine)
+{
+  int held = mine ? 1 : 0;
+  if (processCount(controller) > 1)
+  {
+    const int local = held;
+    controller->AllReduce(&local, &held, 1, vtkCommunicator::MIN_OP);
+  }
+  return held == 1;
 }
 }

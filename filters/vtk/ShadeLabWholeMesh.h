@@ -107,6 +107,9 @@ SHADELABFILTERS_EXPORT int computeOnPiece(vtkMultiProcessController* controller,
 /// collective call): the first problem, where any process has one, so that all stop with it.
 SHADELABFILTERS_EXPORT std::string firstText(vtkMultiProcessController* controller, const std::string& text);
 
+/// Whether `mine` holds on every process (a collective call).
+SHADELABFILTERS_EXPORT bool everyProcessHolds(vtkMultiProcessController* controller, bool mine);
+
 /// What a filter's RequestData returns for its piece (a collective call): 1 where every process
 /// succeeded. Where another failed, this one stops too, with an error saying so and its output
 /// emptied, so that no process waits for a failed one in a later collective call.

@@ -32,6 +32,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <sstream>
 #include <stdexcept>
 
@@ -172,7 +173,7 @@ std::vector<vtkSmartPointer<vtkDataArray>> shade(const shadelab::Scene& scene,
 vtkLocalReflectanceFilter::vtkLocalReflectanceFilter()
   : Controller(vtkMultiProcessController::GetGlobalController())
 {
-  // The steps run on a whole mesh: this filter gathers a split one itself.
+  // The steps run over this filter's processes only on a split mesh (ShadeMesh sets them).
   this->NormalsStep->SetController(nullptr);
   this->VisibilityStep->SetController(nullptr);
   this->AvailableArrays->AddObserver(vtkCommand::ModifiedEvent, this, &vtkLocalReflectanceFilter::AvailableArraysChanged);
@@ -390,11 +391,17 @@ int vtkLocalReflectanceFilter::ShadeMesh(vtkPolyData* input, vtkPolyData* output
     : shadelab::Precision::Float32;
   // Until the steps run, what differs between pieces is agreed, so that every process stops
   // alike; the rest (the settings, the scene, the extent) is the same on every process.
-  std::string problem = empty ? "" : meshProblem(input);
+  // A piece may lack polygons where others have them (a piece of lines, or of nothing).
+  const bool polygons = input->GetNumberOfPolys() + input->GetNumberOfStrips() > 0;
+  std::string problem = !split || polygons ? meshProblem(input) : "";
   shadelab::MeshExtent extent;
   if (split)
   {
     problem = shadelab::firstText(processes, problem);
+    if (problem.empty() && shadelab::everyProcessHolds(processes, !polygons))
+    {
+      problem = meshProblem(input); // no piece has a polygon
+    }
   }
   if (problem.empty())
   {
@@ -407,6 +414,16 @@ int vtkLocalReflectanceFilter::ShadeMesh(vtkPolyData* input, vtkPolyData* output
     return 0;
   }
   const std::optional<shadelab::Scene> given = shadelab::reportedScene(this, this->Scene, this->SceneOfThisUpdate);
+  // Each process reads the scene itself: one that could not (its file missing there, say)
+  // stops them all.
+  if (split && !shadelab::everyProcessHolds(processes, given.has_value()))
+  {
+    if (given)
+    {
+      vtkErrorMacro("another process could not read the scene (see its error), so this one stops too");
+    }
+    return 0;
+  }
   if (!given)
   {
     return 0;
@@ -475,8 +492,11 @@ int vtkLocalReflectanceFilter::ShadeMesh(vtkPolyData* input, vtkPolyData* output
   }
 
   output->ShallowCopy(input);
-  vtkDataArray* shadingNormals = this->PrepareNormals(input, output);
-  if (!shadingNormals) // the step failed on a split mesh, on every process, and said why
+  vtkDataArray* shadingNormals = this->PrepareNormals(input, output, split != nullptr);
+  // The step failed (on a split mesh, on every process, having said why). An empty piece has
+  // none where the others kept their own.
+  const bool prepared = shadingNormals || empty;
+  if (split ? !shadelab::everyProcessHolds(processes, prepared) : !prepared)
   {
     output->Initialize();
     vtkErrorMacro("preparing the normals failed (see the error above)");
@@ -554,7 +574,7 @@ int vtkLocalReflectanceFilter::ShadeMesh(vtkPolyData* input, vtkPolyData* output
   return 1;
 }
 
-vtkDataArray* vtkLocalReflectanceFilter::PrepareNormals(vtkPolyData* input, vtkPolyData* output)
+vtkDataArray* vtkLocalReflectanceFilter::PrepareNormals(vtkPolyData* input, vtkPolyData* output, bool split)
 {
   vtkShadingNormalsFilter* step = this->NormalsStep;
   step->SetInputData(input);
@@ -567,7 +587,8 @@ vtkDataArray* vtkLocalReflectanceFilter::PrepareNormals(vtkPolyData* input, vtkP
   // Outputs share the prepared normals: one edited in place since the step ran (and marked
   // modified) is not trusted.
   vtkDataArray* previous = step->GetOutput()->GetPointData()->GetNormals();
-  if (previous && previous->GetMTime() > step->GetOutput()->GetUpdateTime())
+  // On a split mesh the step exchanges data, so every process runs it, whatever it has kept.
+  if (split || (previous && previous->GetMTime() > step->GetOutput()->GetUpdateTime()))
   {
     step->Modified();
   }
@@ -601,13 +622,20 @@ vtkPolyData* vtkLocalReflectanceFilter::PrepareVisibility(vtkPolyData* input, vt
   surface->SetPolys(input->GetPolys());
   surface->SetStrips(input->GetStrips());
   surface->GetPointData()->SetNormals(shadingNormals);
-  if (split) // what puts the pieces together
+  if (split) // what puts the pieces together, for the surface's cells (after the vertices and lines)
   {
     surface->GetPointData()->SetGlobalIds(input->GetPointData()->GetGlobalIds());
-    surface->GetCellData()->SetGlobalIds(input->GetCellData()->GetGlobalIds());
-    if (vtkDataArray* ghosts = input->GetCellData()->GetArray(vtkDataSetAttributes::GhostArrayName()))
+    const vtkIdType firstPolygon = input->GetNumberOfVerts() + input->GetNumberOfLines();
+    std::vector<vtkIdType> surfaceCells(static_cast<std::size_t>(input->GetNumberOfCells() - firstPolygon));
+    std::iota(surfaceCells.begin(), surfaceCells.end(), firstPolygon);
+    vtkCellData* cells = input->GetCellData();
+    if (vtkDataArray* ids = cells->GetGlobalIds())
     {
-      surface->GetCellData()->AddArray(ghosts);
+      surface->GetCellData()->SetGlobalIds(shadelab::tuplesAt(ids, surfaceCells));
+    }
+    if (vtkDataArray* ghosts = cells->GetArray(vtkDataSetAttributes::GhostArrayName()))
+    {
+      surface->GetCellData()->AddArray(shadelab::tuplesAt(ghosts, surfaceCells));
     }
   }
   vtkMeshVisibilityFilter* step = this->VisibilityStep;

@@ -192,8 +192,9 @@ private:
   /// changed since it last ran (their modification times), since preparing normals costs more
   /// than shading does.
   vtkNew<vtkShadingNormalsFilter> NormalsStep;
-  /// The normals to shade with, prepared by NormalsStep for this input; fills NormalsReport.
-  vtkDataArray* PrepareNormals(vtkPolyData* input, vtkPolyData* output);
+  /// The normals to shade with, prepared by NormalsStep for this input (a collective call on a
+  /// split mesh); fills NormalsReport.
+  vtkDataArray* PrepareNormals(vtkPolyData* input, vtkPolyData* output, bool split);
   /// The step that casts rays for the scene's shadows and ambient occlusion, on the input with
   /// the normals to shade with.
   vtkNew<vtkMeshVisibilityFilter> VisibilityStep;

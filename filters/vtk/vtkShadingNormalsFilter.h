@@ -21,8 +21,8 @@
  * "shadelab_normals". Every other array passes through.
  *
  * A piece of a mesh split over processes (see SetController) gets the normals the whole mesh
- * has at its points: the whole mesh is gathered and its normals computed as in one process
- * (ShadeLabWholeMesh.h).
+ * has at its points: the whole mesh is gathered on the first process, which computes its
+ * normals as one process would and sends each piece its points' (ShadeLabWholeMesh.h).
  */
 #ifndef vtkShadingNormalsFilter_h
 #define vtkShadingNormalsFilter_h
