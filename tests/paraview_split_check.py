@@ -1,6 +1,6 @@
 """The ParaView plugin on a mesh split over MPI processes, in three steps run by .ci/paraview:
 
-  pvpython paraview_split_check.py pieces MESH.ply PIECES.pvtp COUNT
+  pvpython paraview_split_check.py pieces MESH.ply|obj|vtp PIECES.pvtp COUNT
       the mesh in COUNT pieces with global point and cell ids (each one's index in the mesh);
   mpiexec -np N pvbatch paraview_split_check.py shade PLUGIN PIECES.pvtp SCENE SHADED.pvtp [default]
       Local Reflectance on the pieces, each process shading those it reads, written as a .pvtp:
@@ -9,6 +9,7 @@
       ParaView opens the .pvtp (N pieces), and at every point every array of the command line's
       output for the whole mesh (REFERENCE.vtp) equals the pieces' at that point, bit for bit.
 """
+import os
 import re
 import sys
 
@@ -21,14 +22,22 @@ if step == "pieces":
     from vtkmodules.vtkFiltersParallel import vtkExtractPolyDataPiece
     from vtkmodules.vtkFiltersProgrammable import vtkProgrammableFilter
     from vtkmodules.vtkIOParallelXML import vtkXMLPPolyDataWriter
+    from vtkmodules.vtkIOGeometry import vtkOBJReader
     from vtkmodules.vtkIOPLY import vtkPLYReader
+    from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
     from vtkmodules.util.numpy_support import numpy_to_vtk
 
     mesh_file, pieces_file, count = sys.argv[2], sys.argv[3], int(sys.argv[4])
-    reader = vtkPLYReader()
+    readers = {".ply": vtkPLYReader, ".obj": vtkOBJReader, ".vtp": vtkXMLPolyDataReader}
+    extension = os.path.splitext(mesh_file)[1].lower()
+    if extension not in readers:
+        sys.exit(f"{mesh_file}: cannot cut it into pieces: give a .ply, .obj or .vtp mesh")
+    reader = readers[extension]()
     reader.SetFileName(mesh_file)
     reader.Update()
     mesh = reader.GetOutput()
+    if mesh.GetNumberOfPolys() + mesh.GetNumberOfStrips() == 0:
+        sys.exit(f"{mesh_file}: no polygons read from it: is it a mesh?")
     for data, size in ((mesh.GetPointData(), mesh.GetNumberOfPoints()), (mesh.GetCellData(), mesh.GetNumberOfCells())):
         ids = numpy_to_vtk(np.arange(size, dtype=np.int64), deep=1, array_type=VTK_ID_TYPE)
         ids.SetName("GlobalIds")

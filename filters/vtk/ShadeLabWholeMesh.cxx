@@ -296,22 +296,36 @@ int sharedValue(vtkMultiProcessController* controller, bool empty, int value)
   return shared;
 }
 
+/// The point arrays a computation on the whole mesh wrote into `made`: those the gathered mesh
+/// (`brought`) has not, and its normals where they are new (computed, or a flipped copy).
+std::vector<vtkDataArray*> writtenArrays(vtkPointData* made, vtkPointData* brought)
+{
+  std::vector<vtkDataArray*> written;
+  for (int a = 0; a < made->GetNumberOfArrays(); ++a)
+  {
+    vtkDataArray* array = made->GetArray(a);
+    if (!brought->HasArray(array->GetName()) || (array == made->GetNormals() && array != brought->GetNormals()))
+    {
+      written.push_back(array);
+    }
+  }
+  return written;
+}
+
 /// The piece with what was computed for its points on the whole mesh: arrays of a value per
 /// piece point as they are, normals of the whole mesh (computed, or flipped) at the piece's
 /// points, and the field data's notes.
 void keepPiece(const WholeMesh& whole, vtkPolyData* computed, vtkPolyData* piece, vtkPolyData* output)
 {
   output->ShallowCopy(piece);
-  vtkPointData* written = computed->GetPointData();
-  vtkPointData* brought = whole.mesh->GetPointData();
-  for (int a = 0; a < written->GetNumberOfArrays(); ++a)
+  vtkPointData* made = computed->GetPointData();
+  for (vtkDataArray* array : writtenArrays(made, whole.mesh->GetPointData()))
   {
-    vtkDataArray* array = written->GetArray(a);
-    if (array == written->GetNormals() && array != brought->GetNormals())
+    if (array == made->GetNormals())
     {
       output->GetPointData()->SetNormals(tuplesAt(array, whole.pieceIds));
     }
-    else if (!brought->HasArray(array->GetName()))
+    else
     {
       output->GetPointData()->AddArray(array);
     }
@@ -332,17 +346,8 @@ void shareFromFirst(vtkMultiProcessController* controller, const WholeMesh& whol
   vtkMultiProcessStream described;
   if (first)
   {
-    vtkPointData* brought = whole.mesh->GetPointData();
     vtkPointData* made = computed->GetPointData();
-    for (int a = 0; a < made->GetNumberOfArrays(); ++a)
-    {
-      vtkDataArray* array = made->GetArray(a);
-      const bool normals = array == made->GetNormals();
-      if (!brought->HasArray(array->GetName()) || (normals && array != brought->GetNormals()))
-      {
-        written.push_back(array);
-      }
-    }
+    written = writtenArrays(made, whole.mesh->GetPointData());
     described << static_cast<int>(written.size());
     for (vtkDataArray* array : written)
     {
@@ -399,10 +404,13 @@ void shareFromFirst(vtkMultiProcessController* controller, const WholeMesh& whol
     try
     {
       everyPiece = first ? tuplesAt(written[static_cast<std::size_t>(a)], whole.everyPieceIds) : nullptr;
-      mine->SetName(name.c_str());
-      mine->SetNumberOfComponents(components);
-      mine->SetNumberOfTuples(pointCount);
-      ready = mine->GetNumberOfTuples() == pointCount;
+      if (processes > 1) // alone, the first process keeps its tuples as they are
+      {
+        mine->SetName(name.c_str());
+        mine->SetNumberOfComponents(components);
+        mine->SetNumberOfTuples(pointCount);
+        ready = mine->GetNumberOfTuples() == pointCount;
+      }
     }
     catch (const std::bad_alloc&)
     {
@@ -465,15 +473,12 @@ bool guarded(vtkAlgorithm* filter, const Work& work)
   }
 }
 
-/// The pieces' layout: whether they can be put together, and how.
-struct Layout
+/// The pieces' layout (PieceLayout, whose pieceIds are the piece's points' global ids), with
+/// what the gathering needs of it. Where the pieces are not put together, the mesh is `piece`
+/// where wholeIsPiece, and nothing elsewhere.
+struct Layout : PieceLayout
 {
-  std::string problem;
-  /// The pieces are put together (the same on every process); otherwise the mesh is `piece`
-  /// where wholeIsPiece, and nothing elsewhere.
-  bool putTogether = false;
   bool wholeIsPiece = false;
-  std::vector<vtkIdType> pieceIds;     // the piece's points' global ids
   std::vector<vtkIdType> allGlobalIds; // every piece's, piece after piece
   vtkIdType wholeCount = 0;
   int pointType = 0;
@@ -685,19 +690,16 @@ WholeMesh gatherWholeMesh(vtkMultiProcessController* controller, vtkPolyData* pi
 
 PieceLayout pieceLayout(vtkMultiProcessController* controller, vtkPolyData* piece)
 {
-  PieceLayout layout;
   try
   {
-    Layout found = layoutOf(controller, piece, true);
-    layout.problem = found.problem;
-    layout.putTogether = found.putTogether;
-    layout.pieceIds = std::move(found.pieceIds);
+    return layoutOf(controller, piece, true); // its PieceLayout part
   }
   catch (const std::exception& error) // too large for MPI, or no memory for the gathered mesh: alike everywhere
   {
-    layout.problem = error.what();
+    PieceLayout failed;
+    failed.problem = error.what();
+    return failed;
   }
-  return layout;
 }
 
 int computeOnPiece(vtkMultiProcessController* controller, vtkAlgorithm* filter, vtkPolyData* piece,
