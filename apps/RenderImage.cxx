@@ -14,6 +14,7 @@
 #include "vtkProperty.h"
 #include "vtkRenderer.h"
 #include "vtkScalarBarActor.h"
+#include "vtkTextActor.h"
 #include "vtkTextProperty.h"
 #include "vtkUnsignedCharArray.h"
 
@@ -147,7 +148,6 @@ void renderToPng(vtkPolyData* mesh, const std::string& meshName, const RenderOpt
     mapper->SetScalarRange(range);
     vtkNew<vtkScalarBarActor> bar;
     bar->SetLookupTable(colourMap);
-    bar->SetTitle(options.array.c_str());
     bar->SetNumberOfLabels(5);
     bar->SetLabelFormat("%.3g");
     bar->SetWidth(0.1);
@@ -155,6 +155,16 @@ void renderToPng(vtkPolyData* mesh, const std::string& meshName, const RenderOpt
     bar->GetTitleTextProperty()->SetFontSize(16);
     bar->GetLabelTextProperty()->SetFontSize(14);
     renderer->AddViewProp(bar);
+    // The array's name at the top left: a bar's own title, centred on a bar at the right
+    // edge, runs off the picture.
+    vtkNew<vtkTextActor> title;
+    title->SetInput(options.array.c_str());
+    title->GetTextProperty()->SetFontSize(16);
+    title->GetTextProperty()->BoldOn();
+    title->GetTextProperty()->SetVerticalJustificationToTop();
+    title->GetPositionCoordinate()->SetCoordinateSystemToNormalizedViewport();
+    title->SetPosition(0.02, 0.97);
+    renderer->AddViewProp(title);
   }
   mapper->ScalarVisibilityOn();
   vtkNew<vtkActor> actor;
