@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Time and peak memory per MPI rank of Local Reflectance under pvbatch, on 1, 2 and 4 ranks
-# (README, "A mesh split over MPI processes"): studio.json's default arrays in float32 (or, with
+# (docs/guide/mpi.md; the figures in docs/dev/benchmarks.md): studio.json's default arrays in float32 (or, with
 # ARRAYS "all", every array in float64), read from the pieces and written as a .pvtp. The mesh:
 # COPIES bunnies side by side, each Loop-subdivided LEVELS times (defaults 4 and 1: 8.9M
 # vertices; 3 copies: 26.7M), cut into 4 pieces with global ids. Needs .ci/paraview to have

@@ -1,5 +1,5 @@
 # shadelab_add_regression_test: one CTest test that shades a mesh under a scene and compares the
-# result with a baseline file by `shadelab compare` (README, "Regression tests").
+# result with a baseline file by `shadelab compare` (docs/guide/regression-tests.md).
 #
 #   shadelab_add_regression_test(NAME name MESH mesh SCENE scene.json BASELINE baseline.vtp
 #     [ARRAYS list] [ATOL rule...] [RTOL rule...] [ULPS rule...] [STANDARD_ERRORS k]

@@ -1,6 +1,6 @@
-# README.md's downstream project (a CMakeLists.txt that finds ShadeLab's package), built against
+# The guide's downstream project (docs/guide/regression-tests.md: a CMakeLists.txt that finds ShadeLab's package), built against
 # this build installed into a folder of its own, and its tests run. Run by CTest with BUILD,
-# SOURCE (the folder of the extracted CMakeLists.txt), EXAMPLE (readme_example.cxx), DATA, WORK,
+# SOURCE (the folder of the extracted CMakeLists.txt), EXAMPLE (README.md's readme_example.cxx), DATA, WORK,
 # GENERATOR, COMPILER and FLAGS (the sanitizers of the sanitizer build).
 file(REMOVE_RECURSE "${WORK}")
 include("${CMAKE_CURRENT_LIST_DIR}/ScriptStep.cmake")

@@ -1,8 +1,11 @@
 # The Python package as `cmake --install` leaves it: installed into a folder of its own, then
 # imported by PYTHON with only that prefix's package folder on PYTHONPATH, from outside the build
 # tree, and README.md's Python example run with it. Run by CTest with BUILD, PYTHON, DESTINATION
-# (SHADELAB_PYTHON_DESTINATION), EXAMPLE, SOURCE (the repository, the example's working folder)
-# and WORK.
+# (SHADELAB_PYTHON_DESTINATION), EXAMPLE, EXPECTED (a regular expression its output must match),
+# SOURCE (the repository, the example's working folder) and WORK.
+if(NOT EXPECTED)
+  message(FATAL_ERROR "PythonInstalled.cmake needs EXPECTED, the example's output")
+endif()
 file(REMOVE_RECURSE "${WORK}")
 include("${CMAKE_CURRENT_LIST_DIR}/ScriptStep.cmake")
 step("installing ShadeLab" "${CMAKE_COMMAND}" --install "${BUILD}" --prefix "${WORK}/prefix")
@@ -16,7 +19,7 @@ if(NOT found EQUAL 0)
 endif()
 step("running README.md's Python example" "${CMAKE_COMMAND}" -E chdir "${SOURCE}" env "PYTHONPATH=${packages}"
   "${PYTHON}" "${EXAMPLE}")
-if(NOT step_output MATCHES "total = ambient \\+ diffuse \\+ specular at every vertex")
+if(NOT step_output MATCHES "${EXPECTED}")
   message(FATAL_ERROR "README.md's Python example did not finish:\n${step_output}")
 endif()
 message(STATUS "the package was imported from the install prefix and ran README.md's Python example")

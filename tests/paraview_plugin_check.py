@@ -5,7 +5,7 @@ against the command line's, and a picture of the result drawn by ParaView.
     pvpython tests/paraview_plugin_check.py PLUGIN SHADELAB DATA WORK [PICTURE]
 
 PLUGIN is ShadeLab.so, SHADELAB the command line, DATA the repository's data/, WORK a scratch
-folder; PICTURE, if given, is where the picture goes (README.md's docs/paraview_total.png).
+folder; PICTURE, if given, is where the picture goes (docs/paraview_total.png, in docs/guide/paraview.md).
 Run by .ci/paraview under xvfb-run. Exits 1 unless every check passes.
 """
 import os

@@ -76,7 +76,7 @@ TYPED_TEST(FailurePoints, ShininessTenThousandUnderflowsWithoutNaN)
   expectAllFinite(run);
   EXPECT_EQ(run.value("lamp_specular", 0), T(0.25));
   const double expected = 0.25 * std::pow(std::cos(tilt), 10000.0); // about 0.152
-  // float32: within ks Ls eta 2^-23 (README, "Accuracy and speed"); measured 1.3e-5.
+  // float32: within ks Ls eta 2^-23 (docs/guide/accuracy.md, "Precision"); measured 1.3e-5.
   EXPECT_NEAR(run.value("lamp_specular", 1), expected,
     (std::is_same_v<T, float> ? 0.25 * 10000 * std::ldexp(1.0, -23) : 1e-12));
 }

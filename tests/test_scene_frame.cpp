@@ -409,7 +409,7 @@ TEST(SceneFrame, StudioMeshIsStudioOnTheBunny)
 {
   const MeshExtent bunny = bunnyExtent();
   // data/scenes/studio_mesh.json holds studio.json's numbers converted with these (as
-  // README.md states them), to 12 significant digits.
+  // docs/guide/scene-files.md states them), to 12 significant digits.
   EXPECT_NEAR(bunny.centre.x, -0.0168404, 1e-7);
   EXPECT_NEAR(bunny.centre.y, 0.1101542, 1e-7);
   EXPECT_NEAR(bunny.centre.z, -0.0015370, 1e-7);
@@ -492,9 +492,9 @@ TEST(DefaultLightKit, LightsAPartAnywhereFromTheSameDirections)
   EXPECT_EQ(*placed.viewer.focalPoint, part.centre);
 }
 
-TEST(DefaultLightKit, TheReadmeShowsIt)
+TEST(DefaultLightKit, TheGuideShowsIt)
 {
-  std::ifstream file(SHADELAB_SOURCE_DIR "/README.md");
+  std::ifstream file(SHADELAB_SOURCE_DIR "/docs/guide/scene-files.md");
   std::ostringstream text;
   text << file.rdbuf();
   EXPECT_NE(text.str().find("```json\n" + defaultLightKitText() + "```\n"), std::string::npos);

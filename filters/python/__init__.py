@@ -4,7 +4,7 @@
     shading = shadelab.vtkLocalReflectanceFilter()
     shading.SetSceneFileName("studio.json")
 
-The filters are VTK algorithms like any other (README.md, "From Python"). Importing this package
+The filters are VTK algorithms like any other (docs/guide/cpp-and-python.md). Importing this package
 also imports the vtkmodules the filters are built on.
 """
 from .ShadeLabFilters import vtkLocalReflectanceFilter, vtkMeshVisibilityFilter, vtkShadingNormalsFilter

@@ -1,5 +1,5 @@
-// README.md documents the arrays in two tables, totals and per-light terms; each must list
-// exactly the arrays the code writes, with their number of components.
+// docs/guide/arrays.md documents the arrays in three tables, totals, per-light terms and ambient
+// occlusion; each must list exactly the arrays the code writes, with their number of components.
 #include "ArrayCatalog.h"
 
 #include <gtest/gtest.h>
@@ -13,9 +13,9 @@ namespace
 using namespace shadelab;
 using Rows = std::map<std::string, int>; // name -> components
 
-std::string readme()
+std::string arraysPage()
 {
-  std::ifstream file(SHADELAB_SOURCE_DIR "/README.md");
+  std::ifstream file(SHADELAB_SOURCE_DIR "/docs/guide/arrays.md");
   std::ostringstream text;
   text << file.rdbuf();
   return text.str();
@@ -50,9 +50,9 @@ Rows tableAfter(const std::string& text, const std::string& heading)
   return rows;
 }
 
-TEST(Readme, ArrayTablesListExactlyTheArraysWritten)
+TEST(Guide, ArrayTablesListExactlyTheArraysWritten)
 {
-  const std::string text = readme();
+  const std::string text = arraysPage();
   Rows totals, perLight;
   for (int t = 0; t < TotalTermCount; ++t)
   {
