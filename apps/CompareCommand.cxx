@@ -745,18 +745,33 @@ Matching matchByNearest(vtkDataSet* baseline, vtkDataSet* result, std::vector<Fi
   return matching;
 }
 
-std::string jsonReport(const std::vector<ArrayReport>& reports, bool passed, const std::vector<SkippedArray>& skipped,
-  const CompareOptions& options, const std::vector<FileArray>& baseline, const std::vector<FileArray>& result)
+/// What the two files hold: their datasets, their number arrays and those that are not numbers,
+/// and how the result's points and cells were matched to the baseline's.
+struct ComparedFiles
+{
+  vtkSmartPointer<vtkDataSet> baselineData, resultData;
+  std::vector<FileArray> baseline, result;
+  std::vector<SkippedArray> skippedBaseline, skippedResult;
+  Matching matching;
+};
+
+std::string jsonReport(const std::vector<ArrayReport>& reports, bool passed, const ComparedFiles& files,
+  const CompareOptions& options)
 {
   nlohmann::json report = { { "baseline", options.baseline }, { "result", options.result }, { "passed", passed },
-    { "arrays", nlohmann::json::array() }, { "not_compared", nlohmann::json::array() } };
+    { "arrays", nlohmann::json::array() }, { "not_compared", nlohmann::json::array() },
+    { "not_compared_in_result", nlohmann::json::array() } };
   for (const ArrayReport& r : reports)
   {
-    report["arrays"].push_back(jsonOf(r, baseline, result));
+    report["arrays"].push_back(jsonOf(r, files.baseline, files.result));
   }
-  for (const SkippedArray& array : skipped)
+  for (const auto& [key, skipped] :
+    { std::pair{ "not_compared", &files.skippedBaseline }, std::pair{ "not_compared_in_result", &files.skippedResult } })
   {
-    report["not_compared"].push_back(array.description);
+    for (const SkippedArray& array : *skipped)
+    {
+      report[key].push_back(array.description);
+    }
   }
   // Names that are not UTF-8 (a legacy file may hold any bytes) with U+FFFD for each bad byte.
   return report.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
@@ -855,6 +870,219 @@ std::string datasetText(vtkDataSet* data)
 {
   return std::to_string(data->GetNumberOfPoints()) + " points, " + std::to_string(data->GetNumberOfCells()) + " cells";
 }
+
+void checkOutputFiles(const CompareOptions& options)
+{
+  if (!options.json.empty())
+  {
+    checkOutputFile(options.json, { ".json" });
+  }
+  if (!options.junit.empty())
+  {
+    checkOutputFile(options.junit, { ".xml" });
+  }
+  if (!options.diff.empty())
+  {
+    checkOutputFile(options.diff, meshExtensions);
+  }
+}
+
+bool isSelected(const CompareOptions& options, const std::string& name)
+{
+  return matchesAny(options.arrays, name) && !matchesAny(options.exclude, name);
+}
+
+/// Both files read, their arrays listed (those --arrays and --exclude leave out dropped from
+/// the not-numbers lists) and, with --nearest, their points matched.
+ComparedFiles readFiles(const CompareOptions& options, RunWarnings& warnings)
+{
+  ComparedFiles files;
+  files.baselineData = readDataSet(options.baseline);
+  warnings.collect(options.baseline);
+  files.resultData = readDataSet(options.result);
+  warnings.collect(options.result);
+  files.baseline = arraysOf(files.baselineData, !options.noPoints, files.skippedBaseline);
+  files.result = arraysOf(files.resultData, !options.noPoints, files.skippedResult);
+  if (options.nearest)
+  {
+    if (!(*options.nearest >= 0))
+    {
+      throw UserError("--nearest must be a distance >= 0");
+    }
+    files.matching = matchByNearest(files.baselineData, files.resultData, files.result, *options.nearest);
+  }
+  for (const std::string& pattern : options.arrays)
+  {
+    auto matches = [&](const FileArray& array) { return wildcardMatches(pattern, array.name); };
+    if (std::none_of(files.baseline.begin(), files.baseline.end(), matches) &&
+      std::none_of(files.result.begin(), files.result.end(), matches))
+    {
+      throw UserError("--arrays '" + pattern + "' matches no array of either file");
+    }
+  }
+  if (!options.diff.empty() && !vtkPolyData::SafeDownCast(files.resultData))
+  {
+    throw UserError(std::string("--diff writes a mesh (.vtp or .vtk), and the result is a ") +
+      files.resultData->GetClassName() + ": leave --diff out for it");
+  }
+  for (std::vector<SkippedArray>* skipped : { &files.skippedBaseline, &files.skippedResult })
+  {
+    skipped->erase(std::remove_if(skipped->begin(), skipped->end(),
+                     [&](const SkippedArray& a) { return !isSelected(options, a.name); }),
+      skipped->end());
+  }
+  return files;
+}
+
+/// Why arrays of this association cannot be compared: their points or cells found no match.
+const std::string& matchingProblem(const Matching& matching, Association association)
+{
+  static const std::string none;
+  return association == Association::CellData ? matching.cellProblem
+    : association == Association::FieldData  ? none
+                                              : matching.pointProblem;
+}
+
+/// Why the baseline's array and the result's of the same name cannot be compared value by
+/// value, or "" when they can.
+std::string pairingProblem(const FileArray& array, const FileArray* other, const ComparedFiles& files,
+  const CompareOptions& options)
+{
+  const ArrayValues& a = array.values;
+  if (!other)
+  {
+    return std::string("missing from ") + options.result;
+  }
+  if (!matchingProblem(files.matching, array.association).empty())
+  {
+    return "not compared: " + matchingProblem(files.matching, array.association);
+  }
+  if (other->values.type != a.type)
+  {
+    return std::string(typeName(a.type)) + " in " + options.baseline + ", " + typeName(other->values.type) + " in " + options.result;
+  }
+  if (other->values.components != a.components)
+  {
+    return std::to_string(a.components) + " components in " + options.baseline + ", " + std::to_string(other->values.components) + " in " + options.result;
+  }
+  if (other->values.tuples() != a.tuples())
+  {
+    return std::to_string(a.tuples()) + " tuples in " + options.baseline + ", " + std::to_string(other->values.tuples()) + " in " + options.result;
+  }
+  return "";
+}
+
+/// The baseline's array judged against the result's of the same name, with its rule and,
+/// with --standard-errors, both files' NAME_std_error where they hold them.
+ArrayReport compareArray(const FileArray& array, const ComparedFiles& files, const Rules& rules, const CompareOptions& options)
+{
+  ArrayReport report;
+  report.baseline = &array;
+  report.name = array.name;
+  report.association = array.association;
+  report.flags = array.values.type == ValueType::Integer && matchesAny(options.flagArrays, array.name);
+  const FileArray* other = find(files.result, array.name, array.association);
+  report.problem = pairingProblem(array, other, files, options);
+  if (!report.problem.empty())
+  {
+    return report;
+  }
+  const ArrayValues& a = array.values;
+  report.rule = rules.ruleFor(array, options.standardErrors);
+  const FileArray* errorsA = find(files.baseline, array.name + "_std_error", array.association);
+  const FileArray* errorsB = find(files.result, array.name + "_std_error", array.association);
+  const bool statistical = options.standardErrors && errorsA && errorsB &&
+    errorsA->values.type != ValueType::Integer && errorsB->values.type != ValueType::Integer &&
+    errorsA->values.size() == a.size() && errorsB->values.size() == a.size();
+  if (!statistical)
+  {
+    report.rule.standardErrors.reset();
+  }
+  report.difference = compareArrays(a, other->values, report.rule, statistical ? &errorsA->values : nullptr,
+    statistical ? &errorsB->values : nullptr);
+  return report;
+}
+
+/// One report per selected array: each of the baseline's, then those only in the result.
+std::vector<ArrayReport> pairArrays(const ComparedFiles& files, const Rules& rules, const CompareOptions& options)
+{
+  auto selected = [&](const FileArray& array)
+  { return array.association == Association::Points || isSelected(options, array.name); };
+  std::vector<ArrayReport> reports;
+  for (const FileArray& array : files.baseline)
+  {
+    if (selected(array))
+    {
+      reports.push_back(compareArray(array, files, rules, options));
+    }
+  }
+  for (const FileArray& array : files.result)
+  {
+    if (selected(array) && !find(files.baseline, array.name, array.association))
+    {
+      ArrayReport report;
+      report.name = array.name;
+      report.association = array.association;
+      report.problem = std::string("not in ") + options.baseline;
+      reports.push_back(std::move(report));
+    }
+  }
+  return reports;
+}
+
+/// The console report: what was compared, a line per array, the arrays that are not numbers
+/// and the verdict. True when every array passes.
+bool printReports(const std::vector<ArrayReport>& reports, const ComparedFiles& files, const CompareOptions& options)
+{
+  const std::size_t differing = static_cast<std::size_t>(std::count_if(reports.begin(), reports.end(), [](const ArrayReport& r) { return !r.passes(); }));
+  std::cout << "shadelab compare: the result " << options.result << " (" << datasetText(files.resultData)
+            << ") against the baseline " << options.baseline << " (" << datasetText(files.baselineData) << "); "
+            << files.matching.description << "\n";
+  printHeading();
+  for (const ArrayReport& report : reports)
+  {
+    printReport(report, files.baseline, files.result);
+  }
+  for (const auto& [file, skipped] :
+    { std::pair{ "the baseline", &files.skippedBaseline }, std::pair{ "the result", &files.skippedResult } })
+  {
+    if (!skipped->empty())
+    {
+      std::cout << "  not compared in " << file << " (not numbers):";
+      for (std::size_t k = 0; k < skipped->size(); ++k)
+      {
+        std::cout << (k == 0 ? " " : ", ") << (*skipped)[k].description;
+      }
+      std::cout << "\n";
+    }
+  }
+  if (differing == 0)
+  {
+    std::cout << "PASS: " << reports.size() << (reports.size() == 1 ? " array agrees" : " arrays agree") << "\n";
+  }
+  else
+  {
+    std::cout << "FAIL: " << differing << " of " << reports.size() << " arrays differ\n";
+  }
+  return differing == 0;
+}
+
+/// The reports asked for by --json, --junit and --diff.
+void writeReports(const std::vector<ArrayReport>& reports, bool passed, const ComparedFiles& files, const CompareOptions& options)
+{
+  if (!options.json.empty())
+  {
+    writeTextFile(options.json, jsonReport(reports, passed, files, options));
+  }
+  if (!options.junit.empty())
+  {
+    writeTextFile(options.junit, junitOf(reports, options, files.baseline, files.result));
+  }
+  if (!options.diff.empty())
+  {
+    writeMesh(differenceMesh(files.resultData, reports, files.result, files.matching), options.diff, Compression::LZ4);
+  }
+}
 }
 
 CLI::App* addCompareCommand(CLI::App& cli, CompareOptions& options)
@@ -902,131 +1130,15 @@ CLI::App* addCompareCommand(CLI::App& cli, CompareOptions& options)
 
 int runCompare(const CompareOptions& options)
 {
-  std::vector<ArrayReport> reports;
-  std::vector<SkippedArray> skippedBaseline, skippedResult;
-  std::vector<FileArray> baseline, result;
-  vtkSmartPointer<vtkDataSet> baselineData, resultData;
   RunWarnings warnings; // a reader's warning says the file is damaged: its values may be too
-  Matching matching;
+  ComparedFiles files;
+  std::vector<ArrayReport> reports;
   try
   {
     const Rules rules = parseRules(options);
-    if (!options.json.empty())
-    {
-      checkOutputFile(options.json, { ".json" });
-    }
-    if (!options.junit.empty())
-    {
-      checkOutputFile(options.junit, { ".xml" });
-    }
-    if (!options.diff.empty())
-    {
-      checkOutputFile(options.diff, meshExtensions);
-    }
-    baselineData = readDataSet(options.baseline);
-    warnings.collect(options.baseline);
-    resultData = readDataSet(options.result);
-    warnings.collect(options.result);
-    baseline = arraysOf(baselineData, !options.noPoints, skippedBaseline);
-    result = arraysOf(resultData, !options.noPoints, skippedResult);
-    if (options.nearest)
-    {
-      if (!(*options.nearest >= 0))
-      {
-        throw UserError("--nearest must be a distance >= 0");
-      }
-      matching = matchByNearest(baselineData, resultData, result, *options.nearest);
-    }
-    // Each array's problem where its points or cells found no match.
-    auto matchingProblem = [&](Association association) -> const std::string&
-    {
-      static const std::string none;
-      return association == Association::CellData ? matching.cellProblem
-        : association == Association::FieldData  ? none
-                                                  : matching.pointProblem;
-    };
-    for (const std::string& pattern : options.arrays)
-    {
-      auto matches = [&](const FileArray& array) { return wildcardMatches(pattern, array.name); };
-      if (std::none_of(baseline.begin(), baseline.end(), matches) && std::none_of(result.begin(), result.end(), matches))
-      {
-        throw UserError("--arrays '" + pattern + "' matches no array of either file");
-      }
-    }
-    if (!options.diff.empty() && !vtkPolyData::SafeDownCast(resultData))
-    {
-      throw UserError(std::string("--diff writes a mesh (.vtp or .vtk), and the result is a ") +
-        resultData->GetClassName() + ": leave --diff out for it");
-    }
-    auto selected = [&](const FileArray& array)
-    { return array.association == Association::Points || (matchesAny(options.arrays, array.name) && !matchesAny(options.exclude, array.name)); };
-    for (std::vector<SkippedArray>* skipped : { &skippedBaseline, &skippedResult })
-    {
-      skipped->erase(std::remove_if(skipped->begin(), skipped->end(),
-                       [&](const SkippedArray& a) { return !matchesAny(options.arrays, a.name) || matchesAny(options.exclude, a.name); }),
-        skipped->end());
-    }
-    for (const FileArray& array : baseline)
-    {
-      if (!selected(array))
-      {
-        continue;
-      }
-      ArrayReport report;
-      report.baseline = &array;
-      report.name = array.name;
-      report.association = array.association;
-      report.flags = array.values.type == ValueType::Integer && matchesAny(options.flagArrays, array.name);
-      const FileArray* other = find(result, array.name, array.association);
-      const ArrayValues& a = array.values;
-      if (!other)
-      {
-        report.problem = std::string("missing from ") + options.result;
-      }
-      else if (!matchingProblem(array.association).empty())
-      {
-        report.problem = "not compared: " + matchingProblem(array.association);
-      }
-      else if (other->values.type != a.type)
-      {
-        report.problem = std::string(typeName(a.type)) + " in " + options.baseline + ", " + typeName(other->values.type) + " in " + options.result;
-      }
-      else if (other->values.components != a.components)
-      {
-        report.problem = std::to_string(a.components) + " components in " + options.baseline + ", " + std::to_string(other->values.components) + " in " + options.result;
-      }
-      else if (other->values.tuples() != a.tuples())
-      {
-        report.problem = std::to_string(a.tuples()) + " tuples in " + options.baseline + ", " + std::to_string(other->values.tuples()) + " in " + options.result;
-      }
-      else
-      {
-        report.rule = rules.ruleFor(array, options.standardErrors);
-        const FileArray* errorsA = find(baseline, array.name + "_std_error", array.association);
-        const FileArray* errorsB = find(result, array.name + "_std_error", array.association);
-        const bool statistical = options.standardErrors && errorsA && errorsB &&
-          errorsA->values.type != ValueType::Integer && errorsB->values.type != ValueType::Integer &&
-          errorsA->values.size() == a.size() && errorsB->values.size() == a.size();
-        if (!statistical)
-        {
-          report.rule.standardErrors.reset();
-        }
-        report.difference = compareArrays(a, other->values, report.rule, statistical ? &errorsA->values : nullptr,
-          statistical ? &errorsB->values : nullptr);
-      }
-      reports.push_back(std::move(report));
-    }
-    for (const FileArray& array : result)
-    {
-      if (selected(array) && !find(baseline, array.name, array.association))
-      {
-        ArrayReport report;
-        report.name = array.name;
-        report.association = array.association;
-        report.problem = std::string("not in ") + options.baseline;
-        reports.push_back(std::move(report));
-      }
-    }
+    checkOutputFiles(options);
+    files = readFiles(options, warnings);
+    reports = pairArrays(files, rules, options);
   }
   catch (const UserError& error)
   {
@@ -1038,52 +1150,11 @@ int runCompare(const CompareOptions& options)
     std::cerr << "shadelab compare: no array to compare (see --arrays, --exclude and --no-points)\n";
     return 2;
   }
-
-  const std::size_t differing = static_cast<std::size_t>(std::count_if(reports.begin(), reports.end(), [](const ArrayReport& r) { return !r.passes(); }));
-  std::cout << "shadelab compare: the result " << options.result << " (" << datasetText(resultData)
-            << ") against the baseline " << options.baseline << " (" << datasetText(baselineData) << "); "
-            << matching.description << "\n";
-  printHeading();
-  for (const ArrayReport& report : reports)
-  {
-    printReport(report, baseline, result);
-  }
-  for (const auto& [file, skipped] : { std::pair{ "the baseline", &skippedBaseline }, std::pair{ "the result", &skippedResult } })
-  {
-    if (!skipped->empty())
-    {
-      std::cout << "  not compared in " << file << " (not numbers):";
-      for (std::size_t k = 0; k < skipped->size(); ++k)
-      {
-        std::cout << (k == 0 ? " " : ", ") << (*skipped)[k].description;
-      }
-      std::cout << "\n";
-    }
-  }
-  if (differing == 0)
-  {
-    std::cout << "PASS: " << reports.size() << (reports.size() == 1 ? " array agrees" : " arrays agree") << "\n";
-  }
-  else
-  {
-    std::cout << "FAIL: " << differing << " of " << reports.size() << " arrays differ\n";
-  }
-  const bool passed = differing == 0;
+  const bool passed = printReports(reports, files, options);
   warnings.show();
   try
   {
-    if (!options.json.empty())
-    {
-      writeTextFile(options.json, jsonReport(reports, passed, skippedBaseline, options, baseline, result));
-    }
-    if (!options.junit.empty())
-    {
-      writeTextFile(options.junit, junitOf(reports, options, baseline, result));
-    }
-    if (!options.diff.empty())
-    {
-      writeMesh(differenceMesh(resultData, reports, result, matching), options.diff, Compression::LZ4);
-    }
+    writeReports(reports, passed, files, options);
   }
   catch (const std::exception& error)
   {

@@ -1,6 +1,6 @@
 #pragma once
 // shadelab compare BASELINE RESULT: two files' arrays value by value, for regression tests
-// on mesh scalars (README, "Regression tests").
+// on mesh scalars (docs/guide/regression-tests.md).
 #include <CLI/CLI.hpp>
 
 #include <optional>

@@ -449,7 +449,7 @@ CLI::App* addShadeCommand(CLI::App& cli, ShadeOptions& options)
     "Reads .vtp, .vtk, .ply, .obj, .stl; writes .vtp (binary, compressed) or legacy .vtk\n(binary).");
   command->add_option("mesh", options.mesh, "the mesh to shade")->required();
   command->add_option("--scene,-s", options.scene,
-    "scene file (JSON; schema in README.md, 'Scene files'); without it, a three-point light kit with a "
+    "scene file (JSON; schema in docs/guide/scene-files.md); without it, a three-point light kit with a "
     "little ambient light, placed and scaled to fit the mesh, or with --envmap, the map alone under the "
     "default material and a viewer at infinity looking down -z");
   command->add_option("--output,-o", options.output, "output file, .vtp or .vtk")->required();
@@ -478,7 +478,7 @@ CLI::App* addShadeCommand(CLI::App& cli, ShadeOptions& options)
     ->capture_default_str();
   command->add_flag("--raw-appended", options.rawAppended,
     ".vtp with its data raw in one block at the end: a quarter smaller and faster to write, but "
-    "Debian 12's ParaView 5.11 reads it as empty since its Expat security update (README.md, 'The command line')");
+    "Debian 12's ParaView 5.11 reads it as empty since its Expat security update (docs/guide/command-line.md, 'Files ParaView opens')");
   command->add_option("--prefix", options.prefix,
     "prepended to every array name written (to keep clear of the input's own arrays): letters, digits and _")
     ->check(arrayNamePrefix());
@@ -504,7 +504,7 @@ CLI::App* addShadeCommand(CLI::App& cli, ShadeOptions& options)
     "mesh's own normals are replaced")
     ->check(numberFromTo(0, 180));
   command->add_flag("--shadows", options.shadows,
-    "the mesh casts the shadows of every distant, headlight, point and spot light (rays against its own "
+    "the mesh casts the shadows of every " + sceneTypeNamesOf(LightRole::Local) + " light (rays against its own "
     "triangles; each light's <light>_visibility array, 0 or 1, multiplies its diffuse and specular terms)");
   command->add_option("--ambient-occlusion", options.ambientOcclusionRays,
     "RAYS per vertex: the ambient term becomes ka La times the cosine-weighted fraction of the sky each "
@@ -514,7 +514,7 @@ CLI::App* addShadeCommand(CLI::App& cli, ShadeOptions& options)
   EnvironmentOption& environment = options.environment;
   CLI::Option* envmapOption = command->add_option("--envmap", environment.file,
     "add an environment light named 'envmap' from this equirectangular map (.hdr, .exr: twice as wide "
-    "as high, +y up, the image centre toward -z; README.md, 'Area lights and environment maps')");
+    "as high, +y up, the image centre toward -z; docs/guide/lights-and-estimators.md)");
   command->add_option("--envmap-estimator", environment.estimator,
     "its irradiance: sh (9 spherical-harmonic coefficients), monte_carlo (importance sampling by "
     "luminance) or brute_force (every texel of the map downsampled to 128x64)")

@@ -10,6 +10,7 @@
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkStringArray.h"
 #include "vtkUnsignedCharArray.h"
 #include "vtkImageData.h"
 #include "vtkStructuredGrid.h"
@@ -327,6 +328,38 @@ TEST_F(Compare, TheJsonReportHoldsWhatTheTableSays)
     { { { "bit", 6 }, { "name", "64 (a shadowed light hidden by its own triangles)" }, { "values", 1 } } });
   EXPECT_EQ(flags["bits_that_differ"], bits);
   EXPECT_EQ(json["arrays"][0]["passed"], true);
+}
+
+TEST_F(Compare, TheArraysThatAreNotNumbersAreListedForEachFile)
+{
+  // Text arrays cannot be compared value by value: the console and the JSON report list each
+  // file's, and the ones --exclude leaves out are in neither.
+  auto withText = [](const std::vector<std::pair<const char*, bool>>& texts)
+  {
+    return [texts](vtkPolyData* mesh)
+    {
+      shaded(mesh);
+      for (const auto& [name, onPoints] : texts)
+      {
+        vtkNew<vtkStringArray> text;
+        text->SetName(name);
+        text->SetNumberOfValues(onPoints ? 4 : 1);
+        (onPoints ? static_cast<vtkFieldData*>(mesh->GetPointData()) : mesh->GetFieldData())->AddArray(text);
+      }
+    };
+  };
+  const std::string a = write("a.vtp", square(withText({ { "note", false }, { "skipped", false } })));
+  const std::string b = write("b.vtp", square(withText({ { "label", true }, { "skipped", false } })));
+  const std::string report = (folder / "report.json").string();
+  const Result result = shadelab("compare " + a + " " + b + " --exclude skipped --json " + report);
+  EXPECT_EQ(result.exitCode, 0) << result.out << result.err;
+  EXPECT_NE(result.out.find("  not compared in the baseline (not numbers): note (field data, vtkStringArray)\n"
+                            "  not compared in the result (not numbers): label (point data, vtkStringArray)\n"),
+    std::string::npos)
+    << result.out;
+  const nlohmann::json json = nlohmann::json::parse(slurp(report));
+  EXPECT_EQ(json["not_compared"], nlohmann::json::array({ "note (field data, vtkStringArray)" }));
+  EXPECT_EQ(json["not_compared_in_result"], nlohmann::json::array({ "label (point data, vtkStringArray)" }));
 }
 
 TEST_F(Compare, AnyDatasetIsRead)

@@ -72,21 +72,6 @@ void store(T* out, std::size_t first, std::size_t count, const Lane<T>& r, const
     }
   }
 }
-
-/// An RGB term that is factor x colour at each vertex.
-template <typename T>
-void store(T* out, std::size_t first, std::size_t count, const Lane<T>& factor, const Vec3<T>& color)
-{
-  if (out)
-  {
-    for (std::size_t k = 0; k < count; ++k)
-    {
-      out[3 * (first + k)] = factor[k] * color.x;
-      out[3 * (first + k) + 1] = factor[k] * color.y;
-      out[3 * (first + k) + 2] = factor[k] * color.z;
-    }
-  }
-}
 }
 
 /// Whether slot k's position and normal are finite. & rather than &&: no branches, so that a
@@ -554,10 +539,10 @@ void ShadingKernel<T>::storeLight(const PreparedLight& light, const VertexBlock<
   store(out[int(LightTerm::RDotV)], first, count, w.rDotV);
   store(out[int(LightTerm::HalfVector)], first, count, w.hx, w.hy, w.hz);
   store(out[int(LightTerm::NDotH)], first, count, w.nDotH);
-  store(out[int(LightTerm::Diffuse)], first, count, w.diffuse, light.diffuseColor);
+  store(out[int(LightTerm::Diffuse)], first, count, w.diffuse, w.diffuse, w.diffuse, light.diffuseColor);
   if (light.needsSpecular)
   {
-    store(out[int(LightTerm::Specular)], first, count, w.specular, light.specularColor);
+    store(out[int(LightTerm::Specular)], first, count, w.specular, w.specular, w.specular, light.specularColor);
   }
   else if (T* specular = out[int(LightTerm::Specular)])
   {

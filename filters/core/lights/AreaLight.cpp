@@ -2,6 +2,7 @@
 
 #include "AreaLightEstimator.h"
 #include "LightFields.h"
+#include "Overloaded.h"
 #include "PolygonIrradiance.h"
 
 #include <algorithm>
@@ -146,13 +147,9 @@ AreaLight AreaLight::read(const JsonNode& node, const SceneFileType& type, const
 std::string AreaLight::typeName() const
 {
   // A rectangle is read as the polygon of its corners.
-  struct Namer
-  {
-    std::string operator()(const PolygonEmitter&) const { return "polygon"; }
-    std::string operator()(const DiskEmitter&) const { return "disk"; }
-    std::string operator()(const SphereEmitter&) const { return "sphere"; }
-  };
-  return std::visit(Namer{}, shape);
+  return std::visit(Overloaded{ [](const PolygonEmitter&) { return "polygon"; },
+                      [](const DiskEmitter&) { return "disk"; }, [](const SphereEmitter&) { return "sphere"; } },
+    shape);
 }
 
 Rgb AreaLight::emitted() const
@@ -164,20 +161,14 @@ void AreaLight::check(LightChecks& checks) const
 {
   checks.strength(color, intensity);
   checks.distributed(sampling);
-  if (const auto* polygon = std::get_if<PolygonEmitter>(&shape))
-  {
-    checkPolygon(*polygon, checks);
-  }
-  else if (const auto* disk = std::get_if<DiskEmitter>(&shape))
-  {
-    checkRound(disk->centre, disk->radius, checks);
-    checks.direction(disk->normal, "/normal");
-  }
-  else
-  {
-    const auto& sphere = std::get<SphereEmitter>(shape);
-    checkRound(sphere.centre, sphere.radius, checks);
-  }
+  std::visit(Overloaded{ [&](const PolygonEmitter& polygon) { checkPolygon(polygon, checks); },
+               [&](const DiskEmitter& disk)
+               {
+                 checkRound(disk.centre, disk.radius, checks);
+                 checks.direction(disk.normal, "/normal");
+               },
+               [&](const SphereEmitter& sphere) { checkRound(sphere.centre, sphere.radius, checks); } },
+    shape);
 }
 
 double AreaLight::peakContribution(const Material& m) const
@@ -195,24 +186,24 @@ void AreaLight::placeOn(const MeshPlacement& placement)
 {
   // The radiance stays: the irradiance an emitter gives depends only on the solid angle it
   // fills, which scaling the emitter with the distances keeps.
-  if (auto* polygon = std::get_if<PolygonEmitter>(&shape))
-  {
-    for (glm::dvec3& vertex : polygon->vertices)
-    {
-      vertex = placement.point(vertex);
-    }
-  }
-  else if (auto* disk = std::get_if<DiskEmitter>(&shape))
-  {
-    disk->centre = placement.point(disk->centre);
-    disk->radius *= placement.radius;
-  }
-  else
-  {
-    auto& sphere = std::get<SphereEmitter>(shape);
-    sphere.centre = placement.point(sphere.centre);
-    sphere.radius *= placement.radius;
-  }
+  std::visit(Overloaded{ [&](PolygonEmitter& polygon)
+               {
+                 for (glm::dvec3& vertex : polygon.vertices)
+                 {
+                   vertex = placement.point(vertex);
+                 }
+               },
+               [&](DiskEmitter& disk)
+               {
+                 disk.centre = placement.point(disk.centre);
+                 disk.radius *= placement.radius;
+               },
+               [&](SphereEmitter& sphere)
+               {
+                 sphere.centre = placement.point(sphere.centre);
+                 sphere.radius *= placement.radius;
+               } },
+    shape);
 }
 
 LightEvaluation AreaLight::prepare(const EvaluationContext& context) const

@@ -1,6 +1,7 @@
 #include "AreaLightEstimator.h"
 
 #include "DiskIrradiance.h"
+#include "Overloaded.h"
 #include "PolygonIrradiance.h"
 #include "SampledTerms.h"
 #include "SampleWarps.h"
@@ -25,43 +26,58 @@ AreaLightEstimator::AreaLightEstimator(const AreaLight& light, std::uint64_t lig
   , lightIndex_(lightIndex)
   , lobe_(lobe)
 {
-  if (const auto* polygon = std::get_if<PolygonEmitter>(&light.shape))
+  std::visit(Overloaded{ [&](const PolygonEmitter& polygon) { measurePolygon(polygon); },
+               [&](const DiskEmitter& disk)
+               {
+                 normal_ = unitVector(disk.normal);
+                 orthonormalBasis(normal_, tangent_, bitangent_);
+                 centre_ = disk.centre;
+                 area_ = samplePi * disk.radius * disk.radius;
+               },
+               [&](const SphereEmitter& sphere)
+               {
+                 centre_ = sphere.centre;
+                 area_ = 4 * samplePi * sphere.radius * sphere.radius;
+               } },
+    light.shape);
+}
+
+void AreaLightEstimator::measurePolygon(const PolygonEmitter& polygon)
+{
+  const auto& v = polygon.vertices;
+  normal_ = polygonNormal(v);
+  // A convex polygon is the fan of triangles (v0, v_k-1, v_k).
+  glm::dvec3 weightedCentre(0.0);
+  for (std::size_t k = 2; k < v.size(); ++k)
   {
-    const auto& v = polygon->vertices;
-    normal_ = polygonNormal(v);
-    // A convex polygon is the fan of triangles (v0, v_k-1, v_k).
-    glm::dvec3 weightedCentre(0.0);
-    for (std::size_t k = 2; k < v.size(); ++k)
-    {
-      const double area = triangleArea(v[0], v[k - 1], v[k]);
-      area_ += area;
-      weightedCentre += area * (v[0] + v[k - 1] + v[k]) / 3.0;
-      fanAreaFraction_.push_back(area_);
-    }
-    for (double& fraction : fanAreaFraction_)
-    {
-      fraction /= area_;
-    }
-    centre_ = weightedCentre / area_;
+    const double area = triangleArea(v[0], v[k - 1], v[k]);
+    area_ += area;
+    weightedCentre += area * (v[0] + v[k - 1] + v[k]) / 3.0;
+    fanAreaFraction_.push_back(area_);
   }
-  else if (const auto* disk = std::get_if<DiskEmitter>(&light.shape))
+  for (double& fraction : fanAreaFraction_)
   {
-    normal_ = unitVector(disk->normal);
-    orthonormalBasis(normal_, tangent_, bitangent_);
-    centre_ = disk->centre;
-    area_ = samplePi * disk->radius * disk->radius;
+    fraction /= area_;
   }
-  else
-  {
-    const auto& sphere = std::get<SphereEmitter>(light.shape);
-    centre_ = sphere.centre;
-    area_ = 4 * samplePi * sphere.radius * sphere.radius;
-  }
+  centre_ = weightedCentre / area_;
+}
+
+bool AreaLightEstimator::isPlanar() const
+{
+  return std::visit(Overloaded{ [](const PolygonEmitter&) { return true; }, [](const DiskEmitter&) { return true; },
+                      [](const SphereEmitter&) { return false; } },
+    light_.shape);
+}
+
+double AreaLightEstimator::emittedCosine(const glm::dvec3& towardEmitter) const
+{
+  const double cosEmitter = -glm::dot(normal_, towardEmitter); // > 0: the receiver is in front
+  return light_.twoSided ? std::abs(cosEmitter) : std::max(cosEmitter, 0.0);
 }
 
 bool AreaLightEstimator::sendsLightTo(const glm::dvec3& position) const
 {
-  if (std::holds_alternative<SphereEmitter>(light_.shape))
+  if (!isPlanar())
   {
     return true;
   }
@@ -75,64 +91,70 @@ double AreaLightEstimator::exactProjectedSolidAngle(const SurfacePoint& point) c
   {
     return 0;
   }
-  if (const auto* polygon = std::get_if<PolygonEmitter>(&light_.shape))
-  {
-    return polygonProjectedSolidAngle(polygon->vertices, point.position, point.normal);
-  }
-  if (const auto* disk = std::get_if<DiskEmitter>(&light_.shape))
-  {
-    return diskProjectedSolidAngle(disk->centre, normal_, disk->radius, point.position, point.normal);
-  }
-  const auto& sphere = std::get<SphereEmitter>(light_.shape);
-  return sphereProjectedSolidAngle(sphere.centre, sphere.radius, point.position, point.normal);
+  return std::visit(
+    Overloaded{ [&](const PolygonEmitter& polygon)
+      { return polygonProjectedSolidAngle(polygon.vertices, point.position, point.normal); },
+      [&](const DiskEmitter& disk)
+      { return diskProjectedSolidAngle(disk.centre, normal_, disk.radius, point.position, point.normal); },
+      [&](const SphereEmitter& sphere)
+      { return sphereProjectedSolidAngle(sphere.centre, sphere.radius, point.position, point.normal); } },
+    light_.shape);
 }
 
 WeightedDirection AreaLightEstimator::sample(const glm::dvec2& u, const SurfacePoint& point) const
 {
-  const glm::dvec3& p = point.position;
-  if (const auto* sphere = std::get_if<SphereEmitter>(&light_.shape))
-  {
-    const glm::dvec3 offset = sphere->centre - p;
-    const double d = vectorLength(offset);
-    if (d <= sphere->radius)
-    {
-      // Inside the emitter every direction sees it: cosine-weighted, which makes E exactly pi L.
-      return cosineWeightedDirection(point.normal, u);
-    }
-    // The cone of half-angle asin(r/d), where every direction hits the sphere;
-    // 1 - cos theta_max = (r/d)^2 / (1 + cos theta_max) keeps its digits for a small, far sphere.
-    const double sinMax2 = (sphere->radius / d) * (sphere->radius / d);
-    return uniformConeDirection(offset / d, sinMax2 / (1 + std::sqrt(1 - sinMax2)), u);
-  }
+  return std::visit(
+    Overloaded{ [&](const PolygonEmitter& polygon) { return towardPoint(pointOnPolygon(polygon, u), point.position); },
+      [&](const DiskEmitter& disk) { return towardPoint(pointOnDisk(disk, u), point.position); },
+      [&](const SphereEmitter& sphere) { return towardSphere(sphere, u, point); } },
+    light_.shape);
+}
 
-  glm::dvec3 onEmitter;
-  if (const auto* disk = std::get_if<DiskEmitter>(&light_.shape))
-  {
-    const glm::dvec2 q = disk->radius * concentricDisk(u);
-    onEmitter = disk->centre + q.x * tangent_ + q.y * bitangent_;
-  }
-  else
-  {
-    const auto& v = std::get<PolygonEmitter>(light_.shape).vertices;
-    // u.x picks a fan triangle by area and, stretched back to [0, 1), places the point in it.
-    const std::size_t k = std::min<std::size_t>(
-      std::upper_bound(fanAreaFraction_.begin(), fanAreaFraction_.end(), u.x) - fanAreaFraction_.begin(),
-      fanAreaFraction_.size() - 1);
-    const double low = k == 0 ? 0.0 : fanAreaFraction_[k - 1];
-    const double stretched = std::clamp((u.x - low) / (fanAreaFraction_[k] - low), 0.0, 1.0);
-    onEmitter = pointOnTriangle(v[0], v[k + 1], v[k + 2], { stretched, u.y });
-  }
+glm::dvec3 AreaLightEstimator::pointOnPolygon(const PolygonEmitter& polygon, const glm::dvec2& u) const
+{
+  // u.x picks a fan triangle by area and, stretched back to [0, 1), places the point in it.
+  const auto& v = polygon.vertices;
+  const std::size_t k = std::min<std::size_t>(
+    std::upper_bound(fanAreaFraction_.begin(), fanAreaFraction_.end(), u.x) - fanAreaFraction_.begin(),
+    fanAreaFraction_.size() - 1);
+  const double low = k == 0 ? 0.0 : fanAreaFraction_[k - 1];
+  const double stretched = std::clamp((u.x - low) / (fanAreaFraction_[k] - low), 0.0, 1.0);
+  return pointOnTriangle(v[0], v[k + 1], v[k + 2], { stretched, u.y });
+}
+
+glm::dvec3 AreaLightEstimator::pointOnDisk(const DiskEmitter& disk, const glm::dvec2& u) const
+{
+  const glm::dvec2 q = disk.radius * concentricDisk(u);
+  return disk.centre + q.x * tangent_ + q.y * bitangent_;
+}
+
+WeightedDirection AreaLightEstimator::towardPoint(const glm::dvec3& onEmitter, const glm::dvec3& receiver) const
+{
   // Area sampling, pdf 1/A, in solid angle d^2 / (A cos_e) (pbrt-v4, section 4.2.3).
-  const glm::dvec3 offset = onEmitter - p;
+  const glm::dvec3 offset = onEmitter - receiver;
   const double d2 = glm::dot(offset, offset);
   if (!(d2 > 0))
   {
     return {};
   }
   const glm::dvec3 direction = offset / std::sqrt(d2);
-  const double cosEmitter = -glm::dot(normal_, direction); // > 0: the receiver is in front
-  const double emitted = light_.twoSided ? std::abs(cosEmitter) : std::max(cosEmitter, 0.0);
-  return { direction, area_ * emitted / d2 };
+  return { direction, area_ * emittedCosine(direction) / d2 };
+}
+
+WeightedDirection AreaLightEstimator::towardSphere(
+  const SphereEmitter& sphere, const glm::dvec2& u, const SurfacePoint& point) const
+{
+  const glm::dvec3 offset = sphere.centre - point.position;
+  const double d = vectorLength(offset);
+  if (d <= sphere.radius)
+  {
+    // Inside the emitter every direction sees it: cosine-weighted, which makes E exactly pi L.
+    return cosineWeightedDirection(point.normal, u);
+  }
+  // The cone of half-angle asin(r/d), where every direction hits the sphere;
+  // 1 - cos theta_max = (r/d)^2 / (1 + cos theta_max) keeps its digits for a small, far sphere.
+  const double sinMax2 = (sphere.radius / d) * (sphere.radius / d);
+  return uniformConeDirection(offset / d, sinMax2 / (1 + std::sqrt(1 - sinMax2)), u);
 }
 
 DistributedTerms AreaLightEstimator::monteCarlo(const SurfacePoint& point, bool irradiance) const
@@ -155,12 +177,7 @@ DistributedTerms AreaLightEstimator::pointApproximation(const SurfacePoint& poin
   const glm::dvec3 offset = centre_ - point.position;
   const double d = vectorLength(offset);
   const glm::dvec3 s = d > 0 ? offset / d : point.normal;
-  double projectedArea = area_ / 4; // a sphere: pi r^2
-  if (!std::holds_alternative<SphereEmitter>(light_.shape))
-  {
-    const double cosEmitter = -glm::dot(normal_, s);
-    projectedArea = area_ * (light_.twoSided ? std::abs(cosEmitter) : std::max(cosEmitter, 0.0));
-  }
+  const double projectedArea = isPlanar() ? area_ * emittedCosine(s) : area_ / 4; // a sphere: pi r^2
   const Rgb intensity = radiance_ * projectedArea * attenuationAt(Attenuation{}, d);
   terms.irradiance = intensity * std::max(0.0, glm::dot(point.normal, s));
   if (lobe_.wanted())

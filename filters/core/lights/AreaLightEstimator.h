@@ -29,7 +29,18 @@ public:
   const glm::dvec3& centre() const { return centre_; }
 
 private:
+  void measurePolygon(const PolygonEmitter& polygon);
+  /// Polygons and disks, which emit from one side of a plane (or both when two-sided).
+  bool isPlanar() const;
+  /// A planar emitter's cosine toward a receiver in the given direction from it, 0 behind a
+  /// one-sided emitter.
+  double emittedCosine(const glm::dvec3& towardEmitter) const;
   bool sendsLightTo(const glm::dvec3& position) const;
+  glm::dvec3 pointOnPolygon(const PolygonEmitter& polygon, const glm::dvec2& u) const;
+  glm::dvec3 pointOnDisk(const DiskEmitter& disk, const glm::dvec2& u) const;
+  /// The direction to a point sampled on a planar emitter by area, weighted as solid angle.
+  WeightedDirection towardPoint(const glm::dvec3& onEmitter, const glm::dvec3& receiver) const;
+  WeightedDirection towardSphere(const SphereEmitter& sphere, const glm::dvec2& u, const SurfacePoint& point) const;
   DistributedTerms monteCarlo(const SurfacePoint& point, bool irradiance) const;
   DistributedTerms pointApproximation(const SurfacePoint& point) const;
 

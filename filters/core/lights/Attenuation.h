@@ -81,7 +81,7 @@ T attenuationAt(const Attenuation& a, T distance)
 class JsonNode;
 class LightChecks;
 
-/// A light's "attenuation" and "min_distance" fields (README.md, "Scene files").
+/// A light's "attenuation" and "min_distance" fields (docs/guide/scene-files.md).
 Attenuation readAttenuation(const JsonNode& light);
 
 /// Its values' problems, at the light's "/attenuation" and "/min_distance".

@@ -86,6 +86,7 @@ namespace
 struct FileTypeEntry
 {
   const SceneFileType* type;
+  LightRole role;
   LightSource (*read)(const JsonNode&, const SceneFileType&, const std::string&);
 };
 
@@ -99,15 +100,15 @@ template <std::size_t... Index>
 std::vector<FileTypeEntry> collectFileTypes(std::index_sequence<Index...>)
 {
   std::vector<FileTypeEntry> entries;
-  auto add = [&entries](const std::vector<SceneFileType>& types, auto read)
+  auto add = [&entries](const std::vector<SceneFileType>& types, LightRole role, auto read)
   {
     for (const SceneFileType& type : types)
     {
-      entries.push_back({ &type, read });
+      entries.push_back({ &type, role, read });
     }
   };
   (add(std::variant_alternative_t<Index, LightSource>::sceneFileTypes(),
-     &readAs<std::variant_alternative_t<Index, LightSource>>),
+     std::variant_alternative_t<Index, LightSource>::role, &readAs<std::variant_alternative_t<Index, LightSource>>),
     ...);
   return entries;
 }
@@ -164,6 +165,24 @@ const FileTypeEntry& fileTypeNamed(const JsonNode& node)
   }();
   return *node.choiceAmong(byName);
 }
+}
+
+std::string sceneTypeNamesOf(LightRole role)
+{
+  std::vector<const char*> names;
+  for (const FileTypeEntry& entry : fileTypes())
+  {
+    if (entry.role == role)
+    {
+      names.push_back(entry.type->name);
+    }
+  }
+  std::string phrase;
+  for (std::size_t i = 0; i < names.size(); ++i)
+  {
+    phrase += (i == 0 ? "" : i + 1 == names.size() ? " and " : ", ") + std::string(names[i]);
+  }
+  return phrase;
 }
 
 LightSource readLightSource(const JsonNode& node, const std::string& sceneFile)

@@ -28,7 +28,8 @@ struct NamedLight
   bool shadows = false;
 };
 
-/// The light's "type" name, as a scene file spells it.
+/// The light's "type" name, for messages and default light names: the shape it was read as
+/// ("polygon" for a "rectangle").
 std::string lightTypeName(const LightSource& source);
 
 /// Colour x intensity (x |direction| for a distant light with intensityFromLength): the RGB
@@ -77,6 +78,10 @@ void placeOnMesh(LightSource& source, const MeshPlacement& placement);
 
 /// The light's form for the kernel.
 LightEvaluation prepareEvaluation(const LightSource& source, const EvaluationContext& context);
+
+/// The scene-file "type" names of the registered types of this role, as a phrase for
+/// messages: "distant, headlight, point and spot" for the local lights.
+std::string sceneTypeNamesOf(LightRole role);
 
 /// A light from its JSON object in a scene file: the fields any light may have, its "type",
 /// then only that type's fields. Throws JsonError (JsonNode.h).

@@ -11,7 +11,8 @@
 //                                         its "type" names in a scene file, each with its fields
 //   static T read(const JsonNode& node, const SceneFileType& type, const std::string& sceneFile);
 //                                         the light from its JSON object (fields already known good)
-//   std::string typeName() const;         its "type" name, as read
+//   std::string typeName() const;         its "type" name in messages: the shape it was read as
+//                                         ("polygon" for a light read as a "rectangle")
 //   Rgb emitted() const;                  colour x intensity: the RGB it delivers before
 //                                         attenuation, cone and material
 //   void check(LightChecks& checks) const;          every problem of its values

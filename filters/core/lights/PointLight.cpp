@@ -1,6 +1,6 @@
 #include "PointLight.h"
 
-#include "LightFields.h"
+#include "PositionalLight.h"
 
 namespace shadelab
 {
@@ -13,9 +13,7 @@ const std::vector<SceneFileType>& PointLight::sceneFileTypes()
 PointLight PointLight::read(const JsonNode& node, const SceneFileType&, const std::string&)
 {
   PointLight light;
-  readStrength(node, light);
-  light.position = node.at("position").vector3();
-  light.attenuation = readAttenuation(node);
+  readPositionalLight(node, light);
   return light;
 }
 
@@ -31,15 +29,12 @@ Rgb PointLight::emitted() const
 
 void PointLight::check(LightChecks& checks) const
 {
-  checks.strength(color, intensity);
-  checks.point(position, "/position");
-  checkAttenuation(attenuation, checks);
+  checkPositionalLight(*this, checks);
 }
 
 double PointLight::peakContribution(const Material& m) const
 {
-  // At full attenuation: a vertex at the minimum distance.
-  return largestComponent(emitted()) * attenuationAt(attenuation, 0.0) * largestReflectance(m);
+  return positionalPeakContribution(*this, m);
 }
 
 bool PointLight::hasTerm(LightTerm term) const
@@ -49,8 +44,7 @@ bool PointLight::hasTerm(LightTerm term) const
 
 void PointLight::placeOn(const MeshPlacement& placement)
 {
-  position = placement.point(position);
-  placeFalloff(intensity, attenuation, placement.radius);
+  placePositionalLight(*this, placement);
 }
 
 LightEvaluation PointLight::prepare(const EvaluationContext& context) const

@@ -24,7 +24,7 @@ struct SpotCone
 class JsonNode;
 class LightChecks;
 
-/// A spotlight's "cone" field (README.md, "Scene files").
+/// A spotlight's "cone" field (docs/guide/scene-files.md).
 SpotCone readCone(const JsonNode& light);
 
 /// Its values' problems, at the light's "/cone".

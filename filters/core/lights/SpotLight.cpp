@@ -1,6 +1,6 @@
 #include "SpotLight.h"
 
-#include "LightFields.h"
+#include "PositionalLight.h"
 
 namespace shadelab
 {
@@ -15,10 +15,8 @@ const std::vector<SceneFileType>& SpotLight::sceneFileTypes()
 SpotLight SpotLight::read(const JsonNode& node, const SceneFileType&, const std::string&)
 {
   SpotLight light;
-  readStrength(node, light);
-  light.position = node.at("position").vector3();
+  readPositionalLight(node, light);
   light.axis = node.at("direction").vector3();
-  light.attenuation = readAttenuation(node);
   light.cone = readCone(node);
   return light;
 }
@@ -35,17 +33,14 @@ Rgb SpotLight::emitted() const
 
 void SpotLight::check(LightChecks& checks) const
 {
-  checks.strength(color, intensity);
-  checks.point(position, "/position");
-  checkAttenuation(attenuation, checks);
+  checkPositionalLight(*this, checks);
   checks.direction(axis, "/direction");
   checkCone(cone, checks);
 }
 
 double SpotLight::peakContribution(const Material& m) const
 {
-  // At full attenuation, on the axis: a vertex at the minimum distance.
-  return largestComponent(emitted()) * attenuationAt(attenuation, 0.0) * largestReflectance(m);
+  return positionalPeakContribution(*this, m);
 }
 
 bool SpotLight::hasTerm(LightTerm term) const
@@ -55,8 +50,7 @@ bool SpotLight::hasTerm(LightTerm term) const
 
 void SpotLight::placeOn(const MeshPlacement& placement)
 {
-  position = placement.point(position);
-  placeFalloff(intensity, attenuation, placement.radius);
+  placePositionalLight(*this, placement);
 }
 
 LightEvaluation SpotLight::prepare(const EvaluationContext&) const

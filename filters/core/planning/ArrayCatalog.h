@@ -1,6 +1,6 @@
 #pragma once
 // The arrays ShadeLab can write for a scene: their names, sizes and meanings, and the choice
-// of which to compute. One table, so the filter, the command line and the README agree.
+// of which to compute. One table, so the filter, the command line and the guide (docs/guide/arrays.md) agree.
 #include "LightTerms.h"
 #include "Scene.h"
 

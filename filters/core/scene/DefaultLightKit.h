@@ -7,7 +7,7 @@
 
 namespace shadelab
 {
-/// The kit as scene-file text: the one description of it, which README.md shows verbatim.
+/// The kit as scene-file text: the one description of it, which docs/guide/scene-files.md shows verbatim.
 const std::string& defaultLightKitText();
 
 /// defaultLightKitText() parsed. Its frame is Mesh: place it with placedOnMesh (SceneFrame.h).

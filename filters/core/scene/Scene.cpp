@@ -107,7 +107,7 @@ std::vector<SceneProblem> sceneProblems(const Scene& scene, Precision precision)
     list.check(lightNames.insert(light.name).second, at + "/name",
       "another light is already named '" + light.name + "'");
     list.check(!light.shadows || roleOf(light.source) == LightRole::Local, at + "/shadows",
-      "only distant, headlight, point and spot lights cast shadows so far (soft shadows of area lights and "
+      "only " + sceneTypeNamesOf(LightRole::Local) + " lights cast shadows so far (soft shadows of area lights and "
       "environment maps are not computed yet): remove \"shadows\" from this light");
   }
   if (scene.ambientOcclusion)

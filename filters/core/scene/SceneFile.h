@@ -1,6 +1,6 @@
 #pragma once
-// Reads a scene (lights, material, viewer) from a JSON file. The schema is in README.md,
-// section "Scene files".
+// Reads a scene (lights, material, viewer) from a JSON file. The schema is in
+// docs/guide/scene-files.md.
 #include "Scene.h"
 
 #include <stdexcept>
