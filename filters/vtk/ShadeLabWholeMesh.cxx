@@ -694,7 +694,7 @@ PieceLayout pieceLayout(vtkMultiProcessController* controller, vtkPolyData* piec
   {
     return layoutOf(controller, piece, true); // its PieceLayout part
   }
-  catch (const std::exception& error) // too large for MPI, or no memory for the gathered mesh: alike everywhere
+  catch (const std::exception& error) // the pieces' point ids too many for MPI, or no memory for them: alike everywhere
   {
     PieceLayout failed;
     failed.problem = error.what();
@@ -723,7 +723,7 @@ int computeOnPiece(vtkMultiProcessController* controller, vtkAlgorithm* filter, 
     {
       shareFromFirst(controller, whole, computed, piece, output);
     }
-    catch (const std::exception& error) // too large for MPI, or no memory for the gathered mesh: alike everywhere
+    catch (const std::exception& error) // too large for MPI, or no memory for the arrays sent: alike everywhere
     {
       output->Initialize();
       vtkErrorWithObjectMacro(filter, << error.what());

@@ -4,7 +4,7 @@
  * Blinn-Phong, or VTK's own renderer) as point-data arrays.
  *
  * Reads points and point normals, evaluates a shadelab::Scene at every vertex, and adds the
- * requested arrays (see shadelab::selectArrays; README.md has the table). Every input array
+ * requested arrays (see shadelab::selectArrays; docs/guide/arrays.md has the table). Every input array
  * passes through unchanged. Without point normals, normals are computed by
  * vtkShadingNormalsFilter (smooth, shared by coincident points, point ids and count unchanged)
  * and added as "<ArrayPrefix>Normals". Normals that point into a closed or nearly closed mesh
@@ -53,7 +53,7 @@ public:
   /// --scene (shadelab::SceneSource). Read and checked by shadelab::sceneProblems when the
   /// filter runs; a scene that cannot be used is an error with the command line's message.
   void SetScene(const shadelab::Scene& scene);
-  /// A scene file (README.md, "Scene files"); "" for none.
+  /// A scene file (docs/guide/scene-files.md); "" for none.
   void SetSceneFileName(const std::string& fileName) { this->Scene.setFileName(fileName) ? this->Modified() : void(); }
   std::string GetSceneFileName() const { return this->Scene.fileName(); }
   /// A scene as the JSON text of a scene file; "" for none.

@@ -54,7 +54,7 @@ public:
   /// light kit (shadelab::SceneSource). A scene in the mesh's frame is placed on the input. A
   /// scene that cannot be read is an error when the filter runs, with the command line's message.
   void SetScene(const shadelab::Scene& scene);
-  /// A scene file (README.md, "Scene files"); "" for none.
+  /// A scene file (docs/guide/scene-files.md); "" for none.
   void SetSceneFileName(const std::string& fileName) { this->Scene.setFileName(fileName) ? this->Modified() : void(); }
   std::string GetSceneFileName() const { return this->Scene.fileName(); }
   /// A scene as the JSON text of a scene file; "" for none.
