@@ -3,7 +3,6 @@
 #include "ArrayCatalog.h"
 #include "MethodChoice.h"
 #include "ShadeLabFieldNotes.h"
-#include "ShadeLabSceneRead.h"
 #include "ShadeLabThreadCount.h"
 #include "ShadeLabWholeMesh.h"
 #include "ShadeLabLargeArrays.h"
@@ -193,7 +192,7 @@ int vtkLocalReflectanceFilter::RequestInformation(vtkInformation*, vtkInformatio
   // An empty list changed is no choice: ParaView sets the list it has before the first fill.
   const bool chosenInList = list->GetNumberOfArrays() > 0 && list->GetMTime() > this->AvailableArraysFilledAt;
   // Read once for the update: RequestData shades with it, or reports why it could not be read.
-  this->SceneOfThisUpdate = this->Scene.read();
+  this->SceneOfThisUpdate = this->ReadScene();
   if (!this->SceneOfThisUpdate.scene)
   {
     return 1; // RequestData reports it
@@ -245,12 +244,6 @@ int vtkLocalReflectanceFilter::RequestInformation(vtkInformation*, vtkInformatio
   return 1;
 }
 vtkLocalReflectanceFilter::~vtkLocalReflectanceFilter() = default;
-
-void vtkLocalReflectanceFilter::SetScene(const shadelab::Scene& scene)
-{
-  this->Scene.setScene(scene);
-  this->Modified();
-}
 
 void vtkLocalReflectanceFilter::SetLightMethods(const std::vector<shadelab::LightMethod>& methods)
 {
@@ -413,7 +406,7 @@ int vtkLocalReflectanceFilter::ShadeMesh(vtkPolyData* input, vtkPolyData* output
     vtkErrorMacro(<< problem);
     return 0;
   }
-  const std::optional<shadelab::Scene> given = shadelab::reportedScene(this, this->Scene, this->SceneOfThisUpdate);
+  const std::optional<shadelab::Scene> given = this->ReportedScene(this->SceneOfThisUpdate);
   // Each process reads the scene itself: one that could not (its file missing there, say)
   // stops them all.
   if (split && !shadelab::everyProcessHolds(processes, given.has_value()))
@@ -658,8 +651,6 @@ vtkPolyData* vtkLocalReflectanceFilter::PrepareVisibility(vtkPolyData* input, vt
 void vtkLocalReflectanceFilter::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "SceneFileName: " << this->Scene.fileName() << "\n";
-  os << indent << "SceneJson: " << (this->Scene.hasJson() ? "(set)" : "(none)") << "\n";
   os << indent << "ArraySelection:";
   for (const std::string& entry : this->ArraySelection)
   {

@@ -13,6 +13,10 @@
  * ambient occlusion, vtkMeshVisibilityFilter casts the rays first: each shadowed light's
  * visibility multiplies its diffuse and specular terms, and the occlusion the ambient term.
  *
+ * The scene (lights, material and viewer) is set as vtkShadeLabSceneFilter says, and read and
+ * checked by shadelab::sceneProblems when the filter runs; a scene that cannot be used is an
+ * error with the command line's message.
+ *
  * A piece of a mesh split over processes (see SetController) is shaded as its points are in
  * the whole mesh, bit for bit: the normals, the outward test, the extent that places the scene
  * and plans the tolerance, and the occluders are the whole mesh's, and each point's samples
@@ -25,12 +29,11 @@
 #include "vtkDataArraySelection.h" // the scene's arrays, a member
 #include "vtkMultiProcessController.h" // the controller, a member
 #include "vtkNew.h"
-#include "vtkPolyDataAlgorithm.h"
 #include "vtkMeshVisibilityFilter.h" // the visibility step, a member
+#include "vtkShadeLabSceneFilter.h"
 #include "vtkShadingNormalsFilter.h" // the normals step, a member
 
 #include "MethodChoice.h"
-#include "SceneSource.h"
 
 #include <optional>
 #include <string>
@@ -41,24 +44,12 @@ namespace shadelab
 struct PieceLayout;
 }
 
-class SHADELABFILTERS_EXPORT vtkLocalReflectanceFilter : public vtkPolyDataAlgorithm
+class SHADELABFILTERS_EXPORT vtkLocalReflectanceFilter : public vtkShadeLabSceneFilter
 {
 public:
   static vtkLocalReflectanceFilter* New();
-  vtkTypeMacro(vtkLocalReflectanceFilter, vtkPolyDataAlgorithm);
+  vtkTypeMacro(vtkLocalReflectanceFilter, vtkShadeLabSceneFilter);
   void PrintSelf(ostream& os, vtkIndent indent) override;
-
-  /// Lights, material and viewer: from SceneJson if it is set, else from SceneFileName, else
-  /// the scene given to SetScene, else the default light kit, as `shadelab shade` without
-  /// --scene (shadelab::SceneSource). Read and checked by shadelab::sceneProblems when the
-  /// filter runs; a scene that cannot be used is an error with the command line's message.
-  void SetScene(const shadelab::Scene& scene);
-  /// A scene file (docs/guide/scene-files.md); "" for none.
-  void SetSceneFileName(const std::string& fileName) { this->Scene.setFileName(fileName) ? this->Modified() : void(); }
-  std::string GetSceneFileName() const { return this->Scene.fileName(); }
-  /// A scene as the JSON text of a scene file; "" for none.
-  void SetSceneJson(const std::string& json) { this->Scene.setJson(json) ? this->Modified() : void(); }
-  std::string GetSceneJson() const { return this->Scene.json(); }
 
   /// Which arrays to compute, as shadelab::selectArrays reads them. Default: {"default"},
   /// the totals and the flags.
@@ -157,7 +148,6 @@ private:
   vtkLocalReflectanceFilter(const vtkLocalReflectanceFilter&) = delete;
   void operator=(const vtkLocalReflectanceFilter&) = delete;
 
-  shadelab::SceneSource Scene;
   std::vector<std::string> ArraySelection{ "default" };
   int NumberOfThreads = 0;
   vtkNew<vtkDataArraySelection> AvailableArrays;

@@ -2,7 +2,6 @@
 
 #include "ArrayCatalog.h"
 #include "ShadeLabFieldNotes.h"
-#include "ShadeLabSceneRead.h"
 #include "ShadeLabThreadCount.h"
 #include "ShadeLabLargeArrays.h"
 #include "ShadeLabMeshChecks.h"
@@ -120,12 +119,6 @@ const shadelab::OccluderMesh& vtkMeshVisibilityFilter::OccludersFor(vtkPolyData*
   return *built.occluders;
 }
 
-void vtkMeshVisibilityFilter::SetScene(const shadelab::Scene& scene)
-{
-  this->Scene.setScene(scene);
-  this->Modified();
-}
-
 int vtkMeshVisibilityFilter::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
@@ -169,7 +162,7 @@ int vtkMeshVisibilityFilter::CastRaysFrom(vtkPolyData* input, vtkPolyData* outpu
                   "vtkShadingNormalsFilter first (vtkLocalReflectanceFilter does)");
     return 0;
   }
-  const std::optional<shadelab::Scene> given = shadelab::readSceneFor(this, this->Scene);
+  const std::optional<shadelab::Scene> given = this->ReportedScene(this->ReadScene());
   if (!given)
   {
     return 0;
@@ -377,8 +370,6 @@ int vtkMeshVisibilityFilter::CastRaysFrom(vtkPolyData* input, vtkPolyData* outpu
 void vtkMeshVisibilityFilter::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "SceneFileName: " << this->Scene.fileName() << "\n";
-  os << indent << "SceneJson: " << (this->Scene.hasJson() ? "(set)" : "(none)") << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
   os << indent << "ArrayPrefix: " << this->ArrayPrefix << "\n";
   os << indent << "ComputeBentNormal: " << this->ComputeBentNormal << "\n";
