@@ -195,6 +195,38 @@ private:
     const shadelab::ArrayRequest& request, bool split);
   /// The name of the normals the filter computes when the input has none.
   std::string ComputedNormalsName() const { return this->ArrayPrefix + "Normals"; }
+
+  /// ShadeMesh's steps. Those that check say why they fail as the filter's error; on a split
+  /// mesh (processes: the controller, or nullptr for this process alone) those that exchange
+  /// data are collective calls, and fail on every process alike.
+  struct ShadingPlan;
+  /// The checks before anything is written (the tolerance, the mesh, the scene, the methods,
+  /// the arrays and their names), and what they settle; nothing where one failed.
+  std::optional<ShadingPlan> PlanShading(vtkPolyData* input, vtkMultiProcessController* processes, bool split);
+  bool CheckTolerance();
+  /// The mesh's structure, and its coordinates in the plan's precision; sets the plan's extent.
+  bool CheckMesh(vtkPolyData* input, vtkMultiProcessController* processes, bool split, ShadingPlan& plan);
+  /// The scene read for this update, where every process could read it.
+  std::optional<shadelab::Scene> SceneReadEverywhere(vtkMultiProcessController* processes, bool split);
+  /// That scene, placed on the plan's extent and checked where it lands.
+  bool PlaceScene(vtkMultiProcessController* processes, bool split, ShadingPlan& plan);
+  /// Whether the tolerance or the explicit LightMethods fit the scene; forgets the last plan.
+  bool CheckLightMethods(const shadelab::Scene& scene);
+  /// The arrays the selection asks for, and the methods and precision: the explicit ones, or
+  /// those the tolerance chooses (MethodPlan).
+  bool ChooseArraysAndMethods(ShadingPlan& plan);
+  /// Every point array the filter could write for the scene on this input.
+  std::vector<std::string> WritableArrayNames(vtkPolyData* input, const shadelab::Scene& scene) const;
+  /// Whether the input lacks all of them.
+  bool CheckArrayNamesFree(
+    vtkPolyData* input, const shadelab::Scene& scene, vtkMultiProcessController* processes, bool split);
+  /// The arrays to output: those the kernel computes with the normals and the rays' arrays in
+  /// `seen` (nullptr: no rays), then the occlusion arrays asked for. Throws std::runtime_error
+  /// where an array cannot be allocated.
+  std::vector<vtkSmartPointer<vtkDataArray>> ShadedArrays(vtkPolyData* input, vtkDataArray* shadingNormals,
+    vtkPolyData* seen, const ShadingPlan& plan, const shadelab::PieceLayout* split);
+  /// What the run did about normals, rays and methods, as the output's field data.
+  void AddFieldNotes(vtkPolyData* output) const;
 };
 
 #endif
