@@ -33,6 +33,7 @@
 #include "vtkSmartPointer.h"
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -117,6 +118,11 @@ private:
   BuiltOccluders Built;
   /// Built's BVH when it is for this mesh, or a new one; says which in reused.
   const shadelab::OccluderMesh& OccludersFor(vtkPolyData* mesh, bool& reused);
+  /// Why the rays cannot be cast from the input's points (its cells, its normals), or "".
+  std::string InputProblem(vtkPolyData* input) const;
+  /// The scene, placed on the input where it is in the mesh's frame and checked; nothing once
+  /// why it cannot be used is reported as the filter's error.
+  std::optional<shadelab::Scene> PlacedScene(vtkPolyData* input);
 };
 
 #endif
