@@ -333,114 +333,53 @@ void keepPiece(const WholeMesh& whole, vtkPolyData* computed, vtkPolyData* piece
   output->GetFieldData()->PassData(computed->GetFieldData());
 }
 
-/// What the first process computed on the whole mesh, sent to every piece (a collective call):
-/// the piece with each point array the computation wrote (not those gathered), its points'
-/// tuples only, and the computation's field notes. Throws on every process alike.
-void shareFromFirst(vtkMultiProcessController* controller, const WholeMesh& whole, vtkPolyData* computed,
-  vtkPolyData* piece, vtkPolyData* output)
+/// A written array as the first process describes it to the others.
+struct SentArray
 {
-  const bool first = isFirstProcess(controller);
-  // What is sent: each written array's type, components, name and whether it is the normals;
-  // then each field note's name and lines.
-  std::vector<vtkDataArray*> written;
-  vtkMultiProcessStream described;
-  if (first)
+  int type = 0;
+  int components = 0;
+  std::string name;
+  bool isNormals = false;
+};
+
+/// The arrays a computation wrote, for the other processes: each one's type, components, name
+/// and whether it is the normals (SentArray).
+void describeArrays(const std::vector<vtkDataArray*>& written, vtkPointData* made, vtkMultiProcessStream& described)
+{
+  described << static_cast<int>(written.size());
+  for (vtkDataArray* array : written)
   {
-    vtkPointData* made = computed->GetPointData();
-    written = writtenArrays(made, whole.mesh->GetPointData());
-    described << static_cast<int>(written.size());
-    for (vtkDataArray* array : written)
+    described << array->GetDataType() << array->GetNumberOfComponents()
+              << std::string(array->GetName() ? array->GetName() : "") << (array == made->GetNormals());
+  }
+}
+
+/// A computation's field notes (its string arrays), for the other processes: each one's name
+/// and lines.
+void describeNotes(vtkFieldData* fields, vtkMultiProcessStream& described)
+{
+  std::vector<vtkStringArray*> notes;
+  for (int a = 0; a < fields->GetNumberOfArrays(); ++a)
+  {
+    if (auto* note = vtkStringArray::SafeDownCast(fields->GetAbstractArray(a)))
     {
-      described << array->GetDataType() << array->GetNumberOfComponents()
-                << std::string(array->GetName() ? array->GetName() : "") << (array == made->GetNormals());
-    }
-    vtkFieldData* fields = computed->GetFieldData();
-    std::vector<vtkStringArray*> notes;
-    for (int a = 0; a < fields->GetNumberOfArrays(); ++a)
-    {
-      if (auto* note = vtkStringArray::SafeDownCast(fields->GetAbstractArray(a)))
-      {
-        notes.push_back(note);
-      }
-    }
-    described << static_cast<int>(notes.size());
-    for (vtkStringArray* note : notes)
-    {
-      described << std::string(note->GetName() ? note->GetName() : "") << static_cast<vtkTypeInt64>(note->GetNumberOfValues());
-      for (vtkIdType i = 0; i < note->GetNumberOfValues(); ++i)
-      {
-        described << note->GetValue(i);
-      }
+      notes.push_back(note);
     }
   }
-  const int processes = processCount(controller);
-  if (processes > 1 && controller->Broadcast(described, 0) == 0)
+  described << static_cast<int>(notes.size());
+  for (vtkStringArray* note : notes)
   {
-    throw std::runtime_error("sending the pieces what was computed failed (MPI's broadcast)");
-  }
-  const vtkIdType pointCount = piece->GetNumberOfPoints();
-  const std::vector<vtkIdType> pieceSizes = allGather(controller, std::vector<vtkIdType>{ pointCount });
-  const vtkIdType sentTuples = std::accumulate(pieceSizes.begin(), pieceSizes.end(), vtkIdType(0));
-  output->ShallowCopy(piece);
-  int arrayCount = 0;
-  described >> arrayCount;
-  for (int a = 0; a < arrayCount; ++a)
-  {
-    int type = 0, components = 0;
-    std::string name;
-    bool isNormals = false;
-    described >> type >> components >> name >> isNormals;
-    auto mine = vtk::TakeSmartPointer(vtkDataArray::CreateDataArray(type));
-    const vtkIdType tupleBytes = components * mine->GetDataTypeSize();
-    if (sentTuples * tupleBytes > std::numeric_limits<int>::max()) // every process finds the same
+    described << std::string(note->GetName() ? note->GetName() : "") << static_cast<vtkTypeInt64>(note->GetNumberOfValues());
+    for (vtkIdType i = 0; i < note->GetNumberOfValues(); ++i)
     {
-      throw std::overflow_error("the mesh is too large to send its pieces their '" + name + "': " +
-        std::to_string(sentTuples * tupleBytes) + " bytes in one exchange, more than MPI's 2^31 - 1");
-    }
-    // The first process sends every piece's tuples, piece after piece, as each piece's ids list
-    // them. Making them, or a piece's array, may fail on one process: all learn it first.
-    vtkSmartPointer<vtkDataArray> everyPiece;
-    bool ready = true;
-    try
-    {
-      everyPiece = first ? tuplesAt(written[static_cast<std::size_t>(a)], whole.everyPieceIds) : nullptr;
-      if (processes > 1) // alone, the first process keeps its tuples as they are
-      {
-        mine->SetName(name.c_str());
-        mine->SetNumberOfComponents(components);
-        mine->SetNumberOfTuples(pointCount);
-        ready = mine->GetNumberOfTuples() == pointCount;
-      }
-    }
-    catch (const std::bad_alloc&)
-    {
-      ready = false;
-    }
-    if (!everyProcessHolds(controller, ready))
-    {
-      throw std::runtime_error("out of memory sending the pieces their '" + name + "'");
-    }
-    std::vector<vtkIdType> lengths(pieceSizes.size()), offsets(pieceSizes.size(), 0);
-    std::transform(pieceSizes.begin(), pieceSizes.end(), lengths.begin(), [&](vtkIdType n) { return n * tupleBytes; });
-    std::partial_sum(lengths.begin(), lengths.end() - 1, offsets.begin() + 1);
-    if (processes == 1)
-    {
-      mine = everyPiece;
-    }
-    else if (controller->ScatterV(everyPiece ? static_cast<const char*>(everyPiece->GetVoidPointer(0)) : nullptr,
-               static_cast<char*>(mine->GetVoidPointer(0)), lengths.data(), offsets.data(), pointCount * tupleBytes, 0) == 0)
-    {
-      throw std::runtime_error("sending the pieces their '" + name + "' failed (MPI's ScatterV)");
-    }
-    if (isNormals)
-    {
-      output->GetPointData()->SetNormals(mine);
-    }
-    else
-    {
-      output->GetPointData()->AddArray(mine);
+      described << note->GetValue(i);
     }
   }
+}
+
+/// The notes describeNotes described, added to output's field data.
+void addDescribedNotes(vtkMultiProcessStream& described, vtkPolyData* output)
+{
   int noteCount = 0;
   described >> noteCount;
   for (int n = 0; n < noteCount; ++n)
@@ -455,6 +394,110 @@ void shareFromFirst(vtkMultiProcessController* controller, const WholeMesh& whol
     }
     addFieldNote(output, name.c_str(), lines);
   }
+}
+
+/// The tuples the first process sends of `array` (its own, nullptr elsewhere): every piece's,
+/// piece after piece, as each piece's ids list them. Allocates `mine`, the piece's array, where
+/// there are several processes. Either may fail on one process: all learn it first, and throw.
+vtkSmartPointer<vtkDataArray> tuplesToSend(vtkMultiProcessController* controller, const SentArray& sent,
+  vtkDataArray* array, const std::vector<vtkIdType>& everyPieceIds, vtkIdType pointCount, vtkDataArray* mine)
+{
+  vtkSmartPointer<vtkDataArray> everyPiece;
+  bool ready = true;
+  try
+  {
+    everyPiece = isFirstProcess(controller) ? tuplesAt(array, everyPieceIds) : nullptr;
+    if (processCount(controller) > 1) // alone, the first process keeps its tuples as they are
+    {
+      mine->SetName(sent.name.c_str());
+      mine->SetNumberOfComponents(sent.components);
+      mine->SetNumberOfTuples(pointCount);
+      ready = mine->GetNumberOfTuples() == pointCount;
+    }
+  }
+  catch (const std::bad_alloc&)
+  {
+    ready = false;
+  }
+  if (!everyProcessHolds(controller, ready))
+  {
+    throw std::runtime_error("out of memory sending the pieces their '" + sent.name + "'");
+  }
+  return everyPiece;
+}
+
+/// The piece's tuples of an array the first process computed on the whole mesh (`array` there,
+/// nullptr elsewhere), a collective call; pieceSizes has every piece's point count.
+vtkSmartPointer<vtkDataArray> pieceTuples(vtkMultiProcessController* controller, const SentArray& sent,
+  vtkDataArray* array, const std::vector<vtkIdType>& everyPieceIds, const std::vector<vtkIdType>& pieceSizes,
+  vtkIdType pointCount)
+{
+  auto mine = vtk::TakeSmartPointer(vtkDataArray::CreateDataArray(sent.type));
+  const vtkIdType tupleBytes = sent.components * mine->GetDataTypeSize();
+  const vtkIdType sentTuples = std::accumulate(pieceSizes.begin(), pieceSizes.end(), vtkIdType(0));
+  if (sentTuples * tupleBytes > std::numeric_limits<int>::max()) // every process finds the same
+  {
+    throw std::overflow_error("the mesh is too large to send its pieces their '" + sent.name + "': " +
+      std::to_string(sentTuples * tupleBytes) + " bytes in one exchange, more than MPI's 2^31 - 1");
+  }
+  const vtkSmartPointer<vtkDataArray> everyPiece = tuplesToSend(controller, sent, array, everyPieceIds, pointCount, mine);
+  if (processCount(controller) == 1)
+  {
+    return everyPiece;
+  }
+  std::vector<vtkIdType> lengths(pieceSizes.size()), offsets(pieceSizes.size(), 0);
+  std::transform(pieceSizes.begin(), pieceSizes.end(), lengths.begin(), [&](vtkIdType n) { return n * tupleBytes; });
+  std::partial_sum(lengths.begin(), lengths.end() - 1, offsets.begin() + 1);
+  if (controller->ScatterV(everyPiece ? static_cast<const char*>(everyPiece->GetVoidPointer(0)) : nullptr,
+        static_cast<char*>(mine->GetVoidPointer(0)), lengths.data(), offsets.data(), pointCount * tupleBytes, 0) == 0)
+  {
+    throw std::runtime_error("sending the pieces their '" + sent.name + "' failed (MPI's ScatterV)");
+  }
+  return mine;
+}
+
+/// What the first process computed on the whole mesh, sent to every piece (a collective call):
+/// the piece with each point array the computation wrote (not those gathered), its points'
+/// tuples only, and the computation's field notes. Throws on every process alike.
+void shareFromFirst(vtkMultiProcessController* controller, const WholeMesh& whole, vtkPolyData* computed,
+  vtkPolyData* piece, vtkPolyData* output)
+{
+  const bool first = isFirstProcess(controller);
+  // What is sent: the written arrays' descriptions, then the field notes.
+  std::vector<vtkDataArray*> written;
+  vtkMultiProcessStream described;
+  if (first)
+  {
+    written = writtenArrays(computed->GetPointData(), whole.mesh->GetPointData());
+    describeArrays(written, computed->GetPointData(), described);
+    describeNotes(computed->GetFieldData(), described);
+  }
+  if (processCount(controller) > 1 && controller->Broadcast(described, 0) == 0)
+  {
+    throw std::runtime_error("sending the pieces what was computed failed (MPI's broadcast)");
+  }
+  const vtkIdType pointCount = piece->GetNumberOfPoints();
+  const std::vector<vtkIdType> pieceSizes = allGather(controller, std::vector<vtkIdType>{ pointCount });
+  output->ShallowCopy(piece);
+  int arrayCount = 0;
+  described >> arrayCount;
+  for (int a = 0; a < arrayCount; ++a)
+  {
+    SentArray sent;
+    described >> sent.type >> sent.components >> sent.name >> sent.isNormals;
+    vtkDataArray* array = first ? written[static_cast<std::size_t>(a)] : nullptr;
+    const vtkSmartPointer<vtkDataArray> mine =
+      pieceTuples(controller, sent, array, whole.everyPieceIds, pieceSizes, pointCount);
+    if (sent.isNormals)
+    {
+      output->GetPointData()->SetNormals(mine);
+    }
+    else
+    {
+      output->GetPointData()->AddArray(mine);
+    }
+  }
+  addDescribedNotes(described, output);
 }
 
 /// What `work` returns, or false where it throws (out of memory, say), reported through
@@ -485,13 +528,153 @@ struct Layout : PieceLayout
   int normalsState = 0; // the normals' shared type, or `absent`
 };
 
+/// Why the piece's point data cannot be put together with the others' ("" where it can): the
+/// global ids (globalIdsState, as the pieces share it) and the normals' shape.
+std::string pointDataProblem(vtkPolyData* piece, bool withNormals, int piecesWithPoints, int globalIdsState)
+{
+  const vtkIdType pointCount = piece->GetNumberOfPoints();
+  vtkDataArray* pointGlobalIds = piece->GetPointData()->GetGlobalIds();
+  vtkDataArray* normals = piece->GetPointData()->GetNormals();
+  std::ostringstream problem;
+  if (globalIdsState != 1)
+  {
+    problem << "the mesh is in " << piecesWithPoints << " pieces but "
+            << (globalIdsState == absent ? "their points have" : "some pieces' points have")
+            << " no global ids (vtkGlobalIds), which say which points of different pieces are one: "
+               "give them global ids (VTK's vtkGenerateGlobalIds), or read pieces written by shadelab, which have them";
+  }
+  else if (pointGlobalIds && pointGlobalIds->GetNumberOfTuples() != pointCount)
+  {
+    problem << "a piece has " << pointGlobalIds->GetNumberOfTuples() << " global point ids for " << pointCount << " points";
+  }
+  else if (withNormals && normals && (normals->GetNumberOfTuples() != pointCount || normals->GetNumberOfComponents() != 3))
+  {
+    problem << "the point normals '" << (normals->GetName() ? normals->GetName() : "") << "' of a piece have "
+            << normals->GetNumberOfTuples() << " tuples of " << normals->GetNumberOfComponents()
+            << " components: there must be one 3-component normal per point (" << pointCount << ")";
+  }
+  return problem.str();
+}
+
+/// The type of the points and of the normals that every non-empty piece has, into layout (a
+/// collective call); a problem where they differ.
+std::string sharedTypesProblem(vtkMultiProcessController* controller, vtkPolyData* piece, bool withNormals, Layout& layout)
+{
+  const bool empty = piece->GetNumberOfPoints() == 0;
+  vtkDataArray* points = empty ? nullptr : piece->GetPoints()->GetData();
+  vtkDataArray* normals = piece->GetPointData()->GetNormals();
+  layout.pointType = sharedValue(controller, empty, points ? points->GetDataType() : 0);
+  layout.normalsState = withNormals ? sharedValue(controller, empty, normals ? normals->GetDataType() : absent) : absent;
+  if (layout.pointType < 0)
+  {
+    return "the pieces store their points in different types: read them alike";
+  }
+  if (layout.normalsState < 0)
+  {
+    return "some pieces have point normals and others do not, or in other types: give every piece the same";
+  }
+  return "";
+}
+
+/// Why the pieces' cells cannot be put in the mesh's order (a collective call), or "".
+std::string cellIdsProblem(vtkMultiProcessController* controller, vtkPolyData* piece, int piecesWithPoints)
+{
+  const bool empty = piece->GetNumberOfPoints() == 0;
+  const int cellIdsState = sharedValue(controller, empty, piece->GetCellData()->GetGlobalIds() ? 1 : absent);
+  if (cellIdsState == 1 || piecesWithPoints <= 1)
+  {
+    return "";
+  }
+  // Sums over a point's polygons are taken in the polygons' order, which only the ids keep.
+  return std::string(cellIdsState < 0 ? "some pieces' cells have global ids and others' do not"
+                                      : "the pieces' cells have no global ids") +
+    " (vtkGlobalIds), which put the polygons in the mesh's order: give every piece's cells global ids";
+}
+
+/// Why the piece's own cells cannot be gathered ("" where they can): their arrays' sizes, and
+/// point ids out of range, which the gathering would follow.
+std::string pieceCellsProblem(vtkPolyData* piece)
+{
+  vtkCellData* cellData = piece->GetCellData();
+  for (vtkDataArray* cellArray : { cellData->GetGlobalIds(), cellData->GetArray(vtkDataSetAttributes::GhostArrayName()) })
+  {
+    if (cellArray && cellArray->GetNumberOfTuples() != piece->GetNumberOfCells())
+    {
+      std::ostringstream problem;
+      problem << "a piece's cell array '" << (cellArray->GetName() ? cellArray->GetName() : "") << "' has "
+              << cellArray->GetNumberOfTuples() << " values for " << piece->GetNumberOfCells() << " cells";
+      return problem.str();
+    }
+  }
+  return cellProblem(piece);
+}
+
+/// Why the piece cannot be put together with the others ("" where it can), the first problem
+/// found; the types the pieces share go into layout. Every process makes the same collective
+/// calls, whatever it found.
+std::string pieceProblem(vtkMultiProcessController* controller, vtkPolyData* piece, bool withNormals,
+  int piecesWithPoints, int globalIdsState, Layout& layout)
+{
+  const std::string pointData = pointDataProblem(piece, withNormals, piecesWithPoints, globalIdsState);
+  const std::string types = sharedTypesProblem(controller, piece, withNormals, layout);
+  const std::string cellIds = cellIdsProblem(controller, piece, piecesWithPoints);
+  for (const std::string& problem : { pointData, types, cellIds })
+  {
+    if (!problem.empty())
+    {
+      return problem;
+    }
+  }
+  return pieceCellsProblem(piece);
+}
+
+/// Whether ids, whose smallest and largest are given, hold every number 0 to largest.
+bool numberZeroToLargest(const std::vector<vtkIdType>& ids, vtkIdType smallest, vtkIdType largest)
+{
+  std::vector<bool> present(smallest >= 0 && largest < static_cast<vtkIdType>(ids.size()) ? largest + 1 : 0, false);
+  for (std::size_t i = 0; !present.empty() && i < ids.size(); ++i)
+  {
+    present[static_cast<std::size_t>(ids[i])] = true;
+  }
+  return !present.empty() && std::find(present.begin(), present.end(), false) == present.end();
+}
+
+/// Every piece's point ids, gathered into layout (a collective call), and what they say of how
+/// the pieces lie: put together where they number the mesh's points 0 to n-1.
+void numberPoints(vtkMultiProcessController* controller, vtkDataArray* pointGlobalIds, Layout& layout)
+{
+  layout.pieceIds = idsOf(pointGlobalIds);
+  layout.allGlobalIds = allGather(controller, layout.pieceIds);
+  const std::vector<vtkIdType>& allGlobalIds = layout.allGlobalIds;
+  // The ids must number the mesh's points 0 to n-1: each point's id is its index in the whole
+  // mesh, and seeds its samples as its index does in one process.
+  const vtkIdType largest = allGlobalIds.empty() ? 0 : *std::max_element(allGlobalIds.begin(), allGlobalIds.end());
+  const vtkIdType smallest = allGlobalIds.empty() ? 0 : *std::min_element(allGlobalIds.begin(), allGlobalIds.end());
+  layout.wholeCount = largest + 1;
+  const bool numbered = numberZeroToLargest(allGlobalIds, smallest, largest);
+  if (!numbered && processCount(controller) == 1)
+  {
+    // Ids of some other numbering (one piece's file, read alone): the piece is the mesh.
+    layout.wholeIsPiece = true;
+  }
+  else if (!numbered)
+  {
+    std::ostringstream text;
+    text << "the pieces' global point ids run from " << smallest << " to " << largest
+         << " but do not number the points 0 to n-1, each at least once: give the points global ids that do";
+    layout.problem = text.str(); // every process finds the same
+  }
+  else
+  {
+    layout.putTogether = true;
+  }
+}
+
 Layout layoutOf(vtkMultiProcessController* controller, vtkPolyData* piece, bool withNormals)
 {
   Layout layout;
-  vtkPointData* pointData = piece->GetPointData();
-  vtkDataArray* pointGlobalIds = pointData->GetGlobalIds();
-  const vtkIdType pointCount = piece->GetNumberOfPoints();
-  const bool empty = pointCount == 0;
+  vtkDataArray* pointGlobalIds = piece->GetPointData()->GetGlobalIds();
+  const bool empty = piece->GetNumberOfPoints() == 0;
   const std::vector<int> withPoints = allGather(controller, std::vector<int>{ empty ? 0 : 1 });
   const int piecesWithPoints = std::accumulate(withPoints.begin(), withPoints.end(), 0);
   const int globalIdsState = sharedValue(controller, empty, pointGlobalIds ? 1 : absent);
@@ -505,93 +688,12 @@ Layout layoutOf(vtkMultiProcessController* controller, vtkPolyData* piece, bool 
     layout.wholeIsPiece = !empty;
     return layout;
   }
-  std::ostringstream problem;
-  if (globalIdsState != 1)
+  layout.problem =
+    firstText(controller, pieceProblem(controller, piece, withNormals, piecesWithPoints, globalIdsState, layout));
+  if (layout.problem.empty())
   {
-    problem << "the mesh is in " << piecesWithPoints << " pieces but "
-            << (globalIdsState == absent ? "their points have" : "some pieces' points have")
-            << " no global ids (vtkGlobalIds), which say which points of different pieces are one: "
-               "give them global ids (VTK's vtkGenerateGlobalIds), or read pieces written by shadelab, which have them";
+    numberPoints(controller, pointGlobalIds, layout);
   }
-  vtkDataArray* normals = pointData->GetNormals();
-  if (problem.str().empty() && pointGlobalIds && pointGlobalIds->GetNumberOfTuples() != pointCount)
-  {
-    problem << "a piece has " << pointGlobalIds->GetNumberOfTuples() << " global point ids for " << pointCount << " points";
-  }
-  if (problem.str().empty() && withNormals && normals &&
-    (normals->GetNumberOfTuples() != pointCount || normals->GetNumberOfComponents() != 3))
-  {
-    problem << "the point normals '" << (normals->GetName() ? normals->GetName() : "") << "' of a piece have "
-            << normals->GetNumberOfTuples() << " tuples of " << normals->GetNumberOfComponents()
-            << " components: there must be one 3-component normal per point (" << pointCount << ")";
-  }
-  vtkDataArray* points = empty ? nullptr : piece->GetPoints()->GetData();
-  layout.pointType = sharedValue(controller, empty, points ? points->GetDataType() : 0);
-  layout.normalsState = withNormals ? sharedValue(controller, empty, normals ? normals->GetDataType() : absent) : absent;
-  if (problem.str().empty() && layout.pointType < 0)
-  {
-    problem << "the pieces store their points in different types: read them alike";
-  }
-  if (problem.str().empty() && layout.normalsState < 0)
-  {
-    problem << "some pieces have point normals and others do not, or in other types: give every piece the same";
-  }
-  vtkDataArray* cellGlobalIds = piece->GetCellData()->GetGlobalIds();
-  const int cellIdsState = sharedValue(controller, empty, cellGlobalIds ? 1 : absent);
-  if (problem.str().empty() && cellIdsState != 1 && piecesWithPoints > 1)
-  {
-    // Sums over a point's polygons are taken in the polygons' order, which only the ids keep.
-    problem << (cellIdsState < 0 ? "some pieces' cells have global ids and others' do not"
-                                 : "the pieces' cells have no global ids")
-            << " (vtkGlobalIds), which put the polygons in the mesh's order: give every piece's cells global ids";
-  }
-  for (vtkDataArray* cellArray : { cellGlobalIds, piece->GetCellData()->GetArray(vtkDataSetAttributes::GhostArrayName()) })
-  {
-    if (problem.str().empty() && cellArray && cellArray->GetNumberOfTuples() != piece->GetNumberOfCells())
-    {
-      problem << "a piece's cell array '" << (cellArray->GetName() ? cellArray->GetName() : "") << "' has "
-              << cellArray->GetNumberOfTuples() << " values for " << piece->GetNumberOfCells() << " cells";
-    }
-  }
-  if (problem.str().empty())
-  {
-    problem << cellProblem(piece); // ids out of range, which the gathering would follow
-  }
-  layout.problem = firstText(controller, problem.str());
-  if (!layout.problem.empty())
-  {
-    return layout;
-  }
-
-  layout.pieceIds = idsOf(pointGlobalIds);
-  layout.allGlobalIds = allGather(controller, layout.pieceIds);
-  const std::vector<vtkIdType>& allGlobalIds = layout.allGlobalIds;
-  // The ids must number the mesh's points 0 to n-1: each point's id is its index in the whole
-  // mesh, and seeds its samples as its index does in one process.
-  const vtkIdType largest = allGlobalIds.empty() ? 0 : *std::max_element(allGlobalIds.begin(), allGlobalIds.end());
-  const vtkIdType smallest = allGlobalIds.empty() ? 0 : *std::min_element(allGlobalIds.begin(), allGlobalIds.end());
-  std::vector<bool> present(smallest >= 0 && largest < static_cast<vtkIdType>(allGlobalIds.size()) ? largest + 1 : 0, false);
-  for (std::size_t i = 0; !present.empty() && i < allGlobalIds.size(); ++i)
-  {
-    present[static_cast<std::size_t>(allGlobalIds[i])] = true;
-  }
-  layout.wholeCount = largest + 1;
-  const bool numbered = !present.empty() && std::find(present.begin(), present.end(), false) == present.end();
-  if (!numbered && processCount(controller) == 1)
-  {
-    // Ids of some other numbering (one piece's file, read alone): the piece is the mesh.
-    layout.wholeIsPiece = true;
-    return layout;
-  }
-  if (!numbered)
-  {
-    std::ostringstream text;
-    text << "the pieces' global point ids run from " << smallest << " to " << largest
-         << " but do not number the points 0 to n-1, each at least once: give the points global ids that do";
-    layout.problem = text.str(); // every process finds the same
-    return layout;
-  }
-  layout.putTogether = true;
   return layout;
 }
 
@@ -694,7 +796,7 @@ PieceLayout pieceLayout(vtkMultiProcessController* controller, vtkPolyData* piec
   {
     return layoutOf(controller, piece, true); // its PieceLayout part
   }
-  catch (const std::exception& error) // too large for MPI, or no memory for the gathered mesh: alike everywhere
+  catch (const std::exception& error) // the pieces' point ids too many for MPI, or no memory for them: alike everywhere
   {
     PieceLayout failed;
     failed.problem = error.what();
@@ -723,7 +825,7 @@ int computeOnPiece(vtkMultiProcessController* controller, vtkAlgorithm* filter, 
     {
       shareFromFirst(controller, whole, computed, piece, output);
     }
-    catch (const std::exception& error) // too large for MPI, or no memory for the gathered mesh: alike everywhere
+    catch (const std::exception& error) // too large for MPI, or no memory for the arrays sent: alike everywhere
     {
       output->Initialize();
       vtkErrorWithObjectMacro(filter, << error.what());

@@ -3,7 +3,6 @@
 #include "ArrayCatalog.h"
 #include "MethodChoice.h"
 #include "ShadeLabFieldNotes.h"
-#include "ShadeLabSceneRead.h"
 #include "ShadeLabThreadCount.h"
 #include "ShadeLabWholeMesh.h"
 #include "ShadeLabLargeArrays.h"
@@ -193,7 +192,7 @@ int vtkLocalReflectanceFilter::RequestInformation(vtkInformation*, vtkInformatio
   // An empty list changed is no choice: ParaView sets the list it has before the first fill.
   const bool chosenInList = list->GetNumberOfArrays() > 0 && list->GetMTime() > this->AvailableArraysFilledAt;
   // Read once for the update: RequestData shades with it, or reports why it could not be read.
-  this->SceneOfThisUpdate = this->Scene.read();
+  this->SceneOfThisUpdate = this->ReadScene();
   if (!this->SceneOfThisUpdate.scene)
   {
     return 1; // RequestData reports it
@@ -245,12 +244,6 @@ int vtkLocalReflectanceFilter::RequestInformation(vtkInformation*, vtkInformatio
   return 1;
 }
 vtkLocalReflectanceFilter::~vtkLocalReflectanceFilter() = default;
-
-void vtkLocalReflectanceFilter::SetScene(const shadelab::Scene& scene)
-{
-  this->Scene.setScene(scene);
-  this->Modified();
-}
 
 void vtkLocalReflectanceFilter::SetLightMethods(const std::vector<shadelab::LightMethod>& methods)
 {
@@ -335,6 +328,37 @@ std::string takenName(vtkPolyData* input, const std::vector<std::string>& names)
   return "";
 }
 
+/// Points the kernel's inputs at the rays' arrays in `seen`: each shadowed light's visibility,
+/// the ambient occlusion and the flags. Returns the occlusion arrays the request asks for, to
+/// be output as they are (float32 whatever the precision: estimates, not exact terms).
+std::vector<vtkSmartPointer<vtkDataArray>> useVisibility(vtkPolyData* seen, const shadelab::Scene& scene,
+  const shadelab::ArrayRequest& request, const std::string& prefix, shadelab::ShadingInputs& inputs)
+{
+  vtkPointData* data = seen->GetPointData();
+  auto floats = [&](const std::string& name) { return vtkFloatArray::SafeDownCast(data->GetArray(name.c_str())); };
+  for (const shadelab::NamedLight& light : scene.lights)
+  {
+    vtkFloatArray* visibility = floats(shadelab::lightArrayName(prefix, light.name, shadelab::LightTerm::Visibility));
+    inputs.lightVisibility.push_back(light.shadows ? visibility->GetPointer(0) : nullptr);
+  }
+  std::vector<vtkSmartPointer<vtkDataArray>> requested;
+  for (int t = 0; scene.ambientOcclusion && t < shadelab::OcclusionTermCount; ++t)
+  {
+    vtkFloatArray* quantity = floats(shadelab::occlusionArrayName(prefix, shadelab::OcclusionTerm(t)));
+    if (t == int(shadelab::OcclusionTerm::AmbientOcclusion))
+    {
+      inputs.ambientOcclusion = quantity->GetPointer(0);
+    }
+    if (request.occlusion[t])
+    {
+      requested.push_back(quantity);
+    }
+  }
+  inputs.flags =
+    vtkUnsignedCharArray::SafeDownCast(data->GetArray(shadelab::visibilityFlagsArrayName(prefix).c_str()))->GetPointer(0);
+  return requested;
+}
+
 }
 
 int vtkLocalReflectanceFilter::RequestData(
@@ -364,6 +388,16 @@ int vtkLocalReflectanceFilter::Shade(vtkInformationVector** inputVector, vtkInfo
   return shadelab::agreedOutcome(this->Controller, this, output, shaded);
 }
 
+/// What the checks before shading settle, for the steps that write.
+struct vtkLocalReflectanceFilter::ShadingPlan
+{
+  shadelab::MeshExtent extent; // the whole mesh's, on a split mesh
+  shadelab::Scene scene;       // placed on the mesh
+  shadelab::ArrayRequest request;
+  std::vector<shadelab::LightMethod> methods;
+  shadelab::Precision precision = shadelab::Precision::Float32;
+};
+
 int vtkLocalReflectanceFilter::ShadeMesh(vtkPolyData* input, vtkPolyData* output, const shadelab::PieceLayout* split)
 {
   // A piece without points still takes part in its steps' exchanges, and shades nothing.
@@ -376,118 +410,9 @@ int vtkLocalReflectanceFilter::ShadeMesh(vtkPolyData* input, vtkPolyData* output
   vtkMultiProcessController* processes = split ? this->Controller.Get() : nullptr;
   this->NormalsStep->SetController(processes);
   this->VisibilityStep->SetController(processes);
-  // Everything is checked before anything is written.
-  if (!(this->Tolerance >= 0 && std::isfinite(this->Tolerance)))
+  const std::optional<ShadingPlan> plan = this->PlanShading(input, processes, split != nullptr);
+  if (!plan)
   {
-    vtkErrorMacro("the tolerance is " << this->Tolerance
-                                      << ": it must be a finite number >= 0 (0: exact methods)");
-    return 0;
-  }
-  const bool chooseByTolerance = this->Tolerance > 0;
-  // Under a tolerance the precision is chosen below, and float64 is checked first as the
-  // precision that accepts the most scenes and meshes.
-  shadelab::Precision precision = this->OutputPrecision == DOUBLE_PRECISION || chooseByTolerance
-    ? shadelab::Precision::Float64
-    : shadelab::Precision::Float32;
-  // Until the steps run, what differs between pieces is agreed, so that every process stops
-  // alike; the rest (the settings, the scene, the extent) is the same on every process.
-  // A piece may lack polygons where others have them (a piece of lines, or of nothing).
-  const bool polygons = input->GetNumberOfPolys() + input->GetNumberOfStrips() > 0;
-  std::string problem = !split || polygons ? meshProblem(input) : "";
-  shadelab::MeshExtent extent;
-  if (split)
-  {
-    problem = shadelab::firstText(processes, problem);
-    if (problem.empty() && shadelab::everyProcessHolds(processes, !polygons))
-    {
-      problem = meshProblem(input); // no piece has a polygon
-    }
-  }
-  if (problem.empty())
-  {
-    extent = split ? shadelab::wholeMeshExtent(processes, input) : shadelab::meshExtentOf(input);
-    problem = shadelab::meshCoordinateProblem(extent.reach, precision);
-  }
-  if (!problem.empty())
-  {
-    vtkErrorMacro(<< problem);
-    return 0;
-  }
-  const std::optional<shadelab::Scene> given = shadelab::reportedScene(this, this->Scene, this->SceneOfThisUpdate);
-  // Each process reads the scene itself: one that could not (its file missing there, say)
-  // stops them all.
-  if (split && !shadelab::everyProcessHolds(processes, given.has_value()))
-  {
-    if (given)
-    {
-      vtkErrorMacro("another process could not read the scene (see its error), so this one stops too");
-    }
-    return 0;
-  }
-  if (!given)
-  {
-    return 0;
-  }
-  // A scene written relative to the mesh is placed on it here, and checked where it lands.
-  const shadelab::Scene scene = shadelab::placedOnMesh(*given, extent);
-  const std::vector<shadelab::SceneProblem> problems = shadelab::sceneProblems(scene, precision);
-  if (!problems.empty())
-  {
-    vtkErrorMacro("scene " << problems.front().path << ": " << problems.front().message);
-    return 0;
-  }
-  if (chooseByTolerance && scene.needsVisibility())
-  {
-    vtkErrorMacro("a tolerance cannot be used with shadows or ambient occlusion yet: its error bounds do not "
-                  "cover the rays' estimates; shade with exact methods (tolerance 0)");
-    return 0;
-  }
-  shadelab::ArrayRequest request;
-  std::vector<shadelab::LightMethod> methods = this->LightMethods;
-  this->MethodPlan.reset();
-  if (!methods.empty() && methods.size() != scene.lights.size())
-  {
-    vtkErrorMacro("SetLightMethods was given " << methods.size() << " methods for " << scene.lights.size()
-                                               << " lights: give one per light, or none");
-    return 0;
-  }
-  try
-  {
-    request = shadelab::selectArrays(scene, this->ArraySelection);
-    if (chooseByTolerance)
-    {
-      const bool float32Fits = shadelab::meshCoordinateProblem(extent.reach, shadelab::Precision::Float32).empty() &&
-        shadelab::sceneProblems(scene, shadelab::Precision::Float32).empty();
-      this->MethodPlan = shadelab::chooseMethods(scene, request, extent, this->Tolerance, float32Fits);
-      precision = this->MethodPlan->precision;
-      methods = this->MethodPlan->methods();
-    }
-  }
-  catch (const std::invalid_argument& error)
-  {
-    vtkErrorMacro(<< error.what());
-    return 0;
-  }
-  vtkDataArray* inputNormals = input->GetPointData()->GetNormals();
-  std::vector<std::string> written;
-  for (const auto& array : shadelab::availableArrays(scene, this->ArrayPrefix))
-  {
-    written.push_back(array.name);
-  }
-  if (!inputNormals)
-  {
-    written.push_back(this->ComputedNormalsName());
-  }
-  const std::string taken = takenName(input, written);
-  std::string takenProblem = taken.empty() ? "" : "the input already has a point array named '" + taken +
-      "', which this filter would write: set an array prefix (shadelab shade --prefix) to keep both";
-  if (split)
-  {
-    takenProblem = shadelab::firstText(processes, takenProblem);
-  }
-  if (!takenProblem.empty())
-  {
-    vtkErrorMacro(<< takenProblem);
     return 0;
   }
 
@@ -506,48 +431,12 @@ int vtkLocalReflectanceFilter::ShadeMesh(vtkPolyData* input, vtkPolyData* output
   std::vector<vtkSmartPointer<vtkDataArray>> arrays;
   try
   {
-    shadelab::ShadingInputs inputs;
-    if (split) // each point's samples are seeded by its index in the whole mesh
-    {
-      static_assert(sizeof(vtkIdType) == sizeof(long long), "ids seed samples as 64-bit integers");
-      inputs.sampleIds = reinterpret_cast<const long long*>(split->pieceIds.data());
-    }
-    vtkPolyData* seen = this->PrepareVisibility(input, shadingNormals, scene, request, split != nullptr);
+    vtkPolyData* seen = this->PrepareVisibility(input, shadingNormals, plan->scene, plan->request, split != nullptr);
     if (empty)
     {
       return 1;
     }
-    vtkDataArray* points = input->GetPoints()->GetData();
-    if (seen)
-    {
-      vtkPointData* data = seen->GetPointData();
-      auto floats = [&](const std::string& name)
-      { return vtkFloatArray::SafeDownCast(data->GetArray(name.c_str())); };
-      for (const shadelab::NamedLight& light : scene.lights)
-      {
-        vtkFloatArray* visibility =
-          floats(shadelab::lightArrayName(this->ArrayPrefix, light.name, shadelab::LightTerm::Visibility));
-        inputs.lightVisibility.push_back(light.shadows ? visibility->GetPointer(0) : nullptr);
-      }
-      for (int t = 0; scene.ambientOcclusion && t < shadelab::OcclusionTermCount; ++t)
-      {
-        vtkFloatArray* quantity = floats(shadelab::occlusionArrayName(this->ArrayPrefix, shadelab::OcclusionTerm(t)));
-        if (t == int(shadelab::OcclusionTerm::AmbientOcclusion))
-        {
-          inputs.ambientOcclusion = quantity->GetPointer(0);
-        }
-        if (request.occlusion[t])
-        {
-          arrays.push_back(quantity); // float32 whatever the precision: estimates, not exact terms
-        }
-      }
-      inputs.flags = vtkUnsignedCharArray::SafeDownCast(data->GetArray(shadelab::visibilityFlagsArrayName(this->ArrayPrefix).c_str()))
-                       ->GetPointer(0);
-    }
-    const auto shaded = precision == shadelab::Precision::Float64
-      ? shade<double>(scene, request, methods, this->ArrayPrefix, points, shadingNormals, inputs, this)
-      : shade<float>(scene, request, methods, this->ArrayPrefix, points, shadingNormals, inputs, this);
-    arrays.insert(arrays.begin(), shaded.begin(), shaded.end());
+    arrays = this->ShadedArrays(input, shadingNormals, seen, *plan, split);
     // The rays' arrays have been used (those asked for are in `arrays`): not kept until the next run.
     this->VisibilityStep->GetOutput()->Initialize();
   }
@@ -561,17 +450,212 @@ int vtkLocalReflectanceFilter::ShadeMesh(vtkPolyData* input, vtkPolyData* output
   {
     output->GetPointData()->AddArray(array);
   }
+  this->AddFieldNotes(output);
+  return 1;
+}
 
+std::optional<vtkLocalReflectanceFilter::ShadingPlan> vtkLocalReflectanceFilter::PlanShading(
+  vtkPolyData* input, vtkMultiProcessController* processes, bool split)
+{
+  // Everything is checked before anything is written. Until the steps run, what differs
+  // between pieces is agreed, so that every process stops alike; the rest (the settings, the
+  // scene, the extent) is the same on every process.
+  if (!this->CheckTolerance())
+  {
+    return std::nullopt;
+  }
+  ShadingPlan plan;
+  // Under a tolerance the precision is chosen with the methods, and float64 is checked first
+  // as the precision that accepts the most scenes and meshes.
+  plan.precision = this->OutputPrecision == DOUBLE_PRECISION || this->Tolerance > 0 ? shadelab::Precision::Float64
+                                                                                   : shadelab::Precision::Float32;
+  if (!this->CheckMesh(input, processes, split, plan) || !this->PlaceScene(processes, split, plan) ||
+    !this->CheckLightMethods(plan.scene) || !this->ChooseArraysAndMethods(plan) ||
+    !this->CheckArrayNamesFree(input, plan.scene, processes, split))
+  {
+    return std::nullopt;
+  }
+  return plan;
+}
+
+bool vtkLocalReflectanceFilter::CheckTolerance()
+{
+  if (!(this->Tolerance >= 0 && std::isfinite(this->Tolerance)))
+  {
+    vtkErrorMacro("the tolerance is " << this->Tolerance
+                                      << ": it must be a finite number >= 0 (0: exact methods)");
+    return false;
+  }
+  return true;
+}
+
+bool vtkLocalReflectanceFilter::CheckMesh(
+  vtkPolyData* input, vtkMultiProcessController* processes, bool split, ShadingPlan& plan)
+{
+  // A piece may lack polygons where others have them (a piece of lines, or of nothing).
+  const bool polygons = input->GetNumberOfPolys() + input->GetNumberOfStrips() > 0;
+  std::string problem = !split || polygons ? meshProblem(input) : "";
+  if (split)
+  {
+    problem = shadelab::firstText(processes, problem);
+    if (problem.empty() && shadelab::everyProcessHolds(processes, !polygons))
+    {
+      problem = meshProblem(input); // no piece has a polygon
+    }
+  }
+  if (problem.empty())
+  {
+    plan.extent = split ? shadelab::wholeMeshExtent(processes, input) : shadelab::meshExtentOf(input);
+    problem = shadelab::meshCoordinateProblem(plan.extent.reach, plan.precision);
+  }
+  if (!problem.empty())
+  {
+    vtkErrorMacro(<< problem);
+    return false;
+  }
+  return true;
+}
+
+std::optional<shadelab::Scene> vtkLocalReflectanceFilter::SceneReadEverywhere(
+  vtkMultiProcessController* processes, bool split)
+{
+  const std::optional<shadelab::Scene> given = this->ReportedScene(this->SceneOfThisUpdate);
+  // Each process reads the scene itself: one that could not (its file missing there, say)
+  // stops them all.
+  if (split && !shadelab::everyProcessHolds(processes, given.has_value()))
+  {
+    if (given)
+    {
+      vtkErrorMacro("another process could not read the scene (see its error), so this one stops too");
+    }
+    return std::nullopt;
+  }
+  return given;
+}
+
+bool vtkLocalReflectanceFilter::PlaceScene(vtkMultiProcessController* processes, bool split, ShadingPlan& plan)
+{
+  const std::optional<shadelab::Scene> given = this->SceneReadEverywhere(processes, split);
+  if (!given)
+  {
+    return false;
+  }
+  // A scene written relative to the mesh is placed on it here, and checked where it lands.
+  plan.scene = shadelab::placedOnMesh(*given, plan.extent);
+  const std::vector<shadelab::SceneProblem> problems = shadelab::sceneProblems(plan.scene, plan.precision);
+  if (!problems.empty())
+  {
+    vtkErrorMacro("scene " << problems.front().path << ": " << problems.front().message);
+    return false;
+  }
+  return true;
+}
+
+bool vtkLocalReflectanceFilter::CheckLightMethods(const shadelab::Scene& scene)
+{
+  if (this->Tolerance > 0 && scene.needsVisibility())
+  {
+    vtkErrorMacro("a tolerance cannot be used with shadows or ambient occlusion yet: its error bounds do not "
+                  "cover the rays' estimates; shade with exact methods (tolerance 0)");
+    return false;
+  }
+  this->MethodPlan.reset();
+  if (!this->LightMethods.empty() && this->LightMethods.size() != scene.lights.size())
+  {
+    vtkErrorMacro("SetLightMethods was given " << this->LightMethods.size() << " methods for " << scene.lights.size()
+                                               << " lights: give one per light, or none");
+    return false;
+  }
+  return true;
+}
+
+bool vtkLocalReflectanceFilter::ChooseArraysAndMethods(ShadingPlan& plan)
+{
+  plan.methods = this->LightMethods;
+  try
+  {
+    plan.request = shadelab::selectArrays(plan.scene, this->ArraySelection);
+    if (this->Tolerance > 0)
+    {
+      const bool float32Fits =
+        shadelab::meshCoordinateProblem(plan.extent.reach, shadelab::Precision::Float32).empty() &&
+        shadelab::sceneProblems(plan.scene, shadelab::Precision::Float32).empty();
+      this->MethodPlan = shadelab::chooseMethods(plan.scene, plan.request, plan.extent, this->Tolerance, float32Fits);
+      plan.precision = this->MethodPlan->precision;
+      plan.methods = this->MethodPlan->methods();
+    }
+  }
+  catch (const std::invalid_argument& error)
+  {
+    vtkErrorMacro(<< error.what());
+    return false;
+  }
+  return true;
+}
+
+std::vector<std::string> vtkLocalReflectanceFilter::WritableArrayNames(vtkPolyData* input, const shadelab::Scene& scene) const
+{
+  std::vector<std::string> names;
+  for (const auto& array : shadelab::availableArrays(scene, this->ArrayPrefix))
+  {
+    names.push_back(array.name);
+  }
+  if (!input->GetPointData()->GetNormals())
+  {
+    names.push_back(this->ComputedNormalsName());
+  }
+  return names;
+}
+
+bool vtkLocalReflectanceFilter::CheckArrayNamesFree(
+  vtkPolyData* input, const shadelab::Scene& scene, vtkMultiProcessController* processes, bool split)
+{
+  const std::string taken = takenName(input, this->WritableArrayNames(input, scene));
+  std::string problem = taken.empty() ? "" : "the input already has a point array named '" + taken +
+      "', which this filter would write: set an array prefix (shadelab shade --prefix) to keep both";
+  if (split)
+  {
+    problem = shadelab::firstText(processes, problem);
+  }
+  if (!problem.empty())
+  {
+    vtkErrorMacro(<< problem);
+    return false;
+  }
+  return true;
+}
+
+std::vector<vtkSmartPointer<vtkDataArray>> vtkLocalReflectanceFilter::ShadedArrays(vtkPolyData* input,
+  vtkDataArray* shadingNormals, vtkPolyData* seen, const ShadingPlan& plan, const shadelab::PieceLayout* split)
+{
+  shadelab::ShadingInputs inputs;
+  if (split) // each point's samples are seeded by its index in the whole mesh
+  {
+    static_assert(sizeof(vtkIdType) == sizeof(long long), "ids seed samples as 64-bit integers");
+    inputs.sampleIds = reinterpret_cast<const long long*>(split->pieceIds.data());
+  }
+  const std::vector<vtkSmartPointer<vtkDataArray>> occlusion =
+    seen ? useVisibility(seen, plan.scene, plan.request, this->ArrayPrefix, inputs)
+         : std::vector<vtkSmartPointer<vtkDataArray>>();
+  vtkDataArray* points = input->GetPoints()->GetData();
+  std::vector<vtkSmartPointer<vtkDataArray>> arrays = plan.precision == shadelab::Precision::Float64
+    ? shade<double>(plan.scene, plan.request, plan.methods, this->ArrayPrefix, points, shadingNormals, inputs, this)
+    : shade<float>(plan.scene, plan.request, plan.methods, this->ArrayPrefix, points, shadingNormals, inputs, this);
+  arrays.insert(arrays.end(), occlusion.begin(), occlusion.end());
+  return arrays;
+}
+
+void vtkLocalReflectanceFilter::AddFieldNotes(vtkPolyData* output) const
+{
   shadelab::addFieldNote(output, shadelab::normalsNoteName, { this->NormalsReport });
   if (!this->VisibilityReport.empty())
   {
     shadelab::addFieldNote(output, shadelab::visibilityNoteName, { this->VisibilityReport });
   }
-  if (chooseByTolerance)
+  if (this->Tolerance > 0)
   {
     shadelab::addFieldNote(output, shadelab::methodsNoteName, this->MethodPlan->describe());
   }
-  return 1;
 }
 
 vtkDataArray* vtkLocalReflectanceFilter::PrepareNormals(vtkPolyData* input, vtkPolyData* output, bool split)
@@ -658,8 +742,6 @@ vtkPolyData* vtkLocalReflectanceFilter::PrepareVisibility(vtkPolyData* input, vt
 void vtkLocalReflectanceFilter::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "SceneFileName: " << this->Scene.fileName() << "\n";
-  os << indent << "SceneJson: " << (this->Scene.hasJson() ? "(set)" : "(none)") << "\n";
   os << indent << "ArraySelection:";
   for (const std::string& entry : this->ArraySelection)
   {

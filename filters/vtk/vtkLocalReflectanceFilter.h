@@ -4,7 +4,7 @@
  * Blinn-Phong, or VTK's own renderer) as point-data arrays.
  *
  * Reads points and point normals, evaluates a shadelab::Scene at every vertex, and adds the
- * requested arrays (see shadelab::selectArrays; README.md has the table). Every input array
+ * requested arrays (see shadelab::selectArrays; docs/guide/arrays.md has the table). Every input array
  * passes through unchanged. Without point normals, normals are computed by
  * vtkShadingNormalsFilter (smooth, shared by coincident points, point ids and count unchanged)
  * and added as "<ArrayPrefix>Normals". Normals that point into a closed or nearly closed mesh
@@ -12,6 +12,10 @@
  * and so does the output's field data array "shadelab_normals". Where the scene has shadows or
  * ambient occlusion, vtkMeshVisibilityFilter casts the rays first: each shadowed light's
  * visibility multiplies its diffuse and specular terms, and the occlusion the ambient term.
+ *
+ * The scene (lights, material and viewer) is set as vtkShadeLabSceneFilter says, and read and
+ * checked by shadelab::sceneProblems when the filter runs; a scene that cannot be used is an
+ * error with the command line's message.
  *
  * A piece of a mesh split over processes (see SetController) is shaded as its points are in
  * the whole mesh, bit for bit: the normals, the outward test, the extent that places the scene
@@ -25,12 +29,11 @@
 #include "vtkDataArraySelection.h" // the scene's arrays, a member
 #include "vtkMultiProcessController.h" // the controller, a member
 #include "vtkNew.h"
-#include "vtkPolyDataAlgorithm.h"
 #include "vtkMeshVisibilityFilter.h" // the visibility step, a member
+#include "vtkShadeLabSceneFilter.h"
 #include "vtkShadingNormalsFilter.h" // the normals step, a member
 
 #include "MethodChoice.h"
-#include "SceneSource.h"
 
 #include <optional>
 #include <string>
@@ -41,24 +44,12 @@ namespace shadelab
 struct PieceLayout;
 }
 
-class SHADELABFILTERS_EXPORT vtkLocalReflectanceFilter : public vtkPolyDataAlgorithm
+class SHADELABFILTERS_EXPORT vtkLocalReflectanceFilter : public vtkShadeLabSceneFilter
 {
 public:
   static vtkLocalReflectanceFilter* New();
-  vtkTypeMacro(vtkLocalReflectanceFilter, vtkPolyDataAlgorithm);
+  vtkTypeMacro(vtkLocalReflectanceFilter, vtkShadeLabSceneFilter);
   void PrintSelf(ostream& os, vtkIndent indent) override;
-
-  /// Lights, material and viewer: from SceneJson if it is set, else from SceneFileName, else
-  /// the scene given to SetScene, else the default light kit, as `shadelab shade` without
-  /// --scene (shadelab::SceneSource). Read and checked by shadelab::sceneProblems when the
-  /// filter runs; a scene that cannot be used is an error with the command line's message.
-  void SetScene(const shadelab::Scene& scene);
-  /// A scene file (README.md, "Scene files"); "" for none.
-  void SetSceneFileName(const std::string& fileName) { this->Scene.setFileName(fileName) ? this->Modified() : void(); }
-  std::string GetSceneFileName() const { return this->Scene.fileName(); }
-  /// A scene as the JSON text of a scene file; "" for none.
-  void SetSceneJson(const std::string& json) { this->Scene.setJson(json) ? this->Modified() : void(); }
-  std::string GetSceneJson() const { return this->Scene.json(); }
 
   /// Which arrays to compute, as shadelab::selectArrays reads them. Default: {"default"},
   /// the totals and the flags.
@@ -157,7 +148,6 @@ private:
   vtkLocalReflectanceFilter(const vtkLocalReflectanceFilter&) = delete;
   void operator=(const vtkLocalReflectanceFilter&) = delete;
 
-  shadelab::SceneSource Scene;
   std::vector<std::string> ArraySelection{ "default" };
   int NumberOfThreads = 0;
   vtkNew<vtkDataArraySelection> AvailableArrays;
@@ -205,6 +195,38 @@ private:
     const shadelab::ArrayRequest& request, bool split);
   /// The name of the normals the filter computes when the input has none.
   std::string ComputedNormalsName() const { return this->ArrayPrefix + "Normals"; }
+
+  /// ShadeMesh's steps. Those that check say why they fail as the filter's error; on a split
+  /// mesh (processes: the controller, or nullptr for this process alone) those that exchange
+  /// data are collective calls, and fail on every process alike.
+  struct ShadingPlan;
+  /// The checks before anything is written (the tolerance, the mesh, the scene, the methods,
+  /// the arrays and their names), and what they settle; nothing where one failed.
+  std::optional<ShadingPlan> PlanShading(vtkPolyData* input, vtkMultiProcessController* processes, bool split);
+  bool CheckTolerance();
+  /// The mesh's structure, and its coordinates in the plan's precision; sets the plan's extent.
+  bool CheckMesh(vtkPolyData* input, vtkMultiProcessController* processes, bool split, ShadingPlan& plan);
+  /// The scene read for this update, where every process could read it.
+  std::optional<shadelab::Scene> SceneReadEverywhere(vtkMultiProcessController* processes, bool split);
+  /// That scene, placed on the plan's extent and checked where it lands.
+  bool PlaceScene(vtkMultiProcessController* processes, bool split, ShadingPlan& plan);
+  /// Whether the tolerance or the explicit LightMethods fit the scene; forgets the last plan.
+  bool CheckLightMethods(const shadelab::Scene& scene);
+  /// The arrays the selection asks for, and the methods and precision: the explicit ones, or
+  /// those the tolerance chooses (MethodPlan).
+  bool ChooseArraysAndMethods(ShadingPlan& plan);
+  /// Every point array the filter could write for the scene on this input.
+  std::vector<std::string> WritableArrayNames(vtkPolyData* input, const shadelab::Scene& scene) const;
+  /// Whether the input lacks all of them.
+  bool CheckArrayNamesFree(
+    vtkPolyData* input, const shadelab::Scene& scene, vtkMultiProcessController* processes, bool split);
+  /// The arrays to output: those the kernel computes with the normals and the rays' arrays in
+  /// `seen` (nullptr: no rays), then the occlusion arrays asked for. Throws std::runtime_error
+  /// where an array cannot be allocated.
+  std::vector<vtkSmartPointer<vtkDataArray>> ShadedArrays(vtkPolyData* input, vtkDataArray* shadingNormals,
+    vtkPolyData* seen, const ShadingPlan& plan, const shadelab::PieceLayout* split);
+  /// What the run did about normals, rays and methods, as the output's field data.
+  void AddFieldNotes(vtkPolyData* output) const;
 };
 
 #endif

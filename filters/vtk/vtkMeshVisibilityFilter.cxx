@@ -2,7 +2,6 @@
 
 #include "ArrayCatalog.h"
 #include "ShadeLabFieldNotes.h"
-#include "ShadeLabSceneRead.h"
 #include "ShadeLabThreadCount.h"
 #include "ShadeLabLargeArrays.h"
 #include "ShadeLabMeshChecks.h"
@@ -73,6 +72,253 @@ double secondsSince(std::chrono::steady_clock::time_point start)
 {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
+
+/// The scene's lights with shadows, as the rays see them (their arrays not yet allocated).
+std::vector<ShadowedLight> shadowedLights(const shadelab::Scene& scene)
+{
+  std::vector<ShadowedLight> lights;
+  shadelab::EvaluationContext context;
+  context.lineOfSight = scene.viewer.lineOfSight();
+  for (std::size_t l = 0; l < scene.lights.size(); ++l)
+  {
+    if (scene.lights[l].shadows)
+    {
+      context.lightIndex = l;
+      // sceneProblems allows shadows on local lights only.
+      lights.push_back({ scene.lights[l].name,
+        std::get<shadelab::LocalEvaluation>(shadelab::prepareEvaluation(scene.lights[l].source, context)), nullptr });
+    }
+  }
+  return lights;
+}
+
+/// What the rays write besides each light's visibility, a value per ray point in each array.
+struct RayArrays
+{
+  shadelab::OcclusionSettings settings;
+  /// The ambient occlusion's: nullptr without it (bentNormal and skyView also where not asked for).
+  vtkSmartPointer<vtkFloatArray> occlusion, standardError, bentNormal, skyView;
+  vtkSmartPointer<vtkUnsignedCharArray> flags;
+  /// Every array, the lights' visibility included, in the output's order.
+  std::vector<vtkSmartPointer<vtkDataArray>> written;
+};
+
+/// The ambient occlusion's arrays, those settings asks for.
+void addOcclusionArrays(RayArrays& arrays, const std::string& prefix, vtkIdType count)
+{
+  auto add = [&](shadelab::OcclusionTerm term, int components)
+  {
+    vtkSmartPointer<vtkFloatArray> array = floatArray(shadelab::occlusionArrayName(prefix, term), components, count);
+    arrays.written.push_back(array);
+    return array;
+  };
+  arrays.occlusion = add(shadelab::OcclusionTerm::AmbientOcclusion, 1);
+  arrays.standardError = add(shadelab::OcclusionTerm::AmbientOcclusionStdError, 1);
+  if (arrays.settings.bentNormal)
+  {
+    arrays.bentNormal = add(shadelab::OcclusionTerm::BentNormal, 3);
+  }
+  if (arrays.settings.skyViewFactor)
+  {
+    arrays.skyView = add(shadelab::OcclusionTerm::SkyViewFactor, 1);
+  }
+}
+
+/// The arrays the rays write, count values each: each light's visibility (into `lights`), the
+/// ambient occlusion's where the scene has it, and the flags. Throws std::runtime_error where
+/// there is not enough memory.
+RayArrays allocateRayArrays(std::vector<ShadowedLight>& lights, const shadelab::Scene& scene, const std::string& prefix,
+  bool bentNormal, bool skyViewFactor, vtkIdType count)
+{
+  RayArrays arrays;
+  for (ShadowedLight& light : lights)
+  {
+    light.visibility = floatArray(shadelab::lightArrayName(prefix, light.name, shadelab::LightTerm::Visibility), 1, count);
+    arrays.written.push_back(light.visibility);
+  }
+  if (scene.ambientOcclusion)
+  {
+    arrays.settings.sampling = scene.ambientOcclusion->sampling;
+    arrays.settings.maxDistance = scene.ambientOcclusion->maxDistance;
+    arrays.settings.bentNormal = bentNormal;
+    arrays.settings.skyViewFactor = skyViewFactor;
+    addOcclusionArrays(arrays, prefix, count);
+  }
+  arrays.flags = vtkSmartPointer<vtkUnsignedCharArray>::New();
+  arrays.flags->SetName(shadelab::visibilityFlagsArrayName(prefix).c_str());
+  if (!shadelab::allocateTuples<unsigned char>(arrays.flags, count))
+  {
+    throw std::runtime_error("not enough memory for the visibility flags");
+  }
+  arrays.written.push_back(arrays.flags);
+  return arrays;
+}
+
+/// The points the rays leave from, as the rays see them: no normal (so no ray) where the kernel
+/// sees none or the position is not finite; for occlusion under two-sided shading, the normal
+/// turned toward the viewer, as the kernel turns it.
+class RayVertices
+{
+public:
+  RayVertices(vtkPolyData* input, const std::vector<vtkIdType>* rayPoints, const shadelab::Scene& scene)
+    : twoSided(scene.material.twoSided || scene.model == shadelab::ShadingModel::VtkOpenGL2)
+    , points(vtk::DataArrayTupleRange<3>(input->GetPoints()->GetData()))
+    , normals(vtk::DataArrayTupleRange<3>(input->GetPointData()->GetNormals()))
+    , rayPoints(rayPoints)
+    , viewer(scene.viewer)
+  {
+  }
+
+  /// Whether the surface is shaded on both sides, which the rays leave from alike.
+  const bool twoSided;
+
+  /// Ray point i: the input's point that rayPoints lists at i (without a list, point i).
+  void at(vtkIdType i, shadelab::RayVertex& vertex, glm::dvec3& occlusionNormal) const
+  {
+    const vtkIdType id = this->rayPoints ? (*this->rayPoints)[static_cast<std::size_t>(i)] : i;
+    const auto p = this->points[id];
+    const auto n = this->normals[id];
+    vertex = { { p[0], p[1], p[2] }, { n[0], n[1], n[2] }, id };
+    const double length2 = glm::dot(vertex.normal, vertex.normal);
+    const glm::dvec3& q = vertex.position;
+    const bool usable = length2 > 1e-12 && std::isfinite(length2) && std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z);
+    vertex.normal = usable ? vertex.normal / std::sqrt(length2) : glm::dvec3(0.0);
+    const glm::dvec3 towardViewer = this->viewer.position ? *this->viewer.position - vertex.position : -this->viewer.viewDirection;
+    occlusionNormal = this->twoSided && glm::dot(vertex.normal, towardViewer) < 0 ? -vertex.normal : vertex.normal;
+  }
+
+private:
+  using Tuples = decltype(vtk::DataArrayTupleRange<3>(static_cast<vtkDataArray*>(nullptr)));
+  const Tuples points, normals;
+  const std::vector<vtkIdType>* rayPoints;
+  const shadelab::Viewer& viewer;
+};
+
+constexpr int groupSize = shadelab::OccluderMesh::bundleSize;
+
+/// Up to 16 consecutive ray points, whose rays to each light are traced as one packet.
+struct RayGroup
+{
+  vtkIdType first = 0; // the first point's index among the ray points
+  int size = 0;
+  shadelab::RayVertex vertices[groupSize];
+  glm::dvec3 occlusionNormals[groupSize];
+};
+
+/// Group g of the count ray points, their flags cleared for the rays to set.
+void startGroup(const RayVertices& vertices, vtkIdType g, vtkIdType count, vtkUnsignedCharArray* flags, RayGroup& group)
+{
+  group.first = g * groupSize;
+  group.size = static_cast<int>(std::min<vtkIdType>(groupSize, count - group.first));
+  for (int k = 0; k < group.size; ++k)
+  {
+    vertices.at(group.first + k, group.vertices[k], group.occlusionNormals[k]);
+    flags->SetValue(group.first + k, 0);
+  }
+}
+
+/// The light's visibility from the group's points, as one packet; flags the points whose own
+/// triangles hide it.
+void traceShadows(const shadelab::OccluderMesh& occluders, const ShadowedLight& light, const RayGroup& group,
+  bool twoSided, vtkUnsignedCharArray* flags)
+{
+  shadelab::LightDirection directions[groupSize];
+  shadelab::LightVisibility seen[groupSize];
+  for (int k = 0; k < group.size; ++k)
+  {
+    directions[k] = light.towardLight(group.vertices[k].position);
+  }
+  shadelab::lightVisibility(occluders, group.vertices, directions, group.size, twoSided, seen);
+  for (int k = 0; k < group.size; ++k)
+  {
+    const vtkIdType i = group.first + k;
+    light.visibility->SetValue(i, seen[k].visible ? 1.0f : 0.0f);
+    if (seen[k].blockedByOwnTriangle)
+    {
+      flags->SetValue(i, flags->GetValue(i) | shadelab::FlagHiddenByOwnTriangle);
+    }
+  }
+}
+
+/// The ambient occlusion at the group's points.
+void traceOcclusion(const shadelab::OccluderMesh& occluders, const RayGroup& group, const RayArrays& arrays)
+{
+  for (int k = 0; k < group.size; ++k)
+  {
+    const vtkIdType i = group.first + k;
+    const shadelab::OcclusionEstimate ao = shadelab::ambientOcclusion(
+      occluders, { group.vertices[k].position, group.occlusionNormals[k], group.vertices[k].id }, arrays.settings);
+    arrays.occlusion->SetValue(i, static_cast<float>(ao.occlusion));
+    arrays.standardError->SetValue(i, static_cast<float>(ao.standardError));
+    if (arrays.bentNormal)
+    {
+      const glm::vec3 bent(ao.bentNormal);
+      arrays.bentNormal->SetTypedTuple(i, &bent.x);
+    }
+    if (arrays.skyView)
+    {
+      arrays.skyView->SetValue(i, static_cast<float>(ao.skyViewFactor));
+    }
+  }
+}
+
+/// Every ray from the count ray points into the arrays, in a vtkSMPTools loop, with progress
+/// reported through `filter`. Throws where the tracing failed.
+void castRays(const shadelab::OccluderMesh& occluders, const std::vector<ShadowedLight>& lights, const RayArrays& arrays,
+  const RayVertices& vertices, vtkIdType count, vtkAlgorithm* filter)
+{
+  // Vertices in fixed groups of 16 (not split by the threads' ranges), each light's rays from a
+  // group traced as one packet: the same packets, and so the same bits, on any thread count.
+  // Tenths of the mesh at a time, so that progress is reported between them.
+  const vtkIdType groups = (count + groupSize - 1) / groupSize;
+  const vtkIdType block = std::max<vtkIdType>(groups / 10, 64);
+  for (vtkIdType firstGroup = 0; firstGroup < groups; firstGroup += block)
+  {
+    const vtkIdType lastGroup = std::min(groups, firstGroup + block);
+    vtkSMPTools::For(firstGroup, lastGroup,
+      [&](vtkIdType beginGroup, vtkIdType endGroup)
+      {
+        RayGroup group;
+        for (vtkIdType g = beginGroup; g < endGroup; ++g)
+        {
+          startGroup(vertices, g, count, arrays.flags, group);
+          for (const ShadowedLight& light : lights)
+          {
+            traceShadows(occluders, light, group, vertices.twoSided, arrays.flags);
+          }
+          if (arrays.occlusion)
+          {
+            traceOcclusion(occluders, group, arrays);
+          }
+        }
+      });
+    filter->UpdateProgress(static_cast<double>(lastGroup) / groups);
+  }
+  occluders.checkTracing();
+}
+
+/// How long the BVH (unless reused) and the rays took.
+struct RayTimes
+{
+  bool reused = false;
+  double buildSeconds = 0;
+  double raySeconds = 0;
+};
+
+/// The report of a run that cast rays: how many, against how many triangles, and how long.
+std::string raysReport(const RayArrays& arrays, std::size_t lightCount, vtkIdType count, std::size_t triangles,
+  const RayTimes& times)
+{
+  const std::uint64_t raysPerVertex = lightCount +
+    (arrays.occlusion ? static_cast<std::uint64_t>(arrays.settings.sampling.samples) * (arrays.settings.skyViewFactor ? 2 : 1)
+                      : 0);
+  std::ostringstream report;
+  report << "Cast up to " << raysPerVertex * static_cast<std::uint64_t>(count) << " rays (" << raysPerVertex
+         << " per vertex) against " << triangles << " triangles: BVH "
+         << (times.reused ? "reused" : "built in " + std::to_string(times.buildSeconds) + " s") << ", rays "
+         << times.raySeconds << " s.";
+  return report.str();
+}
 }
 
 vtkMeshVisibilityFilter::vtkMeshVisibilityFilter()
@@ -120,12 +366,6 @@ const shadelab::OccluderMesh& vtkMeshVisibilityFilter::OccludersFor(vtkPolyData*
   return *built.occluders;
 }
 
-void vtkMeshVisibilityFilter::SetScene(const shadelab::Scene& scene)
-{
-  this->Scene.setScene(scene);
-  this->Modified();
-}
-
 int vtkMeshVisibilityFilter::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
@@ -149,30 +389,81 @@ int vtkMeshVisibilityFilter::CastRays(vtkInformationVector** inputVector, vtkInf
 
 int vtkMeshVisibilityFilter::CastRaysFrom(vtkPolyData* input, vtkPolyData* output, const std::vector<vtkIdType>* rayPoints)
 {
-  const vtkIdType pointCount = input->GetNumberOfPoints();
-  const vtkIdType count = rayPoints ? static_cast<vtkIdType>(rayPoints->size()) : pointCount;
+  const vtkIdType count = rayPoints ? static_cast<vtkIdType>(rayPoints->size()) : input->GetNumberOfPoints();
   if (count == 0)
   {
     output->ShallowCopy(input);
     return 1; // nothing to see, and no error: VTK's convention
   }
+  const std::string problem = this->InputProblem(input);
+  if (!problem.empty())
+  {
+    vtkErrorMacro(<< problem);
+    return 0;
+  }
+  const std::optional<shadelab::Scene> scene = this->PlacedScene(input);
+  if (!scene)
+  {
+    return 0;
+  }
+  output->ShallowCopy(input); // checked: every input array passes through
+  std::vector<ShadowedLight> lights = shadowedLights(*scene);
+  if (lights.empty() && !scene->ambientOcclusion)
+  {
+    this->Report = "Nothing to cast rays for: no light has shadows and the scene has no ambient occlusion.";
+    return 1;
+  }
+
+  RayTimes times;
+  const shadelab::OccluderMesh* occluders = nullptr;
+  RayArrays arrays;
+  try
+  {
+    const auto buildStart = std::chrono::steady_clock::now();
+    occluders = &this->OccludersFor(input, times.reused);
+    times.buildSeconds = secondsSince(buildStart);
+    arrays = allocateRayArrays(lights, *scene, this->ArrayPrefix, this->ComputeBentNormal, this->ComputeSkyViewFactor, count);
+    const auto raysStart = std::chrono::steady_clock::now();
+    castRays(*occluders, lights, arrays, RayVertices(input, rayPoints, *scene), count, this);
+    times.raySeconds = secondsSince(raysStart);
+  }
+  catch (const std::exception& error) // Embree's, no memory for the triangles or the arrays, or a ray's failure
+  {
+    output->Initialize();
+    vtkErrorMacro(<< error.what());
+    return 0;
+  }
+  for (const auto& array : arrays.written)
+  {
+    output->GetPointData()->AddArray(array);
+  }
+  this->Report = raysReport(arrays, lights.size(), count, occluders->triangleCount(), times);
+  shadelab::addFieldNote(output, shadelab::visibilityNoteName, { this->Report });
+  return 1;
+}
+
+std::string vtkMeshVisibilityFilter::InputProblem(vtkPolyData* input) const
+{
   const std::string cells = this->CheckCells ? shadelab::cellProblem(input) : std::string();
   if (!cells.empty())
   {
-    vtkErrorMacro(<< cells);
-    return 0;
+    return cells;
   }
-  vtkDataArray* normalArray = input->GetPointData()->GetNormals();
-  if (!normalArray || normalArray->GetNumberOfComponents() != 3 || normalArray->GetNumberOfTuples() != pointCount)
+  vtkDataArray* normals = input->GetPointData()->GetNormals();
+  if (!normals || normals->GetNumberOfComponents() != 3 || normals->GetNumberOfTuples() != input->GetNumberOfPoints())
   {
-    vtkErrorMacro("the mesh needs one 3-component point normal per point to cast rays from: run "
-                  "vtkShadingNormalsFilter first (vtkLocalReflectanceFilter does)");
-    return 0;
+    return "the mesh needs one 3-component point normal per point to cast rays from: run "
+           "vtkShadingNormalsFilter first (vtkLocalReflectanceFilter does)";
   }
-  const std::optional<shadelab::Scene> given = shadelab::readSceneFor(this, this->Scene);
+  return "";
+}
+
+std::optional<shadelab::Scene> vtkMeshVisibilityFilter::PlacedScene(vtkPolyData* input)
+{
+  const std::optional<shadelab::Scene> given = this->ReportedScene(this->ReadScene());
   if (!given)
   {
-    return 0;
+    return std::nullopt;
   }
   // The mesh's extent only where the scene is in its frame (a pass over the points).
   const shadelab::Scene scene =
@@ -181,204 +472,14 @@ int vtkMeshVisibilityFilter::CastRaysFrom(vtkPolyData* input, vtkPolyData* outpu
   if (!problems.empty())
   {
     vtkErrorMacro("scene " << problems.front().path << ": " << problems.front().message);
-    return 0;
+    return std::nullopt;
   }
-  output->ShallowCopy(input); // checked: every input array passes through
-  std::vector<ShadowedLight> lights;
-  shadelab::EvaluationContext context;
-  context.lineOfSight = scene.viewer.lineOfSight();
-  for (std::size_t l = 0; l < scene.lights.size(); ++l)
-  {
-    if (scene.lights[l].shadows)
-    {
-      context.lightIndex = l;
-      // sceneProblems allows shadows on local lights only.
-      lights.push_back({ scene.lights[l].name,
-        std::get<shadelab::LocalEvaluation>(shadelab::prepareEvaluation(scene.lights[l].source, context)), nullptr });
-    }
-  }
-  if (lights.empty() && !scene.ambientOcclusion)
-  {
-    this->Report = "Nothing to cast rays for: no light has shadows and the scene has no ambient occlusion.";
-    return 1;
-  }
-
-  const auto buildStart = std::chrono::steady_clock::now();
-  bool reused = false;
-  const shadelab::OccluderMesh* occluders = nullptr;
-  try
-  {
-    occluders = &this->OccludersFor(input, reused);
-  }
-  catch (const std::exception& error) // Embree's, or no memory for the triangles
-  {
-    output->Initialize();
-    vtkErrorMacro(<< error.what());
-    return 0;
-  }
-  const double buildSeconds = secondsSince(buildStart);
-
-  std::vector<vtkSmartPointer<vtkDataArray>> written;
-  vtkSmartPointer<vtkFloatArray> occlusion, standardError, bentNormal, skyView;
-  vtkSmartPointer<vtkUnsignedCharArray> flags;
-  shadelab::OcclusionSettings settings;
-  try
-  {
-    for (ShadowedLight& light : lights)
-    {
-      light.visibility = floatArray(
-        shadelab::lightArrayName(this->ArrayPrefix, light.name, shadelab::LightTerm::Visibility), 1, count);
-      written.push_back(light.visibility);
-    }
-    if (scene.ambientOcclusion)
-    {
-      settings.sampling = scene.ambientOcclusion->sampling;
-      settings.maxDistance = scene.ambientOcclusion->maxDistance;
-      settings.bentNormal = this->ComputeBentNormal;
-      settings.skyViewFactor = this->ComputeSkyViewFactor;
-      using shadelab::OcclusionTerm;
-      occlusion = floatArray(shadelab::occlusionArrayName(this->ArrayPrefix, OcclusionTerm::AmbientOcclusion), 1, count);
-      standardError = floatArray(shadelab::occlusionArrayName(this->ArrayPrefix, OcclusionTerm::AmbientOcclusionStdError), 1, count);
-      written.insert(written.end(), { occlusion, standardError });
-      if (settings.bentNormal)
-      {
-        bentNormal = floatArray(shadelab::occlusionArrayName(this->ArrayPrefix, OcclusionTerm::BentNormal), 3, count);
-        written.push_back(bentNormal);
-      }
-      if (settings.skyViewFactor)
-      {
-        skyView = floatArray(shadelab::occlusionArrayName(this->ArrayPrefix, OcclusionTerm::SkyViewFactor), 1, count);
-        written.push_back(skyView);
-      }
-    }
-    flags = vtkSmartPointer<vtkUnsignedCharArray>::New();
-    flags->SetName(shadelab::visibilityFlagsArrayName(this->ArrayPrefix).c_str());
-    if (!shadelab::allocateTuples<unsigned char>(flags, count))
-    {
-      throw std::runtime_error("not enough memory for the visibility flags");
-    }
-    written.push_back(flags);
-  }
-  catch (const std::exception& error)
-  {
-    output->Initialize();
-    vtkErrorMacro(<< error.what());
-    return 0;
-  }
-
-  const bool twoSided = scene.material.twoSided || scene.model == shadelab::ShadingModel::VtkOpenGL2;
-  const auto points = vtk::DataArrayTupleRange<3>(input->GetPoints()->GetData());
-  const auto normals = vtk::DataArrayTupleRange<3>(normalArray);
-  // Vertex i as the rays see it: no normal (so no ray) where the kernel sees none or the
-  // position is not finite; for occlusion under two-sided shading, the normal turned toward
-  // the viewer, as the kernel turns it.
-  auto rayVertex = [&](vtkIdType i, shadelab::RayVertex& vertex, glm::dvec3& occlusionNormal)
-  {
-    const vtkIdType id = rayPoints ? (*rayPoints)[static_cast<std::size_t>(i)] : i;
-    const auto p = points[id];
-    const auto n = normals[id];
-    vertex = { { p[0], p[1], p[2] }, { n[0], n[1], n[2] }, id };
-    const double length2 = glm::dot(vertex.normal, vertex.normal);
-    const glm::dvec3& q = vertex.position;
-    const bool usable = length2 > 1e-12 && std::isfinite(length2) && std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z);
-    vertex.normal = usable ? vertex.normal / std::sqrt(length2) : glm::dvec3(0.0);
-    const glm::dvec3 towardViewer = scene.viewer.position ? *scene.viewer.position - vertex.position : -scene.viewer.viewDirection;
-    occlusionNormal = twoSided && glm::dot(vertex.normal, towardViewer) < 0 ? -vertex.normal : vertex.normal;
-  };
-  const auto raysStart = std::chrono::steady_clock::now();
-  // Vertices in fixed groups of 16 (not split by the threads' ranges), each light's rays from a
-  // group traced as one packet: the same packets, and so the same bits, on any thread count.
-  // Tenths of the mesh at a time, so that progress is reported between them.
-  constexpr int group = shadelab::OccluderMesh::bundleSize;
-  const vtkIdType groups = (count + group - 1) / group;
-  const vtkIdType block = std::max<vtkIdType>(groups / 10, 64);
-  try
-  {
-    for (vtkIdType firstGroup = 0; firstGroup < groups; firstGroup += block)
-    {
-      const vtkIdType lastGroup = std::min(groups, firstGroup + block);
-      vtkSMPTools::For(firstGroup, lastGroup,
-        [&](vtkIdType beginGroup, vtkIdType endGroup)
-        {
-          shadelab::RayVertex vertices[group];
-          glm::dvec3 occlusionNormals[group];
-          shadelab::LightDirection directions[group];
-          shadelab::LightVisibility seen[group];
-          for (vtkIdType g = beginGroup; g < endGroup; ++g)
-          {
-            const vtkIdType first = g * group;
-            const int size = static_cast<int>(std::min<vtkIdType>(group, count - first));
-            for (int k = 0; k < size; ++k)
-            {
-              rayVertex(first + k, vertices[k], occlusionNormals[k]);
-              flags->SetValue(first + k, 0);
-            }
-            for (const ShadowedLight& light : lights)
-            {
-              for (int k = 0; k < size; ++k)
-              {
-                directions[k] = light.towardLight(vertices[k].position);
-              }
-              shadelab::lightVisibility(*occluders, vertices, directions, size, twoSided, seen);
-              for (int k = 0; k < size; ++k)
-              {
-                light.visibility->SetValue(first + k, seen[k].visible ? 1.0f : 0.0f);
-                if (seen[k].blockedByOwnTriangle)
-                {
-                  flags->SetValue(first + k, flags->GetValue(first + k) | shadelab::FlagHiddenByOwnTriangle);
-                }
-              }
-            }
-            for (int k = 0; occlusion && k < size; ++k)
-            {
-              const vtkIdType i = first + k;
-              const shadelab::OcclusionEstimate ao = shadelab::ambientOcclusion(
-                *occluders, { vertices[k].position, occlusionNormals[k], vertices[k].id }, settings);
-              occlusion->SetValue(i, static_cast<float>(ao.occlusion));
-              standardError->SetValue(i, static_cast<float>(ao.standardError));
-              if (bentNormal)
-              {
-                const glm::vec3 bent(ao.bentNormal);
-                bentNormal->SetTypedTuple(i, &bent.x);
-              }
-              if (skyView)
-              {
-                skyView->SetValue(i, static_cast<float>(ao.skyViewFactor));
-              }
-            }
-          }
-        });
-      this->UpdateProgress(static_cast<double>(lastGroup) / groups);
-    }
-    occluders->checkTracing();
-  }
-  catch (const std::exception& error)
-  {
-    output->Initialize();
-    vtkErrorMacro(<< error.what());
-    return 0;
-  }
-  const double raySeconds = secondsSince(raysStart);
-  for (const auto& array : written)
-  {
-    output->GetPointData()->AddArray(array);
-  }
-  const std::uint64_t raysPerVertex = lights.size() +
-    (occlusion ? static_cast<std::uint64_t>(settings.sampling.samples) * (settings.skyViewFactor ? 2 : 1) : 0);
-  std::ostringstream report;
-  report << "Cast up to " << raysPerVertex * static_cast<std::uint64_t>(count) << " rays (" << raysPerVertex
-         << " per vertex) against " << occluders->triangleCount() << " triangles: BVH "
-         << (reused ? "reused" : "built in " + std::to_string(buildSeconds) + " s") << ", rays " << raySeconds << " s.";
-  this->Report = report.str();
-  shadelab::addFieldNote(output, shadelab::visibilityNoteName, { this->Report });
-  return 1;
+  return scene;
 }
 
 void vtkMeshVisibilityFilter::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "SceneFileName: " << this->Scene.fileName() << "\n";
-  os << indent << "SceneJson: " << (this->Scene.hasJson() ? "(set)" : "(none)") << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
   os << indent << "ArrayPrefix: " << this->ArrayPrefix << "\n";
   os << indent << "ComputeBentNormal: " << this->ComputeBentNormal << "\n";

@@ -15,6 +15,9 @@
  * unmodified (a new scene or material reuses it); GetReport() and the field data array
  * "shadelab_visibility" say how many rays were cast and how long the BVH and the rays took.
  *
+ * The scene, set as vtkShadeLabSceneFilter says, gives the lights (those with shadows count)
+ * and the ambient occlusion settings; a scene in the mesh's frame is placed on the input.
+ *
  * Results are the same bits on any number of threads: each vertex's samples are a hash of its
  * id, and a ray's answer does not depend on the order the BVH is traversed in. A piece of a
  * mesh split over processes (see SetController) casts its points' rays against the whole
@@ -25,13 +28,12 @@
 
 #include "ShadeLabFiltersModule.h"
 #include "vtkMultiProcessController.h" // the controller, a member
-#include "vtkPolyDataAlgorithm.h"
+#include "vtkShadeLabSceneFilter.h"
 
 #include "vtkSmartPointer.h"
 
-#include "SceneSource.h"
-
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -42,24 +44,12 @@ namespace shadelab
 class OccluderMesh;
 }
 
-class SHADELABFILTERS_EXPORT vtkMeshVisibilityFilter : public vtkPolyDataAlgorithm
+class SHADELABFILTERS_EXPORT vtkMeshVisibilityFilter : public vtkShadeLabSceneFilter
 {
 public:
   static vtkMeshVisibilityFilter* New();
-  vtkTypeMacro(vtkMeshVisibilityFilter, vtkPolyDataAlgorithm);
+  vtkTypeMacro(vtkMeshVisibilityFilter, vtkShadeLabSceneFilter);
   void PrintSelf(ostream& os, vtkIndent indent) override;
-
-  /// The lights (those with shadows count) and the ambient occlusion settings: from SceneJson
-  /// if it is set, else from SceneFileName, else the scene given to SetScene, else the default
-  /// light kit (shadelab::SceneSource). A scene in the mesh's frame is placed on the input. A
-  /// scene that cannot be read is an error when the filter runs, with the command line's message.
-  void SetScene(const shadelab::Scene& scene);
-  /// A scene file (README.md, "Scene files"); "" for none.
-  void SetSceneFileName(const std::string& fileName) { this->Scene.setFileName(fileName) ? this->Modified() : void(); }
-  std::string GetSceneFileName() const { return this->Scene.fileName(); }
-  /// A scene as the JSON text of a scene file; "" for none.
-  void SetSceneJson(const std::string& json) { this->Scene.setJson(json) ? this->Modified() : void(); }
-  std::string GetSceneJson() const { return this->Scene.json(); }
 
   /// The most threads the rays use (0, the default: as vtkSMPTools is set; at most 1024), as
   /// vtkLocalReflectanceFilter's. Embree builds the BVH on threads of its own.
@@ -109,7 +99,6 @@ private:
   vtkMeshVisibilityFilter(const vtkMeshVisibilityFilter&) = delete;
   void operator=(const vtkMeshVisibilityFilter&) = delete;
 
-  shadelab::SceneSource Scene;
   int NumberOfThreads = 0;
   std::string ArrayPrefix;
   bool ComputeBentNormal = true;
@@ -129,6 +118,11 @@ private:
   BuiltOccluders Built;
   /// Built's BVH when it is for this mesh, or a new one; says which in reused.
   const shadelab::OccluderMesh& OccludersFor(vtkPolyData* mesh, bool& reused);
+  /// Why the rays cannot be cast from the input's points (its cells, its normals), or "".
+  std::string InputProblem(vtkPolyData* input) const;
+  /// The scene, placed on the input where it is in the mesh's frame and checked; nothing once
+  /// why it cannot be used is reported as the filter's error.
+  std::optional<shadelab::Scene> PlacedScene(vtkPolyData* input);
 };
 
 #endif
