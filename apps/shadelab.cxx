@@ -160,7 +160,7 @@ Scene withVisibilityOptions(Scene scene, const ShadeOptions& options)
 {
   for (NamedLight& light : scene.lights)
   {
-    light.shadows = light.shadows || (options.shadows && roleOf(light.source) == LightRole::Local);
+    light.shadows = light.shadows || (options.shadows && castsShadows(light.source));
   }
   if (options.ambientOcclusionRays > 0)
   {
@@ -285,18 +285,17 @@ int runShade(const ShadeOptions& options)
   warnings.collect(options.mesh);
   if (errors->failed())
   {
-    // The filter names a scene's problem "scene <JSON pointer>: ...": it is the scene's, and
-    // the message names the scene's source, as the scene file's own checks do.
-    const std::string message = errors->message();
-    const std::string scenePrefix = "scene /";
-    if (message.rfind(scenePrefix, 0) == 0)
+    // A problem of the scene's values names the scene's source, as the scene file's own
+    // checks do; any other, the mesh.
+    const std::string sceneProblem = filter->GetSceneProblem();
+    if (!sceneProblem.empty())
     {
       const std::string source = !options.scene.empty() ? options.scene
         : options.environment.file.empty()               ? "the default light kit"
                                                          : "--envmap " + options.environment.file;
-      throw UserError(source + ": " + message.substr(scenePrefix.size() - 1));
+      throw UserError(source + ": " + sceneProblem);
     }
-    throw UserError(options.mesh + ": " + message);
+    throw UserError(options.mesh + ": " + errors->message());
   }
   vtkPolyData* output = filter->GetOutput();
 
@@ -504,7 +503,7 @@ CLI::App* addShadeCommand(CLI::App& cli, ShadeOptions& options)
     "mesh's own normals are replaced")
     ->check(numberFromTo(0, 180));
   command->add_flag("--shadows", options.shadows,
-    "the mesh casts the shadows of every " + sceneTypeNamesOf(LightRole::Local) + " light (rays against its own "
+    "the mesh casts the shadows of every " + shadowCastingTypeNames() + " light (rays against its own "
     "triangles; each light's <light>_visibility array, 0 or 1, multiplies its diffuse and specular terms)");
   command->add_option("--ambient-occlusion", options.ambientOcclusionRays,
     "RAYS per vertex: the ambient term becomes ka La times the cosine-weighted fraction of the sky each "

@@ -5,6 +5,7 @@
 #include "CsvText.h"
 #include "MeshFiles.h"
 
+#include "AreaLightEstimator.h"
 #include "OccluderMesh.h"
 #include "SampleSequence.h"
 #include "SampleWarps.h"
@@ -198,6 +199,72 @@ std::vector<OccluderMesh::FrameRay> occlusionFrameRays(const RayMesh& mesh, int 
   return frameRays;
 }
 
+/// A softbox: a square light as wide as the mesh's bounding radius, where the point light of
+/// the shadows is, facing the mesh's centre; its exact estimator with `samples` shadow rays.
+AreaLightEstimator softboxOf(const RayMesh& mesh, int samples)
+{
+  const glm::dvec3 centre = lightOf(mesh);
+  const glm::dvec3 facing = glm::normalize(mesh.centre - centre);
+  glm::dvec3 u, v;
+  orthonormalBasis(facing, u, v); // u x v = facing: the square emits toward the mesh
+  const glm::dvec3 halfU = 0.5 * mesh.radius * u, halfV = 0.5 * mesh.radius * v;
+  AreaLight light;
+  light.shape = PolygonEmitter{ { centre - halfU - halfV, centre + halfU - halfV, centre + halfU + halfV,
+    centre - halfU + halfV } };
+  light.sampling = { samples, true };
+  return AreaLightEstimator(light, 0, LobeModel{});
+}
+
+SurfacePoint surfacePointOf(const RayVertex& vertex)
+{
+  return { vertex.position, vertex.normal, glm::dvec3(0.0), static_cast<std::uint64_t>(vertex.id) };
+}
+
+/// The softbox's shadow rays from every stride-th vertex, as the visibility step casts them:
+/// the seconds, and the rays cast.
+double softShadowSeconds(const RayMesh& mesh, const AreaLightEstimator& softbox, std::size_t stride, std::size_t& rays)
+{
+  const std::size_t count = (mesh.vertices.size() + stride - 1) / stride;
+  const int words = hiddenSampleWords(softbox.shadowRayCount());
+  std::vector<std::uint64_t> hidden(count * std::size_t(words));
+  const double seconds = parallelSeconds(count,
+    [&](std::size_t k)
+    {
+      thread_local std::vector<ShadowRay> scratch;
+      const RayVertex& vertex = mesh.vertices[k * stride];
+      hiddenSamples(*mesh.occluders, softbox, surfacePointOf(vertex), vertex.id, scratch, &hidden[k * words]);
+    });
+  rays = 0;
+  std::vector<ShadowRay> scratch(static_cast<std::size_t>(softbox.shadowRayCount()));
+  for (std::size_t k = 0; k < count; ++k)
+  {
+    softbox.shadowRays(surfacePointOf(mesh.vertices[k * stride]), scratch.data());
+    rays += static_cast<std::size_t>(std::count_if(scratch.begin(), scratch.end(), [](const ShadowRay& r) { return r.cast; }));
+  }
+  return seconds;
+}
+
+/// The same softbox rays made beforehand in the BVH's frame, for Embree alone.
+std::vector<OccluderMesh::FrameRay> softboxFrameRays(const RayMesh& mesh, const AreaLightEstimator& softbox, std::size_t stride)
+{
+  std::vector<OccluderMesh::FrameRay> frameRays;
+  std::vector<ShadowRay> rays(static_cast<std::size_t>(softbox.shadowRayCount()));
+  for (std::size_t i = 0; i < mesh.vertices.size(); i += stride)
+  {
+    const RayVertex& v = mesh.vertices[i];
+    softbox.shadowRays(surfacePointOf(v), rays.data());
+    const OccluderMesh::FrameRay start = mesh.occluders->inFrame({ v.position, v.normal, {}, 0.0, v.id });
+    for (const ShadowRay& ray : rays)
+    {
+      if (ray.cast)
+      {
+        frameRays.push_back({ start.origin, glm::vec3(ray.direction), mesh.occluders->frameDistance(ray.distance) });
+      }
+    }
+  }
+  return frameRays;
+}
+
 /// The same shadow rays with VTK's vtkStaticCellLocator, on one thread, over every stride-th
 /// vertex: rays per second.
 double locatorRaysPerSecond(const RayMesh& mesh, std::size_t stride, double& buildMilliseconds)
@@ -286,20 +353,41 @@ void runRayBenchmark(const RayBenchmarkOptions& options)
     const double shadowCeiling = tracedRaysPerSecond(mesh, shadowFrameRays(mesh));
     record("  Embree alone, the same rays made beforehand", shadowCeiling / 1e6, "Mrays/s", "full packets of 16");
     record("  Embree alone per core / VTK's locator", shadowCeiling / threads / vtk, "x");
+    record("  shadow rays / Embree alone", embree / shadowCeiling, "x", "target 0.9");
     // Ambient occlusion on every vertex of the bunny, every 16th of the large one.
     const std::size_t aoStride = vertices > 1000000 ? 16 : 1;
+    double occlusion64Seconds = 0, occlusion64RaysPerSecond = 0;
     for (int rays : { 16, 64, 256 })
     {
       double seconds = 0;
       const std::vector<double> values = occlusionAt(mesh, rays, aoStride, seconds);
       const double cast = static_cast<double>(values.size()) * rays;
+      if (rays == 64)
+      {
+        occlusion64Seconds = seconds;
+        occlusion64RaysPerSecond = cast / seconds;
+      }
       record("ambient occlusion, " + std::to_string(rays) + " rays: rays", cast / seconds / 1e6, "Mrays/s",
         "in packets of " + std::to_string(OccluderMesh::bundleSize));
       record("ambient occlusion, " + std::to_string(rays) + " rays: time", seconds * 1e3 * aoStride, "ms",
         aoStride > 1 ? "for the whole mesh, from every 16th vertex" : (rays == 64 ? "target 300 ms" : ""));
     }
-    record("ambient occlusion, Embree alone", tracedRaysPerSecond(mesh, occlusionFrameRays(mesh, 64, aoStride)) / 1e6,
-      "Mrays/s", "64 rays per vertex made beforehand, packets of 16");
+    const double occlusionCeiling = tracedRaysPerSecond(mesh, occlusionFrameRays(mesh, 64, aoStride));
+    record("ambient occlusion, Embree alone", occlusionCeiling / 1e6, "Mrays/s",
+      "64 rays per vertex made beforehand, packets of 16");
+    record("  ambient occlusion 64 / Embree alone", occlusion64RaysPerSecond / occlusionCeiling, "x", "target 0.9");
+    // A shadowed softbox, 64 samples: its rays as the visibility step casts them.
+    const AreaLightEstimator softbox = softboxOf(mesh, 64);
+    std::size_t softRays = 0;
+    const double softSeconds = softShadowSeconds(mesh, softbox, aoStride, softRays);
+    const double softCeiling = tracedRaysPerSecond(mesh, softboxFrameRays(mesh, softbox, aoStride));
+    record("softbox shadows, 64 samples: rays", softRays / softSeconds / 1e6, "Mrays/s",
+      std::to_string(softRays) + " rays cast, where the sample is above the horizon");
+    record("softbox shadows, 64 samples: time", softSeconds * 1e3 * aoStride, "ms",
+      aoStride > 1 ? "for the whole mesh, from every 16th vertex" : "");
+    record("  softbox / ambient occlusion 64, time", softSeconds / occlusion64Seconds, "x", "target 1.2");
+    record("  softbox, Embree alone", softCeiling / 1e6, "Mrays/s", "the same rays made beforehand");
+    record("  softbox / Embree alone", softRays / softSeconds / softCeiling, "x", "target 0.9");
   }
 
   // Error against time on the bunny, each ray count against 4096 rays per vertex.

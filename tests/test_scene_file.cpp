@@ -278,9 +278,10 @@ TEST(SceneFile, ShadowsAndAmbientOcclusion)
   EXPECT_FALSE(defaults.occlusion[int(OcclusionTerm::SkyViewFactor)]);
   EXPECT_FALSE(parseScene(R"({ "lights": [] })", "scene.json").needsVisibility());
 
-  EXPECT_EQ(errorOf(R"({ "lights": [ { "type": "sphere", "center": [0, 0, 0], "radius": 1, "shadows": true } ] })"),
-    "scene.json: /lights/0/shadows: only distant, headlight, point and spot lights cast shadows so far (soft shadows "
-    "of area lights and environment maps are not computed yet): remove \"shadows\" from this light");
+  EXPECT_EQ(errorOf(R"({ "lights": [ { "type": "ambient", "shadows": true } ] })"),
+    "scene.json: /lights/0/shadows: only distant, headlight, point, spot, polygon, rectangle, disk and sphere lights "
+    "cast shadows so far (an ambient light has no direction, and an environment map's shadows are not computed "
+    "yet): remove \"shadows\" from this light");
   EXPECT_EQ(errorOf(R"({ "lights": [], "ambient_occlusion": { "max_distance": 0 } })"),
     "scene.json: /ambient_occlusion/max_distance: must be a number > 0 (leave it out to count occluders at any "
     "distance)");

@@ -149,6 +149,10 @@ TEST(SplitMeshVisibility, CastsAgainstTheWholeMesh)
   const vtkSmartPointer<vtkPolyData> whole = shaded(mesh, "shadows_occlusion.json", { "all" }, nullptr);
   const vtkSmartPointer<vtkPolyData> piece = shaded(myPiece(mesh), "shadows_occlusion.json", { "all" }, processes());
   EXPECT_GT(expectPieceOfWhole(whole, piece), 10);
+  // An area light's soft shadows: each sample's ray, seeded by the point's id in the whole mesh.
+  EXPECT_GT(expectPieceOfWhole(shaded(mesh, "soft_shadows.json", { "all" }, nullptr),
+              shaded(myPiece(mesh), "soft_shadows.json", { "all" }, processes())),
+    10);
 
   // The visibility filter alone, on normals the mesh has.
   vtkNew<vtkMeshVisibilityFilter> alone, split;

@@ -135,6 +135,72 @@ TEST(Visibility, OneAndTwoThreadsGiveTheSameBits)
   shadelab::testing::expectSamePointArrays(one, two);
 }
 
+/// The sphere-over-plane scene's light as a disk of radius 0.6 at the bulb's place, facing down,
+/// its shadows cast or not.
+Scene diskLightAbove(bool shadows, AreaEstimator estimator)
+{
+  Scene scene = pointLightAbove(false);
+  AreaLight panel;
+  panel.shape = DiskEmitter{ { 0.3, 0.2, 3.0 }, { 0, 0, -1 }, 0.6 };
+  panel.intensity = 2;
+  panel.estimator = estimator;
+  scene.lights[1] = { "panel", panel, shadows };
+  return scene;
+}
+
+TEST(SoftShadows, AnAreaLightsTermsComeFromThePartOfItThatEachVertexSees)
+{
+  vtkSmartPointer<vtkPolyData> mesh = sphereOverPlane();
+  const std::vector<std::string> arrays = { "default", "panel_irradiance", "panel_diffuse" };
+  for (AreaEstimator estimator : { AreaEstimator::Exact, AreaEstimator::MonteCarlo })
+  {
+    vtkSmartPointer<vtkPolyData> lit = shadelab::testing::shadeWithFilter(mesh, diskLightAbove(false, estimator), arrays);
+    vtkSmartPointer<vtkPolyData> shadowed = shadelab::testing::shadeWithFilter(mesh, diskLightAbove(true, estimator), arrays);
+    ASSERT_NE(shadowed->GetPointData()->GetArray("panel_visibility_std_error"), nullptr);
+    EXPECT_EQ(shadowed->GetPointData()->GetArray("panel_hidden_samples"), nullptr); // the rays' bits stay inside
+    // In float64, as the filter computed them.
+    auto value = [](vtkPolyData* shaded, const char* name, vtkIdType i, int c)
+    { return shaded->GetPointData()->GetArray(name)->GetComponent(i, c); };
+    std::size_t penumbra = 0, umbra = 0;
+    for (vtkIdType i = 0; i < mesh->GetNumberOfPoints(); ++i)
+    {
+      const double v = value(shadowed, "panel_visibility", i, 0);
+      ASSERT_GE(v, 0.0);
+      ASSERT_LE(v, 1.0);
+      penumbra += v > 0 && v < 1 ? 1 : 0;
+      umbra += v == 0 && value(lit, "panel_irradiance", i, 0) > 0 ? 1 : 0;
+      for (int c = 0; c < 3; ++c)
+      {
+        const double seen = value(shadowed, "panel_irradiance", i, c), open = value(lit, "panel_irradiance", i, c);
+        // Where every ray gets through, the unshadowed value bit for bit; the exact estimator's
+        // E is the unshadowed one times the visible fraction; the diffuse term is kd E.
+        if (v == 1)
+        {
+          EXPECT_EQ(seen, open) << i;
+        }
+        if (estimator == AreaEstimator::Exact)
+        {
+          EXPECT_EQ(seen, open * v) << i;
+        }
+        EXPECT_LE(seen, open * (1 + 1e-12) + 1e-15) << i;
+        EXPECT_EQ(value(shadowed, "panel_diffuse", i, c), 0.8 * seen) << i;
+      }
+    }
+    EXPECT_GT(penumbra, 100u); // the disk is wider than the sphere's shadow is sharp
+    EXPECT_GT(umbra, 10u);     // under the sphere's centre the whole disk is hidden
+  }
+}
+
+TEST(SoftShadows, OneAndTwoThreadsGiveTheSameBits)
+{
+  vtkSmartPointer<vtkPolyData> mesh = sphereOverPlane();
+  const Scene scene = diskLightAbove(true, AreaEstimator::Exact);
+  vtkSmartPointer<vtkPolyData> one, two;
+  vtkSMPTools::LocalScope(vtkSMPTools::Config{ 1 }, [&] { one = shadelab::testing::shadeWithFilter(mesh, scene, { "all" }); });
+  vtkSMPTools::LocalScope(vtkSMPTools::Config{ 2 }, [&] { two = shadelab::testing::shadeWithFilter(mesh, scene, { "all" }); });
+  shadelab::testing::expectSamePointArrays(one, two);
+}
+
 TEST(Visibility, TheBvhIsBuiltOnceWhileTheMeshIsUnchanged)
 {
   vtkSmartPointer<vtkPolyData> mesh = sphereOverPlane();
@@ -249,13 +315,12 @@ TEST(Visibility, WhatIsRefusedAndWhy)
   EXPECT_EQ(filterError(mesh, pointLightAbove(true), 1e-3),
     "a tolerance cannot be used with shadows or ambient occlusion yet: its error bounds do not cover the rays' "
     "estimates; shade with exact methods (tolerance 0)");
-  Scene area = pointLightAbove(false);
-  AreaLight panel;
-  panel.shape = DiskEmitter{ { 0, 0, 3 }, { 0, 0, -1 }, 0.5 };
-  area.lights.push_back({ "panel", panel, true });
-  EXPECT_EQ(filterError(mesh, area),
-    "scene /lights/2/shadows: only distant, headlight, point and spot lights cast shadows so far (soft shadows of "
-    "area lights and environment maps are not computed yet): remove \"shadows\" from this light");
+  Scene shadowedAmbient = pointLightAbove(false);
+  shadowedAmbient.lights.push_back({ "sky", AmbientLight{}, true });
+  EXPECT_EQ(filterError(mesh, shadowedAmbient),
+    "scene /lights/2/shadows: only distant, headlight, point, spot, polygon, rectangle, disk and sphere lights cast "
+    "shadows so far (an ambient light has no direction, and an environment map's shadows are not computed yet): "
+    "remove \"shadows\" from this light");
 
   vtkNew<vtkMeshVisibilityFilter> alone;
   vtkNew<app::VtkErrorCapture> errors;

@@ -27,6 +27,7 @@
 #include "vtkPolyData.h"
 #include "vtkSMPTools.h"
 #include "vtkSmartPointer.h"
+#include "vtkTypeUInt64Array.h"
 #include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
@@ -338,8 +339,14 @@ std::vector<vtkSmartPointer<vtkDataArray>> useVisibility(vtkPolyData* seen, cons
   auto floats = [&](const std::string& name) { return vtkFloatArray::SafeDownCast(data->GetArray(name.c_str())); };
   for (const shadelab::NamedLight& light : scene.lights)
   {
+    // A local light's visibility multiplies its terms; an area light's samples are weighted by
+    // the bits of those the mesh hides.
+    const bool area = light.shadows && shadelab::isDistributed(light.source);
     vtkFloatArray* visibility = floats(shadelab::lightArrayName(prefix, light.name, shadelab::LightTerm::Visibility));
-    inputs.lightVisibility.push_back(light.shadows ? visibility->GetPointer(0) : nullptr);
+    auto* hidden = vtkTypeUInt64Array::SafeDownCast(data->GetArray(shadelab::hiddenSamplesArrayName(prefix, light.name).c_str()));
+    inputs.lightVisibility.push_back(light.shadows && !area ? visibility->GetPointer(0) : nullptr);
+    static_assert(sizeof(vtkTypeUInt64) == sizeof(std::uint64_t), "the hidden samples' words are 64 bits");
+    inputs.lightHiddenSamples.push_back(area ? reinterpret_cast<const std::uint64_t*>(hidden->GetPointer(0)) : nullptr);
   }
   std::vector<vtkSmartPointer<vtkDataArray>> requested;
   for (int t = 0; scene.ambientOcclusion && t < shadelab::OcclusionTermCount; ++t)
@@ -371,6 +378,7 @@ int vtkLocalReflectanceFilter::Shade(vtkInformationVector** inputVector, vtkInfo
 {
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
+  this->ForgetSceneProblem();
   this->NormalsReport.clear();
   this->VisibilityReport.clear();
   if (!shadelab::isPieceOfSplitMesh(this->Controller, input))
@@ -542,13 +550,7 @@ bool vtkLocalReflectanceFilter::PlaceScene(vtkMultiProcessController* processes,
   }
   // A scene written relative to the mesh is placed on it here, and checked where it lands.
   plan.scene = shadelab::placedOnMesh(*given, plan.extent);
-  const std::vector<shadelab::SceneProblem> problems = shadelab::sceneProblems(plan.scene, plan.precision);
-  if (!problems.empty())
-  {
-    vtkErrorMacro("scene " << problems.front().path << ": " << problems.front().message);
-    return false;
-  }
-  return true;
+  return this->SceneIsValid(shadelab::sceneProblems(plan.scene, plan.precision));
 }
 
 bool vtkLocalReflectanceFilter::CheckLightMethods(const shadelab::Scene& scene)

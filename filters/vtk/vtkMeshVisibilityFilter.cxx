@@ -1,6 +1,7 @@
 #include "vtkMeshVisibilityFilter.h"
 
 #include "ArrayCatalog.h"
+#include "Overloaded.h"
 #include "ShadeLabFieldNotes.h"
 #include "ShadeLabThreadCount.h"
 #include "ShadeLabLargeArrays.h"
@@ -20,6 +21,7 @@
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkSMPTools.h"
+#include "vtkTypeUInt64Array.h"
 #include "vtkUnsignedCharArray.h"
 
 #include <glm/geometric.hpp>
@@ -34,12 +36,16 @@ vtkStandardNewMacro(vtkMeshVisibilityFilter);
 
 namespace
 {
-/// A light whose shadows the mesh casts, as the rays see it.
+/// A light whose shadows the mesh casts, as the rays see it: a local light, with one ray per
+/// vertex and its visibility, or an area light, with a ray per sample and the bits of those
+/// the mesh hides.
 struct ShadowedLight
 {
   std::string name;
   shadelab::LocalEvaluation evaluation;
   vtkSmartPointer<vtkFloatArray> visibility;
+  std::shared_ptr<const shadelab::ShadowedLightEstimator> area; // null for a local light
+  vtkSmartPointer<vtkTypeUInt64Array> hidden;
 
   /// The unit direction to the light from p, and how far it is.
   shadelab::LightDirection towardLight(const glm::dvec3& p) const
@@ -54,14 +60,15 @@ struct ShadowedLight
   }
 };
 
-/// A float32 array of count tuples in huge pages; throws std::runtime_error naming it when
-/// there is not enough memory.
-vtkSmartPointer<vtkFloatArray> floatArray(const std::string& name, int components, vtkIdType count)
+/// An array of count tuples in huge pages (float32 for the estimates, 64-bit words for an area
+/// light's hidden samples); throws std::runtime_error naming it when there is not enough memory.
+template <typename Array>
+vtkSmartPointer<Array> pointArray(const std::string& name, int components, vtkIdType count)
 {
-  auto array = vtkSmartPointer<vtkFloatArray>::New();
+  auto array = vtkSmartPointer<Array>::New();
   array->SetName(name.c_str());
   array->SetNumberOfComponents(components);
-  if (!shadelab::allocateTuples<float>(array, count))
+  if (!shadelab::allocateTuples<typename Array::ValueType>(array, count))
   {
     throw std::runtime_error("not enough memory for the array '" + name + "'");
   }
@@ -83,10 +90,15 @@ std::vector<ShadowedLight> shadowedLights(const shadelab::Scene& scene)
   {
     if (scene.lights[l].shadows)
     {
+      // The area lights' samples are seeded by the light's index, as the kernel seeds them.
       context.lightIndex = l;
-      // sceneProblems allows shadows on local lights only.
-      lights.push_back({ scene.lights[l].name,
-        std::get<shadelab::LocalEvaluation>(shadelab::prepareEvaluation(scene.lights[l].source, context)), nullptr });
+      ShadowedLight light{ scene.lights[l].name, {}, nullptr, nullptr, nullptr };
+      std::visit(shadelab::Overloaded{ [&](const shadelab::LocalEvaluation& local) { light.evaluation = local; },
+                   [&](const shadelab::DistributedEvaluation& distributed) { light.area = distributed.shadowed; },
+                   [](const shadelab::AmbientEvaluation&)
+                   { throw std::logic_error("an ambient light casts no shadows (sceneProblems refuses it)"); } },
+        shadelab::prepareEvaluation(scene.lights[l].source, context));
+      lights.push_back(std::move(light));
     }
   }
   return lights;
@@ -108,7 +120,7 @@ void addOcclusionArrays(RayArrays& arrays, const std::string& prefix, vtkIdType 
 {
   auto add = [&](shadelab::OcclusionTerm term, int components)
   {
-    vtkSmartPointer<vtkFloatArray> array = floatArray(shadelab::occlusionArrayName(prefix, term), components, count);
+    vtkSmartPointer<vtkFloatArray> array = pointArray<vtkFloatArray>(shadelab::occlusionArrayName(prefix, term), components, count);
     arrays.written.push_back(array);
     return array;
   };
@@ -133,8 +145,17 @@ RayArrays allocateRayArrays(std::vector<ShadowedLight>& lights, const shadelab::
   RayArrays arrays;
   for (ShadowedLight& light : lights)
   {
-    light.visibility = floatArray(shadelab::lightArrayName(prefix, light.name, shadelab::LightTerm::Visibility), 1, count);
-    arrays.written.push_back(light.visibility);
+    if (light.area)
+    {
+      light.hidden = pointArray<vtkTypeUInt64Array>(shadelab::hiddenSamplesArrayName(prefix, light.name),
+        shadelab::hiddenSampleWords(light.area->shadowRayCount()), count);
+      arrays.written.push_back(light.hidden);
+    }
+    else
+    {
+      light.visibility = pointArray<vtkFloatArray>(shadelab::lightArrayName(prefix, light.name, shadelab::LightTerm::Visibility), 1, count);
+      arrays.written.push_back(light.visibility);
+    }
   }
   if (scene.ambientOcclusion)
   {
@@ -203,6 +224,7 @@ struct RayGroup
   int size = 0;
   shadelab::RayVertex vertices[groupSize];
   glm::dvec3 occlusionNormals[groupSize];
+  std::vector<shadelab::ShadowRay> scratch; // an area light's rays from one point
 };
 
 /// Group g of the count ray points, their flags cleared for the rays to set.
@@ -217,11 +239,37 @@ void startGroup(const RayVertices& vertices, vtkIdType g, vtkIdType count, vtkUn
   }
 }
 
+/// The area light's samples that the mesh hides from each of the group's points, from the
+/// side the kernel shades (the occlusion normal), each point's rays in packets.
+void traceSoftShadows(const shadelab::OccluderMesh& occluders, const ShadowedLight& light, RayGroup& group)
+{
+  const int words = light.hidden->GetNumberOfComponents();
+  for (int k = 0; k < group.size; ++k)
+  {
+    const shadelab::RayVertex& vertex = group.vertices[k];
+    static_assert(sizeof(vtkTypeUInt64) == sizeof(std::uint64_t), "the hidden samples' words are 64 bits");
+    auto* bits = reinterpret_cast<std::uint64_t*>(light.hidden->GetPointer(std::size_t(words) * std::size_t(group.first + k)));
+    if (vertex.normal == glm::dvec3(0.0))
+    {
+      std::fill_n(bits, words, 0u); // no ray: the kernel gives the vertex no light
+      continue;
+    }
+    const shadelab::SurfacePoint point{ vertex.position, group.occlusionNormals[k], glm::dvec3(0.0),
+      static_cast<std::uint64_t>(vertex.id) };
+    shadelab::hiddenSamples(occluders, *light.area, point, vertex.id, group.scratch, bits);
+  }
+}
+
 /// The light's visibility from the group's points, as one packet; flags the points whose own
 /// triangles hide it.
-void traceShadows(const shadelab::OccluderMesh& occluders, const ShadowedLight& light, const RayGroup& group,
+void traceShadows(const shadelab::OccluderMesh& occluders, const ShadowedLight& light, RayGroup& group,
   bool twoSided, vtkUnsignedCharArray* flags)
 {
+  if (light.area)
+  {
+    traceSoftShadows(occluders, light, group);
+    return;
+  }
   shadelab::LightDirection directions[groupSize];
   shadelab::LightVisibility seen[groupSize];
   for (int k = 0; k < group.size; ++k)
@@ -306,10 +354,15 @@ struct RayTimes
 };
 
 /// The report of a run that cast rays: how many, against how many triangles, and how long.
-std::string raysReport(const RayArrays& arrays, std::size_t lightCount, vtkIdType count, std::size_t triangles,
+std::string raysReport(const RayArrays& arrays, const std::vector<ShadowedLight>& lights, vtkIdType count, std::size_t triangles,
   const RayTimes& times)
 {
-  const std::uint64_t raysPerVertex = lightCount +
+  std::uint64_t lightRays = 0;
+  for (const ShadowedLight& light : lights)
+  {
+    lightRays += light.area ? static_cast<std::uint64_t>(light.area->shadowRayCount()) : 1;
+  }
+  const std::uint64_t raysPerVertex = lightRays +
     (arrays.occlusion ? static_cast<std::uint64_t>(arrays.settings.sampling.samples) * (arrays.settings.skyViewFactor ? 2 : 1)
                       : 0);
   std::ostringstream report;
@@ -376,6 +429,7 @@ int vtkMeshVisibilityFilter::CastRays(vtkInformationVector** inputVector, vtkInf
 {
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
+  this->ForgetSceneProblem();
   this->Report.clear();
   if (!shadelab::isPieceOfSplitMesh(this->Controller, input))
   {
@@ -437,7 +491,7 @@ int vtkMeshVisibilityFilter::CastRaysFrom(vtkPolyData* input, vtkPolyData* outpu
   {
     output->GetPointData()->AddArray(array);
   }
-  this->Report = raysReport(arrays, lights.size(), count, occluders->triangleCount(), times);
+  this->Report = raysReport(arrays, lights, count, occluders->triangleCount(), times);
   shadelab::addFieldNote(output, shadelab::visibilityNoteName, { this->Report });
   return 1;
 }
@@ -468,10 +522,8 @@ std::optional<shadelab::Scene> vtkMeshVisibilityFilter::PlacedScene(vtkPolyData*
   // The mesh's extent only where the scene is in its frame (a pass over the points).
   const shadelab::Scene scene =
     given->frame == shadelab::SceneFrame::Mesh ? shadelab::placedOnMesh(*given, shadelab::meshExtentOf(input)) : *given;
-  const std::vector<shadelab::SceneProblem> problems = shadelab::sceneProblems(scene);
-  if (!problems.empty())
+  if (!this->SceneIsValid(shadelab::sceneProblems(scene)))
   {
-    vtkErrorMacro("scene " << problems.front().path << ": " << problems.front().message);
     return std::nullopt;
   }
   return scene;

@@ -39,6 +39,17 @@ std::optional<shadelab::Scene> vtkShadeLabSceneFilter::ReportedScene(const shade
   return reading.scene;
 }
 
+bool vtkShadeLabSceneFilter::SceneIsValid(const std::vector<shadelab::SceneProblem>& problems)
+{
+  if (problems.empty())
+  {
+    return true;
+  }
+  this->SceneProblem = problems.front().path + ": " + problems.front().message;
+  vtkErrorMacro("scene " << this->SceneProblem);
+  return false;
+}
+
 void vtkShadeLabSceneFilter::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);

@@ -36,6 +36,12 @@ public:
   void SetSceneJson(const std::string& json);
   std::string GetSceneJson() const { return this->Scene.json(); }
 
+  /// Why the last run failed because of the scene's values, as "<JSON pointer>: <problem>"
+  /// ("/lights/0/radius: must be a number > 0"), for a caller to prefix with where its scene
+  /// came from; "" when the scene was not the reason. The filter's error says the same after
+  /// "scene ".
+  std::string GetSceneProblem() const { return this->SceneProblem; }
+
 protected:
   vtkShadeLabSceneFilter();
   ~vtkShadeLabSceneFilter() override;
@@ -45,12 +51,18 @@ protected:
   /// The scene of `reading`, or nothing once why it could not be read is reported as the
   /// filter's error. A scene file that JSON text overrides is warned of.
   std::optional<shadelab::Scene> ReportedScene(const shadelab::SceneReading& reading);
+  /// False, with the first problem reported as the filter's error and kept for
+  /// GetSceneProblem, when the scene has problems.
+  bool SceneIsValid(const std::vector<shadelab::SceneProblem>& problems);
+  /// At the start of a run: its failure, if any, is not the scene's until SceneIsValid says so.
+  void ForgetSceneProblem() { this->SceneProblem.clear(); }
 
 private:
   vtkShadeLabSceneFilter(const vtkShadeLabSceneFilter&) = delete;
   void operator=(const vtkShadeLabSceneFilter&) = delete;
 
   shadelab::SceneSource Scene;
+  std::string SceneProblem;
 };
 
 #endif

@@ -30,13 +30,17 @@ struct SurfacePoint
 };
 
 /// E and S (before kd and ks), and the standard errors of their Monte Carlo estimates (0 where
-/// the estimator has none).
+/// the estimator has none). With shadows, both are the integrals over the part of the light the
+/// vertex sees past the mesh, and visibility is the visible irradiance over the unshadowed one
+/// (1 where the light is below the horizon).
 struct DistributedTerms
 {
   Rgb irradiance{ 0.0 };
   Rgb specular{ 0.0 };
   Rgb irradianceStdError{ 0.0 };
   Rgb specularStdError{ 0.0 };
+  double visibility = 1;
+  double visibilityStdError = 0;
 };
 
 /// The specular lobe for light arriving from the unit direction s (docs/formulas.md sections 4
@@ -66,5 +70,46 @@ public:
   virtual ~DistributedLightEstimator() = default;
   /// Safe to call concurrently.
   virtual DistributedTerms estimate(const SurfacePoint& point) const = 0;
+};
+
+/// The shadow ray of one sample: from the surface point along a unit direction, up to the
+/// light (infinite for a map). Not cast where the sample adds nothing (it counts as visible).
+struct ShadowRay
+{
+  glm::dvec3 direction{ 0.0 };
+  double distance = 0;
+  bool cast = false;
+};
+
+/// Which of a vertex's samples the mesh hides, as the visibility step found them: bit j % 64 of
+/// word j / 64 for sample j.
+struct HiddenSamples
+{
+  const std::uint64_t* words = nullptr;
+
+  bool hidden(int j) const { return (words[j / 64] >> (j % 64)) & 1u; }
+};
+
+/// The 64-bit words a vertex needs for the bits of this many samples.
+constexpr int hiddenSampleWords(int samples)
+{
+  return (samples + 63) / 64;
+}
+
+/// A distributed light's estimator with its shadows (docs/formulas.md section 11.6): it names
+/// the rays of its samples, the visibility step (visibility/) casts them against the mesh, and
+/// it estimates E and S from the same samples weighted by what the rays found. The rays and
+/// the estimate are separate steps so that the rays can be cast where the whole mesh is (the
+/// first process of a split mesh) and the estimate made wherever the vertex is.
+class ShadowedLightEstimator
+{
+public:
+  virtual ~ShadowedLightEstimator() = default;
+  /// How many shadow rays each vertex has: the length of shadowRays' list.
+  virtual int shadowRayCount() const = 0;
+  /// The point's shadow rays, one per sample in sample order, into rays[0..shadowRayCount()-1].
+  virtual void shadowRays(const SurfacePoint& point, ShadowRay* rays) const = 0;
+  /// E, S and the visibility, with the samples hidden as `hidden` says. Safe to call concurrently.
+  virtual DistributedTerms estimate(const SurfacePoint& point, const HiddenSamples& hidden) const = 0;
 };
 }

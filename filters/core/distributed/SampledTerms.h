@@ -4,6 +4,7 @@
 #include "DistributedLight.h"
 #include "MonteCarloEstimate.h"
 #include "SampleSequence.h"
+#include "VisibleFraction.h"
 
 #include <optional>
 
@@ -21,21 +22,31 @@ struct RadianceSample
 
 /// Averages L(w) max(0, n.w) / pdf(w) (when irradiance is wanted) and L(w) lobe(w) / pdf(w)
 /// (when the lobe is) over the sequence's points, which sampleAt(u) turns into RadianceSamples.
+/// With hidden (shadows), each sample counts only where its ray got through, and the visible
+/// fraction of the irradiance is estimated from the same samples.
 template <typename SampleAt>
 DistributedTerms sampledTerms(const SampleSequence& sequence, bool stratified, bool irradiance, const LobeModel& lobe,
-  const glm::dvec3& n, const glm::dvec3& v, SampleAt&& sampleAt)
+  const glm::dvec3& n, const glm::dvec3& v, const HiddenSamples* hidden, SampleAt&& sampleAt)
 {
   MonteCarloEstimate e(stratified), s(stratified);
+  VisibleFraction visible(stratified);
   for (int j = 0; j < sequence.count(); ++j)
   {
     const RadianceSample sample = sampleAt(sequence.point(j));
+    const bool through = !hidden || !hidden->hidden(j);
+    const double seen = through ? 1.0 : 0.0;
+    const Rgb unshadowed = sample.weighted * std::max(0.0, glm::dot(n, sample.direction));
     if (irradiance)
     {
-      e.add(sample.weighted * std::max(0.0, glm::dot(n, sample.direction)));
+      e.add(unshadowed * seen);
     }
     if (lobe.wanted())
     {
-      s.add(sample.specular ? *sample.specular : sample.weighted * lobe(n, sample.direction, v));
+      s.add((sample.specular ? *sample.specular : sample.weighted * lobe(n, sample.direction, v)) * seen);
+    }
+    if (hidden)
+    {
+      visible.add((unshadowed.x + unshadowed.y + unshadowed.z) / 3, through);
     }
   }
   DistributedTerms terms;
@@ -48,6 +59,11 @@ DistributedTerms sampledTerms(const SampleSequence& sequence, bool stratified, b
   {
     terms.specular = s.mean();
     terms.specularStdError = s.standardError();
+  }
+  if (hidden)
+  {
+    terms.visibility = visible.value();
+    terms.visibilityStdError = visible.standardError();
   }
   return terms;
 }

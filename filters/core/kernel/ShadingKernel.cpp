@@ -175,10 +175,16 @@ typename ShadingKernel<T>::PreparedLight ShadingKernel<T>::prepareLocal(const Lo
 template <typename T>
 typename ShadingKernel<T>::DistributedLightSlot ShadingKernel<T>::prepareDistributed(
   const DistributedEvaluation& evaluation, const std::array<T*, LightTermCount>& out, const Material& m,
-  bool needsSpecular) const
+  bool needsSpecular, const std::uint64_t* hiddenSamples) const
 {
   DistributedLightSlot light;
   light.estimator = evaluation.estimator;
+  if (hiddenSamples && evaluation.shadowed)
+  {
+    light.shadowed = evaluation.shadowed;
+    light.hiddenSamples = hiddenSamples;
+    light.hiddenWords = hiddenSampleWords(evaluation.shadowed->shadowRayCount());
+  }
   if (const std::optional<IrradiancePolynomial>& e = evaluation.irradiance)
   {
     light.irradiance = PreparedPolynomial{ { toVec<T>(e->xx), toVec<T>(e->yy), toVec<T>(e->zz), toVec<T>(e->xy),
@@ -238,7 +244,8 @@ ShadingKernel<T>::ShadingKernel(
     }
     else if (const auto* distributed = std::get_if<DistributedEvaluation>(&evaluation))
     {
-      distributedLights_.push_back(prepareDistributed(*distributed, out, m, needsSpecular));
+      distributedLights_.push_back(prepareDistributed(*distributed, out, m, needsSpecular,
+        l < inputs_.lightHiddenSamples.size() ? inputs_.lightHiddenSamples[l] : nullptr));
     }
     else
     {
@@ -582,7 +589,9 @@ void ShadingKernel<T>::estimateDistributedLight(const DistributedLightSlot& ligh
       point.normal = { w.nx[k], w.ny[k], w.nz[k] };
       point.toViewer = needsViewer_ ? glm::dvec3(w.vx[k], w.vy[k], w.vz[k]) : glm::dvec3(0.0);
       point.index = inputs_.sampleIds ? static_cast<std::uint64_t>(inputs_.sampleIds[b.first + k]) : b.first + k;
-      terms = light.estimator->estimate(point);
+      terms = light.hiddenSamples
+        ? light.shadowed->estimate(point, { light.hiddenSamples + std::size_t(light.hiddenWords) * (b.first + k) })
+        : light.estimator->estimate(point);
     }
     if (!light.irradiance)
     {
@@ -596,6 +605,14 @@ void ShadingKernel<T>::estimateDistributedLight(const DistributedLightSlot& ligh
     const std::size_t i = b.first + k;
     storeRgb(LightTerm::IrradianceStdError, i, terms.irradianceStdError);
     storeRgb(LightTerm::SpecularStdError, i, light.ks * terms.specularStdError);
+    if (T* visibility = out[int(LightTerm::Visibility)])
+    {
+      visibility[i] = T(terms.visibility);
+    }
+    if (T* visibilityError = out[int(LightTerm::VisibilityStdError)])
+    {
+      visibilityError[i] = T(terms.visibilityStdError);
+    }
   }
 }
 

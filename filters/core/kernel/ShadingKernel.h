@@ -40,6 +40,9 @@ struct ShadingOutputs
 struct ShadingInputs
 {
   std::vector<const float*> lightVisibility; // follows scene.lights; nullptr (or empty): not shadowed
+  /// Follows scene.lights: for an area light with shadows, the bits of its samples that the mesh
+  /// hides (HiddenSamples), hiddenSampleWords(shadowRayCount()) words per vertex; nullptr: none.
+  std::vector<const std::uint64_t*> lightHiddenSamples;
   const float* ambientOcclusion = nullptr;   // nullptr: the open sky, 1
   const ShadingFlags* flags = nullptr;       // flags the rays found (FlagHiddenByOwnTriangle)
   /// Each vertex's id in the whole mesh, which seeds its samples, where the arrays hold some
@@ -126,6 +129,9 @@ private:
   {
     std::shared_ptr<const DistributedLightEstimator> estimator;
     std::optional<PreparedPolynomial> irradiance;
+    std::shared_ptr<const ShadowedLightEstimator> shadowed; // with hiddenSamples: the light's shadows
+    const std::uint64_t* hiddenSamples = nullptr;
+    int hiddenWords = 0; // per vertex
     Rgb kd{ 0.0 }, ks{ 0.0 };
     bool needsSpecular = false;
     std::array<T*, LightTermCount> out{};
@@ -136,7 +142,8 @@ private:
   PreparedLight prepareLocal(const LocalEvaluation& evaluation, const std::array<T*, LightTermCount>& out,
     const Material& m, bool needsSpecular, PowMethod pow) const;
   DistributedLightSlot prepareDistributed(const DistributedEvaluation& evaluation,
-    const std::array<T*, LightTermCount>& out, const Material& m, bool needsSpecular) const;
+    const std::array<T*, LightTermCount>& out, const Material& m, bool needsSpecular,
+    const std::uint64_t* hiddenSamples) const;
 
   void prepareNormals(const VertexBlock<T>& block, Workspace& w) const;
   void prepareViewer(const VertexBlock<T>& block, Workspace& w) const;

@@ -10,6 +10,6 @@ struct AmbientLight
   Rgb color{ 1, 1, 1 };
   double intensity = 1.0;
 
-  SHADELAB_LIGHT_TYPE(AmbientLight, Ambient, false);
+  SHADELAB_LIGHT_TYPE(AmbientLight, Ambient, false, false);
 };
 }

@@ -208,7 +208,7 @@ void AreaLight::placeOn(const MeshPlacement& placement)
 
 LightEvaluation AreaLight::prepare(const EvaluationContext& context) const
 {
-  return DistributedEvaluation{ std::make_shared<const AreaLightEstimator>(*this, context.lightIndex, context.lobe),
-    std::nullopt };
+  const auto estimator = std::make_shared<const AreaLightEstimator>(*this, context.lightIndex, context.lobe);
+  return DistributedEvaluation{ estimator, std::nullopt, estimator };
 }
 }

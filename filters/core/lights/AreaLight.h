@@ -52,6 +52,6 @@ struct AreaLight
   AreaEstimator estimator = AreaEstimator::Exact;
   Sampling sampling;
 
-  SHADELAB_LIGHT_TYPE(AreaLight, Distributed, false);
+  SHADELAB_LIGHT_TYPE(AreaLight, Distributed, false, true);
 };
 }

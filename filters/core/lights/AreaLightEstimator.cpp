@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace shadelab
 {
@@ -103,6 +104,11 @@ double AreaLightEstimator::exactProjectedSolidAngle(const SurfacePoint& point) c
 
 WeightedDirection AreaLightEstimator::sample(const glm::dvec2& u, const SurfacePoint& point) const
 {
+  return sampleEmitter(u, point).toward;
+}
+
+AreaLightEstimator::EmitterSample AreaLightEstimator::sampleEmitter(const glm::dvec2& u, const SurfacePoint& point) const
+{
   return std::visit(
     Overloaded{ [&](const PolygonEmitter& polygon) { return towardPoint(pointOnPolygon(polygon, u), point.position); },
       [&](const DiskEmitter& disk) { return towardPoint(pointOnDisk(disk, u), point.position); },
@@ -128,7 +134,7 @@ glm::dvec3 AreaLightEstimator::pointOnDisk(const DiskEmitter& disk, const glm::d
   return disk.centre + q.x * tangent_ + q.y * bitangent_;
 }
 
-WeightedDirection AreaLightEstimator::towardPoint(const glm::dvec3& onEmitter, const glm::dvec3& receiver) const
+AreaLightEstimator::EmitterSample AreaLightEstimator::towardPoint(const glm::dvec3& onEmitter, const glm::dvec3& receiver) const
 {
   // Area sampling, pdf 1/A, in solid angle d^2 / (A cos_e) (pbrt-v4, section 4.2.3).
   const glm::dvec3 offset = onEmitter - receiver;
@@ -137,30 +143,36 @@ WeightedDirection AreaLightEstimator::towardPoint(const glm::dvec3& onEmitter, c
   {
     return {};
   }
-  const glm::dvec3 direction = offset / std::sqrt(d2);
-  return { direction, area_ * emittedCosine(direction) / d2 };
+  const double d = std::sqrt(d2);
+  const glm::dvec3 direction = offset / d;
+  return { { direction, area_ * emittedCosine(direction) / d2 }, d };
 }
 
-WeightedDirection AreaLightEstimator::towardSphere(
+AreaLightEstimator::EmitterSample AreaLightEstimator::towardSphere(
   const SphereEmitter& sphere, const glm::dvec2& u, const SurfacePoint& point) const
 {
   const glm::dvec3 offset = sphere.centre - point.position;
   const double d = vectorLength(offset);
-  if (d <= sphere.radius)
-  {
-    // Inside the emitter every direction sees it: cosine-weighted, which makes E exactly pi L.
-    return cosineWeightedDirection(point.normal, u);
-  }
-  // The cone of half-angle asin(r/d), where every direction hits the sphere;
+  const bool inside = d <= sphere.radius;
+  // Inside the emitter every direction sees it: cosine-weighted, which makes E exactly pi L.
+  // Outside, the cone of half-angle asin(r/d), where every direction hits the sphere;
   // 1 - cos theta_max = (r/d)^2 / (1 + cos theta_max) keeps its digits for a small, far sphere.
-  const double sinMax2 = (sphere.radius / d) * (sphere.radius / d);
-  return uniformConeDirection(offset / d, sinMax2 / (1 + std::sqrt(1 - sinMax2)), u);
+  const double sinMax2 = inside ? 1.0 : (sphere.radius / d) * (sphere.radius / d);
+  const WeightedDirection toward = inside ? cosineWeightedDirection(point.normal, u)
+                                          : uniformConeDirection(offset / d, sinMax2 / (1 + std::sqrt(1 - sinMax2)), u);
+  // The ray meets the sphere where |p + t w - c| = r: t = b -+ sqrt(b^2 - (d^2 - r^2)), b = w.(c - p),
+  // the nearer root from outside and the farther from inside. Written as (d^2 - r^2) / (b + root)
+  // from outside, so that a far sphere's distance keeps its digits.
+  const double b = glm::dot(toward.direction, offset);
+  const double c = (d - sphere.radius) * (d + sphere.radius);
+  const double root = std::sqrt(std::max(0.0, b * b - c));
+  return { toward, inside ? b + root : c / std::max(b + root, std::numeric_limits<double>::min()) };
 }
 
-DistributedTerms AreaLightEstimator::monteCarlo(const SurfacePoint& point, bool irradiance) const
+DistributedTerms AreaLightEstimator::monteCarlo(const SurfacePoint& point, bool irradiance, const HiddenSamples* hidden) const
 {
   const SampleSequence sequence(lightIndex_, point.index, light_.sampling);
-  return sampledTerms(sequence, light_.sampling.stratified, irradiance, lobe_, point.normal, point.toViewer,
+  return sampledTerms(sequence, light_.sampling.stratified, irradiance, lobe_, point.normal, point.toViewer, hidden,
     [&](const glm::dvec2& u)
     {
       const WeightedDirection sample = this->sample(u, point);
@@ -189,18 +201,65 @@ DistributedTerms AreaLightEstimator::pointApproximation(const SurfacePoint& poin
 
 DistributedTerms AreaLightEstimator::estimate(const SurfacePoint& point) const
 {
+  return estimateWith(point, nullptr);
+}
+
+DistributedTerms AreaLightEstimator::estimate(const SurfacePoint& point, const HiddenSamples& hidden) const
+{
+  return estimateWith(point, &hidden);
+}
+
+DistributedTerms AreaLightEstimator::estimateWith(const SurfacePoint& point, const HiddenSamples* hidden) const
+{
   switch (light_.estimator)
   {
     case AreaEstimator::Point:
-      return pointApproximation(point);
+    {
+      DistributedTerms terms = pointApproximation(point);
+      if (hidden && hidden->hidden(0))
+      {
+        terms = {};
+        terms.visibility = 0;
+      }
+      return terms;
+    }
     case AreaEstimator::MonteCarlo:
-      return monteCarlo(point, true);
+      return monteCarlo(point, true, hidden);
     case AreaEstimator::Exact:
       break;
   }
-  // Exact E; S has no closed form for a Phong lobe over a polygon, so it is sampled.
-  DistributedTerms terms = lobe_.wanted() ? monteCarlo(point, false) : DistributedTerms{};
-  terms.irradiance = radiance_ * exactProjectedSolidAngle(point);
+  // Exact E; S has no closed form for a Phong lobe over a polygon, so it is sampled. With
+  // shadows, the samples also give the visible fraction of E.
+  DistributedTerms terms = lobe_.wanted() || hidden ? monteCarlo(point, false, hidden) : DistributedTerms{};
+  const Rgb unshadowed = radiance_ * exactProjectedSolidAngle(point);
+  terms.irradiance = unshadowed * terms.visibility;
+  terms.irradianceStdError = unshadowed * terms.visibilityStdError;
   return terms;
+}
+
+int AreaLightEstimator::shadowRayCount() const
+{
+  return light_.estimator == AreaEstimator::Point ? 1 : light_.sampling.samples;
+}
+
+void AreaLightEstimator::shadowRays(const SurfacePoint& point, ShadowRay* rays) const
+{
+  // A ray is cast only where its sample carries light to the point's lit side: the others
+  // count as visible and add nothing.
+  auto ray = [&](const glm::dvec3& direction, double weight, double distance)
+  { return ShadowRay{ direction, distance, weight > 0 && glm::dot(point.normal, direction) > 0 }; };
+  if (light_.estimator == AreaEstimator::Point)
+  {
+    const glm::dvec3 offset = centre_ - point.position;
+    const double d = vectorLength(offset);
+    rays[0] = d > 0 ? ray(offset / d, 1.0, d) : ShadowRay{};
+    return;
+  }
+  const SampleSequence sequence(lightIndex_, point.index, light_.sampling);
+  for (int j = 0; j < sequence.count(); ++j)
+  {
+    const EmitterSample sample = sampleEmitter(sequence.point(j), point);
+    rays[j] = ray(sample.toward.direction, sample.toward.weight, sample.distance);
+  }
 }
 }

@@ -9,12 +9,20 @@
 
 namespace shadelab
 {
-class AreaLightEstimator final : public DistributedLightEstimator
+class AreaLightEstimator final : public DistributedLightEstimator, public ShadowedLightEstimator
 {
 public:
   AreaLightEstimator(const AreaLight& light, std::uint64_t lightIndex, const LobeModel& lobe);
 
   DistributedTerms estimate(const SurfacePoint& point) const override;
+
+  /// The samples' rays to the emitter (the point estimator: one ray, to the centre).
+  int shadowRayCount() const override;
+  void shadowRays(const SurfacePoint& point, ShadowRay* rays) const override;
+  /// Exact: the exact E times the visible fraction of the samples, S from the samples that get
+  /// through. Monte Carlo: E and S from the samples that get through. Point: the point light's
+  /// E and S, times whether its one ray gets through.
+  DistributedTerms estimate(const SurfacePoint& point, const HiddenSamples& hidden) const override;
 
   /// A direction from point to the emitter, with 1 / pdf in solid angle (weight 0 where the
   /// emitter sends no light back along it). Warps u in [0, 1)^2 onto the emitter: uniformly over a polygon's or
@@ -36,13 +44,21 @@ private:
   /// one-sided emitter.
   double emittedCosine(const glm::dvec3& towardEmitter) const;
   bool sendsLightTo(const glm::dvec3& position) const;
+  /// A sampled direction and the distance along it to the emitter.
+  struct EmitterSample
+  {
+    WeightedDirection toward;
+    double distance = 0;
+  };
+  EmitterSample sampleEmitter(const glm::dvec2& u, const SurfacePoint& point) const;
   glm::dvec3 pointOnPolygon(const PolygonEmitter& polygon, const glm::dvec2& u) const;
   glm::dvec3 pointOnDisk(const DiskEmitter& disk, const glm::dvec2& u) const;
   /// The direction to a point sampled on a planar emitter by area, weighted as solid angle.
-  WeightedDirection towardPoint(const glm::dvec3& onEmitter, const glm::dvec3& receiver) const;
-  WeightedDirection towardSphere(const SphereEmitter& sphere, const glm::dvec2& u, const SurfacePoint& point) const;
-  DistributedTerms monteCarlo(const SurfacePoint& point, bool irradiance) const;
+  EmitterSample towardPoint(const glm::dvec3& onEmitter, const glm::dvec3& receiver) const;
+  EmitterSample towardSphere(const SphereEmitter& sphere, const glm::dvec2& u, const SurfacePoint& point) const;
+  DistributedTerms monteCarlo(const SurfacePoint& point, bool irradiance, const HiddenSamples* hidden) const;
   DistributedTerms pointApproximation(const SurfacePoint& point) const;
+  DistributedTerms estimateWith(const SurfacePoint& point, const HiddenSamples* hidden) const;
 
   AreaLight light_;
   Rgb radiance_;

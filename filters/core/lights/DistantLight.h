@@ -14,6 +14,6 @@ struct DistantLight
   /// direction vector. When set, intensity is multiplied by |direction|.
   bool intensityFromLength = false;
 
-  SHADELAB_LIGHT_TYPE(DistantLight, Local, false);
+  SHADELAB_LIGHT_TYPE(DistantLight, Local, false, true);
 };
 }

@@ -42,6 +42,6 @@ struct EnvironmentLight
   Sampling sampling;
   int bruteForceWidth = 128;
 
-  SHADELAB_LIGHT_TYPE(EnvironmentLight, Distributed, false);
+  SHADELAB_LIGHT_TYPE(EnvironmentLight, Distributed, false, false);
 };
 }

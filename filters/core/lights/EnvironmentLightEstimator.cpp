@@ -99,7 +99,7 @@ DistributedTerms EnvironmentLightEstimator::monteCarlo(const glm::dvec3& n, cons
   bool irradiance, EnvironmentDirections directions) const
 {
   const SampleSequence sequence(lightIndex_, vertex, light_.sampling);
-  return sampledTerms(sequence, light_.sampling.stratified, irradiance, lobe_, n, v,
+  return sampledTerms(sequence, light_.sampling.stratified, irradiance, lobe_, n, v, nullptr,
     [&](const glm::dvec2& u)
     {
       if (directions == EnvironmentDirections::Luminance)

@@ -10,6 +10,6 @@ struct Headlight
   Rgb color{ 1, 1, 1 };
   double intensity = 1.0;
 
-  SHADELAB_LIGHT_TYPE(Headlight, Local, false);
+  SHADELAB_LIGHT_TYPE(Headlight, Local, false, true);
 };
 }

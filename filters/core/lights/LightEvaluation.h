@@ -48,6 +48,8 @@ struct DistributedEvaluation
 {
   std::shared_ptr<const DistributedLightEstimator> estimator; // null when nothing is left to estimate
   std::optional<IrradiancePolynomial> irradiance;
+  /// The estimator with the light's shadows, for a light that can cast them (null otherwise).
+  std::shared_ptr<const ShadowedLightEstimator> shadowed;
 };
 
 using LightEvaluation = std::variant<AmbientEvaluation, LocalEvaluation, DistributedEvaluation>;

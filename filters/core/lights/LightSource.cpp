@@ -57,7 +57,20 @@ bool lightHasTerm(const LightSource& source, LightTerm term)
 
 bool lightHasTerm(const NamedLight& light, LightTerm term)
 {
-  return term == LightTerm::Visibility ? light.shadows : lightHasTerm(light.source, term);
+  // A distributed light's shadows are sampled (AreaLightEstimator): its visibility has a
+  // standard error, and so has its irradiance, whatever the estimator.
+  const bool softShadows = light.shadows && isDistributed(light.source);
+  switch (term)
+  {
+    case LightTerm::Visibility:
+      return light.shadows;
+    case LightTerm::VisibilityStdError:
+      return softShadows;
+    case LightTerm::IrradianceStdError:
+      return softShadows || lightHasTerm(light.source, term);
+    default:
+      return lightHasTerm(light.source, term);
+  }
 }
 
 double peakContribution(const LightSource& source, const Material& m)
@@ -86,7 +99,7 @@ namespace
 struct FileTypeEntry
 {
   const SceneFileType* type;
-  LightRole role;
+  bool castsShadows;
   LightSource (*read)(const JsonNode&, const SceneFileType&, const std::string&);
 };
 
@@ -100,15 +113,16 @@ template <std::size_t... Index>
 std::vector<FileTypeEntry> collectFileTypes(std::index_sequence<Index...>)
 {
   std::vector<FileTypeEntry> entries;
-  auto add = [&entries](const std::vector<SceneFileType>& types, LightRole role, auto read)
+  auto add = [&entries](const std::vector<SceneFileType>& types, bool castsShadows, auto read)
   {
     for (const SceneFileType& type : types)
     {
-      entries.push_back({ &type, role, read });
+      entries.push_back({ &type, castsShadows, read });
     }
   };
   (add(std::variant_alternative_t<Index, LightSource>::sceneFileTypes(),
-     std::variant_alternative_t<Index, LightSource>::role, &readAs<std::variant_alternative_t<Index, LightSource>>),
+     std::variant_alternative_t<Index, LightSource>::castsShadows,
+     &readAs<std::variant_alternative_t<Index, LightSource>>),
     ...);
   return entries;
 }
@@ -167,12 +181,17 @@ const FileTypeEntry& fileTypeNamed(const JsonNode& node)
 }
 }
 
-std::string sceneTypeNamesOf(LightRole role)
+bool castsShadows(const LightSource& source)
+{
+  return std::visit([](const auto& light) { return std::decay_t<decltype(light)>::castsShadows; }, source);
+}
+
+std::string shadowCastingTypeNames()
 {
   std::vector<const char*> names;
   for (const FileTypeEntry& entry : fileTypes())
   {
-    if (entry.role == role)
+    if (entry.castsShadows)
     {
       names.push_back(entry.type->name);
     }

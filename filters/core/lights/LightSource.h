@@ -79,9 +79,12 @@ void placeOnMesh(LightSource& source, const MeshPlacement& placement);
 /// The light's form for the kernel.
 LightEvaluation prepareEvaluation(const LightSource& source, const EvaluationContext& context);
 
-/// The scene-file "type" names of the registered types of this role, as a phrase for
-/// messages: "distant, headlight, point and spot" for the local lights.
-std::string sceneTypeNamesOf(LightRole role);
+/// Whether "shadows" is allowed on the light (its type's castsShadows).
+bool castsShadows(const LightSource& source);
+
+/// The scene-file "type" names of the registered types that cast shadows, as a phrase for
+/// messages: "distant, headlight, point, spot, polygon, rectangle, disk and sphere".
+std::string shadowCastingTypeNames();
 
 /// A light from its JSON object in a scene file: the fields any light may have, its "type",
 /// then only that type's fields. Throws JsonError (JsonNode.h).

@@ -23,10 +23,11 @@ enum class LightTerm
   IrradianceStdError, // Monte Carlo standard error of E, RGB
   SpecularStdError,   // Monte Carlo standard error of the specular term, RGB
   // Lights that cast shadows (NamedLight::shadows):
-  Visibility, // 1 where the mesh does not hide the light, 0 where it does
+  Visibility,         // 1 where the mesh does not hide the light, 0 where it does; the visible fraction of E for area lights
+  VisibilityStdError, // area lights: the standard error of the sampled visible fraction
 };
-constexpr int LightTermCount = 16;
-static_assert(static_cast<int>(LightTerm::Visibility) + 1 == LightTermCount, "LightTermCount is stale");
+constexpr int LightTermCount = 17;
+static_assert(static_cast<int>(LightTerm::VisibilityStdError) + 1 == LightTermCount, "LightTermCount is stale");
 
 /// A light seen from each vertex as one direction: every term up to the specular one, and the
 /// distance only when the light has a position.

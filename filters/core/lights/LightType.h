@@ -7,6 +7,7 @@
 //
 //   static constexpr LightRole role;      how the kernel evaluates it (LightEvaluation.h)
 //   static constexpr bool positional;     true: it has members `position` and `attenuation`
+//   static constexpr bool castsShadows;   true: "shadows" is allowed on it (visibility/)
 //   static const std::vector<SceneFileType>& sceneFileTypes();
 //                                         its "type" names in a scene file, each with its fields
 //   static T read(const JsonNode& node, const SceneFileType& type, const std::string& sceneFile);
@@ -64,9 +65,10 @@ constexpr double distributedPeakFactor = 6.283185307179586;
 /// Declares the members listed at the top of this file in a light type's struct, as
 /// vtkTypeMacro declares a VTK class's (a macro, so that the struct stays an aggregate:
 /// DistantLight{ direction, color, intensity, false }).
-#define SHADELAB_LIGHT_TYPE(Type, lightRole, isPositional)                                          \
+#define SHADELAB_LIGHT_TYPE(Type, lightRole, isPositional, hasShadows)                              \
   static constexpr LightRole role = LightRole::lightRole;                                            \
   static constexpr bool positional = isPositional;                                                   \
+  static constexpr bool castsShadows = hasShadows;                                                   \
   static const std::vector<SceneFileType>& sceneFileTypes();                                         \
   static Type read(const JsonNode& node, const SceneFileType& type, const std::string& sceneFile);   \
   std::string typeName() const;                                                                      \

@@ -12,6 +12,6 @@ struct PointLight
   double intensity = 1.0;
   Attenuation attenuation;
 
-  SHADELAB_LIGHT_TYPE(PointLight, Local, true);
+  SHADELAB_LIGHT_TYPE(PointLight, Local, true, true);
 };
 }

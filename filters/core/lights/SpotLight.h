@@ -14,6 +14,6 @@ struct SpotLight
   Attenuation attenuation;
   SpotCone cone;
 
-  SHADELAB_LIGHT_TYPE(SpotLight, Local, true);
+  SHADELAB_LIGHT_TYPE(SpotLight, Local, true, true);
 };
 }

@@ -23,7 +23,10 @@ const std::array<TermInfo, LightTermCount> lightTerms = { {
   { "irradiance", 3, "E: irradiance, the integral of L max(0, n.w) over the light's solid angle, RGB" },
   { "irradiance_std_error", 3, "Monte Carlo standard error of the irradiance, RGB" },
   { "specular_std_error", 3, "Monte Carlo standard error of the specular term, RGB" },
-  { "visibility", 1, "1 where the mesh does not hide the light, 0 where it does (lights with shadows)" },
+  { "visibility", 1,
+    "lights with shadows: 1 where the mesh does not hide the light, 0 where it does; for an area light, the "
+    "fraction of its irradiance that gets past the mesh (1 where the light is below the horizon)" },
+  { "visibility_std_error", 1, "Monte Carlo standard error of an area light's visibility" },
 } };
 
 const std::array<TermInfo, TotalTermCount> totalTerms = { {
@@ -85,6 +88,11 @@ std::string flagsArrayName(const std::string& prefix)
 std::string visibilityFlagsArrayName(const std::string& prefix)
 {
   return prefix + "visibility_flags";
+}
+
+std::string hiddenSamplesArrayName(const std::string& prefix, const std::string& light)
+{
+  return prefix + light + "_hidden_samples";
 }
 
 std::string occlusionArrayName(const std::string& prefix, OcclusionTerm term)
@@ -236,6 +244,7 @@ ArrayRequest selectArrays(const Scene& scene, const std::vector<std::string>& se
       request.occlusion[int(OcclusionTerm::AmbientOcclusion)] |= scene.ambientOcclusion.has_value();
       request.occlusion[int(OcclusionTerm::AmbientOcclusionStdError)] |= scene.ambientOcclusion.has_value();
       requestTermOnEveryLight(scene, termInfo(LightTerm::Visibility).name, request);
+      requestTermOnEveryLight(scene, termInfo(LightTerm::VisibilityStdError).name, request);
     }
     else if (entry.rfind("*_", 0) == 0)
     {

@@ -106,9 +106,9 @@ std::vector<SceneProblem> sceneProblems(const Scene& scene, Precision precision)
     checkLightSource(light.source, checks);
     list.check(lightNames.insert(light.name).second, at + "/name",
       "another light is already named '" + light.name + "'");
-    list.check(!light.shadows || roleOf(light.source) == LightRole::Local, at + "/shadows",
-      "only " + sceneTypeNamesOf(LightRole::Local) + " lights cast shadows so far (soft shadows of area lights and "
-      "environment maps are not computed yet): remove \"shadows\" from this light");
+    list.check(!light.shadows || castsShadows(light.source), at + "/shadows",
+      "only " + shadowCastingTypeNames() + " lights cast shadows so far (an ambient light has no direction, and "
+      "an environment map's shadows are not computed yet): remove \"shadows\" from this light");
   }
   if (scene.ambientOcclusion)
   {

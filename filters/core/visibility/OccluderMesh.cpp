@@ -197,7 +197,7 @@ OccluderMesh::FrameRay OccluderMesh::inFrame(const SurfaceRay& ray) const
     side = along > 0 ? joint : along < 0 ? -joint : side;
   }
   return { offsetRayOrigin(point, side), glm::vec3(ray.direction),
-    static_cast<float>(ray.maxDistance / frame_.radius) };
+    frameDistance(ray.maxDistance) };
 }
 
 namespace

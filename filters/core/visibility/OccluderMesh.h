@@ -64,6 +64,8 @@ public:
     float maxDistance = std::numeric_limits<float>::infinity();
   };
   FrameRay inFrame(const SurfaceRay& ray) const;
+  /// A distance in the mesh's coordinates as the BVH's frame measures it.
+  float frameDistance(double distance) const { return static_cast<float>(distance / frame_.radius); }
 
   /// Which of rays[0..count-1] (count <= bundleSize) triangles block: bit j for rays[j].
   unsigned occluded(const FrameRay* rays, int count) const;

@@ -122,6 +122,44 @@ void lightVisibility(const OccluderMesh& occluders, const RayVertex* vertices, c
   }
 }
 
+void hiddenSamples(const OccluderMesh& occluders, const ShadowedLightEstimator& light, const SurfacePoint& point,
+  PointId vertex, std::vector<ShadowRay>& rays, std::uint64_t* words)
+{
+  const int count = light.shadowRayCount();
+  rays.resize(static_cast<std::size_t>(count));
+  light.shadowRays(point, rays.data());
+  std::fill_n(words, hiddenSampleWords(count), 0u);
+  // The rays differ only in direction and length: the start is moved off the surface once.
+  const OccluderMesh::FrameRay start = occluders.inFrame({ point.position, point.normal, {}, 0.0, vertex });
+  OccluderMesh::FrameRay bundle[OccluderMesh::bundleSize];
+  int sampleOf[OccluderMesh::bundleSize];
+  int size = 0;
+  auto trace = [&]
+  {
+    const unsigned hidden = size > 0 ? occluders.occluded(bundle, size) : 0u;
+    for (int j = 0; j < size; ++j)
+    {
+      const int sample = sampleOf[j];
+      words[sample / 64] |= std::uint64_t((hidden >> j) & 1u) << (sample % 64);
+    }
+    size = 0;
+  };
+  for (int j = 0; j < count; ++j)
+  {
+    if (!rays[j].cast)
+    {
+      continue;
+    }
+    bundle[size] = { start.origin, glm::vec3(rays[j].direction), occluders.frameDistance(rays[j].distance) };
+    sampleOf[size++] = j;
+    if (size == OccluderMesh::bundleSize)
+    {
+      trace();
+    }
+  }
+  trace();
+}
+
 OcclusionEstimate ambientOcclusion(const OccluderMesh& occluders, const RayVertex& vertex, const OcclusionSettings& settings)
 {
   OcclusionEstimate estimate;

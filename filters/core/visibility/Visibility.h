@@ -3,6 +3,7 @@
 // section 20): the visibility of a local light, 0 or 1, and ambient occlusion, the
 // cosine-weighted fraction of the hemisphere above the vertex from which no triangle blocks
 // the sky.
+#include "DistributedLight.h"
 #include "OccluderMesh.h"
 #include "SampleSequence.h"
 
@@ -49,6 +50,14 @@ struct LightDirection
 /// multiplies are 0 there).
 void lightVisibility(const OccluderMesh& occluders, const RayVertex* vertices, const LightDirection* directions,
   int count, bool twoSided, LightVisibility* visibility);
+
+/// The samples of a shadowed area light that the mesh hides from a surface point (the kernel's
+/// point: its normal turned toward the viewer where two-sided), as the bits of HiddenSamples,
+/// into words[0..hiddenSampleWords(light.shadowRayCount())-1]. vertex is the point's id in the
+/// occluders (for its copies at seams). The rays leave on the side of point.normal, in bundles;
+/// rays is scratch space for light.shadowRayCount() rays.
+void hiddenSamples(const OccluderMesh& occluders, const ShadowedLightEstimator& light, const SurfacePoint& point,
+  PointId vertex, std::vector<ShadowRay>& rays, std::uint64_t* words);
 
 /// How ambient occlusion is estimated.
 struct OcclusionSettings
