@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace
@@ -171,5 +172,80 @@ TEST(SoftShadows, TheErrorFallsAsOneOverTheSquareRootOfTheSamples)
     const double stratified = penumbraRmsError(estimator, 64, true) / penumbraRmsError(estimator, 1024, true);
     EXPECT_GT(stratified, 6.5);
   }
+}
+}
+
+namespace
+{
+/// Whether every term is a finite number, the visibility in [0, 1].
+void expectFinite(const DistributedTerms& terms)
+{
+  for (const Rgb& value : { terms.irradiance, terms.specular, terms.irradianceStdError, terms.specularStdError })
+  {
+    EXPECT_TRUE(std::isfinite(value.x) && std::isfinite(value.y) && std::isfinite(value.z));
+  }
+  EXPECT_GE(terms.visibility, 0.0);
+  EXPECT_LE(terms.visibility, 1.0);
+  EXPECT_TRUE(std::isfinite(terms.visibilityStdError));
+}
+
+TEST(SoftShadowsFailurePoints, AVertexInTheLightsPlaneCastsNoRay)
+{
+  // Beside the light, in its plane: a one-sided emitter sends it nothing, so no ray is cast,
+  // E is 0 and the visibility is 1 (nothing is hidden).
+  const Plate plate;
+  const OccluderMesh occluders = plate.occluders();
+  const SurfacePoint beside{ { 1.5, 0, lightHeight }, { 0, 0, 1 }, { 0, 0, 1 }, 3 };
+  for (AreaEstimator estimator : { AreaEstimator::Exact, AreaEstimator::MonteCarlo })
+  {
+    const AreaLightEstimator light(squareLight(estimator, 64, true), 7, LobeModel{ SpecularModel::Phong, 10 });
+    std::vector<ShadowRay> rays(64);
+    light.shadowRays(beside, rays.data());
+    EXPECT_TRUE(std::none_of(rays.begin(), rays.end(), [](const ShadowRay& ray) { return ray.cast; }));
+    const DistributedTerms terms = shadowed(occluders, light, beside);
+    expectFinite(terms);
+    EXPECT_EQ(terms.irradiance, Rgb(0.0));
+    EXPECT_EQ(terms.visibility, 1.0);
+    EXPECT_EQ(terms.visibilityStdError, 0.0);
+  }
+}
+
+TEST(SoftShadowsFailurePoints, ALightCrossingTheSurfaceIsCutByTheHorizon)
+{
+  // A disk through the receiving plane, tilted: its lower half is below the horizon, where no
+  // ray goes. Nothing else in the way: the unshadowed value bit for bit.
+  const Plate plate;
+  const OccluderMesh occluders = plate.occluders();
+  AreaLight disk;
+  disk.shape = DiskEmitter{ { 2.0, 0, 0 }, glm::normalize(glm::dvec3(-1, 0, -1)), 0.5 };
+  for (AreaEstimator estimator : { AreaEstimator::Exact, AreaEstimator::MonteCarlo })
+  {
+    disk.estimator = estimator;
+    const AreaLightEstimator light(disk, 7, LobeModel{});
+    const SurfacePoint point = receiver(1.0, 4);
+    const DistributedTerms terms = shadowed(occluders, light, point);
+    expectFinite(terms);
+    EXPECT_GT(terms.irradiance.x, 0.0);
+    EXPECT_EQ(terms.irradiance, light.estimate(point).irradiance);
+    EXPECT_EQ(terms.visibility, 1.0);
+  }
+}
+
+TEST(SoftShadowsFailurePoints, GrazingOccluders)
+{
+  const Plate plate;
+  const OccluderMesh occluders = plate.occluders();
+  const AreaLightEstimator light(squareLight(AreaEstimator::Exact, 1024, true), 7, LobeModel{});
+  // Right under the plate's edge, half the light is hidden: rays pass the edge at every angle.
+  const DistributedTerms under = shadowed(occluders, light, receiver(0.0, 5));
+  expectFinite(under);
+  EXPECT_NEAR(under.irradiance.x, visibleIrradiance(0.0), 3 * under.irradianceStdError.x);
+  EXPECT_NEAR(under.visibility, 0.5, 0.05);
+  // Level with the plate, just beyond its edge, facing up: every ray climbs away from the
+  // plate's plane, none is stopped by it.
+  const SurfacePoint level{ { 0.25, 0, plateHeight }, { 0, 0, 1 }, { 0, 0, 1 }, 6 };
+  const DistributedTerms grazing = shadowed(occluders, light, level);
+  EXPECT_EQ(grazing.visibility, 1.0);
+  EXPECT_EQ(grazing.irradiance, light.estimate(level).irradiance);
 }
 }
