@@ -463,8 +463,11 @@ void runAccuracyStudies(const AccuracyOptions& options)
   study("3_point_as_distant", [&](ChartSpec& chart) { return distantStudy(*bunny, options.maxRepeats, chart); });
   study("4_phong_vs_blinn_phong", [&](ChartSpec& chart) { return phongStudy(*bunny, options.maxRepeats, chart); });
   study("5_tessellation", [&](ChartSpec& chart) { return tessellationStudy(chart); });
-  study("6_area_light",
-    [&](ChartSpec& chart) { return areaLightStudy(plainBunny, distributed.softbox, options.maxRepeats, chart); });
+  for (const bool shadows : { false, true })
+  {
+    study(shadows ? "6b_soft_shadows" : "6_area_light",
+      [&](ChartSpec& chart) { return areaLightStudy(plainBunny, distributed.softbox, shadows, options.maxRepeats, chart); });
+  }
   study("7_sunset_map",
     [&](ChartSpec& chart)
     {
@@ -488,6 +491,6 @@ void runAccuracyStudies(const AccuracyOptions& options)
   rows.insert(rows.end(), speed.begin(), speed.end());
   printRows(speed);
   writeCsv(rows, folder + "accuracy.csv");
-  std::cout << "wrote " << folder << "accuracy.csv and 8 charts\n";
+  std::cout << "wrote " << folder << "accuracy.csv and 9 charts\n";
 }
 }

@@ -220,20 +220,24 @@ DistributedStudyInputs readDistributedStudyInputs(const AccuracyOptions& options
   return inputs;
 }
 
-std::vector<AccuracyRow> areaLightStudy(const Mesh& bunny, const Scene& softbox, int maxRepeats, ChartSpec& chart)
+std::vector<AccuracyRow> areaLightStudy(
+  const Mesh& bunny, const Scene& softbox, bool shadows, int maxRepeats, ChartSpec& chart)
 {
   const std::string name = softbox.lights.front().name;
   AreaLight light = std::get<AreaLight>(softbox.lights.front().source);
-  auto lit = [&] { return withLight(softbox, { name, light }); };
-  // The total shows both estimates at once: the exact estimator's error is its sampled S.
-  DistributedStudy study("6 area light", bunny, { { "diffuse", "specular", "total" } }, "total", maxRepeats);
+  auto lit = [&] { return withLight(softbox, { name, light, shadows }); };
+  // The total shows both estimates at once: the exact estimator's error is its sampled S (and,
+  // with shadows, its sampled visible fraction).
+  DistributedStudy study(shadows ? "6 area light, soft shadows" : "6 area light", bunny,
+    { { "diffuse", "specular", "total" } }, "total", maxRepeats);
   const std::string stdErrorArray = name + "_specular_std_error";
   light.estimator = AreaEstimator::Exact;
   light.sampling = { areaReferenceSamples, true };
   const MethodRun& reference = study.measureReference(lit(), { stdErrorArray });
   const Differences referenceError = magnitudes(arrayOf(reference, stdErrorArray));
   std::ostringstream note;
-  note << std::setprecision(2) << "E exact (Lambert's polygon formula), S by Monte Carlo with " << areaReferenceSamples
+  note << std::setprecision(2) << "E exact (Lambert's polygon formula), S " << (shadows ? "and the visible fraction " : "")
+       << "by Monte Carlo with " << areaReferenceSamples
        << " stratified samples, float64; the standard error of its specular term is at most " << referenceError.largest
        << " (RMS " << referenceError.rms << ")";
   study.addReferenceRow("samples", areaReferenceSamples, note.str());
@@ -254,8 +258,8 @@ std::vector<AccuracyRow> areaLightStudy(const Mesh& bunny, const Scene& softbox,
   light.estimator = AreaEstimator::Point;
   study.measure("point", "(no samples)", 0, lit());
   chart.series = study.chartSeries();
-  chart.title = "Total under the softbox, Blinn-Phong eta " + std::to_string(int(softbox.material.shininess)) +
-    ", bunny (" + verticesText(bunny) + ")";
+  chart.title = std::string("Total under the softbox") + (shadows ? " with its soft shadows" : "") +
+    ", Blinn-Phong eta " + std::to_string(int(softbox.material.shininess)) + ", bunny (" + verticesText(bunny) + ")";
   chart.xTitle = "time per run (ms, median; 4 to 1024 samples along each line)";
   chart.yTitle = "|error| of the total against the reference: largest (solid), RMS (dashed)";
   chart.logX = chart.logY = true;

@@ -22,8 +22,10 @@ struct DistributedStudyInputs
 DistributedStudyInputs readDistributedStudyInputs(const AccuracyOptions& options);
 
 /// 6. The softbox by the exact, Monte Carlo and point estimators, against E exact and S by
-/// 16384 stratified samples; charts the error of the total.
-std::vector<AccuracyRow> areaLightStudy(const Mesh& bunny, const Scene& softbox, int maxRepeats, ChartSpec& chart);
+/// 16384 stratified samples; charts the error of the total. 6b: the same with its soft shadows,
+/// the visible fraction sampled too.
+std::vector<AccuracyRow> areaLightStudy(
+  const Mesh& bunny, const Scene& softbox, bool shadows, int maxRepeats, ChartSpec& chart);
 
 /// 7 and 8. A map by brute force at several widths, SH and Monte Carlo by luminance and by
 /// cosine, against brute force at width 256, under the softbox scene's material and viewer;
