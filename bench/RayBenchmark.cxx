@@ -7,6 +7,7 @@
 
 #include "AreaLightEstimator.h"
 #include "OccluderMesh.h"
+#include "PolygonIrradiance.h"
 #include "SampleSequence.h"
 #include "SampleWarps.h"
 #include "Visibility.h"
@@ -310,6 +311,47 @@ std::vector<double> occlusionAt(const RayMesh& mesh, int rays, std::size_t strid
   return values;
 }
 
+/// The penumbra across a straight edge against its closed form (docs/formulas.md section 11.6):
+/// a unit square light of radiance 1 at height 2 facing down, a plate at height 1 over x < 0.
+/// From (x, 0, 0) the light's part q.x >= -x is seen: Lambert's formula on that rectangle.
+ChartSpec penumbraChart(int samples)
+{
+  auto lightPart = [](double xFrom)
+  {
+    const double x0 = std::max(-0.5, xFrom);
+    return std::vector<glm::dvec3>{ { x0, 0.5, 2 }, { 0.5, 0.5, 2 }, { 0.5, -0.5, 2 }, { x0, -0.5, 2 } };
+  };
+  const std::vector<glm::dvec3> plate = { { -50, -50, 1 }, { 0, -50, 1 }, { 0, 50, 1 }, { -50, 50, 1 } };
+  const std::vector<PointId> offsets = { 0, 4 }, corners = { 0, 1, 2, 3 };
+  const OccluderMesh occluders(PackedPoints<double>{ &plate[0].x }, plate.size(), { offsets.data(), corners.data(), 1 });
+  ChartSeries closed{ "closed form", {}, {}, true, { 0, 0, 0 } };
+  ChartSeries exact{ "exact, " + std::to_string(samples) + " samples", {}, {}, false, { 40, 40, 200 } };
+  ChartSeries sampled{ "monte_carlo, " + std::to_string(samples) + " samples", {}, {}, false, { 200, 40, 40 } };
+  AreaLight light;
+  light.shape = PolygonEmitter{ lightPart(-0.5) };
+  light.sampling = { samples, true };
+  std::vector<ShadowRay> rays;
+  std::vector<std::uint64_t> words(std::size_t(hiddenSampleWords(samples)));
+  for (int i = 0; i < 200; ++i)
+  {
+    const double x = -1 + 2 * (i + 0.5) / 200;
+    const SurfacePoint point{ { x, 0, 0 }, { 0, 0, 1 }, { 0, 0, 1 }, std::uint64_t(i) };
+    closed.x.push_back(x);
+    closed.y.push_back(-x >= 0.5 ? 0.0 : polygonProjectedSolidAngle(lightPart(-x), point.position, point.normal));
+    for (auto [estimator, series] : { std::pair{ AreaEstimator::Exact, &exact }, std::pair{ AreaEstimator::MonteCarlo, &sampled } })
+    {
+      light.estimator = estimator;
+      const AreaLightEstimator estimate(light, 0, LobeModel{});
+      hiddenSamples(occluders, estimate, point, -1, rays, words.data());
+      series->x.push_back(x);
+      series->y.push_back(estimate.estimate(point, HiddenSamples{ words.data() }).irradiance.x);
+    }
+  }
+  return { "Penumbra of a straight edge: a square light over a plate (" + std::to_string(samples) + " samples per receiver)",
+    "receiver x (the plate's edge at 0; full shadow below -0.5, full light above 0.5)", "visible irradiance E / L",
+    false, false, false, { closed, exact, sampled } };
+}
+
 void printRow(const std::string& label, double value, const std::string& unit, const std::string& note = "")
 {
   std::cout << "  " << std::left << std::setw(44) << label << std::right << std::setw(10) << std::fixed
@@ -426,7 +468,8 @@ void runRayBenchmark(const RayBenchmarkOptions& options)
   ChartSpec chart{ "Ambient occlusion on the bunny: 4 to 1024 rays per vertex against 4096",
     "time for the mesh (ms)", "error in ambient_occlusion", true, true, false, { largest, rms } };
   writeChartPng(chart, options.folder + "/9_ambient_occlusion.png");
+  writeChartPng(penumbraChart(64), options.folder + "/10_penumbra.png");
   writeTextFile(options.folder + "/visibility.csv", csv.str());
-  std::cout << "wrote " << options.folder << "/visibility.csv and 9_ambient_occlusion.png\n";
+  std::cout << "wrote " << options.folder << "/visibility.csv, 9_ambient_occlusion.png and 10_penumbra.png\n";
 }
 }

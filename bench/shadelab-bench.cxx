@@ -131,10 +131,11 @@ int main(int argc, char** argv)
     "this folder; reads data/scenes/area_lights.json and data/envmaps/; needs an X display (xvfb-run -a)")
     ->excludes(endToEnd);
   cli.add_option("--visibility", command.visibilityFolder,
-    "instead, time ray casting (the BVH, shadow rays, ambient occlusion at 16, 64 and 256 rays) on the bunny "
-    "and the bunny subdivided to 2.2M vertices against vtkStaticCellLocator, and ambient occlusion's error "
-    "against its time (4 to 1024 rays against 4096); writes visibility.csv and 9_ambient_occlusion.png "
-    "into this folder; needs an X display (xvfb-run -a); about a minute")
+    "instead, time ray casting (the BVH, shadow rays, ambient occlusion at 16, 64 and 256 rays, a softbox's soft "
+    "shadows at 64 samples) on the bunny and the bunny subdivided to 2.2M vertices against vtkStaticCellLocator "
+    "and Embree alone, ambient occlusion's error against its time (4 to 1024 rays against 4096) and a penumbra "
+    "against its closed form; writes visibility.csv, 9_ambient_occlusion.png and 10_penumbra.png into this "
+    "folder; needs an X display (xvfb-run -a); about a minute")
     ->excludes(endToEnd);
   cli.add_option("--threads,-j", command.threads, "threads (0: all cores)")->check(CLI::Range(0, 256))->capture_default_str();
   bool verbose = false;
