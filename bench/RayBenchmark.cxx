@@ -221,28 +221,20 @@ SurfacePoint surfacePointOf(const RayVertex& vertex)
   return { vertex.position, vertex.normal, glm::dvec3(0.0), static_cast<std::uint64_t>(vertex.id) };
 }
 
-/// The softbox's shadow rays from every stride-th vertex, as the visibility step casts them:
-/// the seconds, and the rays cast.
-double softShadowSeconds(const RayMesh& mesh, const AreaLightEstimator& softbox, std::size_t stride, std::size_t& rays)
+/// The seconds the softbox's shadow rays from every stride-th vertex take, cast as the
+/// visibility step casts them.
+double softShadowSeconds(const RayMesh& mesh, const AreaLightEstimator& softbox, std::size_t stride)
 {
   const std::size_t count = (mesh.vertices.size() + stride - 1) / stride;
   const int words = hiddenSampleWords(softbox.shadowRayCount());
   std::vector<std::uint64_t> hidden(count * std::size_t(words));
-  const double seconds = parallelSeconds(count,
+  return parallelSeconds(count,
     [&](std::size_t k)
     {
       thread_local std::vector<ShadowRay> scratch;
       const RayVertex& vertex = mesh.vertices[k * stride];
       hiddenSamples(*mesh.occluders, softbox, surfacePointOf(vertex), vertex.id, scratch, &hidden[k * words]);
     });
-  rays = 0;
-  std::vector<ShadowRay> scratch(static_cast<std::size_t>(softbox.shadowRayCount()));
-  for (std::size_t k = 0; k < count; ++k)
-  {
-    softbox.shadowRays(surfacePointOf(mesh.vertices[k * stride]), scratch.data());
-    rays += static_cast<std::size_t>(std::count_if(scratch.begin(), scratch.end(), [](const ShadowRay& r) { return r.cast; }));
-  }
-  return seconds;
 }
 
 /// The same softbox rays made beforehand in the BVH's frame, for Embree alone.
@@ -420,9 +412,10 @@ void runRayBenchmark(const RayBenchmarkOptions& options)
     record("  ambient occlusion 64 / Embree alone", occlusion64RaysPerSecond / occlusionCeiling, "x", "target 0.9");
     // A shadowed softbox, 64 samples: its rays as the visibility step casts them.
     const AreaLightEstimator softbox = softboxOf(mesh, 64);
-    std::size_t softRays = 0;
-    const double softSeconds = softShadowSeconds(mesh, softbox, aoStride, softRays);
-    const double softCeiling = tracedRaysPerSecond(mesh, softboxFrameRays(mesh, softbox, aoStride));
+    const std::vector<OccluderMesh::FrameRay> softboxRays = softboxFrameRays(mesh, softbox, aoStride);
+    const std::size_t softRays = softboxRays.size(); // the rays cast: those whose sample carries light
+    const double softSeconds = softShadowSeconds(mesh, softbox, aoStride);
+    const double softCeiling = tracedRaysPerSecond(mesh, softboxRays);
     record("softbox shadows, 64 samples: rays", softRays / softSeconds / 1e6, "Mrays/s",
       std::to_string(softRays) + " rays cast, where the sample is above the horizon");
     record("softbox shadows, 64 samples: time", softSeconds * 1e3 * aoStride, "ms",
