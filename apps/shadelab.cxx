@@ -128,6 +128,7 @@ struct EnvironmentOption
   std::string name = "envmap";
   std::string file;
   std::string estimator = "sh";
+  std::string directions = "luminance";
   double rotation = 0;
   double intensity = 1;
   int samples = Sampling{}.samples;
@@ -199,6 +200,9 @@ Scene sceneWithEnvironment(const std::string& sceneFile, const EnvironmentOption
   light.estimator = environment.estimator == "brute_force" ? EnvironmentEstimator::BruteForce
     : environment.estimator == "monte_carlo"               ? EnvironmentEstimator::MonteCarlo
                                                            : EnvironmentEstimator::SphericalHarmonics;
+  light.directions = environment.directions == "cosine" ? EnvironmentDirections::Cosine
+    : environment.directions == "mis"                   ? EnvironmentDirections::Mis
+                                                        : EnvironmentDirections::Luminance;
   light.sampling.samples = environment.samples;
   try
   {
@@ -504,7 +508,8 @@ CLI::App* addShadeCommand(CLI::App& cli, ShadeOptions& options)
     ->check(numberFromTo(0, 180));
   command->add_flag("--shadows", options.shadows,
     "the mesh casts the shadows of every " + shadowCastingTypeNames() + " light (rays against its own "
-    "triangles; each light's <light>_visibility array, 0 or 1, multiplies its diffuse and specular terms)");
+    "triangles; a local light's <light>_visibility, 0 or 1, multiplies its diffuse and specular terms; an area "
+    "light's or a map's is the visible fraction of its irradiance, from a ray per sample)");
   command->add_option("--ambient-occlusion", options.ambientOcclusionRays,
     "RAYS per vertex: the ambient term becomes ka La times the cosine-weighted fraction of the sky each "
     "vertex sees past the mesh (arrays ambient_occlusion and its _std_error; bent_normal and "
@@ -515,8 +520,8 @@ CLI::App* addShadeCommand(CLI::App& cli, ShadeOptions& options)
     "add an environment light named 'envmap' from this equirectangular map (.hdr, .exr: twice as wide "
     "as high, +y up, the image centre toward -z; docs/guide/lights-and-estimators.md)");
   command->add_option("--envmap-estimator", environment.estimator,
-    "its irradiance: sh (9 spherical-harmonic coefficients), monte_carlo (importance sampling by "
-    "luminance) or brute_force (every texel of the map downsampled to 128x64)")
+    "its irradiance: sh (9 spherical-harmonic coefficients), monte_carlo (sampled, as --envmap-directions "
+    "says) or brute_force (every texel of the map downsampled to 128x64)")
     ->check(CLI::IsMember({ "sh", "monte_carlo", "brute_force" }))
     ->capture_default_str()
     ->needs(envmapOption);
@@ -528,8 +533,16 @@ CLI::App* addShadeCommand(CLI::App& cli, ShadeOptions& options)
     ->check(finiteNonNegative())
     ->capture_default_str()
     ->needs(envmapOption);
+  command->add_option("--envmap-directions", environment.directions,
+    "where its samples' directions come from: luminance (importance sampling of the map), cosine "
+    "(cosine-weighted about the normal) or mis (half each way, weighted by both densities: robust where a "
+    "shadow hides the bright part of the map); for monte_carlo, and with --shadows for every estimator's rays")
+    ->check(CLI::IsMember({ "luminance", "cosine", "mis" }))
+    ->capture_default_str()
+    ->needs(envmapOption);
   command->add_option("--envmap-samples", environment.samples,
-    "Monte Carlo samples per vertex (monte_carlo, and the specular term of sh)")
+    "Monte Carlo samples per vertex (monte_carlo, the specular term of sh, and with --shadows every "
+    "estimator's shadow rays)")
     ->check(CLI::Range(2, maxSamplesPerVertex))
     ->capture_default_str()
     ->needs(envmapOption);

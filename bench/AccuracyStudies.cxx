@@ -449,8 +449,17 @@ void runAccuracyStudies(const AccuracyOptions& options)
   // Not subdivided (level 0, with outward normals): area lights and maps cost far more per vertex.
   const Mesh plainBunny = *bunnyOfAbout(clean, clean->GetNumberOfPoints());
   std::vector<AccuracyRow> rows;
+  int charts = 0;
   auto study = [&](const std::string& name, const std::function<std::vector<AccuracyRow>(ChartSpec&)>& run)
   {
+    const bool chosen = options.studyFilters.empty() ||
+      std::any_of(options.studyFilters.begin(), options.studyFilters.end(),
+        [&](const std::string& filter) { return name.find(filter) != std::string::npos; });
+    if (!chosen)
+    {
+      return;
+    }
+    ++charts;
     std::cout << "study: " << name << "..." << std::endl;
     ChartSpec chart;
     const std::vector<AccuracyRow> studyRows = run(chart);
@@ -480,6 +489,18 @@ void runAccuracyStudies(const AccuracyOptions& options)
       return environmentMapStudy(
         plainBunny, distributed.softbox, distributed.studio, "8 studio map", options.maxRepeats, chart);
     });
+  study("7b_sunset_map_shadows",
+    [&](ChartSpec& chart)
+    {
+      return environmentShadowStudy(
+        plainBunny, distributed.softbox, distributed.sunset, "7b sunset map, shadows", options.maxRepeats, chart);
+    });
+  study("8b_studio_map_shadows",
+    [&](ChartSpec& chart)
+    {
+      return environmentShadowStudy(
+        plainBunny, distributed.softbox, distributed.studio, "8b studio map, shadows", options.maxRepeats, chart);
+    });
   const std::vector<AccuracyRow> grazing = grazingRows();
   rows.insert(rows.end(), grazing.begin(), grazing.end());
   for (const AccuracyRow& r : grazing)
@@ -491,6 +512,6 @@ void runAccuracyStudies(const AccuracyOptions& options)
   rows.insert(rows.end(), speed.begin(), speed.end());
   printRows(speed);
   writeCsv(rows, folder + "accuracy.csv");
-  std::cout << "wrote " << folder << "accuracy.csv and 9 charts\n";
+  std::cout << "wrote " << folder << "accuracy.csv and " << charts << " charts\n";
 }
 }

@@ -2,6 +2,7 @@
 // `shadelab-bench --charts DIR`: each method's error against its time, as PNG charts and one
 // CSV, including every method at the point where it fails.
 #include <string>
+#include <vector>
 
 namespace shadelab::app
 {
@@ -14,11 +15,13 @@ struct AccuracyOptions
   /// find venice_sunset_1k.hdr and studio_small_03_1k.hdr.
   std::string areaLightScene = "data/scenes/area_lights.json";
   std::string envmapFolder = "data/envmaps";
+  /// Only the studies whose names contain one of these (all when empty).
+  std::vector<std::string> studyFilters;
 };
 
-/// Runs the eight studies (arithmetic and pow, pow over eta, a point light as distant, Phong
-/// against Blinn-Phong, tessellation, an area light's estimators, two environment maps'
-/// estimators), the failure points and the speed requirements of the SH estimator; writes
+/// Runs the studies (arithmetic and pow, pow over eta, a point light as distant, Phong against
+/// Blinn-Phong, tessellation, an area light's estimators with and without its shadows, two
+/// environment maps' estimators and one's with its shadows), the failure points and the speed requirements of the SH estimator; writes
 /// accuracy.csv and one PNG per study into the directory. Needs an X display for the charts.
 /// Throws UserError.
 void runAccuracyStudies(const AccuracyOptions& options);

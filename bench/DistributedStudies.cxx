@@ -312,6 +312,58 @@ std::vector<AccuracyRow> environmentMapStudy(const Mesh& bunny, const Scene& mat
   return study.rows;
 }
 
+std::vector<AccuracyRow> environmentShadowStudy(const Mesh& bunny, const Scene& material, const EnvironmentLight& map,
+  const std::string& studyName, int maxRepeats, ChartSpec& chart)
+{
+  EnvironmentLight light = map;
+  auto lit = [&] { return withLight(material, { "envmap", light, true }); };
+  DistributedStudy study(studyName, bunny, { { "diffuse" } }, "diffuse", maxRepeats);
+  light.estimator = EnvironmentEstimator::MonteCarlo;
+  light.directions = EnvironmentDirections::Mis;
+  light.sampling = { areaReferenceSamples, true };
+  const std::string stdErrorArray = "envmap_irradiance_std_error";
+  const MethodRun& reference = study.measureReference(lit(), { stdErrorArray });
+  const Differences referenceError = magnitudes(arrayOf(reference, stdErrorArray));
+  std::ostringstream note;
+  note << std::setprecision(2) << "monte_carlo by mis with " << areaReferenceSamples
+       << " stratified samples and their shadow rays, float64; the standard error of its irradiance is at most "
+       << referenceError.largest << " (RMS " << referenceError.rms << "), to be multiplied by kd";
+  study.addReferenceRow("samples", areaReferenceSamples, note.str());
+  const std::pair<EnvironmentDirections, const char*> kinds[] = { { EnvironmentDirections::Luminance, "luminance" },
+    { EnvironmentDirections::Cosine, "cosine" }, { EnvironmentDirections::Mis, "mis" } };
+  for (const auto& [directions, name] : kinds)
+  {
+    light.directions = directions;
+    for (const int samples : sampleCounts)
+    {
+      light.sampling = { samples, true };
+      study.measure(std::string("monte_carlo by ") + name + ", stratified", "samples", samples, lit());
+    }
+  }
+  light.directions = EnvironmentDirections::Mis;
+  for (const int samples : sampleCounts)
+  {
+    light.sampling = { samples, false };
+    study.measure("monte_carlo by mis, independent", "samples", samples, lit());
+  }
+  light.estimator = EnvironmentEstimator::SphericalHarmonics;
+  for (const int samples : sampleCounts)
+  {
+    light.sampling = { samples, true };
+    study.measure("sh x visible fraction by mis, stratified", "samples", samples, lit());
+  }
+  chart.series = study.chartSeries();
+  std::ostringstream title;
+  title << "Diffuse under " << std::filesystem::path(map.file).filename().string() << " x " << map.intensity
+        << " with its shadows, bunny (" << verticesText(bunny) << ")";
+  chart.title = title.str();
+  chart.xTitle = "time per run, rays included (ms, median; 4 to 1024 samples along each line)";
+  chart.yTitle = "|error| of the diffuse term against monte_carlo by mis, 16384 samples: largest (solid), RMS (dashed)";
+  chart.logX = chart.logY = true;
+  chart.legendOutside = true;
+  return study.rows;
+}
+
 std::vector<AccuracyRow> speedRequirementRows(const Mesh& bunny, const Scene& material, const EnvironmentLight& map)
 {
   const vtkIdType count = bunny.data->GetNumberOfPoints();

@@ -1,6 +1,7 @@
 #pragma once
-// Studies 6 to 8 of `shadelab-bench --charts`: the estimators of an area light and of two
-// environment maps on the bunny, error against time; and issue 4's two speed requirements.
+// Studies 6 to 8b of `shadelab-bench --charts`: the estimators of an area light and of two
+// environment maps on the bunny, with and without shadows, error against time; and issue 4's
+// two speed requirements.
 #include "AccuracyStudies.h"
 #include "AccuracyStudyParts.h"
 #include "BenchmarkMeshes.h"
@@ -31,6 +32,12 @@ std::vector<AccuracyRow> areaLightStudy(
 /// cosine, against brute force at width 256, under the softbox scene's material and viewer;
 /// charts the error of the diffuse term.
 std::vector<AccuracyRow> environmentMapStudy(const Mesh& bunny, const Scene& material, const EnvironmentLight& map,
+  const std::string& studyName, int maxRepeats, ChartSpec& chart);
+
+/// 7b and 8b. A map with its shadows: Monte Carlo by luminance, by cosine and by both (MIS),
+/// stratified and (MIS) independent, and SH times the visible fraction, against Monte Carlo by
+/// MIS with 16384 stratified samples; charts the error of the diffuse term.
+std::vector<AccuracyRow> environmentShadowStudy(const Mesh& bunny, const Scene& material, const EnvironmentLight& map,
   const std::string& studyName, int maxRepeats, ChartSpec& chart);
 
 /// Issue 4's speed requirements: the SH irradiance's time per vertex against a distant

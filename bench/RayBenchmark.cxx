@@ -6,6 +6,8 @@
 #include "MeshFiles.h"
 
 #include "AreaLightEstimator.h"
+#include "EnvironmentLightEstimator.h"
+#include "EnvironmentMap.h"
 #include "OccluderMesh.h"
 #include "PolygonIrradiance.h"
 #include "SampleSequence.h"
@@ -216,36 +218,55 @@ AreaLightEstimator softboxOf(const RayMesh& mesh, int samples)
   return AreaLightEstimator(light, 0, LobeModel{});
 }
 
+/// The studio map with its shadows' directions by MIS and 64 stratified samples.
+EnvironmentLight studioMapOf(const std::string& file)
+{
+  EnvironmentLight studio;
+  try
+  {
+    studio.map = std::make_shared<const EnvironmentMap>(readEnvironmentMap(file));
+  }
+  catch (const std::runtime_error& error)
+  {
+    throw UserError(std::string(error.what()) + "; --visibility casts its shadows: run from the repository's top folder");
+  }
+  studio.file = file;
+  studio.estimator = EnvironmentEstimator::MonteCarlo;
+  studio.directions = EnvironmentDirections::Mis;
+  studio.sampling = { 64, true };
+  return studio;
+}
+
 SurfacePoint surfacePointOf(const RayVertex& vertex)
 {
   return { vertex.position, vertex.normal, glm::dvec3(0.0), static_cast<std::uint64_t>(vertex.id) };
 }
 
-/// The seconds the softbox's shadow rays from every stride-th vertex take, cast as the
-/// visibility step casts them.
-double softShadowSeconds(const RayMesh& mesh, const AreaLightEstimator& softbox, std::size_t stride)
+/// The seconds the shadow rays of an area light's or a map's samples from every stride-th
+/// vertex take, cast as the visibility step casts them.
+double softShadowSeconds(const RayMesh& mesh, const ShadowedLightEstimator& light, std::size_t stride)
 {
   const std::size_t count = (mesh.vertices.size() + stride - 1) / stride;
-  const int words = hiddenSampleWords(softbox.shadowRayCount());
+  const int words = hiddenSampleWords(light.shadowRayCount());
   std::vector<std::uint64_t> hidden(count * std::size_t(words));
   return parallelSeconds(count,
     [&](std::size_t k)
     {
       thread_local std::vector<ShadowRay> scratch;
       const RayVertex& vertex = mesh.vertices[k * stride];
-      hiddenSamples(*mesh.occluders, softbox, surfacePointOf(vertex), vertex.id, scratch, &hidden[k * words]);
+      hiddenSamples(*mesh.occluders, light, surfacePointOf(vertex), vertex.id, scratch, &hidden[k * words]);
     });
 }
 
-/// The same softbox rays made beforehand in the BVH's frame, for Embree alone.
-std::vector<OccluderMesh::FrameRay> softboxFrameRays(const RayMesh& mesh, const AreaLightEstimator& softbox, std::size_t stride)
+/// The same rays made beforehand in the BVH's frame, for Embree alone.
+std::vector<OccluderMesh::FrameRay> softShadowFrameRays(const RayMesh& mesh, const ShadowedLightEstimator& light, std::size_t stride)
 {
   std::vector<OccluderMesh::FrameRay> frameRays;
-  std::vector<ShadowRay> rays(static_cast<std::size_t>(softbox.shadowRayCount()));
+  std::vector<ShadowRay> rays(static_cast<std::size_t>(light.shadowRayCount()));
   for (std::size_t i = 0; i < mesh.vertices.size(); i += stride)
   {
     const RayVertex& v = mesh.vertices[i];
-    softbox.shadowRays(surfacePointOf(v), rays.data());
+    light.shadowRays(surfacePointOf(v), rays.data());
     const OccluderMesh::FrameRay start = mesh.occluders->inFrame({ v.position, v.normal, {}, 0.0, v.id });
     for (const ShadowRay& ray : rays)
     {
@@ -358,6 +379,7 @@ void runRayBenchmark(const RayBenchmarkOptions& options)
   std::ostringstream csv; // written at the end, whole or not at all
   csv << "mesh,vertices,triangles,quantity,value,unit\n";
   const vtkSmartPointer<vtkPolyData> clean = cleanBunny(options.bunnyFile);
+  const EnvironmentLight studio = studioMapOf(options.envmapFile);
   std::vector<RayMesh> meshes;
   meshes.push_back(rayMesh("bunny", clean, options.repeats));
   meshes.push_back(rayMesh("bunny x64", bunnyOfAbout(clean, 2200000)->data, options.repeats));
@@ -410,19 +432,24 @@ void runRayBenchmark(const RayBenchmarkOptions& options)
     record("ambient occlusion, Embree alone", occlusionCeiling / 1e6, "Mrays/s",
       "64 rays per vertex made beforehand, packets of 16");
     record("  ambient occlusion 64 / Embree alone", occlusion64RaysPerSecond / occlusionCeiling, "x", "target 0.9");
-    // A shadowed softbox, 64 samples: its rays as the visibility step casts them.
-    const AreaLightEstimator softbox = softboxOf(mesh, 64);
-    const std::vector<OccluderMesh::FrameRay> softboxRays = softboxFrameRays(mesh, softbox, aoStride);
-    const std::size_t softRays = softboxRays.size(); // the rays cast: those whose sample carries light
-    const double softSeconds = softShadowSeconds(mesh, softbox, aoStride);
-    const double softCeiling = tracedRaysPerSecond(mesh, softboxRays);
-    record("softbox shadows, 64 samples: rays", softRays / softSeconds / 1e6, "Mrays/s",
-      std::to_string(softRays) + " rays cast, where the sample is above the horizon");
-    record("softbox shadows, 64 samples: time", softSeconds * 1e3 * aoStride, "ms",
-      aoStride > 1 ? "for the whole mesh, from every 16th vertex" : "");
-    record("  softbox / ambient occlusion 64, time", softSeconds / occlusion64Seconds, "x", "target 1.2");
-    record("  softbox, Embree alone", softCeiling / 1e6, "Mrays/s", "the same rays made beforehand");
-    record("  softbox / Embree alone", softRays / softSeconds / softCeiling, "x", "target 0.9");
+    // A shadowed softbox and the shadowed studio map, 64 samples: their rays as the visibility
+    // step casts them.
+    auto recordSoftShadows = [&](const std::string& name, const ShadowedLightEstimator& light, const char* timeTarget)
+    {
+      const std::vector<OccluderMesh::FrameRay> frameRays = softShadowFrameRays(mesh, light, aoStride);
+      const std::size_t cast = frameRays.size(); // the rays cast: those whose sample carries light
+      const double seconds = softShadowSeconds(mesh, light, aoStride);
+      const double ceiling = tracedRaysPerSecond(mesh, frameRays);
+      record(name + " shadows, 64 samples: rays", cast / seconds / 1e6, "Mrays/s",
+        std::to_string(cast) + " rays cast, where the sample carries light");
+      record(name + " shadows, 64 samples: time", seconds * 1e3 * aoStride, "ms",
+        aoStride > 1 ? "for the whole mesh, from every 16th vertex" : "");
+      record("  " + name + " / ambient occlusion 64, time", seconds / occlusion64Seconds, "x", timeTarget);
+      record("  " + name + ", Embree alone", ceiling / 1e6, "Mrays/s", "the same rays made beforehand");
+      record("  " + name + " / Embree alone", cast / seconds / ceiling, "x", "target 0.9");
+    };
+    recordSoftShadows("softbox", softboxOf(mesh, 64), "target 1.2");
+    recordSoftShadows("studio map", EnvironmentLightEstimator(studio, 0, LobeModel{}), "");
   }
 
   // Error against time on the bunny, each ray count against 4096 rays per vertex.

@@ -12,6 +12,7 @@ struct RayBenchmarkOptions
 {
   std::string folder;    // where visibility.csv and 9_ambient_occlusion.png (chart 9) go
   std::string bunnyFile; // the Stanford bunny
+  std::string envmapFile = "data/envmaps/studio_small_03_1k.hdr"; // the map whose shadows are timed
   int repeats = 3;
 };
 

@@ -46,6 +46,7 @@ long long parseCount(const std::string& text)
 struct BenchCommand
 {
   std::string chartsFolder;
+  std::vector<std::string> studyFilters;
   std::string visibilityFolder;
   std::vector<std::string> sizes{ "10k", "100k", "1M", "10M" };
   std::string bunny = "data/meshes/bunny_zipper.ply";
@@ -83,7 +84,11 @@ int run(BenchCommand& command)
   }
   if (!command.visibilityFolder.empty())
   {
-    shadelab::app::runRayBenchmark({ command.visibilityFolder, command.bunny, command.options.maxRepeats });
+    shadelab::app::RayBenchmarkOptions rays;
+    rays.folder = command.visibilityFolder;
+    rays.bunnyFile = command.bunny;
+    rays.repeats = command.options.maxRepeats;
+    shadelab::app::runRayBenchmark(rays);
     return 0;
   }
   if (!command.chartsFolder.empty())
@@ -92,7 +97,12 @@ int run(BenchCommand& command)
     {
       throw UserError("--charts measures on the subdivided bunny: leave out --no-bunny");
     }
-    shadelab::app::runAccuracyStudies({ command.chartsFolder, command.bunny, command.options.maxRepeats });
+    shadelab::app::AccuracyOptions accuracy;
+    accuracy.directory = command.chartsFolder;
+    accuracy.bunnyFile = command.bunny;
+    accuracy.maxRepeats = command.options.maxRepeats;
+    accuracy.studyFilters = command.studyFilters;
+    shadelab::app::runAccuracyStudies(accuracy);
     return 0;
   }
   shadelab::app::runBenchmark(command.options);
@@ -130,9 +140,13 @@ int main(int argc, char** argv)
     "environment maps, and the SH estimator's speed) and write accuracy.csv and one PNG chart per study into "
     "this folder; reads data/scenes/area_lights.json and data/envmaps/; needs an X display (xvfb-run -a)")
     ->excludes(endToEnd);
+  cli.add_option("--study", command.studyFilters,
+    "with --charts: only the studies whose names contain this text (repeatable), such as --study 8b; "
+    "accuracy.csv then has their rows alone")
+    ->needs("--charts");
   cli.add_option("--visibility", command.visibilityFolder,
-    "instead, time ray casting (the BVH, shadow rays, ambient occlusion at 16, 64 and 256 rays, a softbox's soft "
-    "shadows at 64 samples) on the bunny and the bunny subdivided to 2.2M vertices against vtkStaticCellLocator "
+    "instead, time ray casting (the BVH, shadow rays, ambient occlusion at 16, 64 and 256 rays, a softbox's and the "
+    "studio map's soft shadows at 64 samples) on the bunny and the bunny subdivided to 2.2M vertices against vtkStaticCellLocator "
     "and Embree alone, ambient occlusion's error against its time (4 to 1024 rays against 4096) and a penumbra "
     "against its closed form; writes visibility.csv, 9_ambient_occlusion.png and 10_penumbra.png into this "
     "folder; needs an X display (xvfb-run -a); about a minute")

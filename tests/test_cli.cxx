@@ -170,7 +170,10 @@ TEST_F(Cli, ShadowsAndAmbientOcclusion)
     EXPECT_NE(result.out.find(line), std::string::npos) << line << "\n" << result.out;
   }
   EXPECT_EQ(result.out.find("sky_view_factor"), std::string::npos) << "only on request";
-  EXPECT_NE(result.out.find("with a shadowed light hidden by its own triangles\n"), std::string::npos) << result.out;
+  EXPECT_NE(result.out.find("with a shadowed light hidden by its own triangles, 0 with a shadowed light hidden inside "
+                            "the mesh\n"),
+    std::string::npos)
+    << result.out;
   const Result tolerance = shadelab("shade " + goodMesh() + " -o " + out + " --shadows --tolerance 1e-3");
   EXPECT_EQ(tolerance.exitCode, 1);
   EXPECT_EQ(tolerance.err, "shadelab: " + goodMesh() + ": a tolerance cannot be used with shadows or ambient "
@@ -403,6 +406,19 @@ TEST_F(Cli, EnvironmentMapOption)
   EXPECT_NE(shaded.out.find("scene: default material and viewer + --envmap "), std::string::npos) << shaded.out;
   EXPECT_NE(shaded.out.find("envmap_irradiance_std_error"), std::string::npos) << shaded.out;
   EXPECT_TRUE(fs::exists(out));
+
+  // With --shadows the map casts the mesh's shadows, its rays drawn as --envmap-directions says.
+  const Result shadowed = shadelab("shade " + mesh + " --envmap " SHADELAB_SOURCE_DIR
+    "/data/envmaps/venice_sunset_1k.hdr --envmap-directions mis --envmap-samples 16 --shadows -o " + out);
+  EXPECT_EQ(shadowed.exitCode, 0) << shadowed.err;
+  EXPECT_NE(shadowed.out.find("    envmap_visibility            1 "), std::string::npos) << shadowed.out;
+  EXPECT_NE(shadowed.out.find("    envmap_visibility_std_error  1 "), std::string::npos) << shadowed.out;
+  EXPECT_NE(shadowed.out.find("rays (16 per vertex)"), std::string::npos) << shadowed.out;
+  const Result badDirections = shadelab("shade " + mesh + " --envmap " SHADELAB_SOURCE_DIR
+    "/data/envmaps/venice_sunset_1k.hdr --envmap-directions sun -o " + out);
+  EXPECT_EQ(badDirections.exitCode, 2);
+  EXPECT_EQ(badDirections.err,
+    "--envmap-directions: sun not in {luminance,cosine,mis}\nRun with --help for more information.\n");
 }
 }
 

@@ -248,8 +248,8 @@ TEST(SceneFile, AreaLightAndEnvironmentMapErrors)
 
 TEST(SceneFile, ShadowsAndAmbientOcclusion)
 {
-  // The scene's "shadows" is the default of the lights that can cast shadows; a light's own
-  // setting wins; area lights and maps keep their unshadowed estimators.
+  // The scene's "shadows" is the default of the lights that can cast shadows, area lights
+  // included, as --shadows is; a light's own setting wins; an ambient light casts none.
   const Scene scene = parseScene(R"({
     "shadows": true,
     "ambient_occlusion": { "rays": 128, "stratified": false, "max_distance": 0.5 },
@@ -262,7 +262,7 @@ TEST(SceneFile, ShadowsAndAmbientOcclusion)
   })", "scene.json");
   EXPECT_TRUE(scene.lights[0].shadows);
   EXPECT_FALSE(scene.lights[1].shadows);
-  EXPECT_FALSE(scene.lights[2].shadows);
+  EXPECT_TRUE(scene.lights[2].shadows);
   EXPECT_FALSE(scene.lights[3].shadows);
   ASSERT_TRUE(scene.ambientOcclusion);
   EXPECT_EQ(scene.ambientOcclusion->sampling.samples, 128);
@@ -272,6 +272,7 @@ TEST(SceneFile, ShadowsAndAmbientOcclusion)
   const ArrayRequest defaults = selectArrays(scene, { "default" });
   EXPECT_TRUE(defaults.lights[0][int(LightTerm::Visibility)]);
   EXPECT_FALSE(defaults.lights[1][int(LightTerm::Visibility)]);
+  EXPECT_TRUE(defaults.lights[2][int(LightTerm::VisibilityStdError)]);
   EXPECT_TRUE(defaults.occlusion[int(OcclusionTerm::AmbientOcclusion)]);
   EXPECT_TRUE(defaults.occlusion[int(OcclusionTerm::AmbientOcclusionStdError)]);
   EXPECT_FALSE(defaults.occlusion[int(OcclusionTerm::BentNormal)]);
@@ -279,9 +280,9 @@ TEST(SceneFile, ShadowsAndAmbientOcclusion)
   EXPECT_FALSE(parseScene(R"({ "lights": [] })", "scene.json").needsVisibility());
 
   EXPECT_EQ(errorOf(R"({ "lights": [ { "type": "ambient", "shadows": true } ] })"),
-    "scene.json: /lights/0/shadows: only distant, headlight, point, spot, polygon, rectangle, disk and sphere lights "
-    "cast shadows so far (an ambient light has no direction, and an environment map's shadows are not computed "
-    "yet): remove \"shadows\" from this light");
+    "scene.json: /lights/0/shadows: only distant, headlight, point, spot, polygon, rectangle, disk, sphere and "
+    "environment lights cast shadows (an ambient light has no direction; the mesh's shadowing of it is ambient "
+    "occlusion): remove \"shadows\" from this light");
   EXPECT_EQ(errorOf(R"({ "lights": [], "ambient_occlusion": { "max_distance": 0 } })"),
     "scene.json: /ambient_occlusion/max_distance: must be a number > 0 (leave it out to count occluders at any "
     "distance)");

@@ -153,6 +153,10 @@ TEST(SplitMeshVisibility, CastsAgainstTheWholeMesh)
   EXPECT_GT(expectPieceOfWhole(shaded(mesh, "soft_shadows.json", { "all" }, nullptr),
               shaded(myPiece(mesh), "soft_shadows.json", { "all" }, processes())),
     10);
+  // A map's: the same, with every sample's ray going to infinity.
+  EXPECT_GT(expectPieceOfWhole(shaded(mesh, "envmap_shadows.json", { "all" }, nullptr),
+              shaded(myPiece(mesh), "envmap_shadows.json", { "all" }, processes())),
+    10);
 
   // The visibility filter alone, on normals the mesh has.
   vtkNew<vtkMeshVisibilityFilter> alone, split;

@@ -6,6 +6,7 @@
 #include "TestMeshes.h"
 #include "VtkErrorCapture.h"
 
+#include "EnvironmentMap.h"
 #include "ShadingFlags.h"
 #include "vtkMeshVisibilityFilter.h"
 #include "vtkShadingNormalsFilter.h"
@@ -201,6 +202,137 @@ TEST(SoftShadows, OneAndTwoThreadsGiveTheSameBits)
   shadelab::testing::expectSamePointArrays(one, two);
 }
 
+/// The sphere over the plane under a constant sky of radiance 1, with or without its shadows.
+Scene constantSky(bool shadows, EnvironmentEstimator estimator, EnvironmentDirections directions)
+{
+  Scene scene = pointLightAbove(false);
+  auto map = std::make_shared<EnvironmentMap>();
+  map->width = 64;
+  map->height = 32;
+  map->radiance.assign(64 * 32, Rgb(1.0));
+  EnvironmentLight sky;
+  sky.map = map;
+  sky.file = "constant";
+  sky.estimator = estimator;
+  sky.directions = directions;
+  scene.lights[1] = { "sky", sky, shadows };
+  return scene;
+}
+
+TEST(SoftShadows, AMapsTermsComeFromTheSkyEachVertexSees)
+{
+  vtkSmartPointer<vtkPolyData> mesh = sphereOverPlane();
+  const std::vector<std::string> arrays = { "default", "sky_irradiance", "sky_diffuse" };
+  for (EnvironmentEstimator estimator : { EnvironmentEstimator::MonteCarlo, EnvironmentEstimator::BruteForce })
+  {
+    const Scene open = constantSky(false, estimator, EnvironmentDirections::Mis);
+    const Scene shadowedScene = constantSky(true, estimator, EnvironmentDirections::Mis);
+    vtkSmartPointer<vtkPolyData> lit = shadelab::testing::shadeWithFilter(mesh, open, arrays);
+    vtkSmartPointer<vtkPolyData> shadowed =
+      shadelab::testing::shadeWithFilter(mesh, shadowedScene, { "default", "sky_irradiance", "sky_diffuse", "sky_specular_std_error" });
+    ASSERT_NE(shadowed->GetPointData()->GetArray("sky_visibility_std_error"), nullptr);
+    ASSERT_NE(shadowed->GetPointData()->GetArray("sky_specular_std_error"), nullptr); // sampled, even by the sum
+    EXPECT_EQ(shadowed->GetPointData()->GetArray("sky_hidden_samples"), nullptr);
+    auto value = [](vtkPolyData* shaded, const char* name, vtkIdType i, int c)
+    { return shaded->GetPointData()->GetArray(name)->GetComponent(i, c); };
+    std::size_t whole = 0, shaded = 0;
+    for (vtkIdType i = 0; i < mesh->GetNumberOfPoints(); ++i)
+    {
+      const double v = value(shadowed, "sky_visibility", i, 0);
+      ASSERT_GE(v, 0.0);
+      ASSERT_LE(v, 1.0);
+      whole += v == 1 ? 1 : 0;
+      shaded += v < 0.9 ? 1 : 0;
+      const double seen = value(shadowed, "sky_irradiance", i, 0), unshadowed = value(lit, "sky_irradiance", i, 0);
+      if (v == 1)
+      {
+        EXPECT_EQ(seen, unshadowed) << i; // the top of the sphere, and the plane's far corners
+      }
+      if (estimator == EnvironmentEstimator::BruteForce)
+      {
+        EXPECT_EQ(seen, unshadowed * v) << i;
+      }
+      EXPECT_EQ(value(shadowed, "sky_diffuse", i, 0), 0.8 * seen) << i;
+    }
+    EXPECT_GT(whole, 100u);
+    EXPECT_GT(shaded, 100u); // the plane under the sphere, and the sphere's underside
+  }
+}
+
+TEST(SoftShadows, AMapsShadowsAreTheSameBitsOnOneAndTwoThreads)
+{
+  vtkSmartPointer<vtkPolyData> mesh = sphereOverPlane();
+  const Scene scene = constantSky(true, EnvironmentEstimator::SphericalHarmonics, EnvironmentDirections::Mis);
+  vtkSmartPointer<vtkPolyData> one, two;
+  vtkSMPTools::LocalScope(vtkSMPTools::Config{ 1 }, [&] { one = shadelab::testing::shadeWithFilter(mesh, scene, { "all" }); });
+  vtkSMPTools::LocalScope(vtkSMPTools::Config{ 2 }, [&] { two = shadelab::testing::shadeWithFilter(mesh, scene, { "all" }); });
+  shadelab::testing::expectSamePointArrays(one, two);
+}
+
+/// Shades the sphere over the plane with the light, with shadows, and counts the vertices with
+/// FlagLightEnclosed and those of the plane with any of the light's irradiance or diffuse term.
+struct EnclosureRun
+{
+  std::size_t flagged = 0, litPlanePoints = 0;
+  std::string report;
+};
+
+EnclosureRun shadeWithLightAt(const LightSource& light)
+{
+  vtkSmartPointer<vtkPolyData> mesh = sphereOverPlane();
+  Scene scene = pointLightAbove(false);
+  scene.lights[1] = { "inner", light, true };
+  vtkNew<vtkLocalReflectanceFilter> filter;
+  filter->SetInputData(mesh);
+  filter->SetScene(scene);
+  filter->SetArraySelection({ "default", "inner_diffuse" });
+  filter->Update();
+  EnclosureRun run;
+  run.report = filter->GetVisibilityReport();
+  vtkPolyData* shaded = filter->GetOutput();
+  for (vtkIdType i = 0; i < shaded->GetNumberOfPoints(); ++i)
+  {
+    run.flagged += (int(valueOf(shaded, "shading_flags", i)) & FlagLightEnclosed) ? 1 : 0;
+    const bool onPlane = shaded->GetPoint(i)[2] == 0;
+    run.litPlanePoints += onPlane && valueOf(shaded, "inner_diffuse", i) > 0 ? 1 : 0;
+  }
+  return run;
+}
+
+TEST(VisibilityFailurePoints, ALightInsideAClosedMeshIsDarkAndFlagged)
+{
+  // The sphere (radius 0.5 at height 1) is closed: a bulb or a small sphere light at its
+  // centre lights nothing outside, and every vertex it is hidden from has flag 128.
+  PointLight bulb;
+  bulb.position = { 0, 0, 1 };
+  AreaLight ball;
+  ball.shape = SphereEmitter{ { 0, 0, 1 }, 0.1 };
+  ball.estimator = AreaEstimator::MonteCarlo;
+  const std::size_t points = sphereOverPlane()->GetNumberOfPoints();
+  for (const LightSource& light : { LightSource(bulb), LightSource(ball) })
+  {
+    const EnclosureRun inside = shadeWithLightAt(light);
+    EXPECT_EQ(inside.litPlanePoints, 0u);
+    // The bulb is hidden from every vertex (the sphere's own from behind); the ball from the
+    // vertices that face it, the plane's and none of the sphere's.
+    EXPECT_GT(inside.flagged, std::holds_alternative<PointLight>(light) ? points - 1 : points / 2);
+    EXPECT_NE(inside.report.find("The light 'inner' is inside the mesh (every ray from it meets a triangle): no "
+                                 "vertex outside gets its light (shading_flags 128)."),
+      std::string::npos)
+      << inside.report;
+  }
+  // Above the sphere the same lights are not enclosed: no flag, and the plane is lit.
+  bulb.position = { 0, 0, 2 };
+  ball.shape = SphereEmitter{ { 0, 0, 2 }, 0.1 };
+  for (const LightSource& light : { LightSource(bulb), LightSource(ball) })
+  {
+    const EnclosureRun outside = shadeWithLightAt(light);
+    EXPECT_EQ(outside.flagged, 0u);
+    EXPECT_GT(outside.litPlanePoints, 100u);
+    EXPECT_EQ(outside.report.find("inside the mesh"), std::string::npos);
+  }
+}
+
 TEST(Visibility, TheBvhIsBuiltOnceWhileTheMeshIsUnchanged)
 {
   vtkSmartPointer<vtkPolyData> mesh = sphereOverPlane();
@@ -318,9 +450,9 @@ TEST(Visibility, WhatIsRefusedAndWhy)
   Scene shadowedAmbient = pointLightAbove(false);
   shadowedAmbient.lights.push_back({ "sky", AmbientLight{}, true });
   EXPECT_EQ(filterError(mesh, shadowedAmbient),
-    "scene /lights/2/shadows: only distant, headlight, point, spot, polygon, rectangle, disk and sphere lights cast "
-    "shadows so far (an ambient light has no direction, and an environment map's shadows are not computed yet): "
-    "remove \"shadows\" from this light");
+    "scene /lights/2/shadows: only distant, headlight, point, spot, polygon, rectangle, disk, sphere and "
+    "environment lights cast shadows (an ambient light has no direction; the mesh's shadowing of it is ambient "
+    "occlusion): remove \"shadows\" from this light");
 
   vtkNew<vtkMeshVisibilityFilter> alone;
   vtkNew<app::VtkErrorCapture> errors;

@@ -37,15 +37,30 @@ vtkStandardNewMacro(vtkMeshVisibilityFilter);
 namespace
 {
 /// A light whose shadows the mesh casts, as the rays see it: a local light, with one ray per
-/// vertex and its visibility, or an area light, with a ray per sample and the bits of those
+/// vertex and its visibility, or an area light or map, with a ray per sample and the bits of those
 /// the mesh hides.
 struct ShadowedLight
 {
   std::string name;
   shadelab::LocalEvaluation evaluation;
   vtkSmartPointer<vtkFloatArray> visibility;
-  std::shared_ptr<const shadelab::ShadowedLightEstimator> area; // null for a local light
+  std::shared_ptr<const shadelab::ShadowedLightEstimator> distributed; // null for a local light
   vtkSmartPointer<vtkTypeUInt64Array> hidden;
+  bool enclosed = false; // inside the mesh: hidden from every vertex outside (FlagLightEnclosed)
+
+  /// Where the light is, if it is anywhere: a positional light's position, an area light's centre.
+  std::optional<glm::dvec3> position() const
+  {
+    if (distributed)
+    {
+      return distributed->emitterCentre();
+    }
+    if (evaluation.geometry == shadelab::LocalEvaluation::Geometry::Distant)
+    {
+      return std::nullopt;
+    }
+    return evaluation.position;
+  }
 
   /// The unit direction to the light from p, and how far it is.
   shadelab::LightDirection towardLight(const glm::dvec3& p) const
@@ -60,7 +75,7 @@ struct ShadowedLight
   }
 };
 
-/// An array of count tuples in huge pages (float32 for the estimates, 64-bit words for an area
+/// An array of count tuples in huge pages (float32 for the estimates, 64-bit words for a distributed
 /// light's hidden samples); throws std::runtime_error naming it when there is not enough memory.
 template <typename Array>
 vtkSmartPointer<Array> pointArray(const std::string& name, int components, vtkIdType count)
@@ -90,11 +105,11 @@ std::vector<ShadowedLight> shadowedLights(const shadelab::Scene& scene)
   {
     if (scene.lights[l].shadows)
     {
-      // The area lights' samples are seeded by the light's index, as the kernel seeds them.
+      // The distributed lights' samples are seeded by the light's index, as the kernel seeds them.
       context.lightIndex = l;
       ShadowedLight light{ scene.lights[l].name, {}, nullptr, nullptr, nullptr };
       std::visit(shadelab::Overloaded{ [&](const shadelab::LocalEvaluation& local) { light.evaluation = local; },
-                   [&](const shadelab::DistributedEvaluation& distributed) { light.area = distributed.shadowed; },
+                   [&](const shadelab::DistributedEvaluation& distributed) { light.distributed = distributed.shadowed; },
                    [](const shadelab::AmbientEvaluation&)
                    { throw std::logic_error("an ambient light casts no shadows (sceneProblems refuses it)"); } },
         shadelab::prepareEvaluation(scene.lights[l].source, context));
@@ -102,6 +117,16 @@ std::vector<ShadowedLight> shadowedLights(const shadelab::Scene& scene)
     }
   }
   return lights;
+}
+
+/// Finds the lights the mesh encloses.
+void findEnclosedLights(const shadelab::OccluderMesh& occluders, std::vector<ShadowedLight>& lights)
+{
+  for (ShadowedLight& light : lights)
+  {
+    const std::optional<glm::dvec3> position = light.position();
+    light.enclosed = position && shadelab::enclosesPoint(occluders, *position);
+  }
 }
 
 /// What the rays write besides each light's visibility, a value per ray point in each array.
@@ -145,10 +170,10 @@ RayArrays allocateRayArrays(std::vector<ShadowedLight>& lights, const shadelab::
   RayArrays arrays;
   for (ShadowedLight& light : lights)
   {
-    if (light.area)
+    if (light.distributed)
     {
       light.hidden = pointArray<vtkTypeUInt64Array>(shadelab::hiddenSamplesArrayName(prefix, light.name),
-        shadelab::hiddenSampleWords(light.area->shadowRayCount()), count);
+        shadelab::hiddenSampleWords(light.distributed->shadowRayCount()), count);
       arrays.written.push_back(light.hidden);
     }
     else
@@ -224,7 +249,7 @@ struct RayGroup
   int size = 0;
   shadelab::RayVertex vertices[groupSize];
   glm::dvec3 occlusionNormals[groupSize];
-  std::vector<shadelab::ShadowRay> scratch; // an area light's rays from one point
+  std::vector<shadelab::ShadowRay> scratch; // a distributed light's rays from one point
 };
 
 /// Group g of the count ray points, their flags cleared for the rays to set.
@@ -239,9 +264,17 @@ void startGroup(const RayVertices& vertices, vtkIdType g, vtkIdType count, vtkUn
   }
 }
 
-/// The area light's samples that the mesh hides from each of the group's points, from the
-/// side the kernel shades (the occlusion normal), each point's rays in packets.
-void traceSoftShadows(const shadelab::OccluderMesh& occluders, const ShadowedLight& light, RayGroup& group)
+/// Adds flag to the point's flags.
+void addFlag(vtkUnsignedCharArray* flags, vtkIdType i, shadelab::ShadingFlag flag)
+{
+  flags->SetValue(i, flags->GetValue(i) | flag);
+}
+
+/// The distributed light's samples that the mesh hides from each of the group's points, from the
+/// side the kernel shades (the occlusion normal), each point's rays in packets; flags the
+/// points that send a ray to a light the mesh encloses.
+void traceSoftShadows(const shadelab::OccluderMesh& occluders, const ShadowedLight& light, RayGroup& group,
+  vtkUnsignedCharArray* flags)
 {
   const int words = light.hidden->GetNumberOfComponents();
   for (int k = 0; k < group.size; ++k)
@@ -256,18 +289,24 @@ void traceSoftShadows(const shadelab::OccluderMesh& occluders, const ShadowedLig
     }
     const shadelab::SurfacePoint point{ vertex.position, group.occlusionNormals[k], glm::dvec3(0.0),
       static_cast<std::uint64_t>(vertex.id) };
-    shadelab::hiddenSamples(occluders, *light.area, point, vertex.id, group.scratch, bits);
+    shadelab::hiddenSamples(occluders, *light.distributed, point, vertex.id, group.scratch, bits);
+    const bool facesLight =
+      std::any_of(group.scratch.begin(), group.scratch.end(), [](const shadelab::ShadowRay& ray) { return ray.cast; });
+    if (light.enclosed && facesLight)
+    {
+      addFlag(flags, group.first + k, shadelab::FlagLightEnclosed);
+    }
   }
 }
 
 /// The light's visibility from the group's points, as one packet; flags the points whose own
-/// triangles hide it.
+/// triangles hide it, and those it is hidden from when the mesh encloses it.
 void traceShadows(const shadelab::OccluderMesh& occluders, const ShadowedLight& light, RayGroup& group,
   bool twoSided, vtkUnsignedCharArray* flags)
 {
-  if (light.area)
+  if (light.distributed)
   {
-    traceSoftShadows(occluders, light, group);
+    traceSoftShadows(occluders, light, group, flags);
     return;
   }
   shadelab::LightDirection directions[groupSize];
@@ -283,7 +322,11 @@ void traceShadows(const shadelab::OccluderMesh& occluders, const ShadowedLight& 
     light.visibility->SetValue(i, seen[k].visible ? 1.0f : 0.0f);
     if (seen[k].blockedByOwnTriangle)
     {
-      flags->SetValue(i, flags->GetValue(i) | shadelab::FlagHiddenByOwnTriangle);
+      addFlag(flags, i, shadelab::FlagHiddenByOwnTriangle);
+    }
+    if (light.enclosed && !seen[k].visible)
+    {
+      addFlag(flags, i, shadelab::FlagLightEnclosed);
     }
   }
 }
@@ -360,7 +403,7 @@ std::string raysReport(const RayArrays& arrays, const std::vector<ShadowedLight>
   std::uint64_t lightRays = 0;
   for (const ShadowedLight& light : lights)
   {
-    lightRays += light.area ? static_cast<std::uint64_t>(light.area->shadowRayCount()) : 1;
+    lightRays += light.distributed ? static_cast<std::uint64_t>(light.distributed->shadowRayCount()) : 1;
   }
   const std::uint64_t raysPerVertex = lightRays +
     (arrays.occlusion ? static_cast<std::uint64_t>(arrays.settings.sampling.samples) * (arrays.settings.skyViewFactor ? 2 : 1)
@@ -370,6 +413,14 @@ std::string raysReport(const RayArrays& arrays, const std::vector<ShadowedLight>
          << " per vertex) against " << triangles << " triangles: BVH "
          << (times.reused ? "reused" : "built in " + std::to_string(times.buildSeconds) + " s") << ", rays "
          << times.raySeconds << " s.";
+  for (const ShadowedLight& light : lights)
+  {
+    if (light.enclosed)
+    {
+      report << " The light '" << light.name << "' is inside the mesh (every ray from it meets a triangle): no vertex "
+             << "outside gets its light (shading_flags 128).";
+    }
+  }
   return report.str();
 }
 }
@@ -476,6 +527,7 @@ int vtkMeshVisibilityFilter::CastRaysFrom(vtkPolyData* input, vtkPolyData* outpu
     const auto buildStart = std::chrono::steady_clock::now();
     occluders = &this->OccludersFor(input, times.reused);
     times.buildSeconds = secondsSince(buildStart);
+    findEnclosedLights(*occluders, lights);
     arrays = allocateRayArrays(lights, *scene, this->ArrayPrefix, this->ComputeBentNormal, this->ComputeSkyViewFactor, count);
     const auto raysStart = std::chrono::steady_clock::now();
     castRays(*occluders, lights, arrays, RayVertices(input, rayPoints, *scene), count, this);

@@ -6,7 +6,11 @@
  * Reads points, polygons (and triangle strips) and point normals. For every light of the scene
  * with shadows (shadelab::NamedLight::shadows) adds "<ArrayPrefix><light>_visibility": 1 where
  * the mesh does not block the segment to the light (a distant light's ray goes to infinity),
- * 0 where it does or where the light is behind the surface. With the scene's ambient
+ * 0 where it does or where the light is behind the surface. For an area light or an
+ * environment map it casts a ray per sample of the light's estimator instead and keeps which
+ * ones the mesh hides, a bit per sample, in "<ArrayPrefix><light>_hidden_samples" (uint64),
+ * from which vtkLocalReflectanceFilter estimates the visible integrals and the visibility
+ * (docs/formulas.md section 11.6); that array is internal and never in the shading's output. With the scene's ambient
  * occlusion, adds "ambient_occlusion", its "ambient_occlusion_std_error" and, if asked for,
  * "bent_normal" and "sky_view_factor" (docs/formulas.md section 20). The arrays are float32.
  * "visibility_flags" has FlagHiddenByOwnTriangle (64) where a shadowed light that the normal

@@ -16,6 +16,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 
 namespace shadelab
 {
@@ -111,5 +112,8 @@ public:
   virtual void shadowRays(const SurfacePoint& point, ShadowRay* rays) const = 0;
   /// E, S and the visibility, with the samples hidden as `hidden` says. Safe to call concurrently.
   virtual DistributedTerms estimate(const SurfacePoint& point, const HiddenSamples& hidden) const = 0;
+  /// A point inside the emitter (its centre), from which the visibility step finds whether
+  /// the mesh encloses the light; nothing for a map, which is at infinity.
+  virtual std::optional<glm::dvec3> emitterCentre() const = 0;
 };
 }

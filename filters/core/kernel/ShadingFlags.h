@@ -26,6 +26,10 @@ enum ShadingFlag : ShadingFlags
   /// corner: a concave crease, or the shadow terminator of a coarse mesh, where the smooth
   /// normal faces a light that a neighbouring facet hides (visibility/Visibility.h).
   FlagHiddenByOwnTriangle = 1u << 6,
+  /// A shadowed light hidden from the vertex is enclosed by the mesh: every ray from inside it
+  /// meets a triangle (a light inside a closed mesh), so no vertex outside gets its light
+  /// (visibility/Visibility.h, enclosesPoint).
+  FlagLightEnclosed = 1u << 7,
 };
 
 /// Each flag and what it means, in the words the command line prints.
@@ -42,5 +46,6 @@ inline constexpr FlagMeaning flagMeanings[] = {
   { FlagNonFiniteInput, "non-finite position or normal" },
   { FlagNormalFlipped, "normal flipped to face the viewer" },
   { FlagHiddenByOwnTriangle, "a shadowed light hidden by its own triangles" },
+  { FlagLightEnclosed, "a shadowed light hidden inside the mesh" },
 };
 }

@@ -185,7 +185,8 @@ typename ShadingKernel<T>::DistributedLightSlot ShadingKernel<T>::prepareDistrib
     light.hiddenSamples = hiddenSamples;
     light.hiddenWords = hiddenSampleWords(evaluation.shadowed->shadowRayCount());
   }
-  if (const std::optional<IrradiancePolynomial>& e = evaluation.irradiance)
+  const std::optional<IrradiancePolynomial>& e = evaluation.irradiance;
+  if (e && !light.hiddenSamples)
   {
     light.irradiance = PreparedPolynomial{ { toVec<T>(e->xx), toVec<T>(e->yy), toVec<T>(e->zz), toVec<T>(e->xy),
       toVec<T>(e->xz), toVec<T>(e->yz), toVec<T>(e->x), toVec<T>(e->y), toVec<T>(e->z), toVec<T>(e->constant) } };
@@ -643,7 +644,7 @@ void ShadingKernel<T>::addDistributedLight(const DistributedLightSlot& light, co
     polynomial(w.irradianceB, 2);
   }
   const Vec3<T> kd = toVec<T>(light.kd), ks = toVec<T>(light.ks);
-  if (light.estimator)
+  if (light.runsEstimator())
   {
     estimateDistributedLight(light, b, w);
     for (std::size_t k = 0; k < count; ++k)
@@ -662,7 +663,7 @@ void ShadingKernel<T>::addDistributedLight(const DistributedLightSlot& light, co
   const auto& out = light.out;
   store(out[int(LightTerm::Irradiance)], b.first, count, w.irradianceR, w.irradianceG, w.irradianceB);
   store(out[int(LightTerm::Diffuse)], b.first, count, w.irradianceR, w.irradianceG, w.irradianceB, kd);
-  if (light.estimator)
+  if (light.runsEstimator())
   {
     store(out[int(LightTerm::Specular)], b.first, count, w.integralR, w.integralG, w.integralB, ks);
   }

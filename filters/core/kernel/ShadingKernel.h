@@ -124,9 +124,12 @@ private:
   };
 
   /// An area light or environment map: its estimator, run vertex by vertex in float64, and
-  /// for SH irradiance the polynomial that replaces it for E.
+  /// for SH irradiance the polynomial that replaces it for E. With shadows, the shadowed
+  /// estimator gives E and S instead, from the hidden samples.
   struct DistributedLightSlot
   {
+    bool runsEstimator() const { return estimator || hiddenSamples; }
+
     std::shared_ptr<const DistributedLightEstimator> estimator;
     std::optional<PreparedPolynomial> irradiance;
     std::shared_ptr<const ShadowedLightEstimator> shadowed; // with hiddenSamples: the light's shadows

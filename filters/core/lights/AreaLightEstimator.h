@@ -23,6 +23,7 @@ public:
   /// through. Monte Carlo: E and S from the samples that get through. Point: the point light's
   /// E and S, times whether its one ray gets through.
   DistributedTerms estimate(const SurfacePoint& point, const HiddenSamples& hidden) const override;
+  std::optional<glm::dvec3> emitterCentre() const override { return centre_; }
 
   /// A direction from point to the emitter, with 1 / pdf in solid angle (weight 0 where the
   /// emitter sends no light back along it). Warps u in [0, 1)^2 onto the emitter: uniformly over a polygon's or

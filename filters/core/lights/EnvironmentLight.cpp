@@ -48,7 +48,8 @@ EnvironmentLight EnvironmentLight::read(const JsonNode& node, const SceneFileTyp
   if (node.has("directions"))
   {
     light.directions = node.at("directions").choice<EnvironmentDirections>(
-      { { "luminance", EnvironmentDirections::Luminance }, { "cosine", EnvironmentDirections::Cosine } });
+      { { "luminance", EnvironmentDirections::Luminance }, { "cosine", EnvironmentDirections::Cosine },
+        { "mis", EnvironmentDirections::Mis } });
   }
   light.sampling = readSampling(node);
   if (node.has("brute_force_width"))
@@ -128,9 +129,10 @@ LightEvaluation EnvironmentLight::prepare(const EvaluationContext& context) cons
   {
     // E is the estimator's polynomial of the normal; the estimator is still needed for S,
     // which it samples.
+    // With shadows, the estimator gives E as well (the polynomial times the visible fraction).
     std::optional<IrradiancePolynomial> irradiance = estimator->irradiance();
-    return DistributedEvaluation{ context.lobe.wanted() ? std::move(estimator) : nullptr, irradiance };
+    return DistributedEvaluation{ context.lobe.wanted() ? estimator : nullptr, irradiance, estimator };
   }
-  return DistributedEvaluation{ std::move(estimator), std::nullopt };
+  return DistributedEvaluation{ estimator, std::nullopt, estimator };
 }
 }

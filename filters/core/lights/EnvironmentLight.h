@@ -14,7 +14,10 @@ struct EnvironmentMap; // EnvironmentMap.h
 
 /// How the irradiance from an environment map is estimated. The specular term is estimated by
 /// the same sum for BruteForce, by sampling for MonteCarlo and SphericalHarmonics (nine
-/// coefficients hold too little of a map for a lobe sharper than the cosine).
+/// coefficients hold too little of a map for a lobe sharper than the cosine). With shadows,
+/// BruteForce and SphericalHarmonics give their unshadowed E times the visible fraction of
+/// `sampling.samples` directions drawn by `directions`, and S from those samples
+/// (docs/formulas.md section 12.6).
 enum class EnvironmentEstimator
 {
   BruteForce,         // every texel of the map downsampled to `bruteForceWidth`, as a distant light
@@ -28,6 +31,9 @@ enum class EnvironmentDirections
   Luminance, // importance sampling of the map's luminance, good for small bright sources; for S
              // combined with sampling the lobe (multiple importance sampling)
   Cosine,    // cosine-weighted about the normal: exact irradiance from a constant map
+  Mis,       // each sample by luminance or by the cosine, half and half, weighted by the two
+             // densities' mean (Veach's balance heuristic, one-sample model): robust where a
+             // shadow hides the bright part of the map or a dim sky is what gets through
 };
 
 struct EnvironmentLight
@@ -42,6 +48,6 @@ struct EnvironmentLight
   Sampling sampling;
   int bruteForceWidth = 128;
 
-  SHADELAB_LIGHT_TYPE(EnvironmentLight, Distributed, false, false);
+  SHADELAB_LIGHT_TYPE(EnvironmentLight, Distributed, false, true);
 };
 }

@@ -1,11 +1,11 @@
 #include "EnvironmentLightEstimator.h"
 
 #include "LobeSampling.h"
-#include "SampledTerms.h"
 #include "SampleWarps.h"
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace shadelab
 {
@@ -28,6 +28,7 @@ EnvironmentLightEstimator::EnvironmentLightEstimator(const EnvironmentLight& lig
   , lightIndex_(lightIndex)
   , lobe_(lobe)
   , worldToMap_(glm::transpose(rotationAboutY(light.rotationDegrees)))
+  , mapToWorld_(rotationAboutY(light.rotationDegrees))
 {
   const EnvironmentMap& map = *light.map;
   switch (light.estimator)
@@ -55,18 +56,17 @@ EnvironmentLightEstimator::EnvironmentLightEstimator(const EnvironmentLight& lig
         coefficient *= scale_; // the coefficients are linear in the radiance
       }
       irradiance_ = composedWith(irradiancePolynomial(coefficients), worldToMap_);
-      if (lobe.wanted())
-      {
-        sampler_.emplace(map);
-      }
       break;
     }
     case EnvironmentEstimator::MonteCarlo:
-      if (light.directions == EnvironmentDirections::Luminance)
-      {
-        sampler_.emplace(map);
-      }
       break;
+  }
+  // Sampling by luminance draws the light's directions (every estimator's with shadows), and
+  // the SH estimator's S.
+  const bool shEstimatesSpecular = light.estimator == EnvironmentEstimator::SphericalHarmonics && lobe.wanted();
+  if (light.directions != EnvironmentDirections::Cosine || shEstimatesSpecular)
+  {
+    sampler_.emplace(map);
   }
 }
 
@@ -76,7 +76,7 @@ Rgb EnvironmentLightEstimator::radianceAt(const glm::dvec3& mapDirection) const
   return light_.map->texel(texel.x, texel.y);
 }
 
-DistributedTerms EnvironmentLightEstimator::bruteForce(const glm::dvec3& n, const glm::dvec3& v) const
+DistributedTerms EnvironmentLightEstimator::bruteForce(const glm::dvec3& n, const glm::dvec3& v, bool specular) const
 {
   // Every texel a distant light of intensity L Omega (docs/formulas.md section 12.3).
   DistributedTerms terms;
@@ -86,7 +86,7 @@ DistributedTerms EnvironmentLightEstimator::bruteForce(const glm::dvec3& n, cons
     if (cosIncidence > 0)
     {
       terms.irradiance += texel.radiantIntensity * cosIncidence;
-      if (lobe_.wanted())
+      if (specular)
       {
         terms.specular += texel.radiantIntensity * lobe_(n, texel.direction, v);
       }
@@ -95,26 +95,54 @@ DistributedTerms EnvironmentLightEstimator::bruteForce(const glm::dvec3& n, cons
   return terms;
 }
 
+RadianceSample EnvironmentLightEstimator::weightedByDensity(const EnvironmentSample& sample) const
+{
+  return { sample.direction, sample.pdf > 0 ? scale_ * sample.radiance / sample.pdf : Rgb(0.0), std::nullopt };
+}
+
+RadianceSample EnvironmentLightEstimator::draw(const glm::dvec3& n, const glm::dvec2& u, EnvironmentDirections directions) const
+{
+  switch (directions)
+  {
+    case EnvironmentDirections::Luminance:
+      return weightedByDensity(sampler_->sample(u.x, u.y));
+    case EnvironmentDirections::Cosine:
+    {
+      const WeightedDirection sample = cosineWeightedDirection(n, u);
+      return { sample.direction, scale_ * radianceAt(sample.direction) * sample.weight, std::nullopt };
+    }
+    case EnvironmentDirections::Mis:
+      break;
+  }
+  // u.x < 1/2 draws by luminance, the rest by the cosine, each from u.x stretched back to
+  // [0, 1); the sample's density is the mixture's, the mean of the two (Veach 1997, section
+  // 9.2.4: the balance heuristic in the one-sample model).
+  const bool byLuminance = u.x < 0.5;
+  const glm::dvec2 stretched(byLuminance ? 2 * u.x : 2 * u.x - 1, u.y);
+  const glm::dvec3 direction =
+    byLuminance ? sampler_->sample(stretched.x, stretched.y).direction : cosineWeightedDirection(n, stretched).direction;
+  EnvironmentSample there = sampler_->at(direction);
+  there.pdf = 0.5 * (there.pdf + std::max(0.0, glm::dot(n, direction)) / samplePi);
+  return weightedByDensity(there);
+}
+
 DistributedTerms EnvironmentLightEstimator::monteCarlo(const glm::dvec3& n, const glm::dvec3& v, std::uint64_t vertex,
-  bool irradiance, EnvironmentDirections directions) const
+  bool irradiance, EnvironmentDirections directions, const HiddenSamples* hidden) const
 {
   const SampleSequence sequence(lightIndex_, vertex, light_.sampling);
-  return sampledTerms(sequence, light_.sampling.stratified, irradiance, lobe_, n, v, nullptr,
+  return sampledTerms(sequence, light_.sampling.stratified, irradiance, lobe_, n, v, hidden,
     [&](const glm::dvec2& u)
     {
-      if (directions == EnvironmentDirections::Luminance)
+      // The lobe's own direction would need a ray of its own: with shadows, S is taken from
+      // the light's samples alone.
+      if (lobe_.wanted() && !hidden && directions == EnvironmentDirections::Luminance)
       {
         const EnvironmentSample sample = sampler_->sample(u.x, u.y);
-        const Rgb radiance = scale_ * sample.radiance;
-        RadianceSample drawn{ sample.direction, sample.pdf > 0 ? radiance / sample.pdf : Rgb(0.0), std::nullopt };
-        if (lobe_.wanted())
-        {
-          drawn.specular = specularByBothStrategies(n, v, u, sample.direction, radiance, sample.pdf);
-        }
+        RadianceSample drawn = weightedByDensity(sample);
+        drawn.specular = specularByBothStrategies(n, v, u, sample.direction, scale_ * sample.radiance, sample.pdf);
         return drawn;
       }
-      const WeightedDirection sample = cosineWeightedDirection(n, u);
-      return RadianceSample{ sample.direction, scale_ * radianceAt(sample.direction) * sample.weight, std::nullopt };
+      return draw(n, u, directions);
     });
 }
 
@@ -149,16 +177,59 @@ DistributedTerms EnvironmentLightEstimator::estimate(const SurfacePoint& point) 
   switch (light_.estimator)
   {
     case EnvironmentEstimator::BruteForce:
-      return bruteForce(n, v);
+      return bruteForce(n, v, lobe_.wanted());
     case EnvironmentEstimator::MonteCarlo:
-      return monteCarlo(n, v, point.index, true, light_.directions);
+      return monteCarlo(n, v, point.index, true, light_.directions, nullptr);
     case EnvironmentEstimator::SphericalHarmonics:
       break;
   }
   // Nine coefficients cannot hold a lobe sharper than the cosine: S is sampled, by luminance and by the lobe.
-  DistributedTerms terms =
-    lobe_.wanted() ? monteCarlo(n, v, point.index, false, EnvironmentDirections::Luminance) : DistributedTerms{};
+  DistributedTerms terms = lobe_.wanted()
+    ? monteCarlo(n, v, point.index, false, EnvironmentDirections::Luminance, nullptr)
+    : DistributedTerms{};
   terms.irradiance = (*irradiance_)(point.normal);
+  return terms;
+}
+
+int EnvironmentLightEstimator::shadowRayCount() const
+{
+  return light_.sampling.samples;
+}
+
+void EnvironmentLightEstimator::shadowRays(const SurfacePoint& point, ShadowRay* rays) const
+{
+  // A ray is cast only where its sample carries light to the point's lit side: the others
+  // count as visible and add nothing.
+  const glm::dvec3 n = worldToMap_ * point.normal;
+  const SampleSequence sequence(lightIndex_, point.index, light_.sampling);
+  for (int j = 0; j < sequence.count(); ++j)
+  {
+    const RadianceSample sample = draw(n, sequence.point(j), light_.directions);
+    const bool carriesLight = largestComponent(sample.weighted) > 0 && glm::dot(n, sample.direction) > 0;
+    rays[j] = { mapToWorld_ * sample.direction, std::numeric_limits<double>::infinity(), carriesLight };
+  }
+}
+
+DistributedTerms EnvironmentLightEstimator::estimate(const SurfacePoint& point, const HiddenSamples& hidden) const
+{
+  const glm::dvec3 n = worldToMap_ * point.normal;
+  const glm::dvec3 v = worldToMap_ * point.toViewer;
+  Rgb unshadowed(0.0);
+  switch (light_.estimator)
+  {
+    case EnvironmentEstimator::MonteCarlo:
+      return monteCarlo(n, v, point.index, true, light_.directions, &hidden);
+    case EnvironmentEstimator::BruteForce:
+      unshadowed = bruteForce(n, v, false).irradiance;
+      break;
+    case EnvironmentEstimator::SphericalHarmonics:
+      unshadowed = (*irradiance_)(point.normal);
+      break;
+  }
+  // As the exact estimator of an area light: where every ray gets through, E is the unshadowed E bit for bit.
+  DistributedTerms terms = monteCarlo(n, v, point.index, false, light_.directions, &hidden);
+  terms.irradiance = unshadowed * terms.visibility;
+  terms.irradianceStdError = unshadowed * terms.visibilityStdError;
   return terms;
 }
 }

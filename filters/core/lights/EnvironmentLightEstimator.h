@@ -1,10 +1,12 @@
 #pragma once
 // Estimators of E and S (DistributedLight.h) for an environment map: the brute-force sum
-// over texels, Monte Carlo, or nine spherical-harmonic coefficients.
+// over texels, Monte Carlo, or nine spherical-harmonic coefficients; with shadows, each of them
+// with the rays of its samples (docs/formulas.md section 12.6).
 #include "DistributedLight.h"
 #include "EnvironmentLight.h"
 #include "EnvironmentMap.h"
 #include "EnvironmentSampler.h"
+#include "SampledTerms.h"
 #include "SphericalHarmonics.h"
 
 #include <glm/mat3x3.hpp>
@@ -14,12 +16,21 @@
 
 namespace shadelab
 {
-class EnvironmentLightEstimator final : public DistributedLightEstimator
+class EnvironmentLightEstimator final : public DistributedLightEstimator, public ShadowedLightEstimator
 {
 public:
   EnvironmentLightEstimator(const EnvironmentLight& light, std::uint64_t lightIndex, const LobeModel& lobe);
 
   DistributedTerms estimate(const SurfacePoint& point) const override;
+
+  /// The rays of the light's `sampling.samples` directions, drawn by its `directions`, to infinity.
+  int shadowRayCount() const override;
+  void shadowRays(const SurfacePoint& point, ShadowRay* rays) const override;
+  /// Monte Carlo: E and S from the samples that get through. Brute force and spherical
+  /// harmonics: their unshadowed E times the samples' visible fraction, S from the samples that
+  /// get through (a lobe's own directions would need rays of their own).
+  DistributedTerms estimate(const SurfacePoint& point, const HiddenSamples& hidden) const override;
+  std::optional<glm::dvec3> emitterCentre() const override { return std::nullopt; }
 
   /// For the SH estimator, E as a polynomial of the world normal (eq. 13 turned with the map),
   /// for the kernel's vectorised loops; nothing for the other estimators.
@@ -34,9 +45,13 @@ private:
     Rgb radiantIntensity;
   };
 
-  DistributedTerms bruteForce(const glm::dvec3& n, const glm::dvec3& v) const;
+  DistributedTerms bruteForce(const glm::dvec3& n, const glm::dvec3& v, bool specular) const;
   DistributedTerms monteCarlo(const glm::dvec3& n, const glm::dvec3& v, std::uint64_t vertex, bool irradiance,
-    EnvironmentDirections directions) const;
+    EnvironmentDirections directions, const HiddenSamples* hidden) const;
+  /// The sample's direction with its radiance (times the light's colour) over its pdf.
+  RadianceSample weightedByDensity(const EnvironmentSample& sample) const;
+  /// A direction (map frame) drawn from u as `directions` says, with L(w) / pdf(w).
+  RadianceSample draw(const glm::dvec3& n, const glm::dvec2& u, EnvironmentDirections directions) const;
   /// One estimate of S from the direction drawn by luminance and one drawn by the lobe.
   Rgb specularByBothStrategies(const glm::dvec3& n, const glm::dvec3& v, const glm::dvec2& u,
     const glm::dvec3& byLuminance, const Rgb& radiance, double luminanceDensity) const;
@@ -47,6 +62,7 @@ private:
   std::uint64_t lightIndex_;
   LobeModel lobe_;
   glm::dmat3 worldToMap_{ 1.0 };
+  glm::dmat3 mapToWorld_{ 1.0 };
   std::vector<Texel> texels_;              // BruteForce
   std::optional<EnvironmentSampler> sampler_; // sampling by luminance
   std::optional<IrradiancePolynomial> irradiance_; // SphericalHarmonics

@@ -57,8 +57,9 @@ bool lightHasTerm(const LightSource& source, LightTerm term)
 
 bool lightHasTerm(const NamedLight& light, LightTerm term)
 {
-  // A distributed light's shadows are sampled (AreaLightEstimator): its visibility has a
-  // standard error, and so has its irradiance, whatever the estimator.
+  // A distributed light's shadows are sampled (ShadowedLightEstimator): its visibility has a
+  // standard error, and so has its irradiance, whatever the estimator; a map's S is sampled
+  // too, even by the brute-force sum.
   const bool softShadows = light.shadows && isDistributed(light.source);
   switch (term)
   {
@@ -68,6 +69,8 @@ bool lightHasTerm(const NamedLight& light, LightTerm term)
       return softShadows;
     case LightTerm::IrradianceStdError:
       return softShadows || lightHasTerm(light.source, term);
+    case LightTerm::SpecularStdError:
+      return (softShadows && std::holds_alternative<EnvironmentLight>(light.source)) || lightHasTerm(light.source, term);
     default:
       return lightHasTerm(light.source, term);
   }

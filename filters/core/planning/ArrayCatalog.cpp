@@ -24,9 +24,9 @@ const std::array<TermInfo, LightTermCount> lightTerms = { {
   { "irradiance_std_error", 3, "Monte Carlo standard error of the irradiance, RGB" },
   { "specular_std_error", 3, "Monte Carlo standard error of the specular term, RGB" },
   { "visibility", 1,
-    "lights with shadows: 1 where the mesh does not hide the light, 0 where it does; for an area light, the "
-    "fraction of its irradiance that gets past the mesh (1 where the light is below the horizon)" },
-  { "visibility_std_error", 1, "Monte Carlo standard error of an area light's visibility" },
+    "lights with shadows: 1 where the mesh does not hide the light, 0 where it does; for an area light or a map, "
+    "the fraction of its irradiance that gets past the mesh (1 where the light is below the horizon)" },
+  { "visibility_std_error", 1, "Monte Carlo standard error of an area light's or a map's visibility" },
 } };
 
 const std::array<TermInfo, TotalTermCount> totalTerms = { {
@@ -47,7 +47,8 @@ const std::array<TermInfo, OcclusionTermCount> occlusionTerms = { {
 const TermInfo flagsInfo = { "shading_flags", 1,
   "diagnostic bits: 1 degenerate normal, 2 light at minimum distance, 4 light below horizon, "
   "8 half vector undefined, 16 non-finite input, 32 normal flipped to face the viewer, "
-  "64 a shadowed light it faces hidden by a triangle around it" };
+  "64 a shadowed light it faces hidden by a triangle around it, 128 a shadowed light hidden from it enclosed by the "
+  "mesh" };
 
 const TermInfo& termInfo(LightTerm term)
 {

@@ -107,8 +107,8 @@ std::vector<SceneProblem> sceneProblems(const Scene& scene, Precision precision)
     list.check(lightNames.insert(light.name).second, at + "/name",
       "another light is already named '" + light.name + "'");
     list.check(!light.shadows || castsShadows(light.source), at + "/shadows",
-      "only " + shadowCastingTypeNames() + " lights cast shadows so far (an ambient light has no direction, and "
-      "an environment map's shadows are not computed yet): remove \"shadows\" from this light");
+      "only " + shadowCastingTypeNames() + " lights cast shadows (an ambient light has no direction; "
+      "the mesh's shadowing of it is ambient occlusion): remove \"shadows\" from this light");
   }
   if (scene.ambientOcclusion)
   {

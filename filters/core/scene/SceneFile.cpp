@@ -21,7 +21,7 @@ NamedLight readLight(const JsonNode& node, std::size_t index, const std::string&
   light.source = readLightSource(node, sceneFile);
   light.name = node.has("name") ? node.at("name").text() : lightTypeName(light.source) + std::to_string(index);
   light.shadows = node.has("shadows") ? node.at("shadows").boolean()
-                                      : shadowsByDefault && roleOf(light.source) == LightRole::Local;
+                                      : shadowsByDefault && castsShadows(light.source);
   return light;
 }
 

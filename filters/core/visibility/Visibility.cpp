@@ -160,6 +160,32 @@ void hiddenSamples(const OccluderMesh& occluders, const ShadowedLightEstimator& 
   trace();
 }
 
+bool enclosesPoint(const OccluderMesh& occluders, const glm::dvec3& point)
+{
+  static_assert(enclosureRays % OccluderMesh::bundleSize == 0, "the rays go in whole bundles");
+  // The Fibonacci sphere's points: evenly spread, the same every run (R. Swinbank and R. J.
+  // Purser, "Fibonacci grids", Q. J. R. Meteorol. Soc. 132, 2006).
+  const double goldenAngle = samplePi * (3 - std::sqrt(5.0));
+  const OccluderMesh::FrameRay start = occluders.inFrame({ point, glm::dvec3(0.0), {}, 0.0, -1 });
+  OccluderMesh::FrameRay bundle[OccluderMesh::bundleSize];
+  for (int first = 0; first < enclosureRays; first += OccluderMesh::bundleSize)
+  {
+    for (int j = 0; j < OccluderMesh::bundleSize; ++j)
+    {
+      const int k = first + j;
+      const double z = 1 - (2 * k + 1) / double(enclosureRays);
+      const double r = std::sqrt(1 - z * z);
+      const glm::dvec3 direction(r * std::cos(goldenAngle * k), r * std::sin(goldenAngle * k), z);
+      bundle[j] = { start.origin, glm::vec3(direction), std::numeric_limits<float>::infinity() };
+    }
+    if (occluders.occluded(bundle, OccluderMesh::bundleSize) != (1u << OccluderMesh::bundleSize) - 1)
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
 OcclusionEstimate ambientOcclusion(const OccluderMesh& occluders, const RayVertex& vertex, const OcclusionSettings& settings)
 {
   OcclusionEstimate estimate;

@@ -59,6 +59,12 @@ void lightVisibility(const OccluderMesh& occluders, const RayVertex* vertices, c
 void hiddenSamples(const OccluderMesh& occluders, const ShadowedLightEstimator& light, const SurfacePoint& point,
   PointId vertex, std::vector<ShadowRay>& rays, std::uint64_t* words);
 
+/// Whether the mesh encloses the point: every one of enclosureRays rays from it, spread evenly
+/// over the sphere, meets a triangle. Then a light there is hidden from every vertex outside
+/// (a light inside a closed mesh), which the visibility step flags (FlagLightEnclosed).
+constexpr int enclosureRays = 64;
+bool enclosesPoint(const OccluderMesh& occluders, const glm::dvec3& point);
+
 /// How ambient occlusion is estimated.
 struct OcclusionSettings
 {
