@@ -1,11 +1,24 @@
 #include "OffScreenImage.h"
 
+#include "MeshFiles.h"
+
 #include "vtkNew.h"
 #include "vtkRenderWindow.h"
 #include "vtkWindowToImageFilter.h"
 
+#include <cstdlib>
+
 namespace shadelab::app
 {
+void requireDisplay()
+{
+  const char* display = std::getenv("DISPLAY");
+  if (!display || !*display)
+  {
+    throw UserError("no X display to render with: run the command under xvfb-run -a (package xvfb)");
+  }
+}
+
 vtkSmartPointer<vtkImageData> renderOffScreen(vtkRenderer* renderer, int width, int height)
 {
   vtkNew<vtkRenderWindow> window;

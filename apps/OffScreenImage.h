@@ -9,4 +9,8 @@ namespace shadelab::app
 {
 /// RGB, 8 bits per channel, origin at the lower left. Needs an X display (Xvfb will do).
 vtkSmartPointer<vtkImageData> renderOffScreen(vtkRenderer* renderer, int width, int height);
+
+/// Throws UserError (MeshFiles.h) when there is no X display to render with: without one,
+/// VTK 9.1's X window aborts the process.
+void requireDisplay();
 }

@@ -91,11 +91,7 @@ void renderToPng(vtkPolyData* mesh, const std::string& meshName, const RenderOpt
   const std::string& pngFile)
 {
   checkOutputFile(pngFile, { ".png" });
-  const char* display = std::getenv("DISPLAY");
-  if (!display || !*display)
-  {
-    throw UserError("no X display to render with: run the command under xvfb-run -a (package xvfb)");
-  }
+  requireDisplay();
   vtkDataArray* array = mesh->GetPointData()->GetArray(options.array.c_str());
   if (!array)
   {

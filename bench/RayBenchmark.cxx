@@ -441,7 +441,7 @@ void runRayBenchmark(const RayBenchmarkOptions& options)
       const double seconds = softShadowSeconds(mesh, light, aoStride);
       const double ceiling = tracedRaysPerSecond(mesh, frameRays);
       record(name + " shadows, 64 samples: rays", cast / seconds / 1e6, "Mrays/s",
-        std::to_string(cast) + " rays cast, where the sample carries light");
+        std::to_string(cast) + " rays cast, one per sample that can carry light");
       record(name + " shadows, 64 samples: time", seconds * 1e3 * aoStride, "ms",
         aoStride > 1 ? "for the whole mesh, from every 16th vertex" : "");
       record("  " + name + " / ambient occlusion 64, time", seconds / occlusion64Seconds, "x", timeTarget);

@@ -9,6 +9,7 @@
 #include "RayBenchmark.h"
 #include "MeshFiles.h"
 #include "CommandLineParse.h"
+#include "OffScreenImage.h"
 
 #include "SceneFile.h"
 
@@ -81,6 +82,10 @@ int run(BenchCommand& command)
                                       "run from the repository's top folder, give --bunny FILE, or pass --no-bunny)");
     }
     command.options.bunnyFile = command.bunny;
+  }
+  if (!command.visibilityFolder.empty() || !command.chartsFolder.empty())
+  {
+    shadelab::app::requireDisplay(); // before the minutes of work whose charts it draws
   }
   if (!command.visibilityFolder.empty())
   {

@@ -89,21 +89,34 @@ EnvironmentSampler::EnvironmentSampler(const EnvironmentMap& map)
   uvDensityPerWeight_ = weightSum > 0.0 ? width * static_cast<double>(height) / weightSum : 0.0;
 }
 
+EnvironmentSampler::Drawn EnvironmentSampler::draw(double u1, double u2) const
+{
+  const BinSample row = sampleCdf(rowCdf_.data(), map_.height, u2);
+  const BinSample column = sampleCdf(
+    &columnCdfs_[static_cast<std::size_t>(row.bin) * (map_.width + 1)], map_.width, u1);
+  return { column.bin, row.bin,
+    directionAt((column.bin + column.offset) / map_.width, (row.bin + row.offset) / map_.height) };
+}
+
 EnvironmentSample EnvironmentSampler::sample(double u1, double u2) const
+{
+  if (uvDensityPerWeight_ == 0.0)
+  {
+    return { sampleDirection(u1, u2), 1.0 / (4.0 * pi), Rgb(0.0) };
+  }
+  const Drawn drawn = draw(u1, u2);
+  return { drawn.direction, pdfAt(drawn.column, drawn.row, drawn.direction), map_.texel(drawn.column, drawn.row) };
+}
+
+glm::dvec3 EnvironmentSampler::sampleDirection(double u1, double u2) const
 {
   if (uvDensityPerWeight_ == 0.0)
   {
     // Black map: cos(theta) = 1 - 2 u2 uniform in [-1, 1] is uniform over the sphere
     // (Archimedes' hat-box theorem), and every texel is 0.
-    const double v = std::acos(1.0 - 2.0 * u2) / pi;
-    return { directionAt(u1, v), 1.0 / (4.0 * pi), Rgb(0.0) };
+    return directionAt(u1, std::acos(1.0 - 2.0 * u2) / pi);
   }
-  const BinSample row = sampleCdf(rowCdf_.data(), map_.height, u2);
-  const BinSample column = sampleCdf(
-    &columnCdfs_[static_cast<std::size_t>(row.bin) * (map_.width + 1)], map_.width, u1);
-  const glm::dvec3 direction = directionAt(
-    (column.bin + column.offset) / map_.width, (row.bin + row.offset) / map_.height);
-  return { direction, pdfAt(column.bin, row.bin, direction), map_.texel(column.bin, row.bin) };
+  return draw(u1, u2).direction;
 }
 
 double EnvironmentSampler::pdf(const glm::dvec3& unitDirection) const

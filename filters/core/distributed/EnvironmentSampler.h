@@ -33,6 +33,10 @@ public:
   /// counts the sample as 0, the limit of f / pdf there, as pbrt does.
   EnvironmentSample sample(double u1, double u2) const;
 
+  /// The direction sample(u1, u2) draws, bit for bit, without its density and texel: all a
+  /// shadow ray needs.
+  glm::dvec3 sampleDirection(double u1, double u2) const;
+
   /// The density per unit solid angle that sample() draws unitDirection with: positive
   /// wherever the radiance is, but 0 exactly at a pole.
   double pdf(const glm::dvec3& unitDirection) const;
@@ -41,6 +45,13 @@ public:
   EnvironmentSample at(const glm::dvec3& unitDirection) const;
 
 private:
+  struct Drawn
+  {
+    int column, row; // the texel
+    glm::dvec3 direction;
+  };
+  /// For a map with light (uvDensityPerWeight_ > 0).
+  Drawn draw(double u1, double u2) const;
   double pdfAt(int column, int row, const glm::dvec3& direction) const;
 
   EnvironmentMap map_;

@@ -100,6 +100,28 @@ RadianceSample EnvironmentLightEstimator::weightedByDensity(const EnvironmentSam
   return { sample.direction, sample.pdf > 0 ? scale_ * sample.radiance / sample.pdf : Rgb(0.0), std::nullopt };
 }
 
+glm::dvec3 EnvironmentLightEstimator::mixtureDirection(const glm::dvec3& n, const glm::dvec2& u) const
+{
+  // u.x < 1/2 draws by luminance, the rest by the cosine, each from u.x stretched back to [0, 1).
+  const bool byLuminance = u.x < 0.5;
+  const glm::dvec2 stretched(byLuminance ? 2 * u.x : 2 * u.x - 1, u.y);
+  return byLuminance ? sampler_->sampleDirection(stretched.x, stretched.y) : cosineWeightedDirection(n, stretched).direction;
+}
+
+glm::dvec3 EnvironmentLightEstimator::drawDirection(const glm::dvec3& n, const glm::dvec2& u, EnvironmentDirections directions) const
+{
+  switch (directions)
+  {
+    case EnvironmentDirections::Luminance:
+      return sampler_->sampleDirection(u.x, u.y);
+    case EnvironmentDirections::Cosine:
+      return cosineWeightedDirection(n, u).direction;
+    case EnvironmentDirections::Mis:
+      break;
+  }
+  return mixtureDirection(n, u);
+}
+
 RadianceSample EnvironmentLightEstimator::draw(const glm::dvec3& n, const glm::dvec2& u, EnvironmentDirections directions) const
 {
   switch (directions)
@@ -114,13 +136,9 @@ RadianceSample EnvironmentLightEstimator::draw(const glm::dvec3& n, const glm::d
     case EnvironmentDirections::Mis:
       break;
   }
-  // u.x < 1/2 draws by luminance, the rest by the cosine, each from u.x stretched back to
-  // [0, 1); the sample's density is the mixture's, the mean of the two (Veach 1997, section
-  // 9.2.4: the balance heuristic in the one-sample model).
-  const bool byLuminance = u.x < 0.5;
-  const glm::dvec2 stretched(byLuminance ? 2 * u.x : 2 * u.x - 1, u.y);
-  const glm::dvec3 direction =
-    byLuminance ? sampler_->sample(stretched.x, stretched.y).direction : cosineWeightedDirection(n, stretched).direction;
+  // The sample's density is the mixture's, the mean of the two (Veach 1997, section 9.2.4: the
+  // balance heuristic in the one-sample model).
+  const glm::dvec3 direction = mixtureDirection(n, u);
   EnvironmentSample there = sampler_->at(direction);
   there.pdf = 0.5 * (there.pdf + std::max(0.0, glm::dot(n, direction)) / samplePi);
   return weightedByDensity(there);
@@ -198,15 +216,16 @@ int EnvironmentLightEstimator::shadowRayCount() const
 
 void EnvironmentLightEstimator::shadowRays(const SurfacePoint& point, ShadowRay* rays) const
 {
-  // A ray is cast only where its sample carries light to the point's lit side: the others
-  // count as visible and add nothing.
+  // A ray is cast where its direction is above the point's horizon: below, the sample adds
+  // nothing. Nor does a sample of a black texel above it, whose ray is cast all the same (the
+  // texel's radiance is not looked up for the ray: the estimate is the same bits whatever
+  // that ray finds, and the lookup costs more than the ray).
   const glm::dvec3 n = worldToMap_ * point.normal;
   const SampleSequence sequence(lightIndex_, point.index, light_.sampling);
   for (int j = 0; j < sequence.count(); ++j)
   {
-    const RadianceSample sample = draw(n, sequence.point(j), light_.directions);
-    const bool carriesLight = largestComponent(sample.weighted) > 0 && glm::dot(n, sample.direction) > 0;
-    rays[j] = { mapToWorld_ * sample.direction, std::numeric_limits<double>::infinity(), carriesLight };
+    const glm::dvec3 direction = drawDirection(n, sequence.point(j), light_.directions);
+    rays[j] = { mapToWorld_ * direction, std::numeric_limits<double>::infinity(), glm::dot(n, direction) > 0 };
   }
 }
 

@@ -50,6 +50,10 @@ private:
     EnvironmentDirections directions, const HiddenSamples* hidden) const;
   /// The sample's direction with its radiance (times the light's colour) over its pdf.
   RadianceSample weightedByDensity(const EnvironmentSample& sample) const;
+  /// The direction (map frame) draw() draws, bit for bit, without its radiance and density.
+  glm::dvec3 drawDirection(const glm::dvec3& n, const glm::dvec2& u, EnvironmentDirections directions) const;
+  /// The direction of a sample of the mixture of luminance and cosine (Mis).
+  glm::dvec3 mixtureDirection(const glm::dvec3& n, const glm::dvec2& u) const;
   /// A direction (map frame) drawn from u as `directions` says, with L(w) / pdf(w).
   RadianceSample draw(const glm::dvec3& n, const glm::dvec2& u, EnvironmentDirections directions) const;
   /// One estimate of S from the direction drawn by luminance and one drawn by the lobe.
