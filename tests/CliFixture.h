@@ -9,6 +9,7 @@
 #include <sstream>
 #include <string>
 #include <sys/wait.h>
+#include <unistd.h>
 
 namespace shadelab::testing
 {
@@ -26,8 +27,11 @@ class Cli : public ::testing::Test
 protected:
   void SetUp() override
   {
+    // The process id too: two test runs at once (two clones, or the sanitizer build's beside
+    // the plain one) must not share a folder.
     folder = fs::temp_directory_path() /
-      ("shadelab_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+      ("shadelab_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" +
+        std::to_string(::getpid()));
     fs::remove_all(folder);
     fs::create_directories(folder);
   }
