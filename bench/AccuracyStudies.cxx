@@ -21,6 +21,7 @@
 #include <limits>
 #include <optional>
 #include <sstream>
+#include <tuple>
 
 namespace shadelab::app
 {
@@ -477,30 +478,18 @@ void runAccuracyStudies(const AccuracyOptions& options)
     study(shadows ? "6b_soft_shadows" : "6_area_light",
       [&](ChartSpec& chart) { return areaLightStudy(plainBunny, distributed.softbox, shadows, options.maxRepeats, chart); });
   }
-  study("7_sunset_map",
-    [&](ChartSpec& chart)
+  for (const bool shadows : { false, true })
+  {
+    for (const auto& [map, number, name] : { std::tuple{ &distributed.sunset, "7", "sunset" },
+           std::tuple{ &distributed.studio, "8", "studio" } })
     {
-      return environmentMapStudy(
-        plainBunny, distributed.softbox, distributed.sunset, "7 sunset map", options.maxRepeats, chart);
-    });
-  study("8_studio_map",
-    [&](ChartSpec& chart)
-    {
-      return environmentMapStudy(
-        plainBunny, distributed.softbox, distributed.studio, "8 studio map", options.maxRepeats, chart);
-    });
-  study("7b_sunset_map_shadows",
-    [&](ChartSpec& chart)
-    {
-      return environmentShadowStudy(
-        plainBunny, distributed.softbox, distributed.sunset, "7b sunset map, shadows", options.maxRepeats, chart);
-    });
-  study("8b_studio_map_shadows",
-    [&](ChartSpec& chart)
-    {
-      return environmentShadowStudy(
-        plainBunny, distributed.softbox, distributed.studio, "8b studio map, shadows", options.maxRepeats, chart);
-    });
+      const std::string id = std::string(number) + (shadows ? "b" : "");
+      const std::string title = id + " " + name + " map" + (shadows ? ", shadows" : "");
+      const auto measure = shadows ? environmentShadowStudy : environmentMapStudy;
+      study(id + "_" + name + "_map" + (shadows ? "_shadows" : ""), [&, map = map](ChartSpec& chart)
+        { return measure(plainBunny, distributed.softbox, *map, title, options.maxRepeats, chart); });
+    }
+  }
   const std::vector<AccuracyRow> grazing = grazingRows();
   rows.insert(rows.end(), grazing.begin(), grazing.end());
   for (const AccuracyRow& r : grazing)

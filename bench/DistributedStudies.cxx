@@ -172,6 +172,15 @@ std::string verticesText(const Mesh& mesh)
 {
   return std::to_string(mesh.data->GetNumberOfPoints()) + " vertices";
 }
+
+/// "Diffuse under FILE x INTENSITY<condition>, bunny (N vertices)": a map study's chart title.
+std::string diffuseUnderMapTitle(const EnvironmentLight& map, const Mesh& bunny, const std::string& condition)
+{
+  std::ostringstream title;
+  title << "Diffuse under " << std::filesystem::path(map.file).filename().string() << " x " << map.intensity
+        << condition << ", bunny (" << verticesText(bunny) << ")";
+  return title.str();
+}
 }
 
 DistributedStudyInputs readDistributedStudyInputs(const AccuracyOptions& options)
@@ -300,10 +309,7 @@ std::vector<AccuracyRow> environmentMapStudy(const Mesh& bunny, const Scene& mat
     }
   }
   chart.series = study.chartSeries();
-  std::ostringstream title;
-  title << "Diffuse under " << std::filesystem::path(map.file).filename().string() << " x " << map.intensity
-        << ", bunny (" << verticesText(bunny) << ")";
-  chart.title = title.str();
+  chart.title = diffuseUnderMapTitle(map, bunny, "");
   chart.xTitle = "time per run, diffuse term only (ms, median; widths 32 to 128, samples 4 to 1024)";
   chart.yTitle = "|error| of the diffuse term against brute force " + std::to_string(mapReferenceWidth) +
     ": largest (solid), RMS (dashed)";
@@ -329,34 +335,28 @@ std::vector<AccuracyRow> environmentShadowStudy(const Mesh& bunny, const Scene& 
        << " stratified samples and their shadow rays, float64; the standard error of its irradiance is at most "
        << referenceError.largest << " (RMS " << referenceError.rms << "), to be multiplied by kd";
   study.addReferenceRow("samples", areaReferenceSamples, note.str());
+  // The light as it is set, at each sample count.
+  auto overSampleCounts = [&](const std::string& family, bool stratified)
+  {
+    for (const int samples : sampleCounts)
+    {
+      light.sampling = { samples, stratified };
+      study.measure(family + ", " + samplingName(stratified), "samples", samples, lit());
+    }
+  };
   const std::pair<EnvironmentDirections, const char*> kinds[] = { { EnvironmentDirections::Luminance, "luminance" },
     { EnvironmentDirections::Cosine, "cosine" }, { EnvironmentDirections::Mis, "mis" } };
   for (const auto& [directions, name] : kinds)
   {
     light.directions = directions;
-    for (const int samples : sampleCounts)
-    {
-      light.sampling = { samples, true };
-      study.measure(std::string("monte_carlo by ") + name + ", stratified", "samples", samples, lit());
-    }
+    overSampleCounts(std::string("monte_carlo by ") + name, true);
   }
   light.directions = EnvironmentDirections::Mis;
-  for (const int samples : sampleCounts)
-  {
-    light.sampling = { samples, false };
-    study.measure("monte_carlo by mis, independent", "samples", samples, lit());
-  }
+  overSampleCounts("monte_carlo by mis", false);
   light.estimator = EnvironmentEstimator::SphericalHarmonics;
-  for (const int samples : sampleCounts)
-  {
-    light.sampling = { samples, true };
-    study.measure("sh x visible fraction by mis, stratified", "samples", samples, lit());
-  }
+  overSampleCounts("sh x visible fraction by mis", true);
   chart.series = study.chartSeries();
-  std::ostringstream title;
-  title << "Diffuse under " << std::filesystem::path(map.file).filename().string() << " x " << map.intensity
-        << " with its shadows, bunny (" << verticesText(bunny) << ")";
-  chart.title = title.str();
+  chart.title = diffuseUnderMapTitle(map, bunny, " with its shadows");
   chart.xTitle = "time per run, rays included (ms, median; 4 to 1024 samples along each line)";
   chart.yTitle = "|error| of the diffuse term against monte_carlo by mis, 16384 samples: largest (solid), RMS (dashed)";
   chart.logX = chart.logY = true;

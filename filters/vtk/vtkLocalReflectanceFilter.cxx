@@ -337,16 +337,21 @@ std::vector<vtkSmartPointer<vtkDataArray>> useVisibility(vtkPolyData* seen, cons
 {
   vtkPointData* data = seen->GetPointData();
   auto floats = [&](const std::string& name) { return vtkFloatArray::SafeDownCast(data->GetArray(name.c_str())); };
+  auto hiddenSamplesOf = [&](const std::string& light)
+  {
+    static_assert(sizeof(vtkTypeUInt64) == sizeof(std::uint64_t), "the hidden samples' words are 64 bits");
+    auto* words = vtkTypeUInt64Array::SafeDownCast(data->GetArray(shadelab::hiddenSamplesArrayName(prefix, light).c_str()));
+    return reinterpret_cast<const std::uint64_t*>(words->GetPointer(0));
+  };
   for (const shadelab::NamedLight& light : scene.lights)
   {
-    // A local light's visibility multiplies its terms; an area light's samples are weighted by
-    // the bits of those the mesh hides.
-    const bool area = light.shadows && shadelab::isDistributed(light.source);
-    vtkFloatArray* visibility = floats(shadelab::lightArrayName(prefix, light.name, shadelab::LightTerm::Visibility));
-    auto* hidden = vtkTypeUInt64Array::SafeDownCast(data->GetArray(shadelab::hiddenSamplesArrayName(prefix, light.name).c_str()));
-    inputs.lightVisibility.push_back(light.shadows && !area ? visibility->GetPointer(0) : nullptr);
-    static_assert(sizeof(vtkTypeUInt64) == sizeof(std::uint64_t), "the hidden samples' words are 64 bits");
-    inputs.lightHiddenSamples.push_back(area ? reinterpret_cast<const std::uint64_t*>(hidden->GetPointer(0)) : nullptr);
+    // A local light's visibility multiplies its terms; an area light's or a map's samples are
+    // weighted by the bits of those the mesh hides.
+    const bool local = light.shadows && !shadelab::isDistributed(light.source);
+    const bool distributed = light.shadows && !local;
+    inputs.lightVisibility.push_back(
+      local ? floats(shadelab::lightArrayName(prefix, light.name, shadelab::LightTerm::Visibility))->GetPointer(0) : nullptr);
+    inputs.lightHiddenSamples.push_back(distributed ? hiddenSamplesOf(light.name) : nullptr);
   }
   std::vector<vtkSmartPointer<vtkDataArray>> requested;
   for (int t = 0; scene.ambientOcclusion && t < shadelab::OcclusionTermCount; ++t)

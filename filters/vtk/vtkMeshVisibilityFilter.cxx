@@ -290,9 +290,9 @@ void traceSoftShadows(const shadelab::OccluderMesh& occluders, const ShadowedLig
     const shadelab::SurfacePoint point{ vertex.position, group.occlusionNormals[k], glm::dvec3(0.0),
       static_cast<std::uint64_t>(vertex.id) };
     shadelab::hiddenSamples(occluders, *light.distributed, point, vertex.id, group.scratch, bits);
-    const bool facesLight =
-      std::any_of(group.scratch.begin(), group.scratch.end(), [](const shadelab::ShadowRay& ray) { return ray.cast; });
-    if (light.enclosed && facesLight)
+    // The scan for a ray cast only where it can matter: for the rare light the mesh encloses.
+    if (light.enclosed &&
+      std::any_of(group.scratch.begin(), group.scratch.end(), [](const shadelab::ShadowRay& ray) { return ray.cast; }))
     {
       addFlag(flags, group.first + k, shadelab::FlagLightEnclosed);
     }

@@ -40,8 +40,9 @@ struct ShadingOutputs
 struct ShadingInputs
 {
   std::vector<const float*> lightVisibility; // follows scene.lights; nullptr (or empty): not shadowed
-  /// Follows scene.lights: for an area light with shadows, the bits of its samples that the mesh
-  /// hides (HiddenSamples), hiddenSampleWords(shadowRayCount()) words per vertex; nullptr: none.
+  /// Follows scene.lights: for an area light or map with shadows, the bits of its samples that
+  /// the mesh hides (HiddenSamples), hiddenSampleWords(shadowRayCount()) words per vertex;
+  /// nullptr: none.
   std::vector<const std::uint64_t*> lightHiddenSamples;
   const float* ambientOcclusion = nullptr;   // nullptr: the open sky, 1
   const ShadingFlags* flags = nullptr;       // flags the rays found (FlagHiddenByOwnTriangle)

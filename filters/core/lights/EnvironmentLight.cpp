@@ -128,8 +128,8 @@ LightEvaluation EnvironmentLight::prepare(const EvaluationContext& context) cons
   if (estimator->irradiance())
   {
     // E is the estimator's polynomial of the normal; the estimator is still needed for S,
-    // which it samples.
-    // With shadows, the estimator gives E as well (the polynomial times the visible fraction).
+    // which it samples, and with shadows for E as well (the polynomial times the visible
+    // fraction).
     std::optional<IrradiancePolynomial> irradiance = estimator->irradiance();
     return DistributedEvaluation{ context.lobe.wanted() ? estimator : nullptr, irradiance, estimator };
   }

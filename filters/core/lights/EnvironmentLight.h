@@ -17,7 +17,7 @@ struct EnvironmentMap; // EnvironmentMap.h
 /// coefficients hold too little of a map for a lobe sharper than the cosine). With shadows,
 /// BruteForce and SphericalHarmonics give their unshadowed E times the visible fraction of
 /// `sampling.samples` directions drawn by `directions`, and S from those samples
-/// (docs/formulas.md section 12.6).
+/// (docs/formulas.md section 12.7).
 enum class EnvironmentEstimator
 {
   BruteForce,         // every texel of the map downsampled to `bruteForceWidth`, as a distant light

@@ -1,7 +1,7 @@
 #pragma once
 // Estimators of E and S (DistributedLight.h) for an environment map: the brute-force sum
 // over texels, Monte Carlo, or nine spherical-harmonic coefficients; with shadows, each of them
-// with the rays of its samples (docs/formulas.md section 12.6).
+// with the rays of its samples (docs/formulas.md section 12.7).
 #include "DistributedLight.h"
 #include "EnvironmentLight.h"
 #include "EnvironmentMap.h"

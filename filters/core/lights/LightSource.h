@@ -83,7 +83,7 @@ LightEvaluation prepareEvaluation(const LightSource& source, const EvaluationCon
 bool castsShadows(const LightSource& source);
 
 /// The scene-file "type" names of the registered types that cast shadows, as a phrase for
-/// messages: "distant, headlight, point, spot, polygon, rectangle, disk and sphere".
+/// messages: "distant, headlight, point, spot, polygon, rectangle, disk, sphere and environment".
 std::string shadowCastingTypeNames();
 
 /// A light from its JSON object in a scene file: the fields any light may have, its "type",

@@ -75,8 +75,8 @@ std::string flagsArrayName(const std::string& prefix);
 /// The name of vtkMeshVisibilityFilter's flags (FlagHiddenByOwnTriangle), which the kernel
 /// folds into shading_flags: <prefix>visibility_flags.
 std::string visibilityFlagsArrayName(const std::string& prefix);
-/// The visibility step's bits of an area light's samples that the mesh hides (HiddenSamples),
-/// which the shading reads and does not write.
+/// The visibility step's bits of an area light's or a map's samples that the mesh hides
+/// (HiddenSamples), which the shading reads and does not write.
 std::string hiddenSamplesArrayName(const std::string& prefix, const std::string& light);
 /// The array name of an occlusion quantity: <prefix><name>.
 std::string occlusionArrayName(const std::string& prefix, OcclusionTerm term);

@@ -51,8 +51,8 @@ struct LightDirection
 void lightVisibility(const OccluderMesh& occluders, const RayVertex* vertices, const LightDirection* directions,
   int count, bool twoSided, LightVisibility* visibility);
 
-/// The samples of a shadowed area light that the mesh hides from a surface point (the kernel's
-/// point: its normal turned toward the viewer where two-sided), as the bits of HiddenSamples,
+/// The samples of a shadowed area light or map that the mesh hides from a surface point (the
+/// kernel's point: its normal turned toward the viewer where two-sided), as the bits of HiddenSamples,
 /// into words[0..hiddenSampleWords(light.shadowRayCount())-1]. vertex is the point's id in the
 /// occluders (for its copies at seams). The rays leave on the side of point.normal, in bundles;
 /// rays is scratch space for light.shadowRayCount() rays.
