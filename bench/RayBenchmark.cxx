@@ -89,20 +89,31 @@ RayMesh rayMesh(const std::string& name, vtkPolyData* mesh, int repeats)
   return prepared;
 }
 
-/// Seconds that body(i) takes for every i in [0, count), in a vtkSMPTools loop.
+/// How many times each side of a ratio is timed, ShadeLab's rays and Embree alone alike: the
+/// median is kept, so the first run's cold caches and page faults weigh on neither side.
+constexpr int timedRuns = 5;
+
+/// The median over `runs` runs of the seconds that body(i) takes for every i in [0, count), in
+/// a vtkSMPTools loop.
 template <typename Body>
-double parallelSeconds(std::size_t count, Body body)
+double medianParallelSeconds(int runs, std::size_t count, Body body)
 {
-  const auto start = std::chrono::steady_clock::now();
-  vtkSMPTools::For(0, static_cast<vtkIdType>(count),
-    [&](vtkIdType begin, vtkIdType end)
-    {
-      for (vtkIdType i = begin; i < end; ++i)
+  std::vector<double> seconds;
+  for (int run = 0; run < runs; ++run)
+  {
+    const auto start = std::chrono::steady_clock::now();
+    vtkSMPTools::For(0, static_cast<vtkIdType>(count),
+      [&](vtkIdType begin, vtkIdType end)
       {
-        body(static_cast<std::size_t>(i));
-      }
-    });
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        for (vtkIdType i = begin; i < end; ++i)
+        {
+          body(static_cast<std::size_t>(i));
+        }
+      });
+    seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  }
+  std::sort(seconds.begin(), seconds.end());
+  return seconds[seconds.size() / 2];
 }
 
 /// The point light of the benchmark's shadows: above and to the side of the mesh.
@@ -111,33 +122,26 @@ glm::dvec3 lightOf(const RayMesh& mesh)
   return mesh.centre + mesh.radius * glm::dvec3(1.0, 2.0, 1.5);
 }
 
-/// Shadow rays per second, to the light from every vertex that faces it, in packets of
+/// Shadow rays per second, to the light from every vertex that faces it, in groups of
 /// neighbouring vertices as the filter casts them.
 double shadowRaysPerSecond(const RayMesh& mesh, std::size_t& rays)
 {
   const glm::dvec3 light = lightOf(mesh);
-  constexpr std::size_t bundle = OccluderMesh::bundleSize;
-  const std::size_t bundles = (mesh.vertices.size() + bundle - 1) / bundle;
-  // The median of several runs: the bunny's take a few milliseconds each.
-  std::vector<double> runs;
-  for (int run = 0; run < 7; ++run)
-  {
-    runs.push_back(parallelSeconds(bundles,
-    [&](std::size_t b)
+  constexpr std::size_t group = rayVertexGroup;
+  const std::size_t groups = (mesh.vertices.size() + group - 1) / group;
+  const double seconds = medianParallelSeconds(timedRuns, groups,
+    [&](std::size_t g)
     {
-      const int count = static_cast<int>(std::min(bundle, mesh.vertices.size() - b * bundle));
-      LightDirection directions[bundle];
-      LightVisibility seen[bundle];
+      const int count = static_cast<int>(std::min(group, mesh.vertices.size() - g * group));
+      LightDirection directions[group];
+      LightVisibility seen[group];
       for (int k = 0; k < count; ++k)
       {
-        const glm::dvec3 d = light - mesh.vertices[b * bundle + k].position;
+        const glm::dvec3 d = light - mesh.vertices[g * group + k].position;
         directions[k] = { glm::normalize(d), glm::length(d) };
       }
-      lightVisibility(*mesh.occluders, &mesh.vertices[b * bundle], directions, count, false, seen);
-    }));
-  }
-  std::sort(runs.begin(), runs.end());
-  const double seconds = runs[runs.size() / 2];
+      lightVisibility(*mesh.occluders, &mesh.vertices[g * group], directions, count, false, seen);
+    });
   rays = 0;
   for (const RayVertex& v : mesh.vertices)
   {
@@ -151,15 +155,10 @@ double shadowRaysPerSecond(const RayMesh& mesh, std::size_t& rays)
 double tracedRaysPerSecond(const RayMesh& mesh, const std::vector<OccluderMesh::FrameRay>& rays)
 {
   constexpr std::size_t packet = OccluderMesh::bundleSize;
-  std::vector<double> runs;
-  for (int run = 0; run < 3; ++run)
-  {
-    runs.push_back(parallelSeconds((rays.size() + packet - 1) / packet,
-      [&](std::size_t p)
-      { mesh.occluders->occluded(&rays[p * packet], static_cast<int>(std::min(packet, rays.size() - p * packet))); }));
-  }
-  std::sort(runs.begin(), runs.end());
-  return static_cast<double>(rays.size()) / runs[runs.size() / 2];
+  const double seconds = medianParallelSeconds(timedRuns, (rays.size() + packet - 1) / packet,
+    [&](std::size_t p)
+    { mesh.occluders->occluded(&rays[p * packet], static_cast<int>(std::min(packet, rays.size() - p * packet))); });
+  return static_cast<double>(rays.size()) / seconds;
 }
 
 /// The benchmark's shadow rays, from the vertices that face its light, in the BVH's frame.
@@ -243,18 +242,24 @@ SurfacePoint surfacePointOf(const RayVertex& vertex)
 }
 
 /// The seconds the shadow rays of an area light's or a map's samples from every stride-th
-/// vertex take, cast as the visibility step casts them.
+/// vertex take, cast as the visibility step casts them: in groups of neighbouring vertices
+/// whose rays share packets.
 double softShadowSeconds(const RayMesh& mesh, const ShadowedLightEstimator& light, std::size_t stride)
 {
   const std::size_t count = (mesh.vertices.size() + stride - 1) / stride;
   const int words = hiddenSampleWords(light.shadowRayCount());
   std::vector<std::uint64_t> hidden(count * std::size_t(words));
-  return parallelSeconds(count,
-    [&](std::size_t k)
+  constexpr std::size_t group = rayVertexGroup;
+  return medianParallelSeconds(timedRuns, (count + group - 1) / group,
+    [&](std::size_t g)
     {
-      thread_local std::vector<ShadowRay> scratch;
-      const RayVertex& vertex = mesh.vertices[k * stride];
-      hiddenSamples(*mesh.occluders, light, surfacePointOf(vertex), vertex.id, scratch, &hidden[k * words]);
+      HiddenSampleTracer tracer(*mesh.occluders);
+      for (std::size_t k = g * group; k < std::min(count, (g + 1) * group); ++k)
+      {
+        const RayVertex& vertex = mesh.vertices[k * stride];
+        tracer.add(light, surfacePointOf(vertex), vertex.id, &hidden[k * words]);
+      }
+      tracer.flush();
     });
 }
 
@@ -313,13 +318,14 @@ double locatorRaysPerSecond(const RayMesh& mesh, std::size_t stride, double& bui
   return static_cast<double>(rays) / std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-/// Ambient occlusion at every stride-th vertex with `rays` rays: its values and the seconds.
-std::vector<double> occlusionAt(const RayMesh& mesh, int rays, std::size_t stride, double& seconds)
+/// Ambient occlusion at every stride-th vertex with `rays` rays: its values and the median
+/// seconds of `runs` runs.
+std::vector<double> occlusionAt(const RayMesh& mesh, int rays, std::size_t stride, int runs, double& seconds)
 {
   OcclusionSettings settings;
   settings.sampling.samples = rays;
   std::vector<double> values((mesh.vertices.size() + stride - 1) / stride);
-  seconds = parallelSeconds(values.size(),
+  seconds = medianParallelSeconds(runs, values.size(),
     [&](std::size_t k) { values[k] = ambientOcclusion(*mesh.occluders, mesh.vertices[k * stride], settings).occlusion; });
   return values;
 }
@@ -343,7 +349,6 @@ ChartSpec penumbraChart(int samples)
   AreaLight light;
   light.shape = PolygonEmitter{ lightPart(-0.5) };
   light.sampling = { samples, true };
-  std::vector<ShadowRay> rays;
   std::vector<std::uint64_t> words(std::size_t(hiddenSampleWords(samples)));
   for (int i = 0; i < 200; ++i)
   {
@@ -355,7 +360,7 @@ ChartSpec penumbraChart(int samples)
     {
       light.estimator = estimator;
       const AreaLightEstimator estimate(light, 0, LobeModel{});
-      hiddenSamples(occluders, estimate, point, -1, rays, words.data());
+      hiddenSamples(occluders, estimate, point, -1, words.data());
       series->x.push_back(x);
       series->y.push_back(estimate.estimate(point, HiddenSamples{ words.data() }).irradiance.x);
     }
@@ -398,7 +403,7 @@ void runRayBenchmark(const RayBenchmarkOptions& options)
     record("BVH build", mesh.buildMilliseconds, "ms");
     std::size_t shadowRays = 0;
     const double embree = shadowRaysPerSecond(mesh, shadowRays);
-    record("shadow rays to a point light", embree / 1e6, "Mrays/s", std::to_string(shadowRays) + " rays, packets of 16 vertices");
+    record("shadow rays to a point light", embree / 1e6, "Mrays/s", std::to_string(shadowRays) + " rays, groups of " + std::to_string(rayVertexGroup) + " vertices");
     const std::size_t stride = std::max<std::size_t>(1, vertices / 2000);
     double locatorBuild = 0;
     const double vtk = locatorRaysPerSecond(mesh, stride, locatorBuild);
@@ -416,7 +421,7 @@ void runRayBenchmark(const RayBenchmarkOptions& options)
     for (int rays : { 16, 64, 256 })
     {
       double seconds = 0;
-      const std::vector<double> values = occlusionAt(mesh, rays, aoStride, seconds);
+      const std::vector<double> values = occlusionAt(mesh, rays, aoStride, timedRuns, seconds);
       const double cast = static_cast<double>(values.size()) * rays;
       if (rays == 64)
       {
@@ -455,7 +460,7 @@ void runRayBenchmark(const RayBenchmarkOptions& options)
   // Error against time on the bunny, each ray count against 4096 rays per vertex.
   const RayMesh& bunny = meshes.front();
   double referenceSeconds = 0;
-  const std::vector<double> reference = occlusionAt(bunny, 4096, 1, referenceSeconds);
+  const std::vector<double> reference = occlusionAt(bunny, 4096, 1, 1, referenceSeconds);
   ChartSeries largest{ "largest error", {}, {}, true, { 200, 40, 40 }, true };
   ChartSeries rms{ "RMS error", {}, {}, true, { 40, 40, 200 }, true, true };
   std::cout << "ambient occlusion on the bunny against 4096 rays per vertex (" << std::setprecision(1)
@@ -463,7 +468,7 @@ void runRayBenchmark(const RayBenchmarkOptions& options)
   for (int rays : { 4, 16, 64, 256, 1024 })
   {
     double seconds = 0;
-    const std::vector<double> values = occlusionAt(bunny, rays, 1, seconds);
+    const std::vector<double> values = occlusionAt(bunny, rays, 1, timedRuns, seconds);
     double worst = 0, squares = 0;
     for (std::size_t i = 0; i < values.size(); ++i)
     {

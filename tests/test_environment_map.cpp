@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <numeric>
 #include <chrono>
 #include <cmath>
 #include <fstream>
@@ -621,6 +622,76 @@ TEST(EnvironmentSampler, PdfOfASampleIsTheSamplesPdf)
                             static_cast<int>(uv.y * map.height)));
     EXPECT_GT(luminance(s.radiance), 0.0);
   }
+}
+
+TEST(EnvironmentSampler, DrawsTheTexelThatABinarySearchOfItsDistributionDraws)
+{
+  // The sampler finds a sample's row and column through guide tables. Here the same
+  // distribution is built again and searched with std::upper_bound: every u, on a grid and on
+  // the bins' own edges, must give the same texel. Black texels and a black row make bins of
+  // zero width, which no u may land in.
+  EnvironmentMap map{ 16, 8, {} };
+  for (int row = 0; row < map.height; ++row)
+  {
+    for (int column = 0; column < map.width; ++column)
+    {
+      const bool black = row == 3 || (column + row) % 5 == 0;
+      map.radiance.push_back(black ? Rgb(0.0) : Rgb(1.0 + column + 16.0 * row, 0.5, 0.25 * column));
+    }
+  }
+  const EnvironmentSampler sampler(map);
+  // The distribution as the sampler builds it: luminance times the row centre's sine, summed.
+  auto cumulative = [](const std::vector<double>& weights)
+  {
+    std::vector<double> cdf(weights.size() + 1, 0.0);
+    for (std::size_t i = 0; i < weights.size(); ++i)
+    {
+      cdf[i + 1] = cdf[i] + weights[i];
+    }
+    const double sum = cdf.back();
+    for (double& value : cdf)
+    {
+      value /= sum;
+    }
+    return cdf;
+  };
+  std::vector<std::vector<double>> columnCdfs;
+  std::vector<double> rowWeights;
+  for (int row = 0; row < map.height; ++row)
+  {
+    std::vector<double> weights;
+    for (int column = 0; column < map.width; ++column)
+    {
+      weights.push_back(luminance(map.texel(column, row)) * std::sin(pi * (row + 0.5) / map.height));
+    }
+    rowWeights.push_back(std::accumulate(weights.begin(), weights.end(), 0.0));
+    columnCdfs.push_back(row == 3 ? std::vector<double>() : cumulative(weights));
+  }
+  const std::vector<double> rowCdf = cumulative(rowWeights);
+  auto binOf = [](const std::vector<double>& cdf, double u)
+  { return static_cast<int>(std::upper_bound(cdf.begin(), cdf.end(), u) - cdf.begin()) - 1; };
+  std::vector<double> us;
+  for (int i = 0; i < 4001; ++i)
+  {
+    us.push_back(i / 4001.0);
+  }
+  us.insert(us.end(), rowCdf.begin(), rowCdf.end() - 1);
+  us.insert(us.end(), columnCdfs[0].begin(), columnCdfs[0].end() - 1);
+  // A trailing black texel puts an inner edge at 1, which is no sample's u.
+  us.erase(std::remove_if(us.begin(), us.end(), [](double u) { return u >= 1.0; }), us.end());
+  int drawn = 0;
+  for (const double u2 : us)
+  {
+    const int row = binOf(rowCdf, u2);
+    ASSERT_NE(row, 3) << "u2 " << u2;
+    for (const double u1 : us)
+    {
+      const int column = binOf(columnCdfs[row], u1);
+      EXPECT_EQ(sampler.sample(u1, u2).radiance, map.texel(column, row)) << "u " << u1 << ", " << u2;
+      ++drawn;
+    }
+  }
+  EXPECT_GT(drawn, 16000000);
 }
 
 TEST(EnvironmentSampler, MonteCarloIrradianceAgreesWithTheTexelSum)

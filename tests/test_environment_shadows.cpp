@@ -105,9 +105,8 @@ std::vector<SurfacePoint> floorPoints()
 
 DistributedTerms shadowed(const OccluderMesh& occluders, const EnvironmentLightEstimator& light, const SurfacePoint& point)
 {
-  std::vector<ShadowRay> rays;
   std::vector<std::uint64_t> words(std::size_t(hiddenSampleWords(light.shadowRayCount())));
-  hiddenSamples(occluders, light, point, -1, rays, words.data());
+  hiddenSamples(occluders, light, point, -1, words.data());
   return light.estimate(point, HiddenSamples{ words.data() });
 }
 

@@ -71,9 +71,8 @@ SurfacePoint receiver(double x, std::uint64_t index)
 /// The light's estimate at the receiver, with the plate's shadow.
 DistributedTerms shadowed(const OccluderMesh& plate, const AreaLightEstimator& light, const SurfacePoint& point)
 {
-  std::vector<ShadowRay> rays;
   std::vector<std::uint64_t> words(std::size_t(hiddenSampleWords(light.shadowRayCount())));
-  hiddenSamples(plate, light, point, -1, rays, words.data());
+  hiddenSamples(plate, light, point, -1, words.data());
   return light.estimate(point, HiddenSamples{ words.data() });
 }
 

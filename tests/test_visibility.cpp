@@ -4,15 +4,20 @@
 // factor 1 - r^2 h / d^3, and an open box's is the form factor of its opening (Lambert's polygon
 // formula). Ray origins are scale-invariant: the same results wherever the mesh is and
 // whatever its size.
+#include "AreaLightEstimator.h"
 #include "PolygonIrradiance.h"
+#include "SampleWarps.h"
 #include "Visibility.h"
 
 #include <gtest/gtest.h>
 
 #include <glm/geometric.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
+#include <numeric>
+#include <random>
 
 namespace
 {
@@ -255,19 +260,19 @@ TEST(Visibility, ASpheresShadowOnAPlaneIsTheSegmentSphereTestAwayFromItsEdge)
 
 TEST(Visibility, RaysInPacketsGiveWhatRaysOneByOneGive)
 {
-  // The filter traces the rays of 16 neighbouring vertices to a light as one packet.
+  // The filter traces the rays of rayVertexGroup neighbouring vertices to a light in packets.
   Mesh scene;
   addPlane(scene, 2.0, 40);
   addSphere(scene, { 0, 0, 1 }, 0.5, 24, 48);
   const OccluderMesh occluders = scene.occluders();
   const glm::dvec3 light(0.3, 0.2, 3.0);
   std::size_t hidden = 0;
-  for (std::size_t first = 0; first < scene.points.size(); first += OccluderMesh::bundleSize)
+  for (std::size_t first = 0; first < scene.points.size(); first += rayVertexGroup)
   {
-    const int count = static_cast<int>(std::min<std::size_t>(OccluderMesh::bundleSize, scene.points.size() - first));
-    RayVertex vertices[OccluderMesh::bundleSize];
-    LightDirection directions[OccluderMesh::bundleSize];
-    LightVisibility together[OccluderMesh::bundleSize];
+    const int count = static_cast<int>(std::min<std::size_t>(rayVertexGroup, scene.points.size() - first));
+    RayVertex vertices[rayVertexGroup];
+    LightDirection directions[rayVertexGroup];
+    LightVisibility together[rayVertexGroup];
     for (int k = 0; k < count; ++k)
     {
       vertices[k] = scene.vertex(first + k);
@@ -285,6 +290,123 @@ TEST(Visibility, RaysInPacketsGiveWhatRaysOneByOneGive)
     }
   }
   EXPECT_GT(hidden, 100u);
+}
+
+TEST(Visibility, EmbreeAnswersARayAlikeInAnyPacket)
+{
+  // The visibility step fills packets with the rays of several vertices, and which vertices
+  // share a packet depends on how the mesh is split over processes: each ray must get the
+  // same answer alone (rtcOccluded1), in its own vertex's packets and in packets of any size
+  // with any other rays. Rays from every vertex of a sphere over a plane, up to the sky and to
+  // points of a square light, many grazing the sphere or the plane.
+  Mesh scene;
+  addPlane(scene, 2.0, 40);
+  addSphere(scene, { 0, 0, 1 }, 0.5, 24, 48);
+  const OccluderMesh occluders = scene.occluders();
+  std::vector<OccluderMesh::FrameRay> rays;
+  for (std::size_t i = 0; i < scene.points.size(); ++i)
+  {
+    const RayVertex v = scene.vertex(i);
+    const OccluderMesh::FrameRay start = occluders.inFrame({ v.position, v.normal, {}, 0.0, v.id });
+    const SampleSequence samples(5, i, { 32, true });
+    for (int j = 0; j < samples.count(); ++j)
+    {
+      const glm::dvec2 u = samples.point(j);
+      rays.push_back({ start.origin, glm::vec3(cosineWeightedDirection(v.normal, u).direction),
+        std::numeric_limits<float>::infinity() });
+      const glm::dvec3 offset = glm::dvec3(u.x - 0.5, u.y - 0.5, 2.0) - v.position;
+      rays.push_back({ start.origin, glm::vec3(glm::normalize(offset)), occluders.frameDistance(glm::length(offset)) });
+    }
+  }
+  std::vector<bool> alone(rays.size()), inOrder(rays.size()), mixed(rays.size());
+  for (std::size_t i = 0; i < rays.size(); ++i)
+  {
+    alone[i] = occluders.occluded(&rays[i], 1) != 0;
+  }
+  constexpr std::size_t packet = OccluderMesh::bundleSize;
+  for (std::size_t first = 0; first < rays.size(); first += packet)
+  {
+    const int count = static_cast<int>(std::min(packet, rays.size() - first));
+    const unsigned hidden = occluders.occluded(&rays[first], count);
+    for (int j = 0; j < count; ++j)
+    {
+      inOrder[first + j] = ((hidden >> j) & 1u) != 0;
+    }
+  }
+  // Shuffled within windows of 4096 rays (so packets hold rays of nearby vertices, as they do
+  // in the filter), in packets of 2 to 16.
+  std::vector<std::size_t> order(rays.size());
+  std::iota(order.begin(), order.end(), std::size_t(0));
+  std::mt19937_64 random(26);
+  for (std::size_t first = 0; first < order.size(); first += 4096)
+  {
+    std::shuffle(order.begin() + first, order.begin() + std::min(order.size(), first + 4096), random);
+  }
+  for (std::size_t first = 0; first < order.size();)
+  {
+    const int count = static_cast<int>(std::min<std::size_t>(2 + random() % 15, order.size() - first));
+    OccluderMesh::FrameRay bundle[packet];
+    for (int j = 0; j < count; ++j)
+    {
+      bundle[j] = rays[order[first + j]];
+    }
+    const unsigned hidden = occluders.occluded(bundle, count);
+    for (int j = 0; j < count; ++j)
+    {
+      mixed[order[first + j]] = ((hidden >> j) & 1u) != 0;
+    }
+    first += static_cast<std::size_t>(count);
+  }
+  EXPECT_EQ(inOrder, alone);
+  EXPECT_EQ(mixed, alone);
+  const auto hidden = static_cast<std::size_t>(std::count(alone.begin(), alone.end(), true));
+  EXPECT_GT(hidden, rays.size() / 10) << "of " << rays.size();
+  EXPECT_LT(hidden, rays.size() * 9 / 10) << "of " << rays.size();
+}
+
+TEST(Visibility, TracingThePointsTogetherSetsTheBitsEachGetsAlone)
+{
+  // HiddenSampleTracer fills packets with the rays of several points; a point whose horizon
+  // hides the whole light casts none.
+  Mesh scene;
+  addPlane(scene, 2.0, 20);
+  addSphere(scene, { 0, 0, 1 }, 0.5, 12, 24);
+  const OccluderMesh occluders = scene.occluders();
+  AreaLight softbox;
+  softbox.shape = PolygonEmitter{ { { -0.5, -0.5, 2.0 }, { -0.5, 0.5, 2.0 }, { 0.5, 0.5, 2.0 }, { 0.5, -0.5, 2.0 } } };
+  softbox.sampling = { 80, true }; // two words of bits per point
+  const AreaLightEstimator light(softbox, 0, LobeModel{});
+  const int words = hiddenSampleWords(light.shadowRayCount());
+  std::vector<std::uint64_t> together(scene.points.size() * words), alone(together.size());
+  const std::vector<glm::dvec3>& corners = std::get<PolygonEmitter>(softbox.shape).vertices;
+  HiddenSampleTracer tracer(occluders);
+  std::size_t silent = 0;
+  for (std::size_t i = 0; i < scene.points.size(); ++i)
+  {
+    const SurfacePoint point{ scene.points[i], scene.normals[i], { 0, 0, 1 }, i };
+    const int cast = tracer.add(light, point, static_cast<PointId>(i), &together[i * words]);
+    hiddenSamples(occluders, light, point, static_cast<PointId>(i), &alone[i * words]);
+    silent += cast == 0 ? 1 : 0;
+    // The highest corner of the light above the point's plane: none above, no ray; one well
+    // above, some of the 80 samples are.
+    double highest = -std::numeric_limits<double>::infinity();
+    for (const glm::dvec3& corner : corners)
+    {
+      highest = std::max(highest, glm::dot(point.normal, corner - point.position));
+    }
+    if (highest <= 0)
+    {
+      EXPECT_EQ(cast, 0) << "point " << i;
+    }
+    if (highest > 0.3)
+    {
+      EXPECT_GT(cast, 0) << "point " << i;
+    }
+  }
+  tracer.flush();
+  EXPECT_EQ(together, alone);
+  EXPECT_GT(silent, 100u); // the sphere's lower half faces away from the light
+  EXPECT_GT(std::count_if(alone.begin(), alone.end(), [](std::uint64_t w) { return w != 0; }), 100);
 }
 
 /// Standard errors are calibrated when about 68% of the estimates are within one of the

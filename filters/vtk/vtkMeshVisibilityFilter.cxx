@@ -240,16 +240,15 @@ private:
   const shadelab::Viewer& viewer;
 };
 
-constexpr int groupSize = shadelab::OccluderMesh::bundleSize;
+constexpr int groupSize = shadelab::rayVertexGroup;
 
-/// Up to 16 consecutive ray points, whose rays to each light are traced as one packet.
+/// Up to rayVertexGroup consecutive ray points, whose rays to each light share packets.
 struct RayGroup
 {
   vtkIdType first = 0; // the first point's index among the ray points
   int size = 0;
   shadelab::RayVertex vertices[groupSize];
   glm::dvec3 occlusionNormals[groupSize];
-  std::vector<shadelab::ShadowRay> scratch; // a distributed light's rays from one point
 };
 
 /// Group g of the count ray points, their flags cleared for the rays to set.
@@ -271,12 +270,13 @@ void addFlag(vtkUnsignedCharArray* flags, vtkIdType i, shadelab::ShadingFlag fla
 }
 
 /// The distributed light's samples that the mesh hides from each of the group's points, from the
-/// side the kernel shades (the occlusion normal), each point's rays in packets; flags the
+/// side the kernel shades (the occlusion normal), the points' rays sharing packets; flags the
 /// points that send a ray to a light the mesh encloses.
-void traceSoftShadows(const shadelab::OccluderMesh& occluders, const ShadowedLight& light, RayGroup& group,
+void traceSoftShadows(const shadelab::OccluderMesh& occluders, const ShadowedLight& light, const RayGroup& group,
   vtkUnsignedCharArray* flags)
 {
   const int words = light.hidden->GetNumberOfComponents();
+  shadelab::HiddenSampleTracer tracer(occluders);
   for (int k = 0; k < group.size; ++k)
   {
     const shadelab::RayVertex& vertex = group.vertices[k];
@@ -289,19 +289,17 @@ void traceSoftShadows(const shadelab::OccluderMesh& occluders, const ShadowedLig
     }
     const shadelab::SurfacePoint point{ vertex.position, group.occlusionNormals[k], glm::dvec3(0.0),
       static_cast<std::uint64_t>(vertex.id) };
-    shadelab::hiddenSamples(occluders, *light.distributed, point, vertex.id, group.scratch, bits);
-    // The scan for a ray cast only where it can matter: for the rare light the mesh encloses.
-    if (light.enclosed &&
-      std::any_of(group.scratch.begin(), group.scratch.end(), [](const shadelab::ShadowRay& ray) { return ray.cast; }))
+    if (tracer.add(*light.distributed, point, vertex.id, bits) > 0 && light.enclosed)
     {
       addFlag(flags, group.first + k, shadelab::FlagLightEnclosed);
     }
   }
+  tracer.flush();
 }
 
-/// The light's visibility from the group's points, as one packet; flags the points whose own
-/// triangles hide it, and those it is hidden from when the mesh encloses it.
-void traceShadows(const shadelab::OccluderMesh& occluders, const ShadowedLight& light, RayGroup& group,
+/// The light's visibility from the group's points, their rays sharing packets; flags the points
+/// whose own triangles hide it, and those it is hidden from when the mesh encloses it.
+void traceShadows(const shadelab::OccluderMesh& occluders, const ShadowedLight& light, const RayGroup& group,
   bool twoSided, vtkUnsignedCharArray* flags)
 {
   if (light.distributed)
@@ -358,8 +356,9 @@ void traceOcclusion(const shadelab::OccluderMesh& occluders, const RayGroup& gro
 void castRays(const shadelab::OccluderMesh& occluders, const std::vector<ShadowedLight>& lights, const RayArrays& arrays,
   const RayVertices& vertices, vtkIdType count, vtkAlgorithm* filter)
 {
-  // Vertices in fixed groups of 16 (not split by the threads' ranges), each light's rays from a
-  // group traced as one packet: the same packets, and so the same bits, on any thread count.
+  // Vertices in fixed groups (not split by the threads' ranges), each light's rays from a group
+  // sharing packets: the same packets on any thread count (and Embree's answer to a ray does
+  // not depend on its packet, HiddenSampleTracer).
   // Tenths of the mesh at a time, so that progress is reported between them.
   const vtkIdType groups = (count + groupSize - 1) / groupSize;
   const vtkIdType block = std::max<vtkIdType>(groups / 10, 64);

@@ -57,6 +57,8 @@ private:
   EnvironmentMap map_;
   std::vector<double> rowCdf_; // height + 1 values from 0 to 1
   std::vector<double> columnCdfs_; // height rows of width + 1 values from 0 to 1
+  std::vector<int> rowGuide_; // the rows' cdf's guide table: height bins
+  std::vector<int> columnGuides_; // each row's: height rows of width bins
   std::vector<double> rowCentreSinTheta_;
   double uvDensityPerWeight_ = 0.0; // width x height / sum of texel weights; 0 for black
 };

@@ -57,6 +57,10 @@ public:
       --columns_;
     }
     columns_ = std::max(columns_, 1);
+    rows_ = sampling.samples / columns_;
+    // Reciprocals, so that a point costs multiplications rather than divisions.
+    columnWidth_ = 1.0 / columns_;
+    rowHeight_ = 1.0 / rows_;
   }
 
   int count() const { return sampling_.samples; }
@@ -69,17 +73,18 @@ public:
     {
       return uniform;
     }
-    const int rows = sampling_.samples / columns_;
     const int row = j / columns_;
-    const int column = j % columns_;
+    const int column = j - row * columns_;
     // min: (cell + u) / cells can round up to exactly 1 for u just below 1.
-    return { std::min((column + uniform.x) / columns_, 1 - 0x1.0p-53),
-      std::min((row + uniform.y) / rows, 1 - 0x1.0p-53) };
+    return { std::min((column + uniform.x) * columnWidth_, 1 - 0x1.0p-53),
+      std::min((row + uniform.y) * rowHeight_, 1 - 0x1.0p-53) };
   }
 
 private:
   std::uint64_t key_;
   Sampling sampling_;
   int columns_ = 1;
+  int rows_ = 1;
+  double columnWidth_ = 1, rowHeight_ = 1;
 };
 }

@@ -107,6 +107,23 @@ WeightedDirection AreaLightEstimator::sample(const glm::dvec2& u, const SurfaceP
   return sampleEmitter(u, point).toward;
 }
 
+bool AreaLightEstimator::risesAbovePlaneOf(const SurfacePoint& point) const
+{
+  // A polygon is above the plane where one of its corners is (it is convex); a disk where its
+  // highest point is; a sphere where its centre is less than a radius below.
+  auto height = [&](const glm::dvec3& p) { return glm::dot(point.normal, p - point.position); };
+  return std::visit(Overloaded{ [&](const PolygonEmitter& polygon)
+                      { return std::any_of(polygon.vertices.begin(), polygon.vertices.end(),
+                          [&](const glm::dvec3& corner) { return height(corner) > 0; }); },
+                      [&](const DiskEmitter& disk)
+                      {
+                        const double tilt = glm::dot(point.normal, normal_);
+                        return height(disk.centre) + disk.radius * std::sqrt(std::max(0.0, 1 - tilt * tilt)) > 0;
+                      },
+                      [&](const SphereEmitter& sphere) { return height(sphere.centre) + sphere.radius > 0; } },
+    light_.shape);
+}
+
 AreaLightEstimator::EmitterSample AreaLightEstimator::sampleEmitter(const glm::dvec2& u, const SurfacePoint& point) const
 {
   return std::visit(
@@ -144,8 +161,21 @@ AreaLightEstimator::EmitterSample AreaLightEstimator::towardPoint(const glm::dve
     return {};
   }
   const double d = std::sqrt(d2);
-  const glm::dvec3 direction = offset / d;
+  const glm::dvec3 direction = offset * (1 / d);
   return { { direction, area_ * emittedCosine(direction) / d2 }, d };
+}
+
+ShadowRay AreaLightEstimator::shadowRayToward(const glm::dvec3& onEmitter, const SurfacePoint& point) const
+{
+  const glm::dvec3 offset = onEmitter - point.position;
+  const double d2 = glm::dot(offset, offset);
+  if (!(d2 > 0))
+  {
+    return {};
+  }
+  const double d = std::sqrt(d2);
+  const glm::dvec3 direction = offset * (1 / d);
+  return { direction, d, emittedCosine(direction) > 0 && glm::dot(point.normal, direction) > 0 };
 }
 
 AreaLightEstimator::EmitterSample AreaLightEstimator::towardSphere(
@@ -246,20 +276,42 @@ void AreaLightEstimator::shadowRays(const SurfacePoint& point, ShadowRay* rays) 
 {
   // A ray is cast only where its sample carries light to the point's lit side: the others
   // count as visible and add nothing.
-  auto ray = [&](const glm::dvec3& direction, double weight, double distance)
-  { return ShadowRay{ direction, distance, weight > 0 && glm::dot(point.normal, direction) > 0 }; };
   if (light_.estimator == AreaEstimator::Point)
   {
     const glm::dvec3 offset = centre_ - point.position;
     const double d = vectorLength(offset);
-    rays[0] = d > 0 ? ray(offset / d, 1.0, d) : ShadowRay{};
+    const glm::dvec3 direction = d > 0 ? offset / d : glm::dvec3(0.0);
+    rays[0] = { direction, d, d > 0 && glm::dot(point.normal, direction) > 0 };
     return;
   }
   const SampleSequence sequence(lightIndex_, point.index, light_.sampling);
-  for (int j = 0; j < sequence.count(); ++j)
+  if (!sendsLightTo(point.position) || !risesAbovePlaneOf(point))
   {
-    const EmitterSample sample = sampleEmitter(sequence.point(j), point);
-    rays[j] = ray(sample.toward.direction, sample.toward.weight, sample.distance);
+    std::fill_n(rays, sequence.count(), ShadowRay{}); // no sample would cast one
+    return;
   }
+  // Every sample's ray, as rayFor(u) makes it from its point of the unit square.
+  auto fill = [&](auto rayFor)
+  {
+    for (int j = 0; j < sequence.count(); ++j)
+    {
+      rays[j] = rayFor(sequence.point(j));
+    }
+  };
+  std::visit(Overloaded{ [&](const PolygonEmitter& polygon)
+               { fill([&](const glm::dvec2& u) { return shadowRayToward(pointOnPolygon(polygon, u), point); }); },
+               [&](const DiskEmitter& disk)
+               { fill([&](const glm::dvec2& u) { return shadowRayToward(pointOnDisk(disk, u), point); }); },
+               [&](const SphereEmitter& sphere)
+               {
+                 fill(
+                   [&](const glm::dvec2& u)
+                   {
+                     const EmitterSample sample = towardSphere(sphere, u, point);
+                     return ShadowRay{ sample.toward.direction, sample.distance,
+                       sample.toward.weight > 0 && glm::dot(point.normal, sample.toward.direction) > 0 };
+                   });
+               } },
+    light_.shape);
 }
 }

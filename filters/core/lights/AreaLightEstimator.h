@@ -45,6 +45,9 @@ private:
   /// one-sided emitter.
   double emittedCosine(const glm::dvec3& towardEmitter) const;
   bool sendsLightTo(const glm::dvec3& position) const;
+  /// Whether any of the emitter is above the plane of the point's normal: where none is, no
+  /// sample reaches the point's lit side, and it casts no ray.
+  bool risesAbovePlaneOf(const SurfacePoint& point) const;
   /// A sampled direction and the distance along it to the emitter.
   struct EmitterSample
   {
@@ -56,6 +59,9 @@ private:
   glm::dvec3 pointOnDisk(const DiskEmitter& disk, const glm::dvec2& u) const;
   /// The direction to a point sampled on a planar emitter by area, weighted as solid angle.
   EmitterSample towardPoint(const glm::dvec3& onEmitter, const glm::dvec3& receiver) const;
+  /// The shadow ray to a point sampled on a planar emitter: towardPoint's direction and
+  /// distance without the weight, which a ray does not need (only whether it is above 0).
+  ShadowRay shadowRayToward(const glm::dvec3& onEmitter, const SurfacePoint& point) const;
   EmitterSample towardSphere(const SphereEmitter& sphere, const glm::dvec2& u, const SurfacePoint& point) const;
   DistributedTerms monteCarlo(const SurfacePoint& point, bool irradiance, const HiddenSamples* hidden) const;
   DistributedTerms pointApproximation(const SurfacePoint& point) const;

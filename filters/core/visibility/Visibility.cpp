@@ -101,6 +101,17 @@ void lightVisibility(const OccluderMesh& occluders, const RayVertex* vertices, c
   OccluderMesh::FrameRay rays[OccluderMesh::bundleSize];
   int cast[OccluderMesh::bundleSize]; // the vertex of each ray
   int rayCount = 0;
+  auto trace = [&]
+  {
+    const unsigned hidden = rayCount > 0 ? occluders.occluded(rays, rayCount) : 0u;
+    for (int j = 0; j < rayCount; ++j)
+    {
+      LightVisibility& seen = visibility[cast[j]];
+      seen.visible = ((hidden >> j) & 1u) == 0;
+      seen.blockedByOwnTriangle = !seen.visible && occluders.firstHitHasCorner(rays[j], vertices[cast[j]].position);
+    }
+    rayCount = 0;
+  };
   for (int k = 0; k < count; ++k)
   {
     const RayVertex& vertex = vertices[k];
@@ -111,53 +122,58 @@ void lightVisibility(const OccluderMesh& occluders, const RayVertex* vertices, c
       rays[rayCount] = occluders.inFrame({ vertex.position, cosine > 0 ? vertex.normal : -vertex.normal,
         directions[k].toLight, directions[k].distance, vertex.id });
       cast[rayCount++] = k;
-    }
-  }
-  const unsigned hidden = rayCount > 0 ? occluders.occluded(rays, rayCount) : 0u;
-  for (int j = 0; j < rayCount; ++j)
-  {
-    LightVisibility& seen = visibility[cast[j]];
-    seen.visible = ((hidden >> j) & 1u) == 0;
-    seen.blockedByOwnTriangle = !seen.visible && occluders.firstHitHasCorner(rays[j], vertices[cast[j]].position);
-  }
-}
-
-void hiddenSamples(const OccluderMesh& occluders, const ShadowedLightEstimator& light, const SurfacePoint& point,
-  PointId vertex, std::vector<ShadowRay>& rays, std::uint64_t* words)
-{
-  const int count = light.shadowRayCount();
-  rays.resize(static_cast<std::size_t>(count));
-  light.shadowRays(point, rays.data());
-  std::fill_n(words, hiddenSampleWords(count), 0u);
-  // The rays differ only in direction and length: the start is moved off the surface once.
-  const OccluderMesh::FrameRay start = occluders.inFrame({ point.position, point.normal, {}, 0.0, vertex });
-  OccluderMesh::FrameRay bundle[OccluderMesh::bundleSize];
-  int sampleOf[OccluderMesh::bundleSize];
-  int size = 0;
-  auto trace = [&]
-  {
-    const unsigned hidden = size > 0 ? occluders.occluded(bundle, size) : 0u;
-    for (int j = 0; j < size; ++j)
-    {
-      const int sample = sampleOf[j];
-      words[sample / 64] |= std::uint64_t((hidden >> j) & 1u) << (sample % 64);
-    }
-    size = 0;
-  };
-  for (int j = 0; j < count; ++j)
-  {
-    if (!rays[j].cast)
-    {
-      continue;
-    }
-    bundle[size] = { start.origin, glm::vec3(rays[j].direction), occluders.frameDistance(rays[j].distance) };
-    sampleOf[size++] = j;
-    if (size == OccluderMesh::bundleSize)
-    {
-      trace();
+      if (rayCount == OccluderMesh::bundleSize)
+      {
+        trace();
+      }
     }
   }
   trace();
+}
+
+int HiddenSampleTracer::add(const ShadowedLightEstimator& light, const SurfacePoint& point, PointId vertex, std::uint64_t* words)
+{
+  const int count = light.shadowRayCount();
+  rays_.resize(static_cast<std::size_t>(count));
+  light.shadowRays(point, rays_.data());
+  std::fill_n(words, hiddenSampleWords(count), 0u);
+  // The rays differ only in direction and length: the start is moved off the surface once.
+  const OccluderMesh::FrameRay start = occluders_.inFrame({ point.position, point.normal, {}, 0.0, vertex });
+  int cast = 0;
+  for (int j = 0; j < count; ++j)
+  {
+    if (!rays_[j].cast)
+    {
+      continue;
+    }
+    packet_[queued_] = { start.origin, glm::vec3(rays_[j].direction), occluders_.frameDistance(rays_[j].distance) };
+    wordOf_[queued_] = &words[j / 64];
+    bitOf_[queued_++] = j % 64;
+    ++cast;
+    if (queued_ == OccluderMesh::bundleSize)
+    {
+      flush();
+    }
+  }
+  return cast;
+}
+
+void HiddenSampleTracer::flush()
+{
+  const unsigned hidden = queued_ > 0 ? occluders_.occluded(packet_, queued_) : 0u;
+  for (int j = 0; j < queued_; ++j)
+  {
+    *wordOf_[j] |= std::uint64_t((hidden >> j) & 1u) << bitOf_[j];
+  }
+  queued_ = 0;
+}
+
+void hiddenSamples(const OccluderMesh& occluders, const ShadowedLightEstimator& light, const SurfacePoint& point,
+  PointId vertex, std::uint64_t* words)
+{
+  HiddenSampleTracer tracer(occluders);
+  tracer.add(light, point, vertex, words);
+  tracer.flush();
 }
 
 bool enclosesPoint(const OccluderMesh& occluders, const glm::dvec3& point)

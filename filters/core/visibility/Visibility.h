@@ -11,6 +11,7 @@
 
 #include <cstdint>
 #include <limits>
+#include <vector>
 
 namespace shadelab
 {
@@ -42,22 +43,56 @@ struct LightDirection
   double distance = std::numeric_limits<double>::infinity();
 };
 
-/// The visibility of a light from vertices[0..count-1] (count <= OccluderMesh::bundleSize,
-/// traced as one packet: neighbours' rays to one light begin alike), into visibility. Each
-/// ray leaves on the side of the normal that faces the light; where the light is on the
-/// normal's back side and the material is not two-sided, or the vertex has no normal, no ray
-/// is cast and the light counts as hidden (the surface itself hides it, and the terms it
-/// multiplies are 0 there).
+/// How many consecutive vertices the visibility step takes at a time: their rays to a light
+/// share packets, which neighbours' rays fill (where only the vertices that face a light, or
+/// the samples that can carry its light, cast a ray, one vertex's rays fill a packet in part).
+constexpr int rayVertexGroup = 64;
+
+/// The visibility of a light from vertices[0..count-1], into visibility. The rays that are cast
+/// go into full packets in vertex order (neighbours' rays to one light begin alike). Each ray
+/// leaves on the side of the normal that faces the light; where the light is on the normal's
+/// back side and the material is not two-sided, or the vertex has no normal, no ray is cast and
+/// the light counts as hidden (the surface itself hides it, and the terms it multiplies are 0
+/// there).
 void lightVisibility(const OccluderMesh& occluders, const RayVertex* vertices, const LightDirection* directions,
   int count, bool twoSided, LightVisibility* visibility);
 
-/// The samples of a shadowed area light or map that the mesh hides from a surface point (the
-/// kernel's point: its normal turned toward the viewer where two-sided), as the bits of HiddenSamples,
-/// into words[0..hiddenSampleWords(light.shadowRayCount())-1]. vertex is the point's id in the
-/// occluders (for its copies at seams). The rays leave on the side of point.normal, in bundles;
-/// rays is scratch space for light.shadowRayCount() rays.
+/// The samples of shadowed area lights or maps that the mesh hides from surface points, as the
+/// bits of HiddenSamples: the rays of several points gathered into full packets, each ray's
+/// answer set as its sample's bit. Embree answers a ray alike in whatever packet carries it
+/// (robust mode; test Visibility.EmbreeAnswersARayAlikeInAnyPacket), so the bits do not
+/// depend on which points share a packet.
+class HiddenSampleTracer
+{
+public:
+  explicit HiddenSampleTracer(const OccluderMesh& occluders)
+    : occluders_(occluders)
+  {
+  }
+  HiddenSampleTracer(const HiddenSampleTracer&) = delete;
+  HiddenSampleTracer& operator=(const HiddenSampleTracer&) = delete;
+
+  /// Clears words[0..hiddenSampleWords(light.shadowRayCount())-1] and queues the rays of the
+  /// point (the kernel's point: its normal turned toward the viewer where two-sided), which
+  /// leave on the side of point.normal; vertex is the point's id in the occluders (for its
+  /// copies at seams). Their bits are set when their packet is traced, by flush() at the
+  /// latest. Returns how many rays the point casts.
+  int add(const ShadowedLightEstimator& light, const SurfacePoint& point, PointId vertex, std::uint64_t* words);
+  /// Traces the rays still queued: after it, every added point's bits are set.
+  void flush();
+
+private:
+  const OccluderMesh& occluders_;
+  std::vector<ShadowRay> rays_; // one point's rays, as the light names them
+  OccluderMesh::FrameRay packet_[OccluderMesh::bundleSize];
+  std::uint64_t* wordOf_[OccluderMesh::bundleSize]; // where each queued ray's answer goes
+  int bitOf_[OccluderMesh::bundleSize];
+  int queued_ = 0;
+};
+
+/// The hidden samples of one point, traced at once (HiddenSampleTracer).
 void hiddenSamples(const OccluderMesh& occluders, const ShadowedLightEstimator& light, const SurfacePoint& point,
-  PointId vertex, std::vector<ShadowRay>& rays, std::uint64_t* words);
+  PointId vertex, std::uint64_t* words);
 
 /// Whether the mesh encloses the point: every one of enclosureRays rays from it, spread evenly
 /// over the sphere, meets a triangle. Then a light there is hidden from every vertex outside
