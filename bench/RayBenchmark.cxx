@@ -98,10 +98,8 @@ constexpr int timedRuns = 5;
 template <typename Body>
 double medianParallelSeconds(int runs, std::size_t count, Body body)
 {
-  std::vector<double> seconds;
-  for (int run = 0; run < runs; ++run)
+  auto loop = [&]
   {
-    const auto start = std::chrono::steady_clock::now();
     vtkSMPTools::For(0, static_cast<vtkIdType>(count),
       [&](vtkIdType begin, vtkIdType end)
       {
@@ -110,10 +108,8 @@ double medianParallelSeconds(int runs, std::size_t count, Body body)
           body(static_cast<std::size_t>(i));
         }
       });
-    seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-  }
-  std::sort(seconds.begin(), seconds.end());
-  return seconds[seconds.size() / 2];
+  };
+  return medianMilliseconds(loop, runs, runs) / 1e3;
 }
 
 /// The point light of the benchmark's shadows: above and to the side of the mesh.

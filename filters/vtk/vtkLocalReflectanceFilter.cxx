@@ -347,8 +347,8 @@ std::vector<vtkSmartPointer<vtkDataArray>> useVisibility(vtkPolyData* seen, cons
   {
     // A local light's visibility multiplies its terms; an area light's or a map's samples are
     // weighted by the bits of those the mesh hides.
-    const bool local = light.shadows && !shadelab::isDistributed(light.source);
-    const bool distributed = light.shadows && !local;
+    const bool distributed = light.shadows && shadelab::isDistributed(light.source);
+    const bool local = light.shadows && !distributed;
     inputs.lightVisibility.push_back(
       local ? floats(shadelab::lightArrayName(prefix, light.name, shadelab::LightTerm::Visibility))->GetPointer(0) : nullptr);
     inputs.lightHiddenSamples.push_back(distributed ? hiddenSamplesOf(light.name) : nullptr);

@@ -57,10 +57,9 @@ public:
       --columns_;
     }
     columns_ = std::max(columns_, 1);
-    rows_ = sampling.samples / columns_;
     // Reciprocals, so that a point costs multiplications rather than divisions.
     columnWidth_ = 1.0 / columns_;
-    rowHeight_ = 1.0 / rows_;
+    rowHeight_ = 1.0 / (sampling.samples / columns_);
   }
 
   int count() const { return sampling_.samples; }
@@ -84,7 +83,6 @@ private:
   std::uint64_t key_;
   Sampling sampling_;
   int columns_ = 1;
-  int rows_ = 1;
   double columnWidth_ = 1, rowHeight_ = 1;
 };
 }

@@ -19,6 +19,27 @@ double triangleArea(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& 
 {
   return 0.5 * vectorLength(glm::cross(b - a, c - a));
 }
+
+/// From a receiver to a point on an emitter: the unit direction and the distance, and the
+/// distance's square (all 0 where the two points are one).
+struct Reach
+{
+  glm::dvec3 direction{ 0.0 };
+  double distance = 0;
+  double distanceSquared = 0;
+};
+
+Reach reachOf(const glm::dvec3& onEmitter, const glm::dvec3& receiver)
+{
+  const glm::dvec3 offset = onEmitter - receiver;
+  const double d2 = glm::dot(offset, offset);
+  if (!(d2 > 0))
+  {
+    return {};
+  }
+  const double d = std::sqrt(d2);
+  return { offset * (1 / d), d, d2 };
+}
 }
 
 AreaLightEstimator::AreaLightEstimator(const AreaLight& light, std::uint64_t lightIndex, const LobeModel& lobe)
@@ -154,28 +175,12 @@ glm::dvec3 AreaLightEstimator::pointOnDisk(const DiskEmitter& disk, const glm::d
 AreaLightEstimator::EmitterSample AreaLightEstimator::towardPoint(const glm::dvec3& onEmitter, const glm::dvec3& receiver) const
 {
   // Area sampling, pdf 1/A, in solid angle d^2 / (A cos_e) (pbrt-v4, section 4.2.3).
-  const glm::dvec3 offset = onEmitter - receiver;
-  const double d2 = glm::dot(offset, offset);
-  if (!(d2 > 0))
+  const Reach reach = reachOf(onEmitter, receiver);
+  if (!(reach.distanceSquared > 0))
   {
     return {};
   }
-  const double d = std::sqrt(d2);
-  const glm::dvec3 direction = offset * (1 / d);
-  return { { direction, area_ * emittedCosine(direction) / d2 }, d };
-}
-
-ShadowRay AreaLightEstimator::shadowRayToward(const glm::dvec3& onEmitter, const SurfacePoint& point) const
-{
-  const glm::dvec3 offset = onEmitter - point.position;
-  const double d2 = glm::dot(offset, offset);
-  if (!(d2 > 0))
-  {
-    return {};
-  }
-  const double d = std::sqrt(d2);
-  const glm::dvec3 direction = offset * (1 / d);
-  return { direction, d, emittedCosine(direction) > 0 && glm::dot(point.normal, direction) > 0 };
+  return { { reach.direction, area_ * emittedCosine(reach.direction) / reach.distanceSquared }, reach.distance };
 }
 
 AreaLightEstimator::EmitterSample AreaLightEstimator::towardSphere(
@@ -276,12 +281,13 @@ void AreaLightEstimator::shadowRays(const SurfacePoint& point, ShadowRay* rays) 
 {
   // A ray is cast only where its sample carries light to the point's lit side: the others
   // count as visible and add nothing.
+  auto ray = [&](const glm::dvec3& direction, double weight, double distance)
+  { return ShadowRay{ direction, distance, weight > 0 && glm::dot(point.normal, direction) > 0 }; };
   if (light_.estimator == AreaEstimator::Point)
   {
     const glm::dvec3 offset = centre_ - point.position;
     const double d = vectorLength(offset);
-    const glm::dvec3 direction = d > 0 ? offset / d : glm::dvec3(0.0);
-    rays[0] = { direction, d, d > 0 && glm::dot(point.normal, direction) > 0 };
+    rays[0] = d > 0 ? ray(offset / d, 1.0, d) : ShadowRay{};
     return;
   }
   const SampleSequence sequence(lightIndex_, point.index, light_.sampling);
@@ -290,7 +296,9 @@ void AreaLightEstimator::shadowRays(const SurfacePoint& point, ShadowRay* rays) 
     std::fill_n(rays, sequence.count(), ShadowRay{}); // no sample would cast one
     return;
   }
-  // Every sample's ray, as rayFor(u) makes it from its point of the unit square.
+  // Every sample's ray, as rayFor(u) makes it from its point of the unit square. A planar
+  // emitter's ray needs only the sign of the sample's weight, its emitted cosine, and not the
+  // weight, whose division it saves.
   auto fill = [&](auto rayFor)
   {
     for (int j = 0; j < sequence.count(); ++j)
@@ -298,18 +306,21 @@ void AreaLightEstimator::shadowRays(const SurfacePoint& point, ShadowRay* rays) 
       rays[j] = rayFor(sequence.point(j));
     }
   };
+  auto rayToward = [&](const glm::dvec3& onEmitter)
+  {
+    const Reach reach = reachOf(onEmitter, point.position);
+    return ray(reach.direction, emittedCosine(reach.direction), reach.distance);
+  };
   std::visit(Overloaded{ [&](const PolygonEmitter& polygon)
-               { fill([&](const glm::dvec2& u) { return shadowRayToward(pointOnPolygon(polygon, u), point); }); },
-               [&](const DiskEmitter& disk)
-               { fill([&](const glm::dvec2& u) { return shadowRayToward(pointOnDisk(disk, u), point); }); },
+               { fill([&](const glm::dvec2& u) { return rayToward(pointOnPolygon(polygon, u)); }); },
+               [&](const DiskEmitter& disk) { fill([&](const glm::dvec2& u) { return rayToward(pointOnDisk(disk, u)); }); },
                [&](const SphereEmitter& sphere)
                {
                  fill(
                    [&](const glm::dvec2& u)
                    {
                      const EmitterSample sample = towardSphere(sphere, u, point);
-                     return ShadowRay{ sample.toward.direction, sample.distance,
-                       sample.toward.weight > 0 && glm::dot(point.normal, sample.toward.direction) > 0 };
+                     return ray(sample.toward.direction, sample.toward.weight, sample.distance);
                    });
                } },
     light_.shape);

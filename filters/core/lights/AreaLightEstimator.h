@@ -59,9 +59,6 @@ private:
   glm::dvec3 pointOnDisk(const DiskEmitter& disk, const glm::dvec2& u) const;
   /// The direction to a point sampled on a planar emitter by area, weighted as solid angle.
   EmitterSample towardPoint(const glm::dvec3& onEmitter, const glm::dvec3& receiver) const;
-  /// The shadow ray to a point sampled on a planar emitter: towardPoint's direction and
-  /// distance without the weight, which a ray does not need (only whether it is above 0).
-  ShadowRay shadowRayToward(const glm::dvec3& onEmitter, const SurfacePoint& point) const;
   EmitterSample towardSphere(const SphereEmitter& sphere, const glm::dvec2& u, const SurfacePoint& point) const;
   DistributedTerms monteCarlo(const SurfacePoint& point, bool irradiance, const HiddenSamples* hidden) const;
   DistributedTerms pointApproximation(const SurfacePoint& point) const;
