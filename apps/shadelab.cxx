@@ -153,7 +153,7 @@ struct ShadeOptions
   std::optional<double> splitAngle; // split sharp edges at this angle before shading
   EnvironmentOption environment;
   bool shadows = false;         // every light that can cast shadows casts them
-  int ambientOcclusionRays = 0; // 0: as the scene says
+  std::string ambientOcclusion; // RAYS or "auto"; empty: as the scene says
 };
 
 /// The scene with --shadows and --ambient-occlusion applied.
@@ -163,10 +163,14 @@ Scene withVisibilityOptions(Scene scene, const ShadeOptions& options)
   {
     light.shadows = light.shadows || (options.shadows && castsShadows(light.source));
   }
-  if (options.ambientOcclusionRays > 0)
+  if (!options.ambientOcclusion.empty())
   {
     AmbientOcclusion occlusion = scene.ambientOcclusion.value_or(AmbientOcclusion{});
-    occlusion.sampling.samples = options.ambientOcclusionRays;
+    occlusion.raysFromTolerance = options.ambientOcclusion == "auto";
+    if (!occlusion.raysFromTolerance)
+    {
+      occlusion.sampling.samples = std::stoi(options.ambientOcclusion);
+    }
     scene.ambientOcclusion = occlusion;
   }
   return scene;
@@ -469,7 +473,9 @@ CLI::App* addShadeCommand(CLI::App& cli, ShadeOptions& options)
     ->add_option("--tolerance", options.tolerance,
       "largest absolute error allowed in the shaded values: ShadeLab then chooses the cheapest "
       "precision and, per light, approximations (a point light as distant, a faster pow) whose "
-      "predicted errors fit, and prints what it chose; 0 (default): exact methods")
+      "predicted errors fit, and with ambient occlusion the rays' share (the sampled part at 95% "
+      "confidence; --ambient-occlusion auto draws as many rays as it needs), and prints what it chose; "
+      "0 (default): exact methods")
     ->check(finiteNonNegative())
     ->excludes(precisionOption);
   command->add_option("--threads,-j", options.threads, "threads (0: all cores)")
@@ -510,11 +516,13 @@ CLI::App* addShadeCommand(CLI::App& cli, ShadeOptions& options)
     "the mesh casts the shadows of every " + shadowCastingTypeNames() + " light (rays against its own "
     "triangles; a local light's <light>_visibility, 0 or 1, multiplies its diffuse and specular terms; an area "
     "light's or a map's is the visible fraction of its irradiance, from a ray per sample)");
-  command->add_option("--ambient-occlusion", options.ambientOcclusionRays,
-    "RAYS per vertex: the ambient term becomes ka La times the cosine-weighted fraction of the sky each "
-    "vertex sees past the mesh (arrays ambient_occlusion and its _std_error; bent_normal and "
-    "sky_view_factor on request, -a all); 64 is usual")
-    ->check(CLI::Range(2, maxSamplesPerVertex));
+  command->add_option("--ambient-occlusion", options.ambientOcclusion,
+    "RAYS per vertex, or auto: the ambient term becomes ka La times the cosine-weighted fraction of the sky "
+    "each vertex sees past the mesh (arrays ambient_occlusion and its _std_error; bent_normal and "
+    "sky_view_factor on request, -a all); 64 is usual. auto (with --tolerance): each vertex draws rays in "
+    "rounds until its standard error is within its share of the tolerance, at most the scene's max_rays "
+    "(4096), and ambient_occlusion_rays says how many it drew")
+    ->check(CLI::Range(2, maxSamplesPerVertex) | CLI::IsMember({ "auto" }));
   EnvironmentOption& environment = options.environment;
   CLI::Option* envmapOption = command->add_option("--envmap", environment.file,
     "add an environment light named 'envmap' from this equirectangular map (.hdr, .exr: twice as wide "

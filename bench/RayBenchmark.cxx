@@ -31,6 +31,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <numeric>
 #include <sstream>
 
 namespace shadelab::app
@@ -327,16 +328,98 @@ double locatorRaysPerSecond(const RayMesh& mesh, std::size_t stride, double& bui
   return static_cast<double>(rays) / std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-/// Ambient occlusion at every stride-th vertex with `rays` rays: its values and the median
-/// seconds of `runs` runs.
-std::vector<double> occlusionAt(const RayMesh& mesh, int rays, std::size_t stride, int runs, double& seconds)
+/// Ambient occlusion at every stride-th vertex with `settings`: its values, the rays drawn, and
+/// the median seconds of `runs` runs.
+struct OcclusionRun
+{
+  std::vector<double> values;
+  double rays = 0; // per vertex, on average
+  double seconds = 0;
+};
+
+OcclusionRun occlusionAt(const RayMesh& mesh, const OcclusionSettings& settings, std::size_t stride, int runs)
+{
+  OcclusionRun run;
+  const std::size_t count = (mesh.vertices.size() + stride - 1) / stride;
+  run.values.resize(count);
+  std::vector<int> rays(count);
+  run.seconds = medianParallelSeconds(runs, count,
+    [&](std::size_t k)
+    {
+      const OcclusionEstimate ao = ambientOcclusion(*mesh.occluders, mesh.vertices[k * stride], settings);
+      run.values[k] = ao.occlusion;
+      rays[k] = ao.rays;
+    });
+  run.rays = std::accumulate(rays.begin(), rays.end(), 0.0) / static_cast<double>(count);
+  return run;
+}
+
+OcclusionSettings fixedRays(int rays)
 {
   OcclusionSettings settings;
   settings.sampling.samples = rays;
-  std::vector<double> values((mesh.vertices.size() + stride - 1) / stride);
-  seconds = medianParallelSeconds(runs, values.size(),
-    [&](std::size_t k) { values[k] = ambientOcclusion(*mesh.occluders, mesh.vertices[k * stride], settings).occlusion; });
-  return values;
+  return settings;
+}
+
+OcclusionSettings raysToTarget(double error)
+{
+  OcclusionSettings settings;
+  settings.target = SamplingTarget{ error, 4096 };
+  return settings;
+}
+
+/// An estimate's errors against a reference: RMS, largest, and the fraction within `within`.
+struct Errors
+{
+  double rms = 0, largest = 0, fractionWithin = 0;
+};
+
+Errors errorsOf(const std::vector<double>& values, const std::vector<double>& reference, double within = 0)
+{
+  Errors errors;
+  double squares = 0;
+  std::size_t inside = 0;
+  for (std::size_t i = 0; i < values.size(); ++i)
+  {
+    const double error = std::abs(values[i] - reference[i]);
+    errors.largest = std::max(errors.largest, error);
+    squares += error * error;
+    inside += error <= within ? 1 : 0;
+  }
+  errors.rms = std::sqrt(squares / static_cast<double>(values.size()));
+  errors.fractionWithin = static_cast<double>(inside) / static_cast<double>(values.size());
+  return errors;
+}
+
+/// The seconds at which a ladder of runs (error falling as time rises) reaches `rms`: between
+/// the two runs that bracket it, log time linear in log error. Infinity if none reaches it.
+double secondsToReach(double rms, const std::vector<std::pair<double, double>>& secondsAndRms)
+{
+  for (std::size_t i = 1; i < secondsAndRms.size(); ++i)
+  {
+    const auto [t0, e0] = secondsAndRms[i - 1];
+    const auto [t1, e1] = secondsAndRms[i];
+    if (e1 <= rms && e0 > rms)
+    {
+      return std::exp(std::log(t0) + (std::log(t1) - std::log(t0)) * (std::log(rms) - std::log(e0)) / (std::log(e1) - std::log(e0)));
+    }
+  }
+  return INFINITY;
+}
+
+/// The most that any split of the same rays among the vertices can save at equal RMS
+/// (Neyman's allocation, docs/formulas.md section 13.7): mean(sigma^2) / mean(sigma)^2, with
+/// each vertex's per-ray variance sigma^2 = AO (1 - AO) from the reference.
+double neymanCeiling(const std::vector<double>& reference)
+{
+  double variance = 0, deviation = 0;
+  for (const double ao : reference)
+  {
+    variance += ao * (1 - ao);
+    deviation += std::sqrt(ao * (1 - ao));
+  }
+  const double n = static_cast<double>(reference.size());
+  return (variance / n) / ((deviation / n) * (deviation / n));
 }
 
 /// The penumbra across a straight edge against its closed form (docs/formulas.md section 11.6):
@@ -429,9 +512,9 @@ void runRayBenchmark(const RayBenchmarkOptions& options)
     double occlusion64Seconds = 0, occlusion64RaysPerSecond = 0;
     for (int rays : { 16, 64, 256 })
     {
-      double seconds = 0;
-      const std::vector<double> values = occlusionAt(mesh, rays, aoStride, timedRuns, seconds);
-      const double cast = static_cast<double>(values.size()) * rays;
+      const OcclusionRun run = occlusionAt(mesh, fixedRays(rays), aoStride, timedRuns);
+      const double seconds = run.seconds;
+      const double cast = static_cast<double>(run.values.size()) * rays;
       if (rays == 64)
       {
         occlusion64Seconds = seconds;
@@ -470,42 +553,72 @@ void runRayBenchmark(const RayBenchmarkOptions& options)
     recordSoftShadows("studio map", EnvironmentLightEstimator(studio, 0, LobeModel{}), "");
   }
 
-  // Error against time on the bunny, each ray count against 4096 rays per vertex.
-  const RayMesh& bunny = meshes.front();
-  double referenceSeconds = 0;
-  const std::vector<double> reference = occlusionAt(bunny, 4096, 1, 1, referenceSeconds);
-  ChartSeries largest{ "largest error", {}, {}, true, { 200, 40, 40 }, true };
-  ChartSeries rms{ "RMS error", {}, {}, true, { 40, 40, 200 }, true, true };
-  std::cout << "ambient occlusion on the bunny against 4096 rays per vertex (" << std::setprecision(1)
-            << referenceSeconds << " s):\n";
-  for (int rays : { 4, 16, 64, 256, 1024 })
+  // Error against time, fixed counts and rays to a target, against 4096 rays per vertex: on
+  // every vertex of the bunny (chart 9), every 64th of the large one. Three runs of each (the
+  // median), which keep the study to about a minute per mesh.
+  constexpr int studyRuns = 3;
+  for (const RayMesh& mesh : meshes)
   {
-    double seconds = 0;
-    const std::vector<double> values = occlusionAt(bunny, rays, 1, timedRuns, seconds);
-    double worst = 0, squares = 0;
-    for (std::size_t i = 0; i < values.size(); ++i)
+    const std::size_t stride = mesh.vertices.size() > 1000000 ? 64 : 1;
+    const std::vector<double> reference = occlusionAt(mesh, fixedRays(4096), stride, 1).values;
+    const std::size_t count = reference.size();
+    auto recordStudy = [&](const std::string& quantity, double value, const std::string& unit)
+    { csv << csvText(mesh.name) << "," << count << "," << mesh.occluders->triangleCount() << "," << quantity << "," << value << "," << unit << "\n"; };
+    std::cout << "ambient occlusion on the " << mesh.name << " against 4096 rays per vertex"
+              << (stride > 1 ? ", every 64th vertex" : "") << ":\n";
+    ChartSeries largest{ "largest error, fixed rays", {}, {}, true, { 200, 40, 40 }, true };
+    ChartSeries rms{ "RMS error, fixed rays", {}, {}, true, { 40, 40, 200 }, true, true };
+    ChartSeries largestToTarget{ "largest error, rays to a target", {}, {}, true, { 240, 140, 40 }, true };
+    ChartSeries rmsToTarget{ "RMS error, rays to a target", {}, {}, true, { 40, 160, 160 }, true, true };
+    std::vector<std::pair<double, double>> fixedLadder, targetLadder;
+    for (int rays : { 4, 16, 64, 128, 192, 256, 384, 1024 })
     {
-      const double error = std::abs(values[i] - reference[i]);
-      worst = std::max(worst, error);
-      squares += error * error;
+      const OcclusionRun run = occlusionAt(mesh, fixedRays(rays), stride, studyRuns);
+      const Errors errors = errorsOf(run.values, reference);
+      std::cout << "  " << std::setw(5) << rays << " rays: " << std::setprecision(1) << run.seconds * 1e3
+                << " ms, largest error " << std::setprecision(4) << errors.largest << ", RMS " << errors.rms << "\n";
+      recordStudy("ao_" + std::to_string(rays) + "_rays_ms", run.seconds * 1e3, "ms");
+      recordStudy("ao_" + std::to_string(rays) + "_rays_largest_error", errors.largest, "");
+      recordStudy("ao_" + std::to_string(rays) + "_rays_rms_error", errors.rms, "");
+      largest.x.push_back(run.seconds * 1e3);
+      largest.y.push_back(errors.largest);
+      rms.x.push_back(run.seconds * 1e3);
+      rms.y.push_back(errors.rms);
+      fixedLadder.emplace_back(run.seconds, errors.rms);
     }
-    const double rmsError = std::sqrt(squares / static_cast<double>(values.size()));
-    std::cout << "  " << std::setw(5) << rays << " rays: " << std::setprecision(1) << seconds * 1e3
-              << " ms, largest error " << std::setprecision(4) << worst << ", RMS " << rmsError << "\n";
-    csv << "bunny," << values.size() << "," << bunny.occluders->triangleCount() << ",ao_" << rays << "_rays_ms,"
-        << seconds * 1e3 << ",ms\n";
-    csv << "bunny," << values.size() << "," << bunny.occluders->triangleCount() << ",ao_" << rays << "_rays_largest_error,"
-        << worst << ",\n";
-    csv << "bunny," << values.size() << "," << bunny.occluders->triangleCount() << ",ao_" << rays << "_rays_rms_error,"
-        << rmsError << ",\n";
-    largest.x.push_back(seconds * 1e3);
-    largest.y.push_back(worst);
-    rms.x.push_back(seconds * 1e3);
-    rms.y.push_back(rmsError);
+    for (double target : { 0.1, 0.05, 0.035, 0.03, 0.025, 0.02, 0.015, 0.01 })
+    {
+      const OcclusionRun run = occlusionAt(mesh, raysToTarget(target), stride, studyRuns);
+      const Errors errors = errorsOf(run.values, reference, target);
+      std::cout << "  to within " << std::setprecision(3) << target << ": " << std::setprecision(1) << run.seconds * 1e3
+                << " ms, " << run.rays << " rays per vertex, largest error " << std::setprecision(4) << errors.largest
+                << ", RMS " << errors.rms << ", " << std::setprecision(1) << 100 * errors.fractionWithin
+                << "% within the target (95% asked)\n";
+      const std::string name = "ao_within_" + std::to_string(target).substr(0, 5);
+      recordStudy(name + "_ms", run.seconds * 1e3, "ms");
+      recordStudy(name + "_rays_per_vertex", run.rays, "");
+      recordStudy(name + "_rms_error", errors.rms, "");
+      recordStudy(name + "_fraction_within", errors.fractionWithin, "");
+      largestToTarget.x.push_back(run.seconds * 1e3);
+      largestToTarget.y.push_back(errors.largest);
+      rmsToTarget.x.push_back(run.seconds * 1e3);
+      rmsToTarget.y.push_back(errors.rms);
+      targetLadder.emplace_back(run.seconds, errors.rms);
+    }
+    const double fixedSeconds = secondsToReach(0.01, fixedLadder), targetSeconds = secondsToReach(0.01, targetLadder);
+    std::cout << "  RMS 0.01: fixed rays in " << std::setprecision(1) << fixedSeconds * 1e3 << " ms, rays to a target in "
+              << targetSeconds * 1e3 << " ms: " << std::setprecision(2) << targetSeconds / fixedSeconds
+              << "x (target 0.5); no split of the rays among the vertices can beat " << 1 / neymanCeiling(reference)
+              << "x (Neyman)\n";
+    recordStudy("ao_rms_0.01_to_a_target_over_fixed", targetSeconds / fixedSeconds, "x");
+    recordStudy("ao_rms_neyman_floor", 1 / neymanCeiling(reference), "x");
+    if (stride == 1)
+    {
+      ChartSpec chart{ "Ambient occlusion on the bunny against 4096 rays per vertex: fixed counts and rays to a target",
+        "time for the mesh (ms)", "error in ambient_occlusion", true, true, true, { largest, rms, largestToTarget, rmsToTarget } };
+      writeChartPng(chart, options.folder + "/9_ambient_occlusion.png");
+    }
   }
-  ChartSpec chart{ "Ambient occlusion on the bunny: 4 to 1024 rays per vertex against 4096",
-    "time for the mesh (ms)", "error in ambient_occlusion", true, true, false, { largest, rms } };
-  writeChartPng(chart, options.folder + "/9_ambient_occlusion.png");
   writeChartPng(penumbraChart(64), options.folder + "/10_penumbra.png");
   writeTextFile(options.folder + "/visibility.csv", csv.str());
   std::cout << "wrote " << options.folder << "/visibility.csv, 9_ambient_occlusion.png and 10_penumbra.png\n";

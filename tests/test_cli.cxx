@@ -174,11 +174,28 @@ TEST_F(Cli, ShadowsAndAmbientOcclusion)
                             "the mesh\n"),
     std::string::npos)
     << result.out;
-  const Result tolerance = shadelab("shade " + goodMesh() + " -o " + out + " --shadows --tolerance 1e-3");
-  EXPECT_EQ(tolerance.exitCode, 1);
-  EXPECT_EQ(tolerance.err, "shadelab: " + goodMesh() + ": a tolerance cannot be used with shadows or ambient "
-                           "occlusion yet: its error bounds do not cover the rays' estimates; shade with exact "
-                           "methods (tolerance 0)\n");
+  // A tolerance covers hard shadows (their visibility is exact: 0 or 1) and ambient occlusion:
+  // a fixed count of rays must fit the share left to it, "auto" draws what it needs.
+  const Result shadows = shadelab("shade " + goodMesh() + " -o " + out + " --shadows --tolerance 1e-3");
+  EXPECT_EQ(shadows.exitCode, 0) << shadows.err;
+  EXPECT_NE(shadows.out.find("    key_visibility               1             0           1\n"), std::string::npos) << shadows.out;
+  const Result fixed = shadelab("shade " + goodMesh() + " -o " + out + " --ambient-occlusion 16 --tolerance 0.05");
+  EXPECT_EQ(fixed.exitCode, 1);
+  EXPECT_EQ(fixed.err, "shadelab: " + goodMesh() + ": ambient occlusion's 16 rays per vertex can err by up to 0.25 "
+                       "(95%), more than the 0.05 the tolerance leaves it: give \"rays\": \"auto\" "
+                       "(--ambient-occlusion auto) to draw as many as the tolerance needs, or a larger tolerance\n");
+  const Result untargeted = shadelab("shade " + goodMesh() + " -o " + out + " --ambient-occlusion auto");
+  EXPECT_EQ(untargeted.exitCode, 1);
+  EXPECT_EQ(untargeted.err, "shadelab: " + goodMesh() + ": ambient occlusion with \"rays\": \"auto\" takes its count "
+                            "of rays from a tolerance: give one (shadelab shade --tolerance, the filter's Tolerance), "
+                            "or a number of rays\n");
+  const Result adaptive = shadelab("shade " + goodMesh() + " -o " + out + " --ambient-occlusion auto --tolerance 0.05");
+  EXPECT_EQ(adaptive.exitCode, 0) << adaptive.err;
+  for (const char* line : { "    ambient_occlusion_rays       1 ", "    ambient occlusion: rays auto, within 0.05 at 95% "
+                                                                     "(standard error at most 0.025), 64 to 4096 rays per vertex\n" })
+  {
+    EXPECT_NE(adaptive.out.find(line), std::string::npos) << line << "\n" << adaptive.out;
+  }
   const Result rays = shadelab("shade " + goodMesh() + " -o " + out + " --ambient-occlusion 1");
   EXPECT_EQ(rays.exitCode, 2);
   EXPECT_NE(rays.err.find("--ambient-occlusion"), std::string::npos) << rays.err;

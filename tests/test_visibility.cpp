@@ -425,15 +425,41 @@ struct Calibration
   double three() const { return double(withinThree) / count; }
 };
 
+/// A UV sphere of radius 0.5 with its centre at height 1 over a square plane of half-width
+/// `half`: the plane's points' occlusion is the sphere's form factor 1 - r^2 h / d^3.
+struct SphereOverPlane
+{
+  static constexpr int rows = 64;
+  const glm::dvec3 centre{ 0, 0, 1 };
+  const double radius = 0.5;
+  Mesh scene;
+  std::size_t planePoints = 0;
+
+  SphereOverPlane(double half, int cells)
+  {
+    addPlane(scene, half, cells);
+    planePoints = scene.points.size();
+    addSphere(scene, centre, radius, rows, 2 * rows);
+  }
+  double exactAt(std::size_t i) const
+  {
+    const double d = glm::length(centre - scene.points[i]);
+    return 1 - radius * radius * centre.z / (d * d * d);
+  }
+  /// The tessellated sphere is inside the sphere and contains the sphere of radius
+  /// r cos(facet angle / 2): its form factor is less, by at most that ratio of squared radii.
+  static double tessellationBias(double exact)
+  {
+    const double facetAngle = std::hypot(M_PI / rows, M_PI / rows);
+    return (1 - exact) * (1 - std::pow(std::cos(facetAngle / 2), 2));
+  }
+};
+
 TEST(Visibility, ASphereOccludesThePlaneBelowByItsFormFactor)
 {
-  Mesh scene;
-  addPlane(scene, 1.0, 40);
-  const std::size_t planePoints = scene.points.size();
-  const glm::dvec3 centre(0, 0, 1);
-  const double radius = 0.5;
-  const int rows = 64;
-  addSphere(scene, centre, radius, rows, 2 * rows);
+  const SphereOverPlane sphereOverPlane(1.0, 40);
+  const Mesh& scene = sphereOverPlane.scene;
+  const std::size_t planePoints = sphereOverPlane.planePoints;
   const OccluderMesh occluders = scene.occluders();
   // Standard errors are calibrated, for independent samples and for stratified ones (two to a
   // stratum), and stratified ones have smaller errors.
@@ -445,14 +471,9 @@ TEST(Visibility, ASphereOccludesThePlaneBelowByItsFormFactor)
     double largestError = 0;
     for (std::size_t i = 0; i < planePoints; ++i)
     {
-      const double d = glm::length(centre - scene.points[i]);
-      const double exact = 1 - radius * radius * centre.z / (d * d * d);
+      const double exact = sphereOverPlane.exactAt(i);
       const OcclusionEstimate ao = ambientOcclusion(occluders, scene.vertex(i), settings);
-      // The tessellated sphere is inside the sphere and contains the sphere of radius
-      // r cos(facet angle / 2): its form factor is less, by at most that ratio of squared radii.
-      const double facetAngle = std::hypot(M_PI / rows, M_PI / rows);
-      const double tessellationBias = (1 - exact) * (1 - std::pow(std::cos(facetAngle / 2), 2));
-      calibration.add(ao.occlusion, ao.standardError, exact, tessellationBias);
+      calibration.add(ao.occlusion, ao.standardError, exact, SphereOverPlane::tessellationBias(exact));
       largestError = std::max(largestError, std::abs(ao.occlusion - exact));
     }
     // Measured: independent 69.0% and 99.5%, largest error 0.085; stratified 72.5% and 99.6%,
@@ -527,6 +548,65 @@ TEST(Visibility, StandardErrorsFallAsOneOverTheRootOfTheRays)
   };
   // 64 times the rays: at least 8 times less error (stratification does better).
   EXPECT_LT(rmsError(1024), rmsError(16) / 8);
+}
+
+TEST(SequentialSampling, NoVertexStopsBeforeTheRuleOfThreeOrPastTheMaximum)
+{
+  const SamplingTarget target{ 0.02, 4096 };
+  EXPECT_EQ(target.standardError(), 0.01);
+  EXPECT_EQ(target.minimum(), 160) << "3 / 0.02 = 150 rays, in whole rounds of 16";
+  EXPECT_EQ(target.nextRound(0, 0), 160);
+  EXPECT_EQ(target.nextRound(160, 0.0099), 0) << "met past the minimum";
+  EXPECT_EQ(target.nextRound(160, 0.0101), 16) << "a little short: one round";
+  EXPECT_EQ(target.nextRound(160, 0.02), 160) << "4 times the rays wanted, at most twice drawn";
+  EXPECT_EQ(target.nextRound(4000, 0.05), 96) << "up to the maximum, not past it";
+  EXPECT_EQ(target.nextRound(4096, 0.05), 0);
+  EXPECT_EQ((SamplingTarget{ 1e-4, 4096 }).minimum(), 4096) << "the rule of three past the maximum";
+  EXPECT_EQ((SamplingTarget{ 0.5, 4096 }).minimum(), 16) << "at least a round";
+}
+
+TEST(Visibility, RaysToATargetMeetItWhereverTheyStopShortOfTheMaximum)
+{
+  // The sphere over the plane again, with its form factor as the truth: every vertex's standard
+  // error within the target's, unless it drew the maximum; 95% of the errors within the
+  // target's error, less the tessellation's bias; each vertex's rays in whole rounds between
+  // the minimum and the maximum, as many as it needed: fewer where the sphere is far.
+  const SphereOverPlane sphereOverPlane(1.5, 30);
+  const Mesh& scene = sphereOverPlane.scene;
+  const std::size_t planePoints = sphereOverPlane.planePoints;
+  const OccluderMesh occluders = scene.occluders();
+  OcclusionSettings settings;
+  settings.target = SamplingTarget{ 0.02, 4096 };
+  std::size_t within = 0;
+  int fewest = settings.target->maximum, most = 0;
+  for (std::size_t i = 0; i < planePoints; ++i)
+  {
+    const double exact = sphereOverPlane.exactAt(i);
+    const OcclusionEstimate ao = ambientOcclusion(occluders, scene.vertex(i), settings);
+    EXPECT_LE(ao.standardError, settings.target->standardError()) << "vertex " << i << ", " << ao.rays << " rays";
+    EXPECT_GE(ao.rays, settings.target->minimum());
+    within += std::abs(ao.occlusion - exact) - SphereOverPlane::tessellationBias(exact) <= settings.target->error ? 1 : 0;
+    fewest = std::min(fewest, ao.rays);
+    most = std::max(most, ao.rays);
+  }
+  // Measured: 96.2% within (two standard errors are 95.4% of a normal's), 160 to 656 rays.
+  EXPECT_GE(double(within) / planePoints, 0.95);
+  EXPECT_EQ(fewest, settings.target->minimum());
+  EXPECT_GT(most, 2 * fewest);
+
+  // A maximum below what the target needs: the vertices under the sphere stop at it, short.
+  settings.target->maximum = 64;
+  const OcclusionEstimate capped = ambientOcclusion(occluders, { { 0.3, 0, 0 }, { 0, 0, 1 }, 7 }, settings);
+  EXPECT_EQ(capped.rays, 64);
+  EXPECT_GT(capped.standardError, settings.target->standardError());
+
+  // A fixed count is what it was: one round of the vertex's samples.
+  OcclusionSettings fixed;
+  fixed.sampling.samples = 160;
+  OcclusionSettings oneRound;
+  oneRound.target = SamplingTarget{ 3.0 / 160, 160 };
+  const RayVertex vertex{ { 0.3, 0, 0 }, { 0, 0, 1 }, 7 };
+  EXPECT_EQ(ambientOcclusion(occluders, vertex, oneRound).occlusion, ambientOcclusion(occluders, vertex, fixed).occlusion);
 }
 
 TEST(Visibility, ResultsAreTheSameWhereverTheMeshIsAndWhateverItsSize)

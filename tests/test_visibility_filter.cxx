@@ -136,6 +136,52 @@ TEST(Visibility, OneAndTwoThreadsGiveTheSameBits)
   shadelab::testing::expectSamePointArrays(one, two);
 }
 
+TEST(AmbientOcclusion, ATolerancesShareSetsEachVertexsRaysTheSameOnAnyThreadCount)
+{
+  // "rays": "auto" under a tolerance: the plan's share of it is each vertex's target, which
+  // its standard error meets unless it drew the maximum, and where each vertex stops does not
+  // depend on the threads.
+  vtkSmartPointer<vtkPolyData> mesh = sphereOverPlane();
+  Scene scene = pointLightAbove(false);
+  scene.lights[1].source = DistantLight{};
+  scene.ambientOcclusion = AmbientOcclusion{};
+  scene.ambientOcclusion->raysFromTolerance = true;
+  scene.ambientOcclusion->maxRays = 512;
+  auto shade = [&](int threads)
+  {
+    vtkNew<vtkLocalReflectanceFilter> filter;
+    filter->SetInputData(mesh);
+    filter->SetScene(scene);
+    filter->SetArraySelection({ "all" });
+    filter->SetTolerance(0.03);
+    vtkSMPTools::LocalScope(vtkSMPTools::Config{ threads }, [&] { filter->Update(); });
+    const SamplingTarget target = *filter->GetMethodPlan()->occlusion->target;
+    auto output = vtkSmartPointer<vtkPolyData>::New();
+    output->ShallowCopy(filter->GetOutput());
+    return std::make_pair(output, target);
+  };
+  const auto [one, target] = shade(1);
+  const auto [two, sameTarget] = shade(2);
+  shadelab::testing::expectSamePointArrays(one, two);
+  EXPECT_EQ(target.maximum, 512);
+  EXPECT_NEAR(target.error, 0.03, 0.003) << "all but the arithmetic's part";
+  vtkIdType atMaximum = 0;
+  for (vtkIdType i = 0; i < mesh->GetNumberOfPoints(); ++i)
+  {
+    const float rays = valueOf(one, "ambient_occlusion_rays", i);
+    ASSERT_GE(rays, target.minimum());
+    ASSERT_LE(rays, target.maximum);
+    if (rays < target.maximum)
+    {
+      // The estimate stopped when its standard error was at most the target's; rounding both
+      // to float keeps the order.
+      ASSERT_LE(valueOf(one, "ambient_occlusion_std_error", i), static_cast<float>(target.standardError())) << i;
+    }
+    atMaximum += rays == target.maximum ? 1 : 0;
+  }
+  EXPECT_LT(atMaximum, mesh->GetNumberOfPoints() / 10);
+}
+
 /// The sphere-over-plane scene's light as a disk of radius 0.6 at the bulb's place, facing down,
 /// its shadows cast or not.
 Scene diskLightAbove(bool shadows, AreaEstimator estimator)
@@ -444,9 +490,29 @@ std::string filterError(vtkPolyData* mesh, const Scene& scene, double tolerance 
 TEST(Visibility, WhatIsRefusedAndWhy)
 {
   vtkSmartPointer<vtkPolyData> mesh = sphereOverPlane();
-  EXPECT_EQ(filterError(mesh, pointLightAbove(true), 1e-3),
-    "a tolerance cannot be used with shadows or ambient occlusion yet: its error bounds do not cover the rays' "
-    "estimates; shade with exact methods (tolerance 0)");
+  // (The bulb is within the mesh's bounding sphere, where no bound holds: a sun instead.)
+  Scene sunAbove = pointLightAbove(true);
+  sunAbove.lights[1].source = DistantLight{};
+  EXPECT_EQ(filterError(mesh, sunAbove, 1e-3), "") << "hard shadows are exact: a tolerance covers them";
+  Scene occluded = sunAbove;
+  occluded.lights[1].shadows = false;
+  occluded.ambientOcclusion = AmbientOcclusion{};
+  occluded.ambientOcclusion->raysFromTolerance = true;
+  const std::string untargeted = "ambient occlusion with \"rays\": \"auto\" takes its count of rays from a tolerance: "
+                                 "give one (shadelab shade --tolerance, the filter's Tolerance), or a number of rays";
+  EXPECT_EQ(filterError(mesh, occluded), untargeted);
+  EXPECT_EQ(filterError(mesh, occluded, 0.05), "");
+  {
+    vtkNew<vtkShadingNormalsFilter> normals;
+    normals->SetInputData(mesh);
+    vtkNew<vtkMeshVisibilityFilter> alone;
+    vtkNew<app::VtkErrorCapture> errors;
+    errors->watch(alone);
+    alone->SetInputConnection(normals->GetOutputPort());
+    alone->SetScene(occluded);
+    alone->Update();
+    EXPECT_EQ(errors->message(), untargeted) << "the visibility filter alone has no tolerance";
+  }
   Scene shadowedAmbient = pointLightAbove(false);
   shadowedAmbient.lights.push_back({ "sky", AmbientLight{}, true });
   EXPECT_EQ(filterError(mesh, shadowedAmbient),

@@ -354,16 +354,15 @@ std::vector<vtkSmartPointer<vtkDataArray>> useVisibility(vtkPolyData* seen, cons
     inputs.lightHiddenSamples.push_back(distributed ? hiddenSamplesOf(light.name) : nullptr);
   }
   std::vector<vtkSmartPointer<vtkDataArray>> requested;
-  for (int t = 0; scene.ambientOcclusion && t < shadelab::OcclusionTermCount; ++t)
+  if (scene.ambientOcclusion)
   {
-    vtkFloatArray* quantity = floats(shadelab::occlusionArrayName(prefix, shadelab::OcclusionTerm(t)));
-    if (t == int(shadelab::OcclusionTerm::AmbientOcclusion))
-    {
-      inputs.ambientOcclusion = quantity->GetPointer(0);
-    }
+    inputs.ambientOcclusion = floats(shadelab::occlusionArrayName(prefix, shadelab::OcclusionTerm::AmbientOcclusion))->GetPointer(0);
+  }
+  for (int t = 0; t < shadelab::OcclusionTermCount; ++t)
+  {
     if (request.occlusion[t])
     {
-      requested.push_back(quantity);
+      requested.push_back(data->GetArray(shadelab::occlusionArrayName(prefix, shadelab::OcclusionTerm(t)).c_str()));
     }
   }
   inputs.flags =
@@ -560,12 +559,6 @@ bool vtkLocalReflectanceFilter::PlaceScene(vtkMultiProcessController* processes,
 
 bool vtkLocalReflectanceFilter::CheckLightMethods(const shadelab::Scene& scene)
 {
-  if (this->Tolerance > 0 && scene.needsVisibility())
-  {
-    vtkErrorMacro("a tolerance cannot be used with shadows or ambient occlusion yet: its error bounds do not "
-                  "cover the rays' estimates; shade with exact methods (tolerance 0)");
-    return false;
-  }
   this->MethodPlan.reset();
   if (!this->LightMethods.empty() && this->LightMethods.size() != scene.lights.size())
   {
@@ -590,11 +583,21 @@ bool vtkLocalReflectanceFilter::ChooseArraysAndMethods(ShadingPlan& plan)
       this->MethodPlan = shadelab::chooseMethods(plan.scene, plan.request, plan.extent, this->Tolerance, float32Fits);
       plan.precision = this->MethodPlan->precision;
       plan.methods = this->MethodPlan->methods();
+      if (this->MethodPlan->occlusion)
+      {
+        plan.scene.ambientOcclusion->target = this->MethodPlan->occlusion->target;
+      }
     }
   }
   catch (const std::invalid_argument& error)
   {
     vtkErrorMacro(<< error.what());
+    return false;
+  }
+  const std::string untargeted = shadelab::untargetedSamplingProblem(plan.scene);
+  if (!untargeted.empty())
+  {
+    vtkErrorMacro(<< untargeted);
     return false;
   }
   return true;

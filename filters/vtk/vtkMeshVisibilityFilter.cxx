@@ -16,6 +16,7 @@
 #include "vtkDataArrayRange.h"
 #include "vtkFloatArray.h"
 #include "vtkInformation.h"
+#include "vtkIntArray.h"
 #include "vtkInformationVector.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
@@ -133,8 +134,10 @@ void findEnclosedLights(const shadelab::OccluderMesh& occluders, std::vector<Sha
 struct RayArrays
 {
   shadelab::OcclusionSettings settings;
-  /// The ambient occlusion's: nullptr without it (bentNormal and skyView also where not asked for).
+  /// The ambient occlusion's: nullptr without it (bentNormal and skyView also where not asked
+  /// for, rays where the count is fixed).
   vtkSmartPointer<vtkFloatArray> occlusion, standardError, bentNormal, skyView;
+  vtkSmartPointer<vtkIntArray> rays;
   vtkSmartPointer<vtkUnsignedCharArray> flags;
   /// Every array, the lights' visibility included, in the output's order.
   std::vector<vtkSmartPointer<vtkDataArray>> written;
@@ -149,6 +152,11 @@ void addOcclusionArrays(RayArrays& arrays, const std::string& prefix, vtkIdType 
     arrays.written.push_back(array);
     return array;
   };
+  if (arrays.settings.target)
+  {
+    arrays.rays = pointArray<vtkIntArray>(shadelab::occlusionArrayName(prefix, shadelab::OcclusionTerm::Rays), 1, count);
+    arrays.written.push_back(arrays.rays);
+  }
   arrays.occlusion = add(shadelab::OcclusionTerm::AmbientOcclusion, 1);
   arrays.standardError = add(shadelab::OcclusionTerm::AmbientOcclusionStdError, 1);
   if (arrays.settings.bentNormal)
@@ -186,6 +194,7 @@ RayArrays allocateRayArrays(std::vector<ShadowedLight>& lights, const shadelab::
   {
     arrays.settings.sampling = scene.ambientOcclusion->sampling;
     arrays.settings.maxDistance = scene.ambientOcclusion->maxDistance;
+    arrays.settings.target = scene.ambientOcclusion->target;
     arrays.settings.bentNormal = bentNormal;
     arrays.settings.skyViewFactor = skyViewFactor;
     addOcclusionArrays(arrays, prefix, count);
@@ -339,6 +348,10 @@ void traceOcclusion(const shadelab::OccluderMesh& occluders, const RayGroup& gro
       occluders, { group.vertices[k].position, group.occlusionNormals[k], group.vertices[k].id }, arrays.settings);
     arrays.occlusion->SetValue(i, static_cast<float>(ao.occlusion));
     arrays.standardError->SetValue(i, static_cast<float>(ao.standardError));
+    if (arrays.rays)
+    {
+      arrays.rays->SetValue(i, ao.rays);
+    }
     if (arrays.bentNormal)
     {
       const glm::vec3 bent(ao.bentNormal);
@@ -395,6 +408,35 @@ struct RayTimes
   double raySeconds = 0;
 };
 
+/// What the ambient occlusion drawn to a target cast: rays per vertex, and the vertices that
+/// stopped at the maximum short of the target.
+std::string occlusionRaysReport(const RayArrays& arrays, vtkIdType count)
+{
+  const shadelab::SamplingTarget& target = *arrays.settings.target;
+  std::uint64_t total = 0;
+  int fewest = target.maximum, most = 0;
+  vtkIdType short_ = 0;
+  for (vtkIdType i = 0; i < count; ++i)
+  {
+    const int rays = arrays.rays->GetValue(i);
+    total += static_cast<std::uint64_t>(rays);
+    fewest = std::min(fewest, rays);
+    most = std::max(most, rays);
+    short_ += rays == target.maximum && arrays.standardError->GetValue(i) > target.standardError() ? 1 : 0;
+  }
+  std::ostringstream report;
+  report << "Ambient occlusion to within " << target.error << " at 95% (standard error at most " << target.standardError()
+         << "): " << total << " rays, " << double(total) / double(count) << " per vertex (" << fewest << " to " << most
+         << ")" << (arrays.settings.skyViewFactor ? ", and the sky view factor's own" : "") << ".";
+  if (short_ > 0)
+  {
+    report << " " << short_ << " vertices reached the maximum of " << target.maximum
+           << " rays short of the target (ambient_occlusion_rays " << target.maximum
+           << ", their ambient_occlusion_std_error above " << target.standardError() << "): raise \"max_rays\".";
+  }
+  return report.str();
+}
+
 /// The report of a run that cast rays: how many, against how many triangles, and how long.
 std::string raysReport(const RayArrays& arrays, const std::vector<ShadowedLight>& lights, vtkIdType count, std::size_t triangles,
   const RayTimes& times)
@@ -404,14 +446,28 @@ std::string raysReport(const RayArrays& arrays, const std::vector<ShadowedLight>
   {
     lightRays += light.distributed ? static_cast<std::uint64_t>(light.distributed->shadowRayCount()) : 1;
   }
+  const bool fixedOcclusion = arrays.occlusion && !arrays.settings.target;
   const std::uint64_t raysPerVertex = lightRays +
-    (arrays.occlusion ? static_cast<std::uint64_t>(arrays.settings.sampling.samples) * (arrays.settings.skyViewFactor ? 2 : 1)
-                      : 0);
+    (fixedOcclusion ? static_cast<std::uint64_t>(arrays.settings.sampling.samples) * (arrays.settings.skyViewFactor ? 2 : 1)
+                    : 0);
   std::ostringstream report;
-  report << "Cast up to " << raysPerVertex * static_cast<std::uint64_t>(count) << " rays (" << raysPerVertex
-         << " per vertex) against " << triangles << " triangles: BVH "
+  report << "Cast ";
+  if (raysPerVertex > 0)
+  {
+    report << "up to " << raysPerVertex * static_cast<std::uint64_t>(count) << " rays (" << raysPerVertex
+           << " per vertex" << (arrays.rays ? ", and the ambient occlusion's below" : "") << ")";
+  }
+  else
+  {
+    report << "the ambient occlusion's rays";
+  }
+  report << " against " << triangles << " triangles: BVH "
          << (times.reused ? "reused" : "built in " + std::to_string(times.buildSeconds) + " s") << ", rays "
          << times.raySeconds << " s.";
+  if (arrays.rays)
+  {
+    report << " " << occlusionRaysReport(arrays, count);
+  }
   for (const ShadowedLight& light : lights)
   {
     if (light.enclosed)
@@ -575,6 +631,12 @@ std::optional<shadelab::Scene> vtkMeshVisibilityFilter::PlacedScene(vtkPolyData*
     given->frame == shadelab::SceneFrame::Mesh ? shadelab::placedOnMesh(*given, shadelab::meshExtentOf(input)) : *given;
   if (!this->SceneIsValid(shadelab::sceneProblems(scene)))
   {
+    return std::nullopt;
+  }
+  const std::string untargeted = shadelab::untargetedSamplingProblem(scene);
+  if (!untargeted.empty())
+  {
+    vtkErrorMacro(<< untargeted);
     return std::nullopt;
   }
   return scene;

@@ -44,11 +44,14 @@ struct Sampling
 /// rows x columns = samples cells (columns the largest divisor of samples not above its square
 /// root, so every count has an exact grid) and sample j falls at a random place in cell j,
 /// cells taken row by row. Independent: every point is uniform over the whole square.
+/// firstSample: where a later round of the same vertex's samples starts (its points are hashed
+/// from their indices from there on, laid over the square's cells again; SequentialSampling.h).
 class SampleSequence
 {
 public:
-  SampleSequence(std::uint64_t light, std::uint64_t vertex, const Sampling& sampling)
+  SampleSequence(std::uint64_t light, std::uint64_t vertex, const Sampling& sampling, std::uint64_t firstSample = 0)
     : key_(mix64(mix64(light + 0x9e3779b97f4a7c15ull) ^ vertex))
+    , firstHash_(firstSample + 1)
     , sampling_(sampling)
   {
     columns_ = static_cast<int>(std::sqrt(static_cast<double>(sampling.samples)));
@@ -66,7 +69,7 @@ public:
 
   glm::dvec2 point(int j) const
   {
-    const std::uint64_t bits = mix64(key_ ^ mix64(static_cast<std::uint64_t>(j) + 1));
+    const std::uint64_t bits = mix64(key_ ^ mix64(static_cast<std::uint64_t>(j) + firstHash_));
     const glm::dvec2 uniform(unitInterval(bits), unitInterval(mix64(bits)));
     if (!sampling_.stratified)
     {
@@ -81,6 +84,7 @@ public:
 
 private:
   std::uint64_t key_;
+  std::uint64_t firstHash_; // sample j is hashed from j + firstHash_
   Sampling sampling_;
   int columns_ = 1;
   double columnWidth_ = 1, rowHeight_ = 1;

@@ -41,6 +41,9 @@ const std::array<TermInfo, OcclusionTermCount> occlusionTerms = { {
   { "ambient_occlusion_std_error", 1, "Monte Carlo standard error of ambient_occlusion" },
   { "bent_normal", 3, "the mean direction from which the sky is seen (0 where it is not)" },
   { "sky_view_factor", 1, "the uniformly weighted fraction of the hemisphere from which the sky is seen" },
+  { "ambient_occlusion_rays", 1,
+    "with \"rays\": \"auto\", the occlusion rays the vertex drew to meet its share of the tolerance (at the "
+    "maximum: its standard error may be above the share)" },
 } };
 }
 
@@ -63,6 +66,11 @@ const TermInfo& termInfo(TotalTerm term)
 const TermInfo& termInfo(OcclusionTerm term)
 {
   return occlusionTerms[static_cast<int>(term)];
+}
+
+bool sceneHasTerm(const Scene& scene, OcclusionTerm term)
+{
+  return scene.ambientOcclusion && (term != OcclusionTerm::Rays || scene.ambientOcclusion->raysFromTolerance);
 }
 
 bool ArrayRequest::any(LightTerm term) const
@@ -110,10 +118,13 @@ std::vector<ArrayDescription> availableArrays(const Scene& scene, const std::str
     arrays.push_back({ totalArrayName(prefix, TotalTerm(t)), info.components, info.description });
   }
   arrays.push_back({ flagsArrayName(prefix), flagsInfo.components, flagsInfo.description });
-  for (int t = 0; scene.ambientOcclusion && t < OcclusionTermCount; ++t)
+  for (int t = 0; t < OcclusionTermCount; ++t)
   {
     const TermInfo& info = occlusionTerms[t];
-    arrays.push_back({ occlusionArrayName(prefix, OcclusionTerm(t)), info.components, info.description });
+    if (sceneHasTerm(scene, OcclusionTerm(t)))
+    {
+      arrays.push_back({ occlusionArrayName(prefix, OcclusionTerm(t)), info.components, info.description });
+    }
   }
   for (const NamedLight& light : scene.lights)
   {
@@ -136,7 +147,10 @@ void requestAll(const Scene& scene, ArrayRequest& request)
 {
   request.totals.fill(true);
   request.flags = true;
-  request.occlusion.fill(scene.ambientOcclusion.has_value());
+  for (int t = 0; t < OcclusionTermCount; ++t)
+  {
+    request.occlusion[t] = sceneHasTerm(scene, OcclusionTerm(t));
+  }
   for (std::size_t l = 0; l < scene.lights.size(); ++l)
   {
     for (int t = 0; t < LightTermCount; ++t)
@@ -179,9 +193,9 @@ bool requestByName(const Scene& scene, const std::string& name, ArrayRequest& re
     request.flags = true;
     return true;
   }
-  for (int t = 0; scene.ambientOcclusion && t < OcclusionTermCount; ++t)
+  for (int t = 0; t < OcclusionTermCount; ++t)
   {
-    if (name == occlusionTerms[t].name)
+    if (sceneHasTerm(scene, OcclusionTerm(t)) && name == occlusionTerms[t].name)
     {
       request.occlusion[t] = true;
       return true;
@@ -244,6 +258,7 @@ ArrayRequest selectArrays(const Scene& scene, const std::vector<std::string>& se
       // An estimate comes with its standard error.
       request.occlusion[int(OcclusionTerm::AmbientOcclusion)] |= scene.ambientOcclusion.has_value();
       request.occlusion[int(OcclusionTerm::AmbientOcclusionStdError)] |= scene.ambientOcclusion.has_value();
+      request.occlusion[int(OcclusionTerm::Rays)] |= sceneHasTerm(scene, OcclusionTerm::Rays);
       requestTermOnEveryLight(scene, termInfo(LightTerm::Visibility).name, request);
       requestTermOnEveryLight(scene, termInfo(LightTerm::VisibilityStdError).name, request);
     }

@@ -28,9 +28,10 @@ enum class OcclusionTerm
   AmbientOcclusionStdError,
   BentNormal,
   SkyViewFactor,
+  Rays, // "rays": "auto" only: how many each vertex drew
 };
-constexpr int OcclusionTermCount = 4;
-static_assert(static_cast<int>(OcclusionTerm::SkyViewFactor) + 1 == OcclusionTermCount, "OcclusionTermCount is stale");
+constexpr int OcclusionTermCount = 5;
+static_assert(static_cast<int>(OcclusionTerm::Rays) + 1 == OcclusionTermCount, "OcclusionTermCount is stale");
 
 struct TermInfo
 {
@@ -42,6 +43,9 @@ struct TermInfo
 const TermInfo& termInfo(LightTerm term);
 const TermInfo& termInfo(TotalTerm term);
 const TermInfo& termInfo(OcclusionTerm term);
+/// Whether the scene has the occlusion quantity: all but Rays with ambient occlusion, Rays
+/// where its count comes from a tolerance.
+bool sceneHasTerm(const Scene& scene, OcclusionTerm term);
 extern const TermInfo flagsInfo;
 
 /// Which arrays to compute. lights[i] follows scene.lights[i].

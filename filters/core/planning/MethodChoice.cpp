@@ -38,6 +38,11 @@ double diffusePeak(const LightSource& source, const Material& m)
   return largestComponent(emittedColor(source) * m.kd);
 }
 
+double ambientPeak(const LightSource& source, const Material& m)
+{
+  return largestComponent(emittedColor(source) * m.ka);
+}
+
 double specularPeak(const LightSource& source, const Material& m)
 {
   return largestComponent(emittedColor(source) * m.ks);
@@ -64,6 +69,40 @@ double directionError(double u, double reach, const glm::dvec3& target, double n
 {
   return nearest > 0 ? 4 * u * (reach + largestComponent(target)) / nearest : unbounded;
 }
+
+/// The ambient occlusion's share of what the tolerance left (`left`), and how it meets it.
+OcclusionChoice chooseOcclusion(const Scene& scene, double left)
+{
+  OcclusionChoice choice;
+  double ambient = 0;
+  for (const NamedLight& light : scene.lights)
+  {
+    ambient += isAmbient(light.source) ? ambientPeak(light.source, scene.material) : 0;
+  }
+  choice.weightInTotals = std::max(1.0, ambient);
+  const double share = left / choice.weightInTotals;
+  const AmbientOcclusion& occlusion = *scene.ambientOcclusion;
+  if (occlusion.raysFromTolerance)
+  {
+    choice.target = SamplingTarget{ share, occlusion.maxRays };
+    choice.predictedError = share;
+    return choice;
+  }
+  choice.predictedError = fixedRaysError(occlusion.sampling.samples);
+  if (!(choice.predictedError <= share))
+  {
+    throw std::invalid_argument("ambient occlusion's " + std::to_string(occlusion.sampling.samples) +
+      " rays per vertex can err by up to " + scientific(choice.predictedError) + " (95%), more than the " +
+      scientific(share) + " the tolerance leaves it: give \"rays\": \"auto\" (--ambient-occlusion auto) to draw "
+      "as many as the tolerance needs, or a larger tolerance");
+  }
+  return choice;
+}
+}
+
+double fixedRaysError(int n)
+{
+  return 1 / std::sqrt(double(n));
 }
 
 double distantApproximationError(const PointLight& light, const Material& material, bool specular, const MeshExtent& mesh)
@@ -112,7 +151,7 @@ double arithmeticError(Precision precision, const Scene& scene, const ArrayReque
     const LightSource& source = scene.lights[l].source;
     if (isAmbient(source))
     {
-      error += 2 * u * largestComponent(emittedColor(source) * m.ka);
+      error += 2 * u * ambientPeak(source, m);
       continue;
     }
     const double attenuation = peakAttenuation(source, mesh);
@@ -154,7 +193,7 @@ double MethodPlan::predictedError() const
   {
     sum += light.predictedError;
   }
-  return sum;
+  return sum + (occlusion ? occlusion->predictedError * occlusion->weightInTotals : 0);
 }
 
 std::vector<std::string> MethodPlan::describe() const
@@ -187,6 +226,18 @@ std::vector<std::string> MethodPlan::describe() const
     }
     lines.push_back(line);
   }
+  if (occlusion && occlusion->target)
+  {
+    const SamplingTarget& target = *occlusion->target;
+    lines.push_back("ambient occlusion: rays auto, within " + scientific(target.error) +
+      " at 95% (standard error at most " + scientific(target.standardError()) + "), " +
+      std::to_string(target.minimum()) + " to " + std::to_string(target.maximum) + " rays per vertex");
+  }
+  else if (occlusion)
+  {
+    lines.push_back("ambient occlusion: a fixed count of rays, predicted error " + scientific(occlusion->predictedError) +
+      " (95%)");
+  }
   return lines;
 }
 
@@ -205,20 +256,22 @@ MethodPlan chooseMethods(
   }
   MethodPlan plan;
   plan.tolerance = tolerance;
+  const double deterministic = scene.ambientOcclusion ? tolerance / 10 : tolerance;
   plan.precision = Precision::Float32;
   plan.arithmeticError = float32Allowed ? arithmeticError(Precision::Float32, scene, request, mesh) : unbounded;
-  if (!(plan.arithmeticError <= tolerance))
+  if (!(plan.arithmeticError <= deterministic))
   {
     plan.precision = Precision::Float64;
     plan.arithmeticError = arithmeticError(Precision::Float64, scene, request, mesh);
   }
-  if (!(plan.arithmeticError <= tolerance))
+  if (!(plan.arithmeticError <= deterministic))
   {
     throw std::invalid_argument("tolerance " + scientific(tolerance) +
       " is below the predicted float64 rounding error of this scene on this mesh, " +
-      scientific(plan.arithmeticError) + ": give a larger tolerance, or none for the exact methods");
+      scientific(plan.arithmeticError) + (deterministic < tolerance ? ", which may take a tenth of it (the rays take the rest)" : "") +
+      ": give a larger tolerance, or none for the exact methods");
   }
-  double left = tolerance - plan.arithmeticError;
+  double left = deterministic - plan.arithmeticError;
 
   struct Candidate
   {
@@ -311,6 +364,10 @@ MethodPlan chooseMethods(
     }
     left -= choice.predictedError;
     plan.lights.push_back(choice);
+  }
+  if (scene.ambientOcclusion)
+  {
+    plan.occlusion = chooseOcclusion(scene, tolerance - plan.predictedError());
   }
   return plan;
 }

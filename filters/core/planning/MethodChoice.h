@@ -7,7 +7,9 @@
 #include "MeshExtent.h"
 #include "Scene.h"
 #include "LightMethod.h"
+#include "SequentialSampling.h"
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,15 +23,29 @@ struct LightChoice
   std::string why;           // why no cheaper method was taken, or "" when the cheapest was
 };
 
+/// How the scene's ambient occlusion meets its share of the tolerance.
+struct OcclusionChoice
+{
+  /// Rays drawn per vertex to this target ("rays": "auto"); nullopt: the scene's fixed count.
+  std::optional<SamplingTarget> target;
+  /// The occlusion's predicted error at 95% confidence: the target's, or a fixed count's bound.
+  double predictedError = 0;
+  /// How much an error of the occlusion moves the totals: the ambient lights' ka La (at least 1,
+  /// for the ambient_occlusion array itself).
+  double weightInTotals = 1;
+};
+
 struct MethodPlan
 {
   Precision precision = Precision::Float64;
   double arithmeticError = 0; // predicted rounding error of the chosen precision
   std::vector<LightChoice> lights; // one per scene light (ambient lights have nothing to choose)
+  std::optional<OcclusionChoice> occlusion; // where the scene has ambient occlusion
   double tolerance = 0;
 
   std::vector<LightMethod> methods() const;
-  /// arithmeticError plus every light's predictedError: at most tolerance.
+  /// arithmeticError, every light's predictedError and the sampled estimates' errors as they
+  /// reach the arrays: at most tolerance (the sampled part at 95% confidence).
   double predictedError() const;
   /// One line for the precision, then one per light, for the console and the field data.
   std::vector<std::string> describe() const;
@@ -48,10 +64,20 @@ double powApproximationError(double lobeError, const LightSource& light, const M
 /// precision.
 double arithmeticError(Precision precision, const Scene& scene, const ArrayRequest& request, const MeshExtent& mesh);
 
-/// The cheapest plan whose predicted error is at most tolerance (> 0). scene must have no
+/// The error at 95% confidence of a fraction estimated from n rays, whatever the fraction:
+/// two standard errors of a mean of n values in [0, 1], whose variance is at most 1/4
+/// (stratification only lowers it), so 1 / sqrt(n).
+double fixedRaysError(int n);
+
+/// The cheapest plan whose predicted error is at most tolerance (> 0). Where the scene samples
+/// (ambient occlusion), the arithmetic and approximations may take a tenth of the tolerance
+/// and the sampling the rest, what they leave included: a sampled estimate's cost grows as
+/// the inverse square of its error, so the nine tenths cost 1.23 times the rays of all of it,
+/// while float32 and the approximations rarely need more than a tenth. scene must have no
 /// sceneProblems() and request must come from selectArrays(scene, ...). float32Allowed: false
 /// when the mesh or scene does not fit float32 at all. Throws std::invalid_argument when even
-/// float64 with exact methods is predicted to exceed the tolerance.
+/// float64 with exact methods is predicted to exceed the tolerance, or a fixed count of rays
+/// to exceed the share left for it.
 MethodPlan chooseMethods(const Scene& scene, const ArrayRequest& request, const MeshExtent& mesh, double tolerance,
   bool float32Allowed = true);
 }

@@ -135,4 +135,14 @@ std::vector<SceneProblem> sceneProblems(const Scene& scene, Precision precision)
   }
   return list.problems;
 }
+
+std::string untargetedSamplingProblem(const Scene& scene)
+{
+  if (scene.ambientOcclusion && scene.ambientOcclusion->raysFromTolerance && !scene.ambientOcclusion->target)
+  {
+    return "ambient occlusion with \"rays\": \"auto\" takes its count of rays from a tolerance: give one "
+           "(shadelab shade --tolerance, the filter's Tolerance), or a number of rays";
+  }
+  return "";
+}
 }

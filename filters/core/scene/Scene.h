@@ -5,6 +5,7 @@
 #include "Material.h"
 #include "Precision.h"
 #include "SampleSequence.h"
+#include "SequentialSampling.h"
 #include "Vec3.h"
 
 #include <cstddef>
@@ -42,6 +43,12 @@ enum class SceneFrame
 struct AmbientOcclusion
 {
   Sampling sampling{ 64, true };
+  /// "rays": "auto": each vertex draws as many rays as its share of a tolerance needs, at most
+  /// maxRays; the tolerance's plan (MethodChoice.h) sets the target. Without a tolerance there is
+  /// no target, and the filters refuse the scene.
+  bool raysFromTolerance = false;
+  int maxRays = 4096;
+  std::optional<SamplingTarget> target;
   /// Occluders farther than this do not count (infinite: all do). In the scene's frame.
   double maxDistance = std::numeric_limits<double>::infinity();
 };
@@ -84,4 +91,8 @@ std::string meshCoordinateProblem(double reach, Precision precision);
 /// minimum distance), so that finite input never gives Inf. The scene file parser and the
 /// VTK filter both report these, so the rules live here once.
 std::vector<SceneProblem> sceneProblems(const Scene& scene, Precision precision = Precision::Float64);
+
+/// Why the scene's rays cannot be cast as it stands: ambient occlusion with "rays": "auto"
+/// that no tolerance has given a target (MethodChoice.h); "" when they can.
+std::string untargetedSamplingProblem(const Scene& scene);
 }

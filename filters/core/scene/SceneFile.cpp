@@ -27,11 +27,27 @@ NamedLight readLight(const JsonNode& node, std::size_t index, const std::string&
 
 AmbientOcclusion readAmbientOcclusion(const JsonNode& node)
 {
-  node.expectObject({ "rays", "stratified", "max_distance" });
+  node.expectObject({ "rays", "max_rays", "stratified", "max_distance" });
   AmbientOcclusion occlusion;
-  if (node.has("rays"))
+  if (node.has("rays") && node.at("rays").isString())
+  {
+    if (node.at("rays").text() != "auto")
+    {
+      node.at("rays").fail("must be a whole number of rays per vertex, or \"auto\" (as many as a tolerance needs)");
+    }
+    occlusion.raysFromTolerance = true;
+  }
+  else if (node.has("rays"))
   {
     occlusion.sampling.samples = node.at("rays").wholeNumber(2, maxSamplesPerVertex);
+  }
+  if (node.has("max_rays"))
+  {
+    if (!occlusion.raysFromTolerance)
+    {
+      node.at("max_rays").fail("is the most rays \"rays\": \"auto\" may draw per vertex: give \"rays\": \"auto\" with it, or leave it out");
+    }
+    occlusion.maxRays = node.at("max_rays").wholeNumber(samplingRound, maxSamplesPerVertex);
   }
   if (node.has("stratified"))
   {

@@ -27,12 +27,13 @@ constexpr std::uint64_t skyViewSeed = occlusionSeed + 0x10;
 class RaySamples
 {
 public:
-  RaySamples(std::uint64_t seed, PointId vertex, const Sampling& sampling)
+  /// firstSample: where this round starts among the vertex's samples (even).
+  RaySamples(std::uint64_t seed, PointId vertex, const Sampling& sampling, int firstSample = 0)
     : count_(sampling.samples)
     , stratified_(sampling.stratified)
-    , first_(seed, static_cast<std::uint64_t>(vertex), { std::max(1, count_ / 2), true })
-    , second_(seed + 1, static_cast<std::uint64_t>(vertex), { std::max(1, count_ / 2), true })
-    , independent_(seed + 2, static_cast<std::uint64_t>(vertex), { count_, false })
+    , first_(seed, static_cast<std::uint64_t>(vertex), { std::max(1, count_ / 2), true }, firstSample / 2)
+    , second_(seed + 1, static_cast<std::uint64_t>(vertex), { std::max(1, count_ / 2), true }, firstSample / 2)
+    , independent_(seed + 2, static_cast<std::uint64_t>(vertex), { count_, false }, firstSample)
   {
   }
 
@@ -92,6 +93,41 @@ void forEachRay(const OccluderMesh& occluders, const RayVertex& vertex, const Ra
       seen(directions[j], ((hidden >> j) & 1u) != 0);
     }
   }
+}
+
+/// The standard error of a fraction of open rays (MonteCarloEstimate's, of 0s and 1s) after
+/// `rays` rays. The pairs' variance is D / N^2 for D pairs that disagree, a small count, and a
+/// count of 0 to 2 where the silhouette crosses a few cells understates the error (98.7% within
+/// three standard errors on the plane under a sphere). One ray's variance is added:
+/// (D + 1) / N^2, the mean of a count's rate given D under a flat prior. Never below 1 / N,
+/// one ray's weight.
+double openFractionError(const MonteCarloEstimate& open, int rays)
+{
+  return std::hypot(open.standardError().x, 1.0 / rays);
+}
+
+/// Casts the vertex's rays of one estimate (sample points from `seed`), calling
+/// seen(direction, hidden) for each in sample order: settings' fixed count in one round or,
+/// with a target, rounds until the open fraction in `open` meets it (SequentialSampling.h).
+/// Returns how many rays were cast.
+template <typename Direction, typename Seen>
+int drawRays(const OccluderMesh& occluders, const RayVertex& vertex, std::uint64_t seed, const OcclusionSettings& settings,
+  const MonteCarloEstimate& open, Direction direction, Seen seen)
+{
+  if (!settings.target)
+  {
+    forEachRay(occluders, vertex, RaySamples(seed, vertex.id, settings.sampling), settings.maxDistance, direction, seen);
+    return settings.sampling.samples;
+  }
+  int drawn = 0;
+  for (int round = settings.target->nextRound(0, 0); round > 0;
+       round = settings.target->nextRound(drawn, openFractionError(open, drawn)))
+  {
+    const RaySamples samples(seed, vertex.id, { round, settings.sampling.stratified }, drawn);
+    forEachRay(occluders, vertex, samples, settings.maxDistance, direction, seen);
+    drawn += round;
+  }
+  return drawn;
 }
 }
 
@@ -209,10 +245,9 @@ OcclusionEstimate ambientOcclusion(const OccluderMesh& occluders, const RayVerte
   {
     return estimate;
   }
-  const RaySamples samples(occlusionSeed, vertex.id, settings.sampling);
   MonteCarloEstimate open(settings.sampling.stratified);
   glm::dvec3 openDirections(0.0);
-  forEachRay(occluders, vertex, samples, settings.maxDistance,
+  estimate.rays = drawRays(occluders, vertex, occlusionSeed, settings, open,
     [&](const glm::dvec2& u) { return cosineWeightedDirection(vertex.normal, u).direction; },
     [&](const glm::dvec3& direction, bool hidden)
     {
@@ -220,23 +255,18 @@ OcclusionEstimate ambientOcclusion(const OccluderMesh& occluders, const RayVerte
       openDirections += hidden ? glm::dvec3(0.0) : direction;
     });
   estimate.occlusion = open.mean().x;
-  // The pairs' variance is D / N^2 for D pairs that disagree, a small count, and a count of 0
-  // to 2 where the silhouette crosses a few cells understates the error (98.7% within three
-  // standard errors on the plane under a sphere). One ray's variance is added: (D + 1) / N^2,
-  // the mean of a count's rate given D under a flat prior. Never below 1 / N, one ray's weight.
-  estimate.standardError = std::hypot(open.standardError().x, 1.0 / samples.count());
+  estimate.standardError = openFractionError(open, estimate.rays);
   if (settings.bentNormal && openDirections != glm::dvec3(0.0))
   {
     estimate.bentNormal = glm::normalize(openDirections);
   }
   if (settings.skyViewFactor)
   {
-    const RaySamples skySamples(skyViewSeed, vertex.id, settings.sampling);
-    int unblocked = 0;
-    forEachRay(occluders, vertex, skySamples, settings.maxDistance,
+    MonteCarloEstimate unblocked(settings.sampling.stratified);
+    drawRays(occluders, vertex, skyViewSeed, settings, unblocked,
       [&](const glm::dvec2& u) { return uniformHemisphereDirection(vertex.normal, u); },
-      [&](const glm::dvec3&, bool hidden) { unblocked += hidden ? 0 : 1; });
-    estimate.skyViewFactor = double(unblocked) / skySamples.count();
+      [&](const glm::dvec3&, bool hidden) { unblocked.add(Rgb(hidden ? 0.0 : 1.0)); });
+    estimate.skyViewFactor = unblocked.mean().x;
   }
   return estimate;
 }

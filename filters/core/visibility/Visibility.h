@@ -6,11 +6,13 @@
 #include "DistributedLight.h"
 #include "OccluderMesh.h"
 #include "SampleSequence.h"
+#include "SequentialSampling.h"
 
 #include <glm/vec3.hpp>
 
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <vector>
 
 namespace shadelab
@@ -103,7 +105,10 @@ bool enclosesPoint(const OccluderMesh& occluders, const glm::dvec3& point);
 /// How ambient occlusion is estimated.
 struct OcclusionSettings
 {
+  /// The rays per vertex and whether they are stratified; with a target, the rays are drawn in
+  /// rounds of their own count, each stratified, until the target is met (SequentialSampling.h).
   Sampling sampling{ 64, true };
+  std::optional<SamplingTarget> target;
   /// Occluders farther than this from the vertex do not count (infinite: all count).
   double maxDistance = std::numeric_limits<double>::infinity();
   bool skyViewFactor = false; // also the uniformly weighted fraction, with rays of its own
@@ -116,11 +121,13 @@ struct OcclusionEstimate
   double standardError = 0; // of occlusion
   glm::dvec3 bentNormal{ 0.0 }; // unit; (0, 0, 0) where every ray is blocked or not asked for
   double skyViewFactor = 1; // the uniformly weighted fraction, when asked for
+  int rays = 0;             // cast for occlusion (as many again for the sky view factor, or its own count with a target)
 };
 
 /// Ambient occlusion at the vertex: settings.sampling.samples cosine-weighted directions about
-/// its normal, each vertex with its own pattern (a hash of its id and the sample), so that the
-/// estimate is the same bits on any number of threads. A vertex without a normal gets the open
-/// sky's values: 1, standard error 0, no bent normal.
+/// its normal, or with a target as many as it takes, each vertex with its own pattern (a hash
+/// of its id and the sample), so that the estimate is the same bits on any number of threads.
+/// A vertex without a normal gets the open sky's values: 1, standard error 0, no bent normal,
+/// no rays.
 OcclusionEstimate ambientOcclusion(const OccluderMesh& occluders, const RayVertex& vertex, const OcclusionSettings& settings);
 }

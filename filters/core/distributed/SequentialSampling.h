@@ -1,0 +1,34 @@
+#pragma once
+// Sampling until an estimate meets the error it is allowed (docs/formulas.md section 13.7):
+// rounds of samples, each stratified on its own, until the standard error is at most half the
+// allowed error, after at least the count the rule of three sets and never past a maximum.
+// Every round is a function of the vertex's own samples only, so where a vertex stops, and
+// its estimate, are the same bits on any number of threads and processes.
+
+namespace shadelab
+{
+/// Rounds are whole multiples of this many samples: a packet of rays (OccluderMesh::bundleSize),
+/// and an even count, so that every stratum of a round holds its pair (MonteCarloEstimate).
+constexpr int samplingRound = 16;
+
+/// The error a sampled estimate is allowed, its share of a tolerance, and the most samples a
+/// vertex may draw for it.
+struct SamplingTarget
+{
+  /// The estimate is within this of its mean at 95% confidence: its standard error is at most
+  /// half of it (two standard errors, a little more than the normal's 1.96). > 0.
+  double error = 0;
+  int maximum = 4096;
+
+  double standardError() const { return error / 2; }
+  /// The rule of three: an estimate that has seen n samples agree (every ray open, say) puts
+  /// what it has not seen below 3 / n at 95% confidence, so no vertex stops before
+  /// 3 / error samples (in whole rounds, and at most the maximum).
+  int minimum() const;
+  /// How many samples the next round draws after `drawn` samples whose standard error is
+  /// `standardError`: 0 when the target is met past the minimum, or the maximum is reached.
+  /// Otherwise the count that would meet it if the standard error falls as 1 / sqrt(n), in
+  /// whole rounds, at most as many as were drawn (the estimate of a few samples is rough).
+  int nextRound(int drawn, double standardError) const;
+};
+}
