@@ -217,7 +217,7 @@ TEST_F(Cli, ToleranceChoosesAndReportsMethods)
   EXPECT_EQ(both.err, "--precision excludes --tolerance\nRun with --help for more information.\n");
   expectError("shade " + goodMesh() + " -s " + scene + " -o " + out + " --tolerance 1e-30",
     goodMesh() + ": tolerance 1e-30 is below the predicted float64 rounding error of this scene on this mesh, "
-                 "4.7e-14: give a larger tolerance, or none for the exact methods");
+                 "2.9e-15: give a larger tolerance, or none for the exact methods");
 }
 
 TEST_F(Cli, ReadsObjAndStlAndWritesLegacyVtk)

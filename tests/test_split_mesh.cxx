@@ -11,10 +11,12 @@
 
 #include "vtkCellData.h"
 #include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
 #include "vtkMPIController.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
+#include "vtkStringArray.h"
 #include "vtkXMLPPolyDataReader.h"
 #include "vtkXMLPPolyDataWriter.h"
 
@@ -107,12 +109,28 @@ TEST_P(SplitMesh, ShadesEachPieceAsTheWholeMesh)
   }
 }
 
-// A scene placed on the mesh's extent, under a tolerance that plans on it too.
+/// The tolerance's plan, as the output's field data holds it.
+std::vector<std::string> methodsNote(vtkPolyData* output)
+{
+  std::vector<std::string> lines;
+  auto* note = vtkStringArray::SafeDownCast(output->GetFieldData()->GetAbstractArray("shadelab_methods"));
+  for (vtkIdType i = 0; note && i < note->GetNumberOfValues(); ++i)
+  {
+    lines.push_back(note->GetValue(i));
+  }
+  return lines;
+}
+
+// A scene placed on the mesh's extent, under a tolerance that plans on it too: with float32's
+// rounding measured on the same sample of points whatever the pieces.
 TEST_P(SplitMesh, PlacesTheSceneOnTheWholeMesh)
 {
   const vtkSmartPointer<vtkPolyData> whole = shaded(mesh, "studio_mesh.json", { "totals" }, nullptr, 1e-3);
   const vtkSmartPointer<vtkPolyData> piece = shaded(myPiece(mesh), "studio_mesh.json", { "totals" }, processes(), 1e-3);
   EXPECT_GT(expectPieceOfWhole(whole, piece), 3);
+  ASSERT_FALSE(methodsNote(whole).empty());
+  EXPECT_NE(methodsNote(whole)[0].find("measured on a sample of the points"), std::string::npos) << methodsNote(whole)[0];
+  EXPECT_EQ(methodsNote(piece), methodsNote(whole));
 }
 
 // The normals filter alone, computed and flipped outward on the whole mesh.

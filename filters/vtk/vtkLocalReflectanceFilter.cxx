@@ -16,6 +16,7 @@
 #include "vtkCellArray.h"
 #include "vtkCellArrayIterator.h"
 #include "vtkCellData.h"
+#include "vtkCommunicator.h"
 #include "vtkDataArrayRange.h"
 #include "vtkDoubleArray.h"
 #include "vtkFloatArray.h"
@@ -147,11 +148,15 @@ struct ShadeAllPoints
                 shadelab::Vec3<T>(T(n[0]), T(n[1]), T(n[2])));
             });
         });
-      progressOwner->UpdateProgress(static_cast<double>(last) / count);
+      if (progressOwner)
+      {
+        progressOwner->UpdateProgress(static_cast<double>(last) / count);
+      }
     }
   }
 };
 
+/// The requested arrays, shaded in precision T. progressOwner (or nullptr) reports progress.
 template <typename T>
 std::vector<vtkSmartPointer<vtkDataArray>> shade(const shadelab::Scene& scene,
   const shadelab::ArrayRequest& request, const std::vector<shadelab::LightMethod>& methods,
@@ -167,6 +172,80 @@ std::vector<vtkSmartPointer<vtkDataArray>> shade(const shadelab::Scene& scene,
     worker(points, normals); // other value types, through the generic vtkDataArray API
   }
   return arrays.arrays;
+}
+
+/// How many points of a mesh (or piece) are shaded in both precisions to measure what float32
+/// rounds: evenly spaced, about this many.
+constexpr vtkIdType roundingSampleSize = 16384;
+
+/// Where a rounding can put a local light on the other side of a vertex's horizon, and switch
+/// its terms on or off (a whole highlight, at a grazing light that the viewer sees mirrored):
+/// |n.s| below this. float32 rounds n.s by about 1e-7 for a light as far from the mesh as the
+/// mesh is large; the band leaves a thousandfold margin and holds few vertices (every vertex
+/// of a plane under a grazing light, which are then all measured).
+constexpr double horizonBand = 1e-4;
+
+/// Whether each point's normal is within horizonBand of a local light's horizon: no evenly
+/// spaced sample is sure to meet the few points where a rounding switches a light on or off.
+std::vector<unsigned char> pointsAtAHorizon(const shadelab::Scene& scene, vtkDataArray* points, vtkDataArray* normals)
+{
+  std::vector<shadelab::LocalEvaluation> lights;
+  shadelab::EvaluationContext context;
+  context.lineOfSight = scene.viewer.lineOfSight();
+  for (const shadelab::NamedLight& light : scene.lights)
+  {
+    if (!shadelab::isDistributed(light.source)) // (a map's preparation would project it)
+    {
+      const shadelab::LightEvaluation evaluation = shadelab::prepareEvaluation(light.source, context);
+      if (const auto* local = std::get_if<shadelab::LocalEvaluation>(&evaluation))
+      {
+        lights.push_back(*local);
+      }
+    }
+  }
+  const vtkIdType count = points->GetNumberOfTuples();
+  std::vector<unsigned char> atHorizon(static_cast<std::size_t>(count), 0);
+  const auto pointRange = vtk::DataArrayTupleRange<3>(points);
+  const auto normalRange = vtk::DataArrayTupleRange<3>(normals);
+  vtkSMPTools::For(0, count,
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      for (vtkIdType i = begin; i < end; ++i)
+      {
+        const auto p = pointRange[i];
+        const auto n = normalRange[i];
+        const glm::dvec3 normal(n[0], n[1], n[2]);
+        if (!shadelab::isFinite(normal) || normal == glm::dvec3(0.0))
+        {
+          continue; // shaded with ambient light only
+        }
+        for (const shadelab::LocalEvaluation& light : lights)
+        {
+          const double cosine = glm::dot(shadelab::unitVector(normal), shadelab::towardLight(light, { p[0], p[1], p[2] }).toLight);
+          atHorizon[static_cast<std::size_t>(i)] |= std::abs(cosine) < horizonBand;
+        }
+      }
+    });
+  return atHorizon;
+}
+
+/// The largest difference between two shadings of the same arrays (float32's and float64's),
+/// over every component of the real-valued arrays (the flags are bits, not values).
+double largestDifference(
+  const std::vector<vtkSmartPointer<vtkDataArray>>& a, const std::vector<vtkSmartPointer<vtkDataArray>>& b)
+{
+  double largest = 0;
+  for (std::size_t k = 0; k < a.size(); ++k)
+  {
+    if (!a[k]->IsA("vtkUnsignedCharArray"))
+    {
+      for (vtkIdType v = 0; v < a[k]->GetNumberOfValues(); ++v)
+      {
+        largest = std::max(largest, std::abs(a[k]->GetVariantValue(v).ToDouble() - b[k]->GetVariantValue(v).ToDouble()));
+      }
+    }
+  }
+  return largest;
 }
 }
 
@@ -408,6 +487,7 @@ struct vtkLocalReflectanceFilter::ShadingPlan
   shadelab::ArrayRequest request;
   std::vector<shadelab::LightMethod> methods;
   shadelab::Precision precision = shadelab::Precision::Float32;
+  bool float32Fits = true; // the mesh's coordinates and the scene's values fit float32
 };
 
 int vtkLocalReflectanceFilter::ShadeMesh(vtkPolyData* input, vtkPolyData* output, const shadelab::PieceLayout* split)
@@ -422,7 +502,7 @@ int vtkLocalReflectanceFilter::ShadeMesh(vtkPolyData* input, vtkPolyData* output
   vtkMultiProcessController* processes = split ? this->Controller.Get() : nullptr;
   this->NormalsStep->SetController(processes);
   this->VisibilityStep->SetController(processes);
-  const std::optional<ShadingPlan> plan = this->PlanShading(input, processes, split != nullptr);
+  std::optional<ShadingPlan> plan = this->PlanShading(input, processes, split != nullptr);
   if (!plan)
   {
     return 0;
@@ -437,6 +517,19 @@ int vtkLocalReflectanceFilter::ShadeMesh(vtkPolyData* input, vtkPolyData* output
   {
     output->Initialize();
     vtkErrorMacro("preparing the normals failed (see the error above)");
+    return 0;
+  }
+  // Under a tolerance, what float32 rounds is measured on a sample of the points, with the
+  // normals they are shaded with, and the methods chosen again with it (the same outcome on
+  // every process, which all measure the same largest difference).
+  if (this->Tolerance > 0 &&
+    !this->ChooseMethods(*plan,
+      plan->float32Fits ? std::optional<double>(this->SampledFloat32Difference(
+                            input, shadingNormals, *plan, processes, split ? &split->pieceIds : nullptr))
+                        : std::nullopt,
+      false))
+  {
+    output->Initialize();
     return 0;
   }
 
@@ -575,32 +668,101 @@ bool vtkLocalReflectanceFilter::ChooseArraysAndMethods(ShadingPlan& plan)
   try
   {
     plan.request = shadelab::selectArrays(plan.scene, this->ArraySelection);
-    if (this->Tolerance > 0)
-    {
-      const bool float32Fits =
-        shadelab::meshCoordinateProblem(plan.extent.reach, shadelab::Precision::Float32).empty() &&
-        shadelab::sceneProblems(plan.scene, shadelab::Precision::Float32).empty();
-      this->MethodPlan = shadelab::chooseMethods(plan.scene, plan.request, plan.extent, this->Tolerance, float32Fits);
-      plan.precision = this->MethodPlan->precision;
-      plan.methods = this->MethodPlan->methods();
-      if (this->MethodPlan->occlusion)
-      {
-        plan.scene.ambientOcclusion->target = this->MethodPlan->occlusion->target;
-      }
-    }
   }
   catch (const std::invalid_argument& error)
   {
     vtkErrorMacro(<< error.what());
     return false;
   }
-  const std::string untargeted = shadelab::untargetedSamplingProblem(plan.scene);
+  plan.float32Fits = shadelab::meshCoordinateProblem(plan.extent.reach, shadelab::Precision::Float32).empty() &&
+    shadelab::sceneProblems(plan.scene, shadelab::Precision::Float32).empty();
+  if (this->Tolerance > 0 && !this->ChooseMethods(plan, std::nullopt, true))
+  {
+    return false;
+  }
+  // Under a tolerance, its plan gives every "auto" its target (in the second pass at the latest).
+  const std::string untargeted = this->Tolerance > 0 ? "" : shadelab::untargetedSamplingProblem(plan.scene);
   if (!untargeted.empty())
   {
     vtkErrorMacro(<< untargeted);
     return false;
   }
   return true;
+}
+
+bool vtkLocalReflectanceFilter::ChooseMethods(
+  ShadingPlan& plan, std::optional<double> sampledFloat32Difference, bool roundingMeasuredLater)
+{
+  try
+  {
+    this->MethodPlan = shadelab::chooseMethods(
+      plan.scene, plan.request, plan.extent, this->Tolerance, plan.float32Fits, sampledFloat32Difference);
+  }
+  catch (const shadelab::RoundingAboveTolerance& error)
+  {
+    if (!roundingMeasuredLater)
+    {
+      vtkErrorMacro(<< error.what());
+    }
+    return roundingMeasuredLater;
+  }
+  catch (const std::invalid_argument& error)
+  {
+    vtkErrorMacro(<< error.what());
+    return false;
+  }
+  plan.precision = this->MethodPlan->precision;
+  plan.methods = this->MethodPlan->methods();
+  if (this->MethodPlan->occlusion)
+  {
+    plan.scene.ambientOcclusion->target = this->MethodPlan->occlusion->target;
+  }
+  return true;
+}
+
+double vtkLocalReflectanceFilter::SampledFloat32Difference(vtkPolyData* input, vtkDataArray* shadingNormals,
+  const ShadingPlan& plan, vtkMultiProcessController* processes, const std::vector<vtkIdType>* pieceIds)
+{
+  // Points evenly spaced by their id in the whole mesh, and those where a light grazes the
+  // surface: on a split mesh, the pieces' samples make up the whole mesh's, whatever the pieces.
+  const vtkIdType count = input->GetNumberOfPoints();
+  auto idOf = [&](vtkIdType i) { return pieceIds ? (*pieceIds)[static_cast<std::size_t>(i)] : i; };
+  vtkIdType wholeCount = count;
+  if (processes) // global ids number the whole mesh's points 0 to n-1
+  {
+    const vtkIdType largestId = count > 0 ? *std::max_element(pieceIds->begin(), pieceIds->end()) : -1;
+    processes->AllReduce(&largestId, &wholeCount, 1, vtkCommunicator::MAX_OP);
+    ++wholeCount;
+  }
+  const vtkIdType stride = std::max<vtkIdType>(1, (wholeCount + roundingSampleSize - 1) / roundingSampleSize);
+  const std::vector<unsigned char> grazed = pointsAtAHorizon(plan.scene, input->GetPoints()->GetData(), shadingNormals);
+  std::vector<vtkIdType> sample;
+  for (vtkIdType i = 0; i < count; ++i)
+  {
+    if (idOf(i) % stride == 0 || grazed[static_cast<std::size_t>(i)])
+    {
+      sample.push_back(i);
+    }
+  }
+  double largest = 0;
+  if (!sample.empty())
+  {
+    const vtkSmartPointer<vtkDataArray> points = shadelab::tuplesAt(input->GetPoints()->GetData(), sample);
+    const vtkSmartPointer<vtkDataArray> normals = shadelab::tuplesAt(shadingNormals, sample);
+    // Exact methods, every light visible and the open sky: every term that the scene can make
+    // nonzero is, and rounds as it would in the shading.
+    const std::vector<shadelab::LightMethod> exact(plan.scene.lights.size());
+    const shadelab::ShadingInputs open;
+    largest = largestDifference(shade<float>(plan.scene, plan.request, exact, "", points, normals, open, nullptr),
+      shade<double>(plan.scene, plan.request, exact, "", points, normals, open, nullptr));
+  }
+  if (processes) // the largest over every piece, the same on every process
+  {
+    double everywhere = 0;
+    processes->AllReduce(&largest, &everywhere, 1, vtkCommunicator::MAX_OP);
+    largest = everywhere;
+  }
+  return largest;
 }
 
 std::vector<std::string> vtkLocalReflectanceFilter::WritableArrayNames(vtkPolyData* input, const shadelab::Scene& scene) const

@@ -215,6 +215,18 @@ private:
   /// The arrays the selection asks for, and the methods and precision: the explicit ones, or
   /// those the tolerance chooses (MethodPlan).
   bool ChooseArraysAndMethods(ShadingPlan& plan);
+  /// The tolerance's methods and precision (MethodPlan) for the plan's scene and arrays, with
+  /// float32's rounding predicted a priori, or from the largest difference measured on a
+  /// sample. roundingMeasuredLater: a prediction of rounding above the tolerance is not yet
+  /// an error (the sample may show less).
+  bool ChooseMethods(ShadingPlan& plan, std::optional<double> sampledFloat32Difference, bool roundingMeasuredLater);
+  /// The largest difference between float32 and float64 shading (exact methods, every light
+  /// visible, the open sky), shaded with these normals, over a sample of the points: about
+  /// 16384 evenly spaced by their id in the whole mesh (pieceIds on a split mesh), and every
+  /// point where a light grazes the surface. On a split mesh, over every piece (a collective
+  /// call): the same as the whole mesh's, whatever the pieces.
+  double SampledFloat32Difference(vtkPolyData* input, vtkDataArray* shadingNormals, const ShadingPlan& plan,
+    vtkMultiProcessController* processes, const std::vector<vtkIdType>* pieceIds);
   /// Every point array the filter could write for the scene on this input.
   std::vector<std::string> WritableArrayNames(vtkPolyData* input, const shadelab::Scene& scene) const;
   /// Whether the input lacks all of them.

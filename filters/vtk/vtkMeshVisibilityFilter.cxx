@@ -63,17 +63,6 @@ struct ShadowedLight
     return evaluation.position;
   }
 
-  /// The unit direction to the light from p, and how far it is.
-  shadelab::LightDirection towardLight(const glm::dvec3& p) const
-  {
-    if (evaluation.geometry == shadelab::LocalEvaluation::Geometry::Distant)
-    {
-      return { evaluation.toLight, std::numeric_limits<double>::infinity() };
-    }
-    const glm::dvec3 d = evaluation.position - p;
-    const double distance = glm::length(d);
-    return { distance > 0 ? d / distance : glm::dvec3(0.0), distance };
-  }
 };
 
 /// An array of count tuples in huge pages (float32 for the estimates, 64-bit words for a distributed
@@ -320,7 +309,7 @@ void traceShadows(const shadelab::OccluderMesh& occluders, const ShadowedLight& 
   shadelab::LightVisibility seen[groupSize];
   for (int k = 0; k < group.size; ++k)
   {
-    directions[k] = light.towardLight(group.vertices[k].position);
+    directions[k] = shadelab::towardLight(light.evaluation, group.vertices[k].position);
   }
   shadelab::lightVisibility(occluders, group.vertices, directions, group.size, twoSided, seen);
   for (int k = 0; k < group.size; ++k)

@@ -8,7 +8,10 @@
 #include "SpotCone.h"
 #include "Vec3.h"
 
+#include <glm/geometric.hpp>
+
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <variant>
@@ -53,6 +56,26 @@ struct DistributedEvaluation
 };
 
 using LightEvaluation = std::variant<AmbientEvaluation, LocalEvaluation, DistributedEvaluation>;
+
+/// Where a light is seen from a vertex: its unit direction, and its distance (infinite for a
+/// distant light).
+struct LightDirection
+{
+  glm::dvec3 toLight{ 0.0 };
+  double distance = std::numeric_limits<double>::infinity();
+};
+
+/// Where the local light is seen from p (a point or spot light at p itself: direction 0).
+inline LightDirection towardLight(const LocalEvaluation& light, const glm::dvec3& p)
+{
+  if (light.geometry == LocalEvaluation::Geometry::Distant)
+  {
+    return { light.toLight, std::numeric_limits<double>::infinity() };
+  }
+  const glm::dvec3 d = light.position - p;
+  const double distance = glm::length(d);
+  return { distance > 0 ? d / distance : glm::dvec3(0.0), distance };
+}
 
 /// What a light's preparation needs from outside the light.
 struct EvaluationContext

@@ -100,6 +100,11 @@ OcclusionChoice chooseOcclusion(const Scene& scene, double left)
 }
 }
 
+double sampledFloat32Error(double largestSampledDifference)
+{
+  return 2 * largestSampledDifference;
+}
+
 double fixedRaysError(int n)
 {
   return 1 / std::sqrt(double(n));
@@ -201,7 +206,7 @@ std::vector<std::string> MethodPlan::describe() const
   std::vector<std::string> lines;
   lines.push_back(std::string("tolerance ") + scientific(tolerance) + ", predicted error " +
     scientific(predictedError()) + "; arithmetic " + (precision == Precision::Float32 ? "float32" : "float64") +
-    " (rounding " + scientific(arithmeticError) + ")");
+    " (rounding " + scientific(arithmeticError) + (roundingSampled ? ", measured on a sample of the points" : "") + ")");
   for (const LightChoice& light : lights)
   {
     std::string line = light.name + ": ";
@@ -241,8 +246,8 @@ std::vector<std::string> MethodPlan::describe() const
   return lines;
 }
 
-MethodPlan chooseMethods(
-  const Scene& scene, const ArrayRequest& request, const MeshExtent& mesh, double tolerance, bool float32Allowed)
+MethodPlan chooseMethods(const Scene& scene, const ArrayRequest& request, const MeshExtent& mesh, double tolerance,
+  bool float32Allowed, std::optional<double> sampledFloat32Difference)
 {
   for (const NamedLight& light : scene.lights)
   {
@@ -257,16 +262,28 @@ MethodPlan chooseMethods(
   MethodPlan plan;
   plan.tolerance = tolerance;
   const double deterministic = scene.ambientOcclusion ? tolerance / 10 : tolerance;
-  plan.precision = Precision::Float32;
-  plan.arithmeticError = float32Allowed ? arithmeticError(Precision::Float32, scene, request, mesh) : unbounded;
-  if (!(plan.arithmeticError <= deterministic))
+  // Each precision's rounding: a priori, or from the sample. float32's sample is taken over
+  // the a priori bound, which is usually far above it but does not cover a light switched on or
+  // off at a vertex's horizon (docs/formulas.md section 15), which the sample looks for; it is
+  // measured against float64, whose own (far smaller) error is added. float64's is the lesser
+  // of its bound and the sample's scaled by the unit roundoffs.
+  double float32 = float32Allowed ? arithmeticError(Precision::Float32, scene, request, mesh) : unbounded;
+  double float64 = arithmeticError(Precision::Float64, scene, request, mesh);
+  bool float32Sampled = false, float64Sampled = false;
+  if (float32Allowed && sampledFloat32Difference)
   {
-    plan.precision = Precision::Float64;
-    plan.arithmeticError = arithmeticError(Precision::Float64, scene, request, mesh);
+    const double sampled = sampledFloat32Error(*sampledFloat32Difference);
+    float64Sampled = sampled * 0x1p-29 < float64;
+    float64 = std::min(float64, sampled * 0x1p-29);
+    float32Sampled = true;
+    float32 = sampled + float64;
   }
+  plan.precision = float32 <= deterministic ? Precision::Float32 : Precision::Float64;
+  plan.arithmeticError = plan.precision == Precision::Float32 ? float32 : float64;
+  plan.roundingSampled = plan.precision == Precision::Float32 ? float32Sampled : float64Sampled;
   if (!(plan.arithmeticError <= deterministic))
   {
-    throw std::invalid_argument("tolerance " + scientific(tolerance) +
+    throw RoundingAboveTolerance("tolerance " + scientific(tolerance) +
       " is below the predicted float64 rounding error of this scene on this mesh, " +
       scientific(plan.arithmeticError) + (deterministic < tolerance ? ", which may take a tenth of it (the rays take the rest)" : "") +
       ": give a larger tolerance, or none for the exact methods");

@@ -10,6 +10,7 @@
 #include "SequentialSampling.h"
 
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -39,6 +40,7 @@ struct MethodPlan
 {
   Precision precision = Precision::Float64;
   double arithmeticError = 0; // predicted rounding error of the chosen precision
+  bool roundingSampled = false; // float32's from a sample of the mesh (sampledFloat32Error), not a priori
   std::vector<LightChoice> lights; // one per scene light (ambient lights have nothing to choose)
   std::optional<OcclusionChoice> occlusion; // where the scene has ambient occlusion
   double tolerance = 0;
@@ -64,6 +66,19 @@ double powApproximationError(double lobeError, const LightSource& light, const M
 /// precision.
 double arithmeticError(Precision precision, const Scene& scene, const ArrayRequest& request, const MeshExtent& mesh);
 
+/// float32's rounding error predicted from the largest difference between float32 and
+/// float64 shading measured on a sample of the mesh's points: twice it (the mesh's largest
+/// can exceed the sample's). float64's is that times 2^-29, the ratio of their unit
+/// roundoffs: the same operations, each rounding 2^29 times finer.
+double sampledFloat32Error(double largestSampledDifference);
+
+/// What chooseMethods throws when even float64 is predicted to round by more than the
+/// tolerance allows: the filter then waits for a sample's measurement before it refuses.
+struct RoundingAboveTolerance : std::invalid_argument
+{
+  using std::invalid_argument::invalid_argument;
+};
+
 /// The error at 95% confidence of a fraction estimated from n rays, whatever the fraction:
 /// two standard errors of a mean of n values in [0, 1], whose variance is at most 1/4
 /// (stratification only lowers it), so 1 / sqrt(n).
@@ -75,9 +90,11 @@ double fixedRaysError(int n);
 /// the inverse square of its error, so the nine tenths cost 1.23 times the rays of all of it,
 /// while float32 and the approximations rarely need more than a tenth. scene must have no
 /// sceneProblems() and request must come from selectArrays(scene, ...). float32Allowed: false
-/// when the mesh or scene does not fit float32 at all. Throws std::invalid_argument when even
-/// float64 with exact methods is predicted to exceed the tolerance, or a fixed count of rays
-/// to exceed the share left for it.
+/// when the mesh or scene does not fit float32 at all. sampledFloat32Difference: measured on
+/// a sample (all lights exact), float32's error is the sample's (sampledFloat32Error) rather
+/// than the a priori bound, and float64's the lesser of the two. Throws std::invalid_argument when even
+/// float64 with exact methods is predicted to exceed the tolerance (RoundingAboveTolerance),
+/// or a fixed count of rays to exceed the share left for it.
 MethodPlan chooseMethods(const Scene& scene, const ArrayRequest& request, const MeshExtent& mesh, double tolerance,
-  bool float32Allowed = true);
+  bool float32Allowed = true, std::optional<double> sampledFloat32Difference = std::nullopt);
 }

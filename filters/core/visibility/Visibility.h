@@ -4,6 +4,7 @@
 // cosine-weighted fraction of the hemisphere above the vertex from which no triangle blocks
 // the sky.
 #include "DistributedLight.h"
+#include "LightEvaluation.h"
 #include "OccluderMesh.h"
 #include "SampleSequence.h"
 #include "SequentialSampling.h"
@@ -35,14 +36,6 @@ struct LightVisibility
   /// concave crease, or, on a coarse mesh, a light the smooth normal faces but a neighbouring
   /// facet hides (the shadow terminator).
   bool blockedByOwnTriangle = false;
-};
-
-/// Where a light is seen from a vertex: its unit direction, and its distance (infinite for a
-/// distant light).
-struct LightDirection
-{
-  glm::dvec3 toLight{ 0.0 };
-  double distance = std::numeric_limits<double>::infinity();
 };
 
 /// How many consecutive vertices the visibility step takes at a time: their rays to a light
