@@ -3,9 +3,11 @@
 #include "Scene.h"
 #include "vtkLocalReflectanceFilter.h"
 
+#include "vtkFieldData.h"
 #include "vtkNew.h"
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
+#include "vtkStringArray.h"
 
 #include <string>
 #include <vector>
@@ -27,5 +29,18 @@ inline vtkSmartPointer<vtkPolyData> shadeWithFilter(vtkPolyData* mesh, const Sce
   auto output = vtkSmartPointer<vtkPolyData>::New();
   output->ShallowCopy(filter->GetOutput());
   return output;
+}
+
+/// The lines of the tolerance's plan that the filter wrote in the output's field data
+/// (shadelab_methods); none without a tolerance.
+inline std::vector<std::string> methodsNote(vtkPolyData* output)
+{
+  std::vector<std::string> lines;
+  auto* note = vtkStringArray::SafeDownCast(output->GetFieldData()->GetAbstractArray("shadelab_methods"));
+  for (vtkIdType i = 0; note && i < note->GetNumberOfValues(); ++i)
+  {
+    lines.push_back(note->GetValue(i));
+  }
+  return lines;
 }
 }

@@ -2,6 +2,7 @@
 // are in the whole mesh, bit for bit. Run by CTest under mpiexec with 1, 2 and 4 processes;
 // every process checks its own piece against the whole mesh shaded in one process.
 #include "ArrayComparison.h"
+#include "FilterRun.h"
 #include "MeshFiles.h"
 #include "MeshPieces.h"
 #include "ShadeLabWholeMesh.h"
@@ -11,12 +12,10 @@
 
 #include "vtkCellData.h"
 #include "vtkDoubleArray.h"
-#include "vtkFieldData.h"
 #include "vtkMPIController.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
-#include "vtkStringArray.h"
 #include "vtkXMLPPolyDataReader.h"
 #include "vtkXMLPPolyDataWriter.h"
 
@@ -109,18 +108,6 @@ TEST_P(SplitMesh, ShadesEachPieceAsTheWholeMesh)
   }
 }
 
-/// The tolerance's plan, as the output's field data holds it.
-std::vector<std::string> methodsNote(vtkPolyData* output)
-{
-  std::vector<std::string> lines;
-  auto* note = vtkStringArray::SafeDownCast(output->GetFieldData()->GetAbstractArray("shadelab_methods"));
-  for (vtkIdType i = 0; note && i < note->GetNumberOfValues(); ++i)
-  {
-    lines.push_back(note->GetValue(i));
-  }
-  return lines;
-}
-
 // A scene placed on the mesh's extent, under a tolerance that plans on it too: with float32's
 // rounding measured on the same sample of points whatever the pieces.
 TEST_P(SplitMesh, PlacesTheSceneOnTheWholeMesh)
@@ -128,9 +115,9 @@ TEST_P(SplitMesh, PlacesTheSceneOnTheWholeMesh)
   const vtkSmartPointer<vtkPolyData> whole = shaded(mesh, "studio_mesh.json", { "totals" }, nullptr, 1e-3);
   const vtkSmartPointer<vtkPolyData> piece = shaded(myPiece(mesh), "studio_mesh.json", { "totals" }, processes(), 1e-3);
   EXPECT_GT(expectPieceOfWhole(whole, piece), 3);
-  ASSERT_FALSE(methodsNote(whole).empty());
-  EXPECT_NE(methodsNote(whole)[0].find("measured on a sample of the points"), std::string::npos) << methodsNote(whole)[0];
-  EXPECT_EQ(methodsNote(piece), methodsNote(whole));
+  ASSERT_FALSE(shadelab::testing::methodsNote(whole).empty());
+  EXPECT_NE(shadelab::testing::methodsNote(whole)[0].find("measured on a sample of the points"), std::string::npos) << shadelab::testing::methodsNote(whole)[0];
+  EXPECT_EQ(shadelab::testing::methodsNote(piece), shadelab::testing::methodsNote(whole));
 }
 
 // The normals filter alone, computed and flipped outward on the whole mesh.

@@ -1,5 +1,6 @@
 // The tolerance option: predicted errors checked against measured ones on the real mesh in
 // data/, and the choice following the tolerance.
+#include "FilterRun.h"
 #include "MeshFiles.h"
 #include "VtkErrorCapture.h"
 
@@ -7,10 +8,8 @@
 #include "vtkLocalReflectanceFilter.h"
 
 #include "vtkDataArray.h"
-#include "vtkFieldData.h"
 #include "vtkPlaneSource.h"
 #include "vtkPointData.h"
-#include "vtkStringArray.h"
 
 #include <gtest/gtest.h>
 
@@ -60,16 +59,6 @@ double largestError(vtkPolyData* a, vtkPolyData* b)
   return largest;
 }
 
-std::vector<std::string> methods(vtkPolyData* output)
-{
-  std::vector<std::string> lines;
-  auto* array = vtkStringArray::SafeDownCast(output->GetFieldData()->GetAbstractArray("shadelab_methods"));
-  for (vtkIdType i = 0; array && i < array->GetNumberOfValues(); ++i)
-  {
-    lines.push_back(array->GetValue(i));
-  }
-  return lines;
-}
 
 /// The bunny under every scene in data/scenes, and the same scenes with their point lights
 /// ten and a hundred times farther, where the distant approximation is taken.
@@ -102,7 +91,7 @@ TEST(Tolerance, MeasuredErrorStaysUnderTheToleranceOnTheBunny)
         // The prediction is an upper bound of the measured error, and fits the tolerance.
         EXPECT_LE(error, plan->predictedError()) << name << " x" << distanceFactor << ": " << plan->describe()[0];
         EXPECT_LE(plan->predictedError(), tolerance);
-        EXPECT_EQ(methods(chosen), plan->describe());
+        EXPECT_EQ(shadelab::testing::methodsNote(chosen), plan->describe());
         for (const LightChoice& light : plan->lights)
         {
           approximated += light.predictedError > 0 ? 1 : 0;
@@ -126,7 +115,7 @@ TEST(Tolerance, TheChoiceFollowsTheTolerance)
   // "key" is a point light near the bunny.
   auto line = [&](double tolerance, const std::string& light)
   {
-    for (const std::string& text : methods(shade(bunny, scene, tolerance)))
+    for (const std::string& text : shadelab::testing::methodsNote(shade(bunny, scene, tolerance)))
     {
       if (text.rfind(light + ":", 0) == 0 || (light.empty() && text.rfind("tolerance", 0) == 0))
       {
