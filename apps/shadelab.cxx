@@ -131,8 +131,19 @@ struct EnvironmentOption
   std::string directions = "luminance";
   double rotation = 0;
   double intensity = 1;
-  int samples = Sampling{}.samples;
+  std::string samples = std::to_string(Sampling{}.samples); // or "auto"
 };
+
+/// A count of samples as --ambient-occlusion and --envmap-samples give it: a number, or "auto"
+/// (as many as --tolerance needs, the default count the least).
+void setSampleCount(const std::string& count, Sampling& sampling)
+{
+  sampling.fromTolerance = count == "auto";
+  if (!sampling.fromTolerance)
+  {
+    sampling.samples = std::stoi(count);
+  }
+}
 
 struct ShadeOptions
 {
@@ -166,11 +177,7 @@ Scene withVisibilityOptions(Scene scene, const ShadeOptions& options)
   if (!options.ambientOcclusion.empty())
   {
     AmbientOcclusion occlusion = scene.ambientOcclusion.value_or(AmbientOcclusion{});
-    occlusion.raysFromTolerance = options.ambientOcclusion == "auto";
-    if (!occlusion.raysFromTolerance)
-    {
-      occlusion.sampling.samples = std::stoi(options.ambientOcclusion);
-    }
+    setSampleCount(options.ambientOcclusion, occlusion.sampling);
     scene.ambientOcclusion = occlusion;
   }
   return scene;
@@ -207,7 +214,7 @@ Scene sceneWithEnvironment(const std::string& sceneFile, const EnvironmentOption
   light.directions = environment.directions == "cosine" ? EnvironmentDirections::Cosine
     : environment.directions == "mis"                   ? EnvironmentDirections::Mis
                                                         : EnvironmentDirections::Luminance;
-  light.sampling.samples = environment.samples;
+  setSampleCount(environment.samples, light.sampling);
   try
   {
     light.map = std::make_shared<const EnvironmentMap>(readEnvironmentMap(environment.file));
@@ -550,8 +557,9 @@ CLI::App* addShadeCommand(CLI::App& cli, ShadeOptions& options)
     ->needs(envmapOption);
   command->add_option("--envmap-samples", environment.samples,
     "Monte Carlo samples per vertex (monte_carlo, the specular term of sh, and with --shadows every "
-    "estimator's shadow rays)")
-    ->check(CLI::Range(2, maxSamplesPerVertex))
+    "estimator's shadow rays), or auto with --tolerance: as many as each vertex needs for the map's "
+    "share of the tolerance, at least 64 and at most 4096 (not with --shadows)")
+    ->check(CLI::Range(2, maxSamplesPerVertex) | CLI::IsMember({ "auto" }))
     ->capture_default_str()
     ->needs(envmapOption);
   envmapOption->check(CLI::Validator(

@@ -364,7 +364,7 @@ OcclusionSettings fixedRays(int rays)
 OcclusionSettings raysToTarget(double error)
 {
   OcclusionSettings settings;
-  settings.target = SamplingTarget{ error, 4096 };
+  settings.target = SamplingTarget::forFraction(error, 4096);
   return settings;
 }
 

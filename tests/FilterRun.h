@@ -1,6 +1,7 @@
 #pragma once
 // Running vtkLocalReflectanceFilter once in a test, for the output alone.
 #include "Scene.h"
+#include "VtkErrorCapture.h"
 #include "vtkLocalReflectanceFilter.h"
 
 #include "vtkFieldData.h"
@@ -42,5 +43,18 @@ inline std::vector<std::string> methodsNote(vtkPolyData* output)
     lines.push_back(note->GetValue(i));
   }
   return lines;
+}
+
+/// The filter's error for `mesh` under `scene` at this tolerance ("" where it shades).
+inline std::string filterError(vtkPolyData* mesh, const Scene& scene, double tolerance = 0)
+{
+  vtkNew<vtkLocalReflectanceFilter> filter;
+  vtkNew<app::VtkErrorCapture> errors;
+  errors->watch(filter);
+  filter->SetInputData(mesh);
+  filter->SetScene(scene);
+  filter->SetTolerance(tolerance);
+  filter->Update();
+  return errors->message();
 }
 }

@@ -431,6 +431,10 @@ TEST_F(Cli, EnvironmentMapOption)
   EXPECT_NE(shadowed.out.find("    envmap_visibility            1 "), std::string::npos) << shadowed.out;
   EXPECT_NE(shadowed.out.find("    envmap_visibility_std_error  1 "), std::string::npos) << shadowed.out;
   EXPECT_NE(shadowed.out.find("rays (16 per vertex)"), std::string::npos) << shadowed.out;
+  // --envmap-samples auto takes the count from --tolerance, which must be given.
+  expectError("shade " + mesh + " --envmap " SHADELAB_SOURCE_DIR "/data/envmaps/venice_sunset_1k.hdr --envmap-samples auto -o " + out,
+    mesh + ": light 'envmap' has \"samples\": \"auto\", which takes its count from a tolerance: give one (shadelab "
+           "shade --tolerance, the filter's Tolerance), or a number of samples");
   const Result badDirections = shadelab("shade " + mesh + " --envmap " SHADELAB_SOURCE_DIR
     "/data/envmaps/venice_sunset_1k.hdr --envmap-directions sun -o " + out);
   EXPECT_EQ(badDirections.exitCode, 2);

@@ -178,11 +178,14 @@ TEST(DistributedLightsFilter, RefusedWhereTheyCannotApply)
     "scene /lights/0/type: VTK's renderer has no area lights or environment maps: use the lecture model");
   Scene lecture = shinyScene();
   lecture.lights = { { "panel", panel } };
+  // Its specular integral is sampled, 64 samples: a tolerance needs them drawn to its share.
   EXPECT_EQ(errorOf(lecture, 1e-3),
-    "a tolerance cannot be met with light 'panel' of type \"sphere\": its error comes from the estimator the "
-    "scene names, not from arithmetic a tolerance can choose (Monte Carlo estimators report theirs in "
-    "*_std_error arrays); shade without a tolerance");
+    "a tolerance cannot bound light 'panel' of type \"sphere\": its Monte Carlo estimates from 64 samples have no "
+    "error bound before they are drawn: give it \"samples\": \"auto\", which draws each vertex's samples until "
+    "their standard error meets a share of the tolerance; or shade without a tolerance");
   EXPECT_EQ(errorOf(lecture, 0), "");
+  std::get<AreaLight>(lecture.lights[0].source).sampling.fromTolerance = true;
+  EXPECT_EQ(errorOf(lecture, 1e-3), "");
 
   // Maps made in C++ are checked as maps read from files are.
   auto map = std::make_shared<EnvironmentMap>();

@@ -286,6 +286,40 @@ TEST(AreaEstimators, PolygonExactAgainstMonteCarloWithinThreeStandardErrors)
   }
 }
 
+// "samples": "auto" under a tolerance: each vertex's samples drawn in rounds until E's and S's
+// standard errors meet their targets. Against the exact E: every vertex's standard error
+// within the target unless it drew the maximum, 95% of the errors within the target's error,
+// at least the light's own count drawn; S's standard error within its target too.
+TEST(AreaEstimators, SamplesToATargetMeetItAtEveryVertexBelowTheMaximum)
+{
+  const AreaLight exactLight = squareLight(AreaEstimator::Exact);
+  const AreaLightEstimator exact(exactLight, 0, noSpecular);
+  const LobeModel phong{ SpecularModel::Phong, 20 };
+  SampleTargets targets;
+  targets.irradiance = SamplingTarget{ 0.02, 64, 1 << 16 };
+  targets.specular = SamplingTarget{ 0.05, 64, 1 << 16 };
+  const AreaLightEstimator sampled(squareLight(AreaEstimator::MonteCarlo), 0, phong, targets);
+  int within = 0, compared = 0;
+  for (const SurfacePoint& point : receiversUnderSquare(400))
+  {
+    const double truth = exact.estimate(point).irradiance.x;
+    const DistributedTerms estimate = sampled.estimate(point);
+    EXPECT_LE(estimate.irradianceStdError.x, targets.irradiance->standardError());
+    EXPECT_LE(estimate.specularStdError.x, targets.specular->standardError());
+    ++compared;
+    within += std::abs(estimate.irradiance.x - truth) <= targets.irradiance->error;
+  }
+  std::cout << within << " of " << compared << " within the target's error\n";
+  EXPECT_GE(within, 0.95 * compared);
+  // Without targets, the light's fixed count: its first round is the light's own samples.
+  const AreaLightEstimator fixed(squareLight(AreaEstimator::MonteCarlo), 0, phong);
+  SampleTargets oneRound;
+  oneRound.irradiance = SamplingTarget{ 1e9, 64, 64 };
+  const AreaLightEstimator atMinimum(squareLight(AreaEstimator::MonteCarlo), 0, phong, oneRound);
+  const SurfacePoint point = receiversUnderSquare(1).front();
+  EXPECT_EQ(atMinimum.estimate(point).irradiance, fixed.estimate(point).irradiance);
+}
+
 // A one-sided emitter lights only the side its normal faces; a two-sided one both, alike.
 TEST(AreaEstimators, OneSidedEmittersLightOnlyTheirFront)
 {

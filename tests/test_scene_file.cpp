@@ -233,7 +233,7 @@ TEST(SceneFile, AreaLightAndEnvironmentMapErrors)
     "scene.json: /lights/0/estimator: \"sh\" is not one of \"exact\", \"monte_carlo\", \"point\"");
   EXPECT_EQ(errorOf(R"({ "lights": [ { "type": "sphere", "center": [0, 0, 0], "radius": 1, "two_sided": true } ] })"),
     "scene.json: /lights/0/two_sided: unknown field; allowed here: name, type, color, intensity, shadows, center, radius, "
-    "estimator, samples, stratified");
+    "estimator, samples, max_samples, stratified");
   EXPECT_EQ(errorOf(R"({ "model": "vtk", "viewer": { "position": [0, 0, 1] },
       "lights": [ { "type": "sphere", "center": [0, 0, 0], "radius": 1 } ] })"),
     "scene.json: /lights/0/type: VTK's renderer has no area lights or environment maps: use the lecture model");
@@ -291,18 +291,18 @@ TEST(SceneFile, ShadowsAndAmbientOcclusion)
   EXPECT_EQ(errorOf(R"({ "lights": [], "ambient_occlusion": { "samples": 64 } })"),
     "scene.json: /ambient_occlusion/samples: unknown field; allowed here: rays, max_rays, stratified, max_distance");
   EXPECT_EQ(errorOf(R"({ "lights": [], "ambient_occlusion": { "rays": "many" } })"),
-    "scene.json: /ambient_occlusion/rays: must be a whole number of rays per vertex, or \"auto\" (as many as a "
-    "tolerance needs)");
+    "scene.json: /ambient_occlusion/rays: must be a whole number per vertex, or \"auto\" (as many as a tolerance "
+    "needs)");
   EXPECT_EQ(errorOf(R"({ "lights": [], "ambient_occlusion": { "rays": 64, "max_rays": 128 } })"),
-    "scene.json: /ambient_occlusion/max_rays: is the most rays \"rays\": \"auto\" may draw per vertex: give "
+    "scene.json: /ambient_occlusion/max_rays: is the most \"rays\": \"auto\" may draw per vertex: give "
     "\"rays\": \"auto\" with it, or leave it out");
   EXPECT_EQ(errorOf(R"({ "lights": [], "ambient_occlusion": { "rays": "auto", "max_rays": 8 } })"),
     "scene.json: /ambient_occlusion/max_rays: must be a whole number from 16 to 1048576");
   const Scene automatic = parseScene(R"({ "lights": [], "ambient_occlusion": { "rays": "auto", "max_rays": 1000 } })", "scene.json");
-  EXPECT_TRUE(automatic.ambientOcclusion->raysFromTolerance);
-  EXPECT_EQ(automatic.ambientOcclusion->maxRays, 1000);
+  EXPECT_TRUE(automatic.ambientOcclusion->sampling.fromTolerance);
+  EXPECT_EQ(automatic.ambientOcclusion->sampling.maximum, 1000);
   EXPECT_FALSE(automatic.ambientOcclusion->target) << "a tolerance's plan sets it";
-  EXPECT_EQ(untargetedSamplingProblem(automatic),
+  EXPECT_EQ(untargetedSamplingProblem(automatic, false),
     "ambient occlusion with \"rays\": \"auto\" takes its count of rays from a tolerance: give one (shadelab shade "
     "--tolerance, the filter's Tolerance), or a number of rays");
   EXPECT_EQ(errorOf(R"({ "lights": [], "shadows": 1 })"), "scene.json: /shadows: must be true or false, got 1");

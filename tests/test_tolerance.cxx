@@ -1,5 +1,6 @@
 // The tolerance option: predicted errors checked against measured ones on the real mesh in
 // data/, and the choice following the tolerance.
+#include "ArrayComparison.h"
 #include "FilterRun.h"
 #include "MeshFiles.h"
 #include "VtkErrorCapture.h"
@@ -10,6 +11,8 @@
 #include "vtkDataArray.h"
 #include "vtkPlaneSource.h"
 #include "vtkPointData.h"
+#include "vtkSMPTools.h"
+#include "vtkSphereSource.h"
 
 #include <gtest/gtest.h>
 
@@ -217,21 +220,137 @@ TEST(Tolerance, BadTolerancesAreRefusedWithTheReason)
 {
   vtkSmartPointer<vtkPolyData> bunny = app::readMesh(data + "meshes/bunny_zipper.ply");
   const Scene scene = readSceneFile(data + "scenes/studio.json");
-  auto error = [&](double tolerance)
-  {
-    vtkNew<vtkLocalReflectanceFilter> filter;
-    vtkNew<app::VtkErrorCapture> errors;
-    errors->watch(filter);
-    filter->SetInputData(bunny);
-    filter->SetScene(scene);
-    filter->SetTolerance(tolerance);
-    filter->Update();
-    return errors->message();
-  };
+  auto error = [&](double tolerance) { return shadelab::testing::filterError(bunny, scene, tolerance); };
   EXPECT_EQ(error(-1), "the tolerance is -1: it must be a finite number >= 0 (0: exact methods)");
   EXPECT_EQ(error(std::nan("")), "the tolerance is nan: it must be a finite number >= 0 (0: exact methods)");
   EXPECT_EQ(error(1e-20),
     "tolerance 1e-20 is below the predicted float64 rounding error of this scene on this mesh, 7.2e-15: "
     "give a larger tolerance, or none for the exact methods");
 }
+}
+
+namespace
+{
+/// A coarse sphere (382 points), for the tests that sample every vertex many times.
+vtkSmartPointer<vtkPolyData> coarseSphere()
+{
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetThetaResolution(20);
+  sphere->SetPhiResolution(21);
+  sphere->Update();
+  return sphere->GetOutput();
+}
+
+/// The studio map by Monte Carlo with its directions by MIS, its samples as many as the
+/// tolerance needs.
+Scene studioMapToATolerance()
+{
+  Scene scene = readSceneFile(data + "scenes/studio_envmap.json");
+  auto& studio = std::get<EnvironmentLight>(scene.lights[0].source);
+  studio.estimator = EnvironmentEstimator::MonteCarlo;
+  studio.directions = EnvironmentDirections::Mis;
+  studio.sampling.fromTolerance = true;
+  studio.sampling.maximum = 1 << 16;
+  return scene;
+}
+
+}
+
+TEST(Tolerance, AMapsSamplesAreDrawnToItsShareTheSameOnAnyThreadCount)
+{
+  // Each vertex's E and S drawn until their standard errors meet the targets the plan prints
+  // (no vertex reaches the maximum of 65536 here), the same bits on one and two threads.
+  vtkSmartPointer<vtkPolyData> sphere = coarseSphere();
+  const Scene scene = studioMapToATolerance();
+  auto shade = [&](int threads)
+  {
+    vtkNew<vtkLocalReflectanceFilter> filter;
+    filter->SetInputData(sphere);
+    filter->SetScene(scene);
+    filter->SetArraySelection({ "all" });
+    filter->SetTolerance(0.02);
+    vtkSMPTools::LocalScope(vtkSMPTools::Config{ threads }, [&] { filter->Update(); });
+    auto output = vtkSmartPointer<vtkPolyData>::New();
+    output->ShallowCopy(filter->GetOutput());
+    return std::make_pair(output, *filter->GetMethodPlan());
+  };
+  const auto [one, plan] = shade(1);
+  const auto [two, samePlan] = shade(2);
+  shadelab::testing::expectSamePointArrays(one, two);
+  const SampleTargets& targets = plan.lights[0].method.targets;
+  ASSERT_TRUE(targets.irradiance && targets.specular) << plan.describe()[1];
+  // Half the tolerance each (all but the arithmetic's few millionths), kd and ks below 1.
+  EXPECT_EQ(plan.describe()[1],
+    "studio: E sampled to within 0.01 at 95% (standard error at most 0.005), 64 to 65536 samples per vertex, S sampled "
+    "to within 0.01 at 95% (standard error at most 0.005), 64 to 65536 samples per vertex, predicted error 0.02");
+  EXPECT_NEAR(plan.predictedError(), 0.02, 1e-12);
+  vtkDataArray* irradianceError = one->GetPointData()->GetArray("studio_irradiance_std_error");
+  vtkDataArray* specularError = one->GetPointData()->GetArray("studio_specular_std_error");
+  for (vtkIdType i = 0; i < sphere->GetNumberOfPoints(); ++i)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      ASSERT_LE(float(irradianceError->GetComponent(i, c)), float(targets.irradiance->standardError())) << i;
+      ASSERT_LE(float(specularError->GetComponent(i, c)), float(targets.specular->standardError())) << i;
+    }
+  }
+}
+
+TEST(Tolerance, AreaLightsAndMapsItCannotBoundAreRefusedWithTheRemedy)
+{
+  vtkSmartPointer<vtkPolyData> sphere = coarseSphere();
+  const std::string cannot = "a tolerance cannot bound light ";
+  const std::string orNone = "; or shade without a tolerance";
+
+  Scene fixed = studioMapToATolerance();
+  std::get<EnvironmentLight>(fixed.lights[0].source).sampling.fromTolerance = false;
+  EXPECT_EQ(shadelab::testing::filterError(sphere, fixed, 0.02),
+    cannot + "'studio' of type \"environment\": its Monte Carlo estimates from 64 samples have no error bound before "
+             "they are drawn: give it \"samples\": \"auto\" (--envmap-samples auto), which draws each vertex's "
+             "samples until their standard error meets a share of the tolerance" + orNone);
+
+  Scene harmonics = readSceneFile(data + "scenes/studio_envmap.json");
+  auto& studio = std::get<EnvironmentLight>(harmonics.lights[0].source);
+  studio.sampling.fromTolerance = true;
+  const std::string shError = shadelab::testing::filterError(sphere, harmonics, 0.02);
+  EXPECT_EQ(shError.rfind(cannot + "'studio' of type \"environment\": its spherical-harmonic irradiance can err by ", 0), 0u)
+    << shError;
+  // With no specular term and a large enough tolerance, SH's bound fits the tolerance's tenth.
+  harmonics.material.specular = SpecularModel::None;
+  std::optional<MethodPlan> plan;
+  shade(sphere, harmonics, 2.0, &plan);
+  ASSERT_TRUE(plan);
+  EXPECT_EQ(plan->lights[0].method.targets, SampleTargets{});
+  EXPECT_GT(plan->lights[0].approximationError, 0.0);
+  EXPECT_LE(plan->lights[0].approximationError, 0.2);
+
+  studio.estimator = EnvironmentEstimator::BruteForce;
+  EXPECT_EQ(shadelab::testing::filterError(sphere, harmonics, 2.0),
+    cannot + "'studio' of type \"environment\": the \"brute_force\" sum of a downsampled map has no error bound: use "
+             "\"sh\" or \"monte_carlo\"" + orNone);
+
+  Scene shadowed = studioMapToATolerance();
+  shadowed.lights[0].shadows = true;
+  EXPECT_EQ(shadelab::testing::filterError(sphere, shadowed, 0.02),
+    cannot + "'studio' of type \"environment\": its soft shadows' samples are drawn before the shading, at a fixed "
+             "count, which no tolerance bounds yet: shade it without \"shadows\"" + orNone);
+  EXPECT_EQ(shadelab::testing::filterError(sphere, shadowed, 0),
+    "light 'studio' casts shadows with \"samples\": \"auto\", but its shadow rays are cast before the shading, at a "
+    "fixed count: give it a number of samples");
+  EXPECT_EQ(shadelab::testing::filterError(sphere, studioMapToATolerance(), 0),
+    "light 'studio' has \"samples\": \"auto\", which takes its count from a tolerance: give one (shadelab shade "
+    "--tolerance, the filter's Tolerance), or a number of samples");
+
+  Scene point = readSceneFile(data + "scenes/area_lights.json");
+  for (NamedLight& light : point.lights)
+  {
+    if (auto* area = std::get_if<AreaLight>(&light.source))
+    {
+      area->estimator = AreaEstimator::Point;
+    }
+  }
+  const std::string pointError = shadelab::testing::filterError(sphere, point, 0.02);
+  EXPECT_NE(pointError.find("its \"point\" estimator has no error bound: use \"exact\" or \"monte_carlo\"" + orNone),
+    std::string::npos)
+    << pointError;
 }

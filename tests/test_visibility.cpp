@@ -552,17 +552,17 @@ TEST(Visibility, StandardErrorsFallAsOneOverTheRootOfTheRays)
 
 TEST(SequentialSampling, NoVertexStopsBeforeTheRuleOfThreeOrPastTheMaximum)
 {
-  const SamplingTarget target{ 0.02, 4096 };
+  const SamplingTarget target = SamplingTarget::forFraction(0.02, 4096);
   EXPECT_EQ(target.standardError(), 0.01);
-  EXPECT_EQ(target.minimum(), 160) << "3 / 0.02 = 150 rays, in whole rounds of 16";
+  EXPECT_EQ(target.minimum, 160) << "3 / 0.02 = 150 rays, in whole rounds of 16";
   EXPECT_EQ(target.nextRound(0, 0), 160);
   EXPECT_EQ(target.nextRound(160, 0.0099), 0) << "met past the minimum";
   EXPECT_EQ(target.nextRound(160, 0.0101), 16) << "a little short: one round";
   EXPECT_EQ(target.nextRound(160, 0.02), 160) << "4 times the rays wanted, at most twice drawn";
   EXPECT_EQ(target.nextRound(4000, 0.05), 96) << "up to the maximum, not past it";
   EXPECT_EQ(target.nextRound(4096, 0.05), 0);
-  EXPECT_EQ((SamplingTarget{ 1e-4, 4096 }).minimum(), 4096) << "the rule of three past the maximum";
-  EXPECT_EQ((SamplingTarget{ 0.5, 4096 }).minimum(), 16) << "at least a round";
+  EXPECT_EQ(SamplingTarget::forFraction(1e-4, 4096).minimum, 4096) << "the rule of three past the maximum";
+  EXPECT_EQ(SamplingTarget::forFraction(0.5, 4096).minimum, 16) << "at least a round";
 }
 
 TEST(Visibility, RaysToATargetMeetItWhereverTheyStopShortOfTheMaximum)
@@ -576,7 +576,7 @@ TEST(Visibility, RaysToATargetMeetItWhereverTheyStopShortOfTheMaximum)
   const std::size_t planePoints = sphereOverPlane.planePoints;
   const OccluderMesh occluders = scene.occluders();
   OcclusionSettings settings;
-  settings.target = SamplingTarget{ 0.02, 4096 };
+  settings.target = SamplingTarget::forFraction(0.02, 4096);
   std::size_t within = 0;
   int fewest = settings.target->maximum, most = 0;
   for (std::size_t i = 0; i < planePoints; ++i)
@@ -584,18 +584,18 @@ TEST(Visibility, RaysToATargetMeetItWhereverTheyStopShortOfTheMaximum)
     const double exact = sphereOverPlane.exactAt(i);
     const OcclusionEstimate ao = ambientOcclusion(occluders, scene.vertex(i), settings);
     EXPECT_LE(ao.standardError, settings.target->standardError()) << "vertex " << i << ", " << ao.rays << " rays";
-    EXPECT_GE(ao.rays, settings.target->minimum());
+    EXPECT_GE(ao.rays, settings.target->minimum);
     within += std::abs(ao.occlusion - exact) - SphereOverPlane::tessellationBias(exact) <= settings.target->error ? 1 : 0;
     fewest = std::min(fewest, ao.rays);
     most = std::max(most, ao.rays);
   }
   // Measured: 96.2% within (two standard errors are 95.4% of a normal's), 160 to 656 rays.
   EXPECT_GE(double(within) / planePoints, 0.95);
-  EXPECT_EQ(fewest, settings.target->minimum());
+  EXPECT_EQ(fewest, settings.target->minimum);
   EXPECT_GT(most, 2 * fewest);
 
   // A maximum below what the target needs: the vertices under the sphere stop at it, short.
-  settings.target->maximum = 64;
+  settings.target = SamplingTarget::forFraction(0.02, 64);
   const OcclusionEstimate capped = ambientOcclusion(occluders, { { 0.3, 0, 0 }, { 0, 0, 1 }, 7 }, settings);
   EXPECT_EQ(capped.rays, 64);
   EXPECT_GT(capped.standardError, settings.target->standardError());
@@ -604,7 +604,7 @@ TEST(Visibility, RaysToATargetMeetItWhereverTheyStopShortOfTheMaximum)
   OcclusionSettings fixed;
   fixed.sampling.samples = 160;
   OcclusionSettings oneRound;
-  oneRound.target = SamplingTarget{ 3.0 / 160, 160 };
+  oneRound.target = SamplingTarget::forFraction(3.0 / 160, 160);
   const RayVertex vertex{ { 0.3, 0, 0 }, { 0, 0, 1 }, 7 };
   EXPECT_EQ(ambientOcclusion(occluders, vertex, oneRound).occlusion, ambientOcclusion(occluders, vertex, fixed).occlusion);
 }

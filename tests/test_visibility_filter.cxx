@@ -145,8 +145,8 @@ TEST(AmbientOcclusion, ATolerancesShareSetsEachVertexsRaysTheSameOnAnyThreadCoun
   Scene scene = pointLightAbove(false);
   scene.lights[1].source = DistantLight{};
   scene.ambientOcclusion = AmbientOcclusion{};
-  scene.ambientOcclusion->raysFromTolerance = true;
-  scene.ambientOcclusion->maxRays = 512;
+  scene.ambientOcclusion->sampling.fromTolerance = true;
+  scene.ambientOcclusion->sampling.maximum = 512;
   auto shade = [&](int threads)
   {
     vtkNew<vtkLocalReflectanceFilter> filter;
@@ -169,7 +169,7 @@ TEST(AmbientOcclusion, ATolerancesShareSetsEachVertexsRaysTheSameOnAnyThreadCoun
   for (vtkIdType i = 0; i < mesh->GetNumberOfPoints(); ++i)
   {
     const float rays = valueOf(one, "ambient_occlusion_rays", i);
-    ASSERT_GE(rays, target.minimum());
+    ASSERT_GE(rays, target.minimum);
     ASSERT_LE(rays, target.maximum);
     if (rays < target.maximum)
     {
@@ -475,17 +475,7 @@ TEST(AmbientOcclusion, TwoSidedShadingTakesTheSideTheViewerSees)
   EXPECT_LT(smallestAbove, 0.8);
 }
 
-std::string filterError(vtkPolyData* mesh, const Scene& scene, double tolerance = 0)
-{
-  vtkNew<vtkLocalReflectanceFilter> filter;
-  vtkNew<app::VtkErrorCapture> errors;
-  errors->watch(filter);
-  filter->SetInputData(mesh);
-  filter->SetScene(scene);
-  filter->SetTolerance(tolerance);
-  filter->Update();
-  return errors->message();
-}
+using shadelab::testing::filterError;
 
 TEST(Visibility, WhatIsRefusedAndWhy)
 {
@@ -497,7 +487,7 @@ TEST(Visibility, WhatIsRefusedAndWhy)
   Scene occluded = sunAbove;
   occluded.lights[1].shadows = false;
   occluded.ambientOcclusion = AmbientOcclusion{};
-  occluded.ambientOcclusion->raysFromTolerance = true;
+  occluded.ambientOcclusion->sampling.fromTolerance = true;
   const std::string untargeted = "ambient occlusion with \"rays\": \"auto\" takes its count of rays from a tolerance: "
                                  "give one (shadelab shade --tolerance, the filter's Tolerance), or a number of rays";
   EXPECT_EQ(filterError(mesh, occluded), untargeted);

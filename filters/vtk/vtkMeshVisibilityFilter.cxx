@@ -622,7 +622,7 @@ std::optional<shadelab::Scene> vtkMeshVisibilityFilter::PlacedScene(vtkPolyData*
   {
     return std::nullopt;
   }
-  const std::string untargeted = shadelab::untargetedSamplingProblem(scene);
+  const std::string untargeted = shadelab::untargetedSamplingProblem(scene, true);
   if (!untargeted.empty())
   {
     vtkErrorMacro(<< untargeted);

@@ -38,6 +38,10 @@ struct Sampling
   int samples = 64;
   /// One sample in each of `samples` cells of a grid over the square, rather than independent.
   bool stratified = true;
+  /// "auto" in a scene: as many per vertex as a tolerance's share needs (SequentialSampling.h),
+  /// at most `maximum`; the tolerance's plan sets the target.
+  bool fromTolerance = false;
+  int maximum = 4096;
 };
 
 /// The sample points of one light at one vertex. Stratified: the square is cut into a grid of

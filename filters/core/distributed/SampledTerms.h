@@ -4,6 +4,8 @@
 #include "DistributedLight.h"
 #include "MonteCarloEstimate.h"
 #include "SampleSequence.h"
+#include "SequentialSampling.h"
+#include "Vec3.h"
 #include "VisibleFraction.h"
 
 #include <optional>
@@ -21,32 +23,62 @@ struct RadianceSample
 };
 
 /// Averages L(w) max(0, n.w) / pdf(w) (when irradiance is wanted) and L(w) lobe(w) / pdf(w)
-/// (when the lobe is) over the sequence's points, which sampleAt(u) turns into RadianceSamples.
-/// With hidden (shadows), each sample counts only where its ray got through, and the visible
+/// (when the lobe is) over the vertex's sample points (SampleSequence of this light and vertex),
+/// which sampleAt(u) turns into RadianceSamples: sampling's fixed count or, with targets, rounds
+/// until each sampled estimate meets its target (SequentialSampling.h; unshadowed only). With
+/// hidden (shadows), each sample counts only where its ray got through, and the visible
 /// fraction of the irradiance is estimated from the same samples.
 template <typename SampleAt>
-DistributedTerms sampledTerms(const SampleSequence& sequence, bool stratified, bool irradiance, const LobeModel& lobe,
-  const glm::dvec3& n, const glm::dvec3& v, const HiddenSamples* hidden, SampleAt&& sampleAt)
+DistributedTerms sampledTerms(std::uint64_t light, std::uint64_t vertex, const Sampling& sampling,
+  const SampleTargets& targets, bool irradiance, const LobeModel& lobe, const glm::dvec3& n, const glm::dvec3& v,
+  const HiddenSamples* hidden, SampleAt&& sampleAt)
 {
-  MonteCarloEstimate e(stratified), s(stratified);
-  VisibleFraction visible(stratified);
-  for (int j = 0; j < sequence.count(); ++j)
+  MonteCarloEstimate e(sampling.stratified), s(sampling.stratified);
+  VisibleFraction visible(sampling.stratified);
+  auto draw = [&](const SampleSequence& sequence, int first)
   {
-    const RadianceSample sample = sampleAt(sequence.point(j));
-    const bool through = !hidden || !hidden->hidden(j);
-    const double seen = through ? 1.0 : 0.0;
-    const Rgb unshadowed = sample.weighted * std::max(0.0, glm::dot(n, sample.direction));
-    if (irradiance)
+    for (int j = 0; j < sequence.count(); ++j)
     {
-      e.add(unshadowed * seen);
+      const RadianceSample sample = sampleAt(sequence.point(j));
+      const bool through = !hidden || !hidden->hidden(first + j);
+      const double seen = through ? 1.0 : 0.0;
+      const Rgb unshadowed = sample.weighted * std::max(0.0, glm::dot(n, sample.direction));
+      if (irradiance)
+      {
+        e.add(unshadowed * seen);
+      }
+      if (lobe.wanted())
+      {
+        s.add((sample.specular ? *sample.specular : sample.weighted * lobe(n, sample.direction, v)) * seen);
+      }
+      if (hidden)
+      {
+        visible.add((unshadowed.x + unshadowed.y + unshadowed.z) / 3, through);
+      }
     }
-    if (lobe.wanted())
+  };
+  if (!targets.any())
+  {
+    draw(SampleSequence(light, vertex, sampling), 0);
+  }
+  else
+  {
+    // The next round is the larger that either estimate's target asks for.
+    auto nextRound = [&](int drawn)
     {
-      s.add((sample.specular ? *sample.specular : sample.weighted * lobe(n, sample.direction, v)) * seen);
-    }
-    if (hidden)
+      const int forE = irradiance && targets.irradiance
+        ? targets.irradiance->nextRound(drawn, drawn > 0 ? largestComponent(e.standardError()) : 0.0)
+        : 0;
+      const int forS = lobe.wanted() && targets.specular
+        ? targets.specular->nextRound(drawn, drawn > 0 ? largestComponent(s.standardError()) : 0.0)
+        : 0;
+      return std::max(forE, forS);
+    };
+    int drawn = 0;
+    for (int round = nextRound(0); round > 0; round = nextRound(drawn))
     {
-      visible.add((unshadowed.x + unshadowed.y + unshadowed.z) / 3, through);
+      draw(SampleSequence(light, vertex, { round, sampling.stratified }, static_cast<std::uint64_t>(drawn)), drawn);
+      drawn += round;
     }
   }
   DistributedTerms terms;

@@ -14,10 +14,11 @@ int wholeRounds(double n)
 }
 }
 
-int SamplingTarget::minimum() const
+SamplingTarget SamplingTarget::forFraction(double error, int maximum)
 {
   const double ruleOfThree = 3 / error;
-  return ruleOfThree >= maximum ? maximum : std::min(maximum, std::max(samplingRound, wholeRounds(ruleOfThree)));
+  const int minimum = ruleOfThree >= maximum ? maximum : std::min(maximum, std::max(samplingRound, wholeRounds(ruleOfThree)));
+  return { error, minimum, maximum };
 }
 
 int SamplingTarget::nextRound(int drawn, double standardErrorSoFar) const
@@ -26,9 +27,9 @@ int SamplingTarget::nextRound(int drawn, double standardErrorSoFar) const
   {
     return 0;
   }
-  if (drawn < minimum())
+  if (drawn < minimum)
   {
-    return minimum() - drawn;
+    return minimum - drawn;
   }
   if (standardErrorSoFar <= standardError())
   {

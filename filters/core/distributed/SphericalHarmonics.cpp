@@ -138,4 +138,18 @@ Rgb irradianceFromSh9(const ShCoefficients9& coefficients, const glm::dvec3& uni
 {
   return irradiancePolynomial(coefficients)(unitNormal);
 }
+
+Rgb sh9IrradianceErrorBound(const EnvironmentMap& map)
+{
+  Rgb total(0.0);
+  for (int row = 0; row < map.height; ++row)
+  {
+    const double solidAngle = texelSolidAngle(row, map.width, map.height);
+    for (int column = 0; column < map.width; ++column)
+    {
+      total += map.texel(column, row) * solidAngle;
+    }
+  }
+  return 3.0 / 32.0 * total;
+}
 }

@@ -37,4 +37,8 @@ IrradiancePolynomial composedWith(const IrradiancePolynomial& p, const glm::dmat
 /// R&H eq. 13: the irradiance E(n) = integral of L(w) max(0, n.w) dw of the radiance the
 /// coefficients represent.
 Rgb irradianceFromSh9(const ShCoefficients9& coefficients, const glm::dvec3& unitNormal);
+
+/// The largest error of the nine coefficients' irradiance at any normal (docs/formulas.md
+/// section 12.5): 3/32 of the map's total radiance times solid angle, per channel.
+Rgb sh9IrradianceErrorBound(const EnvironmentMap& map);
 }

@@ -236,6 +236,7 @@ ShadingKernel<T>::ShadingKernel(
     EvaluationContext context;
     context.lineOfSight = scene.viewer.lineOfSight();
     context.distantFrom = method.distantFrom;
+    context.targets = method.targets;
     context.lightIndex = l;
     context.lobe = LobeModel{ needsSpecular ? specularModel_ : SpecularModel::None, m.shininess };
     const LightEvaluation evaluation = prepareEvaluation(scene.lights[l].source, context);

@@ -55,10 +55,10 @@ struct ShapeFileType
 const std::vector<ShapeFileType>& shapeFileTypes()
 {
   static const std::vector<ShapeFileType> types = {
-    { { "polygon", { "vertices", "two_sided", "estimator", "samples", "stratified" } }, &readPolygon },
-    { { "rectangle", { "center", "edge_u", "edge_v", "two_sided", "estimator", "samples", "stratified" } }, &readRectangle },
-    { { "disk", { "center", "normal", "radius", "two_sided", "estimator", "samples", "stratified" } }, &readDisk },
-    { { "sphere", { "center", "radius", "estimator", "samples", "stratified" } }, &readSphere },
+    { { "polygon", { "vertices", "two_sided", "estimator", "samples", "max_samples", "stratified" } }, &readPolygon },
+    { { "rectangle", { "center", "edge_u", "edge_v", "two_sided", "estimator", "samples", "max_samples", "stratified" } }, &readRectangle },
+    { { "disk", { "center", "normal", "radius", "two_sided", "estimator", "samples", "max_samples", "stratified" } }, &readDisk },
+    { { "sphere", { "center", "radius", "estimator", "samples", "max_samples", "stratified" } }, &readSphere },
   };
   return types;
 }
@@ -208,7 +208,7 @@ void AreaLight::placeOn(const MeshPlacement& placement)
 
 LightEvaluation AreaLight::prepare(const EvaluationContext& context) const
 {
-  const auto estimator = std::make_shared<const AreaLightEstimator>(*this, context.lightIndex, context.lobe);
+  const auto estimator = std::make_shared<const AreaLightEstimator>(*this, context.lightIndex, context.lobe, context.targets);
   return DistributedEvaluation{ estimator, std::nullopt, estimator };
 }
 }

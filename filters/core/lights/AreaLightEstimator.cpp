@@ -42,11 +42,13 @@ Reach reachOf(const glm::dvec3& onEmitter, const glm::dvec3& receiver)
 }
 }
 
-AreaLightEstimator::AreaLightEstimator(const AreaLight& light, std::uint64_t lightIndex, const LobeModel& lobe)
+AreaLightEstimator::AreaLightEstimator(
+  const AreaLight& light, std::uint64_t lightIndex, const LobeModel& lobe, const SampleTargets& targets)
   : light_(light)
   , radiance_(light.color * light.intensity)
   , lightIndex_(lightIndex)
   , lobe_(lobe)
+  , targets_(targets)
 {
   std::visit(Overloaded{ [&](const PolygonEmitter& polygon) { measurePolygon(polygon); },
                [&](const DiskEmitter& disk)
@@ -206,8 +208,7 @@ AreaLightEstimator::EmitterSample AreaLightEstimator::towardSphere(
 
 DistributedTerms AreaLightEstimator::monteCarlo(const SurfacePoint& point, bool irradiance, const HiddenSamples* hidden) const
 {
-  const SampleSequence sequence(lightIndex_, point.index, light_.sampling);
-  return sampledTerms(sequence, light_.sampling.stratified, irradiance, lobe_, point.normal, point.toViewer, hidden,
+  return sampledTerms(lightIndex_, point.index, light_.sampling, targets_, irradiance, lobe_, point.normal, point.toViewer, hidden,
     [&](const glm::dvec2& u)
     {
       const WeightedDirection sample = this->sample(u, point);

@@ -3,6 +3,7 @@
 // emitter, or a point light at its centre.
 #include "AreaLight.h"
 #include "DistributedLight.h"
+#include "SequentialSampling.h"
 #include "SampleWarps.h"
 
 #include <vector>
@@ -12,7 +13,8 @@ namespace shadelab
 class AreaLightEstimator final : public DistributedLightEstimator, public ShadowedLightEstimator
 {
 public:
-  AreaLightEstimator(const AreaLight& light, std::uint64_t lightIndex, const LobeModel& lobe);
+  /// targets: where the light's samples are drawn to a tolerance's share (unshadowed only).
+  AreaLightEstimator(const AreaLight& light, std::uint64_t lightIndex, const LobeModel& lobe, const SampleTargets& targets = {});
 
   DistributedTerms estimate(const SurfacePoint& point) const override;
 
@@ -68,6 +70,7 @@ private:
   Rgb radiance_;
   std::uint64_t lightIndex_;
   LobeModel lobe_;
+  SampleTargets targets_;
   glm::dvec3 centre_{ 0.0 };
   glm::dvec3 normal_{ 0.0 }; // polygons and disks
   glm::dvec3 tangent_{ 0.0 }, bitangent_{ 0.0 }; // disks: the plane's axes

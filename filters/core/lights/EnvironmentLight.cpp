@@ -26,7 +26,7 @@ std::string resolvePath(const std::string& path, const std::string& sceneFile)
 const std::vector<SceneFileType>& EnvironmentLight::sceneFileTypes()
 {
   static const std::vector<SceneFileType> types = { { "environment",
-    { "file", "rotation", "estimator", "directions", "samples", "stratified", "brute_force_width" } } };
+    { "file", "rotation", "estimator", "directions", "samples", "max_samples", "stratified", "brute_force_width" } } };
   return types;
 }
 
@@ -124,7 +124,7 @@ void EnvironmentLight::placeOn(const MeshPlacement&)
 
 LightEvaluation EnvironmentLight::prepare(const EvaluationContext& context) const
 {
-  auto estimator = std::make_shared<const EnvironmentLightEstimator>(*this, context.lightIndex, context.lobe);
+  auto estimator = std::make_shared<const EnvironmentLightEstimator>(*this, context.lightIndex, context.lobe, context.targets);
   if (estimator->irradiance())
   {
     // E is the estimator's polynomial of the normal; the estimator is still needed for S,

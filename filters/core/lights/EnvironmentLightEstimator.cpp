@@ -22,11 +22,13 @@ glm::dmat3 rotationAboutY(double degrees)
 }
 }
 
-EnvironmentLightEstimator::EnvironmentLightEstimator(const EnvironmentLight& light, std::uint64_t lightIndex, const LobeModel& lobe)
+EnvironmentLightEstimator::EnvironmentLightEstimator(
+  const EnvironmentLight& light, std::uint64_t lightIndex, const LobeModel& lobe, const SampleTargets& targets)
   : light_(light)
   , scale_(light.color * light.intensity)
   , lightIndex_(lightIndex)
   , lobe_(lobe)
+  , targets_(targets)
   , worldToMap_(glm::transpose(rotationAboutY(light.rotationDegrees)))
   , mapToWorld_(rotationAboutY(light.rotationDegrees))
 {
@@ -147,8 +149,7 @@ RadianceSample EnvironmentLightEstimator::draw(const glm::dvec3& n, const glm::d
 DistributedTerms EnvironmentLightEstimator::monteCarlo(const glm::dvec3& n, const glm::dvec3& v, std::uint64_t vertex,
   bool irradiance, EnvironmentDirections directions, const HiddenSamples* hidden) const
 {
-  const SampleSequence sequence(lightIndex_, vertex, light_.sampling);
-  return sampledTerms(sequence, light_.sampling.stratified, irradiance, lobe_, n, v, hidden,
+  return sampledTerms(lightIndex_, vertex, light_.sampling, targets_, irradiance, lobe_, n, v, hidden,
     [&](const glm::dvec2& u)
     {
       // The lobe's own direction would need a ray of its own: with shadows, S is taken from

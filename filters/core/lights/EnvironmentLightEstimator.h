@@ -3,6 +3,7 @@
 // over texels, Monte Carlo, or nine spherical-harmonic coefficients; with shadows, each of them
 // with the rays of its samples (docs/formulas.md section 12.7).
 #include "DistributedLight.h"
+#include "SequentialSampling.h"
 #include "EnvironmentLight.h"
 #include "EnvironmentMap.h"
 #include "EnvironmentSampler.h"
@@ -19,7 +20,8 @@ namespace shadelab
 class EnvironmentLightEstimator final : public DistributedLightEstimator, public ShadowedLightEstimator
 {
 public:
-  EnvironmentLightEstimator(const EnvironmentLight& light, std::uint64_t lightIndex, const LobeModel& lobe);
+  /// targets: where the light's samples are drawn to a tolerance's share (unshadowed only).
+  EnvironmentLightEstimator(const EnvironmentLight& light, std::uint64_t lightIndex, const LobeModel& lobe, const SampleTargets& targets = {});
 
   DistributedTerms estimate(const SurfacePoint& point) const override;
 
@@ -65,6 +67,7 @@ private:
   Rgb scale_;
   std::uint64_t lightIndex_;
   LobeModel lobe_;
+  SampleTargets targets_;
   glm::dmat3 worldToMap_{ 1.0 };
   glm::dmat3 mapToWorld_{ 1.0 };
   std::vector<Texel> texels_;              // BruteForce

@@ -5,6 +5,7 @@
 #include "Attenuation.h"
 #include "DistributedLight.h"
 #include "IrradiancePolynomial.h"
+#include "SequentialSampling.h"
 #include "SpotCone.h"
 #include "Vec3.h"
 
@@ -86,5 +87,6 @@ struct EvaluationContext
   std::optional<glm::dvec3> distantFrom;
   std::uint64_t lightIndex = 0; // seeds the light's samples
   LobeModel lobe;               // the specular lobe to integrate; model None: no S is needed
+  SampleTargets targets;        // a tolerance's plan: a distributed light's samples drawn to its share
 };
 }

@@ -22,6 +22,20 @@ LightRole roleOf(const LightSource& source)
   return std::visit([](const auto& light) { return std::decay_t<decltype(light)>::role; }, source);
 }
 
+const Sampling* samplingOf(const LightSource& source)
+{
+  return std::visit(
+    [](const auto& light) -> const Sampling*
+    {
+      if constexpr (std::decay_t<decltype(light)>::role == LightRole::Distributed)
+      {
+        return &light.sampling;
+      }
+      return nullptr;
+    },
+    source);
+}
+
 const glm::dvec3* positionOf(const LightSource& source)
 {
   return std::visit(

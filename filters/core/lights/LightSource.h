@@ -49,6 +49,9 @@ inline bool isDistributed(const LightSource& source)
   return roleOf(source) == LightRole::Distributed;
 }
 
+/// How a light integrated over a solid angle (area, environment) places its samples, or nullptr.
+const Sampling* samplingOf(const LightSource& source);
+
 /// The position of a light that has one (point, spot), or nullptr.
 const glm::dvec3* positionOf(const LightSource& source);
 

@@ -70,7 +70,7 @@ const TermInfo& termInfo(OcclusionTerm term)
 
 bool sceneHasTerm(const Scene& scene, OcclusionTerm term)
 {
-  return scene.ambientOcclusion && (term != OcclusionTerm::Rays || scene.ambientOcclusion->raysFromTolerance);
+  return scene.ambientOcclusion && (term != OcclusionTerm::Rays || scene.ambientOcclusion->sampling.fromTolerance);
 }
 
 bool ArrayRequest::any(LightTerm term) const

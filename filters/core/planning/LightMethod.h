@@ -1,6 +1,7 @@
 #pragma once
 // How one light is evaluated, as a tolerance's plan (MethodChoice.h) decides and the kernel
 // (ShadingKernel.h) carries out.
+#include "SequentialSampling.h"
 #include "SpecularPower.h"
 
 #include <glm/vec3.hpp>
@@ -17,7 +18,12 @@ struct LightMethod
   /// attenuation it has at this point (the mesh's centre) used at every vertex.
   std::optional<glm::dvec3> distantFrom;
   PowMethod pow = PowMethod::Exact;
+  /// Area lights and maps: their samples drawn to the plan's share ("samples": "auto").
+  SampleTargets targets;
 
-  bool operator==(const LightMethod& other) const { return distantFrom == other.distantFrom && pow == other.pow; }
+  bool operator==(const LightMethod& other) const
+  {
+    return distantFrom == other.distantFrom && pow == other.pow && targets == other.targets;
+  }
 };
 }

@@ -1,6 +1,8 @@
 #include "MethodChoice.h"
 
+#include "Overloaded.h"
 #include "Precision.h"
+#include "SphericalHarmonics.h"
 
 #include <algorithm>
 #include <cmath>
@@ -70,8 +72,118 @@ double directionError(double u, double reach, const glm::dvec3& target, double n
   return nearest > 0 ? 4 * u * (reach + largestComponent(target)) / nearest : unbounded;
 }
 
-/// The ambient occlusion's share of what the tolerance left (`left`), and how it meets it.
-OcclusionChoice chooseOcclusion(const Scene& scene, double left)
+/// Whether any light's estimates may be sampled to a share of the tolerance.
+bool samplesAnyLight(const Scene& scene)
+{
+  return std::any_of(scene.lights.begin(), scene.lights.end(),
+    [](const NamedLight& light) { return samplingOf(light.source) && samplingOf(light.source)->fromTolerance; });
+}
+
+/// What a tolerance can bound of an area light's or a map's estimator: whether E is sampled,
+/// the largest error of an E that is not (SH's band limit, docs/formulas.md 12.5), or why it
+/// cannot be bounded at all ("" where it can).
+struct EstimatorBounds
+{
+  bool sampledIrradiance = false;
+  double irradianceError = 0;
+  std::string unbounded;
+  std::string autoSamples; // how the scene file (and the command line) asks for "samples": "auto"
+};
+
+EstimatorBounds estimatorBoundsOf(const LightSource& source)
+{
+  EstimatorBounds bounds;
+  std::visit(Overloaded{ [&](const AreaLight& light)
+               {
+                 bounds.sampledIrradiance = light.estimator == AreaEstimator::MonteCarlo;
+                 bounds.autoSamples = "\"samples\": \"auto\"";
+                 bounds.unbounded = light.estimator == AreaEstimator::Point
+                   ? "its \"point\" estimator has no error bound: use \"exact\" or \"monte_carlo\""
+                   : "";
+               },
+               [&](const EnvironmentLight& light)
+               {
+                 bounds.sampledIrradiance = light.estimator == EnvironmentEstimator::MonteCarlo;
+                 bounds.autoSamples = "\"samples\": \"auto\" (--envmap-samples auto)";
+                 bounds.unbounded = light.estimator == EnvironmentEstimator::BruteForce
+                   ? "the \"brute_force\" sum of a downsampled map has no error bound: use \"sh\" or \"monte_carlo\""
+                   : "";
+                 if (light.estimator == EnvironmentEstimator::SphericalHarmonics)
+                 {
+                   bounds.irradianceError = largestComponent(light.color * light.intensity * sh9IrradianceErrorBound(*light.map));
+                 }
+               },
+               [](const auto&) {} },
+    source);
+  return bounds;
+}
+
+/// An area light's or a map's choice: its deterministic error charged to what is `left`, and
+/// which of its estimates are sampled (their shares come later, drawToShare). Throws
+/// std::invalid_argument where the tolerance cannot bound the light.
+LightChoice distributedChoice(const NamedLight& light, const Material& m, bool specular, double left)
+{
+  LightChoice choice;
+  choice.name = light.name;
+  const EstimatorBounds bounds = estimatorBoundsOf(light.source);
+  auto refuse = [&](const std::string& why)
+  {
+    throw std::invalid_argument("a tolerance cannot bound light '" + light.name + "' of type \"" +
+      lightTypeName(light.source) + "\": " + why + "; or shade without a tolerance");
+  };
+  if (!bounds.unbounded.empty())
+  {
+    refuse(bounds.unbounded);
+  }
+  if (light.shadows)
+  {
+    refuse("its soft shadows' samples are drawn before the shading, at a fixed count, which no tolerance bounds "
+           "yet: shade it without \"shadows\"");
+  }
+  choice.sampledIrradiance = bounds.sampledIrradiance;
+  choice.sampledSpecular = specular;
+  if ((choice.sampledIrradiance || choice.sampledSpecular) && !samplingOf(light.source)->fromTolerance)
+  {
+    refuse("its Monte Carlo estimates from " + std::to_string(samplingOf(light.source)->samples) +
+      " samples have no error bound before they are drawn: give it " + bounds.autoSamples +
+      ", which draws each vertex's samples until their standard error meets a share of the tolerance");
+  }
+  // E's error reaches its own array as it is, and the diffuse term times kd.
+  choice.approximationError = bounds.irradianceError * std::max(1.0, largestComponent(m.kd));
+  if (!(choice.approximationError <= left))
+  {
+    refuse("its spherical-harmonic irradiance can err by " + scientific(choice.approximationError) + ", more than the " +
+      scientific(left) + " of the tolerance left for it: use \"estimator\": \"monte_carlo\" (--envmap-estimator "
+      "monte_carlo) with " + bounds.autoSamples);
+  }
+  choice.predictedError = choice.approximationError;
+  return choice;
+}
+
+/// The targets of a light's sampled estimates for its share of the tolerance (in the totals'
+/// units): the share split between E and S where both are sampled, each divided by kd or ks
+/// where those exceed 1 (E's and S's own arrays hold it too).
+void drawToShare(const Sampling& sampling, const Material& m, double share, LightChoice& choice)
+{
+  const double part = share / ((choice.sampledIrradiance ? 1 : 0) + (choice.sampledSpecular ? 1 : 0));
+  auto target = [&](double k)
+  {
+    const int least = std::max(samplingRound, samplingRound * ((sampling.samples + samplingRound - 1) / samplingRound));
+    return SamplingTarget{ part / std::max(1.0, k), std::min(least, sampling.maximum), sampling.maximum };
+  };
+  if (choice.sampledIrradiance)
+  {
+    choice.method.targets.irradiance = target(largestComponent(m.kd));
+  }
+  if (choice.sampledSpecular)
+  {
+    choice.method.targets.specular = target(largestComponent(m.ks));
+  }
+  choice.predictedError += share;
+}
+
+/// How the ambient occlusion meets its share of the tolerance (`share`, in the totals' units).
+OcclusionChoice chooseOcclusion(const Scene& scene, double share)
 {
   OcclusionChoice choice;
   double ambient = 0;
@@ -80,20 +192,20 @@ OcclusionChoice chooseOcclusion(const Scene& scene, double left)
     ambient += isAmbient(light.source) ? ambientPeak(light.source, scene.material) : 0;
   }
   choice.weightInTotals = std::max(1.0, ambient);
-  const double share = left / choice.weightInTotals;
+  const double ownShare = share / choice.weightInTotals;
   const AmbientOcclusion& occlusion = *scene.ambientOcclusion;
-  if (occlusion.raysFromTolerance)
+  if (occlusion.sampling.fromTolerance)
   {
-    choice.target = SamplingTarget{ share, occlusion.maxRays };
-    choice.predictedError = share;
+    choice.target = SamplingTarget::forFraction(ownShare, occlusion.sampling.maximum);
+    choice.predictedError = ownShare;
     return choice;
   }
   choice.predictedError = fixedRaysError(occlusion.sampling.samples);
-  if (!(choice.predictedError <= share))
+  if (!(choice.predictedError <= ownShare))
   {
     throw std::invalid_argument("ambient occlusion's " + std::to_string(occlusion.sampling.samples) +
       " rays per vertex can err by up to " + scientific(choice.predictedError) + " (95%), more than the " +
-      scientific(share) + " the tolerance leaves it: give \"rays\": \"auto\" (--ambient-occlusion auto) to draw "
+      scientific(ownShare) + " the tolerance leaves it: give \"rays\": \"auto\" (--ambient-occlusion auto) to draw "
       "as many as the tolerance needs, or a larger tolerance");
   }
   return choice;
@@ -220,6 +332,20 @@ std::vector<std::string> MethodPlan::describe() const
     {
       parts.push_back(powMethodName(light.method.pow));
     }
+    if (light.approximationError > 0)
+    {
+      parts.push_back("SH irradiance within " + scientific(light.approximationError));
+    }
+    for (const auto& [integral, target] : { std::pair{ "E", light.method.targets.irradiance },
+           std::pair{ "S", light.method.targets.specular } })
+    {
+      if (target)
+      {
+        parts.push_back(std::string(integral) + " sampled to within " + scientific(target->error) +
+          " at 95% (standard error at most " + scientific(target->standardError()) + "), " +
+          std::to_string(target->minimum) + " to " + std::to_string(target->maximum) + " samples per vertex");
+      }
+    }
     for (std::size_t p = 0; p < parts.size(); ++p)
     {
       line += (p ? ", " : "") + parts[p];
@@ -236,7 +362,7 @@ std::vector<std::string> MethodPlan::describe() const
     const SamplingTarget& target = *occlusion->target;
     lines.push_back("ambient occlusion: rays auto, within " + scientific(target.error) +
       " at 95% (standard error at most " + scientific(target.standardError()) + "), " +
-      std::to_string(target.minimum()) + " to " + std::to_string(target.maximum) + " rays per vertex");
+      std::to_string(target.minimum) + " to " + std::to_string(target.maximum) + " rays per vertex");
   }
   else if (occlusion)
   {
@@ -249,19 +375,9 @@ std::vector<std::string> MethodPlan::describe() const
 MethodPlan chooseMethods(const Scene& scene, const ArrayRequest& request, const MeshExtent& mesh, double tolerance,
   bool float32Allowed, std::optional<double> sampledFloat32Difference)
 {
-  for (const NamedLight& light : scene.lights)
-  {
-    if (isDistributed(light.source))
-    {
-      throw std::invalid_argument("a tolerance cannot be met with light '" + light.name + "' of type \"" +
-        lightTypeName(light.source) +
-        "\": its error comes from the estimator the scene names, not from arithmetic a tolerance can choose "
-        "(Monte Carlo estimators report theirs in *_std_error arrays); shade without a tolerance");
-    }
-  }
   MethodPlan plan;
   plan.tolerance = tolerance;
-  const double deterministic = scene.ambientOcclusion ? tolerance / 10 : tolerance;
+  const double deterministic = scene.ambientOcclusion || samplesAnyLight(scene) ? tolerance / 10 : tolerance;
   // Each precision's rounding: a priori, or from the sample. float32's sample is taken over
   // the a priori bound, which is usually far above it but does not cover a light switched on or
   // off at a vertex's horizon (docs/formulas.md section 15), which the sample looks for; it is
@@ -321,6 +437,13 @@ MethodPlan chooseMethods(const Scene& scene, const ArrayRequest& request, const 
       continue;
     }
     const bool specular = specularComputed(scene, request, l);
+    if (isDistributed(named.source))
+    {
+      choice = distributedChoice(named, scene.material, specular, left);
+      left -= choice.predictedError;
+      plan.lights.push_back(choice);
+      continue;
+    }
     const auto* point = std::get_if<PointLight>(&named.source);
     double distantError = unbounded;
     std::string distantWhy;
@@ -382,9 +505,23 @@ MethodPlan chooseMethods(const Scene& scene, const ArrayRequest& request, const 
     left -= choice.predictedError;
     plan.lights.push_back(choice);
   }
+  // The sampling's part, in equal shares to the occlusion and to each light that samples.
+  std::vector<std::size_t> sampledLights;
+  for (std::size_t l = 0; l < plan.lights.size(); ++l)
+  {
+    if (plan.lights[l].sampledIrradiance || plan.lights[l].sampledSpecular)
+    {
+      sampledLights.push_back(l);
+    }
+  }
+  const double share = (tolerance - plan.predictedError()) / double(sampledLights.size() + (scene.ambientOcclusion ? 1 : 0));
+  for (const std::size_t l : sampledLights)
+  {
+    drawToShare(*samplingOf(scene.lights[l].source), scene.material, share, plan.lights[l]);
+  }
   if (scene.ambientOcclusion)
   {
-    plan.occlusion = chooseOcclusion(scene, tolerance - plan.predictedError());
+    plan.occlusion = chooseOcclusion(scene, share);
   }
   return plan;
 }

@@ -20,8 +20,14 @@ struct LightChoice
 {
   std::string name;
   LightMethod method;
-  double predictedError = 0; // of the approximations chosen for this light
+  /// Of the approximations chosen for this light, and of its samples' share where they are
+  /// drawn to one (at 95% confidence).
+  double predictedError = 0;
   std::string why;           // why no cheaper method was taken, or "" when the cheapest was
+  /// An area light or a map: its deterministic part's error (SH's band limit), and whether its
+  /// estimates of E and S are sampled (and so drawn to a share of the tolerance).
+  double approximationError = 0;
+  bool sampledIrradiance = false, sampledSpecular = false;
 };
 
 /// How the scene's ambient occlusion meets its share of the tolerance.
@@ -85,8 +91,9 @@ struct RoundingAboveTolerance : std::invalid_argument
 double fixedRaysError(int n);
 
 /// The cheapest plan whose predicted error is at most tolerance (> 0). Where the scene samples
-/// (ambient occlusion), the arithmetic and approximations may take a tenth of the tolerance
-/// and the sampling the rest, what they leave included: a sampled estimate's cost grows as
+/// (ambient occlusion, an area light's or a map's Monte Carlo estimates), the arithmetic and
+/// approximations may take a tenth of the tolerance and the sampling the rest, what they leave
+/// included, in equal shares: a sampled estimate's cost grows as
 /// the inverse square of its error, so the nine tenths cost 1.23 times the rays of all of it,
 /// while float32 and the approximations rarely need more than a tenth. scene must have no
 /// sceneProblems() and request must come from selectArrays(scene, ...). float32Allowed: false
@@ -94,7 +101,9 @@ double fixedRaysError(int n);
 /// a sample (all lights exact), float32's error is the sample's (sampledFloat32Error) rather
 /// than the a priori bound, and float64's the lesser of the two. Throws std::invalid_argument when even
 /// float64 with exact methods is predicted to exceed the tolerance (RoundingAboveTolerance),
-/// or a fixed count of rays to exceed the share left for it.
+/// a fixed count of rays to exceed the share left for it, or an area light or map cannot be
+/// bounded (its estimator has no bound, its samples are a fixed count, it casts shadows, or its
+/// SH irradiance errs by more than is left).
 MethodPlan chooseMethods(const Scene& scene, const ArrayRequest& request, const MeshExtent& mesh, double tolerance,
   bool float32Allowed = true, std::optional<double> sampledFloat32Difference = std::nullopt);
 }

@@ -136,12 +136,26 @@ std::vector<SceneProblem> sceneProblems(const Scene& scene, Precision precision)
   return list.problems;
 }
 
-std::string untargetedSamplingProblem(const Scene& scene)
+std::string untargetedSamplingProblem(const Scene& scene, bool lightsPlanned)
 {
-  if (scene.ambientOcclusion && scene.ambientOcclusion->raysFromTolerance && !scene.ambientOcclusion->target)
+  const std::string remedy = "give one (shadelab shade --tolerance, the filter's Tolerance), or a number of ";
+  if (scene.ambientOcclusion && scene.ambientOcclusion->sampling.fromTolerance && !scene.ambientOcclusion->target)
   {
-    return "ambient occlusion with \"rays\": \"auto\" takes its count of rays from a tolerance: give one "
-           "(shadelab shade --tolerance, the filter's Tolerance), or a number of rays";
+    return "ambient occlusion with \"rays\": \"auto\" takes its count of rays from a tolerance: " + remedy + "rays";
+  }
+  for (const NamedLight& light : scene.lights)
+  {
+    const Sampling* sampling = samplingOf(light.source);
+    if (sampling && sampling->fromTolerance && light.shadows)
+    {
+      return "light '" + light.name + "' casts shadows with \"samples\": \"auto\", but its shadow rays are cast "
+             "before the shading, at a fixed count: give it a number of samples";
+    }
+    if (sampling && sampling->fromTolerance && !lightsPlanned)
+    {
+      return "light '" + light.name + "' has \"samples\": \"auto\", which takes its count from a tolerance: " + remedy +
+        "samples";
+    }
   }
   return "";
 }

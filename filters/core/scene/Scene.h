@@ -42,12 +42,11 @@ enum class SceneFrame
 /// cosine-weighted fraction of the sky each vertex sees past the mesh.
 struct AmbientOcclusion
 {
+  /// "rays": "auto" (sampling.fromTolerance): each vertex draws as many rays as its share of a
+  /// tolerance needs, at most sampling.maximum ("max_rays"); the tolerance's plan
+  /// (MethodChoice.h) sets the target. Without a tolerance there is no target, and the filters
+  /// refuse the scene.
   Sampling sampling{ 64, true };
-  /// "rays": "auto": each vertex draws as many rays as its share of a tolerance needs, at most
-  /// maxRays; the tolerance's plan (MethodChoice.h) sets the target. Without a tolerance there is
-  /// no target, and the filters refuse the scene.
-  bool raysFromTolerance = false;
-  int maxRays = 4096;
   std::optional<SamplingTarget> target;
   /// Occluders farther than this do not count (infinite: all do). In the scene's frame.
   double maxDistance = std::numeric_limits<double>::infinity();
@@ -92,7 +91,10 @@ std::string meshCoordinateProblem(double reach, Precision precision);
 /// VTK filter both report these, so the rules live here once.
 std::vector<SceneProblem> sceneProblems(const Scene& scene, Precision precision = Precision::Float64);
 
-/// Why the scene's rays cannot be cast as it stands: ambient occlusion with "rays": "auto"
-/// that no tolerance has given a target (MethodChoice.h); "" when they can.
-std::string untargetedSamplingProblem(const Scene& scene);
+/// Why the scene's samples cannot be drawn as it stands, or "": ambient occlusion with
+/// "rays": "auto" that no tolerance has given a target (MethodChoice.h); a light with shadows
+/// and "samples": "auto" (its rays are cast before the shading, at a fixed count); and unless
+/// lightsPlanned (a tolerance's plan gives each light its targets), any light with
+/// "samples": "auto".
+std::string untargetedSamplingProblem(const Scene& scene, bool lightsPlanned);
 }

@@ -1,6 +1,7 @@
 #include "SceneFile.h"
 
 #include "JsonNode.h"
+#include "LightFields.h"
 
 #include <algorithm>
 #include <cmath>
@@ -29,26 +30,7 @@ AmbientOcclusion readAmbientOcclusion(const JsonNode& node)
 {
   node.expectObject({ "rays", "max_rays", "stratified", "max_distance" });
   AmbientOcclusion occlusion;
-  if (node.has("rays") && node.at("rays").isString())
-  {
-    if (node.at("rays").text() != "auto")
-    {
-      node.at("rays").fail("must be a whole number of rays per vertex, or \"auto\" (as many as a tolerance needs)");
-    }
-    occlusion.raysFromTolerance = true;
-  }
-  else if (node.has("rays"))
-  {
-    occlusion.sampling.samples = node.at("rays").wholeNumber(2, maxSamplesPerVertex);
-  }
-  if (node.has("max_rays"))
-  {
-    if (!occlusion.raysFromTolerance)
-    {
-      node.at("max_rays").fail("is the most rays \"rays\": \"auto\" may draw per vertex: give \"rays\": \"auto\" with it, or leave it out");
-    }
-    occlusion.maxRays = node.at("max_rays").wholeNumber(samplingRound, maxSamplesPerVertex);
-  }
+  readSampleCount(node, "rays", "max_rays", occlusion.sampling);
   if (node.has("stratified"))
   {
     occlusion.sampling.stratified = node.at("stratified").boolean();
