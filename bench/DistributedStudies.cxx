@@ -35,6 +35,20 @@ std::string samplingName(bool stratified)
   return stratified ? "stratified" : "independent";
 }
 
+/// "P% of the values within E": how many of b's values are within `within` of a's.
+std::string withinText(vtkDataArray* a, vtkDataArray* b, double within)
+{
+  vtkIdType inside = 0;
+  for (vtkIdType v = 0; v < a->GetNumberOfValues(); ++v)
+  {
+    inside += std::abs(a->GetVariantValue(v).ToDouble() - b->GetVariantValue(v).ToDouble()) <= within ? 1 : 0;
+  }
+  std::ostringstream text;
+  text << std::fixed << std::setprecision(1) << 100.0 * double(inside) / double(a->GetNumberOfValues())
+       << "% of the values within the predicted error (95% asked)";
+  return text.str();
+}
+
 /// The measurements of one study: each method's error in each term against the reference, as
 /// rows, and the charted term's largest and RMS errors against time, as a line per estimator
 /// family (over its sample counts or widths).
@@ -72,17 +86,20 @@ public:
   }
 
   /// method: the estimator family, such as "monte_carlo, stratified"; parameter and value:
-  /// what varies within it (samples 64).
-  void measure(const std::string& method, const std::string& parameter, double value, const Scene& scene)
+  /// what varies within it (samples 64); methods: the lights' (a target for their samples),
+  /// with the error predicted for the charted term.
+  void measure(const std::string& method, const std::string& parameter, double value, const Scene& scene,
+    const std::vector<LightMethod>& methods = {}, std::optional<double> predicted = std::nullopt)
   {
     for (const std::vector<std::string>& terms : termRuns_)
     {
-      const MethodRun run = runMethod(bunny_.data, scene, terms, Precision::Float32, {}, maxRepeats_, 1);
+      const MethodRun run = runMethod(bunny_.data, scene, terms, Precision::Float32, methods, maxRepeats_, 1);
       for (const std::string& term : terms)
       {
         const Differences errors = compareArrays(arrayOf(reference_, term), arrayOf(run, term));
         rows.push_back({ name_, method + ": " + term, parameter, value, bunny_.data->GetNumberOfPoints(),
-          run.milliseconds, errors.largest, errors.rms, std::nullopt, "" });
+          run.milliseconds, errors.largest, errors.rms, term == chartedTerm_ ? predicted : std::nullopt,
+          predicted && term == chartedTerm_ ? withinText(arrayOf(reference_, term), arrayOf(run, term), *predicted) : "" });
         if (term == chartedTerm_)
         {
           addPoint(method, run.milliseconds, errors);
@@ -308,9 +325,20 @@ std::vector<AccuracyRow> environmentMapStudy(const Mesh& bunny, const Scene& mat
       study.measure(family, "samples", samples, lit());
     }
   }
+  // Samples to a target ("samples": "auto" under a tolerance, at least the default 64 and at
+  // most 4096): E's error at 95%, which is the diffuse term's times kd.
+  light.directions = EnvironmentDirections::Luminance;
+  light.sampling = Sampling{};
+  for (const double error : { 0.1, 0.03, 0.01, 0.003 })
+  {
+    std::vector<LightMethod> methods(1);
+    methods[0].targets.irradiance = SamplingTarget{ error, light.sampling.samples, light.sampling.maximum };
+    study.measure("monte_carlo by luminance, to a target", "E within (95%)", error, lit(), methods,
+      error * largestComponent(material.material.kd));
+  }
   chart.series = study.chartSeries();
   chart.title = diffuseUnderMapTitle(map, bunny, "");
-  chart.xTitle = "time per run, diffuse term only (ms, median; widths 32 to 128, samples 4 to 1024)";
+  chart.xTitle = "time per run, diffuse term only (ms, median; widths 32 to 128, samples 4 to 1024, targets 0.1 to 0.003)";
   chart.yTitle = "|error| of the diffuse term against brute force " + std::to_string(mapReferenceWidth) +
     ": largest (solid), RMS (dashed)";
   chart.logX = chart.logY = true;
