@@ -347,6 +347,10 @@ int runShade(const ShadeOptions& options)
     {
       std::cout << "    " << line << "\n";
     }
+    for (const std::string& line : filter->GetSamplingReport())
+    {
+      std::cout << "    " << line << "\n";
+    }
   }
   printSummary(output, scene, options.prefix);
   const int threads = vtkSMPTools::GetEstimatedNumberOfThreads();

@@ -272,6 +272,7 @@ TEST(Tolerance, AMapsSamplesAreDrawnToItsShareTheSameOnAnyThreadCount)
     vtkSMPTools::LocalScope(vtkSMPTools::Config{ threads }, [&] { filter->Update(); });
     auto output = vtkSmartPointer<vtkPolyData>::New();
     output->ShallowCopy(filter->GetOutput());
+    EXPECT_TRUE(filter->GetSamplingReport().empty()) << "no vertex reaches the maximum";
     return std::make_pair(output, *filter->GetMethodPlan());
   };
   const auto [one, plan] = shade(1);
@@ -294,6 +295,41 @@ TEST(Tolerance, AMapsSamplesAreDrawnToItsShareTheSameOnAnyThreadCount)
       ASSERT_LE(float(specularError->GetComponent(i, c)), float(targets.specular->standardError())) << i;
     }
   }
+}
+
+TEST(Tolerance, VerticesThatStopAtTheMaximumShortOfTheirTargetAreCountedAndSaid)
+{
+  vtkSmartPointer<vtkPolyData> sphere = coarseSphere();
+  Scene scene = studioMapToATolerance();
+  std::get<EnvironmentLight>(scene.lights[0].source).sampling.maximum = 64;
+  vtkNew<vtkLocalReflectanceFilter> filter;
+  filter->SetInputData(sphere);
+  filter->SetScene(scene);
+  filter->SetArraySelection({ "all" });
+  filter->SetTolerance(0.002);
+  filter->Update();
+  ASSERT_EQ(filter->GetSamplingReport().size(), 1u);
+  const std::string& line = filter->GetSamplingReport()[0];
+  const std::size_t count = std::stoul(line.substr(std::string("studio: ").size()));
+  // Each counted vertex has a standard error above its target, and only those.
+  const SampleTargets& targets = filter->GetMethodPlan()->lights[0].method.targets;
+  vtkDataArray* irradianceError = filter->GetOutput()->GetPointData()->GetArray("studio_irradiance_std_error");
+  std::size_t above = 0;
+  ASSERT_NE(irradianceError, nullptr);
+  for (vtkIdType i = 0; i < sphere->GetNumberOfPoints(); ++i)
+  {
+    double largest = 0;
+    for (int c = 0; c < 3; ++c)
+    {
+      largest = std::max(largest, irradianceError->GetComponent(i, c));
+    }
+    above += float(largest) > float(targets.irradiance->standardError()) ? 1 : 0;
+  }
+  EXPECT_GT(above, 0u) << line;
+  EXPECT_GE(count, above) << line; // S may be short where E is not
+  EXPECT_EQ(line, "studio: " + std::to_string(count) +
+      " vertices stopped at \"max_samples\" short of their target (their _std_error arrays are above it): raise it");
+  EXPECT_EQ(shadelab::testing::methodsNote(filter->GetOutput()).back(), line);
 }
 
 TEST(Tolerance, AreaLightsAndMapsItCannotBoundAreRefusedWithTheRemedy)

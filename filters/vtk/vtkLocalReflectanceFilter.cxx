@@ -156,12 +156,16 @@ struct ShadeAllPoints
   }
 };
 
-/// The requested arrays, shaded in precision T. progressOwner (or nullptr) reports progress.
+/// Per light drawn to a target, how many vertices stopped at its maximum short of it.
+using ShortOfTarget = std::vector<std::pair<std::string, std::size_t>>;
+
+/// The requested arrays, shaded in precision T. progressOwner (or nullptr) reports progress;
+/// shortOfTarget (or nullptr) receives the kernel's count.
 template <typename T>
 std::vector<vtkSmartPointer<vtkDataArray>> shade(const shadelab::Scene& scene,
   const shadelab::ArrayRequest& request, const std::vector<shadelab::LightMethod>& methods,
   const std::string& prefix, vtkDataArray* points, vtkDataArray* normals, const shadelab::ShadingInputs& inputs,
-  vtkAlgorithm* progressOwner)
+  vtkAlgorithm* progressOwner, ShortOfTarget* shortOfTarget = nullptr)
 {
   OutputArrays<T> arrays(scene, request, prefix, points->GetNumberOfTuples());
   const shadelab::ShadingKernel<T> kernel(scene, arrays.outputs, methods, inputs);
@@ -170,6 +174,10 @@ std::vector<vtkSmartPointer<vtkDataArray>> shade(const shadelab::Scene& scene,
   if (!vtkArrayDispatch::Dispatch2ByValueType<Reals, Reals>::Execute(points, normals, worker))
   {
     worker(points, normals); // other value types, through the generic vtkDataArray API
+  }
+  if (shortOfTarget)
+  {
+    *shortOfTarget = kernel.verticesShortOfTarget();
   }
   return arrays.arrays;
 }
@@ -810,9 +818,19 @@ std::vector<vtkSmartPointer<vtkDataArray>> vtkLocalReflectanceFilter::ShadedArra
     seen ? useVisibility(seen, plan.scene, plan.request, this->ArrayPrefix, inputs)
          : std::vector<vtkSmartPointer<vtkDataArray>>();
   vtkDataArray* points = input->GetPoints()->GetData();
+  ShortOfTarget shortOfTarget;
   std::vector<vtkSmartPointer<vtkDataArray>> arrays = plan.precision == shadelab::Precision::Float64
-    ? shade<double>(plan.scene, plan.request, plan.methods, this->ArrayPrefix, points, shadingNormals, inputs, this)
-    : shade<float>(plan.scene, plan.request, plan.methods, this->ArrayPrefix, points, shadingNormals, inputs, this);
+    ? shade<double>(plan.scene, plan.request, plan.methods, this->ArrayPrefix, points, shadingNormals, inputs, this, &shortOfTarget)
+    : shade<float>(plan.scene, plan.request, plan.methods, this->ArrayPrefix, points, shadingNormals, inputs, this, &shortOfTarget);
+  this->SamplingReport.clear();
+  for (const auto& [light, vertices] : shortOfTarget)
+  {
+    if (vertices > 0)
+    {
+      this->SamplingReport.push_back(light + ": " + std::to_string(vertices) +
+        " vertices stopped at \"max_samples\" short of their target (their _std_error arrays are above it): raise it");
+    }
+  }
   arrays.insert(arrays.end(), occlusion.begin(), occlusion.end());
   return arrays;
 }
@@ -826,7 +844,9 @@ void vtkLocalReflectanceFilter::AddFieldNotes(vtkPolyData* output) const
   }
   if (this->Tolerance > 0)
   {
-    shadelab::addFieldNote(output, shadelab::methodsNoteName, this->MethodPlan->describe());
+    std::vector<std::string> lines = this->MethodPlan->describe();
+    lines.insert(lines.end(), this->SamplingReport.begin(), this->SamplingReport.end());
+    shadelab::addFieldNote(output, shadelab::methodsNoteName, lines);
   }
 }
 

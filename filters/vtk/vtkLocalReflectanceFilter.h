@@ -100,6 +100,9 @@ public:
   /// What the last run chose under the tolerance, with its predicted errors; empty when the
   /// tolerance is 0. Its describe() lines are the field data array shadelab_methods.
   const std::optional<shadelab::MethodPlan>& GetMethodPlan() const { return this->MethodPlan; }
+  /// After a run under a tolerance: a line per area light or map with vertices whose samples
+  /// stopped at their maximum short of their target (also in shadelab_methods, after the plan).
+  const std::vector<std::string>& GetSamplingReport() const { return this->SamplingReport; }
 
   /// Flip normals that point into a closed or nearly closed mesh (default on).
   vtkSetMacro(OrientNormalsOutward, bool);
@@ -174,6 +177,7 @@ private:
   std::string NormalsReport;
   std::string VisibilityReport;
   std::optional<shadelab::MethodPlan> MethodPlan;
+  std::vector<std::string> SamplingReport;
   std::vector<shadelab::LightMethod> LightMethods;
   vtkSmartPointer<vtkMultiProcessController> Controller;
 

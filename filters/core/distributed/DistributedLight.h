@@ -42,6 +42,9 @@ struct DistributedTerms
   Rgb specularStdError{ 0.0 };
   double visibility = 1;
   double visibilityStdError = 0;
+  /// Drawn to a target (SequentialSampling.h): stopped at the maximum with a standard error
+  /// still above it.
+  bool shortOfTarget = false;
 };
 
 /// The specular lobe for light arriving from the unit direction s (docs/formulas.md sections 4

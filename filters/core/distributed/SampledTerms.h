@@ -57,6 +57,7 @@ DistributedTerms sampledTerms(std::uint64_t light, std::uint64_t vertex, const S
       }
     }
   };
+  bool shortOfTarget = false;
   if (!targets.any())
   {
     draw(SampleSequence(light, vertex, sampling), 0);
@@ -80,8 +81,11 @@ DistributedTerms sampledTerms(std::uint64_t light, std::uint64_t vertex, const S
       draw(SampleSequence(light, vertex, { round, sampling.stratified }, static_cast<std::uint64_t>(drawn)), drawn);
       drawn += round;
     }
+    shortOfTarget = (irradiance && targets.irradiance && largestComponent(e.standardError()) > targets.irradiance->standardError()) ||
+      (lobe.wanted() && targets.specular && largestComponent(s.standardError()) > targets.specular->standardError());
   }
   DistributedTerms terms;
+  terms.shortOfTarget = shortOfTarget;
   if (irradiance)
   {
     terms.irradiance = e.mean();

@@ -248,6 +248,8 @@ ShadingKernel<T>::ShadingKernel(
     {
       distributedLights_.push_back(prepareDistributed(*distributed, out, m, needsSpecular,
         l < inputs_.lightHiddenSamples.size() ? inputs_.lightHiddenSamples[l] : nullptr));
+      distributedLights_.back().name = scene.lights[l].name;
+      distributedLights_.back().drawnToTarget = method.targets.any();
     }
     else
     {
@@ -579,6 +581,7 @@ void ShadingKernel<T>::estimateDistributedLight(const DistributedLightSlot& ligh
       array[3 * i + 2] = T(value.z);
     }
   };
+  std::size_t shortOfTarget = 0;
   for (std::size_t k = 0; k < b.count; ++k)
   {
     DistributedTerms terms;
@@ -615,7 +618,26 @@ void ShadingKernel<T>::estimateDistributedLight(const DistributedLightSlot& ligh
     {
       visibilityError[i] = T(terms.visibilityStdError);
     }
+    shortOfTarget += terms.shortOfTarget ? 1 : 0;
   }
+  if (shortOfTarget > 0)
+  {
+    *light.shortOfTarget += shortOfTarget;
+  }
+}
+
+template <typename T>
+std::vector<std::pair<std::string, std::size_t>> ShadingKernel<T>::verticesShortOfTarget() const
+{
+  std::vector<std::pair<std::string, std::size_t>> counts;
+  for (const DistributedLightSlot& light : distributedLights_)
+  {
+    if (light.drawnToTarget)
+    {
+      counts.emplace_back(light.name, light.shortOfTarget->load());
+    }
+  }
+  return counts;
 }
 
 template <typename T>

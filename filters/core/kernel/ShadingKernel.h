@@ -17,9 +17,12 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cstddef>
 #include <memory>
 #include <optional>
+#include <string>
+#include <utility>
 #include <vector>
 
 namespace shadelab
@@ -96,6 +99,10 @@ public:
   /// vertex far slower than the local lights do.
   bool hasDistributedLights() const { return !distributedLights_.empty(); }
 
+  /// Per area light or map (by name) whose samples are drawn to a target: how many of the
+  /// vertices shaded so far stopped at the maximum short of it.
+  std::vector<std::pair<std::string, std::size_t>> verticesShortOfTarget() const;
+
 private:
   struct PreparedLight
   {
@@ -139,6 +146,10 @@ private:
     Rgb kd{ 0.0 }, ks{ 0.0 };
     bool needsSpecular = false;
     std::array<T*, LightTermCount> out{};
+    std::string name;
+    bool drawnToTarget = false;
+    /// Vertices that stopped at the maximum short of the target, counted by concurrent blocks.
+    std::shared_ptr<std::atomic<std::size_t>> shortOfTarget = std::make_shared<std::atomic<std::size_t>>(0);
   };
 
   struct Workspace;
