@@ -332,7 +332,7 @@ std::vector<AccuracyRow> environmentMapStudy(const Mesh& bunny, const Scene& mat
   for (const double error : { 0.1, 0.03, 0.01, 0.003 })
   {
     std::vector<LightMethod> methods(1);
-    methods[0].targets.irradiance = SamplingTarget{ error, light.sampling.samples, light.sampling.maximum };
+    methods[0].targets.irradiance = SamplingTarget::atLeast(error, light.sampling.samples, light.sampling.maximum);
     study.measure("monte_carlo by luminance, to a target", "E within (95%)", error, lit(), methods,
       error * largestComponent(material.material.kd));
   }

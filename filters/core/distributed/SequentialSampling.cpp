@@ -17,8 +17,12 @@ int wholeRounds(double n)
 SamplingTarget SamplingTarget::forFraction(double error, int maximum)
 {
   const double ruleOfThree = 3 / error;
-  const int minimum = ruleOfThree >= maximum ? maximum : std::min(maximum, std::max(samplingRound, wholeRounds(ruleOfThree)));
-  return { error, minimum, maximum };
+  return ruleOfThree >= maximum ? SamplingTarget{ error, maximum, maximum } : atLeast(error, static_cast<int>(std::ceil(ruleOfThree)), maximum);
+}
+
+SamplingTarget SamplingTarget::atLeast(double error, int samples, int maximum)
+{
+  return { error, std::min(maximum, std::max(samplingRound, wholeRounds(samples))), maximum };
 }
 
 int SamplingTarget::nextRound(int drawn, double standardErrorSoFar) const

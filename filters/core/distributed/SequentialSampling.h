@@ -28,6 +28,8 @@ struct SamplingTarget
   /// 3 / n at 95% confidence, so no vertex stops before 3 / error samples (in whole rounds,
   /// and at most the maximum).
   static SamplingTarget forFraction(double error, int maximum);
+  /// A target whose minimum is at least `samples` (in whole rounds, and at most the maximum).
+  static SamplingTarget atLeast(double error, int samples, int maximum);
 
   double standardError() const { return error / 2; }
   /// How many samples the next round draws after `drawn` samples whose standard error is

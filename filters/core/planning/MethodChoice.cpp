@@ -166,11 +166,7 @@ LightChoice distributedChoice(const NamedLight& light, const Material& m, bool s
 void drawToShare(const Sampling& sampling, const Material& m, double share, LightChoice& choice)
 {
   const double part = share / ((choice.sampledIrradiance ? 1 : 0) + (choice.sampledSpecular ? 1 : 0));
-  auto target = [&](double k)
-  {
-    const int least = std::max(samplingRound, samplingRound * ((sampling.samples + samplingRound - 1) / samplingRound));
-    return SamplingTarget{ part / std::max(1.0, k), std::min(least, sampling.maximum), sampling.maximum };
-  };
+  auto target = [&](double k) { return SamplingTarget::atLeast(part / std::max(1.0, k), sampling.samples, sampling.maximum); };
   if (choice.sampledIrradiance)
   {
     choice.method.targets.irradiance = target(largestComponent(m.kd));
@@ -313,6 +309,16 @@ double MethodPlan::predictedError() const
   return sum + (occlusion ? occlusion->predictedError * occlusion->weightInTotals : 0);
 }
 
+namespace
+{
+/// "within E at 95% (standard error at most E/2), N to M <unit> per vertex".
+std::string targetText(const SamplingTarget& target, const char* unit)
+{
+  return "within " + scientific(target.error) + " at 95% (standard error at most " + scientific(target.standardError()) +
+    "), " + std::to_string(target.minimum) + " to " + std::to_string(target.maximum) + " " + unit + " per vertex";
+}
+}
+
 std::vector<std::string> MethodPlan::describe() const
 {
   std::vector<std::string> lines;
@@ -341,9 +347,7 @@ std::vector<std::string> MethodPlan::describe() const
     {
       if (target)
       {
-        parts.push_back(std::string(integral) + " sampled to within " + scientific(target->error) +
-          " at 95% (standard error at most " + scientific(target->standardError()) + "), " +
-          std::to_string(target->minimum) + " to " + std::to_string(target->maximum) + " samples per vertex");
+        parts.push_back(std::string(integral) + " sampled to " + targetText(*target, "samples"));
       }
     }
     for (std::size_t p = 0; p < parts.size(); ++p)
@@ -359,10 +363,7 @@ std::vector<std::string> MethodPlan::describe() const
   }
   if (occlusion && occlusion->target)
   {
-    const SamplingTarget& target = *occlusion->target;
-    lines.push_back("ambient occlusion: rays auto, within " + scientific(target.error) +
-      " at 95% (standard error at most " + scientific(target.standardError()) + "), " +
-      std::to_string(target.minimum) + " to " + std::to_string(target.maximum) + " rays per vertex");
+    lines.push_back("ambient occlusion: rays auto, " + targetText(*occlusion->target, "rays"));
   }
   else if (occlusion)
   {
