@@ -6,12 +6,15 @@
 #include "CsvText.h"
 #include "DistributedStudies.h"
 #include "MeshFiles.h"
+#include "SceneFile.h"
 
 #include "vtkLocalReflectanceFilter.h"
 
 #include "vtkDataArray.h"
+#include "vtkNew.h"
 #include "vtkPointData.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -358,6 +361,100 @@ std::vector<AccuracyRow> tessellationStudy(ChartSpec& chart)
 /// Failure point of float32: a vertex whose light grazes its horizon, with a viewer placed
 /// on the mirror direction so that the Phong lobe is 1 where the light counts as lit. The
 /// coordinates are far from the origin, so that float32 rounds the direction to the light.
+/// The filter's output for the mesh under the scene: exact methods in float64 (tolerance 0),
+/// or the tolerance's plan, whose predicted error goes into `predicted`.
+vtkSmartPointer<vtkPolyData> shadedUnder(vtkPolyData* mesh, const Scene& scene, double tolerance,
+  const std::vector<std::string>& arrays, std::optional<MethodPlan>* plan = nullptr)
+{
+  vtkNew<vtkLocalReflectanceFilter> filter;
+  filter->SetInputData(mesh);
+  filter->SetScene(scene);
+  filter->SetArraySelection(arrays);
+  filter->SetOutputPrecision(vtkAlgorithm::DOUBLE_PRECISION);
+  filter->SetTolerance(tolerance);
+  filter->Update();
+  if (plan)
+  {
+    *plan = filter->GetMethodPlan();
+  }
+  auto output = vtkSmartPointer<vtkPolyData>::New();
+  output->ShallowCopy(filter->GetOutput());
+  return output;
+}
+
+/// 11. What a tolerance predicts against what it gets. Each bundled mesh under each bundled
+/// scene of local lights at tolerances 1e-2 and 1e-5: the plan's predicted error against the
+/// largest difference from float64's exact methods over the totals at every point. Ambient
+/// occlusion to a target on the bunny under studio.json: the plan's share against the 95th
+/// percentile of the differences from 4096 rays (the share is an error at 95%).
+std::vector<AccuracyRow> predictionStudy(ChartSpec& chart)
+{
+  const std::string study = "11 predicted against measured";
+  std::vector<AccuracyRow> rows;
+  ChartSeries plans{ "a plan's predicted error (local lights): largest error", {}, {}, false, palette[0] };
+  ChartSeries occlusion{ "ambient occlusion to a target: 95th percentile", {}, {}, false, palette[1] };
+  const std::vector<std::string> totals = { "totals" };
+  for (const char* file : { "bunny_zipper.ply", "xyzrgb_dragon_50k.ply", "spot.obj", "teapot.obj", "owl_scan.vtp" })
+  {
+    const vtkSmartPointer<vtkPolyData> mesh = readMesh(std::string("data/meshes/") + file);
+    for (const char* name : { "studio", "studio_mesh", "sun", "spotlight", "three_lights", "vtk_headlight" })
+    {
+      const Scene scene = readSceneFile(std::string("data/scenes/") + name + ".json");
+      const vtkSmartPointer<vtkPolyData> exact = shadedUnder(mesh, scene, 0, totals);
+      for (const double tolerance : { 1e-2, 1e-5 })
+      {
+        std::optional<MethodPlan> plan;
+        const vtkSmartPointer<vtkPolyData> chosen = shadedUnder(mesh, scene, tolerance, totals, &plan);
+        double largest = 0;
+        for (const char* total : { "ambient", "diffuse", "specular", "total" })
+        {
+          largest = std::max(largest, compareArrays(chosen->GetPointData()->GetArray(total), exact->GetPointData()->GetArray(total)).largest);
+        }
+        rows.push_back({ study, std::string(file) + " under " + name + ".json", "tolerance", tolerance,
+          mesh->GetNumberOfPoints(), std::nullopt, largest, std::nullopt, plan->predictedError(), plan->describe()[0] });
+        plans.x.push_back(plan->predictedError());
+        plans.y.push_back(largest);
+      }
+    }
+  }
+  const vtkSmartPointer<vtkPolyData> bunny = readMesh("data/meshes/bunny_zipper.ply");
+  Scene occluded = readSceneFile("data/scenes/studio.json");
+  occluded.ambientOcclusion = AmbientOcclusion{};
+  occluded.ambientOcclusion->sampling.samples = 4096;
+  const std::vector<std::string> ao = { "ambient_occlusion" };
+  const vtkSmartPointer<vtkPolyData> referenceRun = shadedUnder(bunny, occluded, 0, ao);
+  vtkDataArray* reference = referenceRun->GetPointData()->GetArray("ambient_occlusion");
+  occluded.ambientOcclusion->sampling.fromTolerance = true;
+  for (const double tolerance : { 0.1, 0.05, 0.02, 0.01 })
+  {
+    std::optional<MethodPlan> plan;
+    const vtkSmartPointer<vtkPolyData> run = shadedUnder(bunny, occluded, tolerance, ao, &plan);
+    vtkDataArray* sampled = run->GetPointData()->GetArray("ambient_occlusion");
+    std::vector<double> errors;
+    for (vtkIdType i = 0; i < sampled->GetNumberOfTuples(); ++i)
+    {
+      errors.push_back(std::abs(sampled->GetComponent(i, 0) - reference->GetComponent(i, 0)));
+    }
+    std::sort(errors.begin(), errors.end());
+    const double percentile95 = errors[errors.size() * 95 / 100];
+    const double share = plan->occlusion->predictedError;
+    rows.push_back({ study, "ambient occlusion to a target, bunny under studio.json", "tolerance", tolerance,
+      bunny->GetNumberOfPoints(), std::nullopt, errors.back(), std::nullopt, share,
+      "95th percentile " + std::to_string(percentile95) });
+    occlusion.x.push_back(share);
+    occlusion.y.push_back(percentile95);
+  }
+  const double low = 1e-9, high = 1.0;
+  ChartSeries equal{ "measured = predicted", { low, high }, { low, high }, true, { 0, 0, 0 } };
+  equal.dashed = true;
+  ChartSeries third{ "measured = predicted / 3", { low, high }, { low / 3, high / 3 }, true, { 150, 150, 150 } };
+  third.dashed = true;
+  chart = { "Predicted against measured error: tolerances' plans, and occlusion to a target",
+    "predicted error (the plan's; occlusion: its share at 95%)", "measured error", true, true, true,
+    { equal, third, plans, occlusion } };
+  return rows;
+}
+
 std::vector<AccuracyRow> grazingRows()
 {
   std::vector<AccuracyRow> rows;
@@ -490,6 +587,7 @@ void runAccuracyStudies(const AccuracyOptions& options)
         { return measure(plainBunny, distributed.softbox, *map, title, options.maxRepeats, chart); });
     }
   }
+  study("11_predicted_against_measured", [&](ChartSpec& chart) { return predictionStudy(chart); });
   const std::vector<AccuracyRow> grazing = grazingRows();
   rows.insert(rows.end(), grazing.begin(), grazing.end());
   for (const AccuracyRow& r : grazing)
