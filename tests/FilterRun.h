@@ -6,6 +6,7 @@
 
 #include "vtkFieldData.h"
 #include "vtkNew.h"
+#include "vtkSMPTools.h"
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
 #include "vtkStringArray.h"
@@ -56,5 +57,27 @@ inline std::string filterError(vtkPolyData* mesh, const Scene& scene, double tol
   filter->SetTolerance(tolerance);
   filter->Update();
   return errors->message();
+}
+
+/// A run under a tolerance on this many threads: the output (a copy), the plan and the
+/// filter's sampling report.
+struct ToleranceRun
+{
+  vtkSmartPointer<vtkPolyData> output;
+  MethodPlan plan;
+  std::vector<std::string> samplingReport;
+};
+
+inline ToleranceRun shadeToTolerance(vtkPolyData* mesh, const Scene& scene, double tolerance, int threads)
+{
+  vtkNew<vtkLocalReflectanceFilter> filter;
+  filter->SetInputData(mesh);
+  filter->SetScene(scene);
+  filter->SetArraySelection({ "all" });
+  filter->SetTolerance(tolerance);
+  vtkSMPTools::LocalScope(vtkSMPTools::Config{ threads }, [&] { filter->Update(); });
+  ToleranceRun run{ vtkSmartPointer<vtkPolyData>::New(), *filter->GetMethodPlan(), filter->GetSamplingReport() };
+  run.output->ShallowCopy(filter->GetOutput());
+  return run;
 }
 }

@@ -11,7 +11,6 @@
 #include "vtkDataArray.h"
 #include "vtkPlaneSource.h"
 #include "vtkPointData.h"
-#include "vtkSMPTools.h"
 #include "vtkSphereSource.h"
 
 #include <gtest/gtest.h>
@@ -262,22 +261,11 @@ TEST(Tolerance, AMapsSamplesAreDrawnToItsShareTheSameOnAnyThreadCount)
   // (no vertex reaches the maximum of 65536 here), the same bits on one and two threads.
   vtkSmartPointer<vtkPolyData> sphere = coarseSphere();
   const Scene scene = studioMapToATolerance();
-  auto shade = [&](int threads)
-  {
-    vtkNew<vtkLocalReflectanceFilter> filter;
-    filter->SetInputData(sphere);
-    filter->SetScene(scene);
-    filter->SetArraySelection({ "all" });
-    filter->SetTolerance(0.02);
-    vtkSMPTools::LocalScope(vtkSMPTools::Config{ threads }, [&] { filter->Update(); });
-    auto output = vtkSmartPointer<vtkPolyData>::New();
-    output->ShallowCopy(filter->GetOutput());
-    EXPECT_TRUE(filter->GetSamplingReport().empty()) << "no vertex reaches the maximum";
-    return std::make_pair(output, *filter->GetMethodPlan());
-  };
-  const auto [one, plan] = shade(1);
-  const auto [two, samePlan] = shade(2);
-  shadelab::testing::expectSamePointArrays(one, two);
+  const shadelab::testing::ToleranceRun one = shadelab::testing::shadeToTolerance(sphere, scene, 0.02, 1);
+  const shadelab::testing::ToleranceRun two = shadelab::testing::shadeToTolerance(sphere, scene, 0.02, 2);
+  shadelab::testing::expectSamePointArrays(one.output, two.output);
+  EXPECT_TRUE(one.samplingReport.empty() && two.samplingReport.empty()) << "no vertex reaches the maximum";
+  const MethodPlan& plan = one.plan;
   const SampleTargets& targets = plan.lights[0].method.targets;
   ASSERT_TRUE(targets.irradiance && targets.specular) << plan.describe()[1];
   // Half the tolerance each (all but the arithmetic's few millionths), kd and ks below 1.
@@ -285,8 +273,8 @@ TEST(Tolerance, AMapsSamplesAreDrawnToItsShareTheSameOnAnyThreadCount)
     "studio: E sampled to within 0.01 at 95% (standard error at most 0.005), 64 to 65536 samples per vertex, S sampled "
     "to within 0.01 at 95% (standard error at most 0.005), 64 to 65536 samples per vertex, predicted error 0.02");
   EXPECT_NEAR(plan.predictedError(), 0.02, 1e-12);
-  vtkDataArray* irradianceError = one->GetPointData()->GetArray("studio_irradiance_std_error");
-  vtkDataArray* specularError = one->GetPointData()->GetArray("studio_specular_std_error");
+  vtkDataArray* irradianceError = one.output->GetPointData()->GetArray("studio_irradiance_std_error");
+  vtkDataArray* specularError = one.output->GetPointData()->GetArray("studio_specular_std_error");
   for (vtkIdType i = 0; i < sphere->GetNumberOfPoints(); ++i)
   {
     for (int c = 0; c < 3; ++c)

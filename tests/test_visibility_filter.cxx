@@ -147,22 +147,10 @@ TEST(AmbientOcclusion, ATolerancesShareSetsEachVertexsRaysTheSameOnAnyThreadCoun
   scene.ambientOcclusion = AmbientOcclusion{};
   scene.ambientOcclusion->sampling.fromTolerance = true;
   scene.ambientOcclusion->sampling.maximum = 512;
-  auto shade = [&](int threads)
-  {
-    vtkNew<vtkLocalReflectanceFilter> filter;
-    filter->SetInputData(mesh);
-    filter->SetScene(scene);
-    filter->SetArraySelection({ "all" });
-    filter->SetTolerance(0.03);
-    vtkSMPTools::LocalScope(vtkSMPTools::Config{ threads }, [&] { filter->Update(); });
-    const SamplingTarget target = *filter->GetMethodPlan()->occlusion->target;
-    auto output = vtkSmartPointer<vtkPolyData>::New();
-    output->ShallowCopy(filter->GetOutput());
-    return std::make_pair(output, target);
-  };
-  const auto [one, target] = shade(1);
-  const auto [two, sameTarget] = shade(2);
-  shadelab::testing::expectSamePointArrays(one, two);
+  const auto one = shadelab::testing::shadeToTolerance(mesh, scene, 0.03, 1).output;
+  const shadelab::testing::ToleranceRun two = shadelab::testing::shadeToTolerance(mesh, scene, 0.03, 2);
+  const SamplingTarget target = *two.plan.occlusion->target;
+  shadelab::testing::expectSamePointArrays(one, two.output);
   EXPECT_EQ(target.maximum, 512);
   EXPECT_NEAR(target.error, 0.03, 0.003) << "all but the arithmetic's part";
   vtkIdType atMaximum = 0;

@@ -227,9 +227,10 @@ std::vector<unsigned char> pointsAtAHorizon(const shadelab::Scene& scene, vtkDat
         {
           continue; // shaded with ambient light only
         }
+        const glm::dvec3 unit = shadelab::unitVector(normal);
         for (const shadelab::LocalEvaluation& light : lights)
         {
-          const double cosine = glm::dot(shadelab::unitVector(normal), shadelab::towardLight(light, { p[0], p[1], p[2] }).toLight);
+          const double cosine = glm::dot(unit, shadelab::towardLight(light, { p[0], p[1], p[2] }).toLight);
           atHorizon[static_cast<std::size_t>(i)] |= std::abs(cosine) < horizonBand;
         }
       }
@@ -758,9 +759,16 @@ double vtkLocalReflectanceFilter::SampledFloat32Difference(vtkPolyData* input, v
     const vtkSmartPointer<vtkDataArray> points = shadelab::tuplesAt(input->GetPoints()->GetData(), sample);
     const vtkSmartPointer<vtkDataArray> normals = shadelab::tuplesAt(shadingNormals, sample);
     // Exact methods, every light visible and the open sky: every term that the scene can make
-    // nonzero is, and rounds as it would in the shading.
+    // nonzero is, and rounds as it would in the shading. Each point's samples (an area light's
+    // or a map's) are seeded by its id in the whole mesh, as in the shading, whatever the pieces.
     const std::vector<shadelab::LightMethod> exact(plan.scene.lights.size());
-    const shadelab::ShadingInputs open;
+    std::vector<long long> sampleIds;
+    for (const vtkIdType i : sample)
+    {
+      sampleIds.push_back(idOf(i));
+    }
+    shadelab::ShadingInputs open;
+    open.sampleIds = sampleIds.data();
     largest = largestDifference(shade<float>(plan.scene, plan.request, exact, "", points, normals, open, nullptr),
       shade<double>(plan.scene, plan.request, exact, "", points, normals, open, nullptr));
   }
