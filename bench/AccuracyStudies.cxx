@@ -108,7 +108,7 @@ std::vector<AccuracyRow> arithmeticStudy(const Mesh& mesh, int maxRepeats, Chart
     for (const PowMethod pow : { PowMethod::Exact, PowMethod::Series, PowMethod::Schlick })
     {
       const MethodRun run =
-        runMethod(mesh.data, scene, { "total" }, precision, { LightMethod{ std::nullopt, pow } }, maxRepeats);
+        runMethod(mesh.data, scene, { "total" }, precision, { LightMethod{ std::nullopt, pow, {} } }, maxRepeats);
       const Differences stats = compareArrays(arrayOf(reference, "total"), arrayOf(run, "total"));
       // The kernel's exact power in float32 at a whole eta is binary exponentiation.
       const std::string method = precision == Precision::Float32 && pow == PowMethod::Exact &&
@@ -207,9 +207,9 @@ std::vector<AccuracyRow> distantStudy(const Mesh& mesh, int maxRepeats, ChartSpe
     const MethodRun exact = runMethod(mesh.data, scene, { "diffuse" }, Precision::Float64, {}, maxRepeats);
     const MethodRun exact32 = runMethod(mesh.data, scene, { "diffuse" }, Precision::Float32, {}, maxRepeats);
     const MethodRun distant = runMethod(mesh.data, scene, { "diffuse" }, Precision::Float32,
-      { LightMethod{ extent.centre, PowMethod::Exact } }, maxRepeats);
+      { LightMethod{ extent.centre, PowMethod::Exact, {} } }, maxRepeats);
     const MethodRun distant64 = runMethod(mesh.data, scene, { "diffuse" }, Precision::Float64,
-      { LightMethod{ extent.centre, PowMethod::Exact } }, 1);
+      { LightMethod{ extent.centre, PowMethod::Exact, {} } }, 1);
     const Differences stats = compareArrays(arrayOf(exact, "diffuse"), arrayOf(distant64, "diffuse"));
     const double predicted = distantApproximationError(key, scene.material, false, extent);
     std::ostringstream note;

@@ -26,6 +26,7 @@
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
+#include "vtkSMPThreadLocal.h"
 #include "vtkSMPTools.h"
 #include "vtkSmartPointer.h"
 #include "vtkTypeUInt64Array.h"
@@ -33,6 +34,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <sstream>
 #include <stdexcept>
@@ -236,6 +238,52 @@ std::vector<unsigned char> pointsAtAHorizon(const shadelab::Scene& scene, vtkDat
       }
     });
   return atHorizon;
+}
+
+/// Per scene light, the least distance from it to any of the points, for the lights with a
+/// position (+infinity for the others, and on a piece without points). On a split mesh
+/// (processes), the least over every piece: a collective call.
+std::vector<double> nearestPointDistances(
+  const shadelab::Scene& scene, vtkDataArray* points, vtkMultiProcessController* processes)
+{
+  const std::size_t lightCount = scene.lights.size();
+  const auto pointRange = vtk::DataArrayTupleRange<3>(points);
+  // Each thread's least squared distances; a minimum is the same in any order, so on any
+  // thread count.
+  vtkSMPThreadLocal<std::vector<double>> nearestSquared;
+  vtkSMPTools::For(0, points->GetNumberOfTuples(),
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      std::vector<double>& least = nearestSquared.Local();
+      least.resize(lightCount, std::numeric_limits<double>::infinity());
+      for (std::size_t l = 0; l < lightCount; ++l)
+      {
+        if (const glm::dvec3* light = shadelab::positionOf(scene.lights[l].source))
+        {
+          for (vtkIdType i = begin; i < end; ++i)
+          {
+            const auto p = pointRange[i];
+            const glm::dvec3 offset = glm::dvec3(p[0], p[1], p[2]) - *light;
+            least[l] = std::min(least[l], glm::dot(offset, offset));
+          }
+        }
+      }
+    });
+  std::vector<double> nearest(lightCount, std::numeric_limits<double>::infinity());
+  for (const std::vector<double>& least : nearestSquared)
+  {
+    for (std::size_t l = 0; l < least.size(); ++l)
+    {
+      nearest[l] = std::min(nearest[l], std::sqrt(least[l]));
+    }
+  }
+  if (processes && lightCount > 0)
+  {
+    std::vector<double> everywhere(lightCount);
+    processes->AllReduce(nearest.data(), everywhere.data(), static_cast<vtkIdType>(lightCount), vtkCommunicator::MIN_OP);
+    nearest = everywhere;
+  }
+  return nearest;
 }
 
 /// The largest difference between two shadings of the same arrays (float32's and float64's),
@@ -497,6 +545,7 @@ struct vtkLocalReflectanceFilter::ShadingPlan
   std::vector<shadelab::LightMethod> methods;
   shadelab::Precision precision = shadelab::Precision::Float32;
   bool float32Fits = true; // the mesh's coordinates and the scene's values fit float32
+  shadelab::MeshMeasurements measured; // under a tolerance, for its plan's bounds
 };
 
 int vtkLocalReflectanceFilter::ShadeMesh(vtkPolyData* input, vtkPolyData* output, const shadelab::PieceLayout* split)
@@ -528,15 +577,15 @@ int vtkLocalReflectanceFilter::ShadeMesh(vtkPolyData* input, vtkPolyData* output
     vtkErrorMacro("preparing the normals failed (see the error above)");
     return 0;
   }
-  // Under a tolerance, what float32 rounds is measured on a sample of the points, with the
-  // normals they are shaded with, and the methods chosen again with it (the same outcome on
-  // every process, which all measure the same largest difference).
-  if (this->Tolerance > 0 &&
-    !this->ChooseMethods(*plan,
-      plan->float32Fits ? std::optional<double>(this->SampledFloat32Difference(
-                            input, shadingNormals, *plan, processes, split ? &split->pieceIds : nullptr))
-                        : std::nullopt,
-      false))
+  // Under a tolerance, what float32 rounds and what the pow approximations err are measured on
+  // a sample of the points, with the normals they are shaded with, and the methods chosen
+  // again with them (the same outcome on every process, which all measure the same).
+  if (this->Tolerance > 0)
+  {
+    this->MeasureOnSample(
+      this->SamplePoints(input, shadingNormals, *plan, processes, split ? &split->pieceIds : nullptr), *plan, processes);
+  }
+  if (this->Tolerance > 0 && !this->ChooseMethods(*plan, false))
   {
     output->Initialize();
     return 0;
@@ -583,7 +632,7 @@ std::optional<vtkLocalReflectanceFilter::ShadingPlan> vtkLocalReflectanceFilter:
   // as the precision that accepts the most scenes and meshes.
   plan.precision = this->OutputPrecision == DOUBLE_PRECISION || this->Tolerance > 0 ? shadelab::Precision::Float64
                                                                                    : shadelab::Precision::Float32;
-  if (!this->CheckMesh(input, processes, split, plan) || !this->PlaceScene(processes, split, plan) ||
+  if (!this->CheckMesh(input, processes, split, plan) || !this->PlaceScene(input, processes, split, plan) ||
     !this->CheckLightMethods(plan.scene) || !this->ChooseArraysAndMethods(plan) ||
     !this->CheckArrayNamesFree(input, plan.scene, processes, split))
   {
@@ -647,7 +696,8 @@ std::optional<shadelab::Scene> vtkLocalReflectanceFilter::SceneReadEverywhere(
   return given;
 }
 
-bool vtkLocalReflectanceFilter::PlaceScene(vtkMultiProcessController* processes, bool split, ShadingPlan& plan)
+bool vtkLocalReflectanceFilter::PlaceScene(
+  vtkPolyData* input, vtkMultiProcessController* processes, bool split, ShadingPlan& plan)
 {
   const std::optional<shadelab::Scene> given = this->SceneReadEverywhere(processes, split);
   if (!given)
@@ -656,7 +706,16 @@ bool vtkLocalReflectanceFilter::PlaceScene(vtkMultiProcessController* processes,
   }
   // A scene written relative to the mesh is placed on it here, and checked where it lands.
   plan.scene = shadelab::placedOnMesh(*given, plan.extent);
-  return this->SceneIsValid(shadelab::sceneProblems(plan.scene, plan.precision));
+  if (!this->SceneIsValid(shadelab::sceneProblems(plan.scene, plan.precision)))
+  {
+    return false;
+  }
+  if (this->Tolerance > 0) // one pass over the points, for bounds that are not the sphere's
+  {
+    plan.measured.nearestVertexDistance =
+      nearestPointDistances(plan.scene, input->GetPoints()->GetData(), split ? processes : nullptr);
+  }
+  return true;
 }
 
 bool vtkLocalReflectanceFilter::CheckLightMethods(const shadelab::Scene& scene)
@@ -685,7 +744,7 @@ bool vtkLocalReflectanceFilter::ChooseArraysAndMethods(ShadingPlan& plan)
   }
   plan.float32Fits = shadelab::meshCoordinateProblem(plan.extent.reach, shadelab::Precision::Float32).empty() &&
     shadelab::sceneProblems(plan.scene, shadelab::Precision::Float32).empty();
-  if (this->Tolerance > 0 && !this->ChooseMethods(plan, std::nullopt, true))
+  if (this->Tolerance > 0 && !this->ChooseMethods(plan, true))
   {
     return false;
   }
@@ -699,13 +758,12 @@ bool vtkLocalReflectanceFilter::ChooseArraysAndMethods(ShadingPlan& plan)
   return true;
 }
 
-bool vtkLocalReflectanceFilter::ChooseMethods(
-  ShadingPlan& plan, std::optional<double> sampledFloat32Difference, bool roundingMeasuredLater)
+bool vtkLocalReflectanceFilter::ChooseMethods(ShadingPlan& plan, bool roundingMeasuredLater)
 {
   try
   {
     this->MethodPlan = shadelab::chooseMethods(
-      plan.scene, plan.request, plan.extent, this->Tolerance, plan.float32Fits, sampledFloat32Difference);
+      plan.scene, plan.request, plan.extent, this->Tolerance, plan.float32Fits, plan.measured);
   }
   catch (const shadelab::RoundingAboveTolerance& error)
   {
@@ -729,8 +787,9 @@ bool vtkLocalReflectanceFilter::ChooseMethods(
   return true;
 }
 
-double vtkLocalReflectanceFilter::SampledFloat32Difference(vtkPolyData* input, vtkDataArray* shadingNormals,
-  const ShadingPlan& plan, vtkMultiProcessController* processes, const std::vector<vtkIdType>* pieceIds)
+vtkLocalReflectanceFilter::PointSample vtkLocalReflectanceFilter::SamplePoints(vtkPolyData* input,
+  vtkDataArray* shadingNormals, const ShadingPlan& plan, vtkMultiProcessController* processes,
+  const std::vector<vtkIdType>* pieceIds)
 {
   // Points evenly spaced by their id in the whole mesh, and those where a light grazes the
   // surface: on a split mesh, the pieces' samples make up the whole mesh's, whatever the pieces.
@@ -746,39 +805,97 @@ double vtkLocalReflectanceFilter::SampledFloat32Difference(vtkPolyData* input, v
   const vtkIdType stride = std::max<vtkIdType>(1, (wholeCount + roundingSampleSize - 1) / roundingSampleSize);
   const std::vector<unsigned char> grazed = pointsAtAHorizon(plan.scene, input->GetPoints()->GetData(), shadingNormals);
   std::vector<vtkIdType> sample;
+  PointSample taken;
   for (vtkIdType i = 0; i < count; ++i)
   {
     if (idOf(i) % stride == 0 || grazed[static_cast<std::size_t>(i)])
     {
       sample.push_back(i);
+      taken.ids.push_back(idOf(i));
     }
   }
-  double largest = 0;
   if (!sample.empty())
   {
-    const vtkSmartPointer<vtkDataArray> points = shadelab::tuplesAt(input->GetPoints()->GetData(), sample);
-    const vtkSmartPointer<vtkDataArray> normals = shadelab::tuplesAt(shadingNormals, sample);
-    // Exact methods, every light visible and the open sky: every term that the scene can make
-    // nonzero is, and rounds as it would in the shading. Each point's samples (an area light's
-    // or a map's) are seeded by its id in the whole mesh, as in the shading, whatever the pieces.
-    const std::vector<shadelab::LightMethod> exact(plan.scene.lights.size());
-    std::vector<long long> sampleIds;
-    for (const vtkIdType i : sample)
+    taken.points = shadelab::tuplesAt(input->GetPoints()->GetData(), sample);
+    taken.normals = shadelab::tuplesAt(shadingNormals, sample);
+  }
+  return taken;
+}
+
+void vtkLocalReflectanceFilter::MeasureOnSample(
+  const PointSample& sample, ShadingPlan& plan, vtkMultiProcessController* processes)
+{
+  // Every light visible and the open sky: every term that the scene can make nonzero is, and
+  // rounds as it would in the shading. Each point's samples (an area light's or a map's) are
+  // seeded by its id in the whole mesh, as in the shading, whatever the pieces.
+  shadelab::ShadingInputs open;
+  open.sampleIds = sample.ids.data();
+  const shadelab::Scene& scene = plan.scene;
+  auto shadeSample = [&](auto precision, const shadelab::ArrayRequest& request,
+                       const std::vector<shadelab::LightMethod>& methods)
+  {
+    using T = decltype(precision);
+    return shade<T>(scene, request, methods, "", sample.points, sample.normals, open, nullptr);
+  };
+  const std::vector<shadelab::LightMethod> exact(scene.lights.size());
+  // What float32 rounds, all lights exact, against float64; and what each pow approximation
+  // adds to each light's specular term, in float32 where it fits (its rounding included).
+  std::vector<double> largest(1 + 2 * scene.lights.size(), 0.0);
+  if (sample.points)
+  {
+    if (plan.float32Fits)
     {
-      sampleIds.push_back(idOf(i));
+      largest[0] = largestDifference(shadeSample(float(), plan.request, exact), shadeSample(double(), plan.request, exact));
     }
-    shadelab::ShadingInputs open;
-    open.sampleIds = sampleIds.data();
-    largest = largestDifference(shade<float>(plan.scene, plan.request, exact, "", points, normals, open, nullptr),
-      shade<double>(plan.scene, plan.request, exact, "", points, normals, open, nullptr));
+    // The specular arrays of the lights a pow method applies to (point, spot, distant), which
+    // the shading writes in the lights' order.
+    shadelab::ArrayRequest speculars;
+    speculars.lights.resize(scene.lights.size());
+    std::vector<std::size_t> specularLights;
+    for (std::size_t l = 0; l < scene.lights.size(); ++l)
+    {
+      const shadelab::LightSource& source = scene.lights[l].source;
+      if (shadelab::evaluatedSpecularModel(scene) != shadelab::SpecularModel::None && !shadelab::isAmbient(source) &&
+        !shadelab::isDistributed(source))
+      {
+        speculars.lights[l][int(shadelab::LightTerm::Specular)] = true;
+        specularLights.push_back(l);
+      }
+    }
+    const auto reference = shadeSample(double(), speculars, exact);
+    for (std::size_t m = 0; m < 2; ++m)
+    {
+      std::vector<shadelab::LightMethod> methods(scene.lights.size());
+      for (const std::size_t l : specularLights)
+      {
+        methods[l].pow = shadelab::approximatePowMethods[m];
+      }
+      const auto approximated =
+        plan.float32Fits ? shadeSample(float(), speculars, methods) : shadeSample(double(), speculars, methods);
+      for (std::size_t k = 0; k < specularLights.size(); ++k)
+      {
+        largest[1 + 2 * specularLights[k] + m] = largestDifference({ reference[k] }, { approximated[k] });
+      }
+    }
   }
   if (processes) // the largest over every piece, the same on every process
   {
-    double everywhere = 0;
-    processes->AllReduce(&largest, &everywhere, 1, vtkCommunicator::MAX_OP);
+    std::vector<double> everywhere(largest.size());
+    processes->AllReduce(largest.data(), everywhere.data(), static_cast<vtkIdType>(largest.size()), vtkCommunicator::MAX_OP);
     largest = everywhere;
   }
-  return largest;
+  if (plan.float32Fits)
+  {
+    plan.measured.sampledFloat32Difference = largest[0];
+  }
+  plan.measured.sampledPowDifference.resize(scene.lights.size());
+  for (std::size_t l = 0; l < scene.lights.size(); ++l)
+  {
+    for (std::size_t m = 0; m < 2; ++m)
+    {
+      plan.measured.sampledPowDifference[l].of(shadelab::approximatePowMethods[m]) = largest[1 + 2 * l + m];
+    }
+  }
 }
 
 std::vector<std::string> vtkLocalReflectanceFilter::WritableArrayNames(vtkPolyData* input, const shadelab::Scene& scene) const

@@ -212,25 +212,35 @@ private:
   bool CheckMesh(vtkPolyData* input, vtkMultiProcessController* processes, bool split, ShadingPlan& plan);
   /// The scene read for this update, where every process could read it.
   std::optional<shadelab::Scene> SceneReadEverywhere(vtkMultiProcessController* processes, bool split);
-  /// That scene, placed on the plan's extent and checked where it lands.
-  bool PlaceScene(vtkMultiProcessController* processes, bool split, ShadingPlan& plan);
+  /// That scene, placed on the plan's extent and checked where it lands; under a tolerance,
+  /// each light's nearest point measured for the plan's bounds.
+  bool PlaceScene(vtkPolyData* input, vtkMultiProcessController* processes, bool split, ShadingPlan& plan);
   /// Whether the tolerance or the explicit LightMethods fit the scene; forgets the last plan.
   bool CheckLightMethods(const shadelab::Scene& scene);
   /// The arrays the selection asks for, and the methods and precision: the explicit ones, or
   /// those the tolerance chooses (MethodPlan).
   bool ChooseArraysAndMethods(ShadingPlan& plan);
   /// The tolerance's methods and precision (MethodPlan) for the plan's scene and arrays, with
-  /// float32's rounding predicted a priori, or from the largest difference measured on a
-  /// sample. roundingMeasuredLater: a prediction of rounding above the tolerance is not yet
-  /// an error (the sample may show less).
-  bool ChooseMethods(ShadingPlan& plan, std::optional<double> sampledFloat32Difference, bool roundingMeasuredLater);
-  /// The largest difference between float32 and float64 shading (exact methods, every light
-  /// visible, the open sky), shaded with these normals, over a sample of the points: about
-  /// 16384 evenly spaced by their id in the whole mesh (pieceIds on a split mesh), and every
-  /// point where a light grazes the surface. On a split mesh, over every piece (a collective
-  /// call): the same as the whole mesh's, whatever the pieces.
-  double SampledFloat32Difference(vtkPolyData* input, vtkDataArray* shadingNormals, const ShadingPlan& plan,
+  /// what has been measured on the points (plan.measured): float32's rounding is predicted a
+  /// priori until a sample's largest difference is there. roundingMeasuredLater: a prediction
+  /// of rounding above the tolerance is not yet an error (the sample may show less).
+  bool ChooseMethods(ShadingPlan& plan, bool roundingMeasuredLater);
+  /// The points on which the plan's bounds are measured, with their normals and their ids in
+  /// the whole mesh (pieceIds on a split mesh): about 16384 evenly spaced by those ids, and
+  /// every point where a light grazes the surface. On a split mesh, a collective call whose
+  /// pieces' samples make up the whole mesh's, whatever the pieces.
+  struct PointSample
+  {
+    vtkSmartPointer<vtkDataArray> points, normals; // nullptr where the piece has none
+    std::vector<long long> ids;
+  };
+  PointSample SamplePoints(vtkPolyData* input, vtkDataArray* shadingNormals, const ShadingPlan& plan,
     vtkMultiProcessController* processes, const std::vector<vtkIdType>* pieceIds);
+  /// Measures on the sample, into plan.measured: the largest difference between float32 and
+  /// float64 shading (exact methods, every light visible, the open sky) where float32 fits, and
+  /// each light's largest specular difference under each pow approximation. On a split mesh,
+  /// the largest over every piece (a collective call).
+  void MeasureOnSample(const PointSample& sample, ShadingPlan& plan, vtkMultiProcessController* processes);
   /// Every point array the filter could write for the scene on this input.
   std::vector<std::string> WritableArrayNames(vtkPolyData* input, const shadelab::Scene& scene) const;
   /// Whether the input lacks all of them.

@@ -22,17 +22,13 @@ double unitRoundoff(Precision precision)
   return precision == Precision::Float32 ? 0x1p-24 : 0x1p-53;
 }
 
-/// The largest attenuation at any vertex: every model falls with distance, and no vertex is
-/// nearer than D - R to a light D from the centre (attenuationAt clamps to min_distance).
-double peakAttenuation(const LightSource& source, const MeshExtent& mesh)
+/// The largest attenuation at any vertex: every model falls with distance (attenuationAt
+/// clamps to min_distance).
+double peakAttenuation(const Scene& scene, std::size_t light, const MeshExtent& mesh, const MeshMeasurements& measured)
 {
+  const LightSource& source = scene.lights[light].source;
   const glm::dvec3* position = positionOf(source);
-  if (!position)
-  {
-    return 1.0;
-  }
-  const double nearest = vectorLength(*position - mesh.centre) - mesh.radius;
-  return attenuationAt(*attenuationOf(source), std::max(nearest, 0.0));
+  return position ? attenuationAt(*attenuationOf(source), nearestVertexDistance(*position, mesh, measured, light)) : 1.0;
 }
 
 double diffusePeak(const LightSource& source, const Material& m)
@@ -208,7 +204,7 @@ OcclusionChoice chooseOcclusion(const Scene& scene, double share)
 }
 }
 
-double sampledFloat32Error(double largestSampledDifference)
+double errorFromSample(double largestSampledDifference)
 {
   return 2 * largestSampledDifference;
 }
@@ -242,12 +238,21 @@ double distantApproximationError(const PointLight& light, const Material& materi
   return diffuse + specularTerm;
 }
 
-double powApproximationError(double lobeError, const LightSource& light, const Material& material, const MeshExtent& mesh)
+double nearestVertexDistance(const glm::dvec3& position, const MeshExtent& mesh, const MeshMeasurements& measured, std::size_t light)
 {
-  return specularPeak(light, material) * peakAttenuation(light, mesh) * lobeError;
+  const double outsideTheSphere = std::max(vectorLength(position - mesh.centre) - mesh.radius, 0.0);
+  return measured.nearestVertexDistance.empty() ? outsideTheSphere
+                                                : std::max(outsideTheSphere, measured.nearestVertexDistance[light]);
 }
 
-double arithmeticError(Precision precision, const Scene& scene, const ArrayRequest& request, const MeshExtent& mesh)
+double powApproximationError(
+  double lobeError, const Scene& scene, std::size_t light, const MeshExtent& mesh, const MeshMeasurements& measured)
+{
+  return specularPeak(scene.lights[light].source, scene.material) * peakAttenuation(scene, light, mesh, measured) * lobeError;
+}
+
+double arithmeticError(
+  Precision precision, const Scene& scene, const ArrayRequest& request, const MeshExtent& mesh, const MeshMeasurements& measured)
 {
   const double u = unitRoundoff(precision);
   const Material& m = scene.material;
@@ -267,11 +272,11 @@ double arithmeticError(Precision precision, const Scene& scene, const ArrayReque
       error += 2 * u * ambientPeak(source, m);
       continue;
     }
-    const double attenuation = peakAttenuation(source, mesh);
+    const double attenuation = peakAttenuation(scene, l, mesh, measured);
     double lightDirectionError = 4 * u;
     if (const glm::dvec3* position = positionOf(source))
     {
-      const double nearest = vectorLength(*position - mesh.centre) - mesh.radius;
+      const double nearest = nearestVertexDistance(*position, mesh, measured, l);
       lightDirectionError = nearest >= attenuationOf(source)->minDistance
         ? directionError(u, mesh.reach, *position, nearest)
         : unbounded;
@@ -374,7 +379,7 @@ std::vector<std::string> MethodPlan::describe() const
 }
 
 MethodPlan chooseMethods(const Scene& scene, const ArrayRequest& request, const MeshExtent& mesh, double tolerance,
-  bool float32Allowed, std::optional<double> sampledFloat32Difference)
+  bool float32Allowed, const MeshMeasurements& measured)
 {
   MethodPlan plan;
   plan.tolerance = tolerance;
@@ -384,12 +389,12 @@ MethodPlan chooseMethods(const Scene& scene, const ArrayRequest& request, const 
   // off at a vertex's horizon (docs/formulas.md section 15), which the sample looks for; it is
   // measured against float64, whose own (far smaller) error is added. float64's is the lesser
   // of its bound and the sample's scaled by the unit roundoffs.
-  double float32 = float32Allowed ? arithmeticError(Precision::Float32, scene, request, mesh) : unbounded;
-  double float64 = arithmeticError(Precision::Float64, scene, request, mesh);
+  double float32 = float32Allowed ? arithmeticError(Precision::Float32, scene, request, mesh, measured) : unbounded;
+  double float64 = arithmeticError(Precision::Float64, scene, request, mesh, measured);
   bool float32Sampled = false, float64Sampled = false;
-  if (float32Allowed && sampledFloat32Difference)
+  if (float32Allowed && measured.sampledFloat32Difference)
   {
-    const double sampled = sampledFloat32Error(*sampledFloat32Difference);
+    const double sampled = errorFromSample(*measured.sampledFloat32Difference);
     float64Sampled = sampled * 0x1p-29 < float64;
     float64 = std::min(float64, sampled * 0x1p-29);
     float32Sampled = true;
@@ -458,10 +463,17 @@ MethodPlan chooseMethods(const Scene& scene, const ArrayRequest& request, const 
       distantWhy = std::isinf(distantError) ? "not as distant: the light is inside the mesh's bounding sphere"
                                             : "as distant it would err by " + scientific(distantError);
     }
+    // A pow approximation's bound charges the lobe's largest error at the light's peak, which
+    // few meshes meet together (a highlight where the lobe errs most, on the vertex nearest the
+    // light): the sample's measure is taken where it is lower.
     std::map<PowMethod, double> powError;
-    for (const PowMethod method : { PowMethod::Series, PowMethod::Schlick })
+    for (const PowMethod method : approximatePowMethods)
     {
-      powError[method] = specular ? powApproximationError(lobeError(method), named.source, scene.material, mesh) : unbounded;
+      powError[method] = specular ? powApproximationError(lobeError(method), scene, l, mesh, measured) : unbounded;
+      if (specular && !measured.sampledPowDifference.empty())
+      {
+        powError[method] = std::min(powError[method], errorFromSample(measured.sampledPowDifference[l].of(method)));
+      }
     }
     powError[PowMethod::Exact] = 0; // std::pow's own rounding is part of arithmeticError
     for (const Candidate& candidate : candidates)

@@ -46,7 +46,7 @@ struct MethodPlan
 {
   Precision precision = Precision::Float64;
   double arithmeticError = 0; // predicted rounding error of the chosen precision
-  bool roundingSampled = false; // float32's from a sample of the mesh (sampledFloat32Error), not a priori
+  bool roundingSampled = false; // float32's from a sample of the mesh (errorFromSample), not a priori
   std::vector<LightChoice> lights; // one per scene light (ambient lights have nothing to choose)
   std::optional<OcclusionChoice> occlusion; // where the scene has ambient occlusion
   double tolerance = 0;
@@ -59,24 +59,59 @@ struct MethodPlan
   std::vector<std::string> describe() const;
 };
 
+/// The pow approximations a tolerance may choose, as the sample measures them (see below).
+constexpr PowMethod approximatePowMethods[] = { PowMethod::Schlick, PowMethod::Series };
+
+/// A light's largest specular difference from the exact pow on the sample, per method.
+struct SampledPowDifferences
+{
+  double schlick = 0, series = 0;
+  double& of(PowMethod method) { return method == PowMethod::Schlick ? schlick : series; }
+  double of(PowMethod method) const { return method == PowMethod::Schlick ? schlick : series; }
+};
+
+/// What the filter measures on the mesh's points, where its bounding sphere alone bounds the
+/// errors too loosely.
+struct MeshMeasurements
+{
+  /// Per scene light, the least distance from it to any vertex, for the lights with a position
+  /// (the others' entries are unused); empty: not measured. The bounding sphere says only
+  /// D - R, which is 0 for a light inside it: the largest attenuation would be the light's
+  /// clamp at min_distance.
+  std::vector<double> nearestVertexDistance;
+  /// The largest difference between float32 and float64 shading on a sample of the points
+  /// (all lights exact); nullopt: not measured, float32's rounding is bounded a priori.
+  std::optional<double> sampledFloat32Difference;
+  /// Per scene light, the largest difference that Schlick's and the series pow make to its
+  /// specular term on that sample (float64, the light where it is); empty: not measured.
+  std::vector<SampledPowDifferences> sampledPowDifference;
+};
+
+/// The least distance from a light at `position` to any vertex: the measured one where there
+/// is one, else the bounding sphere's D - R (at least 0).
+double nearestVertexDistance(const glm::dvec3& position, const MeshExtent& mesh, const MeshMeasurements& measured, std::size_t light);
+
 /// Predicted largest error of evaluating a point light as distant from mesh.centre, or
 /// +infinity where the approximation does not hold (the light inside the mesh's bounding
 /// sphere). specular: whether the light's specular term is computed.
 double distantApproximationError(const PointLight& light, const Material& material, bool specular, const MeshExtent& mesh);
 
-/// Predicted largest error that a pow method adds to the light's specular term, given the
-/// method's largest error on the lobe x^eta itself (largestPowError at the material's eta).
-double powApproximationError(double lobeError, const LightSource& light, const Material& material, const MeshExtent& mesh);
+/// Predicted largest error that a pow method adds to the specular term of the scene's light l,
+/// given the method's largest error on the lobe x^eta itself (largestPowError at the
+/// material's eta).
+double powApproximationError(double lobeError, const Scene& scene, std::size_t light, const MeshExtent& mesh,
+  const MeshMeasurements& measured = {});
 
 /// Predicted largest rounding error of the requested values (all lights exact) in this
 /// precision.
-double arithmeticError(Precision precision, const Scene& scene, const ArrayRequest& request, const MeshExtent& mesh);
+double arithmeticError(Precision precision, const Scene& scene, const ArrayRequest& request, const MeshExtent& mesh,
+  const MeshMeasurements& measured = {});
 
-/// float32's rounding error predicted from the largest difference between float32 and
-/// float64 shading measured on a sample of the mesh's points: twice it (the mesh's largest
-/// can exceed the sample's). float64's is that times 2^-29, the ratio of their unit
-/// roundoffs: the same operations, each rounding 2^29 times finer.
-double sampledFloat32Error(double largestSampledDifference);
+/// An error predicted from the largest difference measured on a sample of the mesh's points
+/// (float32's rounding, a pow approximation's): twice it, as the mesh's largest can exceed
+/// the sample's (docs/formulas.md section 15). float64's rounding is float32's times 2^-29,
+/// the ratio of their unit roundoffs: the same operations, each rounding 2^29 times finer.
+double errorFromSample(double largestSampledDifference);
 
 /// What chooseMethods throws when even float64 is predicted to round by more than the
 /// tolerance allows: the filter then waits for a sample's measurement before it refuses.
@@ -97,13 +132,15 @@ double fixedRaysError(int n);
 /// the inverse square of its error, so the nine tenths cost 1.23 times the rays of all of it,
 /// while float32 and the approximations rarely need more than a tenth. scene must have no
 /// sceneProblems() and request must come from selectArrays(scene, ...). float32Allowed: false
-/// when the mesh or scene does not fit float32 at all. sampledFloat32Difference: measured on
-/// a sample (all lights exact), float32's error is the sample's (sampledFloat32Error) rather
-/// than the a priori bound, and float64's the lesser of the two. Throws std::invalid_argument when even
+/// when the mesh or scene does not fit float32 at all. With a sampledFloat32Difference,
+/// float32's error is the sample's (errorFromSample) rather than the a priori bound, and
+/// float64's the lesser of the two; with sampledPowDifference, a pow approximation's is the
+/// lesser of its bound and the sample's. Throws std::invalid_argument when even
 /// float64 with exact methods is predicted to exceed the tolerance (RoundingAboveTolerance),
 /// a fixed count of rays to exceed the share left for it, or an area light or map cannot be
 /// bounded (its estimator has no bound, its samples are a fixed count, it casts shadows, or its
-/// SH irradiance errs by more than is left).
+/// SH irradiance errs by more than is left). measured: what the filter measured on the points
+/// (nothing: the bounding sphere's bounds and float32's a priori).
 MethodPlan chooseMethods(const Scene& scene, const ArrayRequest& request, const MeshExtent& mesh, double tolerance,
-  bool float32Allowed = true, std::optional<double> sampledFloat32Difference = std::nullopt);
+  bool float32Allowed = true, const MeshMeasurements& measured = {});
 }
