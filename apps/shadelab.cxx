@@ -562,7 +562,7 @@ CLI::App* addShadeCommand(CLI::App& cli, ShadeOptions& options)
   command->add_option("--envmap-samples", environment.samples,
     "Monte Carlo samples per vertex (monte_carlo, the specular term of sh, and with --shadows every "
     "estimator's shadow rays), or auto with --tolerance: as many as each vertex needs for the map's "
-    "share of the tolerance, at least 64 and at most 4096 (not with --shadows)")
+    "share of the tolerance, at least 64 and at most 4096 (with --shadows, their shadow rays drawn with them)")
     ->check(CLI::Range(2, maxSamplesPerVertex) | CLI::IsMember({ "auto" }))
     ->capture_default_str()
     ->needs(envmapOption);

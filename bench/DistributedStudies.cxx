@@ -281,12 +281,29 @@ std::vector<AccuracyRow> areaLightStudy(
       }
     }
   }
+  // Samples to a target ("samples": "auto" under a tolerance, at least the default 64 and at
+  // most 4096), exact E: S to the target and, with shadows, E through its visible fraction. The
+  // total errs by at most kd times E's error and ks times S's, at 95% each.
+  light.estimator = AreaEstimator::Exact;
+  light.sampling = Sampling{};
+  for (const double error : { 0.1, 0.03, 0.01, 0.003 })
+  {
+    std::vector<LightMethod> methods(1);
+    const SamplingTarget target = SamplingTarget::atLeast(error, light.sampling.samples, light.sampling.maximum);
+    methods[0].targets.specular = target;
+    if (shadows)
+    {
+      methods[0].targets.irradiance = target;
+    }
+    study.measure("exact E, S sampled, to a target", "E and S within (95%)", error, lit(), methods,
+      error * (largestComponent(softbox.material.ks) + (shadows ? largestComponent(softbox.material.kd) : 0.0)));
+  }
   light.estimator = AreaEstimator::Point;
   study.measure("point", "(no samples)", 0, lit());
   chart.series = study.chartSeries();
   chart.title = std::string("Total under the softbox") + (shadows ? " with its soft shadows" : "") +
     ", Blinn-Phong eta " + std::to_string(int(softbox.material.shininess)) + ", bunny (" + verticesText(bunny) + ")";
-  chart.xTitle = "time per run (ms, median; 4 to 1024 samples along each line)";
+  chart.xTitle = "time per run (ms, median; 4 to 1024 samples along each line, targets 0.1 to 0.003)";
   chart.yTitle = "|error| of the total against the reference: largest (solid), RMS (dashed)";
   chart.logX = chart.logY = true;
   chart.legendOutside = true;

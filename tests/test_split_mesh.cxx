@@ -120,6 +120,18 @@ TEST_P(SplitMesh, PlacesTheSceneOnTheWholeMesh)
   EXPECT_EQ(shadelab::testing::methodsNote(piece), shadelab::testing::methodsNote(whole));
 }
 
+// Soft shadows drawn to a target under a tolerance: each vertex's rounds of rays, traced against
+// the whole mesh where its piece is, stop where the whole mesh's stop.
+TEST_P(SplitMesh, DrawsSoftShadowsToATargetAsTheWholeMesh)
+{
+  const char* scene = "soft_shadows_to_a_tolerance.json";
+  const vtkSmartPointer<vtkPolyData> whole = shaded(mesh, scene, { "all" }, nullptr, 0.02);
+  const vtkSmartPointer<vtkPolyData> piece = shaded(myPiece(mesh), scene, { "all" }, processes(), 0.02);
+  ASSERT_GT(piece->GetNumberOfPoints(), 0);
+  EXPECT_GE(expectPieceOfWhole(whole, piece), 13);
+  EXPECT_EQ(shadelab::testing::methodsNote(piece), shadelab::testing::methodsNote(whole));
+}
+
 // The normals filter alone, computed and flipped outward on the whole mesh.
 TEST_P(SplitMesh, NormalsAreTheWholeMeshs)
 {
@@ -239,6 +251,15 @@ TEST(SplitMeshVisibility, AProcessWithAnEmptyPiece)
       EXPECT_GT(expectPieceOfWhole(shaded(mesh, scene, { "all" }, nullptr), shadedPiece), arrays)
         << scene << (ownNormals ? " with the mesh's normals" : "");
     }
+  }
+  // Drawn to a target, the vertices short of it are counted over the pieces, the empty one too.
+  const char* drawn = "soft_shadows_to_a_tolerance.json";
+  vtkSmartPointer<vtkPolyData> piece =
+    holdsNone ? vtkSmartPointer<vtkPolyData>::New() : shadelab::testing::meshPiece(normals->GetOutput(), rank, count - 1, 1);
+  const vtkSmartPointer<vtkPolyData> shadedPiece = shaded(piece, drawn, { "totals" }, processes(), 0.02);
+  if (!holdsNone)
+  {
+    EXPECT_GT(expectPieceOfWhole(shaded(normals->GetOutput(), drawn, { "totals" }, nullptr, 0.02), shadedPiece), 3);
   }
 }
 

@@ -236,6 +236,46 @@ TEST(SoftShadows, OneAndTwoThreadsGiveTheSameBits)
   shadelab::testing::expectSamePointArrays(one, two);
 }
 
+TEST(SoftShadows, ATolerancesShareDrawsEachVertexsShadowRaysUntilItsEstimateMeetsIt)
+{
+  // The disk's samples "auto" under a tolerance: the visibility step draws each vertex's rays in
+  // rounds until E and S meet the plan's targets (the exact estimator's E through its visible
+  // fraction), the same bits on one and two threads; 95% of the vertices' E within its target
+  // of 4096 fixed samples' E, and every vertex not at the maximum within its standard error.
+  vtkSmartPointer<vtkPolyData> mesh = sphereOverPlane();
+  for (AreaEstimator estimator : { AreaEstimator::Exact, AreaEstimator::MonteCarlo })
+  {
+    Scene scene = diskLightAbove(true, estimator);
+    Scene fixed = scene;
+    std::get<AreaLight>(scene.lights[1].source).sampling.fromTolerance = true;
+    std::get<AreaLight>(fixed.lights[1].source).sampling.samples = 4096;
+    const shadelab::testing::ToleranceRun one = shadelab::testing::shadeToTolerance(mesh, scene, 0.05, 1);
+    const shadelab::testing::ToleranceRun two = shadelab::testing::shadeToTolerance(mesh, scene, 0.05, 2);
+    shadelab::testing::expectSamePointArrays(one.output, two.output);
+    EXPECT_TRUE(one.samplingReport.empty()) << one.samplingReport[0];
+    EXPECT_EQ(one.output->GetPointData()->GetArray("panel_shadowed_terms"), nullptr); // the estimates stay inside
+    const SamplingTarget target = *one.plan.lights[1].method.targets.irradiance;
+    EXPECT_NEAR(target.error, 0.025, 1e-4) << "half of all but the arithmetic's few millionths; kd below 1";
+    const vtkSmartPointer<vtkPolyData> reference = shadelab::testing::shadeWithFilter(mesh, fixed, { "all" });
+    vtkIdType within = 0, penumbra = 0;
+    for (vtkIdType i = 0; i < mesh->GetNumberOfPoints(); ++i)
+    {
+      const double v = valueOf(one.output, "panel_visibility", i);
+      penumbra += v > 0 && v < 1 ? 1 : 0;
+      bool near = true;
+      for (int c = 0; c < 3; ++c)
+      {
+        ASSERT_LE(valueOf(one.output, "panel_irradiance_std_error", i, c), static_cast<float>(target.standardError())) << i;
+        near = near && std::abs(valueOf(one.output, "panel_irradiance", i, c) - valueOf(reference, "panel_irradiance", i, c)) <= target.error;
+      }
+      within += near ? 1 : 0;
+    }
+    EXPECT_GT(penumbra, 100);
+    EXPECT_GE(double(within), 0.95 * double(mesh->GetNumberOfPoints())) << within << " of " << mesh->GetNumberOfPoints();
+    EXPECT_NE(one.output->GetFieldData()->GetAbstractArray("shadelab_visibility"), nullptr);
+  }
+}
+
 /// The sphere over the plane under a constant sky of radiance 1, with or without its shadows.
 Scene constantSky(bool shadows, EnvironmentEstimator estimator, EnvironmentDirections directions)
 {
@@ -490,6 +530,17 @@ TEST(Visibility, WhatIsRefusedAndWhy)
     alone->SetScene(occluded);
     alone->Update();
     EXPECT_EQ(errors->message(), untargeted) << "the visibility filter alone has no tolerance";
+    Scene softAuto = diskLightAbove(true, AreaEstimator::Exact);
+    std::get<AreaLight>(softAuto.lights[1].source).sampling.fromTolerance = true;
+    vtkNew<vtkMeshVisibilityFilter> soft;
+    vtkNew<app::VtkErrorCapture> softErrors;
+    softErrors->watch(soft);
+    soft->SetInputConnection(normals->GetOutputPort());
+    soft->SetScene(softAuto);
+    soft->Update();
+    EXPECT_EQ(softErrors->message(), "light 'panel' casts shadows with \"samples\": \"auto\", which takes its count from "
+                                 "a tolerance's plan: shade it with vtkLocalReflectanceFilter under a tolerance "
+                                 "(shadelab shade --tolerance), or give it a number of samples");
   }
   Scene shadowedAmbient = pointLightAbove(false);
   shadowedAmbient.lights.push_back({ "sky", AmbientLight{}, true });

@@ -865,6 +865,13 @@ MeshExtent wholeMeshExtent(vtkMultiProcessController* controller, vtkPolyData* p
   return extentOfBox(box);
 }
 
+std::size_t distinctIdCount(vtkMultiProcessController* controller, const std::vector<vtkIdType>& ids)
+{
+  std::vector<vtkIdType> all = allGather(controller, ids);
+  std::sort(all.begin(), all.end());
+  return static_cast<std::size_t>(std::unique(all.begin(), all.end()) - all.begin());
+}
+
 vtkSmartPointer<vtkDataArray> tuplesAt(vtkDataArray* values, const std::vector<vtkIdType>& ids)
 {
   vtkNew<vtkIdList> list;

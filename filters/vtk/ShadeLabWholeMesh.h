@@ -120,6 +120,10 @@ SHADELABFILTERS_EXPORT int agreedOutcome(
 /// bits as meshExtentOf on the whole mesh, since the smallest and largest coordinates are.
 SHADELABFILTERS_EXPORT MeshExtent wholeMeshExtent(vtkMultiProcessController* controller, vtkPolyData* piece);
 
+/// How many distinct ids the processes' lists hold together (a collective call): a count over
+/// the whole mesh of points that several pieces may hold.
+SHADELABFILTERS_EXPORT std::size_t distinctIdCount(vtkMultiProcessController* controller, const std::vector<vtkIdType>& ids);
+
 /// values' tuples at ids, in a new array of the same type and name.
 SHADELABFILTERS_EXPORT vtkSmartPointer<vtkDataArray> tuplesAt(vtkDataArray* values, const std::vector<vtkIdType>& ids);
 }

@@ -158,11 +158,12 @@ struct ShadeAllPoints
   }
 };
 
-/// Per light drawn to a target, how many vertices stopped at its maximum short of it.
-using ShortOfTarget = std::vector<std::pair<std::string, std::size_t>>;
+/// Per scene light (empty for those not drawn to a target), 1 at each vertex that stopped at the
+/// maximum short of its target.
+using ShortOfTarget = std::vector<std::vector<std::uint8_t>>;
 
 /// The requested arrays, shaded in precision T. progressOwner (or nullptr) reports progress;
-/// shortOfTarget (or nullptr) receives the kernel's count.
+/// shortOfTarget (or nullptr) receives the vertices that stopped short of their targets.
 template <typename T>
 std::vector<vtkSmartPointer<vtkDataArray>> shade(const shadelab::Scene& scene,
   const shadelab::ArrayRequest& request, const std::vector<shadelab::LightMethod>& methods,
@@ -170,6 +171,19 @@ std::vector<vtkSmartPointer<vtkDataArray>> shade(const shadelab::Scene& scene,
   vtkAlgorithm* progressOwner, ShortOfTarget* shortOfTarget = nullptr)
 {
   OutputArrays<T> arrays(scene, request, prefix, points->GetNumberOfTuples());
+  if (shortOfTarget)
+  {
+    shortOfTarget->assign(scene.lights.size(), {});
+    arrays.outputs.shortOfTarget.assign(scene.lights.size(), nullptr);
+    for (std::size_t l = 0; l < methods.size(); ++l)
+    {
+      if (methods[l].targets.any())
+      {
+        (*shortOfTarget)[l].resize(static_cast<std::size_t>(points->GetNumberOfTuples()));
+        arrays.outputs.shortOfTarget[l] = (*shortOfTarget)[l].data();
+      }
+    }
+  }
   const shadelab::ShadingKernel<T> kernel(scene, arrays.outputs, methods, inputs);
   ShadeAllPoints<T> worker{ kernel, progressOwner };
   using Reals = vtkArrayDispatch::Reals;
@@ -177,10 +191,7 @@ std::vector<vtkSmartPointer<vtkDataArray>> shade(const shadelab::Scene& scene,
   {
     worker(points, normals); // other value types, through the generic vtkDataArray API
   }
-  if (shortOfTarget)
-  {
-    *shortOfTarget = kernel.verticesShortOfTarget();
-  }
+
   return arrays.arrays;
 }
 
@@ -241,19 +252,19 @@ std::vector<unsigned char> pointsAtAHorizon(const shadelab::Scene& scene, vtkDat
 }
 
 /// Per scene light, the least distance from it to any of the points, for the lights with a
-/// position (+infinity for the others, and on a piece without points). On a split mesh
+/// position (+infinity for the others, and on a piece without points, nullptr). On a split mesh
 /// (processes), the least over every piece: a collective call.
 std::vector<double> nearestPointDistances(
   const shadelab::Scene& scene, vtkDataArray* points, vtkMultiProcessController* processes)
 {
   const std::size_t lightCount = scene.lights.size();
-  const auto pointRange = vtk::DataArrayTupleRange<3>(points);
   // Each thread's least squared distances; a minimum is the same in any order, so on any
   // thread count.
   vtkSMPThreadLocal<std::vector<double>> nearestSquared;
-  vtkSMPTools::For(0, points->GetNumberOfTuples(),
+  vtkSMPTools::For(0, points ? points->GetNumberOfTuples() : 0,
     [&](vtkIdType begin, vtkIdType end)
     {
+      const auto pointRange = vtk::DataArrayTupleRange<3>(points);
       std::vector<double>& least = nearestSquared.Local();
       least.resize(lightCount, std::numeric_limits<double>::infinity());
       for (std::size_t l = 0; l < lightCount; ++l)
@@ -473,21 +484,28 @@ std::vector<vtkSmartPointer<vtkDataArray>> useVisibility(vtkPolyData* seen, cons
 {
   vtkPointData* data = seen->GetPointData();
   auto floats = [&](const std::string& name) { return vtkFloatArray::SafeDownCast(data->GetArray(name.c_str())); };
-  auto hiddenSamplesOf = [&](const std::string& light)
+  auto hiddenSamplesOf = [&](const std::string& light) -> const std::uint64_t*
   {
     static_assert(sizeof(vtkTypeUInt64) == sizeof(std::uint64_t), "the hidden samples' words are 64 bits");
     auto* words = vtkTypeUInt64Array::SafeDownCast(data->GetArray(shadelab::hiddenSamplesArrayName(prefix, light).c_str()));
-    return reinterpret_cast<const std::uint64_t*>(words->GetPointer(0));
+    return words ? reinterpret_cast<const std::uint64_t*>(words->GetPointer(0)) : nullptr;
+  };
+  auto shadowedTermsOf = [&](const std::string& light) -> const double*
+  {
+    auto* terms = vtkDoubleArray::SafeDownCast(data->GetArray(shadelab::shadowedTermsArrayName(prefix, light).c_str()));
+    return terms ? terms->GetPointer(0) : nullptr;
   };
   for (const shadelab::NamedLight& light : scene.lights)
   {
     // A local light's visibility multiplies its terms; an area light's or a map's samples are
-    // weighted by the bits of those the mesh hides.
+    // weighted by the bits of those the mesh hides, or, drawn to a target, the visibility step
+    // estimated it.
     const bool distributed = light.shadows && shadelab::isDistributed(light.source);
     const bool local = light.shadows && !distributed;
     inputs.lightVisibility.push_back(
       local ? floats(shadelab::lightArrayName(prefix, light.name, shadelab::LightTerm::Visibility))->GetPointer(0) : nullptr);
     inputs.lightHiddenSamples.push_back(distributed ? hiddenSamplesOf(light.name) : nullptr);
+    inputs.lightShadowedTerms.push_back(distributed ? shadowedTermsOf(light.name) : nullptr);
   }
   std::vector<vtkSmartPointer<vtkDataArray>> requested;
   if (scene.ambientOcclusion)
@@ -592,22 +610,33 @@ int vtkLocalReflectanceFilter::ShadeMesh(vtkPolyData* input, vtkPolyData* output
   }
 
   std::vector<vtkSmartPointer<vtkDataArray>> arrays;
+  ShortOfTarget shortOfTarget;
+  std::string failure;
   try
   {
-    vtkPolyData* seen = this->PrepareVisibility(input, shadingNormals, plan->scene, plan->request, split != nullptr);
-    if (empty)
+    vtkPolyData* seen = this->PrepareVisibility(input, shadingNormals, *plan, split != nullptr);
+    if (!empty)
     {
-      return 1;
+      arrays = this->ShadedArrays(input, shadingNormals, seen, *plan, split, shortOfTarget);
     }
-    arrays = this->ShadedArrays(input, shadingNormals, seen, *plan, split);
     // The rays' arrays have been used (those asked for are in `arrays`): not kept until the next run.
     this->VisibilityStep->GetOutput()->Initialize();
   }
   catch (const std::exception& error) // an array, or anything else, that could not be allocated
   {
+    failure = error.what();
+  }
+  // Counted over every piece (a collective call, which an empty or failed piece joins too).
+  this->SamplingReport = this->ShortOfTargetReport(*plan, shortOfTarget, split);
+  if (!failure.empty())
+  {
     output->Initialize();
-    vtkErrorMacro(<< error.what());
+    vtkErrorMacro(<< failure);
     return 0;
+  }
+  if (empty)
+  {
+    return 1;
   }
   for (const auto& array : arrays)
   {
@@ -712,8 +741,8 @@ bool vtkLocalReflectanceFilter::PlaceScene(
   }
   if (this->Tolerance > 0) // one pass over the points, for bounds that are not the sphere's
   {
-    plan.measured.nearestVertexDistance =
-      nearestPointDistances(plan.scene, input->GetPoints()->GetData(), split ? processes : nullptr);
+    plan.measured.nearestVertexDistance = nearestPointDistances(
+      plan.scene, input->GetPoints() ? input->GetPoints()->GetData() : nullptr, split ? processes : nullptr);
   }
   return true;
 }
@@ -803,7 +832,8 @@ vtkLocalReflectanceFilter::PointSample vtkLocalReflectanceFilter::SamplePoints(v
     ++wholeCount;
   }
   const vtkIdType stride = std::max<vtkIdType>(1, (wholeCount + roundingSampleSize - 1) / roundingSampleSize);
-  const std::vector<unsigned char> grazed = pointsAtAHorizon(plan.scene, input->GetPoints()->GetData(), shadingNormals);
+  const std::vector<unsigned char> grazed =
+    count > 0 ? pointsAtAHorizon(plan.scene, input->GetPoints()->GetData(), shadingNormals) : std::vector<unsigned char>();
   std::vector<vtkIdType> sample;
   PointSample taken;
   for (vtkIdType i = 0; i < count; ++i)
@@ -931,7 +961,8 @@ bool vtkLocalReflectanceFilter::CheckArrayNamesFree(
 }
 
 std::vector<vtkSmartPointer<vtkDataArray>> vtkLocalReflectanceFilter::ShadedArrays(vtkPolyData* input,
-  vtkDataArray* shadingNormals, vtkPolyData* seen, const ShadingPlan& plan, const shadelab::PieceLayout* split)
+  vtkDataArray* shadingNormals, vtkPolyData* seen, const ShadingPlan& plan, const shadelab::PieceLayout* split,
+  ShortOfTarget& shortOfTarget)
 {
   shadelab::ShadingInputs inputs;
   if (split) // each point's samples are seeded by its index in the whole mesh
@@ -943,21 +974,42 @@ std::vector<vtkSmartPointer<vtkDataArray>> vtkLocalReflectanceFilter::ShadedArra
     seen ? useVisibility(seen, plan.scene, plan.request, this->ArrayPrefix, inputs)
          : std::vector<vtkSmartPointer<vtkDataArray>>();
   vtkDataArray* points = input->GetPoints()->GetData();
-  ShortOfTarget shortOfTarget;
   std::vector<vtkSmartPointer<vtkDataArray>> arrays = plan.precision == shadelab::Precision::Float64
     ? shade<double>(plan.scene, plan.request, plan.methods, this->ArrayPrefix, points, shadingNormals, inputs, this, &shortOfTarget)
     : shade<float>(plan.scene, plan.request, plan.methods, this->ArrayPrefix, points, shadingNormals, inputs, this, &shortOfTarget);
-  this->SamplingReport.clear();
-  for (const auto& [light, vertices] : shortOfTarget)
+  arrays.insert(arrays.end(), occlusion.begin(), occlusion.end());
+  return arrays;
+}
+
+std::vector<std::string> vtkLocalReflectanceFilter::ShortOfTargetReport(
+  const ShadingPlan& plan, const ShortOfTarget& shortOfTarget, const shadelab::PieceLayout* split) const
+{
+  std::vector<std::string> report;
+  for (std::size_t l = 0; l < plan.methods.size(); ++l)
   {
+    if (!plan.methods[l].targets.any())
+    {
+      continue;
+    }
+    // On a split mesh, each vertex once, by its id in the whole mesh, whichever pieces hold it.
+    std::vector<vtkIdType> ids;
+    const std::vector<std::uint8_t> none;
+    const std::vector<std::uint8_t>& marks = l < shortOfTarget.size() ? shortOfTarget[l] : none;
+    for (std::size_t i = 0; i < marks.size(); ++i)
+    {
+      if (marks[i])
+      {
+        ids.push_back(split ? split->pieceIds[i] : static_cast<vtkIdType>(i));
+      }
+    }
+    const std::size_t vertices = split ? shadelab::distinctIdCount(this->Controller, ids) : ids.size();
     if (vertices > 0)
     {
-      this->SamplingReport.push_back(light + ": " + std::to_string(vertices) +
+      report.push_back(plan.scene.lights[l].name + ": " + std::to_string(vertices) +
         " vertices stopped at \"max_samples\" short of their target (their _std_error arrays are above it): raise it");
     }
   }
-  arrays.insert(arrays.end(), occlusion.begin(), occlusion.end());
-  return arrays;
+  return report;
 }
 
 void vtkLocalReflectanceFilter::AddFieldNotes(vtkPolyData* output) const
@@ -1010,9 +1062,11 @@ vtkDataArray* vtkLocalReflectanceFilter::PrepareNormals(vtkPolyData* input, vtkP
   return shading;
 }
 
-vtkPolyData* vtkLocalReflectanceFilter::PrepareVisibility(vtkPolyData* input, vtkDataArray* shadingNormals,
-  const shadelab::Scene& scene, const shadelab::ArrayRequest& request, bool split)
+vtkPolyData* vtkLocalReflectanceFilter::PrepareVisibility(
+  vtkPolyData* input, vtkDataArray* shadingNormals, const ShadingPlan& plan, bool split)
 {
+  const shadelab::Scene& scene = plan.scene;
+  const shadelab::ArrayRequest& request = plan.request;
   if (!scene.needsVisibility())
   {
     return nullptr;
@@ -1046,6 +1100,17 @@ vtkPolyData* vtkLocalReflectanceFilter::PrepareVisibility(vtkPolyData* input, vt
   step->SetArrayPrefix(this->ArrayPrefix);
   step->SetComputeBentNormal(request.occlusion[int(shadelab::OcclusionTerm::BentNormal)]);
   step->SetComputeSkyViewFactor(request.occlusion[int(shadelab::OcclusionTerm::SkyViewFactor)]);
+  // A shadowed light drawn to a target is estimated where its rays are, as the kernel would
+  // estimate it: the same targets, and the lobe where its specular term is computed.
+  std::vector<vtkMeshVisibilityFilter::DrawnLight> drawn(scene.lights.size());
+  for (std::size_t l = 0; l < plan.methods.size(); ++l)
+  {
+    drawn[l].targets = plan.methods[l].targets;
+    drawn[l].lobe = { shadelab::specularComputed(scene, request, l) ? shadelab::evaluatedSpecularModel(scene)
+                                                                    : shadelab::SpecularModel::None,
+      scene.material.shininess };
+  }
+  step->SetDrawnLights(drawn);
   step->Update();
   vtkPolyData* seen = step->GetOutput();
   if (input->GetNumberOfPoints() > 0 && !seen->GetPointData()->GetArray(shadelab::visibilityFlagsArrayName(this->ArrayPrefix).c_str()))

@@ -35,6 +35,7 @@
 
 #include "MethodChoice.h"
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -192,18 +193,18 @@ private:
   /// The step that casts rays for the scene's shadows and ambient occlusion, on the input with
   /// the normals to shade with.
   vtkNew<vtkMeshVisibilityFilter> VisibilityStep;
-  /// Runs VisibilityStep when the scene needs it (a collective call where the input is a piece
-  /// of a split mesh); returns its output (nullptr: not needed), or throws std::runtime_error
-  /// when it failed.
-  vtkPolyData* PrepareVisibility(vtkPolyData* input, vtkDataArray* shadingNormals, const shadelab::Scene& scene,
-    const shadelab::ArrayRequest& request, bool split);
+  /// What the checks before shading settle (PlanShading), for the steps that write.
+  struct ShadingPlan;
+  /// Runs VisibilityStep when the plan's scene needs it (a collective call where the input is a
+  /// piece of a split mesh), with the plan's targets for the shadowed lights drawn to one;
+  /// returns its output (nullptr: not needed), or throws std::runtime_error when it failed.
+  vtkPolyData* PrepareVisibility(vtkPolyData* input, vtkDataArray* shadingNormals, const ShadingPlan& plan, bool split);
   /// The name of the normals the filter computes when the input has none.
   std::string ComputedNormalsName() const { return this->ArrayPrefix + "Normals"; }
 
   /// ShadeMesh's steps. Those that check say why they fail as the filter's error; on a split
   /// mesh (processes: the controller, or nullptr for this process alone) those that exchange
   /// data are collective calls, and fail on every process alike.
-  struct ShadingPlan;
   /// The checks before anything is written (the tolerance, the mesh, the scene, the methods,
   /// the arrays and their names), and what they settle; nothing where one failed.
   std::optional<ShadingPlan> PlanShading(vtkPolyData* input, vtkMultiProcessController* processes, bool split);
@@ -247,10 +248,16 @@ private:
   bool CheckArrayNamesFree(
     vtkPolyData* input, const shadelab::Scene& scene, vtkMultiProcessController* processes, bool split);
   /// The arrays to output: those the kernel computes with the normals and the rays' arrays in
-  /// `seen` (nullptr: no rays), then the occlusion arrays asked for. Throws std::runtime_error
-  /// where an array cannot be allocated.
+  /// `seen` (nullptr: no rays), then the occlusion arrays asked for; per scene light drawn to a
+  /// target, into shortOfTarget, 1 at each vertex that stopped at the maximum short of it.
+  /// Throws std::runtime_error where an array cannot be allocated.
   std::vector<vtkSmartPointer<vtkDataArray>> ShadedArrays(vtkPolyData* input, vtkDataArray* shadingNormals,
-    vtkPolyData* seen, const ShadingPlan& plan, const shadelab::PieceLayout* split);
+    vtkPolyData* seen, const ShadingPlan& plan, const shadelab::PieceLayout* split,
+    std::vector<std::vector<std::uint8_t>>& shortOfTarget);
+  /// GetSamplingReport's lines: per light drawn to a target, how many vertices of the whole
+  /// mesh stopped short of it (on a split mesh, a collective call, each vertex counted once).
+  std::vector<std::string> ShortOfTargetReport(const ShadingPlan& plan,
+    const std::vector<std::vector<std::uint8_t>>& shortOfTarget, const shadelab::PieceLayout* split) const;
   /// What the run did about normals, rays and methods, as the output's field data.
   void AddFieldNotes(vtkPolyData* output) const;
 };

@@ -14,6 +14,7 @@
 #include "Visibility.h"
 
 #include "vtkDataArrayRange.h"
+#include "vtkDoubleArray.h"
 #include "vtkFloatArray.h"
 #include "vtkInformation.h"
 #include "vtkIntArray.h"
@@ -28,6 +29,7 @@
 #include <glm/geometric.hpp>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <memory>
 #include <optional>
@@ -47,6 +49,11 @@ struct ShadowedLight
   vtkSmartPointer<vtkFloatArray> visibility;
   std::shared_ptr<const shadelab::ShadowedLightEstimator> distributed; // null for a local light
   vtkSmartPointer<vtkTypeUInt64Array> hidden;
+  /// Drawn to a target: estimated here, its rays traced round by round (terms), and how many
+  /// rays the vertices cast.
+  bool drawnToTarget = false;
+  vtkSmartPointer<vtkDoubleArray> terms;
+  std::shared_ptr<std::atomic<std::uint64_t>> raysCast = std::make_shared<std::atomic<std::uint64_t>>(0);
   bool enclosed = false; // inside the mesh: hidden from every vertex outside (FlagLightEnclosed)
 
   /// Where the light is, if it is anywhere: a positional light's position, an area light's centre.
@@ -85,8 +92,10 @@ double secondsSince(std::chrono::steady_clock::time_point start)
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-/// The scene's lights with shadows, as the rays see them (their arrays not yet allocated).
-std::vector<ShadowedLight> shadowedLights(const shadelab::Scene& scene)
+/// The scene's lights with shadows, as the rays see them (their arrays not yet allocated), those
+/// drawn to a target as the shading would draw them.
+std::vector<ShadowedLight> shadowedLights(
+  const shadelab::Scene& scene, const std::vector<vtkMeshVisibilityFilter::DrawnLight>& drawn)
 {
   std::vector<ShadowedLight> lights;
   shadelab::EvaluationContext context;
@@ -97,7 +106,11 @@ std::vector<ShadowedLight> shadowedLights(const shadelab::Scene& scene)
     {
       // The distributed lights' samples are seeded by the light's index, as the kernel seeds them.
       context.lightIndex = l;
-      ShadowedLight light{ scene.lights[l].name, {}, nullptr, nullptr, nullptr };
+      context.targets = l < drawn.size() ? drawn[l].targets : shadelab::SampleTargets{};
+      context.lobe = l < drawn.size() ? drawn[l].lobe : shadelab::LobeModel{};
+      ShadowedLight light;
+      light.name = scene.lights[l].name;
+      light.drawnToTarget = context.targets.any();
       std::visit(shadelab::Overloaded{ [&](const shadelab::LocalEvaluation& local) { light.evaluation = local; },
                    [&](const shadelab::DistributedEvaluation& distributed) { light.distributed = distributed.shadowed; },
                    [](const shadelab::AmbientEvaluation&)
@@ -167,7 +180,12 @@ RayArrays allocateRayArrays(std::vector<ShadowedLight>& lights, const shadelab::
   RayArrays arrays;
   for (ShadowedLight& light : lights)
   {
-    if (light.distributed)
+    if (light.distributed && light.drawnToTarget)
+    {
+      light.terms = pointArray<vtkDoubleArray>(shadelab::shadowedTermsArrayName(prefix, light.name), shadelab::packedTermsSize, count);
+      arrays.written.push_back(light.terms);
+    }
+    else if (light.distributed)
     {
       light.hidden = pointArray<vtkTypeUInt64Array>(shadelab::hiddenSamplesArrayName(prefix, light.name),
         shadelab::hiddenSampleWords(light.distributed->shadowRayCount()), count);
@@ -216,8 +234,9 @@ public:
   /// Whether the surface is shaded on both sides, which the rays leave from alike.
   const bool twoSided;
 
-  /// Ray point i: the input's point that rayPoints lists at i (without a list, point i).
-  void at(vtkIdType i, shadelab::RayVertex& vertex, glm::dvec3& occlusionNormal) const
+  /// Ray point i: the input's point that rayPoints lists at i (without a list, point i), and the
+  /// unit direction to the viewer from it.
+  void at(vtkIdType i, shadelab::RayVertex& vertex, glm::dvec3& occlusionNormal, glm::dvec3& toViewer) const
   {
     const vtkIdType id = this->rayPoints ? (*this->rayPoints)[static_cast<std::size_t>(i)] : i;
     const auto p = this->points[id];
@@ -229,6 +248,8 @@ public:
     vertex.normal = usable ? vertex.normal / std::sqrt(length2) : glm::dvec3(0.0);
     const glm::dvec3 towardViewer = this->viewer.position ? *this->viewer.position - vertex.position : -this->viewer.viewDirection;
     occlusionNormal = this->twoSided && glm::dot(vertex.normal, towardViewer) < 0 ? -vertex.normal : vertex.normal;
+    const double distance = std::sqrt(glm::dot(towardViewer, towardViewer));
+    toViewer = distance > 0 ? towardViewer / distance : glm::dvec3(0.0);
   }
 
 private:
@@ -247,6 +268,7 @@ struct RayGroup
   int size = 0;
   shadelab::RayVertex vertices[groupSize];
   glm::dvec3 occlusionNormals[groupSize];
+  glm::dvec3 toViewer[groupSize];
 };
 
 /// Group g of the count ray points, their flags cleared for the rays to set.
@@ -256,7 +278,7 @@ void startGroup(const RayVertices& vertices, vtkIdType g, vtkIdType count, vtkUn
   group.size = static_cast<int>(std::min<vtkIdType>(groupSize, count - group.first));
   for (int k = 0; k < group.size; ++k)
   {
-    vertices.at(group.first + k, group.vertices[k], group.occlusionNormals[k]);
+    vertices.at(group.first + k, group.vertices[k], group.occlusionNormals[k], group.toViewer[k]);
     flags->SetValue(group.first + k, 0);
   }
 }
@@ -265,6 +287,36 @@ void startGroup(const RayVertices& vertices, vtkIdType g, vtkIdType count, vtkUn
 void addFlag(vtkUnsignedCharArray* flags, vtkIdType i, shadelab::ShadingFlag flag)
 {
   flags->SetValue(i, flags->GetValue(i) | flag);
+}
+
+/// The estimates of a distributed light drawn to a target at each of the group's points, from
+/// the side the kernel shades (the occlusion normal): each point's samples drawn in rounds, each
+/// round's rays traced before it is weighted. Flags the points that send a ray to a light the
+/// mesh encloses.
+void estimateSoftShadows(const shadelab::OccluderMesh& occluders, const ShadowedLight& light, const RayGroup& group,
+  vtkUnsignedCharArray* flags)
+{
+  std::uint64_t cast = 0;
+  for (int k = 0; k < group.size; ++k)
+  {
+    const shadelab::RayVertex& vertex = group.vertices[k];
+    double* row = light.terms->GetPointer(std::size_t(shadelab::packedTermsSize) * std::size_t(group.first + k));
+    if (vertex.normal == glm::dvec3(0.0))
+    {
+      shadelab::packTerms({}, row); // no ray: the kernel gives the vertex no light
+      continue;
+    }
+    const shadelab::SurfacePoint point{ vertex.position, group.occlusionNormals[k], group.toViewer[k],
+      static_cast<std::uint64_t>(vertex.id) };
+    shadelab::RoundShadowTracer tracer(occluders, point, vertex.id);
+    shadelab::packTerms(light.distributed->estimate(point, tracer), row);
+    cast += tracer.cast();
+    if (tracer.cast() > 0 && light.enclosed)
+    {
+      addFlag(flags, group.first + k, shadelab::FlagLightEnclosed);
+    }
+  }
+  *light.raysCast += cast;
 }
 
 /// The distributed light's samples that the mesh hides from each of the group's points, from the
@@ -300,6 +352,11 @@ void traceSoftShadows(const shadelab::OccluderMesh& occluders, const ShadowedLig
 void traceShadows(const shadelab::OccluderMesh& occluders, const ShadowedLight& light, const RayGroup& group,
   bool twoSided, vtkUnsignedCharArray* flags)
 {
+  if (light.terms)
+  {
+    estimateSoftShadows(occluders, light, group, flags);
+    return;
+  }
   if (light.distributed)
   {
     traceSoftShadows(occluders, light, group, flags);
@@ -433,7 +490,10 @@ std::string raysReport(const RayArrays& arrays, const std::vector<ShadowedLight>
   std::uint64_t lightRays = 0;
   for (const ShadowedLight& light : lights)
   {
-    lightRays += light.distributed ? static_cast<std::uint64_t>(light.distributed->shadowRayCount()) : 1;
+    if (!light.drawnToTarget)
+    {
+      lightRays += light.distributed ? static_cast<std::uint64_t>(light.distributed->shadowRayCount()) : 1;
+    }
   }
   const bool fixedOcclusion = arrays.occlusion && !arrays.settings.target;
   const std::uint64_t raysPerVertex = lightRays +
@@ -448,7 +508,7 @@ std::string raysReport(const RayArrays& arrays, const std::vector<ShadowedLight>
   }
   else
   {
-    report << "the ambient occlusion's rays";
+    report << "the rays drawn to targets (below)";
   }
   report << " against " << triangles << " triangles: BVH "
          << (times.reused ? "reused" : "built in " + std::to_string(times.buildSeconds) + " s") << ", rays "
@@ -456,6 +516,14 @@ std::string raysReport(const RayArrays& arrays, const std::vector<ShadowedLight>
   if (arrays.rays)
   {
     report << " " << occlusionRaysReport(arrays, count);
+  }
+  for (const ShadowedLight& light : lights)
+  {
+    if (light.drawnToTarget)
+    {
+      report << " The light '" << light.name << "', drawn to its target round by round: " << light.raysCast->load()
+             << " shadow rays, " << double(light.raysCast->load()) / double(count) << " per vertex.";
+    }
   }
   for (const ShadowedLight& light : lights)
   {
@@ -556,7 +624,7 @@ int vtkMeshVisibilityFilter::CastRaysFrom(vtkPolyData* input, vtkPolyData* outpu
     return 0;
   }
   output->ShallowCopy(input); // checked: every input array passes through
-  std::vector<ShadowedLight> lights = shadowedLights(*scene);
+  std::vector<ShadowedLight> lights = shadowedLights(*scene, this->DrawnLights);
   if (lights.empty() && !scene->ambientOcclusion)
   {
     this->Report = "Nothing to cast rays for: no light has shadows and the scene has no ambient occlusion.";
@@ -622,13 +690,30 @@ std::optional<shadelab::Scene> vtkMeshVisibilityFilter::PlacedScene(vtkPolyData*
   {
     return std::nullopt;
   }
-  const std::string untargeted = shadelab::untargetedSamplingProblem(scene, true);
+  std::string untargeted = shadelab::untargetedSamplingProblem(scene, true);
+  for (std::size_t l = 0; l < scene.lights.size() && untargeted.empty(); ++l)
+  {
+    const shadelab::Sampling* sampling = shadelab::samplingOf(scene.lights[l].source);
+    if (scene.lights[l].shadows && sampling && sampling->fromTolerance &&
+      !(l < this->DrawnLights.size() && this->DrawnLights[l].targets.any()))
+    {
+      untargeted = "light '" + scene.lights[l].name + "' casts shadows with \"samples\": \"auto\", which takes its "
+        "count from a tolerance's plan: shade it with vtkLocalReflectanceFilter under a tolerance (shadelab shade "
+        "--tolerance), or give it a number of samples";
+    }
+  }
   if (!untargeted.empty())
   {
     vtkErrorMacro(<< untargeted);
     return std::nullopt;
   }
   return scene;
+}
+
+void vtkMeshVisibilityFilter::SetDrawnLights(const std::vector<DrawnLight>& lights)
+{
+  this->DrawnLights = lights;
+  this->Modified();
 }
 
 void vtkMeshVisibilityFilter::PrintSelf(ostream& os, vtkIndent indent)

@@ -10,7 +10,8 @@
  * environment map it casts a ray per sample of the light's estimator instead and keeps which
  * ones the mesh hides, a bit per sample, in "<ArrayPrefix><light>_hidden_samples" (uint64),
  * from which vtkLocalReflectanceFilter estimates the visible integrals and the visibility
- * (docs/formulas.md section 11.6); that array is internal and never in the shading's output. With the scene's ambient
+ * (docs/formulas.md section 11.6); that array is internal and never in the shading's output.
+ * A light drawn to a target (SetDrawnLights) is estimated here instead, round by round. With the scene's ambient
  * occlusion, adds "ambient_occlusion", its "ambient_occlusion_std_error" and, if asked for,
  * "bent_normal" and "sky_view_factor" (docs/formulas.md section 20). The arrays are float32.
  * "visibility_flags" has FlagHiddenByOwnTriangle (64) where a shadowed light that the normal
@@ -34,6 +35,8 @@
 #include "vtkMultiProcessController.h" // the controller, a member
 #include "vtkShadeLabSceneFilter.h"
 
+#include "DistributedLight.h"   // LobeModel, a member's
+#include "SequentialSampling.h" // SampleTargets, a member's
 #include "vtkSmartPointer.h"
 
 #include <memory>
@@ -83,6 +86,22 @@ public:
   /// What the last run did, in one sentence.
   const std::string& GetReport() const { return this->Report; }
 
+  /// How the shading draws an area light's or a map's samples where a tolerance's plan gives
+  /// them targets (vtkLocalReflectanceFilter sets it): the targets, and the lobe whose integral
+  /// the shading needs.
+  struct DrawnLight
+  {
+    shadelab::SampleTargets targets;
+    shadelab::LobeModel lobe;
+  };
+  /// Per scene light (empty, the default: none). A shadowed light with targets is estimated
+  /// here, where its rays are: each vertex draws its samples in rounds, tracing each round's
+  /// rays, until E and S meet their targets, and its E, S and visibility with their standard
+  /// errors go into "<ArrayPrefix><light>_shadowed_terms" (float64, packTerms' rows, internal)
+  /// instead of the hidden samples' bits.
+  void SetDrawnLights(const std::vector<DrawnLight>& lights);
+  const std::vector<DrawnLight>& GetDrawnLights() const { return this->DrawnLights; }
+
   /// The processes over which the mesh may be split, as vtkShadingNormalsFilter's (default:
   /// the global controller; nullptr: this process alone).
   vtkSetSmartPointerMacro(Controller, vtkMultiProcessController);
@@ -110,6 +129,7 @@ private:
   bool CheckCells = true;
   std::string Report;
   vtkSmartPointer<vtkMultiProcessController> Controller;
+  std::vector<DrawnLight> DrawnLights;
 
   /// The BVH of the mesh it was built for: the same point and cell objects, none modified since.
   struct BuiltOccluders

@@ -100,6 +100,51 @@ constexpr int hiddenSampleWords(int samples)
   return (samples + 63) / 64;
 }
 
+/// Traces a vertex's shadow rays one round at a time, as its samples are drawn to a target
+/// (soft shadows under a tolerance: how many rounds a vertex draws depends on what the earlier
+/// rays found, so its rays cannot be cast before its estimate). Bound to one vertex.
+class RoundShadows
+{
+public:
+  virtual ~RoundShadows() = default;
+  /// Which of rays[0..count-1] the mesh hides (bit j for ray j; those not cast are not), valid
+  /// until the next call.
+  virtual HiddenSamples trace(const ShadowRay* rays, int count) = 0;
+};
+
+/// DistributedTerms as a row of numbers, for the visibility step to hand its estimates to the
+/// shading (soft shadows drawn to a target): E, S, their standard errors (RGB each), the
+/// visibility and its standard error, and whether the vertex stopped short of its target.
+constexpr int packedTermsSize = 15;
+
+inline void packTerms(const DistributedTerms& terms, double* row)
+{
+  const Rgb* colours[] = { &terms.irradiance, &terms.specular, &terms.irradianceStdError, &terms.specularStdError };
+  for (int c = 0; c < 4; ++c)
+  {
+    row[3 * c] = colours[c]->x;
+    row[3 * c + 1] = colours[c]->y;
+    row[3 * c + 2] = colours[c]->z;
+  }
+  row[12] = terms.visibility;
+  row[13] = terms.visibilityStdError;
+  row[14] = terms.shortOfTarget ? 1.0 : 0.0;
+}
+
+inline DistributedTerms unpackTerms(const double* row)
+{
+  DistributedTerms terms;
+  Rgb* colours[] = { &terms.irradiance, &terms.specular, &terms.irradianceStdError, &terms.specularStdError };
+  for (int c = 0; c < 4; ++c)
+  {
+    *colours[c] = Rgb(row[3 * c], row[3 * c + 1], row[3 * c + 2]);
+  }
+  terms.visibility = row[12];
+  terms.visibilityStdError = row[13];
+  terms.shortOfTarget = row[14] != 0;
+  return terms;
+}
+
 /// A distributed light's estimator with its shadows (docs/formulas.md section 11.6): it names
 /// the rays of its samples, the visibility step (visibility/) casts them against the mesh, and
 /// it estimates E and S from the same samples weighted by what the rays found. The rays and
@@ -115,6 +160,10 @@ public:
   virtual void shadowRays(const SurfacePoint& point, ShadowRay* rays) const = 0;
   /// E, S and the visibility, with the samples hidden as `hidden` says. Safe to call concurrently.
   virtual DistributedTerms estimate(const SurfacePoint& point, const HiddenSamples& hidden) const = 0;
+  /// The same, for an estimator drawn to targets: its samples drawn in rounds until they meet
+  /// them, each round's rays (as shadowRays names them, for that round's samples) traced by
+  /// `shadows` before they are weighted.
+  virtual DistributedTerms estimate(const SurfacePoint& point, RoundShadows& shadows) const = 0;
   /// A point inside the emitter (its centre), from which the visibility step finds whether
   /// the mesh encloses the light; nothing for a map, which is at infinity.
   virtual std::optional<glm::dvec3> emitterCentre() const = 0;

@@ -8,7 +8,9 @@
 #include "Vec3.h"
 #include "VisibleFraction.h"
 
+#include <array>
 #include <optional>
+#include <vector>
 
 namespace shadelab
 {
@@ -22,25 +24,66 @@ struct RadianceSample
   std::optional<Rgb> specular;
 };
 
+/// How the mesh hides a vertex's samples: not at all (no shadows), as the visibility step's bits
+/// for the light's fixed count, or round by round as they are drawn (to a target).
+struct SampleShadowing
+{
+  const HiddenSamples* fixed = nullptr;
+  RoundShadows* rounds = nullptr;
+
+  bool on() const { return fixed || rounds; }
+
+  /// The hidden samples of a round: the fixed bits (a fixed count is one round), or the round's
+  /// rays, which raysOf(round, rays) names, traced.
+  template <typename RaysOf>
+  HiddenSamples of(const SampleSequence& round, RaysOf&& raysOf) const
+  {
+    if (fixed)
+    {
+      return *fixed;
+    }
+    std::vector<ShadowRay> rays(static_cast<std::size_t>(round.count()));
+    raysOf(round, rays.data());
+    return rounds->trace(rays.data(), round.count());
+  }
+};
+
+/// The targets of an estimate whose E is an unshadowed E0 computed without samples times the
+/// samples' visible fraction V (an exact or SH E under shadows): E's standard error is E0's
+/// largest component times V's, so V's target is E's over that (none where E0 is 0: no E to
+/// err).
+inline SampleTargets withVisibilityTarget(SampleTargets targets, const Rgb& unshadowed)
+{
+  const double largest = largestComponent(unshadowed);
+  if (targets.irradiance && largest > 0)
+  {
+    targets.visibility = SamplingTarget{ targets.irradiance->error / largest, targets.irradiance->minimum,
+      targets.irradiance->maximum };
+  }
+  return targets;
+}
+
 /// Averages L(w) max(0, n.w) / pdf(w) (when irradiance is wanted) and L(w) lobe(w) / pdf(w)
 /// (when the lobe is) over the vertex's sample points (SampleSequence of this light and vertex),
 /// which sampleAt(u) turns into RadianceSamples: sampling's fixed count or, with targets, rounds
-/// until each sampled estimate meets its target (SequentialSampling.h; unshadowed only). With
-/// hidden (shadows), each sample counts only where its ray got through, and the visible
-/// fraction of the irradiance is estimated from the same samples.
-template <typename SampleAt>
+/// until each sampled estimate meets its target (SequentialSampling.h). With shadows, each
+/// sample counts only where its ray got through, as hiddenOf(round) says of the round's samples
+/// (the bits of the visibility step for the one round of a fixed count, or a round's rays traced
+/// as it is drawn), and the visible fraction of the irradiance is estimated from the same samples.
+template <typename HiddenOfRound, typename SampleAt>
 DistributedTerms sampledTerms(std::uint64_t light, std::uint64_t vertex, const Sampling& sampling,
   const SampleTargets& targets, bool irradiance, const LobeModel& lobe, const glm::dvec3& n, const glm::dvec3& v,
-  const HiddenSamples* hidden, SampleAt&& sampleAt)
+  bool shadowed, HiddenOfRound&& hiddenOf, SampleAt&& sampleAt)
 {
   MonteCarloEstimate e(sampling.stratified), s(sampling.stratified);
   VisibleFraction visible(sampling.stratified);
-  auto draw = [&](const SampleSequence& sequence, int first)
+  auto draw = [&](const SampleSequence& sequence)
   {
+    const HiddenSamples hidden = shadowed ? hiddenOf(sequence) : HiddenSamples{};
     for (int j = 0; j < sequence.count(); ++j)
     {
       const RadianceSample sample = sampleAt(sequence.point(j));
-      const bool through = !hidden || !hidden->hidden(first + j);
+      const bool through = !shadowed || !hidden.hidden(j);
       const double seen = through ? 1.0 : 0.0;
       const Rgb unshadowed = sample.weighted * std::max(0.0, glm::dot(n, sample.direction));
       if (irradiance)
@@ -51,7 +94,7 @@ DistributedTerms sampledTerms(std::uint64_t light, std::uint64_t vertex, const S
       {
         s.add((sample.specular ? *sample.specular : sample.weighted * lobe(n, sample.direction, v)) * seen);
       }
-      if (hidden)
+      if (shadowed)
       {
         visible.add((unshadowed.x + unshadowed.y + unshadowed.z) / 3, through);
       }
@@ -60,29 +103,44 @@ DistributedTerms sampledTerms(std::uint64_t light, std::uint64_t vertex, const S
   bool shortOfTarget = false;
   if (!targets.any())
   {
-    draw(SampleSequence(light, vertex, sampling), 0);
+    draw(SampleSequence(light, vertex, sampling));
   }
   else
   {
-    // The next round is the larger that either estimate's target asks for.
+    // Each target's estimate's standard error now, where that estimate is made.
+    auto standardErrors = [&]
+    {
+      return std::array<std::optional<double>, 3>{
+        irradiance && targets.irradiance ? std::optional<double>(largestComponent(e.standardError())) : std::nullopt,
+        lobe.wanted() && targets.specular ? std::optional<double>(largestComponent(s.standardError())) : std::nullopt,
+        shadowed && targets.visibility ? std::optional<double>(visible.standardError()) : std::nullopt };
+    };
+    const std::optional<SamplingTarget>* each[] = { &targets.irradiance, &targets.specular, &targets.visibility };
+    // The next round is the largest that any estimate's target asks for.
     auto nextRound = [&](int drawn)
     {
-      const int forE = irradiance && targets.irradiance
-        ? targets.irradiance->nextRound(drawn, drawn > 0 ? largestComponent(e.standardError()) : 0.0)
-        : 0;
-      const int forS = lobe.wanted() && targets.specular
-        ? targets.specular->nextRound(drawn, drawn > 0 ? largestComponent(s.standardError()) : 0.0)
-        : 0;
-      return std::max(forE, forS);
+      const auto errorsNow = standardErrors();
+      int round = 0;
+      for (int t = 0; t < 3; ++t)
+      {
+        if (errorsNow[t])
+        {
+          round = std::max(round, (*each[t])->nextRound(drawn, drawn > 0 ? *errorsNow[t] : 0.0));
+        }
+      }
+      return round;
     };
     int drawn = 0;
     for (int round = nextRound(0); round > 0; round = nextRound(drawn))
     {
-      draw(SampleSequence(light, vertex, { round, sampling.stratified }, static_cast<std::uint64_t>(drawn)), drawn);
+      draw(SampleSequence(light, vertex, { round, sampling.stratified }, static_cast<std::uint64_t>(drawn)));
       drawn += round;
     }
-    shortOfTarget = (irradiance && targets.irradiance && largestComponent(e.standardError()) > targets.irradiance->standardError()) ||
-      (lobe.wanted() && targets.specular && largestComponent(s.standardError()) > targets.specular->standardError());
+    const auto errorsAtEnd = standardErrors();
+    for (int t = 0; t < 3; ++t)
+    {
+      shortOfTarget = shortOfTarget || (errorsAtEnd[t] && *errorsAtEnd[t] > (*each[t])->standardError());
+    }
   }
   DistributedTerms terms;
   terms.shortOfTarget = shortOfTarget;
@@ -96,7 +154,7 @@ DistributedTerms sampledTerms(std::uint64_t light, std::uint64_t vertex, const S
     terms.specular = s.mean();
     terms.specularStdError = s.standardError();
   }
-  if (hidden)
+  if (shadowed)
   {
     terms.visibility = visible.value();
     terms.visibilityStdError = visible.standardError();

@@ -49,11 +49,14 @@ struct SamplingTarget
 struct SampleTargets
 {
   std::optional<SamplingTarget> irradiance, specular;
+  /// Under shadows, of the visible fraction V where E is an unshadowed E0 computed without
+  /// samples times V (an exact or SH E): E's target over E0, set per vertex by the estimator.
+  std::optional<SamplingTarget> visibility;
 
-  bool any() const { return irradiance || specular; }
+  bool any() const { return irradiance || specular || visibility; }
   bool operator==(const SampleTargets& other) const
   {
-    return irradiance == other.irradiance && specular == other.specular;
+    return irradiance == other.irradiance && specular == other.specular && visibility == other.visibility;
   }
 };
 }

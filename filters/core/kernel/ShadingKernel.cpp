@@ -175,7 +175,7 @@ typename ShadingKernel<T>::PreparedLight ShadingKernel<T>::prepareLocal(const Lo
 template <typename T>
 typename ShadingKernel<T>::DistributedLightSlot ShadingKernel<T>::prepareDistributed(
   const DistributedEvaluation& evaluation, const std::array<T*, LightTermCount>& out, const Material& m,
-  bool needsSpecular, const std::uint64_t* hiddenSamples) const
+  bool needsSpecular, const std::uint64_t* hiddenSamples, const double* shadowedTerms) const
 {
   DistributedLightSlot light;
   light.estimator = evaluation.estimator;
@@ -185,8 +185,9 @@ typename ShadingKernel<T>::DistributedLightSlot ShadingKernel<T>::prepareDistrib
     light.hiddenSamples = hiddenSamples;
     light.hiddenWords = hiddenSampleWords(evaluation.shadowed->shadowRayCount());
   }
+  light.shadowedTerms = shadowedTerms;
   const std::optional<IrradiancePolynomial>& e = evaluation.irradiance;
-  if (e && !light.hiddenSamples)
+  if (e && !light.hiddenSamples && !light.shadowedTerms)
   {
     light.irradiance = PreparedPolynomial{ { toVec<T>(e->xx), toVec<T>(e->yy), toVec<T>(e->zz), toVec<T>(e->xy),
       toVec<T>(e->xz), toVec<T>(e->yz), toVec<T>(e->x), toVec<T>(e->y), toVec<T>(e->z), toVec<T>(e->constant) } };
@@ -247,9 +248,9 @@ ShadingKernel<T>::ShadingKernel(
     else if (const auto* distributed = std::get_if<DistributedEvaluation>(&evaluation))
     {
       distributedLights_.push_back(prepareDistributed(*distributed, out, m, needsSpecular,
-        l < inputs_.lightHiddenSamples.size() ? inputs_.lightHiddenSamples[l] : nullptr));
-      distributedLights_.back().name = scene.lights[l].name;
-      distributedLights_.back().drawnToTarget = method.targets.any();
+        l < inputs_.lightHiddenSamples.size() ? inputs_.lightHiddenSamples[l] : nullptr,
+        l < inputs_.lightShadowedTerms.size() ? inputs_.lightShadowedTerms[l] : nullptr));
+      distributedLights_.back().shortOfTarget = l < outputs_.shortOfTarget.size() ? outputs_.shortOfTarget[l] : nullptr;
     }
     else
     {
@@ -581,7 +582,6 @@ void ShadingKernel<T>::estimateDistributedLight(const DistributedLightSlot& ligh
       array[3 * i + 2] = T(value.z);
     }
   };
-  std::size_t shortOfTarget = 0;
   for (std::size_t k = 0; k < b.count; ++k)
   {
     DistributedTerms terms;
@@ -594,9 +594,16 @@ void ShadingKernel<T>::estimateDistributedLight(const DistributedLightSlot& ligh
       point.normal = { w.nx[k], w.ny[k], w.nz[k] };
       point.toViewer = needsViewer_ ? glm::dvec3(w.vx[k], w.vy[k], w.vz[k]) : glm::dvec3(0.0);
       point.index = inputs_.sampleIds ? static_cast<std::uint64_t>(inputs_.sampleIds[b.first + k]) : b.first + k;
-      terms = light.hiddenSamples
-        ? light.shadowed->estimate(point, { light.hiddenSamples + std::size_t(light.hiddenWords) * (b.first + k) })
-        : light.estimator->estimate(point);
+      if (light.shadowedTerms)
+      {
+        terms = unpackTerms(light.shadowedTerms + std::size_t(packedTermsSize) * (b.first + k));
+      }
+      else
+      {
+        terms = light.hiddenSamples
+          ? light.shadowed->estimate(point, { light.hiddenSamples + std::size_t(light.hiddenWords) * (b.first + k) })
+          : light.estimator->estimate(point);
+      }
     }
     if (!light.irradiance)
     {
@@ -618,26 +625,11 @@ void ShadingKernel<T>::estimateDistributedLight(const DistributedLightSlot& ligh
     {
       visibilityError[i] = T(terms.visibilityStdError);
     }
-    shortOfTarget += terms.shortOfTarget ? 1 : 0;
-  }
-  if (shortOfTarget > 0)
-  {
-    *light.shortOfTarget += shortOfTarget;
-  }
-}
-
-template <typename T>
-std::vector<std::pair<std::string, std::size_t>> ShadingKernel<T>::verticesShortOfTarget() const
-{
-  std::vector<std::pair<std::string, std::size_t>> counts;
-  for (const DistributedLightSlot& light : distributedLights_)
-  {
-    if (light.drawnToTarget)
+    if (light.shortOfTarget)
     {
-      counts.emplace_back(light.name, light.shortOfTarget->load());
+      light.shortOfTarget[i] = terms.shortOfTarget ? 1 : 0;
     }
   }
-  return counts;
 }
 
 template <typename T>

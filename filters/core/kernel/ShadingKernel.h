@@ -17,7 +17,6 @@
 
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <cstddef>
 #include <memory>
 #include <optional>
@@ -35,6 +34,9 @@ struct ShadingOutputs
   std::vector<std::array<T*, LightTermCount>> lights; // follows scene.lights
   std::array<T*, TotalTermCount> totals{};
   ShadingFlags* flags = nullptr;
+  /// Follows scene.lights: for an area light or map drawn to a target, 1 at each vertex that
+  /// stopped at the maximum short of it, else 0; nullptr (or empty): not marked.
+  std::vector<std::uint8_t*> shortOfTarget;
 };
 
 /// What the mesh hides, computed before shading (visibility/Visibility.h), one value per
@@ -47,6 +49,10 @@ struct ShadingInputs
   /// the mesh hides (HiddenSamples), hiddenSampleWords(shadowRayCount()) words per vertex;
   /// nullptr: none.
   std::vector<const std::uint64_t*> lightHiddenSamples;
+  /// Follows scene.lights: for an area light or map with shadows drawn to a target, the
+  /// visibility step's estimates (packTerms' rows, packedTermsSize per vertex), used as they
+  /// are; nullptr: none.
+  std::vector<const double*> lightShadowedTerms;
   const float* ambientOcclusion = nullptr;   // nullptr: the open sky, 1
   const ShadingFlags* flags = nullptr;       // flags the rays found (FlagHiddenByOwnTriangle)
   /// Each vertex's id in the whole mesh, which seeds its samples, where the arrays hold some
@@ -99,10 +105,6 @@ public:
   /// vertex far slower than the local lights do.
   bool hasDistributedLights() const { return !distributedLights_.empty(); }
 
-  /// Per area light or map (by name) whose samples are drawn to a target: how many of the
-  /// vertices shaded so far stopped at the maximum short of it.
-  std::vector<std::pair<std::string, std::size_t>> verticesShortOfTarget() const;
-
 private:
   struct PreparedLight
   {
@@ -133,23 +135,22 @@ private:
 
   /// An area light or environment map: its estimator, run vertex by vertex in float64, and
   /// for SH irradiance the polynomial that replaces it for E. With shadows, the shadowed
-  /// estimator gives E and S instead, from the hidden samples.
+  /// estimator gives E and S instead, from the hidden samples, or the visibility step gave them
+  /// (shadowedTerms).
   struct DistributedLightSlot
   {
-    bool runsEstimator() const { return estimator || hiddenSamples; }
+    bool runsEstimator() const { return estimator || hiddenSamples || shadowedTerms; }
 
     std::shared_ptr<const DistributedLightEstimator> estimator;
     std::optional<PreparedPolynomial> irradiance;
     std::shared_ptr<const ShadowedLightEstimator> shadowed; // with hiddenSamples: the light's shadows
     const std::uint64_t* hiddenSamples = nullptr;
     int hiddenWords = 0; // per vertex
+    const double* shadowedTerms = nullptr; // packedTermsSize per vertex
     Rgb kd{ 0.0 }, ks{ 0.0 };
     bool needsSpecular = false;
     std::array<T*, LightTermCount> out{};
-    std::string name;
-    bool drawnToTarget = false;
-    /// Vertices that stopped at the maximum short of the target, counted by concurrent blocks.
-    std::shared_ptr<std::atomic<std::size_t>> shortOfTarget = std::make_shared<std::atomic<std::size_t>>(0);
+    std::uint8_t* shortOfTarget = nullptr; // ShadingOutputs::shortOfTarget's
   };
 
   struct Workspace;
@@ -158,7 +159,7 @@ private:
     const Material& m, bool needsSpecular, PowMethod pow) const;
   DistributedLightSlot prepareDistributed(const DistributedEvaluation& evaluation,
     const std::array<T*, LightTermCount>& out, const Material& m, bool needsSpecular,
-    const std::uint64_t* hiddenSamples) const;
+    const std::uint64_t* hiddenSamples, const double* shadowedTerms) const;
 
   void prepareNormals(const VertexBlock<T>& block, Workspace& w) const;
   void prepareViewer(const VertexBlock<T>& block, Workspace& w) const;

@@ -206,9 +206,13 @@ AreaLightEstimator::EmitterSample AreaLightEstimator::towardSphere(
   return { toward, inside ? b + root : c / std::max(b + root, std::numeric_limits<double>::min()) };
 }
 
-DistributedTerms AreaLightEstimator::monteCarlo(const SurfacePoint& point, bool irradiance, const HiddenSamples* hidden) const
+DistributedTerms AreaLightEstimator::monteCarlo(
+  const SurfacePoint& point, bool irradiance, const SampleTargets& targets, const SampleShadowing& shadowing) const
 {
-  return sampledTerms(lightIndex_, point.index, light_.sampling, targets_, irradiance, lobe_, point.normal, point.toViewer, hidden,
+  return sampledTerms(lightIndex_, point.index, light_.sampling, targets, irradiance, lobe_, point.normal, point.toViewer,
+    shadowing.on(),
+    [&](const SampleSequence& round)
+    { return shadowing.of(round, [&](const SampleSequence& s, ShadowRay* rays) { shadowRaysOf(point, s, rays); }); },
     [&](const glm::dvec2& u)
     {
       const WeightedDirection sample = this->sample(u, point);
@@ -237,22 +241,27 @@ DistributedTerms AreaLightEstimator::pointApproximation(const SurfacePoint& poin
 
 DistributedTerms AreaLightEstimator::estimate(const SurfacePoint& point) const
 {
-  return estimateWith(point, nullptr);
+  return estimateWith(point, {});
 }
 
 DistributedTerms AreaLightEstimator::estimate(const SurfacePoint& point, const HiddenSamples& hidden) const
 {
-  return estimateWith(point, &hidden);
+  return estimateWith(point, { &hidden, nullptr });
 }
 
-DistributedTerms AreaLightEstimator::estimateWith(const SurfacePoint& point, const HiddenSamples* hidden) const
+DistributedTerms AreaLightEstimator::estimate(const SurfacePoint& point, RoundShadows& shadows) const
+{
+  return estimateWith(point, { nullptr, &shadows });
+}
+
+DistributedTerms AreaLightEstimator::estimateWith(const SurfacePoint& point, const SampleShadowing& shadowing) const
 {
   switch (light_.estimator)
   {
     case AreaEstimator::Point:
     {
       DistributedTerms terms = pointApproximation(point);
-      if (hidden && hidden->hidden(0))
+      if (shadowing.fixed && shadowing.fixed->hidden(0))
       {
         terms = {};
         terms.visibility = 0;
@@ -260,14 +269,17 @@ DistributedTerms AreaLightEstimator::estimateWith(const SurfacePoint& point, con
       return terms;
     }
     case AreaEstimator::MonteCarlo:
-      return monteCarlo(point, true, hidden);
+      return monteCarlo(point, true, targets_, shadowing);
     case AreaEstimator::Exact:
       break;
   }
   // Exact E; S has no closed form for a Phong lobe over a polygon, so it is sampled. With
-  // shadows, the samples also give the visible fraction of E.
-  DistributedTerms terms = lobe_.wanted() || hidden ? monteCarlo(point, false, hidden) : DistributedTerms{};
+  // shadows, the samples also give the visible fraction of E, drawn to E's target over the
+  // exact E where there is one.
   const Rgb unshadowed = radiance_ * exactProjectedSolidAngle(point);
+  DistributedTerms terms = lobe_.wanted() || shadowing.on()
+    ? monteCarlo(point, false, shadowing.on() ? withVisibilityTarget(targets_, unshadowed) : targets_, shadowing)
+    : DistributedTerms{};
   terms.irradiance = unshadowed * terms.visibility;
   terms.irradianceStdError = unshadowed * terms.visibilityStdError;
   return terms;
@@ -278,20 +290,32 @@ int AreaLightEstimator::shadowRayCount() const
   return light_.estimator == AreaEstimator::Point ? 1 : light_.sampling.samples;
 }
 
+namespace
+{
+/// A sample's shadow ray, cast only where the sample carries light to the point's lit side: the
+/// others count as visible and add nothing.
+ShadowRay shadowRayOf(const SurfacePoint& point, const glm::dvec3& direction, double weight, double distance)
+{
+  return ShadowRay{ direction, distance, weight > 0 && glm::dot(point.normal, direction) > 0 };
+}
+}
+
 void AreaLightEstimator::shadowRays(const SurfacePoint& point, ShadowRay* rays) const
 {
-  // A ray is cast only where its sample carries light to the point's lit side: the others
-  // count as visible and add nothing.
-  auto ray = [&](const glm::dvec3& direction, double weight, double distance)
-  { return ShadowRay{ direction, distance, weight > 0 && glm::dot(point.normal, direction) > 0 }; };
   if (light_.estimator == AreaEstimator::Point)
   {
     const glm::dvec3 offset = centre_ - point.position;
     const double d = vectorLength(offset);
-    rays[0] = d > 0 ? ray(offset / d, 1.0, d) : ShadowRay{};
+    rays[0] = d > 0 ? shadowRayOf(point, offset / d, 1.0, d) : ShadowRay{};
     return;
   }
-  const SampleSequence sequence(lightIndex_, point.index, light_.sampling);
+  shadowRaysOf(point, SampleSequence(lightIndex_, point.index, light_.sampling), rays);
+}
+
+void AreaLightEstimator::shadowRaysOf(const SurfacePoint& point, const SampleSequence& sequence, ShadowRay* rays) const
+{
+  auto ray = [&](const glm::dvec3& direction, double weight, double distance)
+  { return shadowRayOf(point, direction, weight, distance); };
   if (!sendsLightTo(point.position) || !risesAbovePlaneOf(point))
   {
     std::fill_n(rays, sequence.count(), ShadowRay{}); // no sample would cast one

@@ -3,6 +3,7 @@
 // emitter, or a point light at its centre.
 #include "AreaLight.h"
 #include "DistributedLight.h"
+#include "SampledTerms.h"
 #include "SequentialSampling.h"
 #include "SampleWarps.h"
 
@@ -13,7 +14,7 @@ namespace shadelab
 class AreaLightEstimator final : public DistributedLightEstimator, public ShadowedLightEstimator
 {
 public:
-  /// targets: where the light's samples are drawn to a tolerance's share (unshadowed only).
+  /// targets: where the light's samples are drawn to a tolerance's share.
   AreaLightEstimator(const AreaLight& light, std::uint64_t lightIndex, const LobeModel& lobe, const SampleTargets& targets = {});
 
   DistributedTerms estimate(const SurfacePoint& point) const override;
@@ -25,6 +26,7 @@ public:
   /// through. Monte Carlo: E and S from the samples that get through. Point: the point light's
   /// E and S, times whether its one ray gets through.
   DistributedTerms estimate(const SurfacePoint& point, const HiddenSamples& hidden) const override;
+  DistributedTerms estimate(const SurfacePoint& point, RoundShadows& shadows) const override;
   std::optional<glm::dvec3> emitterCentre() const override { return centre_; }
 
   /// A direction from point to the emitter, with 1 / pdf in solid angle (weight 0 where the
@@ -62,9 +64,12 @@ private:
   /// The direction to a point sampled on a planar emitter by area, weighted as solid angle.
   EmitterSample towardPoint(const glm::dvec3& onEmitter, const glm::dvec3& receiver) const;
   EmitterSample towardSphere(const SphereEmitter& sphere, const glm::dvec2& u, const SurfacePoint& point) const;
-  DistributedTerms monteCarlo(const SurfacePoint& point, bool irradiance, const HiddenSamples* hidden) const;
+  /// The rays of the sequence's samples (shadowRays' for the light's whole sequence).
+  void shadowRaysOf(const SurfacePoint& point, const SampleSequence& sequence, ShadowRay* rays) const;
+  DistributedTerms monteCarlo(
+    const SurfacePoint& point, bool irradiance, const SampleTargets& targets, const SampleShadowing& shadowing) const;
   DistributedTerms pointApproximation(const SurfacePoint& point) const;
-  DistributedTerms estimateWith(const SurfacePoint& point, const HiddenSamples* hidden) const;
+  DistributedTerms estimateWith(const SurfacePoint& point, const SampleShadowing& shadowing) const;
 
   AreaLight light_;
   Rgb radiance_;

@@ -147,14 +147,16 @@ RadianceSample EnvironmentLightEstimator::draw(const glm::dvec3& n, const glm::d
 }
 
 DistributedTerms EnvironmentLightEstimator::monteCarlo(const glm::dvec3& n, const glm::dvec3& v, std::uint64_t vertex,
-  bool irradiance, EnvironmentDirections directions, const HiddenSamples* hidden) const
+  bool irradiance, EnvironmentDirections directions, const SampleTargets& targets, const SampleShadowing& shadowing) const
 {
-  return sampledTerms(lightIndex_, vertex, light_.sampling, targets_, irradiance, lobe_, n, v, hidden,
+  return sampledTerms(lightIndex_, vertex, light_.sampling, targets, irradiance, lobe_, n, v, shadowing.on(),
+    [&](const SampleSequence& round)
+    { return shadowing.of(round, [&](const SampleSequence& s, ShadowRay* rays) { shadowRaysOf(n, s, rays); }); },
     [&](const glm::dvec2& u)
     {
       // The lobe's own direction would need a ray of its own: with shadows, S is taken from
       // the light's samples alone.
-      if (lobe_.wanted() && !hidden && directions == EnvironmentDirections::Luminance)
+      if (lobe_.wanted() && !shadowing.on() && directions == EnvironmentDirections::Luminance)
       {
         const EnvironmentSample sample = sampler_->sample(u.x, u.y);
         RadianceSample drawn = weightedByDensity(sample);
@@ -198,13 +200,13 @@ DistributedTerms EnvironmentLightEstimator::estimate(const SurfacePoint& point) 
     case EnvironmentEstimator::BruteForce:
       return bruteForce(n, v, lobe_.wanted());
     case EnvironmentEstimator::MonteCarlo:
-      return monteCarlo(n, v, point.index, true, light_.directions, nullptr);
+      return monteCarlo(n, v, point.index, true, light_.directions, targets_, {});
     case EnvironmentEstimator::SphericalHarmonics:
       break;
   }
   // Nine coefficients cannot hold a lobe sharper than the cosine: S is sampled, by luminance and by the lobe.
   DistributedTerms terms = lobe_.wanted()
-    ? monteCarlo(n, v, point.index, false, EnvironmentDirections::Luminance, nullptr)
+    ? monteCarlo(n, v, point.index, false, EnvironmentDirections::Luminance, targets_, {})
     : DistributedTerms{};
   terms.irradiance = (*irradiance_)(point.normal);
   return terms;
@@ -217,12 +219,15 @@ int EnvironmentLightEstimator::shadowRayCount() const
 
 void EnvironmentLightEstimator::shadowRays(const SurfacePoint& point, ShadowRay* rays) const
 {
+  shadowRaysOf(worldToMap_ * point.normal, SampleSequence(lightIndex_, point.index, light_.sampling), rays);
+}
+
+void EnvironmentLightEstimator::shadowRaysOf(const glm::dvec3& n, const SampleSequence& sequence, ShadowRay* rays) const
+{
   // A ray is cast where its direction is above the point's horizon: below, the sample adds
   // nothing. Nor does a sample of a black texel above it, whose ray is cast all the same (the
   // texel's radiance is not looked up for the ray: the estimate is the same bits whatever
   // that ray finds, and the lookup costs more than the ray).
-  const glm::dvec3 n = worldToMap_ * point.normal;
-  const SampleSequence sequence(lightIndex_, point.index, light_.sampling);
   for (int j = 0; j < sequence.count(); ++j)
   {
     const glm::dvec3 direction = drawDirection(n, sequence.point(j), light_.directions);
@@ -232,13 +237,23 @@ void EnvironmentLightEstimator::shadowRays(const SurfacePoint& point, ShadowRay*
 
 DistributedTerms EnvironmentLightEstimator::estimate(const SurfacePoint& point, const HiddenSamples& hidden) const
 {
+  return shadowedEstimate(point, { &hidden, nullptr });
+}
+
+DistributedTerms EnvironmentLightEstimator::estimate(const SurfacePoint& point, RoundShadows& shadows) const
+{
+  return shadowedEstimate(point, { nullptr, &shadows });
+}
+
+DistributedTerms EnvironmentLightEstimator::shadowedEstimate(const SurfacePoint& point, const SampleShadowing& shadowing) const
+{
   const glm::dvec3 n = worldToMap_ * point.normal;
   const glm::dvec3 v = worldToMap_ * point.toViewer;
   Rgb unshadowed(0.0);
   switch (light_.estimator)
   {
     case EnvironmentEstimator::MonteCarlo:
-      return monteCarlo(n, v, point.index, true, light_.directions, &hidden);
+      return monteCarlo(n, v, point.index, true, light_.directions, targets_, shadowing);
     case EnvironmentEstimator::BruteForce:
       unshadowed = bruteForce(n, v, false).irradiance;
       break;
@@ -246,8 +261,10 @@ DistributedTerms EnvironmentLightEstimator::estimate(const SurfacePoint& point, 
       unshadowed = (*irradiance_)(point.normal);
       break;
   }
-  // As the exact estimator of an area light: where every ray gets through, E is the unshadowed E bit for bit.
-  DistributedTerms terms = monteCarlo(n, v, point.index, false, light_.directions, &hidden);
+  // As the exact estimator of an area light: where every ray gets through, E is the unshadowed
+  // E bit for bit; drawn to E's target over the unshadowed E where there is one.
+  DistributedTerms terms =
+    monteCarlo(n, v, point.index, false, light_.directions, withVisibilityTarget(targets_, unshadowed), shadowing);
   terms.irradiance = unshadowed * terms.visibility;
   terms.irradianceStdError = unshadowed * terms.visibilityStdError;
   return terms;

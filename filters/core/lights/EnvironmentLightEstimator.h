@@ -20,7 +20,7 @@ namespace shadelab
 class EnvironmentLightEstimator final : public DistributedLightEstimator, public ShadowedLightEstimator
 {
 public:
-  /// targets: where the light's samples are drawn to a tolerance's share (unshadowed only).
+  /// targets: where the light's samples are drawn to a tolerance's share.
   EnvironmentLightEstimator(const EnvironmentLight& light, std::uint64_t lightIndex, const LobeModel& lobe, const SampleTargets& targets = {});
 
   DistributedTerms estimate(const SurfacePoint& point) const override;
@@ -32,6 +32,7 @@ public:
   /// harmonics: their unshadowed E times the samples' visible fraction, S from the samples that
   /// get through (a lobe's own directions would need rays of their own).
   DistributedTerms estimate(const SurfacePoint& point, const HiddenSamples& hidden) const override;
+  DistributedTerms estimate(const SurfacePoint& point, RoundShadows& shadows) const override;
   std::optional<glm::dvec3> emitterCentre() const override { return std::nullopt; }
 
   /// For the SH estimator, E as a polynomial of the world normal (eq. 13 turned with the map),
@@ -48,8 +49,12 @@ private:
   };
 
   DistributedTerms bruteForce(const glm::dvec3& n, const glm::dvec3& v, bool specular) const;
+  /// n and v in the map's frame; the point's own for its rays.
   DistributedTerms monteCarlo(const glm::dvec3& n, const glm::dvec3& v, std::uint64_t vertex, bool irradiance,
-    EnvironmentDirections directions, const HiddenSamples* hidden) const;
+    EnvironmentDirections directions, const SampleTargets& targets, const SampleShadowing& shadowing) const;
+  DistributedTerms shadowedEstimate(const SurfacePoint& point, const SampleShadowing& shadowing) const;
+  /// The rays of the sequence's samples, from a point of normal n (the map's frame).
+  void shadowRaysOf(const glm::dvec3& n, const SampleSequence& sequence, ShadowRay* rays) const;
   /// The sample's direction with its radiance (times the light's colour) over its pdf.
   RadianceSample weightedByDensity(const EnvironmentSample& sample) const;
   /// The direction (map frame) draw() draws, bit for bit, without its radiance and density.

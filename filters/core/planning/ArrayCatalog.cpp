@@ -104,6 +104,18 @@ std::string hiddenSamplesArrayName(const std::string& prefix, const std::string&
   return prefix + light + "_hidden_samples";
 }
 
+bool specularComputed(const Scene& scene, const ArrayRequest& request, std::size_t light)
+{
+  return evaluatedSpecularModel(scene) != SpecularModel::None &&
+    (request.lights[light][int(LightTerm::Specular)] || request.totals[int(TotalTerm::Specular)] ||
+      request.totals[int(TotalTerm::Total)]);
+}
+
+std::string shadowedTermsArrayName(const std::string& prefix, const std::string& light)
+{
+  return prefix + light + "_shadowed_terms";
+}
+
 std::string occlusionArrayName(const std::string& prefix, OcclusionTerm term)
 {
   return prefix + termInfo(term).name;

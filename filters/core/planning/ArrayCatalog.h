@@ -82,6 +82,13 @@ std::string visibilityFlagsArrayName(const std::string& prefix);
 /// The visibility step's bits of an area light's or a map's samples that the mesh hides
 /// (HiddenSamples), which the shading reads and does not write.
 std::string hiddenSamplesArrayName(const std::string& prefix, const std::string& light);
+/// The visibility step's estimates of a shadowed area light or map drawn to a target, which
+/// traces its rays round by round as it draws them (packTerms' rows): read by the shading instead
+/// of the hidden samples.
+std::string shadowedTermsArrayName(const std::string& prefix, const std::string& light);
+/// Whether the scene light's specular term is computed for the request: its own array or a
+/// total holds it (as the kernel decides which lobes to evaluate).
+bool specularComputed(const Scene& scene, const ArrayRequest& request, std::size_t light);
 /// The array name of an occlusion quantity: <prefix><name>.
 std::string occlusionArrayName(const std::string& prefix, OcclusionTerm term);
 

@@ -46,13 +46,6 @@ double specularPeak(const LightSource& source, const Material& m)
   return largestComponent(emittedColor(source) * m.ks);
 }
 
-bool specularComputed(const Scene& scene, const ArrayRequest& request, std::size_t light)
-{
-  return evaluatedSpecularModel(scene) != SpecularModel::None &&
-    (request.lights[light][int(LightTerm::Specular)] || request.totals[int(TotalTerm::Specular)] ||
-      request.totals[int(TotalTerm::Total)]);
-}
-
 /// Whether any of the light's geometric arrays (s, d, attenuation, ..., n.h) was requested:
 /// the distant approximation would replace them by constants.
 bool geometryRequested(const ArrayRequest& request, std::size_t light)
@@ -131,12 +124,9 @@ LightChoice distributedChoice(const NamedLight& light, const Material& m, bool s
   {
     refuse(bounds.unbounded);
   }
-  if (light.shadows)
-  {
-    refuse("its soft shadows' samples are drawn before the shading, at a fixed count, which no tolerance bounds "
-           "yet: shade it without \"shadows\"");
-  }
-  choice.sampledIrradiance = bounds.sampledIrradiance;
+  // Under shadows E is sampled whatever the estimator: an exact or SH E is the unshadowed one
+  // times the samples' visible fraction.
+  choice.sampledIrradiance = bounds.sampledIrradiance || light.shadows;
   choice.sampledSpecular = specular;
   if ((choice.sampledIrradiance || choice.sampledSpecular) && !samplingOf(light.source)->fromTolerance)
   {

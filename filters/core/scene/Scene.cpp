@@ -146,11 +146,6 @@ std::string untargetedSamplingProblem(const Scene& scene, bool lightsPlanned)
   for (const NamedLight& light : scene.lights)
   {
     const Sampling* sampling = samplingOf(light.source);
-    if (sampling && sampling->fromTolerance && light.shadows)
-    {
-      return "light '" + light.name + "' casts shadows with \"samples\": \"auto\", but its shadow rays are cast "
-             "before the shading, at a fixed count: give it a number of samples";
-    }
     if (sampling && sampling->fromTolerance && !lightsPlanned)
     {
       return "light '" + light.name + "' has \"samples\": \"auto\", which takes its count from a tolerance: " + remedy +

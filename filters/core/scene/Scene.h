@@ -92,8 +92,7 @@ std::string meshCoordinateProblem(double reach, Precision precision);
 std::vector<SceneProblem> sceneProblems(const Scene& scene, Precision precision = Precision::Float64);
 
 /// Why the scene's samples cannot be drawn as it stands, or "": ambient occlusion with
-/// "rays": "auto" that no tolerance has given a target (MethodChoice.h); a light with shadows
-/// and "samples": "auto" (its rays are cast before the shading, at a fixed count); and unless
+/// "rays": "auto" that no tolerance has given a target (MethodChoice.h), and unless
 /// lightsPlanned (a tolerance's plan gives each light its targets), any light with
 /// "samples": "auto".
 std::string untargetedSamplingProblem(const Scene& scene, bool lightsPlanned);

@@ -172,17 +172,21 @@ int HiddenSampleTracer::add(const ShadowedLightEstimator& light, const SurfacePo
   const int count = light.shadowRayCount();
   rays_.resize(static_cast<std::size_t>(count));
   light.shadowRays(point, rays_.data());
-  std::fill_n(words, hiddenSampleWords(count), 0u);
   // The rays differ only in direction and length: the start is moved off the surface once.
-  const OccluderMesh::FrameRay start = occluders_.inFrame({ point.position, point.normal, {}, 0.0, vertex });
+  return addRays(occluders_.inFrame({ point.position, point.normal, {}, 0.0, vertex }), rays_.data(), count, words);
+}
+
+int HiddenSampleTracer::addRays(const OccluderMesh::FrameRay& start, const ShadowRay* rays, int count, std::uint64_t* words)
+{
+  std::fill_n(words, hiddenSampleWords(count), 0u);
   int cast = 0;
   for (int j = 0; j < count; ++j)
   {
-    if (!rays_[j].cast)
+    if (!rays[j].cast)
     {
       continue;
     }
-    packet_[queued_] = { start.origin, glm::vec3(rays_[j].direction), occluders_.frameDistance(rays_[j].distance) };
+    packet_[queued_] = { start.origin, glm::vec3(rays[j].direction), occluders_.frameDistance(rays[j].distance) };
     wordOf_[queued_] = &words[j / 64];
     bitOf_[queued_++] = j % 64;
     ++cast;
@@ -202,6 +206,20 @@ void HiddenSampleTracer::flush()
     *wordOf_[j] |= std::uint64_t((hidden >> j) & 1u) << bitOf_[j];
   }
   queued_ = 0;
+}
+
+RoundShadowTracer::RoundShadowTracer(const OccluderMesh& occluders, const SurfacePoint& point, PointId vertex)
+  : tracer_(occluders)
+  , start_(occluders.inFrame({ point.position, point.normal, {}, 0.0, vertex }))
+{
+}
+
+HiddenSamples RoundShadowTracer::trace(const ShadowRay* rays, int count)
+{
+  words_.resize(static_cast<std::size_t>(hiddenSampleWords(count)));
+  cast_ += static_cast<std::uint64_t>(tracer_.addRays(start_, rays, count, words_.data()));
+  tracer_.flush();
+  return { words_.data() };
 }
 
 void hiddenSamples(const OccluderMesh& occluders, const ShadowedLightEstimator& light, const SurfacePoint& point,

@@ -73,6 +73,8 @@ public:
   /// copies at seams). Their bits are set when their packet is traced, by flush() at the
   /// latest. Returns how many rays the point casts.
   int add(const ShadowedLightEstimator& light, const SurfacePoint& point, PointId vertex, std::uint64_t* words);
+  /// The same for rays[0..count-1] from start (a point moved off its surface, inFrame).
+  int addRays(const OccluderMesh::FrameRay& start, const ShadowRay* rays, int count, std::uint64_t* words);
   /// Traces the rays still queued: after it, every added point's bits are set.
   void flush();
 
@@ -83,6 +85,27 @@ private:
   std::uint64_t* wordOf_[OccluderMesh::bundleSize]; // where each queued ray's answer goes
   int bitOf_[OccluderMesh::bundleSize];
   int queued_ = 0;
+};
+
+/// A vertex's shadow rays traced a round at a time (RoundShadows), for an estimator drawn to a
+/// target: each round's rays in packets of their own, from the point moved off its surface
+/// once. Embree's answer to a ray does not depend on its packet, so the bits are those that
+/// HiddenSampleTracer gives the same rays.
+class RoundShadowTracer final : public RoundShadows
+{
+public:
+  /// point: the kernel's point, whose rays leave on the side of point.normal; vertex: its id in
+  /// the occluders (for its copies at seams).
+  RoundShadowTracer(const OccluderMesh& occluders, const SurfacePoint& point, PointId vertex);
+  HiddenSamples trace(const ShadowRay* rays, int count) override;
+  /// How many rays it has cast.
+  std::uint64_t cast() const { return cast_; }
+
+private:
+  HiddenSampleTracer tracer_;
+  OccluderMesh::FrameRay start_;
+  std::vector<std::uint64_t> words_;
+  std::uint64_t cast_ = 0;
 };
 
 /// The hidden samples of one point, traced at once (HiddenSampleTracer).
