@@ -91,8 +91,8 @@ TEST_F(Cli, UnknownArrayNameAndBadOutput)
     "shadelab: --arrays: unknown array 'sun_glare'; this scene has: default, totals, all, "
     "*_to_light, *_distance, *_attenuation, *_spot_factor, *_cos_incidence, *_incidence_angle, "
     "*_reflection, *_r_dot_v, *_half_vector, *_n_dot_h, *_diffuse, *_specular, *_irradiance, "
-    "*_irradiance_std_error, *_specular_std_error, *_visibility, *_visibility_std_error, ambient, diffuse, "
-    "specular, total, shading_flags, sun_to_light, sun_attenuation, sun_spot_factor, "
+    "*_irradiance_std_error, *_specular_std_error, *_visibility, *_visibility_std_error, *_short_of_target, "
+    "ambient, diffuse, specular, total, shading_flags, sun_to_light, sun_attenuation, sun_spot_factor, "
     "sun_cos_incidence, sun_incidence_angle, sun_reflection, sun_r_dot_v, sun_half_vector, "
     "sun_n_dot_h, sun_diffuse, sun_specular\n");
   const std::string png = (folder / "out.png").string();
@@ -101,8 +101,8 @@ TEST_F(Cli, UnknownArrayNameAndBadOutput)
     "--arrays: no arrays selected; this scene has: default, totals, all, *_to_light, *_distance, "
     "*_attenuation, *_spot_factor, *_cos_incidence, *_incidence_angle, *_reflection, *_r_dot_v, "
     "*_half_vector, *_n_dot_h, *_diffuse, *_specular, *_irradiance, *_irradiance_std_error, "
-    "*_specular_std_error, *_visibility, *_visibility_std_error, ambient, diffuse, specular, total, "
-    "shading_flags, sun_to_light, sun_attenuation, sun_spot_factor, sun_cos_incidence, "
+    "*_specular_std_error, *_visibility, *_visibility_std_error, *_short_of_target, ambient, diffuse, specular, "
+    "total, shading_flags, sun_to_light, sun_attenuation, sun_spot_factor, sun_cos_incidence, "
     "sun_incidence_angle, sun_reflection, sun_r_dot_v, sun_half_vector, sun_n_dot_h, sun_diffuse, "
     "sun_specular");
   const std::string nowhere = (folder / "no" / "such" / "out.vtp").string();

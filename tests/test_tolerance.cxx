@@ -340,8 +340,10 @@ TEST(Tolerance, VerticesThatStopAtTheMaximumShortOfTheirTargetAreCountedAndSaid)
   // Each counted vertex has a standard error above its target, and only those.
   const SampleTargets& targets = filter->GetMethodPlan()->lights[0].method.targets;
   vtkDataArray* irradianceError = filter->GetOutput()->GetPointData()->GetArray("studio_irradiance_std_error");
-  std::size_t above = 0;
+  vtkDataArray* flagged = filter->GetOutput()->GetPointData()->GetArray("studio_short_of_target");
+  std::size_t above = 0, flags = 0;
   ASSERT_NE(irradianceError, nullptr);
+  ASSERT_NE(flagged, nullptr);
   for (vtkIdType i = 0; i < sphere->GetNumberOfPoints(); ++i)
   {
     double largest = 0;
@@ -349,10 +351,16 @@ TEST(Tolerance, VerticesThatStopAtTheMaximumShortOfTheirTargetAreCountedAndSaid)
     {
       largest = std::max(largest, irradianceError->GetComponent(i, c));
     }
-    above += float(largest) > float(targets.irradiance->standardError()) ? 1 : 0;
+    const bool isAbove = float(largest) > float(targets.irradiance->standardError());
+    above += isAbove ? 1 : 0;
+    // The flag is the count's, vertex by vertex: set wherever E is short (and where S is).
+    ASSERT_TRUE(flagged->GetComponent(i, 0) == 0 || flagged->GetComponent(i, 0) == 1) << i;
+    ASSERT_TRUE(!isAbove || flagged->GetComponent(i, 0) == 1) << i;
+    flags += flagged->GetComponent(i, 0) == 1 ? 1 : 0;
   }
   EXPECT_GT(above, 0u) << line;
   EXPECT_GE(count, above) << line; // S may be short where E is not
+  EXPECT_EQ(flags, count) << line;
   EXPECT_EQ(line, "studio: " + std::to_string(count) +
       " vertices stopped at \"max_samples\" short of their target (their _std_error arrays are above it): raise it");
   EXPECT_EQ(shadelab::testing::methodsNote(filter->GetOutput()).back(), line);

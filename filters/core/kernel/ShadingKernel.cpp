@@ -625,6 +625,10 @@ void ShadingKernel<T>::estimateDistributedLight(const DistributedLightSlot& ligh
     {
       visibilityError[i] = T(terms.visibilityStdError);
     }
+    if (T* shortOfTarget = out[int(LightTerm::ShortOfTarget)])
+    {
+      shortOfTarget[i] = terms.shortOfTarget ? T(1) : T(0);
+    }
     if (light.shortOfTarget)
     {
       light.shortOfTarget[i] = terms.shortOfTarget ? 1 : 0;

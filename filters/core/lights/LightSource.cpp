@@ -81,6 +81,8 @@ bool lightHasTerm(const NamedLight& light, LightTerm term)
       return light.shadows;
     case LightTerm::VisibilityStdError:
       return softShadows;
+    case LightTerm::ShortOfTarget:
+      return samplingOf(light.source) && samplingOf(light.source)->fromTolerance;
     case LightTerm::IrradianceStdError:
       return softShadows || lightHasTerm(light.source, term);
     case LightTerm::SpecularStdError:

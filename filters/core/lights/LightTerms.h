@@ -25,9 +25,11 @@ enum class LightTerm
   // Lights that cast shadows (NamedLight::shadows):
   Visibility,         // 1 where the mesh does not hide the light, 0 where it does; the visible fraction of E for area lights
   VisibilityStdError, // area lights: the standard error of the sampled visible fraction
+  // Area lights and maps drawn to a target ("samples": "auto" under a tolerance):
+  ShortOfTarget, // 1 where the vertex stopped at the maximum with a standard error above its target
 };
-constexpr int LightTermCount = 17;
-static_assert(static_cast<int>(LightTerm::VisibilityStdError) + 1 == LightTermCount, "LightTermCount is stale");
+constexpr int LightTermCount = 18;
+static_assert(static_cast<int>(LightTerm::ShortOfTarget) + 1 == LightTermCount, "LightTermCount is stale");
 
 /// A light seen from each vertex as one direction: every term up to the specular one, and the
 /// distance only when the light has a position.

@@ -27,6 +27,9 @@ const std::array<TermInfo, LightTermCount> lightTerms = { {
     "lights with shadows: 1 where the mesh does not hide the light, 0 where it does; for an area light or a map, "
     "the fraction of its irradiance that gets past the mesh (1 where the light is below the horizon)" },
   { "visibility_std_error", 1, "Monte Carlo standard error of an area light's or a map's visibility" },
+  { "short_of_target", 1,
+    "with \"samples\": \"auto\" under a tolerance, 1 where the vertex stopped at \"max_samples\" with a standard "
+    "error above its target, else 0" },
 } };
 
 const std::array<TermInfo, TotalTermCount> totalTerms = { {
@@ -273,6 +276,7 @@ ArrayRequest selectArrays(const Scene& scene, const std::vector<std::string>& se
       request.occlusion[int(OcclusionTerm::Rays)] |= sceneHasTerm(scene, OcclusionTerm::Rays);
       requestTermOnEveryLight(scene, termInfo(LightTerm::Visibility).name, request);
       requestTermOnEveryLight(scene, termInfo(LightTerm::VisibilityStdError).name, request);
+      requestTermOnEveryLight(scene, termInfo(LightTerm::ShortOfTarget).name, request);
     }
     else if (entry.rfind("*_", 0) == 0)
     {
