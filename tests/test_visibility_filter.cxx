@@ -165,6 +165,9 @@ TEST(AmbientOcclusion, ATolerancesShareSetsEachVertexsRaysTheSameOnAnyThreadCoun
       // to float keeps the order.
       ASSERT_LE(valueOf(one, "ambient_occlusion_std_error", i), static_cast<float>(target.standardError())) << i;
     }
+    // Flagged exactly where it stopped at the maximum above its target.
+    const bool above = valueOf(one, "ambient_occlusion_std_error", i) > static_cast<float>(target.standardError());
+    ASSERT_EQ(valueOf(one, "ambient_occlusion_short_of_target", i), rays == target.maximum && above ? 1.0f : 0.0f) << i;
     atMaximum += rays == target.maximum ? 1 : 0;
   }
   EXPECT_LT(atMaximum, mesh->GetNumberOfPoints() / 10);

@@ -138,7 +138,7 @@ struct RayArrays
   shadelab::OcclusionSettings settings;
   /// The ambient occlusion's: nullptr without it (bentNormal and skyView also where not asked
   /// for, rays where the count is fixed).
-  vtkSmartPointer<vtkFloatArray> occlusion, standardError, bentNormal, skyView;
+  vtkSmartPointer<vtkFloatArray> occlusion, standardError, bentNormal, skyView, shortOfTarget;
   vtkSmartPointer<vtkIntArray> rays;
   vtkSmartPointer<vtkUnsignedCharArray> flags;
   /// Every array, the lights' visibility included, in the output's order.
@@ -158,6 +158,9 @@ void addOcclusionArrays(RayArrays& arrays, const std::string& prefix, vtkIdType 
   {
     arrays.rays = pointArray<vtkIntArray>(shadelab::occlusionArrayName(prefix, shadelab::OcclusionTerm::Rays), 1, count);
     arrays.written.push_back(arrays.rays);
+    arrays.shortOfTarget = pointArray<vtkFloatArray>(
+      shadelab::occlusionArrayName(prefix, shadelab::OcclusionTerm::ShortOfTarget), 1, count);
+    arrays.written.push_back(arrays.shortOfTarget);
   }
   arrays.occlusion = add(shadelab::OcclusionTerm::AmbientOcclusion, 1);
   arrays.standardError = add(shadelab::OcclusionTerm::AmbientOcclusionStdError, 1);
@@ -396,7 +399,9 @@ void traceOcclusion(const shadelab::OccluderMesh& occluders, const RayGroup& gro
     arrays.standardError->SetValue(i, static_cast<float>(ao.standardError));
     if (arrays.rays)
     {
+      const shadelab::SamplingTarget& target = *arrays.settings.target;
       arrays.rays->SetValue(i, ao.rays);
+      arrays.shortOfTarget->SetValue(i, ao.rays >= target.maximum && ao.standardError > target.standardError() ? 1.0f : 0.0f);
     }
     if (arrays.bentNormal)
     {
@@ -468,7 +473,7 @@ std::string occlusionRaysReport(const RayArrays& arrays, vtkIdType count)
     total += static_cast<std::uint64_t>(rays);
     fewest = std::min(fewest, rays);
     most = std::max(most, rays);
-    short_ += rays == target.maximum && arrays.standardError->GetValue(i) > target.standardError() ? 1 : 0;
+    short_ += arrays.shortOfTarget->GetValue(i) == 1.0f ? 1 : 0;
   }
   std::ostringstream report;
   report << "Ambient occlusion to within " << target.error << " at 95% (standard error at most " << target.standardError()
@@ -477,8 +482,8 @@ std::string occlusionRaysReport(const RayArrays& arrays, vtkIdType count)
   if (short_ > 0)
   {
     report << " " << short_ << " vertices reached the maximum of " << target.maximum
-           << " rays short of the target (ambient_occlusion_rays " << target.maximum
-           << ", their ambient_occlusion_std_error above " << target.standardError() << "): raise \"max_rays\".";
+           << " rays short of the target (ambient_occlusion_short_of_target 1, their ambient_occlusion_std_error above "
+           << target.standardError() << "): raise \"max_rays\".";
   }
   return report.str();
 }

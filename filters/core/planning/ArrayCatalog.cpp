@@ -47,6 +47,9 @@ const std::array<TermInfo, OcclusionTermCount> occlusionTerms = { {
   { "ambient_occlusion_rays", 1,
     "with \"rays\": \"auto\", the occlusion rays the vertex drew to meet its share of the tolerance (at the "
     "maximum: its standard error may be above the share)" },
+  { "ambient_occlusion_short_of_target", 1,
+    "with \"rays\": \"auto\", 1 where the vertex stopped at \"max_rays\" with a standard error above its share, "
+    "else 0" },
 } };
 }
 
@@ -73,7 +76,8 @@ const TermInfo& termInfo(OcclusionTerm term)
 
 bool sceneHasTerm(const Scene& scene, OcclusionTerm term)
 {
-  return scene.ambientOcclusion && (term != OcclusionTerm::Rays || scene.ambientOcclusion->sampling.fromTolerance);
+  const bool drawnToTarget = term == OcclusionTerm::Rays || term == OcclusionTerm::ShortOfTarget;
+  return scene.ambientOcclusion && (!drawnToTarget || scene.ambientOcclusion->sampling.fromTolerance);
 }
 
 bool ArrayRequest::any(LightTerm term) const
@@ -274,6 +278,7 @@ ArrayRequest selectArrays(const Scene& scene, const std::vector<std::string>& se
       request.occlusion[int(OcclusionTerm::AmbientOcclusion)] |= scene.ambientOcclusion.has_value();
       request.occlusion[int(OcclusionTerm::AmbientOcclusionStdError)] |= scene.ambientOcclusion.has_value();
       request.occlusion[int(OcclusionTerm::Rays)] |= sceneHasTerm(scene, OcclusionTerm::Rays);
+      request.occlusion[int(OcclusionTerm::ShortOfTarget)] |= sceneHasTerm(scene, OcclusionTerm::ShortOfTarget);
       requestTermOnEveryLight(scene, termInfo(LightTerm::Visibility).name, request);
       requestTermOnEveryLight(scene, termInfo(LightTerm::VisibilityStdError).name, request);
       requestTermOnEveryLight(scene, termInfo(LightTerm::ShortOfTarget).name, request);

@@ -28,10 +28,11 @@ enum class OcclusionTerm
   AmbientOcclusionStdError,
   BentNormal,
   SkyViewFactor,
-  Rays, // "rays": "auto" only: how many each vertex drew
+  Rays,          // "rays": "auto" only: how many each vertex drew
+  ShortOfTarget, // "rays": "auto" only: 1 where the vertex stopped at the maximum above its target
 };
-constexpr int OcclusionTermCount = 5;
-static_assert(static_cast<int>(OcclusionTerm::Rays) + 1 == OcclusionTermCount, "OcclusionTermCount is stale");
+constexpr int OcclusionTermCount = 6;
+static_assert(static_cast<int>(OcclusionTerm::ShortOfTarget) + 1 == OcclusionTermCount, "OcclusionTermCount is stale");
 
 struct TermInfo
 {
