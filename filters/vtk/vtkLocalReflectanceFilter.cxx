@@ -206,9 +206,16 @@ constexpr vtkIdType roundingSampleSize = 16384;
 /// of a plane under a grazing light, which are then all measured).
 constexpr double horizonBand = 1e-4;
 
-/// Whether each point's normal is within horizonBand of a local light's horizon: no evenly
-/// spaced sample is sure to meet the few points where a rounding switches a light on or off.
-std::vector<unsigned char> pointsAtAHorizon(const shadelab::Scene& scene, vtkDataArray* points, vtkDataArray* normals)
+/// Where a pow approximation errs on a light's lobe by at least this share of its largest error
+/// over [0, 1]: the few vertices of a large mesh whose highlight meets the method's worst x,
+/// which an evenly spaced sample may pass over.
+constexpr double powErrorBand = 0.9;
+
+/// Which points the sample must hold besides the evenly spaced ones (a band of their own
+/// geometry, so the same points whatever the pieces): those whose normal is within horizonBand
+/// of a local light's horizon, and those where a pow approximation errs on a local light's lobe
+/// by at least powErrorBand of its largest.
+std::vector<unsigned char> pointsToMeasure(const shadelab::Scene& scene, vtkDataArray* points, vtkDataArray* normals)
 {
   std::vector<shadelab::LocalEvaluation> lights;
   shadelab::EvaluationContext context;
@@ -224,8 +231,16 @@ std::vector<unsigned char> pointsAtAHorizon(const shadelab::Scene& scene, vtkDat
       }
     }
   }
+  const shadelab::LobeModel lobe{ shadelab::evaluatedSpecularModel(scene), scene.material.shininess };
+  const bool twoSided = scene.material.twoSided || scene.model == shadelab::ShadingModel::VtkOpenGL2;
+  const bool measuresPow = lobe.wanted() && lobe.eta > 0;
+  double largestPowError[2] = { 0, 0 };
+  for (int m = 0; m < 2 && measuresPow; ++m)
+  {
+    largestPowError[m] = shadelab::largestPowError<double>(shadelab::approximatePowMethods[m], lobe.eta);
+  }
   const vtkIdType count = points->GetNumberOfTuples();
-  std::vector<unsigned char> atHorizon(static_cast<std::size_t>(count), 0);
+  std::vector<unsigned char> measured(static_cast<std::size_t>(count), 0);
   const auto pointRange = vtk::DataArrayTupleRange<3>(points);
   const auto normalRange = vtk::DataArrayTupleRange<3>(normals);
   vtkSMPTools::For(0, count,
@@ -240,19 +255,35 @@ std::vector<unsigned char> pointsAtAHorizon(const shadelab::Scene& scene, vtkDat
         {
           continue; // shaded with ambient light only
         }
+        const glm::dvec3 position(p[0], p[1], p[2]);
         const glm::dvec3 unit = shadelab::unitVector(normal);
+        const glm::dvec3 toViewer = scene.viewer.directionFrom(position);
         for (const shadelab::LocalEvaluation& light : lights)
         {
-          const double cosine = glm::dot(unit, shadelab::towardLight(light, { p[0], p[1], p[2] }).toLight);
-          atHorizon[static_cast<std::size_t>(i)] |= std::abs(cosine) < horizonBand;
+          const glm::dvec3 s = shadelab::towardLight(light, position).toLight;
+          const double cosine = glm::dot(unit, s);
+          bool measure = std::abs(cosine) < horizonBand;
+          // The lobe x^eta on the side the kernel shades, and x from it.
+          const glm::dvec3 shaded = twoSided && glm::dot(unit, toViewer) < 0 ? -unit : unit;
+          if (measuresPow && glm::dot(shaded, s) > 0)
+          {
+            const double value = lobe(shaded, s, toViewer);
+            const double x = std::pow(value, 1 / lobe.eta);
+            for (int m = 0; m < 2; ++m)
+            {
+              shadelab::withPowMethod(shadelab::approximatePowMethods[m], lobe.eta,
+                [&](auto power) { measure = measure || std::abs(power(x) - value) >= powErrorBand * largestPowError[m]; });
+            }
+          }
+          measured[static_cast<std::size_t>(i)] |= measure;
         }
       }
     });
-  return atHorizon;
+  return measured;
 }
 
 /// Per scene light, the least distance from it to any of the points, for the lights with a
-/// position (+infinity for the others, and on a piece without points, nullptr). On a split mesh
+/// position (+infinity for the others, and where `points` is nullptr: a piece without any). On a split mesh
 /// (processes), the least over every piece: a collective call.
 std::vector<double> nearestPointDistances(
   const shadelab::Scene& scene, vtkDataArray* points, vtkMultiProcessController* processes)
@@ -833,7 +864,7 @@ vtkLocalReflectanceFilter::PointSample vtkLocalReflectanceFilter::SamplePoints(v
   }
   const vtkIdType stride = std::max<vtkIdType>(1, (wholeCount + roundingSampleSize - 1) / roundingSampleSize);
   const std::vector<unsigned char> grazed =
-    count > 0 ? pointsAtAHorizon(plan.scene, input->GetPoints()->GetData(), shadingNormals) : std::vector<unsigned char>();
+    count > 0 ? pointsToMeasure(plan.scene, input->GetPoints()->GetData(), shadingNormals) : std::vector<unsigned char>();
   std::vector<vtkIdType> sample;
   PointSample taken;
   for (vtkIdType i = 0; i < count; ++i)
@@ -892,8 +923,9 @@ void vtkLocalReflectanceFilter::MeasureOnSample(
         specularLights.push_back(l);
       }
     }
-    const auto reference = shadeSample(double(), speculars, exact);
-    for (std::size_t m = 0; m < 2; ++m)
+    const auto reference = specularLights.empty() ? decltype(shadeSample(double(), speculars, exact))()
+                                                  : shadeSample(double(), speculars, exact);
+    for (std::size_t m = 0; m < 2 && !specularLights.empty(); ++m)
     {
       std::vector<shadelab::LightMethod> methods(scene.lights.size());
       for (const std::size_t l : specularLights)

@@ -73,7 +73,8 @@ struct ShadowedLight
 };
 
 /// An array of count tuples in huge pages (float32 for the estimates, 64-bit words for a distributed
-/// light's hidden samples); throws std::runtime_error naming it when there is not enough memory.
+/// light's hidden samples, float64 for the estimates of one drawn to a target); throws
+/// std::runtime_error naming it when there is not enough memory.
 template <typename Array>
 vtkSmartPointer<Array> pointArray(const std::string& name, int components, vtkIdType count)
 {
@@ -110,7 +111,7 @@ std::vector<ShadowedLight> shadowedLights(
       context.lobe = l < drawn.size() ? drawn[l].lobe : shadelab::LobeModel{};
       ShadowedLight light;
       light.name = scene.lights[l].name;
-      light.drawnToTarget = context.targets.any();
+      light.drawnToTarget = shadelab::isDistributed(scene.lights[l].source) && context.targets.any();
       std::visit(shadelab::Overloaded{ [&](const shadelab::LocalEvaluation& local) { light.evaluation = local; },
                    [&](const shadelab::DistributedEvaluation& distributed) { light.distributed = distributed.shadowed; },
                    [](const shadelab::AmbientEvaluation&)
@@ -249,10 +250,12 @@ public:
     const glm::dvec3& q = vertex.position;
     const bool usable = length2 > 1e-12 && std::isfinite(length2) && std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z);
     vertex.normal = usable ? vertex.normal / std::sqrt(length2) : glm::dvec3(0.0);
-    const glm::dvec3 towardViewer = this->viewer.position ? *this->viewer.position - vertex.position : -this->viewer.viewDirection;
-    occlusionNormal = this->twoSided && glm::dot(vertex.normal, towardViewer) < 0 ? -vertex.normal : vertex.normal;
-    const double distance = std::sqrt(glm::dot(towardViewer, towardViewer));
-    toViewer = distance > 0 ? towardViewer / distance : glm::dvec3(0.0);
+    toViewer = this->viewer.directionFrom(vertex.position);
+    occlusionNormal = this->twoSided && glm::dot(vertex.normal, toViewer) < 0 ? -vertex.normal : vertex.normal;
+    if (toViewer == glm::dvec3(0.0)) // at a local viewer: seen along its normal, as the kernel sees it
+    {
+      toViewer = occlusionNormal;
+    }
   }
 
 private:
@@ -401,7 +404,9 @@ void traceOcclusion(const shadelab::OccluderMesh& occluders, const RayGroup& gro
     {
       const shadelab::SamplingTarget& target = *arrays.settings.target;
       arrays.rays->SetValue(i, ao.rays);
-      arrays.shortOfTarget->SetValue(i, ao.rays >= target.maximum && ao.standardError > target.standardError() ? 1.0f : 0.0f);
+      // In float32, as ambient_occlusion_std_error holds it (and the report counts it).
+      const bool above = static_cast<float>(ao.standardError) > static_cast<float>(target.standardError());
+      arrays.shortOfTarget->SetValue(i, ao.rays >= target.maximum && above ? 1.0f : 0.0f);
     }
     if (arrays.bentNormal)
     {
@@ -508,8 +513,10 @@ std::string raysReport(const RayArrays& arrays, const std::vector<ShadowedLight>
   report << "Cast ";
   if (raysPerVertex > 0)
   {
+    const bool drawnToTargets = arrays.rays ||
+      std::any_of(lights.begin(), lights.end(), [](const ShadowedLight& light) { return light.drawnToTarget; });
     report << "up to " << raysPerVertex * static_cast<std::uint64_t>(count) << " rays (" << raysPerVertex
-           << " per vertex" << (arrays.rays ? ", and the ambient occlusion's below" : "") << ")";
+           << " per vertex" << (drawnToTargets ? ", and those drawn to targets below" : "") << ")";
   }
   else
   {

@@ -13,7 +13,8 @@
  * (docs/formulas.md section 11.6); that array is internal and never in the shading's output.
  * A light drawn to a target (SetDrawnLights) is estimated here instead, round by round. With the scene's ambient
  * occlusion, adds "ambient_occlusion", its "ambient_occlusion_std_error" and, if asked for,
- * "bent_normal" and "sky_view_factor" (docs/formulas.md section 20). The arrays are float32.
+ * "bent_normal" and "sky_view_factor" (docs/formulas.md section 20). The arrays are float32
+ * (but the internal hidden samples' words and estimates of lights drawn to a target).
  * "visibility_flags" has FlagHiddenByOwnTriangle (64) where a shadowed light that the normal
  * faces is hidden by a triangle around the vertex. Every input array passes through. The
  * BVH is built once and kept while the input's points and polygons are the same objects,

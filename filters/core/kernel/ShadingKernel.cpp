@@ -1,5 +1,7 @@
 #include "ShadingKernel.h"
 
+#include <stdexcept>
+
 #include "Reflectance.h"
 
 #include <algorithm>
@@ -247,6 +249,11 @@ ShadingKernel<T>::ShadingKernel(
     }
     else if (const auto* distributed = std::get_if<DistributedEvaluation>(&evaluation))
     {
+      if (method.targets.any() && l < inputs_.lightHiddenSamples.size() && inputs_.lightHiddenSamples[l])
+      {
+        // A fixed count's bits hold no rounds: the visibility step estimates such a light.
+        throw std::logic_error("light '" + scene.lights[l].name + "' is drawn to a target: give its shadowed terms, not hidden samples");
+      }
       distributedLights_.push_back(prepareDistributed(*distributed, out, m, needsSpecular,
         l < inputs_.lightHiddenSamples.size() ? inputs_.lightHiddenSamples[l] : nullptr,
         l < inputs_.lightShadowedTerms.size() ? inputs_.lightShadowedTerms[l] : nullptr));

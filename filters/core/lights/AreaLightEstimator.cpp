@@ -260,8 +260,16 @@ DistributedTerms AreaLightEstimator::estimateWith(const SurfacePoint& point, con
   {
     case AreaEstimator::Point:
     {
+      // Its one ray, found by the visibility step or traced now.
       DistributedTerms terms = pointApproximation(point);
-      if (shadowing.fixed && shadowing.fixed->hidden(0))
+      ShadowRay ray;
+      if (shadowing.rounds)
+      {
+        shadowRays(point, &ray);
+      }
+      const bool hidden = shadowing.fixed ? shadowing.fixed->hidden(0)
+                                          : shadowing.rounds && shadowing.rounds->trace(&ray, 1).hidden(0);
+      if (hidden)
       {
         terms = {};
         terms.visibility = 0;

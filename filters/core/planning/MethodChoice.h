@@ -138,8 +138,8 @@ double fixedRaysError(int n);
 /// lesser of its bound and the sample's. Throws std::invalid_argument when even
 /// float64 with exact methods is predicted to exceed the tolerance (RoundingAboveTolerance),
 /// a fixed count of rays to exceed the share left for it, or an area light or map cannot be
-/// bounded (its estimator has no bound, its samples are a fixed count, it casts shadows, or its
-/// SH irradiance errs by more than is left). measured: what the filter measured on the points
+/// bounded (its estimator has no bound, its samples are a fixed count, or its SH irradiance
+/// errs by more than is left). measured: what the filter measured on the points
 /// (nothing: the bounding sphere's bounds and float32's a priori).
 MethodPlan chooseMethods(const Scene& scene, const ArrayRequest& request, const MeshExtent& mesh, double tolerance,
   bool float32Allowed = true, const MeshMeasurements& measured = {});

@@ -14,6 +14,16 @@ SpecularModel evaluatedSpecularModel(const Scene& scene)
   return scene.material.specular;
 }
 
+glm::dvec3 Viewer::directionFrom(const glm::dvec3& p) const
+{
+  if (!position)
+  {
+    return -unitVector(viewDirection);
+  }
+  const double distance = vectorLength(*position - p);
+  return distance > 0 ? (*position - p) / distance : glm::dvec3(0.0);
+}
+
 std::optional<glm::dvec3> Viewer::lineOfSight() const
 {
   if (!position)

@@ -26,6 +26,9 @@ struct Viewer
 
   /// The direction the viewer looks (unit), which is where a headlight shines.
   std::optional<glm::dvec3> lineOfSight() const;
+  /// The unit direction from p to the viewer: toward its position, or against the view
+  /// direction of a distant one; (0, 0, 0) at its position (where the kernel sees along n).
+  glm::dvec3 directionFrom(const glm::dvec3& p) const;
 };
 
 /// What a scene's positions and lengths are measured in.
