@@ -9,6 +9,7 @@
 #include "SceneFrame.h"
 #include "ShadeLabMeshChecks.h"
 #include "ShadeLabMeshExtent.h"
+#include "ShadeLabMeshPolygons.h"
 #include "ShadingKernel.h"
 
 #include "vtkArrayDispatch.h"
@@ -211,7 +212,14 @@ constexpr double horizonBand = 1e-4;
 /// which an evenly spaced sample may pass over.
 constexpr double powErrorBand = 0.9;
 
-/// Which points the sample must hold besides the evenly spaced ones (a band of their own
+/// Why a point is to be measured besides the evenly spaced ones (pointsToMeasure).
+enum PointToMeasure : unsigned char
+{
+  AtAHorizon = 1,
+  AtAPowMethodsWorst = 2,
+};
+
+/// Which points the sample must hold besides the evenly spaced ones (bands of their own
 /// geometry, so the same points whatever the pieces): those whose normal is within horizonBand
 /// of a local light's horizon, and those where a pow approximation errs on a local light's lobe
 /// by at least powErrorBand of its largest.
@@ -231,54 +239,74 @@ std::vector<unsigned char> pointsToMeasure(const shadelab::Scene& scene, vtkData
       }
     }
   }
-  const shadelab::LobeModel lobe{ shadelab::evaluatedSpecularModel(scene), scene.material.shininess };
+  const double eta = scene.material.shininess;
+  // The lobe's cosine x: the lobe at eta 1.
+  const shadelab::LobeModel cosineOfLobe{ shadelab::evaluatedSpecularModel(scene), 1.0 };
   const bool twoSided = scene.material.twoSided || scene.model == shadelab::ShadingModel::VtkOpenGL2;
-  const bool measuresPow = lobe.wanted() && lobe.eta > 0;
-  double largestPowError[2] = { 0, 0 };
+  const bool measuresPow = cosineOfLobe.wanted() && eta > 0;
+  // Per method, its error on x^eta at x, its largest, and the least x where it reaches the
+  // band (on a grid of 4096, less a step; 0 where the grid misses it): below that no point
+  // needs the error worked out.
+  auto powErrorAt = [eta](int m, double x)
+  {
+    double error = 0;
+    shadelab::withPowMethod(shadelab::approximatePowMethods[m], eta, [&](auto power) { error = std::abs(power(x) - std::pow(x, eta)); });
+    return error;
+  };
+  double largestPowError[2] = { 0, 0 }, leastX[2] = { 2, 2 };
   for (int m = 0; m < 2 && measuresPow; ++m)
   {
-    largestPowError[m] = shadelab::largestPowError<double>(shadelab::approximatePowMethods[m], lobe.eta);
+    largestPowError[m] = shadelab::largestPowError<double>(shadelab::approximatePowMethods[m], eta);
+    constexpr int steps = 4096;
+    for (int k = 0; k <= steps && leastX[m] > 1; ++k)
+    {
+      if (powErrorAt(m, k / double(steps)) >= powErrorBand * largestPowError[m])
+      {
+        leastX[m] = (k - 1) / double(steps);
+      }
+    }
+    leastX[m] = leastX[m] > 1 ? 0.0 : leastX[m];
   }
   const vtkIdType count = points->GetNumberOfTuples();
   std::vector<unsigned char> measured(static_cast<std::size_t>(count), 0);
-  const auto pointRange = vtk::DataArrayTupleRange<3>(points);
-  const auto normalRange = vtk::DataArrayTupleRange<3>(normals);
+  // The coordinates and normals in their own memory (float or double), read without a call each.
+  shadelab::visitPackedPoints(points, [&](auto pointAt) { shadelab::visitPackedPoints(normals, [&](auto normalAt) {
   vtkSMPTools::For(0, count,
     [&](vtkIdType begin, vtkIdType end)
     {
       for (vtkIdType i = begin; i < end; ++i)
       {
-        const auto p = pointRange[i];
-        const auto n = normalRange[i];
-        const glm::dvec3 normal(n[0], n[1], n[2]);
+        const glm::dvec3 normal = normalAt(i);
         if (!shadelab::isFinite(normal) || normal == glm::dvec3(0.0))
         {
           continue; // shaded with ambient light only
         }
-        const glm::dvec3 position(p[0], p[1], p[2]);
+        const glm::dvec3 position = pointAt(i);
         const glm::dvec3 unit = shadelab::unitVector(normal);
         const glm::dvec3 toViewer = scene.viewer.directionFrom(position);
         for (const shadelab::LocalEvaluation& light : lights)
         {
           const glm::dvec3 s = shadelab::towardLight(light, position).toLight;
           const double cosine = glm::dot(unit, s);
-          bool measure = std::abs(cosine) < horizonBand;
-          // The lobe x^eta on the side the kernel shades, and x from it.
+          unsigned char measure = std::abs(cosine) < horizonBand ? AtAHorizon : 0;
+          // The lobe's cosine x on the side the kernel shades.
           const glm::dvec3 shaded = twoSided && glm::dot(unit, toViewer) < 0 ? -unit : unit;
           if (measuresPow && glm::dot(shaded, s) > 0)
           {
-            const double value = lobe(shaded, s, toViewer);
-            const double x = std::pow(value, 1 / lobe.eta);
+            const double x = cosineOfLobe(shaded, s, toViewer);
             for (int m = 0; m < 2; ++m)
             {
-              shadelab::withPowMethod(shadelab::approximatePowMethods[m], lobe.eta,
-                [&](auto power) { measure = measure || std::abs(power(x) - value) >= powErrorBand * largestPowError[m]; });
+              if (x >= leastX[m] && powErrorAt(m, x) >= powErrorBand * largestPowError[m])
+              {
+                measure |= AtAPowMethodsWorst;
+              }
             }
           }
           measured[static_cast<std::size_t>(i)] |= measure;
         }
       }
     });
+  }); });
   return measured;
 }
 
@@ -292,25 +320,28 @@ std::vector<double> nearestPointDistances(
   // Each thread's least squared distances; a minimum is the same in any order, so on any
   // thread count.
   vtkSMPThreadLocal<std::vector<double>> nearestSquared;
-  vtkSMPTools::For(0, points ? points->GetNumberOfTuples() : 0,
-    [&](vtkIdType begin, vtkIdType end)
-    {
-      const auto pointRange = vtk::DataArrayTupleRange<3>(points);
-      std::vector<double>& least = nearestSquared.Local();
-      least.resize(lightCount, std::numeric_limits<double>::infinity());
-      for (std::size_t l = 0; l < lightCount; ++l)
+  if (points)
+  {
+    shadelab::visitPackedPoints(points, [&](auto pointAt) {
+    vtkSMPTools::For(0, points->GetNumberOfTuples(),
+      [&](vtkIdType begin, vtkIdType end)
       {
-        if (const glm::dvec3* light = shadelab::positionOf(scene.lights[l].source))
+        std::vector<double>& least = nearestSquared.Local();
+        least.resize(lightCount, std::numeric_limits<double>::infinity());
+        for (std::size_t l = 0; l < lightCount; ++l)
         {
-          for (vtkIdType i = begin; i < end; ++i)
+          if (const glm::dvec3* light = shadelab::positionOf(scene.lights[l].source))
           {
-            const auto p = pointRange[i];
-            const glm::dvec3 offset = glm::dvec3(p[0], p[1], p[2]) - *light;
-            least[l] = std::min(least[l], glm::dot(offset, offset));
+            for (vtkIdType i = begin; i < end; ++i)
+            {
+              const glm::dvec3 offset = pointAt(i) - *light;
+              least[l] = std::min(least[l], glm::dot(offset, offset));
+            }
           }
         }
-      }
+      });
     });
+  }
   std::vector<double> nearest(lightCount, std::numeric_limits<double>::infinity());
   for (const std::vector<double>& least : nearestSquared)
   {
@@ -338,9 +369,11 @@ double largestDifference(
   {
     if (!a[k]->IsA("vtkUnsignedCharArray"))
     {
+      const int components = a[k]->GetNumberOfComponents();
       for (vtkIdType v = 0; v < a[k]->GetNumberOfValues(); ++v)
       {
-        largest = std::max(largest, std::abs(a[k]->GetVariantValue(v).ToDouble() - b[k]->GetVariantValue(v).ToDouble()));
+        largest = std::max(largest,
+          std::abs(a[k]->GetComponent(v / components, int(v % components)) - b[k]->GetComponent(v / components, int(v % components))));
       }
     }
   }
@@ -863,13 +896,29 @@ vtkLocalReflectanceFilter::PointSample vtkLocalReflectanceFilter::SamplePoints(v
     ++wholeCount;
   }
   const vtkIdType stride = std::max<vtkIdType>(1, (wholeCount + roundingSampleSize - 1) / roundingSampleSize);
-  const std::vector<unsigned char> grazed =
+  const std::vector<unsigned char> banded =
     count > 0 ? pointsToMeasure(plan.scene, input->GetPoints()->GetData(), shadingNormals) : std::vector<unsigned char>();
+  // Every point at a horizon; of those at a pow method's worst, all of a small band (a small
+  // highlight, which the evenly spaced points may miss) and about roundingSampleSize of a
+  // large one, evenly spaced by id (the error is smooth along it): counted over the whole mesh,
+  // so the same points whatever the pieces.
+  std::vector<vtkIdType> worstIds;
+  for (vtkIdType i = 0; i < count; ++i)
+  {
+    if (banded[static_cast<std::size_t>(i)] & AtAPowMethodsWorst)
+    {
+      worstIds.push_back(idOf(i));
+    }
+  }
+  const std::size_t worstCount = processes ? shadelab::distinctIdCount(processes, worstIds) : worstIds.size();
+  const vtkIdType worstStride =
+    std::max<vtkIdType>(1, (static_cast<vtkIdType>(worstCount) + roundingSampleSize - 1) / roundingSampleSize);
   std::vector<vtkIdType> sample;
   PointSample taken;
   for (vtkIdType i = 0; i < count; ++i)
   {
-    if (idOf(i) % stride == 0 || grazed[static_cast<std::size_t>(i)])
+    const unsigned char why = banded.empty() ? 0 : banded[static_cast<std::size_t>(i)];
+    if (idOf(i) % stride == 0 || (why & AtAHorizon) || ((why & AtAPowMethodsWorst) && idOf(i) % worstStride == 0))
     {
       sample.push_back(i);
       taken.ids.push_back(idOf(i));
