@@ -524,24 +524,23 @@ TEST(Visibility, WhatIsRefusedAndWhy)
   EXPECT_EQ(filterError(mesh, occluded), untargeted);
   EXPECT_EQ(filterError(mesh, occluded, 0.05), "");
   {
+    // The visibility filter alone, which has no tolerance, on the mesh with its normals.
     vtkNew<vtkShadingNormalsFilter> normals;
     normals->SetInputData(mesh);
-    vtkNew<vtkMeshVisibilityFilter> alone;
-    vtkNew<app::VtkErrorCapture> errors;
-    errors->watch(alone);
-    alone->SetInputConnection(normals->GetOutputPort());
-    alone->SetScene(occluded);
-    alone->Update();
-    EXPECT_EQ(errors->message(), untargeted) << "the visibility filter alone has no tolerance";
+    auto aloneError = [&](const Scene& scene)
+    {
+      vtkNew<vtkMeshVisibilityFilter> alone;
+      vtkNew<app::VtkErrorCapture> errors;
+      errors->watch(alone);
+      alone->SetInputConnection(normals->GetOutputPort());
+      alone->SetScene(scene);
+      alone->Update();
+      return errors->message();
+    };
+    EXPECT_EQ(aloneError(occluded), untargeted);
     Scene softAuto = diskLightAbove(true, AreaEstimator::Exact);
     std::get<AreaLight>(softAuto.lights[1].source).sampling.fromTolerance = true;
-    vtkNew<vtkMeshVisibilityFilter> soft;
-    vtkNew<app::VtkErrorCapture> softErrors;
-    softErrors->watch(soft);
-    soft->SetInputConnection(normals->GetOutputPort());
-    soft->SetScene(softAuto);
-    soft->Update();
-    EXPECT_EQ(softErrors->message(), "light 'panel' casts shadows with \"samples\": \"auto\", which takes its count from "
+    EXPECT_EQ(aloneError(softAuto), "light 'panel' casts shadows with \"samples\": \"auto\", which takes its count from "
                                  "a tolerance's plan: shade it with vtkLocalReflectanceFilter under a tolerance "
                                  "(shadelab shade --tolerance), or give it a number of samples");
   }

@@ -242,7 +242,7 @@ std::vector<unsigned char> pointsToMeasure(const shadelab::Scene& scene, vtkData
   const double eta = scene.material.shininess;
   // The lobe's cosine x: the lobe at eta 1.
   const shadelab::LobeModel cosineOfLobe{ shadelab::evaluatedSpecularModel(scene), 1.0 };
-  const bool twoSided = scene.material.twoSided || scene.model == shadelab::ShadingModel::VtkOpenGL2;
+  const bool twoSided = shadelab::shadesBothSides(scene);
   const bool measuresPow = cosineOfLobe.wanted() && eta > 0;
   // Per method, its error on x^eta at x, its largest, and the least x where it reaches the
   // band (on a grid of 4096, less a step; 0 where the grid misses it): below that no point

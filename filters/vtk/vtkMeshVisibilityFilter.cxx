@@ -227,7 +227,7 @@ class RayVertices
 {
 public:
   RayVertices(vtkPolyData* input, const std::vector<vtkIdType>* rayPoints, const shadelab::Scene& scene)
-    : twoSided(scene.material.twoSided || scene.model == shadelab::ShadingModel::VtkOpenGL2)
+    : twoSided(shadelab::shadesBothSides(scene))
     , points(vtk::DataArrayTupleRange<3>(input->GetPoints()->GetData()))
     , normals(vtk::DataArrayTupleRange<3>(input->GetPointData()->GetNormals()))
     , rayPoints(rayPoints)

@@ -214,7 +214,7 @@ ShadingKernel<T>::ShadingKernel(
   // viewer is the light.
   specularModel_ = evaluatedSpecularModel(scene);
   specularViewerIsLight_ = vtk && scene.vtkLoneHeadlight;
-  twoSided_ = vtk || m.twoSided;
+  twoSided_ = shadesBothSides(scene);
   shininess_ = T(m.shininess);
 
   localViewer_ = scene.viewer.position.has_value();

@@ -146,6 +146,11 @@ std::vector<SceneProblem> sceneProblems(const Scene& scene, Precision precision)
   return list.problems;
 }
 
+bool shadesBothSides(const Scene& scene)
+{
+  return scene.material.twoSided || scene.model == ShadingModel::VtkOpenGL2;
+}
+
 std::string untargetedSamplingProblem(const Scene& scene, bool lightsPlanned)
 {
   const std::string remedy = "give one (shadelab shade --tolerance, the filter's Tolerance), or a number of ";

@@ -94,6 +94,10 @@ std::string meshCoordinateProblem(double reach, Precision precision);
 /// VTK filter both report these, so the rules live here once.
 std::vector<SceneProblem> sceneProblems(const Scene& scene, Precision precision = Precision::Float64);
 
+/// Whether the surface is shaded on both sides (a two-sided material, or VTK's renderer, which
+/// always flips back faces): the normal turned toward the viewer where it faces away.
+bool shadesBothSides(const Scene& scene);
+
 /// Why the scene's samples cannot be drawn as it stands, or "": ambient occlusion with
 /// "rays": "auto" that no tolerance has given a target (MethodChoice.h), and unless
 /// lightsPlanned (a tolerance's plan gives each light its targets), any light with
