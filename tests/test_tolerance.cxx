@@ -404,6 +404,31 @@ TEST(Tolerance, VerticesThatStopAtTheMaximumShortOfTheirTargetAreCountedAndSaid)
   EXPECT_EQ(shadelab::testing::methodsNote(filter->GetOutput()).back(), line);
 }
 
+TEST(Tolerance, AMaterialWithABlackKsSamplesNoLobe)
+{
+  // Its specular terms are 0 whatever S is: S is neither sampled nor charged, so a map by
+  // Monte Carlo draws E alone to the whole share, and SH with a fixed count is not refused.
+  vtkSmartPointer<vtkPolyData> sphere = coarseSphere();
+  Scene scene = studioMapToATolerance();
+  scene.material.ks = Rgb(0.0);
+  const shadelab::testing::ToleranceRun run = shadelab::testing::shadeToTolerance(sphere, scene, 0.02, 2);
+  const LightChoice& studio = run.plan.lights[0];
+  EXPECT_TRUE(studio.method.targets.irradiance.has_value());
+  EXPECT_FALSE(studio.method.targets.specular.has_value());
+  EXPECT_NEAR(studio.method.targets.irradiance->error, 0.02, 1e-4) << "all but the arithmetic's part";
+  vtkDataArray* specular = run.output->GetPointData()->GetArray("studio_specular");
+  ASSERT_NE(specular, nullptr);
+  EXPECT_EQ(specular->GetRange(-1)[1], 0.0);
+
+  Scene harmonics = readSceneFile(data + "scenes/studio_envmap.json"); // sh, 64 samples for S
+  harmonics.material.ks = Rgb(0.0);
+  std::optional<MethodPlan> plan;
+  shade(sphere, harmonics, 2.0, &plan);
+  ASSERT_TRUE(plan);
+  EXPECT_EQ(plan->lights[0].method.targets, SampleTargets{});
+  EXPECT_EQ(plan->samplingError, 0.0);
+}
+
 TEST(Tolerance, AreaLightsAndMapsItCannotBoundAreRefusedWithTheRemedy)
 {
   vtkSmartPointer<vtkPolyData> sphere = coarseSphere();

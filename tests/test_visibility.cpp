@@ -565,6 +565,25 @@ TEST(SequentialSampling, NoVertexStopsBeforeTheRuleOfThreeOrPastTheMaximum)
   EXPECT_EQ(SamplingTarget::forFraction(0.5, 4096).minimum, 16) << "at least a round";
 }
 
+TEST(SequentialSampling, TheErrorMostVerticesStayWithinFollowsTheNormalsQuantiles)
+{
+  // Closed forms of the normal distribution: P(|Z| > 1.959964) = 5%, P(|Z| > 1.644854) = 10%.
+  EXPECT_NEAR(estimatedErrorQuantile(std::vector<double>(1000, 0.01), 0.95), 0.01959964, 1e-8);
+  std::vector<double> halfSampled(1000, 0.0);
+  std::fill_n(halfSampled.begin(), 500, 0.02);
+  EXPECT_NEAR(estimatedErrorQuantile(halfSampled, 0.95), 0.02 * 1.644854, 1e-8)
+    << "half the vertices exact: 10% of the other half beyond";
+  // Two groups: 10% of the vertices at s = 1, 90% at s = 0.001. Only the first reach past a few
+  // thousandths: x solves 0.1 P(|Z| > x) = 0.05, P(|Z| > x) = 0.5, x = 0.674490.
+  std::vector<double> twoGroups(1000, 0.001);
+  std::fill_n(twoGroups.begin(), 100, 1.0);
+  EXPECT_NEAR(estimatedErrorQuantile(twoGroups, 0.95), 0.674490, 1e-6);
+  std::vector<double> fewSampled(1000, 0.0);
+  std::fill_n(fewSampled.begin(), 50, 1.0);
+  EXPECT_EQ(estimatedErrorQuantile(fewSampled, 0.95), 0.0) << "95% of the vertices exact";
+  EXPECT_EQ(estimatedErrorQuantile({}, 0.95), 0.0);
+}
+
 TEST(Visibility, RaysToATargetMeetItWhereverTheyStopShortOfTheMaximum)
 {
   // The sphere over the plane again, with its form factor as the truth: every vertex's standard

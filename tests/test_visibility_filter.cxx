@@ -279,6 +279,44 @@ TEST(SoftShadows, ATolerancesShareDrawsEachVertexsShadowRaysUntilItsEstimateMeet
   }
 }
 
+TEST(SoftShadows, TheErrorAfterSamplingIsPredictedFromEachVertexsStandardErrors)
+{
+  // A shadowed disk and the ambient occlusion, both drawn to a tolerance. After the run the plan
+  // estimates what 95% of the vertices err by, from each vertex's standard errors as the arrays hold
+  // them: max over channels of max(1, kd) s_E + (ks s_S, the specular_std_error array) plus
+  // max(1, ka La) s_AO (ka La = 0.2 here, so s_AO itself), whose quantile is recomputed here.
+  vtkSmartPointer<vtkPolyData> mesh = sphereOverPlane();
+  Scene scene = diskLightAbove(true, AreaEstimator::MonteCarlo);
+  scene.material.kd = Rgb(1.5, 0.5, 0.25); // E's own array outweighs the red diffuse term
+  std::get<AreaLight>(scene.lights[1].source).sampling.fromTolerance = true;
+  scene.ambientOcclusion = AmbientOcclusion{};
+  scene.ambientOcclusion->sampling.fromTolerance = true;
+  const shadelab::testing::ToleranceRun run = shadelab::testing::shadeToTolerance(mesh, scene, 0.1, 2);
+  std::vector<double> standardErrors;
+  for (vtkIdType i = 0; i < mesh->GetNumberOfPoints(); ++i)
+  {
+    double largest = 0;
+    for (int c = 0; c < 3; ++c)
+    {
+      largest = std::max(largest, std::max(1.0, scene.material.kd[c]) * valueOf(run.output, "panel_irradiance_std_error", i, c) +
+          valueOf(run.output, "panel_specular_std_error", i, c));
+    }
+    standardErrors.push_back(largest + valueOf(run.output, "ambient_occlusion_std_error", i));
+  }
+  const MethodPlan& plan = run.plan;
+  ASSERT_TRUE(plan.estimatedSamplingError.has_value());
+  const double reached = estimatedErrorQuantile(standardErrors, 0.95);
+  EXPECT_NEAR(*plan.estimatedSamplingError, reached, 1e-6 * reached) << "the arrays hold float32";
+  EXPECT_GT(reached, 0.0);
+  EXPECT_LT(reached, plan.samplingError / 2) << "most vertices stop well under their share";
+  EXPECT_DOUBLE_EQ(plan.estimatedError(), plan.predictedError() - plan.samplingError + *plan.estimatedSamplingError);
+  EXPECT_EQ(plan.describe().back(), "after sampling: an error of about " + scientific(plan.estimatedError()) +
+      " at 95% of the vertices (" + scientific(*plan.estimatedSamplingError) +
+      " estimated from their standard errors, where the plan bounds sampling's part by " +
+      scientific(plan.samplingError) + ")");
+  EXPECT_NEAR(plan.samplingError, plan.predictedError() - plan.arithmeticError, 1e-12) << "no approximations here";
+}
+
 /// The sphere over the plane under a constant sky of radiance 1, with or without its shadows.
 Scene constantSky(bool shadows, EnvironmentEstimator estimator, EnvironmentDirections directions)
 {

@@ -872,6 +872,25 @@ std::size_t distinctIdCount(vtkMultiProcessController* controller, const std::ve
   return static_cast<std::size_t>(std::unique(all.begin(), all.end()) - all.begin());
 }
 
+std::vector<double> valuesByDistinctId(
+  vtkMultiProcessController* controller, const std::vector<vtkIdType>& ids, const std::vector<double>& values)
+{
+  const std::vector<vtkIdType> allIds = allGather(controller, ids);
+  const std::vector<double> allValues = allGather(controller, values);
+  std::vector<std::size_t> order(allIds.size());
+  std::iota(order.begin(), order.end(), std::size_t(0));
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return allIds[a] < allIds[b]; });
+  std::vector<double> distinct;
+  for (std::size_t k = 0; k < order.size(); ++k)
+  {
+    if (k == 0 || allIds[order[k]] != allIds[order[k - 1]])
+    {
+      distinct.push_back(allValues[order[k]]);
+    }
+  }
+  return distinct;
+}
+
 vtkSmartPointer<vtkDataArray> tuplesAt(vtkDataArray* values, const std::vector<vtkIdType>& ids)
 {
   vtkNew<vtkIdList> list;

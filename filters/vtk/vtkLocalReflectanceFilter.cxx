@@ -159,31 +159,30 @@ struct ShadeAllPoints
   }
 };
 
-/// Per scene light (empty for those not drawn to a target), 1 at each vertex that stopped at the
-/// maximum short of its target.
-using ShortOfTarget = std::vector<std::vector<std::uint8_t>>;
-
 /// The requested arrays, shaded in precision T. progressOwner (or nullptr) reports progress;
-/// shortOfTarget (or nullptr) receives the vertices that stopped short of their targets.
+/// sampling (or nullptr) receives the vertices that stopped short of their targets, and each
+/// vertex's sampled standard error where its standardError is sized for them.
 template <typename T>
 std::vector<vtkSmartPointer<vtkDataArray>> shade(const shadelab::Scene& scene,
   const shadelab::ArrayRequest& request, const std::vector<shadelab::LightMethod>& methods,
   const std::string& prefix, vtkDataArray* points, vtkDataArray* normals, const shadelab::ShadingInputs& inputs,
-  vtkAlgorithm* progressOwner, ShortOfTarget* shortOfTarget = nullptr)
+  vtkAlgorithm* progressOwner, vtkLocalReflectanceFilter::SamplingOutcome* sampling = nullptr)
 {
   OutputArrays<T> arrays(scene, request, prefix, points->GetNumberOfTuples());
-  if (shortOfTarget)
+  if (sampling)
   {
-    shortOfTarget->assign(scene.lights.size(), {});
+    auto& shortOfTarget = sampling->shortOfTarget;
+    shortOfTarget.assign(scene.lights.size(), {});
     arrays.outputs.shortOfTarget.assign(scene.lights.size(), nullptr);
     for (std::size_t l = 0; l < methods.size(); ++l)
     {
       if (methods[l].targets.any())
       {
-        (*shortOfTarget)[l].resize(static_cast<std::size_t>(points->GetNumberOfTuples()));
-        arrays.outputs.shortOfTarget[l] = (*shortOfTarget)[l].data();
+        shortOfTarget[l].resize(static_cast<std::size_t>(points->GetNumberOfTuples()));
+        arrays.outputs.shortOfTarget[l] = shortOfTarget[l].data();
       }
     }
+    arrays.outputs.sampledStandardError = sampling->standardError.empty() ? nullptr : sampling->standardError.data();
   }
   const shadelab::ShadingKernel<T> kernel(scene, arrays.outputs, methods, inputs);
   ShadeAllPoints<T> worker{ kernel, progressOwner };
@@ -575,6 +574,8 @@ std::vector<vtkSmartPointer<vtkDataArray>> useVisibility(vtkPolyData* seen, cons
   if (scene.ambientOcclusion)
   {
     inputs.ambientOcclusion = floats(shadelab::occlusionArrayName(prefix, shadelab::OcclusionTerm::AmbientOcclusion))->GetPointer(0);
+    inputs.ambientOcclusionStdError =
+      floats(shadelab::occlusionArrayName(prefix, shadelab::OcclusionTerm::AmbientOcclusionStdError))->GetPointer(0);
   }
   for (int t = 0; t < shadelab::OcclusionTermCount; ++t)
   {
@@ -674,14 +675,14 @@ int vtkLocalReflectanceFilter::ShadeMesh(vtkPolyData* input, vtkPolyData* output
   }
 
   std::vector<vtkSmartPointer<vtkDataArray>> arrays;
-  ShortOfTarget shortOfTarget;
+  SamplingOutcome sampling;
   std::string failure;
   try
   {
     vtkPolyData* seen = this->PrepareVisibility(input, shadingNormals, *plan, split != nullptr);
     if (!empty)
     {
-      arrays = this->ShadedArrays(input, shadingNormals, seen, *plan, split, shortOfTarget);
+      arrays = this->ShadedArrays(input, shadingNormals, seen, *plan, split, sampling);
     }
     // The rays' arrays have been used (those asked for are in `arrays`): not kept until the next run.
     this->VisibilityStep->GetOutput()->Initialize();
@@ -691,7 +692,11 @@ int vtkLocalReflectanceFilter::ShadeMesh(vtkPolyData* input, vtkPolyData* output
     failure = error.what();
   }
   // Counted over every piece (a collective call, which an empty or failed piece joins too).
-  this->SamplingReport = this->ShortOfTargetReport(*plan, shortOfTarget, split);
+  this->SamplingReport = this->ShortOfTargetReport(*plan, sampling.shortOfTarget, split);
+  if (this->MethodPlan && this->MethodPlan->samplingError > 0 && failure.empty())
+  {
+    this->MethodPlan->estimatedSamplingError = this->EstimatedSamplingError(sampling.standardError, split);
+  }
   if (!failure.empty())
   {
     output->Initialize();
@@ -965,7 +970,7 @@ void vtkLocalReflectanceFilter::MeasureOnSample(
     for (std::size_t l = 0; l < scene.lights.size(); ++l)
     {
       const shadelab::LightSource& source = scene.lights[l].source;
-      if (shadelab::evaluatedSpecularModel(scene) != shadelab::SpecularModel::None && !shadelab::isAmbient(source) &&
+      if (shadelab::hasSpecularTerm(scene) && !shadelab::isAmbient(source) &&
         !shadelab::isDistributed(source))
       {
         speculars.lights[l][int(shadelab::LightTerm::Specular)] = true;
@@ -1043,8 +1048,12 @@ bool vtkLocalReflectanceFilter::CheckArrayNamesFree(
 
 std::vector<vtkSmartPointer<vtkDataArray>> vtkLocalReflectanceFilter::ShadedArrays(vtkPolyData* input,
   vtkDataArray* shadingNormals, vtkPolyData* seen, const ShadingPlan& plan, const shadelab::PieceLayout* split,
-  ShortOfTarget& shortOfTarget)
+  SamplingOutcome& sampling)
 {
+  if (this->MethodPlan && this->MethodPlan->samplingError > 0)
+  {
+    sampling.standardError.assign(static_cast<std::size_t>(input->GetNumberOfPoints()), 0.0);
+  }
   shadelab::ShadingInputs inputs;
   if (split) // each point's samples are seeded by its index in the whole mesh
   {
@@ -1056,14 +1065,15 @@ std::vector<vtkSmartPointer<vtkDataArray>> vtkLocalReflectanceFilter::ShadedArra
          : std::vector<vtkSmartPointer<vtkDataArray>>();
   vtkDataArray* points = input->GetPoints()->GetData();
   std::vector<vtkSmartPointer<vtkDataArray>> arrays = plan.precision == shadelab::Precision::Float64
-    ? shade<double>(plan.scene, plan.request, plan.methods, this->ArrayPrefix, points, shadingNormals, inputs, this, &shortOfTarget)
-    : shade<float>(plan.scene, plan.request, plan.methods, this->ArrayPrefix, points, shadingNormals, inputs, this, &shortOfTarget);
+    ? shade<double>(plan.scene, plan.request, plan.methods, this->ArrayPrefix, points, shadingNormals, inputs, this, &sampling)
+    : shade<float>(plan.scene, plan.request, plan.methods, this->ArrayPrefix, points, shadingNormals, inputs, this, &sampling);
   arrays.insert(arrays.end(), occlusion.begin(), occlusion.end());
   return arrays;
 }
 
 std::vector<std::string> vtkLocalReflectanceFilter::ShortOfTargetReport(
-  const ShadingPlan& plan, const ShortOfTarget& shortOfTarget, const shadelab::PieceLayout* split) const
+  const ShadingPlan& plan, const std::vector<std::vector<std::uint8_t>>& shortOfTarget,
+  const shadelab::PieceLayout* split) const
 {
   std::vector<std::string> report;
   for (std::size_t l = 0; l < plan.methods.size(); ++l)
@@ -1091,6 +1101,19 @@ std::vector<std::string> vtkLocalReflectanceFilter::ShortOfTargetReport(
     }
   }
   return report;
+}
+
+double vtkLocalReflectanceFilter::EstimatedSamplingError(
+  const std::vector<double>& standardErrors, const shadelab::PieceLayout* split) const
+{
+  constexpr double share = 0.95; // the confidence of the plan's sampled shares
+  if (!split)
+  {
+    return shadelab::estimatedErrorQuantile(standardErrors, share);
+  }
+  // Each vertex of the whole mesh once, whichever pieces hold it (with the same bits).
+  return shadelab::estimatedErrorQuantile(
+    shadelab::valuesByDistinctId(this->Controller, split->pieceIds, standardErrors), share);
 }
 
 void vtkLocalReflectanceFilter::AddFieldNotes(vtkPolyData* output) const

@@ -105,6 +105,17 @@ public:
   /// stopped at their maximum short of their target (also in shadelab_methods, after the plan).
   const std::vector<std::string>& GetSamplingReport() const { return this->SamplingReport; }
 
+  /// What a run's sampling to targets leaves besides its arrays (for its report and plan).
+  struct SamplingOutcome
+  {
+    /// Per scene light drawn to a target (empty for the others), 1 at each vertex that stopped
+    /// at the maximum short of it.
+    std::vector<std::vector<std::uint8_t>> shortOfTarget;
+    /// Where the plan samples, each vertex's standard error in the totals
+    /// (shadelab::ShadingOutputs::sampledStandardError); empty elsewhere.
+    std::vector<double> standardError;
+  };
+
   /// Flip normals that point into a closed or nearly closed mesh (default on).
   vtkSetMacro(OrientNormalsOutward, bool);
   vtkGetMacro(OrientNormalsOutward, bool);
@@ -248,12 +259,13 @@ private:
   bool CheckArrayNamesFree(
     vtkPolyData* input, const shadelab::Scene& scene, vtkMultiProcessController* processes, bool split);
   /// The arrays to output: those the kernel computes with the normals and the rays' arrays in
-  /// `seen` (nullptr: no rays), then the occlusion arrays asked for; per scene light drawn to a
-  /// target, into shortOfTarget, 1 at each vertex that stopped at the maximum short of it.
-  /// Throws std::runtime_error where an array cannot be allocated.
+  /// `seen` (nullptr: no rays), then the occlusion arrays asked for; into `sampling`, what the
+  /// sampling to targets left. Throws std::runtime_error where an array cannot be allocated.
   std::vector<vtkSmartPointer<vtkDataArray>> ShadedArrays(vtkPolyData* input, vtkDataArray* shadingNormals,
-    vtkPolyData* seen, const ShadingPlan& plan, const shadelab::PieceLayout* split,
-    std::vector<std::vector<std::uint8_t>>& shortOfTarget);
+    vtkPolyData* seen, const ShadingPlan& plan, const shadelab::PieceLayout* split, SamplingOutcome& sampling);
+  /// The error 95% of the whole mesh's vertices are estimated to be within from their sampled
+  /// standard errors (shadelab::estimatedErrorQuantile; on a split mesh, a collective call).
+  double EstimatedSamplingError(const std::vector<double>& standardErrors, const shadelab::PieceLayout* split) const;
   /// GetSamplingReport's lines: per light drawn to a target, how many vertices of the whole
   /// mesh stopped short of it (on a split mesh, a collective call, each vertex counted once).
   std::vector<std::string> ShortOfTargetReport(const ShadingPlan& plan,

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
 namespace shadelab
 {
@@ -43,4 +44,39 @@ int SamplingTarget::nextRound(int drawn, double standardErrorSoFar) const
   const double needed = std::min(double(drawn) * ratio * ratio, double(maximum)) - drawn;
   return std::min({ maximum - drawn, drawn, std::max(samplingRound, wholeRounds(needed)) });
 }
+
+double estimatedErrorQuantile(std::vector<double> standardErrors, double fraction)
+{
+  std::sort(standardErrors.begin(), standardErrors.end(), std::greater<double>());
+  const double vertices = double(standardErrors.size());
+  // The expected share of the vertices beyond x: a vertex whose standard error is below x / 9
+  // adds less than 1e-18 (erfc(9 / sqrt 2)), so the sum stops there.
+  auto shareBeyond = [&](double x)
+  {
+    double sum = 0;
+    for (const double s : standardErrors)
+    {
+      if (!(s > x / 9))
+      {
+        break;
+      }
+      sum += std::erfc(x / (s * std::sqrt(2.0)));
+    }
+    return sum / vertices;
+  };
+  if (standardErrors.empty() || !(standardErrors.front() > 0) || !(shareBeyond(0) > 1 - fraction))
+  {
+    return 0;
+  }
+  // Bisection: the share beyond x falls from the share of non-zero standard errors at 0 to
+  // below 1e-18 at 9 times the largest one.
+  double below = 0, above = 9 * standardErrors.front();
+  for (int step = 0; step < 64; ++step)
+  {
+    const double x = (below + above) / 2;
+    (shareBeyond(x) > 1 - fraction ? below : above) = x;
+  }
+  return above;
 }
+}
+

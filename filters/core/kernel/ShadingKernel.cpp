@@ -127,6 +127,7 @@ struct ShadingKernel<T>::Workspace
   Lane<T> diffuseR, diffuseG, diffuseB, specularR, specularG, specularB; // sums over lights
   Lane<T> irradianceR, irradianceG, irradianceB; // an area light's or map's E
   Lane<T> integralR, integralG, integralB;       // and its S, before ks
+  std::array<Rgb, VertexBlock<T>::capacity> sampledError; // ShadingOutputs::sampledStandardError's, per channel
   std::array<ShadingFlags, VertexBlock<T>::capacity> flags;
   Lane<T> halfVectorDefined; // 1 or 0: a lane of T, so that its loops vectorise with the rest
   std::size_t nonFinite = 0;
@@ -233,9 +234,9 @@ ShadingKernel<T>::ShadingKernel(
   {
     const LightMethod method = methods.empty() ? LightMethod{} : methods.at(l);
     const std::array<T*, LightTermCount>& out = outputs_.lights[l];
-    // Only a light whose specular term some array needs has its lobe evaluated (or integrated).
-    const bool needsSpecular =
-      specularModel_ != SpecularModel::None && (out[int(LightTerm::Specular)] || totalSpecular);
+    // Only a light whose specular term some array needs, and can be other than 0, has its lobe
+    // evaluated (or integrated).
+    const bool needsSpecular = hasSpecularTerm(scene) && (out[int(LightTerm::Specular)] || totalSpecular);
     EvaluationContext context;
     context.lineOfSight = scene.viewer.lineOfSight();
     context.distantFrom = method.distantFrom;
@@ -622,6 +623,7 @@ void ShadingKernel<T>::estimateDistributedLight(const DistributedLightSlot& ligh
     w.integralG[k] = T(terms.specular.y);
     w.integralB[k] = T(terms.specular.z);
     const std::size_t i = b.first + k;
+    w.sampledError[k] += glm::max(light.kd, Rgb(1.0)) * terms.irradianceStdError + light.ks * terms.specularStdError;
     storeRgb(LightTerm::IrradianceStdError, i, terms.irradianceStdError);
     storeRgb(LightTerm::SpecularStdError, i, light.ks * terms.specularStdError);
     if (T* visibility = out[int(LightTerm::Visibility)])
@@ -734,6 +736,16 @@ void ShadingKernel<T>::storeTotals(const VertexBlock<T>& b, Workspace& w) const
       total[3 * (first + k) + 2] = a.z + w.diffuseB[k] + w.specularB[k];
     }
   }
+  if (double* sampled = outputs_.sampledStandardError)
+  {
+    for (std::size_t k = 0; k < count; ++k)
+    {
+      const Rgb occlusion = inputs_.ambientOcclusionStdError
+        ? glm::max(Rgb(ambient_.x, ambient_.y, ambient_.z), Rgb(1.0)) * double(inputs_.ambientOcclusionStdError[first + k])
+        : Rgb(0.0);
+      sampled[first + k] = largestComponent(w.sampledError[k] + occlusion);
+    }
+  }
   if (outputs_.flags && inputs_.flags)
   {
     for (std::size_t k = 0; k < count; ++k)
@@ -756,6 +768,7 @@ void ShadingKernel<T>::shadeBlock(const VertexBlock<T>& b) const
   {
     std::fill_n(sum->begin(), count, T(0));
   }
+  std::fill_n(w.sampledError.begin(), count, Rgb(0.0));
   prepareNormals(b, w);
   // v costs a square root and a division per vertex: only when a term or the flags need it.
   prepareViewer(b, w);

@@ -37,6 +37,11 @@ struct ShadingOutputs
   /// Follows scene.lights: for an area light or map drawn to a target, 1 at each vertex that
   /// stopped at the maximum short of it, else 0; nullptr (or empty): not marked.
   std::vector<std::uint8_t*> shortOfTarget;
+  /// Per vertex, the largest standard error that sampling leaves in any array written (its
+  /// largest channel): each area light's or map's max(1, kd) sigma_E + ks sigma_S, plus
+  /// max(1, ka La) times the occlusion's, added as if they erred together (so that it covers
+  /// the totals, and E's and the occlusion's own arrays); nullptr: not computed.
+  double* sampledStandardError = nullptr;
 };
 
 /// What the mesh hides, computed before shading (visibility/Visibility.h), one value per
@@ -54,6 +59,7 @@ struct ShadingInputs
   /// are; nullptr: none.
   std::vector<const double*> lightShadowedTerms;
   const float* ambientOcclusion = nullptr;   // nullptr: the open sky, 1
+  const float* ambientOcclusionStdError = nullptr; // with ambientOcclusion
   const ShadingFlags* flags = nullptr;       // flags the rays found (FlagHiddenByOwnTriangle)
   /// Each vertex's id in the whole mesh, which seeds its samples, where the arrays hold some
   /// of its vertices (a piece of a mesh split over processes); nullptr: the vertex's index.

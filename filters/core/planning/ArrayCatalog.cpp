@@ -113,7 +113,7 @@ std::string hiddenSamplesArrayName(const std::string& prefix, const std::string&
 
 bool specularComputed(const Scene& scene, const ArrayRequest& request, std::size_t light)
 {
-  return evaluatedSpecularModel(scene) != SpecularModel::None &&
+  return hasSpecularTerm(scene) &&
     (request.lights[light][int(LightTerm::Specular)] || request.totals[int(TotalTerm::Specular)] ||
       request.totals[int(TotalTerm::Total)]);
 }

@@ -365,6 +365,12 @@ std::vector<std::string> MethodPlan::describe() const
     lines.push_back("ambient occlusion: a fixed count of rays, predicted error " + scientific(occlusion->predictedError) +
       " (95%)");
   }
+  if (estimatedSamplingError)
+  {
+    lines.push_back("after sampling: an error of about " + scientific(estimatedError()) + " at 95% of the vertices (" +
+      scientific(*estimatedSamplingError) + " estimated from their standard errors, where the plan bounds sampling's part by " +
+      scientific(samplingError) + ")");
+  }
   return lines;
 }
 
@@ -526,6 +532,8 @@ MethodPlan chooseMethods(const Scene& scene, const ArrayRequest& request, const 
   {
     plan.occlusion = chooseOcclusion(scene, share);
   }
+  plan.samplingError = (sampledLights.empty() ? 0 : share * double(sampledLights.size())) +
+    (plan.occlusion ? plan.occlusion->predictedError * plan.occlusion->weightInTotals : 0);
   return plan;
 }
 }

@@ -50,12 +50,23 @@ struct MethodPlan
   std::vector<LightChoice> lights; // one per scene light (ambient lights have nothing to choose)
   std::optional<OcclusionChoice> occlusion; // where the scene has ambient occlusion
   double tolerance = 0;
+  /// The part of predictedError() that sampling takes (at 95%): the shares of the estimates
+  /// drawn to a target, and a fixed count of occlusion rays' bound; 0 where nothing is sampled.
+  double samplingError = 0;
+  /// After the run, sampling's part as the vertices' own standard errors put it: the error 95%
+  /// of the vertices are within were their errors normal (estimatedErrorQuantile). An estimate,
+  /// not a bound like samplingError: where the stopping rule stops a vertex on a standard error
+  /// that its few samples put too low, the error can exceed it. nullopt before the run.
+  std::optional<double> estimatedSamplingError;
 
   std::vector<LightMethod> methods() const;
   /// arithmeticError, every light's predictedError and the sampled estimates' errors as they
   /// reach the arrays: at most tolerance (the sampled part at 95% confidence).
   double predictedError() const;
-  /// One line for the precision, then one per light, for the console and the field data.
+  /// predictedError() with sampling's part as estimated after the run, once it is.
+  double estimatedError() const { return predictedError() - samplingError + estimatedSamplingError.value_or(samplingError); }
+  /// One line for the precision, then one per light, for the console and the field data, and
+  /// once sampling's part is estimated after the run, a line for it.
   std::vector<std::string> describe() const;
 };
 

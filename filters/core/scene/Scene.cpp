@@ -14,6 +14,11 @@ SpecularModel evaluatedSpecularModel(const Scene& scene)
   return scene.material.specular;
 }
 
+bool hasSpecularTerm(const Scene& scene)
+{
+  return evaluatedSpecularModel(scene) != SpecularModel::None && scene.material.ks != Rgb(0.0);
+}
+
 glm::dvec3 Viewer::directionFrom(const glm::dvec3& p) const
 {
   if (!position)

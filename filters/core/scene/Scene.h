@@ -76,6 +76,9 @@ struct Scene
 /// Phong with sign(df); its lone-headlight shader takes max(0, n_z)^p, which is Blinn-Phong
 /// with the viewer along the light, where h = s).
 SpecularModel evaluatedSpecularModel(const Scene& scene);
+/// Whether the scene's specular terms can be other than 0: a specular model is evaluated and ks
+/// is not black. Where they cannot, no lobe is evaluated or sampled.
+bool hasSpecularTerm(const Scene& scene);
 }
 
 namespace shadelab
