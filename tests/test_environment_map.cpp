@@ -3,9 +3,12 @@
 // sampling by luminance.
 #include "EnvironmentMap.h"
 #include "EnvironmentSampler.h"
+#include "ShRotation.h"
 #include "SphericalHarmonics.h"
 
 #include <OpenImageIO/imageio.h>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/trigonometric.hpp>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -569,6 +572,148 @@ TEST(SphericalHarmonics, ProjectionTimeOf1024x512)
             << " ms slowest of 5 runs\n";
   // Band 0 is the mean radiance over the sphere times 4 pi Y00.
   EXPECT_LT(relativeError(sh[0], radiantIntegral(map) * 0.5 / std::sqrt(pi)), 1e-12);
+}
+
+TEST(SphericalHarmonics, TheBasisIsOrthonormalToBandFour)
+{
+  // A product of two functions of band 4 or less has degree 8 at most, which the rule
+  // integrates exactly.
+  const std::vector<SphereNode> nodes = sphereQuadrature(2 * largestShOrder);
+  double areaSum = 0;
+  for (const SphereNode& node : nodes)
+  {
+    areaSum += node.weight;
+    EXPECT_NEAR(glm::length(node.direction), 1.0, 1e-15);
+  }
+  EXPECT_NEAR(areaSum, 4 * pi, 1e-13);
+  for (int i = 0; i < shCount(largestShOrder); ++i)
+  {
+    for (int j = 0; j < shCount(largestShOrder); ++j)
+    {
+      double product = 0;
+      for (const SphereNode& node : nodes)
+      {
+        const ShBasis y = shBasis(largestShOrder, node.direction);
+        product += node.weight * y[i] * y[j];
+      }
+      ASSERT_NEAR(product, i == j ? 1.0 : 0.0, 1e-13) << i << " " << j;
+    }
+  }
+}
+
+TEST(SphericalHarmonics, BandsThreeAndFourAreTheirClosedForms)
+{
+  // The real harmonics' Cartesian forms (as tabulated, e.g., in Sloan's "Stupid Spherical
+  // Harmonics Tricks", 2008, appendix A2, there with the Condon-Shortley phase on odd m), at
+  // directions away from the axes.
+  std::mt19937_64 random(11);
+  std::normal_distribution<double> normal;
+  for (int trial = 0; trial < 20; ++trial)
+  {
+    const glm::dvec3 w = glm::normalize(glm::dvec3(normal(random), normal(random), normal(random)));
+    const double x = w.x, y = w.y, z = w.z;
+    const ShBasis basis = shBasis(4, w);
+    EXPECT_NEAR(basis[shIndex(3, -3)], 0.25 * std::sqrt(35 / (2 * pi)) * y * (3 * x * x - y * y), 1e-14);
+    EXPECT_NEAR(basis[shIndex(3, 0)], 0.25 * std::sqrt(7 / pi) * z * (5 * z * z - 3), 1e-14);
+    EXPECT_NEAR(basis[shIndex(3, 3)], 0.25 * std::sqrt(35 / (2 * pi)) * x * (x * x - 3 * y * y), 1e-14);
+    EXPECT_NEAR(basis[shIndex(4, -4)], 0.75 * std::sqrt(35 / pi) * x * y * (x * x - y * y), 1e-14);
+    EXPECT_NEAR(basis[shIndex(4, 0)], 3 / (16 * std::sqrt(pi)) * (35 * z * z * z * z - 30 * z * z + 3), 1e-14);
+    EXPECT_NEAR(basis[shIndex(4, 2)], 0.375 * std::sqrt(5 / pi) * (x * x - y * y) * (7 * z * z - 1), 1e-14);
+    const std::array<double, 9> nine = shBasis9(w);
+    for (int k = 0; k < 9; ++k)
+    {
+      EXPECT_EQ(nine[k], basis[k]);
+    }
+    EXPECT_EQ(shBasis(2, w)[shIndex(3, 0)], 0.0) << "past the order, 0";
+  }
+}
+
+TEST(SphericalHarmonics, TheClampedCosinesBandsAreItsLegendreIntegrals)
+{
+  // A_l = 2 pi times the integral over t in [0, 1] of t P_l(t) (Funk-Hecke), here by Simpson's
+  // rule on the Legendre polynomials written out, against the closed form.
+  const std::function<double(double)> legendre[] = { [](double) { return 1.0; }, [](double t) { return t; },
+    [](double t) { return (3 * t * t - 1) / 2; }, [](double t) { return (5 * t * t * t - 3 * t) / 2; },
+    [](double t) { return (35 * t * t * t * t - 30 * t * t + 3) / 8; } };
+  for (int l = 0; l <= 4; ++l)
+  {
+    const int steps = 1000;
+    double sum = 0;
+    for (int k = 0; k <= steps; ++k)
+    {
+      const double t = double(k) / steps;
+      sum += (k == 0 || k == steps ? 1 : k % 2 == 1 ? 4 : 2) * t * legendre[l](t);
+    }
+    // Simpson's error, (h^4 / 180) times the largest fourth derivative, is below 1e-11 here.
+    EXPECT_NEAR(clampedCosineBand(l), 2 * pi * sum / (3.0 * steps), 1e-10) << l;
+  }
+  EXPECT_DOUBLE_EQ(clampedCosineBand(0), pi);
+  EXPECT_DOUBLE_EQ(clampedCosineBand(2), pi / 4);
+  EXPECT_EQ(clampedCosineBand(3), 0.0);
+  EXPECT_DOUBLE_EQ(clampedCosineBand(4), -pi / 24);
+}
+
+TEST(ShRotation, TurningTheCoefficientsTurnsTheRadiance)
+{
+  // A radiance of bands 0 to 4 with random coefficients: the turned coefficients' radiance at a
+  // direction w is the radiance at r^T w, for rotations about every axis and their products.
+  std::mt19937_64 random(5);
+  std::normal_distribution<double> normal;
+  ShCoefficients coefficients(shCount(4));
+  for (Rgb& c : coefficients)
+  {
+    c = Rgb(normal(random), normal(random), normal(random));
+  }
+  auto radianceAt = [](const ShCoefficients& c, const glm::dvec3& w)
+  {
+    const ShBasis basis = shBasis(4, w);
+    Rgb sum(0.0);
+    for (std::size_t k = 0; k < c.size(); ++k)
+    {
+      sum += c[k] * basis[k];
+    }
+    return sum;
+  };
+  for (int trial = 0; trial < 10; ++trial)
+  {
+    const glm::dvec3 axis = glm::normalize(glm::dvec3(normal(random), normal(random), normal(random)));
+    const glm::dmat3 r = glm::dmat3(glm::rotate(glm::dmat4(1.0), normal(random) * 2, axis));
+    const ShCoefficients turned = ShRotation(4, r)(coefficients);
+    for (int k = 0; k < 10; ++k)
+    {
+      const glm::dvec3 w = glm::normalize(glm::dvec3(normal(random), normal(random), normal(random)));
+      const Rgb expected = radianceAt(coefficients, glm::transpose(r) * w);
+      const Rgb got = radianceAt(turned, w);
+      for (int c = 0; c < 3; ++c)
+      {
+        ASSERT_NEAR(got[c], expected[c], 1e-12 * (1 + std::abs(expected[c])));
+      }
+    }
+  }
+  EXPECT_THROW(ShRotation(2, glm::dmat3(1.0))(coefficients), std::invalid_argument) << "25 coefficients for order 2";
+  EXPECT_THROW(ShRotation(5, glm::dmat3(1.0)), std::invalid_argument);
+}
+
+TEST(ShRotation, TurningAMapsNineCoefficientsIsTurningItsIrradiance)
+{
+  // The SH estimator turns its irradiance polynomial (composedWith); turning the coefficients
+  // instead gives the same irradiance: a map of a bright patch, turned 70 degrees about +y.
+  const EnvironmentMap map = mapOf(128, 64, [](const glm::dvec3& w) { return Rgb(w.x > 0.6 ? 5.0 : 0.2, 1.0, w.y > 0 ? 2.0 : 0.5); });
+  const ShCoefficients9 nine = projectRadiance(map);
+  const double angle = glm::radians(70.0);
+  const glm::dmat3 r = glm::dmat3(glm::rotate(glm::dmat4(1.0), angle, glm::dvec3(0, 1, 0)));
+  const ShCoefficients turned = ShRotation(2, r)(ShCoefficients(nine.begin(), nine.end()));
+  ShCoefficients9 turnedNine;
+  std::copy(turned.begin(), turned.end(), turnedNine.begin());
+  const IrradiancePolynomial composed = composedWith(irradiancePolynomial(nine), glm::transpose(r));
+  for (const glm::dvec3& n : { glm::dvec3(1, 0, 0), glm::dvec3(0, 0, 1), glm::normalize(glm::dvec3(1, 2, -3)) })
+  {
+    const Rgb a = irradianceFromSh9(turnedNine, n), b = composed(n);
+    for (int c = 0; c < 3; ++c)
+    {
+      EXPECT_NEAR(a[c], b[c], 1e-12 * std::abs(b[c]));
+    }
+  }
 }
 
 // --- Importance sampling --------------------------------------------------------------------

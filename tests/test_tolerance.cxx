@@ -427,6 +427,19 @@ TEST(Tolerance, AMaterialWithABlackKsSamplesNoLobe)
   ASSERT_TRUE(plan);
   EXPECT_EQ(plan->lights[0].method.targets, SampleTargets{});
   EXPECT_EQ(plan->samplingError, 0.0);
+  // "auto" on SH: nothing is sampled, so no vertex is short of a target and no error is sampled.
+  std::get<EnvironmentLight>(harmonics.lights[0].source).sampling.fromTolerance = true;
+  const shadelab::testing::ToleranceRun automatic = shadelab::testing::shadeToTolerance(sphere, harmonics, 2.0, 2);
+  for (const char* name : { "studio_short_of_target", "studio_specular_std_error", "studio_specular" })
+  {
+    vtkDataArray* array = automatic.output->GetPointData()->GetArray(name);
+    ASSERT_NE(array, nullptr) << name;
+    for (int c = 0; c < array->GetNumberOfComponents(); ++c)
+    {
+      EXPECT_EQ(array->GetRange(c)[0], 0.0) << name;
+      EXPECT_EQ(array->GetRange(c)[1], 0.0) << name;
+    }
+  }
 }
 
 TEST(Tolerance, AreaLightsAndMapsItCannotBoundAreRefusedWithTheRemedy)

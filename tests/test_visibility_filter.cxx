@@ -30,13 +30,13 @@ using namespace shadelab;
 
 /// A sphere of radius 0.5 at height 1 over the square [-2, 2]^2 at z = 0, all triangles, with
 /// exact normals on the sphere and +z on the plane.
-vtkSmartPointer<vtkPolyData> sphereOverPlane()
+vtkSmartPointer<vtkPolyData> sphereOverPlane(int planeResolution = 60)
 {
   vtkNew<vtkPlaneSource> plane;
   plane->SetOrigin(-2, -2, 0);
   plane->SetPoint1(2, -2, 0);
   plane->SetPoint2(-2, 2, 0);
-  plane->SetResolution(60, 60);
+  plane->SetResolution(planeResolution, planeResolution);
   vtkNew<vtkTriangleFilter> triangles;
   triangles->SetInputConnection(plane->GetOutputPort());
   vtkNew<vtkAppendPolyData> both;
@@ -315,6 +315,27 @@ TEST(SoftShadows, TheErrorAfterSamplingIsPredictedFromEachVertexsStandardErrors)
       " estimated from their standard errors, where the plan bounds sampling's part by " +
       scientific(plan.samplingError) + ")");
   EXPECT_NEAR(plan.samplingError, plan.predictedError() - plan.arithmeticError, 1e-12) << "no approximations here";
+}
+
+TEST(AmbientOcclusion, TheEstimateAfterSamplingOfALargeMeshIsThatOfEveryKthVertex)
+{
+  // 94,322 points: the estimate is taken over every other one by id, and is the quantile of all
+  // of them (recomputed here from the array) to within a few parts in a thousand.
+  vtkSmartPointer<vtkPolyData> mesh = sphereOverPlane(300);
+  ASSERT_GT(mesh->GetNumberOfPoints(), 65536);
+  Scene scene = pointLightAbove(false);
+  scene.ambientOcclusion = AmbientOcclusion{};
+  scene.ambientOcclusion->sampling.fromTolerance = true;
+  const shadelab::testing::ToleranceRun run = shadelab::testing::shadeToTolerance(mesh, scene, 0.1, 2);
+  std::vector<double> standardErrors;
+  for (vtkIdType i = 0; i < mesh->GetNumberOfPoints(); ++i)
+  {
+    standardErrors.push_back(valueOf(run.output, "ambient_occlusion_std_error", i)); // ka La 0.2: weight 1
+  }
+  const double whole = estimatedErrorQuantile(standardErrors, targetConfidence);
+  ASSERT_TRUE(run.plan.estimatedSamplingError.has_value());
+  EXPECT_GT(whole, 0.0);
+  EXPECT_NEAR(*run.plan.estimatedSamplingError, whole, 0.005 * whole);
 }
 
 /// The sphere over the plane under a constant sky of radiance 1, with or without its shadows.

@@ -875,6 +875,11 @@ std::size_t distinctIdCount(vtkMultiProcessController* controller, const std::ve
 std::vector<double> valuesByDistinctId(
   vtkMultiProcessController* controller, const std::vector<vtkIdType>& ids, const std::vector<double>& values)
 {
+  if (ids.size() != values.size())
+  {
+    throw std::invalid_argument("valuesByDistinctId: " + std::to_string(ids.size()) + " ids for " +
+      std::to_string(values.size()) + " values");
+  }
   const std::vector<vtkIdType> allIds = allGather(controller, ids);
   const std::vector<double> allValues = allGather(controller, values);
   std::vector<std::size_t> order(allIds.size());
@@ -889,6 +894,13 @@ std::vector<double> valuesByDistinctId(
     }
   }
   return distinct;
+}
+
+vtkIdType wholePointCount(vtkMultiProcessController* controller, const std::vector<vtkIdType>& pieceIds)
+{
+  const vtkIdType largest = pieceIds.empty() ? -1 : *std::max_element(pieceIds.begin(), pieceIds.end());
+  const std::vector<vtkIdType> all = allGather(controller, std::vector<vtkIdType>{ largest });
+  return *std::max_element(all.begin(), all.end()) + 1;
 }
 
 vtkSmartPointer<vtkDataArray> tuplesAt(vtkDataArray* values, const std::vector<vtkIdType>& ids)

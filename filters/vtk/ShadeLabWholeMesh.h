@@ -124,10 +124,15 @@ SHADELABFILTERS_EXPORT MeshExtent wholeMeshExtent(vtkMultiProcessController* con
 /// the whole mesh of points that several pieces may hold.
 SHADELABFILTERS_EXPORT std::size_t distinctIdCount(vtkMultiProcessController* controller, const std::vector<vtkIdType>& ids);
 
-/// The processes' values (one per id in their lists) with each id once, in the order of the
-/// ids (a collective call): where several pieces hold a point, its value once.
+/// The processes' values (one per id in their lists, which must be as long) with each id once,
+/// in the order of the ids (a collective call): where several pieces hold a point, its value
+/// once.
 SHADELABFILTERS_EXPORT std::vector<double> valuesByDistinctId(
   vtkMultiProcessController* controller, const std::vector<vtkIdType>& ids, const std::vector<double>& values);
+
+/// How many points the whole mesh has: its largest global id plus 1, over every piece's ids (a
+/// collective call).
+SHADELABFILTERS_EXPORT vtkIdType wholePointCount(vtkMultiProcessController* controller, const std::vector<vtkIdType>& pieceIds);
 
 /// values' tuples at ids, in a new array of the same type and name.
 SHADELABFILTERS_EXPORT vtkSmartPointer<vtkDataArray> tuplesAt(vtkDataArray* values, const std::vector<vtkIdType>& ids);

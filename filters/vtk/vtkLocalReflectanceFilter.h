@@ -105,17 +105,6 @@ public:
   /// stopped at their maximum short of their target (also in shadelab_methods, after the plan).
   const std::vector<std::string>& GetSamplingReport() const { return this->SamplingReport; }
 
-  /// What a run's sampling to targets leaves besides its arrays (for its report and plan).
-  struct SamplingOutcome
-  {
-    /// Per scene light drawn to a target (empty for the others), 1 at each vertex that stopped
-    /// at the maximum short of it.
-    std::vector<std::vector<std::uint8_t>> shortOfTarget;
-    /// Where the plan samples, each vertex's standard error in the totals
-    /// (shadelab::ShadingOutputs::sampledStandardError); empty elsewhere.
-    std::vector<double> standardError;
-  };
-
   /// Flip normals that point into a closed or nearly closed mesh (default on).
   vtkSetMacro(OrientNormalsOutward, bool);
   vtkGetMacro(OrientNormalsOutward, bool);
@@ -206,6 +195,16 @@ private:
   vtkNew<vtkMeshVisibilityFilter> VisibilityStep;
   /// What the checks before shading settle (PlanShading), for the steps that write.
   struct ShadingPlan;
+  /// What a run's sampling to targets leaves besides its arrays (for its report and plan).
+  struct SamplingOutcome
+  {
+    /// Per scene light drawn to a target (empty for the others), 1 at each vertex that stopped
+    /// at the maximum short of it.
+    std::vector<std::vector<std::uint8_t>> shortOfTarget;
+    /// Where the plan samples, sized for every point: each one's sampled standard error
+    /// (shadelab::ShadingOutputs::sampledStandardError); empty elsewhere.
+    std::vector<double> standardError;
+  };
   /// Runs VisibilityStep when the plan's scene needs it (a collective call where the input is a
   /// piece of a split mesh), with the plan's targets for the shadowed lights drawn to one;
   /// returns its output (nullptr: not needed), or throws std::runtime_error when it failed.
@@ -264,8 +263,9 @@ private:
   std::vector<vtkSmartPointer<vtkDataArray>> ShadedArrays(vtkPolyData* input, vtkDataArray* shadingNormals,
     vtkPolyData* seen, const ShadingPlan& plan, const shadelab::PieceLayout* split, SamplingOutcome& sampling);
   /// The error 95% of the whole mesh's vertices are estimated to be within from their sampled
-  /// standard errors (shadelab::estimatedErrorQuantile; on a split mesh, a collective call).
-  double EstimatedSamplingError(const std::vector<double>& standardErrors, const shadelab::PieceLayout* split) const;
+  /// standard errors (shadelab::estimatedErrorQuantile), over every k-th vertex by id on a large
+  /// mesh. On a split mesh, a collective call, which a failed piece joins with no values.
+  double EstimatedSamplingError(std::vector<double> standardErrors, const shadelab::PieceLayout* split) const;
   /// GetSamplingReport's lines: per light drawn to a target, how many vertices of the whole
   /// mesh stopped short of it (on a split mesh, a collective call, each vertex counted once).
   std::vector<std::string> ShortOfTargetReport(const ShadingPlan& plan,

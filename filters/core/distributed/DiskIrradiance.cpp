@@ -1,5 +1,7 @@
 #include "DiskIrradiance.h"
 
+#include "GaussLegendre.h"
+
 #include <array>
 #include <cmath>
 #include <initializer_list>
@@ -13,50 +15,10 @@ constexpr double pi = 3.14159265358979323846;
 
 constexpr int nodeCount = 16;
 
-/// The Gauss-Legendre rule on [-1, 1], whose nodes come in pairs +-x: the positive nodes and
-/// their weights.
-struct GaussLegendreRule
+/// Computed once; its nodes come in pairs +-x, the first half positive.
+const GaussLegendreRule& rimRule()
 {
-  std::array<double, nodeCount / 2> nodes;
-  std::array<double, nodeCount / 2> weights;
-};
-
-/// The nodes are the roots of the Legendre polynomial P_n, found by Newton's method from
-/// Tricomi's estimate cos(pi (i + 3/4) / (n + 1/2)), and the weights 2 / ((1 - x^2) P_n'(x)^2)
-/// (Abramowitz and Stegun 25.4.29). Computed once.
-const GaussLegendreRule& gaussLegendreRule()
-{
-  static const GaussLegendreRule rule = []
-  {
-    GaussLegendreRule made{};
-    for (int i = 0; i < nodeCount / 2; ++i)
-    {
-      double x = std::cos(pi * (i + 0.75) / (nodeCount + 0.5));
-      double derivative = 0;
-      for (int iteration = 0; iteration < 100; ++iteration)
-      {
-        // P_n(x) by the three-term recurrence (k + 1) P_{k+1} = (2k + 1) x P_k - k P_{k-1}.
-        double previous = 1;
-        double current = x;
-        for (int k = 1; k < nodeCount; ++k)
-        {
-          const double next = ((2 * k + 1) * x * current - k * previous) / (k + 1);
-          previous = current;
-          current = next;
-        }
-        derivative = nodeCount * (x * current - previous) / (x * x - 1);
-        const double step = current / derivative;
-        x -= step;
-        if (std::abs(step) < 1e-16)
-        {
-          break;
-        }
-      }
-      made.nodes[i] = x;
-      made.weights[i] = 2 / ((1 - x * x) * derivative * derivative);
-    }
-    return made;
-  }();
+  static const GaussLegendreRule rule = gaussLegendreRule(nodeCount);
   return rule;
 }
 
@@ -152,7 +114,7 @@ double integrateRim(const Rim& rim, const Poles& poles, double begin, double end
     return integrateRim(rim, poles, begin, middle, halvingsLeft - 1) +
       integrateRim(rim, poles, middle, end, halvingsLeft - 1);
   }
-  const GaussLegendreRule& rule = gaussLegendreRule();
+  const GaussLegendreRule& rule = rimRule();
   const double middle = 0.5 * (begin + end);
   const double halfLength = 0.5 * (end - begin);
   const double cosMiddle = std::cos(middle);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
 
 namespace shadelab
 {
@@ -47,6 +48,10 @@ int SamplingTarget::nextRound(int drawn, double standardErrorSoFar) const
 
 double estimatedErrorQuantile(std::vector<double> standardErrors, double fraction)
 {
+  for (double& s : standardErrors)
+  {
+    s = std::isnan(s) ? std::numeric_limits<double>::infinity() : s;
+  }
   std::sort(standardErrors.begin(), standardErrors.end(), std::greater<double>());
   const double vertices = double(standardErrors.size());
   // The expected share of the vertices beyond x: a vertex whose standard error is below x / 9
@@ -68,10 +73,17 @@ double estimatedErrorQuantile(std::vector<double> standardErrors, double fractio
   {
     return 0;
   }
-  // Bisection: the share beyond x falls from the share of non-zero standard errors at 0 to
-  // below 1e-18 at 9 times the largest one.
-  double below = 0, above = 9 * standardErrors.front();
-  for (int step = 0; step < 64; ++step)
+  // Bisection, to a billionth of x: the share beyond x falls from the share of non-zero
+  // standard errors at 0 to below 1e-18 at 9 times the largest finite one (an infinite one
+  // stays beyond every x).
+  const auto largestFinite =
+    std::find_if(standardErrors.begin(), standardErrors.end(), [](double s) { return std::isfinite(s); });
+  double below = 0, above = largestFinite == standardErrors.end() ? 0 : 9 * *largestFinite;
+  if (!(shareBeyond(above) <= 1 - fraction))
+  {
+    return std::numeric_limits<double>::infinity(); // more than 1 - fraction of them unbounded
+  }
+  while (above - below > 1e-9 * above)
   {
     const double x = (below + above) / 2;
     (shareBeyond(x) > 1 - fraction ? below : above) = x;

@@ -61,9 +61,13 @@ struct SampleTargets
   }
 };
 
+/// The confidence of a target's error: the share of the vertices within it.
+constexpr double targetConfidence = 0.95;
+
 /// The error that a share `fraction` (in (0, 1)) of the vertices are estimated to stay within,
 /// from each vertex's standard error (0 where nothing was sampled): the x at which the expected
 /// share of vertices beyond it, mean of P(|N(0, s_i^2)| > x), is 1 - fraction (docs/formulas.md
 /// section 13.8). All equal, it is 1.96 s at 95%; it is 0 where at least `fraction` of them are 0.
+/// A standard error that is not a number counts as infinite.
 double estimatedErrorQuantile(std::vector<double> standardErrors, double fraction);
 }

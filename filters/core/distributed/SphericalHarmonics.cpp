@@ -1,7 +1,10 @@
 #include "SphericalHarmonics.h"
 
+#include "GaussLegendre.h"
+
 #include <glm/gtc/constants.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -16,12 +19,12 @@ constexpr double pi = glm::pi<double>();
 // would be 8e-7 off pi L (0.886227 x 0.282095 x 4 = 1 + 8e-7). Square roots as literals, so
 // that the constants are constexpr.
 constexpr double sqrtPi = 1.77245385090551602730;
+constexpr double sqrt2 = 1.41421356237309504880;
 constexpr double sqrt3 = 1.73205080756887729353;
 constexpr double sqrt5 = 2.23606797749978969641;
 constexpr double sqrt15 = 3.87298334620741688518;
 constexpr double y00 = 0.5 / sqrtPi; // 1 / sqrt(4 pi)
 constexpr double y1 = 0.5 * sqrt3 / sqrtPi; // sqrt(3 / (4 pi))
-constexpr double y2Product = 0.5 * sqrt15 / sqrtPi; // Y2-2, Y2-1, Y21: sqrt(15 / (4 pi))
 constexpr double y20 = 0.25 * sqrt5 / sqrtPi; // sqrt(5 / (16 pi))
 constexpr double y22 = 0.25 * sqrt15 / sqrtPi; // sqrt(15 / (16 pi))
 
@@ -29,24 +32,105 @@ constexpr double y22 = 0.25 * sqrt15 / sqrtPi; // sqrt(15 / (16 pi))
 // cosine's band factors A0 = pi, A1 = 2 pi / 3, A2 = pi / 4 (eq. 8 and 9) times the basis
 // constants: E(n) = sum of A_l L_lm Y_lm(n) (eq. 12). R&H multiplied the rounded constants,
 // so their c2 and c3 differ from these in the sixth digit.
-constexpr double c1 = 0.25 * pi * y22;
-constexpr double c2 = pi / 3.0 * y1;
-constexpr double c3 = 0.75 * pi * y20;
-constexpr double c4 = pi * y00;
-constexpr double c5 = 0.25 * pi * y20;
+constexpr double c1 = clampedCosineBand(2) * y22;
+constexpr double c2 = clampedCosineBand(1) / 2 * y1;
+constexpr double c3 = 3 * clampedCosineBand(2) * y20;
+constexpr double c4 = clampedCosineBand(0) * y00;
+constexpr double c5 = clampedCosineBand(2) * y20;
 }
 
-// R&H eq. 10.
+// The associated Legendre functions by their recurrences in z (Press et al., "Numerical
+// Recipes", 3rd ed., 2007, section 6.7), as Q_l^m = P_l^m / sin^m(theta), whose sin^m(theta)
+// goes with the azimuth: sin^m(theta) (cos(m phi), sin(m phi)) = (Re, Im) of (x + i y)^m,
+// taken by one complex product per m. No trigonometry, and no division by sin(theta) at the
+// poles (P.-P. Sloan, "Efficient Spherical Harmonic Evaluation", JCGT 2(2), 2013, does the same
+// in generated code).
+ShBasis shBasis(int order, const glm::dvec3& unitDirection)
+{
+  const double x = unitDirection.x, y = unitDirection.y, z = unitDirection.z;
+  ShBasis basis{};
+  double real = 1, imaginary = 0; // (x + i y)^m
+  double qmm = 1;                 // Q_m^m = (2m - 1)!!
+  for (int m = 0; m <= order; ++m)
+  {
+    double qBefore = 0, q = qmm; // Q_{l-1}^m and Q_l^m, from l = m
+    // K_lm^2 = (2l + 1) (l - m)! / (4 pi (l + m)!), its factorials' ratio updated with l.
+    double factorialRatio = 1;
+    for (int k = 1; k <= 2 * m; ++k)
+    {
+      factorialRatio /= k;
+    }
+    for (int l = m; l <= order; ++l)
+    {
+      if (l == m + 1)
+      {
+        qBefore = q;
+        q = (2 * m + 1) * z * qmm;
+      }
+      else if (l > m + 1)
+      {
+        const double next = ((2 * l - 1) * z * q - (l + m - 1) * qBefore) / (l - m);
+        qBefore = q;
+        q = next;
+      }
+      if (l > m)
+      {
+        factorialRatio *= double(l - m) / double(l + m);
+      }
+      const double k = std::sqrt((2 * l + 1) * factorialRatio / (4 * pi));
+      if (m == 0)
+      {
+        basis[shIndex(l, 0)] = k * q;
+      }
+      else
+      {
+        basis[shIndex(l, m)] = sqrt2 * k * q * real;
+        basis[shIndex(l, -m)] = sqrt2 * k * q * imaginary;
+      }
+    }
+    const double nextReal = real * x - imaginary * y;
+    imaginary = real * y + imaginary * x;
+    real = nextReal;
+    qmm *= 2 * m + 1;
+  }
+  return basis;
+}
+
+std::vector<SphereNode> sphereQuadrature(int degree)
+{
+  const GaussLegendreRule rule = gaussLegendreRule(degree / 2 + 1);
+  const int azimuths = degree + 1;
+  std::vector<SphereNode> nodes;
+  for (std::size_t i = 0; i < rule.nodes.size(); ++i)
+  {
+    const double z = rule.nodes[i], weight = rule.weights[i];
+    const double sinTheta = std::sqrt(1 - z * z);
+    for (int j = 0; j < azimuths; ++j)
+    {
+      const double phi = 2 * pi * j / azimuths;
+      nodes.push_back({ { sinTheta * std::cos(phi), sinTheta * std::sin(phi), z }, weight * 2 * pi / azimuths });
+    }
+  }
+  return nodes;
+}
+
 std::array<double, 9> shBasis9(const glm::dvec3& unitDirection)
 {
-  const double x = unitDirection.x;
-  const double y = unitDirection.y;
-  const double z = unitDirection.z;
-  return { y00, y1 * y, y1 * z, y1 * x, y2Product * x * y, y2Product * y * z,
-    y20 * (3.0 * z * z - 1.0), y2Product * x * z, y22 * (x * x - y * y) };
+  const ShBasis basis = shBasis(2, unitDirection);
+  std::array<double, 9> first;
+  std::copy_n(basis.begin(), 9, first.begin());
+  return first;
 }
 
 ShCoefficients9 projectRadiance(const EnvironmentMap& map)
+{
+  const ShCoefficients coefficients = projectRadiance(map, 2);
+  ShCoefficients9 first;
+  std::copy_n(coefficients.begin(), 9, first.begin());
+  return first;
+}
+
+ShCoefficients projectRadiance(const EnvironmentMap& map, int order)
 {
   requireValidShape(map, "projectRadiance");
   // Texel centre directions from per-column and per-row sines and cosines (EnvironmentMap.h):
@@ -60,29 +144,28 @@ ShCoefficients9 projectRadiance(const EnvironmentMap& map)
     cosPhi[column] = std::cos(phi);
   }
 
-  ShCoefficients9 coefficients;
-  coefficients.fill(Rgb(0.0));
+  const int count = shCount(order);
+  ShCoefficients coefficients(count, Rgb(0.0));
   for (int row = 0; row < map.height; ++row)
   {
     const double theta = pi * (row + 0.5) / map.height;
     const double sinTheta = std::sin(theta);
     const double cosTheta = std::cos(theta);
     // Every texel of a row has the same solid angle: sum the row, then weight it once.
-    ShCoefficients9 rowSums;
-    rowSums.fill(Rgb(0.0));
+    ShCoefficients rowSums(count, Rgb(0.0));
     for (int column = 0; column < map.width; ++column)
     {
       const glm::dvec3 direction(
         sinTheta * sinPhi[column], cosTheta, -sinTheta * cosPhi[column]);
-      const std::array<double, 9> basis = shBasis9(direction);
+      const ShBasis basis = shBasis(order, direction);
       const Rgb& radiance = map.texel(column, row);
-      for (int k = 0; k < 9; ++k)
+      for (int k = 0; k < count; ++k)
       {
         rowSums[k] += radiance * basis[k];
       }
     }
     const double solidAngle = texelSolidAngle(row, map.width, map.height);
-    for (int k = 0; k < 9; ++k)
+    for (int k = 0; k < count; ++k)
     {
       coefficients[k] += rowSums[k] * solidAngle;
     }

@@ -566,7 +566,7 @@ void ShadingKernel<T>::storeLight(const PreparedLight& light, const VertexBlock<
   }
   else if (T* specular = out[int(LightTerm::Specular)])
   {
-    std::fill_n(specular + 3 * first, 3 * count, T(0)); // SpecularModel::None
+    std::fill_n(specular + 3 * first, 3 * count, T(0)); // no specular model, or a black ks
   }
   if (T* visibility = out[int(LightTerm::Visibility)])
   {
@@ -697,12 +697,15 @@ void ShadingKernel<T>::addDistributedLight(const DistributedLightSlot& light, co
   }
   else
   {
-    // SH with no specular term to sample (the material has none, or no array needs it).
-    for (const LightTerm term : { LightTerm::Specular, LightTerm::SpecularStdError })
+    // SH with no specular term to sample (no specular model, a black ks, or no array needs
+    // it): nothing is sampled, so nothing is short of a target either.
+    for (const LightTerm term : { LightTerm::Specular, LightTerm::SpecularStdError, LightTerm::IrradianceStdError,
+           LightTerm::ShortOfTarget })
     {
       if (T* array = out[int(term)])
       {
-        std::fill_n(array + 3 * b.first, 3 * count, T(0));
+        const int components = termInfo(term).components;
+        std::fill_n(array + components * b.first, components * count, T(0));
       }
     }
   }

@@ -37,10 +37,10 @@ struct ShadingOutputs
   /// Follows scene.lights: for an area light or map drawn to a target, 1 at each vertex that
   /// stopped at the maximum short of it, else 0; nullptr (or empty): not marked.
   std::vector<std::uint8_t*> shortOfTarget;
-  /// Per vertex, the largest standard error that sampling leaves in any array written (its
-  /// largest channel): each area light's or map's max(1, kd) sigma_E + ks sigma_S, plus
-  /// max(1, ka La) times the occlusion's, added as if they erred together (so that it covers
-  /// the totals, and E's and the occlusion's own arrays); nullptr: not computed.
+  /// Per vertex, a standard error at least that which sampling leaves in the totals and in E's
+  /// and the occlusion's own arrays (its largest channel): over the area lights and maps,
+  /// max(1, kd) sigma_E + ks sigma_S, plus max(1, ka La) sigma_AO, added as if they erred
+  /// together; nullptr: not computed.
   double* sampledStandardError = nullptr;
 };
 

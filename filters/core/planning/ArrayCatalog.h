@@ -87,8 +87,9 @@ std::string hiddenSamplesArrayName(const std::string& prefix, const std::string&
 /// traces its rays round by round as it draws them (packTerms' rows): read by the shading instead
 /// of the hidden samples.
 std::string shadowedTermsArrayName(const std::string& prefix, const std::string& light);
-/// Whether the scene light's specular term is computed for the request: its own array or a
-/// total holds it (as the kernel decides which lobes to evaluate).
+/// Whether the scene light's specular term is computed for the request: it can be other than 0
+/// (hasSpecularTerm) and its own array or a total holds it (as the kernel decides which lobes
+/// to evaluate).
 bool specularComputed(const Scene& scene, const ArrayRequest& request, std::size_t light);
 /// The array name of an occlusion quantity: <prefix><name>.
 std::string occlusionArrayName(const std::string& prefix, OcclusionTerm term);

@@ -301,7 +301,7 @@ double MethodPlan::predictedError() const
   {
     sum += light.predictedError;
   }
-  return sum + (occlusion ? occlusion->predictedError * occlusion->weightInTotals : 0);
+  return sum + (occlusion ? occlusion->errorInTotals() : 0);
 }
 
 namespace
@@ -533,7 +533,7 @@ MethodPlan chooseMethods(const Scene& scene, const ArrayRequest& request, const 
     plan.occlusion = chooseOcclusion(scene, share);
   }
   plan.samplingError = (sampledLights.empty() ? 0 : share * double(sampledLights.size())) +
-    (plan.occlusion ? plan.occlusion->predictedError * plan.occlusion->weightInTotals : 0);
+    (plan.occlusion ? plan.occlusion->errorInTotals() : 0);
   return plan;
 }
 }

@@ -40,6 +40,9 @@ struct OcclusionChoice
   /// How much an error of the occlusion moves the totals: the ambient lights' ka La (at least 1,
   /// for the ambient_occlusion array itself).
   double weightInTotals = 1;
+
+  /// Its predicted error as it reaches the totals.
+  double errorInTotals() const { return predictedError * weightInTotals; }
 };
 
 struct MethodPlan
@@ -64,7 +67,10 @@ struct MethodPlan
   /// reach the arrays: at most tolerance (the sampled part at 95% confidence).
   double predictedError() const;
   /// predictedError() with sampling's part as estimated after the run, once it is.
-  double estimatedError() const { return predictedError() - samplingError + estimatedSamplingError.value_or(samplingError); }
+  double estimatedError() const
+  {
+    return estimatedSamplingError ? predictedError() - samplingError + *estimatedSamplingError : predictedError();
+  }
   /// One line for the precision, then one per light, for the console and the field data, and
   /// once sampling's part is estimated after the run, a line for it.
   std::vector<std::string> describe() const;
