@@ -1,0 +1,81 @@
+#include "RadianceTransfer.h"
+
+#include "SampleWarps.h"
+
+#include <algorithm>
+
+namespace shadelab
+{
+TransferVector unshadowedTransfer(int order, const glm::dvec3& unitNormal)
+{
+  TransferVector transfer = shBasis(order, unitNormal);
+  for (int l = 0; l <= order; ++l)
+  {
+    for (int m = -l; m <= l; ++m)
+    {
+      transfer[shIndex(l, m)] *= clampedCosineBand(l);
+    }
+  }
+  return transfer;
+}
+
+Rgb irradianceFromTransfer(const ShCoefficients& radiance, const TransferVector& transfer)
+{
+  Rgb sum(0.0);
+  for (std::size_t k = 0; k < radiance.size(); ++k)
+  {
+    sum += radiance[k] * transfer[k];
+  }
+  return sum;
+}
+
+TransferEstimate::TransferEstimate(int order, bool stratified)
+  : order_(order)
+  , estimates_(groups, MonteCarloEstimate(stratified))
+{
+}
+
+void TransferEstimate::add(const glm::dvec3& direction, bool visible)
+{
+  // With pdf cos / pi, a sample of V max(0, n.w) Y_k is pi V Y_k(w); the last group padded.
+  std::array<double, 3 * groups> sample{};
+  if (visible)
+  {
+    const ShBasis basis = shBasis(order_, direction);
+    std::copy(basis.begin(), basis.end(), sample.begin());
+  }
+  for (int g = 0; g < groups; ++g)
+  {
+    estimates_[g].add(samplePi * Rgb(sample[3 * g], sample[3 * g + 1], sample[3 * g + 2]));
+  }
+}
+
+namespace
+{
+/// The coefficients from their groups of three.
+template <typename OfGroup>
+TransferVector ungrouped(int count, int groups, OfGroup&& ofGroup)
+{
+  TransferVector values{};
+  for (int g = 0; g < groups; ++g)
+  {
+    const Rgb three = ofGroup(g);
+    for (int c = 0; c < 3 && 3 * g + c < count; ++c)
+    {
+      values[3 * g + c] = three[c];
+    }
+  }
+  return values;
+}
+}
+
+TransferVector TransferEstimate::value() const
+{
+  return ungrouped(shCount(order_), groups, [&](int g) { return estimates_[g].mean(); });
+}
+
+TransferVector TransferEstimate::standardError() const
+{
+  return ungrouped(shCount(order_), groups, [&](int g) { return estimates_[g].standardError(); });
+}
+}

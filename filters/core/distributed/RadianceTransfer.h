@@ -1,0 +1,48 @@
+#pragma once
+// Precomputed radiance transfer (P.-P. Sloan, J. Kautz and J. Snyder, "Precomputed Radiance
+// Transfer for Real-Time Rendering in Dynamic, Low-Frequency Lighting Environments", SIGGRAPH
+// 2002): what a vertex does with the light from each direction, as spherical-harmonic
+// coefficients. For diffuse transfer, coefficient k is the integral over the sphere of
+// V(w) max(0, n.w) Y_k(w); the irradiance under any radiance of coefficients L_k is then the
+// dot product sum of L_k T_k (docs/formulas.md section 12.9).
+#include "MonteCarloEstimate.h"
+#include "SphericalHarmonics.h"
+
+#include <array>
+#include <vector>
+
+namespace shadelab
+{
+/// T_k at shIndex(l, m), bands 0 to an order (at most largestShOrder), 0 past them.
+using TransferVector = ShBasis;
+
+/// Without shadows (V = 1): A_l Y_lm(n), the clamped cosine turned to n (Funk-Hecke), whose dot
+/// product with a map's nine coefficients is R&H's irradiance.
+TransferVector unshadowedTransfer(int order, const glm::dvec3& unitNormal);
+
+/// The irradiance sum of L_k T_k over the shCount(order) coefficients given.
+Rgb irradianceFromTransfer(const ShCoefficients& radiance, const TransferVector& transfer);
+
+/// The shadowed transfer estimated from cosine-weighted directions about the normal (pdf
+/// cos / pi): each sample is pi V(w_j) Y_k(w_j), added in order, stratified or not as
+/// MonteCarloEstimate takes them (whose standard errors it uses).
+class TransferEstimate
+{
+public:
+  TransferEstimate(int order, bool stratified);
+
+  /// One cosine-weighted direction, and whether the mesh lets its light through.
+  void add(const glm::dvec3& direction, bool visible);
+
+  TransferVector value() const;
+  /// Each coefficient's; needs at least 2 samples.
+  TransferVector standardError() const;
+
+private:
+  /// The coefficients three at a time, as the RGB channels of one estimate each, so that one
+  /// implementation of the standard errors serves them all.
+  static constexpr int groups = (shCount(largestShOrder) + 2) / 3;
+  int order_;
+  std::vector<MonteCarloEstimate> estimates_; // groups of them
+};
+}

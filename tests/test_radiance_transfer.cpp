@@ -1,0 +1,128 @@
+// Precomputed radiance transfer's core (docs/formulas.md section 12.9): the unshadowed transfer
+// against R&H's nine coefficients, and the shadowed one against closed forms.
+#include "PolygonIrradiance.h"
+#include "RadianceTransfer.h"
+#include "SampleSequence.h"
+#include "SampleWarps.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+namespace
+{
+using namespace shadelab;
+constexpr double pi = 3.14159265358979323846;
+
+TEST(RadianceTransfer, TheUnshadowedTransferOfOrderTwoIsTheNineCoefficientsIrradiance)
+{
+  // A map with a bright patch: the dot product of its nine coefficients with the transfer at a
+  // normal is R&H's polynomial there, to rounding.
+  EnvironmentMap map;
+  map.width = 64;
+  map.height = 32;
+  std::mt19937_64 random(3);
+  std::uniform_real_distribution<double> uniform(0, 4);
+  for (int k = 0; k < map.width * map.height; ++k)
+  {
+    map.radiance.push_back(Rgb(uniform(random), uniform(random), uniform(random)));
+  }
+  const ShCoefficients coefficients = projectRadiance(map, 2);
+  const ShCoefficients9 nine = projectRadiance(map);
+  std::normal_distribution<double> normal;
+  for (int trial = 0; trial < 50; ++trial)
+  {
+    const glm::dvec3 n = glm::normalize(glm::dvec3(normal(random), normal(random), normal(random)));
+    const Rgb transferred = irradianceFromTransfer(coefficients, unshadowedTransfer(2, n));
+    const Rgb polynomial = irradianceFromSh9(nine, n);
+    for (int c = 0; c < 3; ++c)
+    {
+      EXPECT_NEAR(transferred[c], polynomial[c], 1e-13 * std::abs(polynomial[c]));
+    }
+  }
+  // Band 3's factor is 0: order 3 adds nothing; order 4 adds band 4's.
+  const glm::dvec3 n = glm::normalize(glm::dvec3(1, 2, 3));
+  const TransferVector three = unshadowedTransfer(3, n), two = unshadowedTransfer(2, n);
+  for (int k = 0; k < shCount(3); ++k)
+  {
+    EXPECT_EQ(three[k], k < shCount(2) ? two[k] : 0.0) << k;
+  }
+}
+
+/// Cosine-weighted stratified directions about n for a vertex, as a light's samples are drawn.
+template <typename Visible>
+TransferEstimate estimated(int order, const glm::dvec3& n, int samples, std::uint64_t vertex, Visible&& visible)
+{
+  Sampling sampling;
+  sampling.samples = samples;
+  const SampleSequence sequence(7, vertex, sampling);
+  TransferEstimate estimate(order, true);
+  for (int j = 0; j < samples; ++j)
+  {
+    const glm::dvec3 w = cosineWeightedDirection(n, sequence.point(j)).direction;
+    estimate.add(w, visible(w));
+  }
+  return estimate;
+}
+
+TEST(RadianceTransfer, AnOpenSkysEstimateIsTheUnshadowedTransferWithinItsStandardErrors)
+{
+  // Every coefficient of bands 0 to 4, at normals all round: within 3 standard errors at 99%
+  // of them or more.
+  std::mt19937_64 random(9);
+  std::normal_distribution<double> normal;
+  int within = 0, count = 0;
+  for (int trial = 0; trial < 40; ++trial)
+  {
+    const glm::dvec3 n = glm::normalize(glm::dvec3(normal(random), normal(random), normal(random)));
+    const TransferVector exact = unshadowedTransfer(4, n);
+    const TransferEstimate estimate = estimated(4, n, 256, trial, [](const glm::dvec3&) { return true; });
+    const TransferVector value = estimate.value(), error = estimate.standardError();
+    for (int k = 0; k < shCount(4); ++k)
+    {
+      within += std::abs(value[k] - exact[k]) <= 3 * error[k] + 1e-12 ? 1 : 0;
+      ++count;
+    }
+    EXPECT_NEAR(value[0], exact[0], 1e-12) << "every sample of band 0 is pi Y_00";
+  }
+  EXPECT_GE(double(within), 0.99 * count) << within << " of " << count;
+}
+
+TEST(RadianceTransfer, AConstantSkyOverAnOpenBoxGivesTheOpeningsFormFactorOnTheFloor)
+{
+  // The box [-1, 1] x [0, 1] x [-1, 1] open at y = 1: from the floor, a direction reaches the
+  // sky where it leaves through the opening. A constant radiance L has L_00 = L sqrt(4 pi) and no
+  // other coefficient, so E = L sqrt(4 pi) T_00, against L times the opening's projected solid
+  // angle (Lambert's formula): within 3 standard errors at 99% of the floor points or more.
+  const double radiance = 2;
+  const std::vector<glm::dvec3> opening = { { -1, 1, -1 }, { 1, 1, -1 }, { 1, 1, 1 }, { -1, 1, 1 } };
+  ShCoefficients sky(shCount(2), Rgb(0.0));
+  sky[0] = Rgb(radiance * std::sqrt(4 * pi));
+  int within = 0, count = 0;
+  double squares = 0;
+  for (int i = 0; i < 20; ++i)
+  {
+    for (int k = 0; k < 20; ++k)
+    {
+      const glm::dvec3 p(-0.95 + 0.1 * i, 0, -0.95 + 0.1 * k);
+      auto throughTheOpening = [&](const glm::dvec3& w)
+      {
+        const double t = 1 / w.y; // to y = 1 (w.y > 0 for every cosine-weighted direction here)
+        const glm::dvec3 top = p + t * w;
+        return w.y > 0 && std::abs(top.x) <= 1 && std::abs(top.z) <= 1;
+      };
+      const TransferEstimate estimate = estimated(2, { 0, 1, 0 }, 256, std::uint64_t(count), throughTheOpening);
+      const Rgb e = irradianceFromTransfer(sky, estimate.value());
+      const double error = e.x - radiance * polygonProjectedSolidAngle(opening, p, { 0, 1, 0 });
+      const double standardError = radiance * std::sqrt(4 * pi) * estimate.standardError()[0];
+      within += std::abs(error) <= 3 * standardError ? 1 : 0;
+      squares += error * error;
+      ++count;
+    }
+  }
+  EXPECT_GE(double(within), 0.99 * count) << within << " of " << count;
+  // Below the worst a visible fraction of 256 cosine-weighted rays can err, pi L / (2 sqrt(256)).
+  EXPECT_LT(std::sqrt(squares / count), pi * radiance / (2 * std::sqrt(256.0)));
+}
+}
