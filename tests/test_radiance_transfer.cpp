@@ -17,7 +17,7 @@ constexpr double pi = 3.14159265358979323846;
 
 TEST(RadianceTransfer, TheUnshadowedTransferOfOrderTwoIsTheNineCoefficientsIrradiance)
 {
-  // A map with a bright patch: the dot product of its nine coefficients with the transfer at a
+  // A map of random radiances: the dot product of its nine coefficients with the transfer at a
   // normal is R&H's polynomial there, to rounding.
   EnvironmentMap map;
   map.width = 64;
@@ -87,6 +87,18 @@ TEST(RadianceTransfer, AnOpenSkysEstimateIsTheUnshadowedTransferWithinItsStandar
     EXPECT_NEAR(value[0], exact[0], 1e-12) << "every sample of band 0 is pi Y_00";
   }
   EXPECT_GE(double(within), 0.99 * count) << within << " of " << count;
+  // The standard errors follow the samples: 16 times as many cut them at least 4 times
+  // (stratified, they fall faster than 1/sqrt(N)).
+  const glm::dvec3 n(0.6, 0.0, 0.8);
+  auto open = [](const glm::dvec3&) { return true; };
+  const TransferVector few = estimated(4, n, 64, 1, open).standardError();
+  const TransferVector many = estimated(4, n, 1024, 1, open).standardError();
+  for (int k = 1; k < shCount(4); ++k)
+  {
+    EXPECT_LE(many[k], few[k] / 4) << k;
+  }
+  EXPECT_THROW(TransferEstimate(5, true), std::invalid_argument);
+  EXPECT_THROW(unshadowedTransfer(-1, n), std::invalid_argument);
 }
 
 TEST(RadianceTransfer, AConstantSkyOverAnOpenBoxGivesTheOpeningsFormFactorOnTheFloor)
@@ -122,7 +134,8 @@ TEST(RadianceTransfer, AConstantSkyOverAnOpenBoxGivesTheOpeningsFormFactorOnTheF
     }
   }
   EXPECT_GE(double(within), 0.99 * count) << within << " of " << count;
-  // Below the worst a visible fraction of 256 cosine-weighted rays can err, pi L / (2 sqrt(256)).
+  // Below the largest standard deviation of a fraction of 256 independent cosine-weighted rays,
+  // pi L sqrt(1/4 / 256).
   EXPECT_LT(std::sqrt(squares / count), pi * radiance / (2 * std::sqrt(256.0)));
 }
 }

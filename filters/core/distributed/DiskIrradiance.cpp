@@ -2,7 +2,6 @@
 
 #include "GaussLegendre.h"
 
-#include <array>
 #include <cmath>
 #include <initializer_list>
 #include <limits>
@@ -15,7 +14,8 @@ constexpr double pi = 3.14159265358979323846;
 
 constexpr int nodeCount = 16;
 
-/// Computed once; its nodes come in pairs +-x, the first half positive.
+/// Computed once; its nodes come in pairs +-x, and the rim reads the first half, the positive
+/// ones, for both of each pair.
 const GaussLegendreRule& rimRule()
 {
   static const GaussLegendreRule rule = gaussLegendreRule(nodeCount);

@@ -3,11 +3,14 @@
 #include "SampleWarps.h"
 
 #include <algorithm>
+#include <stdexcept>
+#include <string>
 
 namespace shadelab
 {
 TransferVector unshadowedTransfer(int order, const glm::dvec3& unitNormal)
 {
+  requireShOrder(order, "unshadowedTransfer");
   TransferVector transfer = shBasis(order, unitNormal);
   for (int l = 0; l <= order; ++l)
   {
@@ -21,6 +24,11 @@ TransferVector unshadowedTransfer(int order, const glm::dvec3& unitNormal)
 
 Rgb irradianceFromTransfer(const ShCoefficients& radiance, const TransferVector& transfer)
 {
+  if (radiance.size() > transfer.size())
+  {
+    throw std::invalid_argument("irradianceFromTransfer: " + std::to_string(radiance.size()) +
+      " coefficients, more than a transfer vector's " + std::to_string(transfer.size()));
+  }
   Rgb sum(0.0);
   for (std::size_t k = 0; k < radiance.size(); ++k)
   {
@@ -30,21 +38,21 @@ Rgb irradianceFromTransfer(const ShCoefficients& radiance, const TransferVector&
 }
 
 TransferEstimate::TransferEstimate(int order, bool stratified)
-  : order_(order)
-  , estimates_(groups, MonteCarloEstimate(stratified))
+  : order_((requireShOrder(order, "TransferEstimate"), order))
+  , estimates_((shCount(order) + 2) / 3, MonteCarloEstimate(stratified))
 {
 }
 
 void TransferEstimate::add(const glm::dvec3& direction, bool visible)
 {
   // With pdf cos / pi, a sample of V max(0, n.w) Y_k is pi V Y_k(w); the last group padded.
-  std::array<double, 3 * groups> sample{};
+  std::array<double, 3 * largestGroups> sample{};
   if (visible)
   {
     const ShBasis basis = shBasis(order_, direction);
     std::copy(basis.begin(), basis.end(), sample.begin());
   }
-  for (int g = 0; g < groups; ++g)
+  for (std::size_t g = 0; g < estimates_.size(); ++g)
   {
     estimates_[g].add(samplePi * Rgb(sample[3 * g], sample[3 * g + 1], sample[3 * g + 2]));
   }
@@ -71,11 +79,11 @@ TransferVector ungrouped(int count, int groups, OfGroup&& ofGroup)
 
 TransferVector TransferEstimate::value() const
 {
-  return ungrouped(shCount(order_), groups, [&](int g) { return estimates_[g].mean(); });
+  return ungrouped(shCount(order_), int(estimates_.size()), [&](int g) { return estimates_[g].mean(); });
 }
 
 TransferVector TransferEstimate::standardError() const
 {
-  return ungrouped(shCount(order_), groups, [&](int g) { return estimates_[g].standardError(); });
+  return ungrouped(shCount(order_), int(estimates_.size()), [&](int g) { return estimates_[g].standardError(); });
 }
 }

@@ -17,10 +17,11 @@ namespace shadelab
 using TransferVector = ShBasis;
 
 /// Without shadows (V = 1): A_l Y_lm(n), the clamped cosine turned to n (Funk-Hecke), whose dot
-/// product with a map's nine coefficients is R&H's irradiance.
+/// product with a map's nine coefficients is R&H's irradiance. Orders 0 to largestShOrder (the
+/// others throw std::invalid_argument, as TransferEstimate's constructor does).
 TransferVector unshadowedTransfer(int order, const glm::dvec3& unitNormal);
 
-/// The irradiance sum of L_k T_k over the shCount(order) coefficients given.
+/// The irradiance sum of L_k T_k over the coefficients given (at most a transfer vector's).
 Rgb irradianceFromTransfer(const ShCoefficients& radiance, const TransferVector& transfer);
 
 /// The shadowed transfer estimated from cosine-weighted directions about the normal (pdf
@@ -41,8 +42,8 @@ public:
 private:
   /// The coefficients three at a time, as the RGB channels of one estimate each, so that one
   /// implementation of the standard errors serves them all.
-  static constexpr int groups = (shCount(largestShOrder) + 2) / 3;
+  static constexpr int largestGroups = (shCount(largestShOrder) + 2) / 3;
   int order_;
-  std::vector<MonteCarloEstimate> estimates_; // groups of them
+  std::vector<MonteCarloEstimate> estimates_; // (shCount(order_) + 2) / 3 of them
 };
 }

@@ -14,11 +14,7 @@ namespace shadelab
 ShRotation::ShRotation(int order, const glm::dmat3& rotation)
   : order_(order)
 {
-  if (order < 0 || order > largestShOrder)
-  {
-    throw std::invalid_argument("ShRotation: order " + std::to_string(order) + " is not in 0 to " +
-      std::to_string(largestShOrder));
-  }
+  requireShOrder(order, "ShRotation");
   const std::vector<SphereNode> nodes = sphereQuadrature(2 * order);
   std::vector<ShBasis> turned, plain;
   for (const SphereNode& node : nodes)
@@ -26,7 +22,8 @@ ShRotation::ShRotation(int order, const glm::dmat3& rotation)
     turned.push_back(shBasis(order, rotation * node.direction));
     plain.push_back(shBasis(order, node.direction));
   }
-  for (int l = 0; l <= order; ++l)
+  matrices_.push_back(1.0); // band 0 is constant: turned, it is itself (4 pi Y00^2 could round)
+  for (int l = 1; l <= order; ++l)
   {
     for (int m = -l; m <= l; ++m)
     {

@@ -16,7 +16,8 @@ namespace shadelab
 class ShRotation
 {
 public:
-  /// For the radiance turned by `rotation` (orthonormal, determinant 1): L'(w) = L(r^T w).
+  /// For the radiance turned by `rotation` (orthogonal): L'(w) = L(r^T w). Throws
+  /// std::invalid_argument for an order outside 0 to largestShOrder.
   ShRotation(int order, const glm::dmat3& rotation);
 
   int order() const { return order_; }

@@ -5,6 +5,10 @@
 #include <glm/gtc/constants.hpp>
 
 #include <algorithm>
+#include <cassert>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
 #include <cmath>
 #include <vector>
 
@@ -14,12 +18,11 @@ namespace
 {
 constexpr double pi = glm::pi<double>();
 
-// R&H eq. 10 gives the basis constants to 6 digits (0.282095, 0.488603, 1.092548, 0.315392,
-// 0.546274). These are their closed forms: with the rounded ones a constant map's irradiance
-// would be 8e-7 off pi L (0.886227 x 0.282095 x 4 = 1 + 8e-7). Square roots as literals, so
-// that the constants are constexpr.
+// R&H eq. 10's basis constants, which eq. 13's c1..c5 below are built from. R&H give them to 6
+// digits (0.282095, 0.488603, 1.092548, 0.315392, 0.546274); these are their closed forms: with
+// the rounded ones a constant map's irradiance would be 8e-7 off pi L (0.886227 x 0.282095 x 4
+// = 1 + 8e-7). Square roots as literals, so that the constants are constexpr.
 constexpr double sqrtPi = 1.77245385090551602730;
-constexpr double sqrt2 = 1.41421356237309504880;
 constexpr double sqrt3 = 1.73205080756887729353;
 constexpr double sqrt5 = 2.23606797749978969641;
 constexpr double sqrt15 = 3.87298334620741688518;
@@ -39,28 +42,62 @@ constexpr double c4 = clampedCosineBand(0) * y00;
 constexpr double c5 = clampedCosineBand(2) * y20;
 }
 
+namespace
+{
+/// K_lm = sqrt((2l + 1) (l - m)! / (4 pi (l + m)!)) at shIndex(l, m) for m >= 0, times sqrt(2)
+/// for m > 0: computed once.
+const ShBasis& normalisations()
+{
+  static const ShBasis table = []
+  {
+    ShBasis k{};
+    for (int l = 0; l <= largestShOrder; ++l)
+    {
+      for (int m = 0; m <= l; ++m)
+      {
+        double factorialRatio = 1; // (l - m)! / (l + m)!
+        for (int f = l - m + 1; f <= l + m; ++f)
+        {
+          factorialRatio /= f;
+        }
+        k[shIndex(l, m)] = std::sqrt((2 * l + 1) * factorialRatio / (4 * pi)) * (m > 0 ? std::sqrt(2.0) : 1.0);
+      }
+    }
+    return k;
+  }();
+  return table;
+}
+}
+
+void requireShOrder(int order, const char* who)
+{
+  if (order < 0 || order > largestShOrder)
+  {
+    throw std::invalid_argument(std::string(who) + ": order " + std::to_string(order) + " is not in 0 to " +
+      std::to_string(largestShOrder));
+  }
+}
+
+namespace
+{
 // The associated Legendre functions by their recurrences in z (Press et al., "Numerical
 // Recipes", 3rd ed., 2007, section 6.7), as Q_l^m = P_l^m / sin^m(theta), whose sin^m(theta)
 // goes with the azimuth: sin^m(theta) (cos(m phi), sin(m phi)) = (Re, Im) of (x + i y)^m,
 // taken by one complex product per m. No trigonometry, and no division by sin(theta) at the
 // poles (P.-P. Sloan, "Efficient Spherical Harmonic Evaluation", JCGT 2(2), 2013, does the same
 // in generated code).
-ShBasis shBasis(int order, const glm::dvec3& unitDirection)
+/// shBasis's first shCount(Order) values into `basis`, at a fixed order so that the compiler
+/// unrolls the loops: the projection of a map evaluates it at every texel.
+template <int Order>
+void basisInto(const glm::dvec3& unitDirection, const ShBasis& normalisation, double* basis)
 {
   const double x = unitDirection.x, y = unitDirection.y, z = unitDirection.z;
-  ShBasis basis{};
   double real = 1, imaginary = 0; // (x + i y)^m
   double qmm = 1;                 // Q_m^m = (2m - 1)!!
-  for (int m = 0; m <= order; ++m)
+  for (int m = 0; m <= Order; ++m)
   {
     double qBefore = 0, q = qmm; // Q_{l-1}^m and Q_l^m, from l = m
-    // K_lm^2 = (2l + 1) (l - m)! / (4 pi (l + m)!), its factorials' ratio updated with l.
-    double factorialRatio = 1;
-    for (int k = 1; k <= 2 * m; ++k)
-    {
-      factorialRatio /= k;
-    }
-    for (int l = m; l <= order; ++l)
+    for (int l = m; l <= Order; ++l)
     {
       if (l == m + 1)
       {
@@ -73,19 +110,15 @@ ShBasis shBasis(int order, const glm::dvec3& unitDirection)
         qBefore = q;
         q = next;
       }
-      if (l > m)
-      {
-        factorialRatio *= double(l - m) / double(l + m);
-      }
-      const double k = std::sqrt((2 * l + 1) * factorialRatio / (4 * pi));
+      const double k = normalisation[shIndex(l, m)];
       if (m == 0)
       {
         basis[shIndex(l, 0)] = k * q;
       }
       else
       {
-        basis[shIndex(l, m)] = sqrt2 * k * q * real;
-        basis[shIndex(l, -m)] = sqrt2 * k * q * imaginary;
+        basis[shIndex(l, m)] = k * q * real;
+        basis[shIndex(l, -m)] = k * q * imaginary;
       }
     }
     const double nextReal = real * x - imaginary * y;
@@ -93,6 +126,79 @@ ShBasis shBasis(int order, const glm::dvec3& unitDirection)
     real = nextReal;
     qmm *= 2 * m + 1;
   }
+}
+
+/// Calls f with the order as a compile-time constant (std::integral_constant).
+template <typename F>
+decltype(auto) withOrder(int order, F&& f)
+{
+  assert(order >= 0 && order <= largestShOrder);
+  switch (order)
+  {
+  case 0:
+    return f(std::integral_constant<int, 0>());
+  case 1:
+    return f(std::integral_constant<int, 1>());
+  case 2:
+    return f(std::integral_constant<int, 2>());
+  case 3:
+    return f(std::integral_constant<int, 3>());
+  default:
+    return f(std::integral_constant<int, largestShOrder>());
+  }
+}
+
+/// projectRadiance at a fixed order: the sums in fixed-size arrays.
+template <int Order>
+ShCoefficients projectedToOrder(const EnvironmentMap& map)
+{
+  constexpr int count = shCount(Order);
+  const ShBasis& normalisation = normalisations();
+  // Texel centre directions from per-column and per-row sines and cosines (EnvironmentMap.h):
+  // no trigonometry per texel.
+  std::vector<double> sinPhi(map.width);
+  std::vector<double> cosPhi(map.width);
+  for (int column = 0; column < map.width; ++column)
+  {
+    const double phi = 2.0 * pi * ((column + 0.5) / map.width - 0.5);
+    sinPhi[column] = std::sin(phi);
+    cosPhi[column] = std::cos(phi);
+  }
+  std::array<Rgb, count> coefficients;
+  coefficients.fill(Rgb(0.0));
+  for (int row = 0; row < map.height; ++row)
+  {
+    const double theta = pi * (row + 0.5) / map.height;
+    const double sinTheta = std::sin(theta);
+    const double cosTheta = std::cos(theta);
+    // Every texel of a row has the same solid angle: sum the row, then weight it once.
+    std::array<Rgb, count> rowSums;
+    rowSums.fill(Rgb(0.0));
+    for (int column = 0; column < map.width; ++column)
+    {
+      const glm::dvec3 direction(sinTheta * sinPhi[column], cosTheta, -sinTheta * cosPhi[column]);
+      std::array<double, count> basis;
+      basisInto<Order>(direction, normalisation, basis.data());
+      const Rgb& radiance = map.texel(column, row);
+      for (int k = 0; k < count; ++k)
+      {
+        rowSums[k] += radiance * basis[k];
+      }
+    }
+    const double solidAngle = texelSolidAngle(row, map.width, map.height);
+    for (int k = 0; k < count; ++k)
+    {
+      coefficients[k] += rowSums[k] * solidAngle;
+    }
+  }
+  return ShCoefficients(coefficients.begin(), coefficients.end());
+}
+}
+
+ShBasis shBasis(int order, const glm::dvec3& unitDirection)
+{
+  ShBasis basis{};
+  withOrder(order, [&](auto fixed) { basisInto<decltype(fixed)::value>(unitDirection, normalisations(), basis.data()); });
   return basis;
 }
 
@@ -132,45 +238,9 @@ ShCoefficients9 projectRadiance(const EnvironmentMap& map)
 
 ShCoefficients projectRadiance(const EnvironmentMap& map, int order)
 {
+  requireShOrder(order, "projectRadiance");
   requireValidShape(map, "projectRadiance");
-  // Texel centre directions from per-column and per-row sines and cosines (EnvironmentMap.h):
-  // no trigonometry per texel.
-  std::vector<double> sinPhi(map.width);
-  std::vector<double> cosPhi(map.width);
-  for (int column = 0; column < map.width; ++column)
-  {
-    const double phi = 2.0 * pi * ((column + 0.5) / map.width - 0.5);
-    sinPhi[column] = std::sin(phi);
-    cosPhi[column] = std::cos(phi);
-  }
-
-  const int count = shCount(order);
-  ShCoefficients coefficients(count, Rgb(0.0));
-  for (int row = 0; row < map.height; ++row)
-  {
-    const double theta = pi * (row + 0.5) / map.height;
-    const double sinTheta = std::sin(theta);
-    const double cosTheta = std::cos(theta);
-    // Every texel of a row has the same solid angle: sum the row, then weight it once.
-    ShCoefficients rowSums(count, Rgb(0.0));
-    for (int column = 0; column < map.width; ++column)
-    {
-      const glm::dvec3 direction(
-        sinTheta * sinPhi[column], cosTheta, -sinTheta * cosPhi[column]);
-      const ShBasis basis = shBasis(order, direction);
-      const Rgb& radiance = map.texel(column, row);
-      for (int k = 0; k < count; ++k)
-      {
-        rowSums[k] += radiance * basis[k];
-      }
-    }
-    const double solidAngle = texelSolidAngle(row, map.width, map.height);
-    for (int k = 0; k < count; ++k)
-    {
-      coefficients[k] += rowSums[k] * solidAngle;
-    }
-  }
-  return coefficients;
+  return withOrder(order, [&](auto fixed) { return projectedToOrder<decltype(fixed)::value>(map); });
 }
 
 // R&H eq. 13: E = c1 L22 (x^2 - y^2) + c3 L20 z^2 + c4 L00 - c5 L20

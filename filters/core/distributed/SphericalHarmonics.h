@@ -35,6 +35,9 @@ constexpr int shIndex(int l, int m)
 /// Y_lm of bands 0 to largestShOrder at shIndex(l, m).
 using ShBasis = std::array<double, shCount(largestShOrder)>;
 
+/// Throws std::invalid_argument, naming `who`, unless 0 <= order <= largestShOrder.
+void requireShOrder(int order, const char* who);
+
 /// The real spherical harmonics of bands 0 to order (0 to largestShOrder) at a unit direction,
 /// at shIndex(l, m), the entries past shCount(order) 0: sqrt(2) K_lm P_l^m(z) cos(m phi) for
 /// m > 0, sqrt(2) K_l|m| P_l^|m|(z) sin(|m| phi) for m < 0, K_l0 P_l(z) for m = 0, with
@@ -73,10 +76,14 @@ ShCoefficients9 projectRadiance(const EnvironmentMap& map);
 
 /// A_l, the clamped cosine max(0, cos theta)'s band factor (R&H eq. 8 and 9): the integral of
 /// L(w) max(0, n.w) is the sum over l, m of A_l L_lm Y_lm(n) (the Funk-Hecke theorem). pi,
-/// 2 pi / 3, pi / 4, 0, -pi / 24 for l = 0 to 4; 0 for every odd l above 1.
+/// 2 pi / 3, pi / 4, 0, -pi / 24 for l = 0 to 4; 0 for every odd l above 1 (and below 0).
 constexpr double clampedCosineBand(int l)
 {
   constexpr double pi = 3.14159265358979323846;
+  if (l < 0)
+  {
+    return 0;
+  }
   if (l == 1)
   {
     return 2 * pi / 3;
