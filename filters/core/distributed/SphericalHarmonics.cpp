@@ -86,11 +86,13 @@ namespace
 // taken by one complex product per m. No trigonometry, and no division by sin(theta) at the
 // poles (P.-P. Sloan, "Efficient Spherical Harmonic Evaluation", JCGT 2(2), 2013, does the same
 // in generated code).
-/// shBasis's first shCount(Order) values into `basis`, at a fixed order so that the compiler
-/// unrolls the loops: the projection of a map evaluates it at every texel.
+/// shBasis's first shCount(Order) values, at a fixed order and inlined so that the compiler
+/// unrolls the loops and keeps the values in registers: the projection of a map evaluates it at
+/// every texel.
 template <int Order>
-void basisInto(const glm::dvec3& unitDirection, const ShBasis& normalisation, double* basis)
+[[gnu::always_inline]] inline std::array<double, shCount(Order)> basisOfOrder(const glm::dvec3& unitDirection, const ShBasis& normalisation)
 {
+  std::array<double, shCount(Order)> basis;
   const double x = unitDirection.x, y = unitDirection.y, z = unitDirection.z;
   double real = 1, imaginary = 0; // (x + i y)^m
   double qmm = 1;                 // Q_m^m = (2m - 1)!!
@@ -126,6 +128,7 @@ void basisInto(const glm::dvec3& unitDirection, const ShBasis& normalisation, do
     real = nextReal;
     qmm *= 2 * m + 1;
   }
+  return basis;
 }
 
 /// Calls f with the order as a compile-time constant (std::integral_constant).
@@ -177,8 +180,7 @@ ShCoefficients projectedToOrder(const EnvironmentMap& map)
     for (int column = 0; column < map.width; ++column)
     {
       const glm::dvec3 direction(sinTheta * sinPhi[column], cosTheta, -sinTheta * cosPhi[column]);
-      std::array<double, count> basis;
-      basisInto<Order>(direction, normalisation, basis.data());
+      const std::array<double, count> basis = basisOfOrder<Order>(direction, normalisation);
       const Rgb& radiance = map.texel(column, row);
       for (int k = 0; k < count; ++k)
       {
@@ -198,7 +200,12 @@ ShCoefficients projectedToOrder(const EnvironmentMap& map)
 ShBasis shBasis(int order, const glm::dvec3& unitDirection)
 {
   ShBasis basis{};
-  withOrder(order, [&](auto fixed) { basisInto<decltype(fixed)::value>(unitDirection, normalisations(), basis.data()); });
+  withOrder(order,
+    [&](auto fixed)
+    {
+      const auto values = basisOfOrder<decltype(fixed)::value>(unitDirection, normalisations());
+      std::copy(values.begin(), values.end(), basis.begin());
+    });
   return basis;
 }
 
