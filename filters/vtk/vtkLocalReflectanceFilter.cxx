@@ -206,6 +206,13 @@ std::vector<vtkSmartPointer<vtkDataArray>> shade(const shadelab::Scene& scene,
 /// rounds: evenly spaced, about this many.
 constexpr vtkIdType roundingSampleSize = 16384;
 
+/// The k for taking every k-th of `count` points by id so as to keep at most `most` of them
+/// (and more than most / 2): 1 where count is at most `most`.
+vtkIdType everyKth(vtkIdType count, vtkIdType most)
+{
+  return std::max<vtkIdType>(1, (count + most - 1) / most);
+}
+
 /// Where a rounding can put a local light on the other side of a vertex's horizon, and switch
 /// its terms on or off (a whole highlight, at a grazing light that the viewer sees mirrored):
 /// |n.s| below this. float32 rounds n.s by about 1e-7 for a light as far from the mesh as the
@@ -914,14 +921,9 @@ vtkLocalReflectanceFilter::PointSample vtkLocalReflectanceFilter::SamplePoints(v
   // surface: on a split mesh, the pieces' samples make up the whole mesh's, whatever the pieces.
   const vtkIdType count = input->GetNumberOfPoints();
   auto idOf = [&](vtkIdType i) { return pieceIds ? (*pieceIds)[static_cast<std::size_t>(i)] : i; };
-  vtkIdType wholeCount = count;
-  if (processes) // global ids number the whole mesh's points 0 to n-1
-  {
-    const vtkIdType largestId = count > 0 ? *std::max_element(pieceIds->begin(), pieceIds->end()) : -1;
-    processes->AllReduce(&largestId, &wholeCount, 1, vtkCommunicator::MAX_OP);
-    ++wholeCount;
-  }
-  const vtkIdType stride = std::max<vtkIdType>(1, (wholeCount + roundingSampleSize - 1) / roundingSampleSize);
+  // Global ids number the whole mesh's points 0 to n-1.
+  const vtkIdType wholeCount = processes ? shadelab::wholePointCount(processes, *pieceIds) : count;
+  const vtkIdType stride = everyKth(wholeCount, roundingSampleSize);
   const std::vector<unsigned char> banded =
     count > 0 ? pointsToMeasure(plan.scene, input->GetPoints()->GetData(), shadingNormals) : std::vector<unsigned char>();
   // Every point at a horizon; of those at a pow method's worst, all of a small band (a small
@@ -937,8 +939,7 @@ vtkLocalReflectanceFilter::PointSample vtkLocalReflectanceFilter::SamplePoints(v
     }
   }
   const std::size_t worstCount = processes ? shadelab::distinctIdCount(processes, worstIds) : worstIds.size();
-  const vtkIdType worstStride =
-    std::max<vtkIdType>(1, (static_cast<vtkIdType>(worstCount) + roundingSampleSize - 1) / roundingSampleSize);
+  const vtkIdType worstStride = everyKth(static_cast<vtkIdType>(worstCount), roundingSampleSize);
   std::vector<vtkIdType> sample;
   PointSample taken;
   for (vtkIdType i = 0; i < count; ++i)
@@ -1131,7 +1132,7 @@ double vtkLocalReflectanceFilter::EstimatedSamplingError(
   std::vector<vtkIdType> ids;
   const vtkIdType count = static_cast<vtkIdType>(split ? split->pieceIds.size() : standardErrors.size());
   const vtkIdType wholeMesh = split ? shadelab::wholePointCount(this->Controller, split->pieceIds) : count;
-  const vtkIdType stride = std::max<vtkIdType>(1, (wholeMesh + enough - 1) / enough);
+  const vtkIdType stride = everyKth(wholeMesh, enough);
   std::vector<double> taken;
   for (vtkIdType i = 0; i < static_cast<vtkIdType>(standardErrors.size()) && i < count; ++i)
   {
