@@ -601,4 +601,9 @@ void writeMesh(vtkPolyData* mesh, const std::string& fileName, Compression compr
       return written ? "" : "the writer failed (disk full, or no permission?)";
     });
 }
+
+Compression compressionNamed(const std::string& name)
+{
+  return name == "zlib" ? Compression::ZLib : name == "none" ? Compression::None : Compression::LZ4;
+}
 }

@@ -58,6 +58,10 @@ enum class Compression
   None,
 };
 
+/// The compression a command line names: "lz4", "zlib" or "none" (compressionNames).
+Compression compressionNamed(const std::string& name);
+constexpr std::initializer_list<const char*> compressionNames = { "lz4", "zlib", "none" };
+
 /// Where a .vtp keeps its arrays' bytes: in base64 inside each array's element (Inline, the
 /// default), or raw in one block at the end (RawAppended: a quarter smaller, and written in
 /// about two thirds of the time, but Debian 12's ParaView 5.11 reads such a file as empty since

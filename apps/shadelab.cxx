@@ -7,8 +7,10 @@
 #include "CompareCommand.h"
 #include "MeshFiles.h"
 #include "ProgressLine.h"
+#include "RelightCommand.h"
 #include "RenderImage.h"
 #include "RunWarnings.h"
+#include "StageTime.h"
 #include "CommandLineParse.h"
 #include "VtkErrorCapture.h"
 
@@ -30,7 +32,6 @@
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -44,13 +45,9 @@ namespace
 {
 using namespace shadelab;
 using app::RunWarnings;
+using app::Clock;
+using app::secondsSince;
 using app::UserError;
-using Clock = std::chrono::steady_clock;
-
-double secondsSince(Clock::time_point start)
-{
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 std::string modelName(const Scene& scene)
 {
@@ -104,7 +101,9 @@ void printSummary(vtkPolyData* output, const Scene& scene, const std::string& pr
       low = c == 0 ? range[0] : std::min(low, range[0]);
       high = c == 0 ? range[1] : std::max(high, range[1]);
     }
-    std::cout << "    " << std::left << std::setw(28) << description.name << std::right
+    // Names in a column 28 wide; a longer one keeps a space before its component count.
+    std::cout << "    " << std::left << std::setw(28) << description.name << (description.name.size() >= 28 ? " " : "")
+              << std::right
               << std::setw(2) << array->GetNumberOfComponents() << "  " << std::setw(12)
               << std::setprecision(6) << low << std::setw(12) << high << "\n";
   }
@@ -128,7 +127,8 @@ struct EnvironmentOption
   std::string name = "envmap";
   std::string file;
   std::string estimator = "sh";
-  std::string directions = "luminance";
+  std::string directions; // empty: luminance (cosine for prt, which takes no other)
+  int order = 0;          // prt's highest band; 0: not given, 2
   double rotation = 0;
   double intensity = 1;
   std::string samples = std::to_string(Sampling{}.samples); // or "auto"
@@ -210,10 +210,22 @@ Scene sceneWithEnvironment(const std::string& sceneFile, const EnvironmentOption
   light.intensity = environment.intensity;
   light.estimator = environment.estimator == "brute_force" ? EnvironmentEstimator::BruteForce
     : environment.estimator == "monte_carlo"               ? EnvironmentEstimator::MonteCarlo
+    : environment.estimator == "prt"                       ? EnvironmentEstimator::PrecomputedTransfer
                                                            : EnvironmentEstimator::SphericalHarmonics;
-  light.directions = environment.directions == "cosine" ? EnvironmentDirections::Cosine
-    : environment.directions == "mis"                   ? EnvironmentDirections::Mis
-                                                        : EnvironmentDirections::Luminance;
+  const bool transfer = light.estimator == EnvironmentEstimator::PrecomputedTransfer;
+  if (transfer && !environment.directions.empty() && environment.directions != "cosine")
+  {
+    throw UserError("--envmap-directions " + environment.directions + ": prt draws its shadow rays by the cosine, "
+      "the density its transfer vectors are estimated for: leave --envmap-directions out");
+  }
+  if (!transfer && environment.order != 0)
+  {
+    throw UserError("--envmap-order: only --envmap-estimator prt has an order");
+  }
+  light.shOrder = environment.order != 0 ? environment.order : light.shOrder;
+  light.directions = environment.directions == "cosine" || transfer ? EnvironmentDirections::Cosine
+    : environment.directions == "mis"                               ? EnvironmentDirections::Mis
+                                                                    : EnvironmentDirections::Luminance;
   setSampleCount(environment.samples, light.sampling);
   try
   {
@@ -315,10 +327,7 @@ int runShade(const ShadeOptions& options)
   vtkPolyData* output = filter->GetOutput();
 
   const Clock::time_point writeStart = Clock::now();
-  const app::Compression compression = options.compression == "zlib" ? app::Compression::ZLib
-    : options.compression == "none"                                    ? app::Compression::None
-                                                                       : app::Compression::LZ4;
-  app::writeMesh(output, options.output, compression,
+  app::writeMesh(output, options.output, app::compressionNamed(options.compression),
     options.rawAppended ? app::VtpLayout::RawAppended : app::VtpLayout::Inline);
   warnings.collect(options.output);
   const double writeSeconds = secondsSince(writeStart);
@@ -494,7 +503,7 @@ CLI::App* addShadeCommand(CLI::App& cli, ShadeOptions& options)
     ->capture_default_str();
   command->add_option("--compression", options.compression,
     ".vtp compression: lz4 is fastest, zlib gives files about a third smaller")
-    ->check(CLI::IsMember({ "lz4", "zlib", "none" }))
+    ->check(CLI::IsMember(std::vector<std::string>(app::compressionNames.begin(), app::compressionNames.end())))
     ->capture_default_str();
   command->add_flag("--raw-appended", options.rawAppended,
     ".vtp with its data raw in one block at the end: a quarter smaller and faster to write, but "
@@ -540,9 +549,15 @@ CLI::App* addShadeCommand(CLI::App& cli, ShadeOptions& options)
     "as high, +y up, the image centre toward -z; docs/guide/lights-and-estimators.md)");
   command->add_option("--envmap-estimator", environment.estimator,
     "its irradiance: sh (9 spherical-harmonic coefficients), monte_carlo (sampled, as --envmap-directions "
-    "says) or brute_force (every texel of the map downsampled to 128x64)")
-    ->check(CLI::IsMember({ "sh", "monte_carlo", "brute_force" }))
+    "says), brute_force (every texel of the map downsampled to 128x64) or prt (precomputed radiance transfer: "
+    "the array envmap_sh_transfer holds each vertex's transfer vector, with --shadows from --envmap-samples "
+    "cosine-weighted shadow rays, and `shadelab relight` lights it with any other map)")
+    ->check(CLI::IsMember({ "sh", "monte_carlo", "brute_force", "prt" }))
     ->capture_default_str()
+    ->needs(envmapOption);
+  command->add_option("--envmap-order", environment.order,
+    "prt's highest spherical-harmonic band, 2 to 4: (order + 1)^2 transfer coefficients per vertex (default 2)")
+    ->check(CLI::Range(2, largestShOrder))
     ->needs(envmapOption);
   command->add_option("--envmap-rotation", environment.rotation,
     "turn the map about +y by this many degrees (anticlockwise seen from above)")
@@ -555,9 +570,9 @@ CLI::App* addShadeCommand(CLI::App& cli, ShadeOptions& options)
   command->add_option("--envmap-directions", environment.directions,
     "where its samples' directions come from: luminance (importance sampling of the map), cosine "
     "(cosine-weighted about the normal) or mis (half each way, weighted by both densities: robust where a "
-    "shadow hides the bright part of the map); for monte_carlo, and with --shadows for every estimator's rays")
+    "shadow hides the bright part of the map); for monte_carlo, and with --shadows for every estimator's rays "
+    "(default luminance; prt's are always cosine)")
     ->check(CLI::IsMember({ "luminance", "cosine", "mis" }))
-    ->capture_default_str()
     ->needs(envmapOption);
   command->add_option("--envmap-samples", environment.samples,
     "Monte Carlo samples per vertex (monte_carlo, the specular term of sh, and with --shadows every "
@@ -611,9 +626,11 @@ int main(int argc, char** argv)
   CLI::App* renderCommand = addRenderCommand(cli, render);
   shadelab::app::CompareOptions compare;
   CLI::App* compareCommand = shadelab::app::addCompareCommand(cli, compare);
+  shadelab::app::RelightOptions relight;
+  CLI::App* relightCommand = shadelab::app::addRelightCommand(cli, relight);
 
   bool verbose = false;
-  for (CLI::App* command : { shadeCommand, arraysCommand, renderCommand, compareCommand })
+  for (CLI::App* command : { shadeCommand, arraysCommand, renderCommand, compareCommand, relightCommand })
   {
     command->add_flag("--verbose,-v", verbose, "also show VTK's own log and error output");
   }
@@ -637,6 +654,10 @@ int main(int argc, char** argv)
     if (compareCommand->parsed())
     {
       return shadelab::app::runCompare(compare);
+    }
+    if (relightCommand->parsed())
+    {
+      return shadelab::app::runRelight(relight);
     }
     return runArrays(arraysScene);
   }

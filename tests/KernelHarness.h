@@ -30,7 +30,7 @@ public:
         if (request.lights[l][t])
         {
           outputs.lights[l][t] = allocate(lightArrayName("", scene.lights[l].name, LightTerm(t)),
-            termInfo(LightTerm(t)).components * count);
+            lightTermComponents(scene.lights[l], LightTerm(t)) * count);
         }
       }
     }

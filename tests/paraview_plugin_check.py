@@ -114,6 +114,21 @@ same_arrays("Mesh Visibility from Scene JSON", shadow_arrays, arrays_of(seen),
             ["ambient_occlusion", "ambient_occlusion_std_error", "bent_normal", "sky_view_factor"]
             + sorted(name for name in shadow_arrays if name.endswith("_visibility")))
 
+# Relighting from stored transfer vectors, as docs/guide/relighting.md's pvpython example does it.
+transfer = os.path.join(work, "transfer.vtp")
+sunset = os.path.join(data, "envmaps", "venice_sunset_1k.hdr")
+subprocess.run([shadelab, "shade", bunny_file, "-o", transfer, "--envmap", os.path.join(data, "envmaps",
+                "studio_small_03_1k.hdr"), "--envmap-estimator", "prt", "--envmap-order", "3", "--shadows",
+                "--envmap-samples", "16", "-a", "envmap_sh_transfer"], check=True, capture_output=True)
+relit_file = os.path.join(work, "relit.vtp")
+subprocess.run([shadelab, "relight", transfer, "--envmap", sunset, "--rotation", "45", "--intensity", "0.5",
+                "-o", relit_file], check=True, capture_output=True)
+relit = TransferRelight(Input=OpenDataFile(transfer))
+relit.EnvironmentMapFileName = sunset
+relit.Rotation = 45
+relit.Intensity = 0.5
+same_arrays("Transfer Relight", arrays_of(OpenDataFile(relit_file)), arrays_of(relit), ["relit_irradiance"])
+
 # A scene error reaches ParaView's output with the command line's message.
 bad_scene = os.path.join(work, "negative_intensity.json")
 with open(bad_scene, "w") as scene:

@@ -92,6 +92,7 @@ TEST_F(Cli, UnknownArrayNameAndBadOutput)
     "*_to_light, *_distance, *_attenuation, *_spot_factor, *_cos_incidence, *_incidence_angle, "
     "*_reflection, *_r_dot_v, *_half_vector, *_n_dot_h, *_diffuse, *_specular, *_irradiance, "
     "*_irradiance_std_error, *_specular_std_error, *_visibility, *_visibility_std_error, *_short_of_target, "
+    "*_sh_transfer, *_sh_transfer_std_error, "
     "ambient, diffuse, specular, total, shading_flags, sun_to_light, sun_attenuation, sun_spot_factor, "
     "sun_cos_incidence, sun_incidence_angle, sun_reflection, sun_r_dot_v, sun_half_vector, "
     "sun_n_dot_h, sun_diffuse, sun_specular\n");
@@ -101,8 +102,8 @@ TEST_F(Cli, UnknownArrayNameAndBadOutput)
     "--arrays: no arrays selected; this scene has: default, totals, all, *_to_light, *_distance, "
     "*_attenuation, *_spot_factor, *_cos_incidence, *_incidence_angle, *_reflection, *_r_dot_v, "
     "*_half_vector, *_n_dot_h, *_diffuse, *_specular, *_irradiance, *_irradiance_std_error, "
-    "*_specular_std_error, *_visibility, *_visibility_std_error, *_short_of_target, ambient, diffuse, specular, "
-    "total, shading_flags, sun_to_light, sun_attenuation, sun_spot_factor, sun_cos_incidence, "
+    "*_specular_std_error, *_visibility, *_visibility_std_error, *_short_of_target, *_sh_transfer, "
+    "*_sh_transfer_std_error, ambient, diffuse, specular, total, shading_flags, sun_to_light, sun_attenuation, sun_spot_factor, sun_cos_incidence, "
     "sun_incidence_angle, sun_reflection, sun_r_dot_v, sun_half_vector, sun_n_dot_h, sun_diffuse, "
     "sun_specular");
   const std::string nowhere = (folder / "no" / "such" / "out.vtp").string();
@@ -445,6 +446,61 @@ TEST_F(Cli, EnvironmentMapOption)
 
 namespace
 {
+TEST_F(Cli, PrecomputedTransferRelightsWithoutRays)
+{
+  // The bunny shaded by "prt" of order 4 under the studio map turned 90 degrees, and again
+  // unturned; the unturned transfer relit under the map turned 90 degrees is the turned shading's
+  // irradiance, to float32's rounding of the transfer (what `compare` takes by default, and
+  // 1e-5 where the sum cancels to near 0).
+  const std::string mesh = goodMesh(), map = SHADELAB_SOURCE_DIR "/data/envmaps/studio_small_03_1k.hdr";
+  const std::string turned = (folder / "turned.vtp").string(), unturned = (folder / "unturned.vtp").string();
+  const std::string relit = (folder / "relit.vtp").string();
+  const std::string prt = " --envmap " + map + " --envmap-estimator prt --envmap-order 4 ";
+  ASSERT_EQ(shadelab("shade " + mesh + prt + "--envmap-rotation 90 -a envmap_irradiance -o " + turned).exitCode, 0);
+  const Result shaded = shadelab("shade " + mesh + prt + "-a envmap_irradiance,envmap_sh_transfer -o " + unturned);
+  ASSERT_EQ(shaded.exitCode, 0) << shaded.err;
+  EXPECT_NE(shaded.out.find("    envmap_sh_transfer          25 "), std::string::npos) << shaded.out;
+  const Result relighting =
+    shadelab("relight " + unturned + " --envmap " + map + " --rotation 90 --name envmap_irradiance -o " + relit);
+  ASSERT_EQ(relighting.exitCode, 0) << relighting.err;
+  EXPECT_NE(relighting.out.find("'envmap_irradiance' from 'envmap_sh_transfer' (order 4, 25 coefficients) under " + map),
+    std::string::npos) << relighting.out;
+  const Result compared = shadelab("compare " + turned + " " + relit + " --arrays envmap_irradiance --atol 1e-5");
+  EXPECT_EQ(compared.exitCode, 0) << compared.out;
+  // Relit 90 degrees the wrong way, it differs.
+  ASSERT_EQ(shadelab("relight " + unturned + " --envmap " + map + " --rotation -90 --name envmap_irradiance -o " + relit).exitCode, 0);
+  EXPECT_EQ(shadelab("compare " + turned + " " + relit + " --arrays envmap_irradiance --atol 1e-5").exitCode, 1);
+
+  // Shadowed, the transfer has its standard errors; --envmap-order and directions are prt's alone.
+  // By default, as what "prt" is chosen for.
+  const Result shadowed = shadelab("shade " + mesh + prt + "--shadows --envmap-samples 16 -o " + turned);
+  ASSERT_EQ(shadowed.exitCode, 0) << shadowed.err;
+  EXPECT_NE(shadowed.out.find("    envmap_sh_transfer          25 "), std::string::npos) << shadowed.out;
+  EXPECT_NE(shadowed.out.find("    envmap_sh_transfer_std_error 25 "), std::string::npos) << shadowed.out;
+  expectError("shade " + mesh + " --envmap " + map + " --envmap-order 3 -o " + relit,
+    "--envmap-order: only --envmap-estimator prt has an order");
+  expectError("shade " + mesh + prt + "--envmap-directions mis -o " + relit,
+    "--envmap-directions mis: prt draws its shadow rays by the cosine, the density its transfer vectors are "
+    "estimated for: leave --envmap-directions out");
+  // Under a tolerance the shadowed transfer's fixed count is refused, saying what to use.
+  const Result bounded = shadelab("shade " + mesh + prt + "--shadows --tolerance 0.05 -o " + relit);
+  EXPECT_EQ(bounded.exitCode, 1);
+  EXPECT_NE(bounded.err.find("its shadowed transfer vectors are estimated from a fixed \"samples\" count"),
+    std::string::npos) << bounded.err;
+
+  // A mesh without transfer vectors, or with two, is refused, saying what to do.
+  expectError("relight " + mesh + " --envmap " + map + " -o " + relit,
+    mesh + ": the input has no point array whose name ends in 'sh_transfer': shade the mesh with \"estimator\": "
+           "\"prt\" (shadelab shade --envmap-estimator prt) first");
+  expectError("relight " + unturned + " --envmap " + map + " --transfer key_sh_transfer -o " + relit,
+    unturned + ": the input has no point array 'key_sh_transfer'");
+  expectError("relight " + unturned + " --envmap " + (folder / "none.hdr").string() + " -o " + relit,
+    unturned + ": " + (folder / "none.hdr").string() + ": no such file");
+  expectError("relight " + unturned + " --envmap " + map + " --transfer envmap_irradiance -o " + relit,
+    unturned + ": point array 'envmap_irradiance' is not a transfer vector: it must be numeric, with 9, 16 or 25 "
+               "components (orders 2, 3, 4), not 3");
+}
+
 TEST_F(Cli, AnyMeshWithoutASceneUnderTheDefaultLightKit)
 {
   // spot.obj as vtkOBJReader splits it: one point set per triangle, welded for its normals.

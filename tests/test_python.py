@@ -269,5 +269,33 @@ class Properties(unittest.TestCase):
         self.assertIn("Cast up to", seen.GetReport())
 
 
+class Relighting(unittest.TestCase):
+    def test_relight_is_the_command_lines_and_says_why_it_cannot(self):
+        studio_map = os.path.join(DATA, "envmaps", "studio_small_03_1k.hdr")
+        sunset = os.path.join(DATA, "envmaps", "venice_sunset_1k.hdr")
+        transfer = os.path.join(WORK, "transfer.vtp")
+        subprocess.run([SHADELAB, "shade", BUNNY, "-o", transfer, "--envmap", studio_map, "--envmap-estimator", "prt",
+                        "--envmap-order", "4", "-a", "envmap_sh_transfer"], check=True, capture_output=True)
+        relit_file = os.path.join(WORK, "relit.vtp")
+        subprocess.run([SHADELAB, "relight", transfer, "--envmap", sunset, "--rotation", "30", "--intensity", "2",
+                        "--name", "sunset", "-o", relit_file], check=True, capture_output=True)
+        reader = vtkXMLPolyDataReader()
+        reader.SetFileName(transfer)
+        reader.Update()
+        relit = shadelab.relight(reader.GetOutput(), sunset, rotation=30, intensity=2, output_array="sunset")
+        reader.SetFileName(relit_file)
+        reader.Update()
+        expected = arrays_of(reader.GetOutput())
+        actual = arrays_of(relit)
+        self.assertEqual(actual["sunset"].shape, (35947, 3))
+        self.assertTrue(np.array_equal(expected["sunset"], actual["sunset"]))
+        # Twice the intensity, twice the irradiance (to float32's rounding).
+        once = arrays_of(shadelab.relight(reader.GetOutput(), sunset, rotation=30, transfer_array="envmap_sh_transfer"))
+        self.assertTrue(np.allclose(2 * once["relit_irradiance"], actual["sunset"], rtol=1e-6, atol=1e-6))
+        with self.assertRaisesRegex(RuntimeError, "the input has no point array whose name ends in 'sh_transfer'"):
+            with ErrorText():
+                shadelab.relight(read_bunny(), sunset)
+
+
 if __name__ == "__main__":
     unittest.main(verbosity=2)

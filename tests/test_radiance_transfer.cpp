@@ -1,5 +1,7 @@
-// Precomputed radiance transfer's core (docs/formulas.md section 12.9): the unshadowed transfer
-// against R&H's nine coefficients, and the shadowed one against closed forms.
+// Precomputed radiance transfer (docs/formulas.md sections 12.9 and 12.10): the unshadowed
+// transfer against R&H's nine coefficients, the shadowed one against closed forms, and the
+// "prt" estimator against the "sh" and brute-force ones, turned and not.
+#include "EnvironmentLightEstimator.h"
 #include "PolygonIrradiance.h"
 #include "RadianceTransfer.h"
 #include "SampleSequence.h"
@@ -7,8 +9,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
+#include <string>
 
 namespace
 {
@@ -138,4 +142,120 @@ TEST(RadianceTransfer, AConstantSkyOverAnOpenBoxGivesTheOpeningsFormFactorOnTheF
   // pi L sqrt(1/4 / 256).
   EXPECT_LT(std::sqrt(squares / count), pi * radiance / (2 * std::sqrt(256.0)));
 }
+}
+
+namespace
+{
+const std::string studioMap = SHADELAB_SOURCE_DIR "/data/envmaps/studio_small_03_1k.hdr";
+const std::string veniceMap = SHADELAB_SOURCE_DIR "/data/envmaps/venice_sunset_1k.hdr";
+
+EnvironmentLight transferLight(const std::string& file, EnvironmentEstimator estimator, int order, double rotation)
+{
+  EnvironmentLight light;
+  light.file = file;
+  light.map = std::make_shared<const EnvironmentMap>(readEnvironmentMap(file));
+  light.estimator = estimator;
+  light.shOrder = order;
+  light.rotationDegrees = rotation;
+  light.color = Rgb(1.0, 0.8, 0.5);
+  light.intensity = 1.5;
+  return light;
+}
+
+SurfacePoint facing(const glm::dvec3& n)
+{
+  return { glm::dvec3(0.0), n, n, 0 };
+}
+
+std::vector<glm::dvec3> randomNormals(int count, std::uint64_t seed)
+{
+  std::mt19937_64 random(seed);
+  std::normal_distribution<double> normal;
+  std::vector<glm::dvec3> normals;
+  for (int k = 0; k < count; ++k)
+  {
+    normals.push_back(glm::normalize(glm::dvec3(normal(random), normal(random), normal(random))));
+  }
+  return normals;
+}
+}
+
+TEST(RadianceTransfer, TheTruncatedCosineErrsMostAtTheHorizon)
+{
+  // max(0, t) less its Legendre series to band N, scanned over [-1, 1]: never above the peak
+  // the bound charges, which is reached at t = 0.
+  EXPECT_DOUBLE_EQ(clampedCosineTruncationPeak(2), 3.0 / 32);
+  EXPECT_DOUBLE_EQ(clampedCosineTruncationPeak(3), 3.0 / 32);
+  EXPECT_DOUBLE_EQ(clampedCosineTruncationPeak(4), 15.0 / 256);
+  for (int order = 2; order <= largestShOrder; ++order)
+  {
+    double largest = 0;
+    for (int step = 0; step <= 200000; ++step)
+    {
+      const double t = -1 + step / 100000.0;
+      double previous = 1, legendre = t, series = clampedCosineBand(0) / (4 * pi);
+      for (int l = 1; l <= order; ++l)
+      {
+        series += clampedCosineBand(l) * (2 * l + 1) / (4 * pi) * legendre;
+        const double next = ((2 * l + 1) * t * legendre - l * previous) / (l + 1); // Bonnet's recursion
+        previous = legendre;
+        legendre = next;
+      }
+      largest = std::max(largest, std::abs(series - std::max(0.0, t)));
+    }
+    EXPECT_NEAR(largest, clampedCosineTruncationPeak(order), 1e-15) << order;
+  }
+  EXPECT_THROW(clampedCosineTruncationPeak(1), std::invalid_argument);
+  EXPECT_THROW(clampedCosineTruncationPeak(5), std::invalid_argument);
+}
+
+TEST(RadianceTransfer, OrderTwoWithoutShadowsIsTheShEstimatorToRounding)
+{
+  // The same nine coefficients, one way dotted with A_l Y_lm(n) after turning them into the
+  // world, the other R&H's polynomial composed with the turn: the same irradiance to rounding.
+  const EnvironmentLightEstimator sh(transferLight(studioMap, EnvironmentEstimator::SphericalHarmonics, 2, 37), 0, {});
+  const EnvironmentLightEstimator prt(transferLight(studioMap, EnvironmentEstimator::PrecomputedTransfer, 2, 37), 0, {});
+  for (const glm::dvec3& n : randomNormals(200, 5))
+  {
+    const DistributedTerms a = sh.estimate(facing(n)), b = prt.estimate(facing(n));
+    for (int c = 0; c < 3; ++c)
+    {
+      EXPECT_NEAR(b.irradiance[c], a.irradiance[c], 1e-12 * largestComponent(glm::abs(a.irradiance)) + 1e-15);
+    }
+    const TransferVector transfer = unshadowedTransfer(2, n);
+    EXPECT_TRUE(std::equal(transfer.begin(), transfer.end(), b.transfer.begin()));
+    EXPECT_EQ(b.transferStdError, TransferVector{});
+  }
+}
+
+TEST(RadianceTransfer, TurningTheMapTurnsItsCoefficients)
+{
+  // A map turned by 70 degrees about +y lights the normal n as the unturned map lights R^T n:
+  // once through the coefficients turned by ShRotation, once through the normal. And each order
+  // is within its band-limit bound of the brute-force sum over every texel.
+  const double angle = 70 * pi / 180;
+  const glm::dmat3 turn(glm::dvec3(std::cos(angle), 0, -std::sin(angle)), glm::dvec3(0, 1, 0),
+    glm::dvec3(std::sin(angle), 0, std::cos(angle)));
+  EnvironmentLight texels = transferLight(veniceMap, EnvironmentEstimator::BruteForce, 2, 70);
+  texels.bruteForceWidth = texels.map->width;
+  const EnvironmentLightEstimator exact(texels, 0, {});
+  for (int order = 2; order <= largestShOrder; ++order)
+  {
+    const EnvironmentLight turnedLight = transferLight(veniceMap, EnvironmentEstimator::PrecomputedTransfer, order, 70);
+    const EnvironmentLightEstimator turned(turnedLight, 0, {});
+    const EnvironmentLightEstimator unturned(transferLight(veniceMap, EnvironmentEstimator::PrecomputedTransfer, order, 0), 0, {});
+    const double bound = largestComponent(turnedLight.color * turnedLight.intensity *
+      shIrradianceErrorBound(*turnedLight.map, order));
+    for (const glm::dvec3& n : randomNormals(40, 11 + order))
+    {
+      const Rgb e = turned.estimate(facing(n)).irradiance;
+      const Rgb there = unturned.estimate(facing(glm::transpose(turn) * n)).irradiance;
+      const Rgb sum = exact.estimate(facing(n)).irradiance;
+      for (int c = 0; c < 3; ++c)
+      {
+        EXPECT_NEAR(e[c], there[c], 1e-12 * largestComponent(glm::abs(there))) << order;
+        EXPECT_LE(std::abs(e[c] - sum[c]), bound) << order;
+      }
+    }
+  }
 }

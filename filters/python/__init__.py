@@ -7,6 +7,41 @@
 The filters are VTK algorithms like any other (docs/guide/cpp-and-python.md). Importing this package
 also imports the vtkmodules the filters are built on.
 """
-from .ShadeLabFilters import vtkLocalReflectanceFilter, vtkMeshVisibilityFilter, vtkShadingNormalsFilter
+from vtkmodules.util.misc import calldata_type
+from vtkmodules.util.vtkConstants import VTK_STRING
 
-__all__ = ["vtkLocalReflectanceFilter", "vtkMeshVisibilityFilter", "vtkShadingNormalsFilter"]
+from .ShadeLabFilters import (vtkLocalReflectanceFilter, vtkMeshVisibilityFilter, vtkShadingNormalsFilter,
+                              vtkTransferRelightFilter)
+
+__all__ = ["vtkLocalReflectanceFilter", "vtkMeshVisibilityFilter", "vtkShadingNormalsFilter",
+           "vtkTransferRelightFilter", "relight"]
+
+
+def relight(mesh, environment_map, rotation=0.0, intensity=1.0, color=(1.0, 1.0, 1.0), transfer_array="",
+            output_array="relit_irradiance"):
+    """The mesh (a vtkPolyData shaded with "estimator": "prt") with the irradiance under another map.
+
+    Each vertex's transfer vector (transfer_array, by default the one array ending in
+    "sh_transfer") is dotted with environment_map's coefficients, the map turned by rotation
+    degrees about +y and scaled by color x intensity, with no ray traced; the result is the RGB
+    point array output_array. Raises RuntimeError with the filter's message when it cannot.
+    """
+    relighting = vtkTransferRelightFilter()
+    relighting.SetInputData(mesh)
+    relighting.SetEnvironmentMapFileName(str(environment_map))
+    relighting.SetRotation(rotation)
+    relighting.SetIntensity(intensity)
+    relighting.SetColor(*color)
+    relighting.SetTransferArrayName(transfer_array)
+    relighting.SetOutputArrayName(output_array)
+    messages = []
+
+    @calldata_type(VTK_STRING)
+    def keep(caller, event, text):
+        messages.append(text)
+
+    relighting.AddObserver("ErrorEvent", keep)
+    relighting.Update()
+    if messages:
+        raise RuntimeError(messages[0])
+    return relighting.GetOutput()

@@ -82,7 +82,7 @@ public:
         if (request.lights[l][t])
         {
           outputs.lights[l][t] = add(shadelab::lightArrayName(prefix, scene.lights[l].name, LightTerm(t)),
-            shadelab::termInfo(LightTerm(t)).components, count);
+            shadelab::lightTermComponents(scene.lights[l], LightTerm(t)), count);
         }
       }
     }

@@ -13,6 +13,7 @@
 // kd Ld max(0, n.s) att and ks Ls lobe att are for a point light.
 #include "Material.h"
 #include "Reflectance.h"
+#include "ShBands.h"
 
 #include <cstdint>
 #include <memory>
@@ -45,6 +46,10 @@ struct DistributedTerms
   /// Drawn to a target (SequentialSampling.h): stopped at the maximum with a standard error
   /// still above it.
   bool shortOfTarget = false;
+  /// Precomputed radiance transfer only (RadianceTransfer.h): the vertex's transfer vector in
+  /// world axes and its coefficients' standard errors (0 without shadows), 0 past its order's.
+  ShBasis transfer{};
+  ShBasis transferStdError{};
 };
 
 /// The specular lobe for light arriving from the unit direction s (docs/formulas.md sections 4

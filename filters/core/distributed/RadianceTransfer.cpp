@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace shadelab
 {
@@ -37,25 +38,56 @@ Rgb irradianceFromTransfer(const ShCoefficients& radiance, const TransferVector&
   return sum;
 }
 
-TransferEstimate::TransferEstimate(int order, bool stratified)
+Rgb bandLimitError(const EnvironmentMap& map, const ShCoefficients& coefficients)
+{
+  int order = 0;
+  while (shCount(order) < int(coefficients.size()))
+  {
+    ++order;
+  }
+  requireShOrder(order, "bandLimitError");
+  Rgb error(0.0);
+  for (int row = 0; row < map.height; ++row)
+  {
+    const double solidAngle = texelSolidAngle(row, map.width, map.height);
+    for (int column = 0; column < map.width; ++column)
+    {
+      const Rgb limited = irradianceFromTransfer(coefficients, shBasis(order, texelCentreDirection(map, column, row)));
+      error += glm::abs(map.texel(column, row) - limited) * solidAngle;
+    }
+  }
+  return error;
+}
+
+TransferEstimate::TransferEstimate(int order, bool stratified, ShCoefficients radiance)
   : order_((requireShOrder(order, "TransferEstimate"), order))
   , estimates_((shCount(order) + 2) / 3, MonteCarloEstimate(stratified))
+  , radiance_(std::move(radiance))
+  , irradiance_(stratified)
 {
+  if (radiance_.size() > std::size_t(shCount(order)))
+  {
+    throw std::invalid_argument("TransferEstimate: " + std::to_string(radiance_.size()) +
+      " radiance coefficients, more than order " + std::to_string(order) + "'s " + std::to_string(shCount(order)));
+  }
 }
 
 void TransferEstimate::add(const glm::dvec3& direction, bool visible)
 {
   // With pdf cos / pi, a sample of V max(0, n.w) Y_k is pi V Y_k(w); the last group padded.
   std::array<double, 3 * largestGroups> sample{};
+  Rgb radiance(0.0);
   if (visible)
   {
     const ShBasis basis = shBasis(order_, direction);
     std::copy(basis.begin(), basis.end(), sample.begin());
+    radiance = irradianceFromTransfer(radiance_, basis); // L(w) limited to the bands: sum of L_k Y_k(w)
   }
   for (std::size_t g = 0; g < estimates_.size(); ++g)
   {
     estimates_[g].add(samplePi * Rgb(sample[3 * g], sample[3 * g + 1], sample[3 * g + 2]));
   }
+  irradiance_.add(samplePi * radiance);
 }
 
 namespace

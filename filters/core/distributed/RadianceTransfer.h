@@ -24,13 +24,22 @@ TransferVector unshadowedTransfer(int order, const glm::dvec3& unitNormal);
 /// The irradiance sum of L_k T_k over the coefficients given (at most a transfer vector's).
 Rgb irradianceFromTransfer(const ShCoefficients& radiance, const TransferVector& transfer);
 
+/// The integral over the sphere of |L(w) - sum of L_k Y_k(w)|, the map's radiance less its
+/// coefficients' band-limited one, per channel (texel by texel): a bound on how far the
+/// irradiance from any transfer vector, shadowed or not, is from the map's, since the transfer's
+/// V(w) max(0, n.w) lies in [0, 1] (docs/formulas.md section 12.10).
+Rgb bandLimitError(const EnvironmentMap& map, const ShCoefficients& coefficients);
+
 /// The shadowed transfer estimated from cosine-weighted directions about the normal (pdf
 /// cos / pi): each sample is pi V(w_j) Y_k(w_j), added in order, stratified or not as
-/// MonteCarloEstimate takes them (whose standard errors it uses).
+/// MonteCarloEstimate takes them (whose standard errors it uses). Given a radiance's
+/// coefficients, also the irradiance under it from the same samples, pi V(w_j) L(w_j) with L
+/// limited to their bands: the dot product of the coefficients with value(), with its own
+/// standard error (the coefficients' errors are correlated, so theirs would not give it).
 class TransferEstimate
 {
 public:
-  TransferEstimate(int order, bool stratified);
+  TransferEstimate(int order, bool stratified, ShCoefficients radiance = {});
 
   /// One cosine-weighted direction, and whether the mesh lets its light through.
   void add(const glm::dvec3& direction, bool visible);
@@ -38,6 +47,9 @@ public:
   TransferVector value() const;
   /// Each coefficient's; needs at least 2 samples.
   TransferVector standardError() const;
+  /// The irradiance under the radiance given, and its standard error (2 samples or more).
+  Rgb irradiance() const { return irradiance_.mean(); }
+  Rgb irradianceStandardError() const { return irradiance_.standardError(); }
 
 private:
   /// The coefficients three at a time, as the RGB channels of one estimate each, so that one
@@ -45,5 +57,7 @@ private:
   static constexpr int largestGroups = (shCount(largestShOrder) + 2) / 3;
   int order_;
   std::vector<MonteCarloEstimate> estimates_; // (shCount(order_) + 2) / 3 of them
+  ShCoefficients radiance_;
+  MonteCarloEstimate irradiance_;
 };
 }

@@ -299,8 +299,31 @@ Rgb irradianceFromSh9(const ShCoefficients9& coefficients, const glm::dvec3& uni
   return irradiancePolynomial(coefficients)(unitNormal);
 }
 
-Rgb sh9IrradianceErrorBound(const EnvironmentMap& map)
+double clampedCosineTruncationPeak(int order)
 {
+  if (order < 2 || order > largestShOrder)
+  {
+    throw std::invalid_argument("clampedCosineTruncationPeak: order " + std::to_string(order) + " is not 2 to " +
+      std::to_string(largestShOrder));
+  }
+  // The series at t = 0: sum of A_l (2l + 1) / (4 pi) P_l(0), P_l(0) = 0 for odd l and
+  // (-1)^(l/2) (l - 1)!! / l!! for even l. Orders 2 to 4 err most there (a test scans [-1, 1]).
+  double atHorizon = 0;
+  double legendreAtZero = 1;
+  for (int l = 0; l <= order; l += 2)
+  {
+    if (l > 0)
+    {
+      legendreAtZero *= -double(l - 1) / double(l);
+    }
+    atHorizon += clampedCosineBand(l) * (2 * l + 1) / (4 * pi) * legendreAtZero;
+  }
+  return std::abs(atHorizon);
+}
+
+Rgb shIrradianceErrorBound(const EnvironmentMap& map, int order)
+{
+  const double peak = clampedCosineTruncationPeak(order);
   Rgb total(0.0);
   for (int row = 0; row < map.height; ++row)
   {
@@ -310,6 +333,6 @@ Rgb sh9IrradianceErrorBound(const EnvironmentMap& map)
       total += map.texel(column, row) * solidAngle;
     }
   }
-  return 3.0 / 32.0 * total;
+  return peak * total;
 }
 }

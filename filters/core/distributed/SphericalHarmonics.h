@@ -11,6 +11,7 @@
 // frame works if the projection and eq. 13 use the same one, as both do here.
 #include "EnvironmentMap.h"
 #include "IrradiancePolynomial.h"
+#include "ShBands.h"
 
 #include <glm/mat3x3.hpp>
 
@@ -19,22 +20,6 @@
 
 namespace shadelab
 {
-/// The highest band of a general expansion (precomputed radiance transfer's orders 2 to 4).
-constexpr int largestShOrder = 4;
-/// How many coefficients an expansion to band `order` holds: (order + 1)^2.
-constexpr int shCount(int order)
-{
-  return (order + 1) * (order + 1);
-}
-/// Where Y_lm stands in an expansion: l (l + 1) + m.
-constexpr int shIndex(int l, int m)
-{
-  return l * (l + 1) + m;
-}
-
-/// Y_lm of bands 0 to largestShOrder at shIndex(l, m).
-using ShBasis = std::array<double, shCount(largestShOrder)>;
-
 /// Throws std::invalid_argument, naming `who`, unless 0 <= order <= largestShOrder.
 void requireShOrder(int order, const char* who);
 
@@ -113,7 +98,13 @@ IrradiancePolynomial composedWith(const IrradiancePolynomial& p, const glm::dmat
 /// coefficients represent.
 Rgb irradianceFromSh9(const ShCoefficients9& coefficients, const glm::dvec3& unitNormal);
 
-/// The largest error of the nine coefficients' irradiance at any normal (docs/formulas.md
-/// section 12.5): 3/32 of the map's total radiance times solid angle, per channel.
-Rgb sh9IrradianceErrorBound(const EnvironmentMap& map);
+/// The largest size of max(0, t) less its Legendre series cut after band `order` (2 to
+/// largestShOrder; others throw std::invalid_argument): 3/32 for orders 2 and 3, 15/256 for 4,
+/// each at the horizon t = 0 (docs/formulas.md sections 12.5 and 12.10).
+double clampedCosineTruncationPeak(int order);
+
+/// The largest error at any normal of the irradiance from the map's coefficients to band
+/// `order` (2 to largestShOrder; docs/formulas.md section 12.5): clampedCosineTruncationPeak
+/// times the map's total radiance times solid angle, per channel.
+Rgb shIrradianceErrorBound(const EnvironmentMap& map, int order);
 }

@@ -234,6 +234,11 @@ ShadingKernel<T>::ShadingKernel(
   {
     const LightMethod method = methods.empty() ? LightMethod{} : methods.at(l);
     const std::array<T*, LightTermCount>& out = outputs_.lights[l];
+    components_.emplace_back();
+    for (int t = 0; t < LightTermCount; ++t)
+    {
+      components_.back()[t] = lightTermComponents(scene.lights[l], LightTerm(t));
+    }
     // Only a light whose specular term some array needs, and can be other than 0, has its lobe
     // evaluated (or integrated).
     const bool needsSpecular = hasSpecularTerm(scene) && (out[int(LightTerm::Specular)] || totalSpecular);
@@ -259,6 +264,7 @@ ShadingKernel<T>::ShadingKernel(
         l < inputs_.lightHiddenSamples.size() ? inputs_.lightHiddenSamples[l] : nullptr,
         l < inputs_.lightShadowedTerms.size() ? inputs_.lightShadowedTerms[l] : nullptr));
       distributedLights_.back().shortOfTarget = l < outputs_.shortOfTarget.size() ? outputs_.shortOfTarget[l] : nullptr;
+      distributedLights_.back().transferComponents = components_.back()[int(LightTerm::ShTransfer)];
     }
     else
     {
@@ -642,6 +648,17 @@ void ShadingKernel<T>::estimateDistributedLight(const DistributedLightSlot& ligh
     {
       light.shortOfTarget[i] = terms.shortOfTarget ? 1 : 0;
     }
+    const std::size_t components = std::size_t(light.transferComponents);
+    if (T* transfer = out[int(LightTerm::ShTransfer)])
+    {
+      std::transform(terms.transfer.begin(), terms.transfer.begin() + components, transfer + components * i,
+        [](double value) { return T(value); });
+    }
+    if (T* transferError = out[int(LightTerm::ShTransferStdError)])
+    {
+      std::transform(terms.transferStdError.begin(), terms.transferStdError.begin() + components,
+        transferError + components * i, [](double value) { return T(value); });
+    }
   }
 }
 
@@ -797,12 +814,12 @@ void ShadingKernel<T>::shadeBlock(const VertexBlock<T>& b) const
     {
       continue;
     }
-    for (const auto& out : outputs_.lights)
+    for (std::size_t l = 0; l < outputs_.lights.size(); ++l)
     {
       for (int t = 0; t < LightTermCount; ++t)
       {
-        const int components = termInfo(LightTerm(t)).components;
-        if (T* array = out[t])
+        const int components = components_[l][t];
+        if (T* array = outputs_.lights[l][t])
         {
           std::fill_n(array + components * i, components, T(0));
         }

@@ -156,6 +156,7 @@ private:
     Rgb kd{ 0.0 }, ks{ 0.0 };
     bool needsSpecular = false;
     std::array<T*, LightTermCount> out{};
+    int transferComponents = 0; // precomputed transfer: its coefficients per vertex
     std::uint8_t* shortOfTarget = nullptr; // ShadingOutputs::shortOfTarget's
   };
 
@@ -179,6 +180,7 @@ private:
 
   std::vector<PreparedLight> lights_;
   std::vector<DistributedLightSlot> distributedLights_;
+  std::vector<std::array<int, LightTermCount>> components_; // follows scene.lights: lightTermComponents
   ShadingOutputs<T> outputs_;
   ShadingInputs inputs_;
   Vec3<T> ambient_{ 0 }; // ka La, times the occlusion where there is one

@@ -26,7 +26,8 @@ std::string resolvePath(const std::string& path, const std::string& sceneFile)
 const std::vector<SceneFileType>& EnvironmentLight::sceneFileTypes()
 {
   static const std::vector<SceneFileType> types = { { "environment",
-    { "file", "rotation", "estimator", "directions", "samples", "max_samples", "stratified", "brute_force_width" } } };
+    { "file", "rotation", "estimator", "directions", "samples", "max_samples", "stratified", "brute_force_width",
+      "order" } } };
   return types;
 }
 
@@ -43,13 +44,26 @@ EnvironmentLight EnvironmentLight::read(const JsonNode& node, const SceneFileTyp
   {
     light.estimator = node.at("estimator").choice<EnvironmentEstimator>(
       { { "sh", EnvironmentEstimator::SphericalHarmonics }, { "monte_carlo", EnvironmentEstimator::MonteCarlo },
-        { "brute_force", EnvironmentEstimator::BruteForce } });
+        { "brute_force", EnvironmentEstimator::BruteForce }, { "prt", EnvironmentEstimator::PrecomputedTransfer } });
+  }
+  if (node.has("order"))
+  {
+    if (light.estimator != EnvironmentEstimator::PrecomputedTransfer)
+    {
+      node.at("order").fail("only the \"prt\" estimator has an order: remove it, or give \"estimator\": \"prt\"");
+    }
+    light.shOrder = node.at("order").wholeNumber(2, largestShOrder);
   }
   if (node.has("directions"))
   {
     light.directions = node.at("directions").choice<EnvironmentDirections>(
       { { "luminance", EnvironmentDirections::Luminance }, { "cosine", EnvironmentDirections::Cosine },
         { "mis", EnvironmentDirections::Mis } });
+    if (light.estimator == EnvironmentEstimator::PrecomputedTransfer && light.directions != EnvironmentDirections::Cosine)
+    {
+      node.at("directions").fail("\"prt\" draws its shadow rays by the cosine, the density its transfer vectors are "
+                                 "estimated for: remove \"directions\"");
+    }
   }
   light.sampling = readSampling(node);
   if (node.has("brute_force_width"))
@@ -82,6 +96,8 @@ void EnvironmentLight::check(LightChecks& checks) const
   checks.strength(color, intensity);
   checks.distributed(sampling);
   checks.require(std::isfinite(rotationDegrees), "/rotation", "must be a finite angle in degrees");
+  checks.require(estimator != EnvironmentEstimator::PrecomputedTransfer || (shOrder >= 2 && shOrder <= largestShOrder),
+    "/order", "must be a whole number from 2 to " + std::to_string(largestShOrder));
   checks.require(map != nullptr, "/file", "no environment map was loaded for this light");
   if (!map)
   {
@@ -112,6 +128,10 @@ double EnvironmentLight::peakContribution(const Material& m) const
 
 bool EnvironmentLight::hasTerm(LightTerm term) const
 {
+  if (term == LightTerm::ShTransfer)
+  {
+    return estimator == EnvironmentEstimator::PrecomputedTransfer;
+  }
   // Every estimator but the brute-force sum samples S.
   return distributedLightHasTerm(
     term, estimator == EnvironmentEstimator::MonteCarlo, estimator != EnvironmentEstimator::BruteForce);

@@ -13,16 +13,20 @@ namespace shadelab
 struct EnvironmentMap; // EnvironmentMap.h
 
 /// How the irradiance from an environment map is estimated. The specular term is estimated by
-/// the same sum for BruteForce, by sampling for MonteCarlo and SphericalHarmonics (nine
-/// coefficients hold too little of a map for a lobe sharper than the cosine). With shadows,
-/// BruteForce and SphericalHarmonics give their unshadowed E times the visible fraction of
-/// `sampling.samples` directions drawn by `directions`, and S from those samples
-/// (docs/formulas.md section 12.7).
+/// the same sum for BruteForce, by sampling for the others (a few bands of coefficients hold
+/// too little of a map for a lobe sharper than the cosine). With shadows, BruteForce and
+/// SphericalHarmonics give their unshadowed E times the visible fraction of `sampling.samples`
+/// directions drawn by `directions`, and S from those samples (docs/formulas.md section 12.7).
+/// PrecomputedTransfer's shadows are in its transfer vectors instead (section 12.10).
 enum class EnvironmentEstimator
 {
   BruteForce,         // every texel of the map downsampled to `bruteForceWidth`, as a distant light
   MonteCarlo,         // `sampling.samples` directions, drawn by `directions`
   SphericalHarmonics, // 9 coefficients (Ramamoorthi and Hanrahan 2001), diffuse only
+  /// The map's coefficients to band `shOrder` dotted with each vertex's transfer vector (Sloan,
+  /// Kautz and Snyder 2002), which is written out so that other maps can relight the mesh; with
+  /// shadows, estimated from `sampling.samples` cosine-weighted rays (a fixed count).
+  PrecomputedTransfer,
 };
 
 /// Where Monte Carlo directions for an environment map come from.
@@ -47,6 +51,14 @@ struct EnvironmentLight
   EnvironmentDirections directions = EnvironmentDirections::Luminance;
   Sampling sampling;
   int bruteForceWidth = 128;
+  int shOrder = 2; // PrecomputedTransfer's highest band, 2 to largestShOrder
+
+  /// The directions of its samples: PrecomputedTransfer's are always cosine-weighted, the
+  /// density its transfer estimate is written for.
+  EnvironmentDirections sampledDirections() const
+  {
+    return estimator == EnvironmentEstimator::PrecomputedTransfer ? EnvironmentDirections::Cosine : directions;
+  }
 
   SHADELAB_LIGHT_TYPE(EnvironmentLight, Distributed, false, true);
 };

@@ -2,10 +2,12 @@
 
 #include "LobeSampling.h"
 #include "SampleWarps.h"
+#include "ShRotation.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 namespace shadelab
 {
@@ -22,6 +24,18 @@ glm::dmat3 rotationAboutY(double degrees)
 }
 }
 
+ShCoefficients worldRadianceCoefficients(const EnvironmentLight& light, int order)
+{
+  ShCoefficients coefficients = projectRadiance(*light.map, order);
+  for (Rgb& coefficient : coefficients)
+  {
+    coefficient *= light.color * light.intensity; // the coefficients are linear in the radiance
+  }
+  // In world axes, so that relighting turns the map's 9 to 25 coefficients rather than every
+  // vertex's transfer vector.
+  return ShRotation(order, rotationAboutY(light.rotationDegrees))(coefficients);
+}
+
 EnvironmentLightEstimator::EnvironmentLightEstimator(
   const EnvironmentLight& light, std::uint64_t lightIndex, const LobeModel& lobe, const SampleTargets& targets)
   : light_(light)
@@ -32,6 +46,7 @@ EnvironmentLightEstimator::EnvironmentLightEstimator(
   , worldToMap_(glm::transpose(rotationAboutY(light.rotationDegrees)))
   , mapToWorld_(rotationAboutY(light.rotationDegrees))
 {
+  light_.directions = light.sampledDirections();
   const EnvironmentMap& map = *light.map;
   switch (light.estimator)
   {
@@ -60,13 +75,17 @@ EnvironmentLightEstimator::EnvironmentLightEstimator(
       irradiance_ = composedWith(irradiancePolynomial(coefficients), worldToMap_);
       break;
     }
+    case EnvironmentEstimator::PrecomputedTransfer:
+      transferRadiance_ = worldRadianceCoefficients(light, light.shOrder);
+      break;
     case EnvironmentEstimator::MonteCarlo:
       break;
   }
   // Sampling by luminance draws the light's directions (every estimator's with shadows), and
-  // the SH estimator's S.
-  const bool shEstimatesSpecular = light.estimator == EnvironmentEstimator::SphericalHarmonics && lobe.wanted();
-  if (light.directions != EnvironmentDirections::Cosine || shEstimatesSpecular)
+  // the SH and transfer estimators' S.
+  const bool coefficientsEstimateE = light.estimator == EnvironmentEstimator::SphericalHarmonics ||
+    light.estimator == EnvironmentEstimator::PrecomputedTransfer;
+  if (light_.directions != EnvironmentDirections::Cosine || (coefficientsEstimateE && lobe.wanted()))
   {
     sampler_.emplace(map);
   }
@@ -202,13 +221,22 @@ DistributedTerms EnvironmentLightEstimator::estimate(const SurfacePoint& point) 
     case EnvironmentEstimator::MonteCarlo:
       return monteCarlo(n, v, point.index, true, light_.directions, targets_, {});
     case EnvironmentEstimator::SphericalHarmonics:
+    case EnvironmentEstimator::PrecomputedTransfer:
       break;
   }
-  // Nine coefficients cannot hold a lobe sharper than the cosine: S is sampled, by luminance and by the lobe.
+  // A few bands cannot hold a lobe sharper than the cosine: S is sampled, by luminance and by the lobe.
   DistributedTerms terms = lobe_.wanted()
     ? monteCarlo(n, v, point.index, false, EnvironmentDirections::Luminance, targets_, {})
     : DistributedTerms{};
-  terms.irradiance = (*irradiance_)(point.normal);
+  if (light_.estimator == EnvironmentEstimator::PrecomputedTransfer)
+  {
+    terms.transfer = unshadowedTransfer(light_.shOrder, point.normal);
+    terms.irradiance = irradianceFromTransfer(transferRadiance_, terms.transfer);
+  }
+  else
+  {
+    terms.irradiance = (*irradiance_)(point.normal);
+  }
   return terms;
 }
 
@@ -260,6 +288,12 @@ DistributedTerms EnvironmentLightEstimator::shadowedEstimate(const SurfacePoint&
     case EnvironmentEstimator::SphericalHarmonics:
       unshadowed = (*irradiance_)(point.normal);
       break;
+    case EnvironmentEstimator::PrecomputedTransfer:
+      if (!shadowing.fixed)
+      {
+        throw std::logic_error("precomputed transfer is drawn to a fixed count, not in rounds to a target");
+      }
+      return shadowedTransfer(point, n, v, *shadowing.fixed);
   }
   // As the exact estimator of an area light: where every ray gets through, E is the unshadowed
   // E bit for bit; drawn to E's target over the unshadowed E where there is one.
@@ -267,6 +301,26 @@ DistributedTerms EnvironmentLightEstimator::shadowedEstimate(const SurfacePoint&
     monteCarlo(n, v, point.index, false, light_.directions, withVisibilityTarget(targets_, unshadowed), shadowing);
   terms.irradiance = unshadowed * terms.visibility;
   terms.irradianceStdError = unshadowed * terms.visibilityStdError;
+  return terms;
+}
+
+DistributedTerms EnvironmentLightEstimator::shadowedTransfer(
+  const SurfacePoint& point, const glm::dvec3& n, const glm::dvec3& v, const HiddenSamples& hidden) const
+{
+  // S and the visible fraction from the same cosine-weighted samples as the rays (S from the
+  // light's samples alone, as the other estimators' with shadows).
+  DistributedTerms terms = monteCarlo(n, v, point.index, false, light_.directions, {}, { &hidden, nullptr });
+  const SampleSequence sequence(lightIndex_, point.index, light_.sampling);
+  TransferEstimate transfer(light_.shOrder, light_.sampling.stratified, transferRadiance_);
+  for (int j = 0; j < sequence.count(); ++j)
+  {
+    // The direction of ray j (shadowRaysOf), in world axes.
+    transfer.add(mapToWorld_ * drawDirection(n, sequence.point(j), light_.directions), !hidden.hidden(j));
+  }
+  terms.transfer = transfer.value();
+  terms.transferStdError = transfer.standardError();
+  terms.irradiance = transfer.irradiance();
+  terms.irradianceStdError = transfer.irradianceStandardError();
   return terms;
 }
 }

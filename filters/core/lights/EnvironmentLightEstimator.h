@@ -1,12 +1,14 @@
 #pragma once
 // Estimators of E and S (DistributedLight.h) for an environment map: the brute-force sum
-// over texels, Monte Carlo, or nine spherical-harmonic coefficients; with shadows, each of them
-// with the rays of its samples (docs/formulas.md section 12.7).
+// over texels, Monte Carlo, nine spherical-harmonic coefficients, or precomputed radiance
+// transfer; with shadows, each of them with the rays of its samples (docs/formulas.md sections
+// 12.7 and 12.10).
 #include "DistributedLight.h"
 #include "SequentialSampling.h"
 #include "EnvironmentLight.h"
 #include "EnvironmentMap.h"
 #include "EnvironmentSampler.h"
+#include "RadianceTransfer.h"
 #include "SampledTerms.h"
 #include "SphericalHarmonics.h"
 
@@ -17,6 +19,12 @@
 
 namespace shadelab
 {
+/// The light's radiance (its map times colour times intensity) as spherical-harmonic
+/// coefficients of bands 0 to order (0 to largestShOrder) in world axes, the map turned by its
+/// rotation: what precomputed transfer dots each vertex's transfer vector with, when it shades
+/// and when it relights (docs/formulas.md section 12.10).
+ShCoefficients worldRadianceCoefficients(const EnvironmentLight& light, int order);
+
 class EnvironmentLightEstimator final : public DistributedLightEstimator, public ShadowedLightEstimator
 {
 public:
@@ -30,7 +38,8 @@ public:
   void shadowRays(const SurfacePoint& point, ShadowRay* rays) const override;
   /// Monte Carlo: E and S from the samples that get through. Brute force and spherical
   /// harmonics: their unshadowed E times the samples' visible fraction, S from the samples that
-  /// get through (a lobe's own directions would need rays of their own).
+  /// get through (a lobe's own directions would need rays of their own). Precomputed transfer:
+  /// the transfer vector from the samples, E its dot product with the map's coefficients.
   DistributedTerms estimate(const SurfacePoint& point, const HiddenSamples& hidden) const override;
   DistributedTerms estimate(const SurfacePoint& point, RoundShadows& shadows) const override;
   std::optional<glm::dvec3> emitterCentre() const override { return std::nullopt; }
@@ -53,6 +62,10 @@ private:
   DistributedTerms monteCarlo(const glm::dvec3& n, const glm::dvec3& v, std::uint64_t vertex, bool irradiance,
     EnvironmentDirections directions, const SampleTargets& targets, const SampleShadowing& shadowing) const;
   DistributedTerms shadowedEstimate(const SurfacePoint& point, const SampleShadowing& shadowing) const;
+  /// Precomputed transfer with shadows: n and v in the map's frame, the point's samples hidden
+  /// as `hidden` says (a fixed count).
+  DistributedTerms shadowedTransfer(const SurfacePoint& point, const glm::dvec3& n, const glm::dvec3& v,
+    const HiddenSamples& hidden) const;
   /// The rays of the sequence's samples, from a point of normal n (the map's frame).
   void shadowRaysOf(const glm::dvec3& n, const SampleSequence& sequence, ShadowRay* rays) const;
   /// The sample's direction with its radiance (times the light's colour) over its pdf.
@@ -78,5 +91,6 @@ private:
   std::vector<Texel> texels_;              // BruteForce
   std::optional<EnvironmentSampler> sampler_; // sampling by luminance
   std::optional<IrradiancePolynomial> irradiance_; // SphericalHarmonics
+  ShCoefficients transferRadiance_; // PrecomputedTransfer: the map's coefficients in world axes, scaled
 };
 }

@@ -87,6 +87,8 @@ bool lightHasTerm(const NamedLight& light, LightTerm term)
       return softShadows || lightHasTerm(light.source, term);
     case LightTerm::SpecularStdError:
       return (softShadows && std::holds_alternative<EnvironmentLight>(light.source)) || lightHasTerm(light.source, term);
+    case LightTerm::ShTransferStdError:
+      return softShadows && lightHasTerm(light.source, LightTerm::ShTransfer);
     default:
       return lightHasTerm(light.source, term);
   }

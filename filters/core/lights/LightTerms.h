@@ -27,9 +27,13 @@ enum class LightTerm
   VisibilityStdError, // area lights: the standard error of the sampled visible fraction
   // Area lights and maps drawn to a target ("samples": "auto" under a tolerance):
   ShortOfTarget, // 1 where the vertex stopped at the maximum with a standard error above its target
+  // Maps by precomputed radiance transfer (EnvironmentEstimator::PrecomputedTransfer), as many
+  // components as the light's order has coefficients:
+  ShTransfer,         // the vertex's transfer vector
+  ShTransferStdError, // with shadows: the standard errors of its coefficients
 };
-constexpr int LightTermCount = 18;
-static_assert(static_cast<int>(LightTerm::ShortOfTarget) + 1 == LightTermCount, "LightTermCount is stale");
+constexpr int LightTermCount = 20;
+static_assert(static_cast<int>(LightTerm::ShTransferStdError) + 1 == LightTermCount, "LightTermCount is stale");
 
 /// A light seen from each vertex as one direction: every term up to the specular one, and the
 /// distance only when the light has a position.

@@ -1,5 +1,8 @@
 #include "ArrayCatalog.h"
 
+#include "EnvironmentLight.h"
+#include "SphericalHarmonics.h"
+
 #include <algorithm>
 #include <stdexcept>
 
@@ -30,6 +33,11 @@ const std::array<TermInfo, LightTermCount> lightTerms = { {
   { "short_of_target", 1,
     "with \"samples\": \"auto\" under a tolerance, 1 where the vertex stopped at \"max_samples\" with a standard "
     "error above its target, else 0" },
+  { "sh_transfer", 0,
+    "\"estimator\": \"prt\": the vertex's transfer vector, (order + 1)^2 spherical-harmonic coefficients (world axes, "
+    "Y_lm at l (l + 1) + m) whose dot product with a map's is the irradiance under it; with shadows, from the mesh's "
+    "shadow rays" },
+  { "sh_transfer_std_error", 0, "\"estimator\": \"prt\" with shadows: the standard error of each transfer coefficient" },
 } };
 
 const std::array<TermInfo, TotalTermCount> totalTerms = { {
@@ -72,6 +80,17 @@ const TermInfo& termInfo(TotalTerm term)
 const TermInfo& termInfo(OcclusionTerm term)
 {
   return occlusionTerms[static_cast<int>(term)];
+}
+
+int lightTermComponents(const NamedLight& light, LightTerm term)
+{
+  const int fixed = termInfo(term).components;
+  if (fixed > 0)
+  {
+    return fixed;
+  }
+  const auto* map = std::get_if<EnvironmentLight>(&light.source);
+  return map ? shCount(map->shOrder) : 0;
 }
 
 bool sceneHasTerm(const Scene& scene, OcclusionTerm term)
@@ -152,7 +171,7 @@ std::vector<ArrayDescription> availableArrays(const Scene& scene, const std::str
       if (lightHasTerm(light, LightTerm(t)))
       {
         const TermInfo& info = lightTerms[t];
-        arrays.push_back({ lightArrayName(prefix, light.name, LightTerm(t)), info.components,
+        arrays.push_back({ lightArrayName(prefix, light.name, LightTerm(t)), lightTermComponents(light, LightTerm(t)),
           "light '" + light.name + "': " + info.description });
       }
     }
@@ -282,6 +301,9 @@ ArrayRequest selectArrays(const Scene& scene, const std::vector<std::string>& se
       requestTermOnEveryLight(scene, termInfo(LightTerm::Visibility).name, request);
       requestTermOnEveryLight(scene, termInfo(LightTerm::VisibilityStdError).name, request);
       requestTermOnEveryLight(scene, termInfo(LightTerm::ShortOfTarget).name, request);
+      // Transfer vectors are what a "prt" map is chosen for.
+      requestTermOnEveryLight(scene, termInfo(LightTerm::ShTransfer).name, request);
+      requestTermOnEveryLight(scene, termInfo(LightTerm::ShTransferStdError).name, request);
     }
     else if (entry.rfind("*_", 0) == 0)
     {

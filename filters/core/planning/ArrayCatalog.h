@@ -37,13 +37,16 @@ static_assert(static_cast<int>(OcclusionTerm::ShortOfTarget) + 1 == OcclusionTer
 struct TermInfo
 {
   const char* name;
-  int components;
+  int components; // 0: as many as the light has (lightTermComponents)
   const char* description;
 };
 
 const TermInfo& termInfo(LightTerm term);
 const TermInfo& termInfo(TotalTerm term);
 const TermInfo& termInfo(OcclusionTerm term);
+/// How many components the light's array of the term has: the term's own count, or for a
+/// transfer vector its light's coefficients.
+int lightTermComponents(const NamedLight& light, LightTerm term);
 /// Whether the scene has the occlusion quantity: all but Rays with ambient occlusion, Rays
 /// where its count comes from a tolerance.
 bool sceneHasTerm(const Scene& scene, OcclusionTerm term);
@@ -96,7 +99,8 @@ std::string occlusionArrayName(const std::string& prefix, OcclusionTerm term);
 
 /// The selection the command line documents:
 ///   "default"  the totals and shading_flags, and where the scene has them, ambient_occlusion
-///              with its standard error and each shadowed light's visibility
+///              with its standard error, each shadowed light's visibility and each "prt" map's
+///              transfer vectors
 ///   "totals"   ambient, diffuse, specular, total
 ///   "all"      every array the scene has
 ///   "*_TERM"   TERM for every light that has it, e.g. "*_cos_incidence"

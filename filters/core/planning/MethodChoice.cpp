@@ -99,7 +99,12 @@ EstimatorBounds estimatorBoundsOf(const LightSource& source)
                    : "";
                  if (light.estimator == EnvironmentEstimator::SphericalHarmonics)
                  {
-                   bounds.irradianceError = largestComponent(light.color * light.intensity * sh9IrradianceErrorBound(*light.map));
+                   bounds.irradianceError = largestComponent(light.color * light.intensity * shIrradianceErrorBound(*light.map, 2));
+                 }
+                 if (light.estimator == EnvironmentEstimator::PrecomputedTransfer)
+                 {
+                   bounds.irradianceError =
+                     largestComponent(light.color * light.intensity * shIrradianceErrorBound(*light.map, light.shOrder));
                  }
                },
                [](const auto&) {} },
@@ -123,6 +128,12 @@ LightChoice distributedChoice(const NamedLight& light, const Material& m, bool s
   if (!bounds.unbounded.empty())
   {
     refuse(bounds.unbounded);
+  }
+  const auto* map = std::get_if<EnvironmentLight>(&light.source);
+  if (map && map->estimator == EnvironmentEstimator::PrecomputedTransfer && light.shadows)
+  {
+    refuse("its shadowed transfer vectors are estimated from a fixed \"samples\" count, which no target stops: "
+           "use \"estimator\": \"monte_carlo\" (--envmap-estimator monte_carlo) with " + bounds.autoSamples);
   }
   // Under shadows E is sampled whatever the estimator: an exact or SH E is the unshadowed one
   // times the samples' visible fraction.

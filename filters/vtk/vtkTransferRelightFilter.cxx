@@ -1,0 +1,178 @@
+#include "vtkTransferRelightFilter.h"
+
+#include "EnvironmentLightEstimator.h"
+#include "EnvironmentMap.h"
+#include "RadianceTransfer.h"
+
+#include "vtkArrayDispatch.h"
+#include "vtkDataArrayRange.h"
+#include "vtkInformation.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkSMPTools.h"
+#include "vtkSmartPointer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+vtkStandardNewMacro(vtkTransferRelightFilter);
+
+namespace
+{
+/// The order whose (order + 1)^2 coefficients a transfer vector of this many components holds,
+/// or -1 when the count is no such square (or the order is outside 2 to largestShOrder).
+int orderOfComponents(int components)
+{
+  for (int order = 2; order <= shadelab::largestShOrder; ++order)
+  {
+    if (shadelab::shCount(order) == components)
+    {
+      return order;
+    }
+  }
+  return -1;
+}
+
+/// Each vertex's irradiance, the dot product of the radiance's coefficients with its transfer.
+struct RelightWorker
+{
+  const shadelab::ShCoefficients* radiance;
+
+  template <typename TransferArray, typename IrradianceArray>
+  void operator()(TransferArray* transfer, IrradianceArray* irradiance) const
+  {
+    const auto vectors = vtk::DataArrayTupleRange(transfer);
+    auto out = vtk::DataArrayTupleRange<3>(irradiance);
+    const int components = transfer->GetNumberOfComponents();
+    vtkSMPTools::For(0, transfer->GetNumberOfTuples(),
+      [&](vtkIdType begin, vtkIdType end)
+      {
+        for (vtkIdType i = begin; i < end; ++i)
+        {
+          shadelab::TransferVector vector{};
+          const auto tuple = vectors[i];
+          std::copy(tuple.begin(), tuple.begin() + components, vector.begin());
+          const shadelab::Rgb e = shadelab::irradianceFromTransfer(*radiance, vector);
+          out[i][0] = e.x;
+          out[i][1] = e.y;
+          out[i][2] = e.z;
+        }
+      });
+  }
+};
+}
+
+void vtkTransferRelightFilter::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "EnvironmentMapFileName: " << this->EnvironmentMapFileName << "\n";
+  os << indent << "Rotation: " << this->Rotation << "\n";
+  os << indent << "Intensity: " << this->Intensity << "\n";
+  os << indent << "Color: " << this->Color[0] << " " << this->Color[1] << " " << this->Color[2] << "\n";
+  os << indent << "TransferArrayName: " << this->TransferArrayName << "\n";
+  os << indent << "OutputArrayName: " << this->OutputArrayName << "\n";
+}
+
+vtkDataArray* vtkTransferRelightFilter::FindTransfer(vtkPolyData* input)
+{
+  vtkPointData* points = input->GetPointData();
+  const std::string suffix = "sh_transfer";
+  std::vector<std::string> found;
+  for (int a = 0; a < points->GetNumberOfArrays(); ++a)
+  {
+    const char* name = points->GetArrayName(a);
+    const std::string given = name ? name : "";
+    const bool named = this->TransferArrayName.empty()
+      ? given.size() >= suffix.size() && given.compare(given.size() - suffix.size(), suffix.size(), suffix) == 0
+      : given == this->TransferArrayName;
+    if (named)
+    {
+      found.push_back(given);
+    }
+  }
+  if (found.size() != 1)
+  {
+    std::string names;
+    for (const std::string& name : found)
+    {
+      names += (names.empty() ? "" : ", ") + name;
+    }
+    if (!this->TransferArrayName.empty())
+    {
+      vtkErrorMacro("the input has no point array '" << this->TransferArrayName << "'");
+    }
+    else if (found.empty())
+    {
+      vtkErrorMacro("the input has no point array whose name ends in 'sh_transfer': shade the mesh with "
+                    "\"estimator\": \"prt\" (shadelab shade --envmap-estimator prt) first");
+    }
+    else
+    {
+      vtkErrorMacro("the input has several transfer arrays (" << names << "): set TransferArrayName to one of them");
+    }
+    return nullptr;
+  }
+  vtkDataArray* transfer = points->GetArray(found.front().c_str());
+  if (!transfer || orderOfComponents(transfer->GetNumberOfComponents()) < 0)
+  {
+    vtkErrorMacro("point array '" << found.front() << "' is not a transfer vector: it must be numeric, with 9, 16 or 25 "
+                                 "components (orders 2, 3, 4), not "
+                  << (transfer ? transfer->GetNumberOfComponents() : 0));
+    return nullptr;
+  }
+  return transfer;
+}
+
+int vtkTransferRelightFilter::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
+  vtkPolyData* output = vtkPolyData::GetData(outputVector);
+  output->ShallowCopy(input);
+  this->Report.clear();
+  vtkDataArray* transfer = this->FindTransfer(input);
+  if (!transfer)
+  {
+    return 0;
+  }
+  shadelab::EnvironmentLight light;
+  light.file = this->EnvironmentMapFileName;
+  light.rotationDegrees = this->Rotation;
+  light.intensity = this->Intensity;
+  light.color = shadelab::Rgb(this->Color[0], this->Color[1], this->Color[2]);
+  try
+  {
+    light.map = std::make_shared<const shadelab::EnvironmentMap>(shadelab::readEnvironmentMap(light.file));
+  }
+  catch (const std::runtime_error& error)
+  {
+    vtkErrorMacro(<< error.what());
+    return 0;
+  }
+  if (!std::isfinite(this->Rotation))
+  {
+    vtkErrorMacro("Rotation must be a finite angle in degrees");
+    return 0;
+  }
+  const int order = orderOfComponents(transfer->GetNumberOfComponents());
+  const shadelab::ShCoefficients radiance = shadelab::worldRadianceCoefficients(light, order);
+  vtkSmartPointer<vtkDataArray> irradiance = vtkSmartPointer<vtkDataArray>::Take(transfer->NewInstance());
+  irradiance->SetName(this->OutputArrayName.c_str());
+  irradiance->SetNumberOfComponents(3);
+  irradiance->SetNumberOfTuples(transfer->GetNumberOfTuples());
+  using Reals = vtkArrayDispatch::Reals;
+  RelightWorker worker{ &radiance };
+  if (!vtkArrayDispatch::Dispatch2ByValueType<Reals, Reals>::Execute(transfer, irradiance.Get(), worker))
+  {
+    worker(transfer, irradiance.Get()); // a transfer array of another type, through vtkDataArray's API
+  }
+  output->GetPointData()->AddArray(irradiance);
+  this->Report = std::string("'") + this->OutputArrayName + "' from '" + transfer->GetName() + "' (order " +
+    std::to_string(order) + ", " + std::to_string(shadelab::shCount(order)) + " coefficients) under " + light.file;
+  return 1;
+}
