@@ -26,7 +26,7 @@ CLI::App* addRelightCommand(CLI::App& cli, RelightOptions& options)
   command->add_option("mesh", options.mesh, "the shaded mesh (.vtp, .vtk) with a transfer array")->required();
   command->add_option("--envmap", options.environmentMap,
     "the equirectangular map (.hdr, .exr) to light it with")->required();
-  command->add_option("--output,-o", options.output, "the mesh to write (.vtp, .vtk), every array kept")->required();
+  command->add_option("--output,-o", options.output, "the mesh to write (.vtp, .vtk), with every input array")->required();
   command->add_option("--rotation", options.rotation,
     "turn the map about +y by this many degrees (anticlockwise seen from above), as a scene's \"rotation\"")
     ->capture_default_str();
@@ -34,8 +34,9 @@ CLI::App* addRelightCommand(CLI::App& cli, RelightOptions& options)
     ->check(CLI::NonNegativeNumber)
     ->capture_default_str();
   command->add_option("--transfer", options.transferArray,
-    "the transfer array (default: the one array whose name ends in sh_transfer, such as envmap_sh_transfer)");
-  command->add_option("--name", options.outputArray, "the name of the irradiance array it writes")
+    "the transfer array (default: the one array whose name ends in _sh_transfer, such as envmap_sh_transfer)");
+  command->add_option("--name", options.outputArray,
+    "the name of the irradiance array it writes (an input array of that name is replaced, and the run says so)")
     ->capture_default_str();
   command->add_option("--compression", options.compression, ".vtp compression, as shade's")
     ->check(CLI::IsMember(std::vector<std::string>(compressionNames.begin(), compressionNames.end())))

@@ -128,7 +128,7 @@ struct EnvironmentOption
   std::string file;
   std::string estimator = "sh";
   std::string directions; // empty: luminance (cosine for prt, which takes no other)
-  int order = 0;          // prt's highest band; 0: not given, 2
+  int order = 0;          // prt's highest band; 0: not given (the light's default)
   double rotation = 0;
   double intensity = 1;
   std::string samples = std::to_string(Sampling{}.samples); // or "auto"
@@ -223,9 +223,9 @@ Scene sceneWithEnvironment(const std::string& sceneFile, const EnvironmentOption
     throw UserError("--envmap-order: only --envmap-estimator prt has an order");
   }
   light.shOrder = environment.order != 0 ? environment.order : light.shOrder;
-  light.directions = environment.directions == "cosine" || transfer ? EnvironmentDirections::Cosine
-    : environment.directions == "mis"                               ? EnvironmentDirections::Mis
-                                                                    : EnvironmentDirections::Luminance;
+  light.directions = environment.directions == "cosine" ? EnvironmentDirections::Cosine
+    : environment.directions == "mis"                   ? EnvironmentDirections::Mis
+                                                        : EnvironmentDirections::Luminance;
   setSampleCount(environment.samples, light.sampling);
   try
   {
@@ -575,9 +575,10 @@ CLI::App* addShadeCommand(CLI::App& cli, ShadeOptions& options)
     ->check(CLI::IsMember({ "luminance", "cosine", "mis" }))
     ->needs(envmapOption);
   command->add_option("--envmap-samples", environment.samples,
-    "Monte Carlo samples per vertex (monte_carlo, the specular term of sh, and with --shadows every "
-    "estimator's shadow rays), or auto with --tolerance: as many as each vertex needs for the map's "
-    "share of the tolerance, at least 64 and at most 4096 (with --shadows, their shadow rays drawn with them)")
+    "Monte Carlo samples per vertex (monte_carlo, the specular term of sh and prt, and with --shadows every "
+    "estimator's shadow rays, from which prt estimates its transfer vectors), or auto with --tolerance: as many as "
+    "each vertex needs for the map's share of the tolerance, at least 64 and at most 4096 (with --shadows, their "
+    "shadow rays drawn with them; not for prt with --shadows, whose count is fixed)")
     ->check(CLI::Range(2, maxSamplesPerVertex) | CLI::IsMember({ "auto" }))
     ->capture_default_str()
     ->needs(envmapOption);

@@ -3,6 +3,7 @@
 #include "MeshFiles.h"
 
 #include "EnvironmentMap.h"
+#include "RadianceTransfer.h"
 #include "SceneFile.h"
 #include "SphericalHarmonics.h"
 
@@ -380,13 +381,13 @@ std::vector<AccuracyRow> environmentShadowStudy(const Mesh& bunny, const Scene& 
        << " stratified samples and their shadow rays, float64; the standard error of its irradiance is at most "
        << referenceError.largest << " (RMS " << referenceError.rms << "), to be multiplied by kd";
   study.addReferenceRow("samples", areaReferenceSamples, note.str());
-  // The light as it is set, at each sample count.
-  auto overSampleCounts = [&](const std::string& family, bool stratified)
+  // The light as it is set, at each sample count, with the charted term's predicted bound.
+  auto overSampleCounts = [&](const std::string& family, bool stratified, std::optional<double> predicted = std::nullopt)
   {
     for (const int samples : sampleCounts)
     {
       light.sampling = { samples, stratified };
-      study.measure(family + ", " + samplingName(stratified), "samples", samples, lit());
+      study.measure(family + ", " + samplingName(stratified), "samples", samples, lit(), {}, predicted);
     }
   };
   const std::pair<EnvironmentDirections, const char*> kinds[] = { { EnvironmentDirections::Luminance, "luminance" },
@@ -401,12 +402,15 @@ std::vector<AccuracyRow> environmentShadowStudy(const Mesh& bunny, const Scene& 
   light.estimator = EnvironmentEstimator::SphericalHarmonics;
   overSampleCounts("sh x visible fraction by mis", true);
   // Precomputed transfer: the map's bands dotted with transfer vectors from cosine-weighted
-  // rays, so its error levels off at the band limit's as the rays grow.
+  // rays, so its error levels off at the band limit's as the rays grow. Predicted: that limit's
+  // bound in the diffuse term (docs/formulas.md section 12.10), without the rays' own error.
   light.estimator = EnvironmentEstimator::PrecomputedTransfer;
   for (int order = 2; order <= largestShOrder; ++order)
   {
     light.shOrder = order;
-    overSampleCounts("prt of order " + std::to_string(order), true);
+    const Rgb bandLimit = bandLimitError(*light.map, projectRadiance(*light.map, order));
+    overSampleCounts("prt of order " + std::to_string(order), true,
+      largestComponent(material.material.kd * light.color * light.intensity * bandLimit));
   }
   chart.series = study.chartSeries();
   chart.title = diffuseUnderMapTitle(map, bunny, " with its shadows");

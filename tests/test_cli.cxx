@@ -463,7 +463,8 @@ TEST_F(Cli, PrecomputedTransferRelightsWithoutRays)
   const Result relighting =
     shadelab("relight " + unturned + " --envmap " + map + " --rotation 90 --name envmap_irradiance -o " + relit);
   ASSERT_EQ(relighting.exitCode, 0) << relighting.err;
-  EXPECT_NE(relighting.out.find("'envmap_irradiance' from 'envmap_sh_transfer' (order 4, 25 coefficients) under " + map),
+  EXPECT_NE(relighting.out.find("'envmap_irradiance' from 'envmap_sh_transfer' (order 4, 25 coefficients) under " +
+              map + "; it replaces the input's array of that name"),
     std::string::npos) << relighting.out;
   const Result compared = shadelab("compare " + turned + " " + relit + " --arrays envmap_irradiance --atol 1e-5");
   EXPECT_EQ(compared.exitCode, 0) << compared.out;
@@ -490,15 +491,18 @@ TEST_F(Cli, PrecomputedTransferRelightsWithoutRays)
 
   // A mesh without transfer vectors, or with two, is refused, saying what to do.
   expectError("relight " + mesh + " --envmap " + map + " -o " + relit,
-    mesh + ": the input has no point array whose name ends in 'sh_transfer': shade the mesh with \"estimator\": "
+    mesh + ": the input has no point array whose name ends in '_sh_transfer': shade the mesh with \"estimator\": "
            "\"prt\" (shadelab shade --envmap-estimator prt) first");
   expectError("relight " + unturned + " --envmap " + map + " --transfer key_sh_transfer -o " + relit,
     unturned + ": the input has no point array 'key_sh_transfer'");
   expectError("relight " + unturned + " --envmap " + (folder / "none.hdr").string() + " -o " + relit,
     unturned + ": " + (folder / "none.hdr").string() + ": no such file");
+  expectError("relight " + unturned + " --envmap " + map + " --name envmap_sh_transfer -o " + relit,
+    unturned + ": OutputArrayName is the transfer array's name, 'envmap_sh_transfer': choose another name for the "
+               "irradiance");
   expectError("relight " + unturned + " --envmap " + map + " --transfer envmap_irradiance -o " + relit,
-    unturned + ": point array 'envmap_irradiance' is not a transfer vector: it must be numeric, with 9, 16 or 25 "
-               "components (orders 2, 3, 4), not 3");
+    unturned + ": point array 'envmap_irradiance' is not a transfer vector: it must have 9, 16 or 25 components "
+               "(orders 2, 3, 4), not 3");
 }
 
 TEST_F(Cli, AnyMeshWithoutASceneUnderTheDefaultLightKit)

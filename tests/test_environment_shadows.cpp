@@ -239,7 +239,7 @@ TEST(EnvironmentShadows, ShadowedTransferIsMonteCarloWithinTheBandLimitAndThreeS
   // by mis (1024 rays) at the floor points, within the band limit's bound (the map less its
   // coefficients, integrated) plus three standard errors of the difference. A sharp sun is what
   // a few bands hold worst: the bound is loose, and the measured differences are charted
-  // (shadelab-bench --charts DIR --study 12).
+  // by order in charts 7b and 8b (shadelab-bench --charts DIR --study 7b).
   EnvironmentLight light = mapLight(std::make_shared<const EnvironmentMap>(readEnvironmentMap(
                                       SHADELAB_SOURCE_DIR "/data/envmaps/venice_sunset_1k.hdr")),
     EnvironmentEstimator::MonteCarlo, EnvironmentDirections::Mis, 1024);

@@ -7,6 +7,8 @@
 The filters are VTK algorithms like any other (docs/guide/cpp-and-python.md). Importing this package
 also imports the vtkmodules the filters are built on.
 """
+import re
+
 from vtkmodules.util.misc import calldata_type
 from vtkmodules.util.vtkConstants import VTK_STRING
 
@@ -22,7 +24,7 @@ def relight(mesh, environment_map, rotation=0.0, intensity=1.0, color=(1.0, 1.0,
     """The mesh (a vtkPolyData shaded with "estimator": "prt") with the irradiance under another map.
 
     Each vertex's transfer vector (transfer_array, by default the one array ending in
-    "sh_transfer") is dotted with environment_map's coefficients, the map turned by rotation
+    "_sh_transfer") is dotted with environment_map's coefficients, the map turned by rotation
     degrees about +y and scaled by color x intensity, with no ray traced; the result is the RGB
     point array output_array. Raises RuntimeError with the filter's message when it cannot.
     """
@@ -38,7 +40,9 @@ def relight(mesh, environment_map, rotation=0.0, intensity=1.0, color=(1.0, 1.0,
 
     @calldata_type(VTK_STRING)
     def keep(caller, event, text):
-        messages.append(text)
+        # Without VTK's "ERROR: In FILE, line N" and "vtkClass (0x...): ", as the command line shows it.
+        text = re.sub(r"^(ERROR|Warning|Generic Warning): In [^\n]*\n", "", text)
+        messages.append(re.sub(r"^[A-Za-z0-9_]+ \(0x[0-9a-fA-F]+\): ", "", text).rstrip())
 
     relighting.AddObserver("ErrorEvent", keep)
     relighting.Update()

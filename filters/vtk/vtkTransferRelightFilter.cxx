@@ -6,6 +6,8 @@
 
 #include "vtkArrayDispatch.h"
 #include "vtkDataArrayRange.h"
+#include "vtkDoubleArray.h"
+#include "vtkFloatArray.h"
 #include "vtkInformation.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
@@ -24,18 +26,11 @@ vtkStandardNewMacro(vtkTransferRelightFilter);
 
 namespace
 {
-/// The order whose (order + 1)^2 coefficients a transfer vector of this many components holds,
-/// or -1 when the count is no such square (or the order is outside 2 to largestShOrder).
+/// The order of a transfer array of this many components: 2 to largestShOrder, or -1.
 int orderOfComponents(int components)
 {
-  for (int order = 2; order <= shadelab::largestShOrder; ++order)
-  {
-    if (shadelab::shCount(order) == components)
-    {
-      return order;
-    }
-  }
-  return -1;
+  const int order = shadelab::shOrderOfCount(components);
+  return order >= 2 ? order : -1;
 }
 
 /// Each vertex's irradiance, the dot product of the radiance's coefficients with its transfer.
@@ -81,7 +76,7 @@ void vtkTransferRelightFilter::PrintSelf(ostream& os, vtkIndent indent)
 vtkDataArray* vtkTransferRelightFilter::FindTransfer(vtkPolyData* input)
 {
   vtkPointData* points = input->GetPointData();
-  const std::string suffix = "sh_transfer";
+  const std::string suffix = "_sh_transfer"; // <prefix><light>_sh_transfer
   std::vector<std::string> found;
   for (int a = 0; a < points->GetNumberOfArrays(); ++a)
   {
@@ -108,7 +103,7 @@ vtkDataArray* vtkTransferRelightFilter::FindTransfer(vtkPolyData* input)
     }
     else if (found.empty())
     {
-      vtkErrorMacro("the input has no point array whose name ends in 'sh_transfer': shade the mesh with "
+      vtkErrorMacro("the input has no point array whose name ends in '_sh_transfer': shade the mesh with "
                     "\"estimator\": \"prt\" (shadelab shade --envmap-estimator prt) first");
     }
     else
@@ -118,11 +113,22 @@ vtkDataArray* vtkTransferRelightFilter::FindTransfer(vtkPolyData* input)
     return nullptr;
   }
   vtkDataArray* transfer = points->GetArray(found.front().c_str());
-  if (!transfer || orderOfComponents(transfer->GetNumberOfComponents()) < 0)
+  if (!transfer)
   {
-    vtkErrorMacro("point array '" << found.front() << "' is not a transfer vector: it must be numeric, with 9, 16 or 25 "
+    vtkErrorMacro("point array '" << found.front() << "' is not a transfer vector: it is not numeric");
+    return nullptr;
+  }
+  if (orderOfComponents(transfer->GetNumberOfComponents()) < 0)
+  {
+    vtkErrorMacro("point array '" << found.front() << "' is not a transfer vector: it must have 9, 16 or 25 "
                                  "components (orders 2, 3, 4), not "
-                  << (transfer ? transfer->GetNumberOfComponents() : 0));
+                  << transfer->GetNumberOfComponents());
+    return nullptr;
+  }
+  if (found.front() == this->OutputArrayName)
+  {
+    vtkErrorMacro("OutputArrayName is the transfer array's name, '" << found.front()
+                                                                    << "': choose another name for the irradiance");
     return nullptr;
   }
   return transfer;
@@ -140,6 +146,16 @@ int vtkTransferRelightFilter::RequestData(
   {
     return 0;
   }
+  if (!std::isfinite(this->Rotation))
+  {
+    vtkErrorMacro("Rotation must be a finite angle in degrees");
+    return 0;
+  }
+  if (!std::all_of(this->Color, this->Color + 3, [](double c) { return std::isfinite(c) && c >= 0; }))
+  {
+    vtkErrorMacro("Color's components must be finite numbers >= 0");
+    return 0;
+  }
   shadelab::EnvironmentLight light;
   light.file = this->EnvironmentMapFileName;
   light.rotationDegrees = this->Rotation;
@@ -154,14 +170,12 @@ int vtkTransferRelightFilter::RequestData(
     vtkErrorMacro(<< error.what());
     return 0;
   }
-  if (!std::isfinite(this->Rotation))
-  {
-    vtkErrorMacro("Rotation must be a finite angle in degrees");
-    return 0;
-  }
   const int order = orderOfComponents(transfer->GetNumberOfComponents());
   const shadelab::ShCoefficients radiance = shadelab::worldRadianceCoefficients(light, order);
-  vtkSmartPointer<vtkDataArray> irradiance = vtkSmartPointer<vtkDataArray>::Take(transfer->NewInstance());
+  // Real whatever the transfer's type: float64 for a float64 transfer, float32 otherwise.
+  vtkSmartPointer<vtkDataArray> irradiance = transfer->GetDataType() == VTK_DOUBLE
+    ? vtkSmartPointer<vtkDataArray>(vtkSmartPointer<vtkDoubleArray>::New())
+    : vtkSmartPointer<vtkDataArray>(vtkSmartPointer<vtkFloatArray>::New());
   irradiance->SetName(this->OutputArrayName.c_str());
   irradiance->SetNumberOfComponents(3);
   irradiance->SetNumberOfTuples(transfer->GetNumberOfTuples());
@@ -171,8 +185,10 @@ int vtkTransferRelightFilter::RequestData(
   {
     worker(transfer, irradiance.Get()); // a transfer array of another type, through vtkDataArray's API
   }
+  const bool replaces = output->GetPointData()->HasArray(this->OutputArrayName.c_str());
   output->GetPointData()->AddArray(irradiance);
   this->Report = std::string("'") + this->OutputArrayName + "' from '" + transfer->GetName() + "' (order " +
-    std::to_string(order) + ", " + std::to_string(shadelab::shCount(order)) + " coefficients) under " + light.file;
+    std::to_string(order) + ", " + std::to_string(shadelab::shCount(order)) + " coefficients) under " + light.file +
+    (replaces ? "; it replaces the input's array of that name" : "");
   return 1;
 }

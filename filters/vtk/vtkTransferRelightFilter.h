@@ -7,8 +7,8 @@
  * The map is projected on the spherical harmonics of the transfer's order (9, 16 or 25
  * coefficients: orders 2, 3, 4), scaled by Color x Intensity, turned by Rotation about +y as a
  * scene's "rotation" turns it, and dotted with every vertex's transfer vector
- * (docs/formulas.md section 12.10). The result is an RGB point array named OutputArrayName, of
- * the transfer array's type; every input array passes through.
+ * (docs/formulas.md section 12.10). The result is an RGB point array named OutputArrayName,
+ * float64 for a float64 transfer and float32 otherwise; every other input array passes through.
  */
 #ifndef vtkTransferRelightFilter_h
 #define vtkTransferRelightFilter_h
@@ -44,11 +44,12 @@ public:
   vtkGetVector3Macro(Color, double);
 
   /// The point array of transfer vectors (default "": the one array whose name ends in
-  /// "sh_transfer").
+  /// "_sh_transfer").
   vtkSetMacro(TransferArrayName, std::string);
   vtkGetMacro(TransferArrayName, std::string);
 
-  /// The name of the irradiance it writes (default "relit_irradiance").
+  /// The name of the irradiance it writes (default "relit_irradiance"); an input array of that
+  /// name is replaced (the report says so), but not the transfer array.
   vtkSetMacro(OutputArrayName, std::string);
   vtkGetMacro(OutputArrayName, std::string);
 
@@ -66,7 +67,7 @@ private:
   void operator=(const vtkTransferRelightFilter&) = delete;
 
   /// The input's transfer array as TransferArrayName names it or, without a name, the one whose
-  /// name ends in "sh_transfer"; nullptr after reporting the error.
+  /// name ends in "_sh_transfer"; nullptr after reporting the error.
   vtkDataArray* FindTransfer(vtkPolyData* input);
 
   std::string EnvironmentMapFileName;

@@ -119,7 +119,9 @@ public:
 
 /// DistributedTerms as a row of numbers, for the visibility step to hand its estimates to the
 /// shading (soft shadows drawn to a target): E, S, their standard errors (RGB each), the
-/// visibility and its standard error, and whether the vertex stopped short of its target.
+/// visibility and its standard error, and whether the vertex stopped short of its target. Not
+/// a transfer vector: precomputed transfer is drawn to a fixed count only (a tolerance refuses
+/// it with shadows), so it never comes this way.
 constexpr int packedTermsSize = 15;
 
 inline void packTerms(const DistributedTerms& terms, double* row)

@@ -38,21 +38,26 @@ Rgb irradianceFromTransfer(const ShCoefficients& radiance, const TransferVector&
   return sum;
 }
 
+Rgb radianceFromCoefficients(const ShCoefficients& radiance, const ShBasis& basis)
+{
+  return irradianceFromTransfer(radiance, basis); // the same sum, of L_k Y_k(w)
+}
+
 Rgb bandLimitError(const EnvironmentMap& map, const ShCoefficients& coefficients)
 {
-  int order = 0;
-  while (shCount(order) < int(coefficients.size()))
+  const int order = shOrderOfCount(int(coefficients.size()));
+  if (order < 0)
   {
-    ++order;
+    throw std::invalid_argument("bandLimitError: " + std::to_string(coefficients.size()) +
+      " coefficients, which no order from 0 to " + std::to_string(largestShOrder) + " has");
   }
-  requireShOrder(order, "bandLimitError");
   Rgb error(0.0);
   for (int row = 0; row < map.height; ++row)
   {
     const double solidAngle = texelSolidAngle(row, map.width, map.height);
     for (int column = 0; column < map.width; ++column)
     {
-      const Rgb limited = irradianceFromTransfer(coefficients, shBasis(order, texelCentreDirection(map, column, row)));
+      const Rgb limited = radianceFromCoefficients(coefficients, shBasis(order, texelCentreDirection(map, column, row)));
       error += glm::abs(map.texel(column, row) - limited) * solidAngle;
     }
   }
@@ -81,7 +86,7 @@ void TransferEstimate::add(const glm::dvec3& direction, bool visible)
   {
     const ShBasis basis = shBasis(order_, direction);
     std::copy(basis.begin(), basis.end(), sample.begin());
-    radiance = irradianceFromTransfer(radiance_, basis); // L(w) limited to the bands: sum of L_k Y_k(w)
+    radiance = radianceFromCoefficients(radiance_, basis);
   }
   for (std::size_t g = 0; g < estimates_.size(); ++g)
   {

@@ -24,10 +24,14 @@ TransferVector unshadowedTransfer(int order, const glm::dvec3& unitNormal);
 /// The irradiance sum of L_k T_k over the coefficients given (at most a transfer vector's).
 Rgb irradianceFromTransfer(const ShCoefficients& radiance, const TransferVector& transfer);
 
+/// The band-limited radiance sum of L_k Y_k(w), from the basis at w (shBasis).
+Rgb radianceFromCoefficients(const ShCoefficients& radiance, const ShBasis& basis);
+
 /// The integral over the sphere of |L(w) - sum of L_k Y_k(w)|, the map's radiance less its
 /// coefficients' band-limited one, per channel (texel by texel): a bound on how far the
 /// irradiance from any transfer vector, shadowed or not, is from the map's, since the transfer's
-/// V(w) max(0, n.w) lies in [0, 1] (docs/formulas.md section 12.10).
+/// V(w) max(0, n.w) lies in [0, 1] (docs/formulas.md section 12.10). Throws
+/// std::invalid_argument unless the coefficients are an order's (shCount) from 0 to largestShOrder.
 Rgb bandLimitError(const EnvironmentMap& map, const ShCoefficients& coefficients);
 
 /// The shadowed transfer estimated from cosine-weighted directions about the normal (pdf

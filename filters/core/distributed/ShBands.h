@@ -19,6 +19,20 @@ constexpr int shIndex(int l, int m)
   return l * (l + 1) + m;
 }
 
+/// The order whose expansion has `count` coefficients ((order + 1)^2, order 0 to
+/// largestShOrder), or -1 where no order has that many.
+constexpr int shOrderOfCount(int count)
+{
+  for (int order = 0; order <= largestShOrder; ++order)
+  {
+    if (shCount(order) == count)
+    {
+      return order;
+    }
+  }
+  return -1;
+}
+
 /// Y_lm of bands 0 to largestShOrder at shIndex(l, m).
 using ShBasis = std::array<double, shCount(largestShOrder)>;
 }

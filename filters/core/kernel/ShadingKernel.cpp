@@ -234,10 +234,10 @@ ShadingKernel<T>::ShadingKernel(
   {
     const LightMethod method = methods.empty() ? LightMethod{} : methods.at(l);
     const std::array<T*, LightTermCount>& out = outputs_.lights[l];
-    components_.emplace_back();
+    termComponents_.emplace_back();
     for (int t = 0; t < LightTermCount; ++t)
     {
-      components_.back()[t] = lightTermComponents(scene.lights[l], LightTerm(t));
+      termComponents_.back()[t] = lightTermComponents(scene.lights[l], LightTerm(t));
     }
     // Only a light whose specular term some array needs, and can be other than 0, has its lobe
     // evaluated (or integrated).
@@ -264,7 +264,7 @@ ShadingKernel<T>::ShadingKernel(
         l < inputs_.lightHiddenSamples.size() ? inputs_.lightHiddenSamples[l] : nullptr,
         l < inputs_.lightShadowedTerms.size() ? inputs_.lightShadowedTerms[l] : nullptr));
       distributedLights_.back().shortOfTarget = l < outputs_.shortOfTarget.size() ? outputs_.shortOfTarget[l] : nullptr;
-      distributedLights_.back().transferComponents = components_.back()[int(LightTerm::ShTransfer)];
+      distributedLights_.back().transferComponents = termComponents_.back()[int(LightTerm::ShTransfer)];
     }
     else
     {
@@ -818,7 +818,7 @@ void ShadingKernel<T>::shadeBlock(const VertexBlock<T>& b) const
     {
       for (int t = 0; t < LightTermCount; ++t)
       {
-        const int components = components_[l][t];
+        const int components = termComponents_[l][t];
         if (T* array = outputs_.lights[l][t])
         {
           std::fill_n(array + components * i, components, T(0));

@@ -180,7 +180,7 @@ private:
 
   std::vector<PreparedLight> lights_;
   std::vector<DistributedLightSlot> distributedLights_;
-  std::vector<std::array<int, LightTermCount>> components_; // follows scene.lights: lightTermComponents
+  std::vector<std::array<int, LightTermCount>> termComponents_; // follows scene.lights: lightTermComponents
   ShadingOutputs<T> outputs_;
   ShadingInputs inputs_;
   Vec3<T> ambient_{ 0 }; // ka La, times the occlusion where there is one

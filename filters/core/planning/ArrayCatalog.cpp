@@ -1,7 +1,7 @@
 #include "ArrayCatalog.h"
 
 #include "EnvironmentLight.h"
-#include "SphericalHarmonics.h"
+#include "ShBands.h"
 
 #include <algorithm>
 #include <stdexcept>
