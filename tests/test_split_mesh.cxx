@@ -174,6 +174,10 @@ TEST(SplitMeshVisibility, CastsAgainstTheWholeMesh)
   EXPECT_GT(expectPieceOfWhole(shaded(mesh, "envmap_shadows.json", { "all" }, nullptr),
               shaded(myPiece(mesh), "envmap_shadows.json", { "all" }, processes())),
     10);
+  // Transfer vectors from the same rays, 16 coefficients and their standard errors a point.
+  EXPECT_GT(expectPieceOfWhole(shaded(mesh, "envmap_transfer.json", { "all" }, nullptr),
+              shaded(myPiece(mesh), "envmap_transfer.json", { "all" }, processes())),
+    10);
 
   // The visibility filter alone, on normals the mesh has.
   vtkNew<vtkMeshVisibilityFilter> alone, split;
