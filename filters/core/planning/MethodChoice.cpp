@@ -2,6 +2,7 @@
 
 #include "Overloaded.h"
 #include "Precision.h"
+#include "RadianceTransfer.h"
 #include "SphericalHarmonics.h"
 
 #include <algorithm>
@@ -132,8 +133,13 @@ LightChoice distributedChoice(const NamedLight& light, const Material& m, bool s
   const auto* map = std::get_if<EnvironmentLight>(&light.source);
   if (map && map->estimator == EnvironmentEstimator::PrecomputedTransfer && light.shadows)
   {
-    refuse("its shadowed transfer vectors are estimated from a fixed \"samples\" count, which no target stops: "
-           "use \"estimator\": \"monte_carlo\" (--envmap-estimator monte_carlo) with " + bounds.autoSamples);
+    // Its bands' error under shadows is bounded only by the map less its bands, integrated
+    // (docs/formulas.md section 12.10), and its rays are a fixed count.
+    const Rgb bandLimit = bandLimitError(*map->map, projectRadiance(*map->map, map->shOrder));
+    const double error = largestComponent(map->color * map->intensity * bandLimit) * std::max(1.0, largestComponent(m.kd));
+    refuse("its shadowed transfer vectors can err by up to " + scientific(error) +
+      " through their bands alone, and are estimated from a fixed \"samples\" count, which no target stops: use "
+      "\"estimator\": \"monte_carlo\" (--envmap-estimator monte_carlo) with " + bounds.autoSamples);
   }
   // Under shadows E is sampled whatever the estimator: an exact or SH E is the unshadowed one
   // times the samples' visible fraction.
