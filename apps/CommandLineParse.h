@@ -1,10 +1,13 @@
 #pragma once
 // Parsing a command line the same way in shadelab and shadelab-bench.
+#include "MeshFiles.h"
 #include "VtkErrorCapture.h"
 
 #include <CLI/CLI.hpp>
 
 #include <optional>
+#include <string>
+#include <vector>
 
 namespace shadelab::app
 {
@@ -26,5 +29,13 @@ inline std::optional<int> parseCommandLine(CLI::App& cli, int argc, char** argv,
     quietenVtk();
   }
   return std::nullopt;
+}
+
+/// A command's --compression for the .vtp it writes: one of compressionNames, into `name`.
+inline CLI::Option* addCompressionOption(CLI::App* command, std::string& name, const std::string& help)
+{
+  return command->add_option("--compression", name, help)
+    ->check(CLI::IsMember(std::vector<std::string>(compressionNames.begin(), compressionNames.end())))
+    ->capture_default_str();
 }
 }

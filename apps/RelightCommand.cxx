@@ -1,5 +1,6 @@
 #include "RelightCommand.h"
 
+#include "CommandLineParse.h"
 #include "MeshFiles.h"
 #include "RunWarnings.h"
 #include "StageTime.h"
@@ -38,9 +39,7 @@ CLI::App* addRelightCommand(CLI::App& cli, RelightOptions& options)
   command->add_option("--name", options.outputArray,
     "the name of the irradiance array it writes (an input array of that name is replaced, and the run says so)")
     ->capture_default_str();
-  command->add_option("--compression", options.compression, ".vtp compression, as shade's")
-    ->check(CLI::IsMember(std::vector<std::string>(compressionNames.begin(), compressionNames.end())))
-    ->capture_default_str();
+  addCompressionOption(command, options.compression, ".vtp compression, as shade's");
   return command;
 }
 

@@ -501,10 +501,8 @@ CLI::App* addShadeCommand(CLI::App& cli, ShadeOptions& options)
   command->add_option("--threads,-j", options.threads, "threads (0: all cores)")
     ->check(CLI::Range(0, 256))
     ->capture_default_str();
-  command->add_option("--compression", options.compression,
-    ".vtp compression: lz4 is fastest, zlib gives files about a third smaller")
-    ->check(CLI::IsMember(std::vector<std::string>(app::compressionNames.begin(), app::compressionNames.end())))
-    ->capture_default_str();
+  app::addCompressionOption(command, options.compression,
+    ".vtp compression: lz4 is fastest, zlib gives files about a third smaller");
   command->add_flag("--raw-appended", options.rawAppended,
     ".vtp with its data raw in one block at the end: a quarter smaller and faster to write, but "
     "Debian 12's ParaView 5.11 reads it as empty since its Expat security update (docs/guide/command-line.md, 'Files ParaView opens')");

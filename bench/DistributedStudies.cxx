@@ -408,7 +408,7 @@ std::vector<AccuracyRow> environmentShadowStudy(const Mesh& bunny, const Scene& 
   for (int order = 2; order <= largestShOrder; ++order)
   {
     light.shOrder = order;
-    const Rgb bandLimit = bandLimitError(*light.map, projectRadiance(*light.map, order));
+    const Rgb bandLimit = bandLimitError(*light.map, order);
     overSampleCounts("prt of order " + std::to_string(order), true,
       largestComponent(material.material.kd * light.color * light.intensity * bandLimit));
   }

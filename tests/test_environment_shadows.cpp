@@ -259,7 +259,7 @@ TEST(EnvironmentShadows, ShadowedTransferIsMonteCarloWithinTheBandLimitAndThreeS
     transfer.shOrder = order;
     transfer.sampling.samples = 256;
     const EnvironmentLightEstimator estimator(transfer, 3, LobeModel{});
-    const double bound = largestComponent(bandLimitError(*light.map, projectRadiance(*light.map, order)));
+    const double bound = largestComponent(bandLimitError(*light.map, order));
     const ShCoefficients coefficients = worldRadianceCoefficients(transfer, order);
     int within = 0;
     for (std::size_t i = 0; i < points.size(); ++i)

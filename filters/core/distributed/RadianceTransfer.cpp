@@ -43,14 +43,9 @@ Rgb radianceFromCoefficients(const ShCoefficients& radiance, const ShBasis& basi
   return irradianceFromTransfer(radiance, basis); // the same sum, of L_k Y_k(w)
 }
 
-Rgb bandLimitError(const EnvironmentMap& map, const ShCoefficients& coefficients)
+Rgb bandLimitError(const EnvironmentMap& map, int order)
 {
-  const int order = shOrderOfCount(int(coefficients.size()));
-  if (order < 0)
-  {
-    throw std::invalid_argument("bandLimitError: " + std::to_string(coefficients.size()) +
-      " coefficients, which no order from 0 to " + std::to_string(largestShOrder) + " has");
-  }
+  const ShCoefficients coefficients = projectRadiance(map, order); // which checks the order
   Rgb error(0.0);
   for (int row = 0; row < map.height; ++row)
   {

@@ -28,11 +28,11 @@ Rgb irradianceFromTransfer(const ShCoefficients& radiance, const TransferVector&
 Rgb radianceFromCoefficients(const ShCoefficients& radiance, const ShBasis& basis);
 
 /// The integral over the sphere of |L(w) - sum of L_k Y_k(w)|, the map's radiance less its
-/// coefficients' band-limited one, per channel (texel by texel): a bound on how far the
-/// irradiance from any transfer vector, shadowed or not, is from the map's, since the transfer's
-/// V(w) max(0, n.w) lies in [0, 1] (docs/formulas.md section 12.10). Throws
-/// std::invalid_argument unless the coefficients are an order's (shCount) from 0 to largestShOrder.
-Rgb bandLimitError(const EnvironmentMap& map, const ShCoefficients& coefficients);
+/// projection to bands 0 to order, per channel (texel by texel): a bound on how far the
+/// irradiance from any transfer vector of that order, shadowed or not, is from the map's, since
+/// the transfer's V(w) max(0, n.w) lies in [0, 1] (docs/formulas.md section 12.10). Throws
+/// std::invalid_argument for an order outside 0 to largestShOrder.
+Rgb bandLimitError(const EnvironmentMap& map, int order);
 
 /// The shadowed transfer estimated from cosine-weighted directions about the normal (pdf
 /// cos / pi): each sample is pi V(w_j) Y_k(w_j), added in order, stratified or not as

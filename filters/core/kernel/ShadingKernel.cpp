@@ -596,6 +596,16 @@ void ShadingKernel<T>::estimateDistributedLight(const DistributedLightSlot& ligh
       array[3 * i + 2] = T(value.z);
     }
   };
+  // A transfer vector's light.transferComponents coefficients.
+  auto storeCoefficients = [&](LightTerm term, std::size_t i, const ShBasis& values)
+  {
+    if (T* array = out[int(term)])
+    {
+      const std::size_t components = std::size_t(light.transferComponents);
+      std::transform(values.begin(), values.begin() + components, array + components * i,
+        [](double value) { return T(value); });
+    }
+  };
   for (std::size_t k = 0; k < b.count; ++k)
   {
     DistributedTerms terms;
@@ -648,17 +658,8 @@ void ShadingKernel<T>::estimateDistributedLight(const DistributedLightSlot& ligh
     {
       light.shortOfTarget[i] = terms.shortOfTarget ? 1 : 0;
     }
-    const std::size_t components = std::size_t(light.transferComponents);
-    if (T* transfer = out[int(LightTerm::ShTransfer)])
-    {
-      std::transform(terms.transfer.begin(), terms.transfer.begin() + components, transfer + components * i,
-        [](double value) { return T(value); });
-    }
-    if (T* transferError = out[int(LightTerm::ShTransferStdError)])
-    {
-      std::transform(terms.transferStdError.begin(), terms.transferStdError.begin() + components,
-        transferError + components * i, [](double value) { return T(value); });
-    }
+    storeCoefficients(LightTerm::ShTransfer, i, terms.transfer);
+    storeCoefficients(LightTerm::ShTransferStdError, i, terms.transferStdError);
   }
 }
 

@@ -98,14 +98,12 @@ EstimatorBounds estimatorBoundsOf(const LightSource& source)
                  bounds.unbounded = light.estimator == EnvironmentEstimator::BruteForce
                    ? "the \"brute_force\" sum of a downsampled map has no error bound: use \"sh\" or \"monte_carlo\""
                    : "";
-                 if (light.estimator == EnvironmentEstimator::SphericalHarmonics)
+                 // sh is nine coefficients, bands 0 to 2.
+                 const bool transfer = light.estimator == EnvironmentEstimator::PrecomputedTransfer;
+                 if (transfer || light.estimator == EnvironmentEstimator::SphericalHarmonics)
                  {
-                   bounds.irradianceError = largestComponent(light.color * light.intensity * shIrradianceErrorBound(*light.map, 2));
-                 }
-                 if (light.estimator == EnvironmentEstimator::PrecomputedTransfer)
-                 {
-                   bounds.irradianceError =
-                     largestComponent(light.color * light.intensity * shIrradianceErrorBound(*light.map, light.shOrder));
+                   bounds.irradianceError = largestComponent(
+                     light.color * light.intensity * shIrradianceErrorBound(*light.map, transfer ? light.shOrder : 2));
                  }
                },
                [](const auto&) {} },
@@ -135,7 +133,7 @@ LightChoice distributedChoice(const NamedLight& light, const Material& m, bool s
   {
     // Its bands' error under shadows is bounded only by the map less its bands, integrated
     // (docs/formulas.md section 12.10), and its rays are a fixed count.
-    const Rgb bandLimit = bandLimitError(*map->map, projectRadiance(*map->map, map->shOrder));
+    const Rgb bandLimit = bandLimitError(*map->map, map->shOrder);
     const double error = largestComponent(map->color * map->intensity * bandLimit) * std::max(1.0, largestComponent(m.kd));
     refuse("its shadowed transfer vectors can err by up to " + scientific(error) +
       " through their bands alone, and are estimated from a fixed \"samples\" count, which no target stops: use "
