@@ -1,5 +1,6 @@
 #include "RenderImage.h"
 
+#include "MaterialArrays.h"
 #include "MeshFiles.h"
 #include "OffScreenImage.h"
 #include "VtkErrorCapture.h"
@@ -42,8 +43,9 @@ glm::dvec3 viewUpFor(const glm::dvec3& sight)
   return std::abs(sight.y) > 0.99 ? glm::dvec3(0, 0, -1) : glm::dvec3(0, 1, 0);
 }
 
-/// RGB in [0, 1] to 8-bit colours, so that the mapper draws them as they are.
-vtkSmartPointer<vtkUnsignedCharArray> directColours(vtkDataArray* rgb)
+/// RGB in [0, 1] to 8-bit colours, so that the mapper draws them as they are; sRGB-encoded
+/// where srgb.
+vtkSmartPointer<vtkUnsignedCharArray> directColours(vtkDataArray* rgb, bool srgb)
 {
   auto colours = vtkSmartPointer<vtkUnsignedCharArray>::New();
   colours->SetName("colours");
@@ -53,7 +55,8 @@ vtkSmartPointer<vtkUnsignedCharArray> directColours(vtkDataArray* rgb)
   {
     for (int c = 0; c < 3; ++c)
     {
-      const double value = std::clamp(rgb->GetComponent(i, c), 0.0, 1.0);
+      const double linear = std::clamp(rgb->GetComponent(i, c), 0.0, 1.0);
+      const double value = srgb ? linearToSrgb(linear) : linear;
       colours->SetValue(3 * i + c, static_cast<unsigned char>(std::lround(255.0 * value)));
     }
   }
@@ -113,7 +116,7 @@ void renderToPng(vtkPolyData* mesh, const std::string& meshName, const RenderOpt
   renderer->SetBackground(0.16, 0.17, 0.2);
   if (components == 3)
   {
-    coloured->GetPointData()->SetScalars(directColours(array));
+    coloured->GetPointData()->SetScalars(directColours(array, options.srgb));
     mapper->SetColorModeToDirectScalars();
   }
   else

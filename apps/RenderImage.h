@@ -16,6 +16,9 @@ struct RenderOptions
   int height = 600;
   /// Where the camera is; without one the mesh is framed looking down -z.
   std::optional<Viewer> viewer;
+  /// Encode a 3-component array's linear values for display by the sRGB transfer function, as
+  /// a renderer's output is: a shaded scan then shows its own colours.
+  bool srgb = false;
 };
 
 /// Renders `array` of mesh to a PNG. A 3-component array is drawn as RGB colours, clamped to

@@ -17,6 +17,7 @@
 #include "ArrayCatalog.h"
 #include "DefaultLightKit.h"
 #include "EnvironmentMap.h"
+#include "MaterialArrays.h"
 #include "SceneFile.h"
 #include "SceneFrame.h"
 #include "ShadeLabMeshExtent.h"
@@ -165,6 +166,8 @@ struct ShadeOptions
   EnvironmentOption environment;
   bool shadows = false;         // every light that can cast shadows casts them
   std::string ambientOcclusion; // RAYS or "auto"; empty: as the scene says
+  std::string colorBy;          // a point array that colours the material; empty: the scene's
+  std::string colorMap = "cool to warm";
 };
 
 /// The scene with --shadows and --ambient-occlusion applied.
@@ -296,6 +299,9 @@ int runShade(const ShadeOptions& options)
   filter->SetScene(scene);
   filter->SetArraySelection(selection);
   filter->SetArrayPrefix(options.prefix);
+  filter->SetColorByArray(!options.colorBy.empty());
+  filter->SetMaterialColorArray(options.colorBy);
+  filter->SetMaterialColorMap(options.colorMap);
   filter->SetOutputPrecision(options.precision == "float64" ? vtkAlgorithm::DOUBLE_PRECISION
                                                             : vtkAlgorithm::SINGLE_PRECISION);
   filter->SetOrientNormalsOutward(!options.keepNormals);
@@ -506,6 +512,14 @@ CLI::App* addShadeCommand(CLI::App& cli, ShadeOptions& options)
   command->add_flag("--raw-appended", options.rawAppended,
     ".vtp with its data raw in one block at the end: a quarter smaller and faster to write, but "
     "Debian 12's ParaView 5.11 reads it as empty since its Expat security update (docs/guide/command-line.md, 'Files ParaView opens')");
+  CLI::Option* colorBy = command->add_option("--color-by", options.colorBy,
+    "colour the material (kd, and ka with it) by this point array of the mesh instead of the scene's kd: RGB or "
+    "RGBA colours as they are (8-bit ones decoded from sRGB), a 1-component field through --colormap over its "
+    "range (docs/guide/scene-files.md, 'A material from the mesh's arrays')");
+  command->add_option("--colormap", options.colorMap, "the colour map of a --color-by field")
+    ->check(CLI::IsMember(shadelab::colorMapNames()))
+    ->needs(colorBy)
+    ->capture_default_str();
   command->add_option("--prefix", options.prefix,
     "prepended to every array name written (to keep clear of the input's own arrays): letters, digits and _")
     ->check(arrayNamePrefix());
@@ -608,6 +622,9 @@ CLI::App* addRenderCommand(CLI::App& cli, RenderCommand& options)
     "take the camera from this scene's viewer (default: the default light kit's, which frames the "
     "mesh looking down -z)");
   command->add_option("--size", options.size, "image size, WIDTHxHEIGHT")->capture_default_str();
+  command->add_flag("--srgb", options.options.srgb,
+    "encode a 3-component array's values with the sRGB transfer function before drawing, as a renderer "
+    "does with its linear output: a mesh shaded with its own colours (decoded from sRGB) then shows them");
   return command;
 }
 

@@ -13,11 +13,13 @@
 #include "vtkCleanPolyData.h"
 #include "vtkDataArray.h"
 #include "vtkDataSet.h"
+#include "vtkFloatArray.h"
 #include "vtkFieldData.h"
 #include "vtkLoopSubdivisionFilter.h"
 #include "vtkPointData.h"
 #include "vtkSMPTools.h"
 #include "vtkSphereSource.h"
+#include "vtkUnsignedCharArray.h"
 
 #include <malloc.h> // mallopt, malloc_trim: glibc's allocator, for the memory measurement
 
@@ -184,6 +186,30 @@ std::optional<Mesh> bunnyOfAbout(vtkPolyData* bunny, long long points)
   return Mesh{ "bunny x" + std::to_string(1 << (2 * levels)), withOutwardNormals(subdivided) };
 }
 
+/// What a scan's material looks like, for the cases that read theirs from arrays: an 8-bit
+/// RGB "Colors" array and a float "Gloss" in [0, 0.5], varying from vertex to vertex.
+void addMaterialArrays(vtkPolyData* mesh)
+{
+  const vtkIdType count = mesh->GetNumberOfPoints();
+  vtkNew<vtkUnsignedCharArray> colors;
+  colors->SetName("Colors");
+  colors->SetNumberOfComponents(3);
+  colors->SetNumberOfTuples(count);
+  vtkNew<vtkFloatArray> gloss;
+  gloss->SetName("Gloss");
+  gloss->SetNumberOfTuples(count);
+  for (vtkIdType i = 0; i < count; ++i)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      colors->SetValue(3 * i + c, static_cast<unsigned char>((i * (37 + 11 * c)) % 256));
+    }
+    gloss->SetValue(i, 0.5f * float(i % 101) / 100.0f);
+  }
+  mesh->GetPointData()->AddArray(colors);
+  mesh->GetPointData()->AddArray(gloss);
+}
+
 namespace
 {
 struct Case
@@ -241,6 +267,14 @@ std::vector<Case> casesAround(const glm::dvec3& centre, double radius)
   Scene threeMatte = three;
   threeMatte.material.specular = SpecularModel::None;
 
+  // The scan's colours for ka and kd, its gloss for ks (addMaterialArrays).
+  Scene threeScanned = three;
+  MaterialArrays& arrays = threeScanned.material.arrays;
+  arrays[MaterialCoefficient::Diffuse] = ArrayCoefficient{ "Colors" };
+  arrays[MaterialCoefficient::Ambient] = arrays[MaterialCoefficient::Diffuse];
+  arrays[MaterialCoefficient::Specular] = ArrayCoefficient{ "Gloss" };
+  threeScanned.material.ka = threeScanned.material.kd = threeScanned.material.ks = Rgb(1.0);
+
   return {
     { "lambert", lambert, { "diffuse" }, "diffuse" },
     { "complete, 1 point light", one, { "total" }, "total" },
@@ -248,6 +282,8 @@ std::vector<Case> casesAround(const glm::dvec3& centre, double radius)
     // rounding): the max |diff| column checks the result against vtkArrayCalculator's.
     { "complete, 1 point, tolerance 1e-4", one, { "total" }, "total", 1e-4 },
     { "complete, 3 lights", three, { "total" }, "total" },
+    // Against the row above: a material per vertex, from the mesh's arrays.
+    { "complete, 3 lights, material arrays", threeScanned, { "total" }, "" },
     { "complete, 8 lights", eight, { "total" }, "total" },
     { "all 40 arrays, 3 lights", three, { "all" }, "" },
     // The pair that shows an unrequested term costs nothing: the shiny material's specular
@@ -537,6 +573,7 @@ void runBenchmark(const BenchmarkOptions& options)
     }
     for (const Mesh& mesh : meshes)
     {
+      addMaterialArrays(mesh.data);
       double centre[3];
       mesh.data->GetCenter(centre); // of the bounding box; GetLength is its diagonal
       for (const Case& c : casesAround({ centre[0], centre[1], centre[2] }, 0.5 * mesh.data->GetLength()))

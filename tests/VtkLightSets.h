@@ -15,6 +15,8 @@
 
 #include <glm/vec3.hpp>
 
+#include <functional>
+
 #include <gtest/gtest.h>
 
 namespace shadelab::testing
@@ -102,12 +104,18 @@ protected:
 
   /// The lit sphere at this resolution, and ShadeLab's float64 total for it under the vtk
   /// model of these lights, property and camera. Checks that the scene takes the
-  /// lone-headlight shader exactly when lone is true.
-  std::pair<vtkSmartPointer<vtkPolyData>, vtkSmartPointer<vtkDataArray>> shadeLitSphere(int resolution, bool lone)
+  /// lone-headlight shader exactly when lone is true. colorBy (if given) adds arrays to the
+  /// sphere and takes the scene's material from them, as a mapper's scalar colouring does.
+  std::pair<vtkSmartPointer<vtkPolyData>, vtkSmartPointer<vtkDataArray>> shadeLitSphere(
+    int resolution, bool lone, const std::function<void(vtkPolyData*, Scene&)>& colorBy = {})
   {
-    const Scene scene = sceneFromVtk(lights, property, camera);
+    Scene scene = sceneFromVtk(lights, property, camera);
     EXPECT_EQ(scene.vtkLoneHeadlight, lone);
     vtkSmartPointer<vtkPolyData> sphere = exactSphere(resolution, litSphereCentre, litSphereRadius);
+    if (colorBy)
+    {
+      colorBy(sphere, scene);
+    }
     vtkSmartPointer<vtkDataArray> total = shadeWithFilter(sphere, scene, { "total" })->GetPointData()->GetArray("total");
     EXPECT_NE(total, nullptr);
     return { sphere, total };

@@ -129,6 +129,21 @@ relit.Rotation = 45
 relit.Intensity = 0.5
 same_arrays("Transfer Relight", arrays_of(OpenDataFile(relit_file)), arrays_of(relit), ["relit_irradiance"])
 
+# The head scan coloured by its own RGB array, chosen in the panel, as the command line shades
+# it with a scene that names the array.
+head_file = os.path.join(data, "meshes", "head_scan.ply")
+scan_scene = os.path.join(data, "scenes", "scan_colors.json")
+head_cli = os.path.join(work, "head.vtp")
+subprocess.run([shadelab, "shade", head_file, "-s", scan_scene, "-o", head_cli], check=True, capture_output=True)
+with open(scan_scene) as scene:
+    uniform_scene = scene.read().replace('"kd": { "array": "RGB" }', '"kd": 0.5')
+colored = LocalReflectance(Input=OpenDataFile(head_file))
+colored.SceneJson = uniform_scene
+colored.ColorByArray = 1
+colored.MaterialColorArray = "RGB"
+same_arrays("Local Reflectance coloured by the scan's RGB array", arrays_of(OpenDataFile(head_cli)),
+            arrays_of(colored))
+
 # A scene error reaches ParaView's output with the command line's message.
 bad_scene = os.path.join(work, "negative_intensity.json")
 with open(bad_scene, "w") as scene:

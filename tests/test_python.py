@@ -269,6 +269,59 @@ class Properties(unittest.TestCase):
         self.assertIn("Cast up to", seen.GetReport())
 
 
+class MaterialFromArrays(unittest.TestCase):
+    """The head scan's own colours: the ColorByArray property and a scene naming the array give
+    the command line's arrays bit for bit; a field's colour map ends at ParaView's preset."""
+
+    def test_the_scans_colours_as_the_command_line_shades_them(self):
+        head = os.path.join(DATA, "meshes", "head_scan.ply")
+        scene = os.path.join(DATA, "scenes", "scan_colors.json")
+        output = os.path.join(WORK, "head.vtp")
+        subprocess.run([SHADELAB, "shade", head, "-s", scene, "-o", output], check=True, capture_output=True)
+        reader = vtkXMLPolyDataReader()
+        reader.SetFileName(output)
+        reader.Update()
+        expected = arrays_of(reader.GetOutput())
+        ply = vtkPLYReader()
+        ply.SetFileName(head)
+        ply.Update()
+        with open(scene) as text:
+            uniform = text.read().replace('"kd": { "array": "RGB" }', '"kd": 0.5')
+        self.assertNotIn('"array"', uniform)
+        shade = shadelab.vtkLocalReflectanceFilter()
+        shade.SetInputData(ply.GetOutput())
+        shade.SetSceneJson(uniform)
+        shade.SetColorByArray(True)
+        shade.SetMaterialColorArray("RGB")
+        shade.Update()
+        actual = arrays_of(shade.GetOutput())
+        SameAsTheCommandLine.assertSameArrays(self, expected, actual)
+        # Not the uniform grey: the colours vary as the scan's do.
+        self.assertGreater(len(np.unique(actual["ambient"][:, 0])), 100)  # of 162 red levels in the scan
+
+    def test_a_field_through_cool_to_warm(self):
+        mesh = read_bunny()
+        field = vtk_to_numpy(mesh.GetPoints().GetData())[:, 1].astype(np.float64)
+        from vtkmodules.util.numpy_support import numpy_to_vtk
+        array = numpy_to_vtk(field, deep=True)
+        array.SetName("height")
+        mesh.GetPointData().AddArray(array)
+        shade = shadelab.vtkLocalReflectanceFilter()
+        shade.SetInputData(mesh)
+        shade.SetSceneFileName(STUDIO)
+        shade.ColorByArrayOn()
+        shade.SetMaterialColorArray("height")
+        shade.SetOutputPrecision(vtkAlgorithm.DOUBLE_PRECISION)
+        shade.Update()
+        ambient = arrays_of(shade.GetOutput())["ambient"]
+        def linear(byte):
+            c = byte / 255.0
+            return c / 12.92 if c <= 0.04045 else ((c + 0.055) / 1.055) ** 2.4
+        # studio.json's room light is 0.08; the lowest and highest points take the map's ends.
+        for vertex, color in ((np.argmin(field), (59, 76, 192)), (np.argmax(field), (180, 4, 38))):
+            np.testing.assert_allclose(ambient[vertex], [0.08 * linear(b) for b in color], rtol=1e-12)
+
+
 class Relighting(unittest.TestCase):
     def test_relight_is_the_command_lines_and_says_why_it_cannot(self):
         studio_map = os.path.join(DATA, "envmaps", "studio_small_03_1k.hdr")

@@ -167,6 +167,92 @@ TEST(SceneFile, RulesOfTheModel)
     "starting with a letter");
 }
 
+TEST(SceneFile, MaterialFromTheMeshsArrays)
+{
+  const Scene scene = parseScene(R"({
+    "material": { "kd": { "array": "Colors" }, "ks": { "array": "gloss", "encoding": "linear", "scale": 0.5, "clamp": true },
+                  "shininess": { "array": "eta", "scale": 200 } },
+    "lights": [ { "type": "distant", "direction": [0, 0, -1] } ] })", "scene.json");
+  const MaterialArrays& arrays = scene.material.arrays;
+  ASSERT_TRUE(arrays[MaterialCoefficient::Diffuse] && arrays[MaterialCoefficient::Ambient]);
+  // docs/formulas.md section 7: ka follows kd, its array included.
+  EXPECT_EQ(arrays[MaterialCoefficient::Ambient]->array, "Colors");
+  EXPECT_FALSE(arrays[MaterialCoefficient::Diffuse]->encoding); // the default for the array's type
+  EXPECT_EQ(arrays[MaterialCoefficient::Specular]->encoding, ArrayEncoding::Linear);
+  EXPECT_TRUE(arrays[MaterialCoefficient::Specular]->clamp);
+  // The numbers are the largest the arrays can give: their scales.
+  EXPECT_EQ(scene.material.kd, Rgb(1.0));
+  EXPECT_EQ(scene.material.ks, Rgb(0.5));
+  EXPECT_EQ(scene.material.shininess, 200.0);
+  EXPECT_TRUE(arrays.clamps());
+
+  const Scene field = parseScene(R"({ "material": { "kd": { "array": "T", "colormap": "cool to warm", "range": [250, 400] } },
+    "lights": [] })", "scene.json");
+  EXPECT_EQ(field.material.arrays[MaterialCoefficient::Diffuse]->colorMap, "cool to warm");
+  EXPECT_EQ(*field.material.arrays[MaterialCoefficient::Diffuse]->range, (std::array<double, 2>{ 250, 400 }));
+}
+
+TEST(SceneFile, MaterialArrayErrors)
+{
+  EXPECT_EQ(errorOf(R"({ "material": { "kd": { "array": "" } }, "lights": [] })"),
+    "scene.json: /material/kd/array: must name a point-data array of the mesh");
+  EXPECT_EQ(errorOf(R"({ "material": { "kd": { "array": "T", "colormap": "jet" } }, "lights": [] })"),
+    "scene.json: /material/kd/colormap: \"jet\" is not one of \"cool to warm\", \"rainbow\", \"grayscale\"");
+  EXPECT_EQ(errorOf(R"({ "material": { "kd": { "array": "T", "range": [0, 1] } }, "lights": [] })"),
+    "scene.json: /material/kd/range: a range is the colour map's: give \"colormap\" too, or leave the range out");
+  EXPECT_EQ(errorOf(R"({ "material": { "kd": { "array": "T", "colormap": "rainbow", "range": [1, 1] } }, "lights": [] })"),
+    "scene.json: /material/kd/range: must be [low, high] with low < high, got [1,1]");
+  EXPECT_EQ(errorOf(R"({ "material": { "kd": { "array": "T", "encoding": "gamma" } }, "lights": [] })"),
+    "scene.json: /material/kd/encoding: \"gamma\" is not one of \"srgb\", \"linear\"");
+  EXPECT_EQ(errorOf(R"({ "material": { "shininess": { "array": "eta", "colormap": "rainbow" } }, "lights": [] })"),
+    "scene.json: /material/shininess/colormap: unknown field; allowed here: array, scale, clamp");
+  EXPECT_EQ(errorOf(R"({ "material": { "ks": { "array": "gloss", "scale": -1 } }, "lights": [] })"),
+    "scene.json: /material/ks: components must be numbers >= 0");
+  EXPECT_EQ(errorOf(R"({ "model": "vtk", "viewer": { "position": [0, 0, 5] },
+      "material": { "kd": { "array": "Colors" }, "ka": 0.1 }, "lights": [] })"),
+    "scene.json: /material/ka: with kd from an array, VTK's mapper takes the ambient colour from the array too: "
+    "give ka as {\"array\": \"Colors\", \"scale\": <the property's Ambient>}");
+  // An area light samples one lobe for all vertices.
+  EXPECT_EQ(errorOf(R"({ "material": { "shininess": { "array": "eta" } },
+      "lights": [ { "name": "panel", "type": "disk", "center": [0, 0, 2], "normal": [0, 0, -1], "radius": 0.5 } ] })"),
+    "scene.json: /material/shininess: light 'panel' (disk) samples one specular lobe for every vertex, so the "
+    "shininess cannot vary per vertex: give a number, or make ks 0");
+}
+
+TEST(MaterialArrays, SrgbDecodingAndItsChecks)
+{
+  // IEC 61966-2-1: the linear segment below the knee, the power curve above it.
+  EXPECT_DOUBLE_EQ(srgbToLinear(0.04045), 0.04045 / 12.92);
+  EXPECT_NEAR(srgbToLinear(0.5), 0.21404114048223255, 1e-15);
+  EXPECT_DOUBLE_EQ(srgbToLinear(1.0), 1.0);
+  EXPECT_DOUBLE_EQ(decodeByte(128, ArrayEncoding::Srgb, 0.5), 0.5 * srgbToLinear(128 / 255.0));
+  EXPECT_DOUBLE_EQ(decodeByte(51, ArrayEncoding::Linear, 1.0), 0.2);
+  EXPECT_EQ(defaultEncoding(true, false), ArrayEncoding::Srgb);
+  EXPECT_EQ(defaultEncoding(false, false), ArrayEncoding::Linear);
+  EXPECT_EQ(defaultEncoding(true, true), ArrayEncoding::Linear); // VTK's mapper does not decode
+
+  using C = MaterialCoefficient;
+  EXPECT_TRUE(isUsableValue(0.25, C::Specular));
+  EXPECT_FALSE(isUsableValue(1.5, C::Specular));
+  EXPECT_FALSE(isUsableValue(std::nan(""), C::Diffuse));
+  EXPECT_TRUE(isUsableValue(500, C::Shininess));
+  EXPECT_FALSE(isUsableValue(HUGE_VAL, C::Shininess));
+  EXPECT_EQ(unusableValueReason(1.5, C::Specular), "it is 1.5, outside [0, 1]");
+  EXPECT_EQ(unusableValueReason(std::nan(""), C::Specular), "it is NaN");
+  EXPECT_EQ(unusableValueReason(-HUGE_VAL, C::Ambient), "it is infinite");
+  EXPECT_EQ(unusableValueReason(-3, C::Shininess), "it is -3, below 0");
+  EXPECT_EQ(decodeReal(0.25, C::Specular, ArrayEncoding::Linear, 2.0), 0.5);
+  EXPECT_EQ(decodeReal(500, C::Shininess, ArrayEncoding::Linear, 1.0), 500);
+  // Clamped into the domain where a source clamps: NaN to 0.
+  EXPECT_EQ(decodeReal(1.5, C::Specular, ArrayEncoding::Linear, 1.0), 1.0);
+  EXPECT_EQ(decodeReal(-0.5, C::Specular, ArrayEncoding::Srgb, 1.0), 0.0);
+  EXPECT_EQ(decodeReal(std::nan(""), C::Diffuse, ArrayEncoding::Srgb, 1.0), 0.0);
+  EXPECT_DOUBLE_EQ(decodeReal(0.5, C::Diffuse, ArrayEncoding::Srgb, 1.0), srgbToLinear(0.5));
+  ArrayCoefficient source;
+  source.array = "gloss";
+  EXPECT_EQ(vertexValueProblem(source, 17, "it is NaN"), "array 'gloss', vertex 17: it is NaN");
+}
+
 TEST(SceneFile, ReadsAreaLightsAndEnvironmentMaps)
 {
   // The map's path is relative to the scene file's folder.

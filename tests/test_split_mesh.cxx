@@ -23,6 +23,7 @@
 
 #include <cstring>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -66,9 +67,11 @@ int expectPieceOfWhole(vtkPolyData* whole, vtkPolyData* piece)
   return expected->GetNumberOfArrays();
 }
 
-/// The filter's output for `mesh` in float64 with these arrays, through `controller`.
+/// The filter's output for `mesh` in float64 with these arrays, through `controller`, with
+/// the filter's other settings (if any) made by configure.
 vtkSmartPointer<vtkPolyData> shaded(vtkPolyData* mesh, const std::string& scene, const std::vector<std::string>& arrays,
-  vtkMultiProcessController* controller, double tolerance = 0)
+  vtkMultiProcessController* controller, double tolerance = 0,
+  const std::function<void(vtkLocalReflectanceFilter*)>& configure = {})
 {
   vtkNew<vtkLocalReflectanceFilter> filter;
   filter->SetController(controller);
@@ -78,6 +81,10 @@ vtkSmartPointer<vtkPolyData> shaded(vtkPolyData* mesh, const std::string& scene,
   filter->SetOutputPrecision(vtkAlgorithm::DOUBLE_PRECISION);
   filter->SetTolerance(tolerance);
   filter->SetNumberOfThreads(1);
+  if (configure)
+  {
+    configure(filter);
+  }
   filter->Update();
   auto output = vtkSmartPointer<vtkPolyData>::New();
   output->ShallowCopy(filter->GetOutput());
@@ -157,6 +164,31 @@ INSTANTIATE_TEST_SUITE_P(BundledMeshes, SplitMesh,
 vtkSmartPointer<vtkPolyData> bunny()
 {
   return shadelab::app::readMesh(dataPath("meshes/bunny_zipper.ply"));
+}
+
+// A material from the mesh's arrays: the head scan's own colours, and a field through a colour
+// map whose range is the whole mesh's, though each piece holds a part of the field.
+TEST(SplitMeshMaterial, ColoursAndAFieldsRangeAreTheWholeMeshs)
+{
+  const vtkSmartPointer<vtkPolyData> head = shadelab::app::readMesh(dataPath("meshes/head_scan.ply"));
+  vtkNew<vtkDoubleArray> height;
+  height->SetName("height");
+  for (vtkIdType i = 0; i < head->GetNumberOfPoints(); ++i)
+  {
+    height->InsertNextValue(head->GetPoint(i)[1]);
+  }
+  head->GetPointData()->AddArray(height);
+  EXPECT_GT(expectPieceOfWhole(shaded(head, "scan_colors.json", { "all" }, nullptr),
+              shaded(myPiece(head), "scan_colors.json", { "all" }, processes())),
+    10);
+  auto byHeight = [](vtkLocalReflectanceFilter* filter)
+  {
+    filter->SetColorByArray(true);
+    filter->SetMaterialColorArray("height");
+  };
+  EXPECT_GT(expectPieceOfWhole(shaded(head, "studio_mesh.json", { "totals" }, nullptr, 0, byHeight),
+              shaded(myPiece(head), "studio_mesh.json", { "totals" }, processes(), 0, byHeight)),
+    5);
 }
 
 // Shadows and ambient occlusion: each piece's rays meet the whole mesh's triangles.

@@ -7,7 +7,10 @@
 
 #include "OffScreenImage.h"
 
+#include "ShadeLabMaterialArrays.h"
+
 #include "vtkActor.h"
+#include "vtkDoubleArray.h"
 #include "vtkCellArray.h"
 #include "vtkImageData.h"
 #include "vtkMatrix4x4.h"
@@ -16,7 +19,9 @@
 #include "vtkUnsignedCharArray.h"
 
 #include <cmath>
+#include <functional>
 #include <map>
+#include <random>
 
 namespace
 {
@@ -28,15 +33,19 @@ constexpr int windowSize = 800;
 class RealRender : public shadelab::testing::VtkLightSets
 {
 protected:
-  void expectPixelsMatch(bool lone)
+  /// Renders the sphere's vertices as one-pixel points and compares each pixel with the vtk
+  /// model's total. With colorBy, the sphere carries the arrays it adds and the scene takes
+  /// its material from them; mapWith then sets the mapper's scalar colouring to match.
+  void expectPixelsMatch(bool lone, const std::function<void(vtkPolyData*, shadelab::Scene&)>& colorBy = {},
+    const std::function<void(vtkPolyDataMapper*)>& mapWith = {})
   {
-    const auto [sphere, total] = shadeLitSphere(120, lone);
+    const auto [sphere, total] = shadeLitSphere(120, lone, colorBy);
     ASSERT_NE(total, nullptr);
 
-    // The same vertices and normals as a cloud of vertex cells.
+    // The same vertices, normals and arrays as a cloud of vertex cells.
     vtkNew<vtkPolyData> cloud;
     cloud->SetPoints(sphere->GetPoints());
-    cloud->GetPointData()->SetNormals(sphere->GetPointData()->GetNormals());
+    cloud->GetPointData()->ShallowCopy(sphere->GetPointData());
     vtkNew<vtkCellArray> vertices;
     for (vtkIdType i = 0; i < sphere->GetNumberOfPoints(); ++i)
     {
@@ -45,7 +54,11 @@ protected:
     cloud->SetVerts(vertices);
     vtkNew<vtkPolyDataMapper> mapper;
     mapper->SetInputData(cloud);
-    mapper->ScalarVisibilityOff();
+    mapper->SetScalarVisibility(bool(mapWith));
+    if (mapWith)
+    {
+      mapWith(mapper);
+    }
     vtkNew<vtkActor> actor;
     actor->SetMapper(mapper);
     actor->SetProperty(property);
@@ -127,5 +140,98 @@ TEST_F(RealRender, PositionalSpotAndPointLights)
 {
   addPositionalLights();
   expectPixelsMatch(false);
+}
+
+/// The material's diffuse and ambient colours from an array, as VTK's mapper colours both with
+/// the scalars' colour (times the property's Diffuse and Ambient).
+void colorFromArray(shadelab::Scene& scene, const vtkProperty* property, shadelab::ArrayCoefficient source)
+{
+  using shadelab::MaterialCoefficient;
+  source.scale = const_cast<vtkProperty*>(property)->GetDiffuse();
+  scene.material.arrays[MaterialCoefficient::Diffuse] = source;
+  scene.material.kd = shadelab::Rgb(source.scale);
+  source.scale = const_cast<vtkProperty*>(property)->GetAmbient();
+  scene.material.arrays[MaterialCoefficient::Ambient] = source;
+  scene.material.ka = shadelab::Rgb(source.scale);
+}
+
+/// A field over the sphere that sweeps the colour map several times round it.
+void addField(vtkPolyData* sphere)
+{
+  vtkNew<vtkDoubleArray> field;
+  field->SetName("field");
+  for (vtkIdType i = 0; i < sphere->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    sphere->GetPoint(i, p);
+    field->InsertNextValue(std::sin(3 * p[0]) + p[1] * p[2]);
+  }
+  sphere->GetPointData()->AddArray(field);
+}
+
+constexpr std::array<double, 2> fieldRange{ -0.8, 1.1 }; // inside the field's: both ends clamp
+
+TEST_F(RealRender, FieldThroughTheMappersDefaultLookupTable)
+{
+  addLightKit();
+  expectPixelsMatch(
+    false,
+    [&](vtkPolyData* sphere, shadelab::Scene& scene)
+    {
+      addField(sphere);
+      colorFromArray(scene, property, { "field", {}, 1.0, "rainbow", fieldRange });
+    },
+    [](vtkPolyDataMapper* mapper)
+    {
+      // The mapper's own lookup table (a default vtkLookupTable), only its range set.
+      mapper->SetScalarModeToUsePointFieldData();
+      mapper->SelectColorArray("field");
+      mapper->SetScalarRange(fieldRange[0], fieldRange[1]);
+    });
+}
+
+TEST_F(RealRender, FieldThroughAColorTransferFunction)
+{
+  addPositionalLights();
+  expectPixelsMatch(
+    false,
+    [&](vtkPolyData* sphere, shadelab::Scene& scene)
+    {
+      addField(sphere);
+      colorFromArray(scene, property, { "field", {}, 1.0, "cool to warm", fieldRange });
+    },
+    [](vtkPolyDataMapper* mapper)
+    {
+      mapper->SetScalarModeToUsePointFieldData();
+      mapper->SelectColorArray("field");
+      mapper->SetLookupTable(shadelab::namedColorMap("cool to warm", fieldRange));
+      mapper->UseLookupTableScalarRangeOn();
+    });
+}
+
+TEST_F(RealRender, DirectEightBitColors)
+{
+  addLoneHeadlight();
+  expectPixelsMatch(
+    true,
+    [&](vtkPolyData* sphere, shadelab::Scene& scene)
+    {
+      std::mt19937 random(7);
+      vtkNew<vtkUnsignedCharArray> colors;
+      colors->SetName("Colors");
+      colors->SetNumberOfComponents(3);
+      for (vtkIdType i = 0; i < 3 * sphere->GetNumberOfPoints(); ++i)
+      {
+        colors->InsertNextValue(static_cast<unsigned char>(random() % 256));
+      }
+      sphere->GetPointData()->AddArray(colors);
+      colorFromArray(scene, property, { "Colors" });
+    },
+    [](vtkPolyDataMapper* mapper)
+    {
+      mapper->SetScalarModeToUsePointFieldData();
+      mapper->SelectColorArray("Colors");
+      mapper->SetColorModeToDirectScalars();
+    });
 }
 }

@@ -6,6 +6,7 @@
 #include "ShadeLabThreadCount.h"
 #include "ShadeLabWholeMesh.h"
 #include "ShadeLabLargeArrays.h"
+#include "ShadeLabMaterialArrays.h"
 #include "SceneFrame.h"
 #include "ShadeLabMeshChecks.h"
 #include "ShadeLabMeshExtent.h"
@@ -555,6 +556,16 @@ std::string takenName(vtkPolyData* input, const std::vector<std::string>& names)
   return "";
 }
 
+/// The material_clamped array: per vertex, bit c where coefficient c's value was clamped.
+vtkSmartPointer<vtkDataArray> clampedMaterialArray(const std::vector<std::uint8_t>& clamped, const std::string& prefix)
+{
+  auto array = vtkSmartPointer<vtkUnsignedCharArray>::New();
+  array->SetName(shadelab::materialClampedArrayName(prefix).c_str());
+  array->SetNumberOfTuples(static_cast<vtkIdType>(clamped.size()));
+  std::copy(clamped.begin(), clamped.end(), array->GetPointer(0));
+  return array;
+}
+
 /// Points the kernel's inputs at the rays' arrays in `seen`: each shadowed light's visibility,
 /// the ambient occlusion and the flags. Returns the occlusion arrays the request asks for, to
 /// be output as they are (float32 whatever the precision: estimates, not exact terms).
@@ -660,7 +671,7 @@ int vtkLocalReflectanceFilter::ShadeMesh(vtkPolyData* input, vtkPolyData* output
   this->NormalsStep->SetController(processes);
   this->VisibilityStep->SetController(processes);
   std::optional<ShadingPlan> plan = this->PlanShading(input, processes, split != nullptr);
-  if (!plan)
+  if (!plan || !this->ReadMaterialArrays(input, processes, split, *plan))
   {
     return 0;
   }
@@ -767,6 +778,43 @@ std::optional<vtkLocalReflectanceFilter::ShadingPlan> vtkLocalReflectanceFilter:
   return plan;
 }
 
+bool vtkLocalReflectanceFilter::MaterialSource::operator==(const MaterialSource& other) const
+{
+  return sources.coefficients == other.sources.coefficients && model == other.model && arrays == other.arrays;
+}
+
+bool vtkLocalReflectanceFilter::ReadMaterialArrays(
+  vtkPolyData* input, vtkMultiProcessController* processes, const shadelab::PieceLayout* split, const ShadingPlan& plan)
+{
+  if (!plan.scene.material.arrays.any())
+  {
+    return true;
+  }
+  MaterialSource source{ plan.scene.material.arrays, plan.scene.model, {} };
+  for (const auto& coefficient : source.sources.coefficients)
+  {
+    vtkDataArray* array = coefficient ? input->GetPointData()->GetArray(coefficient->array.c_str()) : nullptr;
+    source.arrays.emplace_back(array, array ? array->GetMTime() : 0);
+  }
+  const bool unchanged = this->VertexMaterialSource && *this->VertexMaterialSource == source;
+  if (split ? shadelab::everyProcessHolds(processes, unchanged) : unchanged)
+  {
+    return true;
+  }
+  this->VertexMaterialSource.reset();
+  shadelab::MaterialReading reading =
+    shadelab::readVertexMaterial(input, plan.scene, processes, split ? &split->pieceIds : nullptr);
+  this->VertexMaterial = std::move(reading.material);
+  const std::string problem = split ? shadelab::firstText(processes, reading.problem) : reading.problem;
+  if (!problem.empty())
+  {
+    vtkErrorMacro("scene " << problem);
+    return false;
+  }
+  this->VertexMaterialSource = source;
+  return true;
+}
+
 bool vtkLocalReflectanceFilter::CheckTolerance()
 {
   if (!(this->Tolerance >= 0 && std::isfinite(this->Tolerance)))
@@ -832,6 +880,16 @@ bool vtkLocalReflectanceFilter::PlaceScene(
   }
   // A scene written relative to the mesh is placed on it here, and checked where it lands.
   plan.scene = shadelab::placedOnMesh(*given, plan.extent);
+  if (this->ColorByArray)
+  {
+    if (!shadelab::isColorMapName(this->MaterialColorMap))
+    {
+      vtkErrorMacro("MaterialColorMap \"" << this->MaterialColorMap << "\" is not one of "
+                                          << shadelab::colorMapNameList());
+      return false;
+    }
+    shadelab::colorMaterialBy(plan.scene, this->MaterialColorArray, this->MaterialColorMap);
+  }
   if (!this->SceneIsValid(shadelab::sceneProblems(plan.scene, plan.precision)))
   {
     return false;
@@ -1047,6 +1105,10 @@ std::vector<std::string> vtkLocalReflectanceFilter::WritableArrayNames(vtkPolyDa
   {
     names.push_back(this->ComputedNormalsName());
   }
+  if (scene.material.arrays.clamps())
+  {
+    names.push_back(shadelab::materialClampedArrayName(this->ArrayPrefix));
+  }
   return names;
 }
 
@@ -1078,14 +1140,27 @@ std::vector<vtkSmartPointer<vtkDataArray>> vtkLocalReflectanceFilter::ShadedArra
     static_assert(sizeof(vtkIdType) == sizeof(long long), "ids seed samples as 64-bit integers");
     inputs.sampleIds = reinterpret_cast<const long long*>(split->pieceIds.data());
   }
-  const std::vector<vtkSmartPointer<vtkDataArray>> occlusion =
+  if (plan.scene.material.arrays.any())
+  {
+    if (plan.precision == shadelab::Precision::Float32)
+    {
+      this->VertexMaterial.withFloat32(); // the float32 kernel reads half the bytes
+    }
+    inputs.material = &this->VertexMaterial;
+  }
+  // Besides the kernel's: the occlusion arrays asked for, and which material values were clamped.
+  std::vector<vtkSmartPointer<vtkDataArray>> besideShading =
     seen ? useVisibility(seen, plan.scene, plan.request, this->ArrayPrefix, inputs)
          : std::vector<vtkSmartPointer<vtkDataArray>>();
+  if (plan.scene.material.arrays.clamps())
+  {
+    besideShading.push_back(clampedMaterialArray(this->VertexMaterial.clamped, this->ArrayPrefix));
+  }
   vtkDataArray* points = input->GetPoints()->GetData();
   std::vector<vtkSmartPointer<vtkDataArray>> arrays = plan.precision == shadelab::Precision::Float64
     ? shade<double>(plan.scene, plan.request, plan.methods, this->ArrayPrefix, points, shadingNormals, inputs, this, &sampling.shortOfTarget, &sampling.standardError)
     : shade<float>(plan.scene, plan.request, plan.methods, this->ArrayPrefix, points, shadingNormals, inputs, this, &sampling.shortOfTarget, &sampling.standardError);
-  arrays.insert(arrays.end(), occlusion.begin(), occlusion.end());
+  arrays.insert(arrays.end(), besideShading.begin(), besideShading.end());
   return arrays;
 }
 
@@ -1267,6 +1342,9 @@ void vtkLocalReflectanceFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
   os << indent << "ArrayPrefix: " << this->ArrayPrefix << "\n";
+  os << indent << "ColorByArray: " << this->ColorByArray << "\n";
+  os << indent << "MaterialColorArray: " << this->MaterialColorArray << "\n";
+  os << indent << "MaterialColorMap: " << this->MaterialColorMap << "\n";
   os << indent << "OutputPrecision: " << this->OutputPrecision << "\n";
   os << indent << "OrientNormalsOutward: " << this->OrientNormalsOutward << "\n";
   os << indent << "WeldCoincidentPoints: " << this->WeldCoincidentPoints << "\n";

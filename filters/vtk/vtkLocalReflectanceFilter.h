@@ -76,6 +76,21 @@ public:
   vtkSetClampMacro(NumberOfThreads, int, 0, 1024);
   vtkGetMacro(NumberOfThreads, int);
 
+  /// With ColorByArray on, the material's colour comes from the input's point array
+  /// MaterialColorArray instead of the scene's kd (and ka, which follows it): 3- or 4-component
+  /// colours as they are, a 1-component field through MaterialColorMap
+  /// (shadelab::colorMaterialBy; docs/guide/scene-files.md). Off (the default): the scene's
+  /// material. (Two properties, so that ParaView's panel can switch back to the scene's.)
+  vtkSetMacro(ColorByArray, bool);
+  vtkGetMacro(ColorByArray, bool);
+  vtkBooleanMacro(ColorByArray, bool);
+  vtkSetMacro(MaterialColorArray, std::string);
+  vtkGetMacro(MaterialColorArray, std::string);
+  /// The colour map of a field in MaterialColorArray: "cool to warm" (the default, as ParaView's
+  /// default preset), "rainbow" or "grayscale", spanning the field's range.
+  vtkSetMacro(MaterialColorMap, std::string);
+  vtkGetMacro(MaterialColorMap, std::string);
+
   /// Prepended to every array name written, to keep clear of names the input already has.
   vtkSetMacro(ArrayPrefix, std::string);
   vtkGetMacro(ArrayPrefix, std::string);
@@ -169,6 +184,9 @@ private:
   /// The selection was set by its own setters: it wins over earlier choices in AvailableArrays.
   void SelectionSetHere();
   std::string ArrayPrefix;
+  bool ColorByArray = false;
+  std::string MaterialColorArray;
+  std::string MaterialColorMap = "cool to warm";
   int OutputPrecision = SINGLE_PRECISION;
   bool OrientNormalsOutward = true;
   bool WeldCoincidentPoints = true;
@@ -226,6 +244,22 @@ private:
   /// That scene, placed on the plan's extent and checked where it lands; under a tolerance,
   /// each light's nearest point measured for the plan's bounds.
   bool PlaceScene(vtkPolyData* input, vtkMultiProcessController* processes, bool split, ShadingPlan& plan);
+  /// The material's arrays read from the input (shadelab::readVertexMaterial) into
+  /// VertexMaterial, where the scene has any: read again only when the arrays, their points or
+  /// what the scene reads from them have changed since the last run (decoding them costs more
+  /// than shading does), on every process alike.
+  bool ReadMaterialArrays(vtkPolyData* input, vtkMultiProcessController* processes,
+    const shadelab::PieceLayout* split, const ShadingPlan& plan);
+  /// The last material read, and what it was read from.
+  shadelab::VertexMaterial VertexMaterial;
+  struct MaterialSource
+  {
+    shadelab::MaterialArrays sources;
+    shadelab::ShadingModel model = shadelab::ShadingModel::Lecture;
+    std::vector<std::pair<vtkDataArray*, vtkMTimeType>> arrays; // each array read, and its time then
+    bool operator==(const MaterialSource& other) const;
+  };
+  std::optional<MaterialSource> VertexMaterialSource;
   /// Whether the tolerance or the explicit LightMethods fit the scene; forgets the last plan.
   bool CheckLightMethods(const shadelab::Scene& scene);
   /// The arrays the selection asks for, and the methods and precision: the explicit ones, or
@@ -258,8 +292,9 @@ private:
   bool CheckArrayNamesFree(
     vtkPolyData* input, const shadelab::Scene& scene, vtkMultiProcessController* processes, bool split);
   /// The arrays to output: those the kernel computes with the normals and the rays' arrays in
-  /// `seen` (nullptr: no rays), then the occlusion arrays asked for; into `sampling`, what the
-  /// sampling to targets left. Throws std::runtime_error where an array cannot be allocated.
+  /// `seen` (nullptr: no rays), then the occlusion arrays asked for and material_clamped; into
+  /// `sampling`, what the sampling to targets left. Throws std::runtime_error where an array
+  /// cannot be allocated.
   std::vector<vtkSmartPointer<vtkDataArray>> ShadedArrays(vtkPolyData* input, vtkDataArray* shadingNormals,
     vtkPolyData* seen, const ShadingPlan& plan, const shadelab::PieceLayout* split, SamplingOutcome& sampling);
   /// The error 95% of the whole mesh's vertices are estimated to be within from their sampled

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <initializer_list>
 #include <string>
@@ -146,6 +147,18 @@ public:
     fail("\"" + given + "\" is not one of " + list);
   }
 
+  /// [low, high], low < high.
+  std::array<double, 2> interval() const
+  {
+    if (!value_.is_array() || value_.size() != 2 ||
+      !std::all_of(value_.begin(), value_.end(), [](const Json& x) { return x.is_number(); }) ||
+      !(value_[0].get<double>() < value_[1].get<double>()))
+    {
+      fail("must be [low, high] with low < high, got " + shortJsonText(value_));
+    }
+    return { value_[0].get<double>(), value_[1].get<double>() };
+  }
+
   glm::dvec3 vector3(const char* expected = "an array of 3 numbers") const
   {
     if (!value_.is_array() || value_.size() != 3 ||
@@ -165,6 +178,7 @@ public:
   std::size_t size() const { return value_.size(); }
   bool isArray() const { return value_.is_array(); }
   bool isString() const { return value_.is_string(); }
+  bool isObject() const { return value_.is_object(); }
   JsonNode element(std::size_t i) const { return JsonNode(value_.at(i), path_ + "/" + std::to_string(i)); }
 
 private:

@@ -59,6 +59,45 @@ void store(T* out, std::size_t first, std::size_t count, const Lane<T>& x, const
   }
 }
 
+/// A light's term per channel, before its colour.
+template <typename T>
+struct RgbLanes
+{
+  const Lane<T>& r;
+  const Lane<T>& g;
+  const Lane<T>& b;
+};
+
+/// A term that is the same in every channel (a material whose coefficient is one number).
+template <typename T>
+RgbLanes<T> sameLanes(const Lane<T>& term)
+{
+  return { term, term, term };
+}
+
+/// A term times the vertices' own coefficient (a material from arrays), channel by channel.
+template <typename T>
+RgbLanes<T> timesCoefficient(
+  const RgbLanes<T>& term, const std::array<Lane<T>, 3>& coefficient, std::size_t count, std::array<Lane<T>, 3>& product)
+{
+  const Lane<T>* channels[3] = { &term.r, &term.g, &term.b };
+  for (int channel = 0; channel < 3; ++channel)
+  {
+    for (std::size_t k = 0; k < count; ++k)
+    {
+      product[channel][k] = (*channels[channel])[k] * coefficient[channel][k];
+    }
+  }
+  return { product[0], product[1], product[2] };
+}
+
+/// Vertex k's own coefficient (lanes), as a factor of the light's.
+template <typename T>
+Rgb coefficientAt(const std::array<Lane<T>, 3>& lanes, std::size_t k)
+{
+  return Rgb(lanes[0][k], lanes[1][k], lanes[2][k]);
+}
+
 /// An RGB term that is colour x (r, g, b) at each vertex.
 template <typename T>
 void store(T* out, std::size_t first, std::size_t count, const Lane<T>& r, const Lane<T>& g, const Lane<T>& b,
@@ -129,6 +168,10 @@ struct ShadingKernel<T>::Workspace
   Lane<T> integralR, integralG, integralB;       // and its S, before ks
   std::array<Rgb, VertexBlock<T>::capacity> sampledError; // ShadingOutputs::sampledStandardError's, per channel
   std::array<ShadingFlags, VertexBlock<T>::capacity> flags;
+  // A material from arrays: the vertices' own coefficients, and the current light's diffuse and
+  // specular factors times them (the light's colour holds the rest).
+  std::array<Lane<T>, 3> ka, kd, ks, diffuseRgb, specularRgb;
+  Lane<T> shininess;
   Lane<T> halfVectorDefined; // 1 or 0: a lane of T, so that its loops vectorise with the rest
   std::size_t nonFinite = 0;
 };
@@ -208,7 +251,16 @@ ShadingKernel<T>::ShadingKernel(
   : outputs_(std::move(outputs))
   , inputs_(std::move(inputs))
 {
-  const Material& m = scene.material;
+  for (int c = 0; c < MaterialCoefficientCount && inputs_.material; ++c)
+  {
+    vertexMaterial_[c] = inputs_.material->of<T>(MaterialCoefficient(c));
+  }
+  // Where a coefficient is per vertex, the lights' colours take 1 for it and the vertex's own
+  // multiplies each term (loadMaterial).
+  Material m = scene.material;
+  m.ka = perVertex(MaterialCoefficient::Ambient) ? Rgb(1.0) : m.ka;
+  m.kd = perVertex(MaterialCoefficient::Diffuse) ? Rgb(1.0) : m.kd;
+  m.ks = perVertex(MaterialCoefficient::Specular) ? Rgb(1.0) : m.ks;
   const bool vtk = scene.model == ShadingModel::VtkOpenGL2;
   // docs/vtk-renderer.md sections 1, 2 and 5: VTK's shader always flips back faces, and its
   // ambient term is Ka*Ca from the property alone. In its lone-headlight shader the specular
@@ -319,6 +371,31 @@ void ShadingKernel<T>::prepareNormals(const VertexBlock<T>& b, Workspace& w) con
       w.nz[k] = z / length;
       --overflowing;
     }
+  }
+}
+
+template <typename T>
+void ShadingKernel<T>::loadMaterial(const VertexBlock<T>& b, Workspace& w) const
+{
+  auto load = [&](MaterialCoefficient c, std::array<Lane<T>, 3>& lanes)
+  {
+    if (const T* values = vertexMaterial_[int(c)])
+    {
+      for (std::size_t k = 0; k < b.count; ++k)
+      {
+        for (int channel = 0; channel < 3; ++channel)
+        {
+          lanes[channel][k] = values[3 * (b.first + k) + channel];
+        }
+      }
+    }
+  };
+  load(MaterialCoefficient::Ambient, w.ka);
+  load(MaterialCoefficient::Diffuse, w.kd);
+  load(MaterialCoefficient::Specular, w.ks);
+  if (const T* eta = vertexMaterial_[int(MaterialCoefficient::Shininess)])
+  {
+    std::copy_n(eta + b.first, b.count, w.shininess.begin());
   }
 }
 
@@ -434,11 +511,13 @@ void ShadingKernel<T>::addLight(const PreparedLight& light, const VertexBlock<T>
     w.diffuse[k] = lambertFactor(cosIncidence) * (w.attenuation[k] * w.spotFactor[k]);
   }
   applyVisibility(light.visibility, b, w.diffuse);
+  const auto& [diffuseR, diffuseG, diffuseB] =
+    perVertex(MaterialCoefficient::Diffuse) ? timesCoefficient(sameLanes(w.diffuse), w.kd, count, w.diffuseRgb) : sameLanes(w.diffuse);
   for (std::size_t k = 0; k < count; ++k)
   {
-    w.diffuseR[k] += w.diffuse[k] * light.diffuseColor.x;
-    w.diffuseG[k] += w.diffuse[k] * light.diffuseColor.y;
-    w.diffuseB[k] += w.diffuse[k] * light.diffuseColor.z;
+    w.diffuseR[k] += diffuseR[k] * light.diffuseColor.x;
+    w.diffuseG[k] += diffuseG[k] * light.diffuseColor.y;
+    w.diffuseB[k] += diffuseB[k] * light.diffuseColor.z;
   }
   // The viewer of the specular term: v, or the light itself for VTK's lone headlight.
   const Lane<T>& svx = specularViewerIsLight_ ? w.sx : w.vx;
@@ -474,11 +553,14 @@ void ShadingKernel<T>::addLight(const PreparedLight& light, const VertexBlock<T>
   {
     specularLobes(light, count, w);
     applyVisibility(light.visibility, b, w.specular);
+    const auto& [specularR, specularG, specularB] = perVertex(MaterialCoefficient::Specular)
+      ? timesCoefficient(sameLanes(w.specular), w.ks, count, w.specularRgb)
+      : sameLanes(w.specular);
     for (std::size_t k = 0; k < count; ++k)
     {
-      w.specularR[k] += w.specular[k] * light.specularColor.x;
-      w.specularG[k] += w.specular[k] * light.specularColor.y;
-      w.specularB[k] += w.specular[k] * light.specularColor.z;
+      w.specularR[k] += specularR[k] * light.specularColor.x;
+      w.specularG[k] += specularG[k] * light.specularColor.y;
+      w.specularB[k] += specularB[k] * light.specularColor.z;
     }
   }
   if (light.out[int(LightTerm::IncidenceAngle)])
@@ -505,6 +587,15 @@ void ShadingKernel<T>::specularLobes(const PreparedLight& light, std::size_t cou
   // The approximations, and the exact power in float for a whole eta, are vectorised loops:
   // evaluated everywhere, then masked, each in its own loop (one loop doing all ran twice as
   // slow).
+  if (perVertex(MaterialCoefficient::Shininess))
+  {
+    // Each vertex's own eta: a library call per lit vertex (a tolerance's plan keeps the exact pow).
+    for (std::size_t k = 0; k < count; ++k)
+    {
+      w.specular[k] = specularLobe(litAt(k), cosine[k], w.shininess[k]) * (w.attenuation[k] * w.spotFactor[k]);
+    }
+    return;
+  }
   Lane<T>& lobe = w.specular;
   auto powersOfClampedCosines = [&](auto&& raiseAll)
   {
@@ -565,10 +656,16 @@ void ShadingKernel<T>::storeLight(const PreparedLight& light, const VertexBlock<
   store(out[int(LightTerm::RDotV)], first, count, w.rDotV);
   store(out[int(LightTerm::HalfVector)], first, count, w.hx, w.hy, w.hz);
   store(out[int(LightTerm::NDotH)], first, count, w.nDotH);
-  store(out[int(LightTerm::Diffuse)], first, count, w.diffuse, w.diffuse, w.diffuse, light.diffuseColor);
+  const RgbLanes<T> diffuse = perVertex(MaterialCoefficient::Diffuse)
+    ? RgbLanes<T>{ w.diffuseRgb[0], w.diffuseRgb[1], w.diffuseRgb[2] }
+    : sameLanes(w.diffuse);
+  store(out[int(LightTerm::Diffuse)], first, count, diffuse.r, diffuse.g, diffuse.b, light.diffuseColor);
   if (light.needsSpecular)
   {
-    store(out[int(LightTerm::Specular)], first, count, w.specular, w.specular, w.specular, light.specularColor);
+    const RgbLanes<T> specular = perVertex(MaterialCoefficient::Specular)
+      ? RgbLanes<T>{ w.specularRgb[0], w.specularRgb[1], w.specularRgb[2] }
+      : sameLanes(w.specular);
+    store(out[int(LightTerm::Specular)], first, count, specular.r, specular.g, specular.b, light.specularColor);
   }
   else if (T* specular = out[int(LightTerm::Specular)])
   {
@@ -639,9 +736,11 @@ void ShadingKernel<T>::estimateDistributedLight(const DistributedLightSlot& ligh
     w.integralG[k] = T(terms.specular.y);
     w.integralB[k] = T(terms.specular.z);
     const std::size_t i = b.first + k;
-    w.sampledError[k] += glm::max(light.kd, Rgb(1.0)) * terms.irradianceStdError + light.ks * terms.specularStdError;
+    const Rgb kd = perVertex(MaterialCoefficient::Diffuse) ? coefficientAt(w.kd, k) : light.kd;
+    const Rgb ks = perVertex(MaterialCoefficient::Specular) ? coefficientAt(w.ks, k) : light.ks;
+    w.sampledError[k] += glm::max(kd, Rgb(1.0)) * terms.irradianceStdError + ks * terms.specularStdError;
     storeRgb(LightTerm::IrradianceStdError, i, terms.irradianceStdError);
-    storeRgb(LightTerm::SpecularStdError, i, light.ks * terms.specularStdError);
+    storeRgb(LightTerm::SpecularStdError, i, ks * terms.specularStdError);
     if (T* visibility = out[int(LightTerm::Visibility)])
     {
       visibility[i] = T(terms.visibility);
@@ -689,31 +788,35 @@ void ShadingKernel<T>::addDistributedLight(const DistributedLightSlot& light, co
     polynomial(w.irradianceG, 1);
     polynomial(w.irradianceB, 2);
   }
+  // kd E and ks S; where kd or ks is per vertex, the light's is 1 and the vertex's multiplies.
   const Vec3<T> kd = toVec<T>(light.kd), ks = toVec<T>(light.ks);
+  const auto& out = light.out;
   if (light.runsEstimator())
   {
     estimateDistributedLight(light, b, w);
+    const RgbLanes<T> integral = perVertex(MaterialCoefficient::Specular)
+      ? timesCoefficient({ w.integralR, w.integralG, w.integralB }, w.ks, count, w.specularRgb)
+      : RgbLanes<T>{ w.integralR, w.integralG, w.integralB };
     for (std::size_t k = 0; k < count; ++k)
     {
-      w.specularR[k] += ks.x * w.integralR[k];
-      w.specularG[k] += ks.y * w.integralG[k];
-      w.specularB[k] += ks.z * w.integralB[k];
+      w.specularR[k] += ks.x * integral.r[k];
+      w.specularG[k] += ks.y * integral.g[k];
+      w.specularB[k] += ks.z * integral.b[k];
     }
+    store(out[int(LightTerm::Specular)], b.first, count, integral.r, integral.g, integral.b, ks);
   }
+  const RgbLanes<T> irradiance = perVertex(MaterialCoefficient::Diffuse)
+    ? timesCoefficient({ w.irradianceR, w.irradianceG, w.irradianceB }, w.kd, count, w.diffuseRgb)
+    : RgbLanes<T>{ w.irradianceR, w.irradianceG, w.irradianceB };
   for (std::size_t k = 0; k < count; ++k)
   {
-    w.diffuseR[k] += kd.x * w.irradianceR[k];
-    w.diffuseG[k] += kd.y * w.irradianceG[k];
-    w.diffuseB[k] += kd.z * w.irradianceB[k];
+    w.diffuseR[k] += kd.x * irradiance.r[k];
+    w.diffuseG[k] += kd.y * irradiance.g[k];
+    w.diffuseB[k] += kd.z * irradiance.b[k];
   }
-  const auto& out = light.out;
   store(out[int(LightTerm::Irradiance)], b.first, count, w.irradianceR, w.irradianceG, w.irradianceB);
-  store(out[int(LightTerm::Diffuse)], b.first, count, w.irradianceR, w.irradianceG, w.irradianceB, kd);
-  if (light.runsEstimator())
-  {
-    store(out[int(LightTerm::Specular)], b.first, count, w.integralR, w.integralG, w.integralB, ks);
-  }
-  else
+  store(out[int(LightTerm::Diffuse)], b.first, count, irradiance.r, irradiance.g, irradiance.b, kd);
+  if (!light.runsEstimator())
   {
     // SH with no specular term to sample (no specular model, a black ks, or no array needs
     // it): nothing is sampled, so nothing is short of a target either.
@@ -735,8 +838,11 @@ void ShadingKernel<T>::storeTotals(const VertexBlock<T>& b, Workspace& w) const
   const auto& totals = outputs_.totals;
   const std::size_t first = b.first;
   const std::size_t count = b.count;
+  // ka La at vertex k, and times its occlusion where there is one.
+  auto ambientLightAt = [&](std::size_t k)
+  { return perVertex(MaterialCoefficient::Ambient) ? ambient_ * Vec3<T>(w.ka[0][k], w.ka[1][k], w.ka[2][k]) : ambient_; };
   auto ambientAt = [&](std::size_t k)
-  { return inputs_.ambientOcclusion ? ambient_ * T(inputs_.ambientOcclusion[first + k]) : ambient_; };
+  { return inputs_.ambientOcclusion ? ambientLightAt(k) * T(inputs_.ambientOcclusion[first + k]) : ambientLightAt(k); };
   if (T* ambient = totals[int(TotalTerm::Ambient)])
   {
     for (std::size_t k = 0; k < count; ++k)
@@ -762,7 +868,7 @@ void ShadingKernel<T>::storeTotals(const VertexBlock<T>& b, Workspace& w) const
     for (std::size_t k = 0; k < count; ++k)
     {
       const Rgb occlusion = inputs_.ambientOcclusionStdError
-        ? glm::max(Rgb(ambient_.x, ambient_.y, ambient_.z), Rgb(1.0)) * double(inputs_.ambientOcclusionStdError[first + k])
+        ? glm::max(Rgb(ambientLightAt(k)), Rgb(1.0)) * double(inputs_.ambientOcclusionStdError[first + k])
         : Rgb(0.0);
       sampled[first + k] = largestComponent(w.sampledError[k] + occlusion);
     }
@@ -791,6 +897,7 @@ void ShadingKernel<T>::shadeBlock(const VertexBlock<T>& b) const
   }
   std::fill_n(w.sampledError.begin(), count, Rgb(0.0));
   prepareNormals(b, w);
+  loadMaterial(b, w);
   // v costs a square root and a division per vertex: only when a term or the flags need it.
   prepareViewer(b, w);
   for (const PreparedLight& light : lights_)

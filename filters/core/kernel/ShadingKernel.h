@@ -64,6 +64,9 @@ struct ShadingInputs
   /// Each vertex's id in the whole mesh, which seeds its samples, where the arrays hold some
   /// of its vertices (a piece of a mesh split over processes); nullptr: the vertex's index.
   const long long* sampleIds = nullptr;
+  /// The vertices' own coefficients where the scene's material comes from arrays, in the
+  /// kernel's precision (VertexMaterial::of); nullptr: the scene's material gives them all.
+  const VertexMaterial* material = nullptr;
 };
 
 /// Up to `capacity` vertices in structure-of-arrays form; first is the index of the block's
@@ -169,6 +172,8 @@ private:
     const std::uint64_t* hiddenSamples, const double* shadowedTerms) const;
 
   void prepareNormals(const VertexBlock<T>& block, Workspace& w) const;
+  void loadMaterial(const VertexBlock<T>& block, Workspace& w) const;
+  bool perVertex(MaterialCoefficient c) const { return vertexMaterial_[int(c)] != nullptr; }
   void prepareViewer(const VertexBlock<T>& block, Workspace& w) const;
   void sampleLight(const PreparedLight& light, const VertexBlock<T>& block, Workspace& w) const;
   void addLight(const PreparedLight& light, const VertexBlock<T>& block, Workspace& w) const;
@@ -183,7 +188,8 @@ private:
   std::vector<std::array<int, LightTermCount>> termComponents_; // follows scene.lights: lightTermComponents
   ShadingOutputs<T> outputs_;
   ShadingInputs inputs_;
-  Vec3<T> ambient_{ 0 }; // ka La, times the occlusion where there is one
+  std::array<const T*, MaterialCoefficientCount> vertexMaterial_{}; // inputs_.material's, or nullptr
+  Vec3<T> ambient_{ 0 }; // ka La (La where ka is per vertex), times the occlusion where there is one
   SpecularModel specularModel_ = SpecularModel::None;
   T shininess_ = 0;
   bool twoSided_ = false;

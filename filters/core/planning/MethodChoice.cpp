@@ -477,11 +477,14 @@ MethodPlan chooseMethods(const Scene& scene, const ArrayRequest& request, const 
     // A pow approximation's bound charges the lobe's largest error at the light's peak, which
     // few meshes meet together (a highlight where the lobe errs most, on the vertex nearest the
     // light): the sample's measure is taken where it is lower.
+    // A shininess per vertex (from an array) has no one lobe to approximate: exact pow.
+    const bool oneShininess = !scene.material.arrays[MaterialCoefficient::Shininess];
     std::map<PowMethod, double> powError;
     for (const PowMethod method : approximatePowMethods)
     {
-      powError[method] = specular ? powApproximationError(lobeError(method), scene, l, mesh, measured) : unbounded;
-      if (specular && !measured.sampledPowDifference.empty())
+      powError[method] =
+        specular && oneShininess ? powApproximationError(lobeError(method), scene, l, mesh, measured) : unbounded;
+      if (specular && oneShininess && !measured.sampledPowDifference.empty())
       {
         powError[method] = std::min(powError[method], errorFromSample(measured.sampledPowDifference[l].of(method)));
       }
@@ -510,11 +513,15 @@ MethodPlan chooseMethods(const Scene& scene, const ArrayRequest& request, const 
     {
       reasons.push_back(distantWhy);
     }
-    if (specular && choice.method.pow != PowMethod::Schlick)
+    if (specular && !oneShininess)
+    {
+      reasons.push_back("exact pow: the shininess varies per vertex");
+    }
+    else if (specular && choice.method.pow != PowMethod::Schlick)
     {
       reasons.push_back("Schlick pow would err by " + scientific(powError[PowMethod::Schlick]));
     }
-    if (specular && choice.method.pow == PowMethod::Exact)
+    if (specular && oneShininess && choice.method.pow == PowMethod::Exact)
     {
       reasons.push_back("series pow by " + scientific(powError[PowMethod::Series]));
     }

@@ -1,5 +1,6 @@
 #pragma once
 // What a surface reflects (docs/formulas.md sections 2 to 7), and which model evaluates it.
+#include "MaterialArrays.h"
 #include "Vec3.h"
 
 namespace shadelab
@@ -12,7 +13,9 @@ enum class SpecularModel
 };
 
 /// docs/formulas.md sections 2 to 7: RGB coefficients and shininess. The defaults follow
-/// section 7 (ambient RGB = diffuse RGB, specular = white).
+/// section 7 (ambient RGB = diffuse RGB, specular = white). A coefficient may come from a
+/// point-data array instead (arrays); its number here is then the largest the array can give
+/// (its scale), the bound that the scene's checks and a tolerance's plan use.
 struct Material
 {
   Rgb ka{ 0.8, 0.8, 0.8 };
@@ -23,6 +26,7 @@ struct Material
   /// Two-sided: a normal facing away from the viewer is flipped before shading, as VTK's
   /// renderer does for back faces. One-sided: it is used as it is.
   bool twoSided = false;
+  MaterialArrays arrays;
 };
 
 enum class ShadingModel

@@ -1,6 +1,7 @@
 #include "Scene.h"
 
 #include <algorithm>
+#include <cmath>
 #include <set>
 
 namespace shadelab
@@ -55,6 +56,39 @@ std::string meshCoordinateProblem(double reach, Precision precision)
 
 namespace
 {
+/// A material read from the mesh's arrays (MaterialArrays.h): scales in their domain, and
+/// what the array cannot give in this scene.
+void checkMaterialArrays(const Scene& scene, ProblemList& list)
+{
+  const Material& m = scene.material;
+  for (int c = 0; c < MaterialCoefficientCount; ++c)
+  {
+    const auto coefficient = MaterialCoefficient(c);
+    if (const auto& source = m.arrays[coefficient])
+    {
+      list.check(std::isfinite(source->scale) && source->scale >= 0,
+        std::string("/material/") + coefficientKey(coefficient) + "/scale", "must be a number >= 0");
+    }
+  }
+  // VTK's mapper colours the ambient term with the scalars' colour as well as the diffuse one.
+  list.check(scene.model != ShadingModel::VtkOpenGL2 || !m.arrays[MaterialCoefficient::Diffuse] ||
+      m.arrays[MaterialCoefficient::Ambient] || m.ka == Rgb(0.0),
+    "/material/ka",
+    "with kd from an array, VTK's mapper takes the ambient colour from the array too: give ka as {\"array\": \"" +
+      (m.arrays[MaterialCoefficient::Diffuse] ? m.arrays[MaterialCoefficient::Diffuse]->array : std::string()) +
+      "\", \"scale\": <the property's Ambient>}");
+  if (m.arrays[MaterialCoefficient::Shininess] && hasSpecularTerm(scene))
+  {
+    for (std::size_t i = 0; i < scene.lights.size(); ++i)
+    {
+      list.check(!isDistributed(scene.lights[i].source), "/material/shininess",
+        "light '" + scene.lights[i].name + "' (" + lightTypeName(scene.lights[i].source) +
+          ") samples one specular lobe for every vertex, so the shininess cannot vary per vertex: give a number, "
+          "or make ks 0");
+    }
+  }
+}
+
 /// Letters, digits and _, starting with a letter: a name that can stand in an array's name.
 /// (A loop, not std::regex_match, whose recursion overflows the stack on long names.)
 bool isLightName(const std::string& name)
@@ -110,6 +144,7 @@ std::vector<SceneProblem> sceneProblems(const Scene& scene, Precision precision)
   list.check(isNonNegative(m.kd), "/material/kd", "components must be numbers >= 0");
   list.check(isNonNegative(m.ks), "/material/ks", "components must be numbers >= 0");
   list.check(isNonNegative(m.shininess), "/material/shininess", "must be a number >= 0");
+  checkMaterialArrays(scene, list);
 
   std::set<std::string> lightNames;
   for (std::size_t i = 0; i < scene.lights.size(); ++i)

@@ -42,6 +42,61 @@ AmbientOcclusion readAmbientOcclusion(const JsonNode& node)
   return occlusion;
 }
 
+/// A coefficient read from a point-data array: {"array": "Colors", ...}.
+ArrayCoefficient readArrayCoefficient(const JsonNode& node, MaterialCoefficient coefficient)
+{
+  const bool shininess = coefficient == MaterialCoefficient::Shininess;
+  node.expectObject(shininess ? std::vector<const char*>{ "array", "scale", "clamp" }
+                              : std::vector<const char*>{ "array", "encoding", "scale", "colormap", "range", "clamp" });
+  ArrayCoefficient c;
+  c.array = node.at("array").text();
+  if (c.array.empty())
+  {
+    node.at("array").fail("must name a point-data array of the mesh");
+  }
+  if (node.has("encoding"))
+  {
+    c.encoding = node.at("encoding").choice<ArrayEncoding>(
+      { { "srgb", ArrayEncoding::Srgb }, { "linear", ArrayEncoding::Linear } });
+  }
+  c.scale = numberOr(node, "scale", c.scale);
+  if (node.has("colormap"))
+  {
+    const std::string name = node.at("colormap").text();
+    if (!isColorMapName(name))
+    {
+      node.at("colormap").fail("\"" + name + "\" is not one of " + colorMapNameList());
+    }
+    c.colorMap = name;
+  }
+  if (node.has("range"))
+  {
+    if (c.colorMap.empty())
+    {
+      node.at("range").fail("a range is the colour map's: give \"colormap\" too, or leave the range out");
+    }
+    c.range = node.at("range").interval();
+  }
+  c.clamp = node.has("clamp") && node.at("clamp").boolean();
+  return c;
+}
+
+/// A colour coefficient: RGB numbers, or an array ({"array": ...}) whose number in the
+/// material becomes its bound (Material).
+void readColorCoefficient(const JsonNode& material, MaterialCoefficient coefficient, Material& m, Rgb& value)
+{
+  const char* key = coefficientKey(coefficient);
+  if (material.has(key) && material.at(key).isObject())
+  {
+    m.arrays[coefficient] = readArrayCoefficient(material.at(key), coefficient);
+    value = Rgb(m.arrays[coefficient]->scale);
+  }
+  else
+  {
+    value = rgbOr(material, key, value);
+  }
+}
+
 Material readMaterial(const JsonNode& node, ShadingModel model)
 {
   Material m;
@@ -58,11 +113,27 @@ Material readMaterial(const JsonNode& node, ShadingModel model)
   {
     node.expectObject({ "ka", "kd", "ks", "shininess", "specular", "two_sided" });
   }
-  m.kd = rgbOr(node, "kd", m.kd);
-  // docs/formulas.md section 7: ambient RGB defaults to the diffuse RGB.
-  m.ka = rgbOr(node, "ka", model == ShadingModel::Lecture ? m.kd : m.ka);
-  m.ks = rgbOr(node, "ks", m.ks);
-  m.shininess = numberOr(node, "shininess", m.shininess);
+  readColorCoefficient(node, MaterialCoefficient::Diffuse, m, m.kd);
+  // docs/formulas.md section 7: ambient RGB defaults to the diffuse RGB (its array too).
+  if (model == ShadingModel::Lecture && !node.has("ka"))
+  {
+    m.ka = m.kd;
+    m.arrays[MaterialCoefficient::Ambient] = m.arrays[MaterialCoefficient::Diffuse];
+  }
+  else
+  {
+    readColorCoefficient(node, MaterialCoefficient::Ambient, m, m.ka);
+  }
+  readColorCoefficient(node, MaterialCoefficient::Specular, m, m.ks);
+  if (node.has("shininess") && node.at("shininess").isObject())
+  {
+    m.arrays[MaterialCoefficient::Shininess] = readArrayCoefficient(node.at("shininess"), MaterialCoefficient::Shininess);
+    m.shininess = m.arrays[MaterialCoefficient::Shininess]->scale;
+  }
+  else
+  {
+    m.shininess = numberOr(node, "shininess", m.shininess);
+  }
   if (node.has("specular"))
   {
     m.specular = node.at("specular").choice<SpecularModel>({ { "blinn-phong", SpecularModel::BlinnPhong },

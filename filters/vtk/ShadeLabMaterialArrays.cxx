@@ -1,0 +1,326 @@
+#include "ShadeLabMaterialArrays.h"
+
+#include "vtkArrayDispatch.h"
+#include "vtkCommunicator.h"
+#include "vtkDataArrayRange.h"
+#include "vtkDataArray.h"
+#include "vtkDiscretizableColorTransferFunction.h"
+#include "vtkLookupTable.h"
+#include "vtkMultiProcessController.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkSMPTools.h"
+#include "vtkUnsignedCharArray.h"
+
+#include <atomic>
+#include <cmath>
+#include <type_traits>
+
+namespace shadelab
+{
+namespace
+{
+/// The range of a 1-component array's finite values over every process, or (VTK_DOUBLE_MAX,
+/// VTK_DOUBLE_MIN) where there are none. Every process takes part, whatever its piece holds.
+std::array<double, 2> wholeFiniteRange(vtkDataArray* array, vtkMultiProcessController* processes)
+{
+  std::array<double, 2> mine{ VTK_DOUBLE_MAX, VTK_DOUBLE_MIN };
+  if (array && array->GetNumberOfComponents() == 1 && array->GetNumberOfTuples() > 0)
+  {
+    double range[2];
+    array->GetFiniteRange(range, 0);
+    if (range[0] <= range[1])
+    {
+      mine = { range[0], range[1] };
+    }
+  }
+  std::array<double, 2> all = mine;
+  if (processes && processes->GetNumberOfProcesses() > 1)
+  {
+    processes->AllReduce(&mine[0], &all[0], 1, vtkCommunicator::MIN_OP);
+    processes->AllReduce(&mine[1], &all[1], 1, vtkCommunicator::MAX_OP);
+  }
+  return all;
+}
+
+/// Decodes every vertex's channels of a coefficient from an array of any value type, in
+/// parallel, into values (width per vertex); finds the first vertex whose value cannot be used.
+struct ChannelDecoding
+{
+  MaterialCoefficient coefficient;
+  const ArrayCoefficient& source;
+  ArrayEncoding encoding;
+  int width; // 3 for a colour, 1 for the shininess
+  std::vector<double>& values;
+  std::vector<std::uint8_t>& clamped;
+  vtkIdType firstUnusable = -1;
+
+  template <typename Array>
+  void operator()(Array* array)
+  {
+    using Value = vtk::GetAPIType<Array>;
+    const auto tuples = vtk::DataArrayTupleRange(array);
+    const int components = array->GetNumberOfComponents();
+    const auto bit = std::uint8_t(1u << int(coefficient));
+    std::atomic<vtkIdType> first{ VTK_ID_MAX };
+    vtkSMPTools::For(0, array->GetNumberOfTuples(),
+      [&](vtkIdType begin, vtkIdType end)
+      {
+        for (vtkIdType i = begin; i < end; ++i)
+        {
+          for (int channel = 0; channel < width; ++channel)
+          {
+            // A grey (1 component) gives all three channels; RGBA's alpha is not a reflectance.
+            const Value raw = tuples[i][components == 1 ? 0 : channel];
+            double& value = values[std::size_t(width) * i + channel];
+            if constexpr (std::is_same_v<Value, unsigned char>)
+            {
+              value = decodeByte(raw, encoding, source.scale);
+            }
+            else
+            {
+              if (!isUsableValue(double(raw), coefficient))
+              {
+                if (!source.clamp)
+                {
+                  for (vtkIdType known = first; i < known && !first.compare_exchange_weak(known, i);)
+                  {
+                  }
+                  break;
+                }
+                clamped[i] |= bit;
+              }
+              value = decodeReal(double(raw), coefficient, encoding, source.scale);
+            }
+          }
+        }
+      });
+    firstUnusable = first == VTK_ID_MAX ? -1 : first.load();
+  }
+};
+
+/// Why vertex i's value in the array cannot be used.
+std::string unusableVertex(vtkDataArray* array, vtkIdType i, MaterialCoefficient coefficient, int width)
+{
+  for (int channel = 0; channel < width; ++channel)
+  {
+    const double raw = array->GetComponent(i, array->GetNumberOfComponents() == 1 ? 0 : channel);
+    if (!isUsableValue(raw, coefficient))
+    {
+      return unusableValueReason(raw, coefficient);
+    }
+  }
+  return "";
+}
+
+/// A field's 8-bit colours through the colour map, as VTK's mapper makes them (RGBA). A NaN is
+/// refused (the returned vertex), or where the source clamps, given the colour of the range's
+/// low end and marked.
+vtkSmartPointer<vtkUnsignedCharArray> mappedColors(vtkDataArray* field, const ArrayCoefficient& source,
+  MaterialCoefficient coefficient, const std::array<double, 2>& range, std::vector<std::uint8_t>& clamped,
+  vtkIdType& firstNaN)
+{
+  const vtkSmartPointer<vtkScalarsToColors> map = namedColorMap(source.colorMap, range);
+  vtkSmartPointer<vtkUnsignedCharArray> colors;
+  colors.TakeReference(map->MapScalars(field, VTK_COLOR_MODE_MAP_SCALARS, 0));
+  const unsigned char* low = map->MapValue(range[0]);
+  const std::array<unsigned char, 3> lowColor{ low[0], low[1], low[2] };
+  firstNaN = -1;
+  for (vtkIdType i = 0; i < field->GetNumberOfTuples(); ++i)
+  {
+    if (std::isnan(field->GetComponent(i, 0)))
+    {
+      if (!source.clamp)
+      {
+        firstNaN = i;
+        break;
+      }
+      clamped[i] |= std::uint8_t(1u << int(coefficient));
+      std::copy(lowColor.begin(), lowColor.end(), colors->GetPointer(4 * i));
+    }
+  }
+  return colors;
+}
+
+/// Whether the array's values go through the source's colour map.
+bool mapsColors(const ArrayCoefficient& source, vtkDataArray* array)
+{
+  return !source.colorMap.empty() && !(source.colorMapForFieldsOnly && array->GetNumberOfComponents() != 1);
+}
+
+/// Why the array cannot give the coefficient at all (its kind, its components), or "".
+std::string arrayProblem(vtkDataArray* array, vtkPolyData* piece, MaterialCoefficient coefficient,
+  const ArrayCoefficient& source)
+{
+  const std::string which = std::string("/material/") + coefficientKey(coefficient) + ": ";
+  if (!array)
+  {
+    std::string names;
+    vtkPointData* data = piece->GetPointData();
+    for (int a = 0; a < data->GetNumberOfArrays(); ++a)
+    {
+      if (vtkDataArray* other = data->GetArray(a))
+      {
+        names += (names.empty() ? "'" : ", '") + std::string(other->GetName() ? other->GetName() : "") + "'";
+      }
+    }
+    return which + "the mesh has no numeric point-data array '" + source.array + "' (its point arrays: " +
+      (names.empty() ? "none" : names) + ")";
+  }
+  const int components = array->GetNumberOfComponents();
+  if ((coefficient == MaterialCoefficient::Shininess || mapsColors(source, array)) && components != 1)
+  {
+    return which + "array '" + source.array + "' has " + std::to_string(components) + " components; " +
+      (source.colorMap.empty() ? "a shininess takes 1" : "a colour map takes a field of 1");
+  }
+  if (components != 1 && components != 3 && components != 4)
+  {
+    return which + "array '" + source.array + "' has " + std::to_string(components) +
+      " components; a colour takes 3 (RGB), 4 (RGBA, alpha unused) or 1 (grey, or a field with \"colormap\")";
+  }
+  return "";
+}
+}
+
+vtkSmartPointer<vtkScalarsToColors> namedColorMap(const std::string& name, const std::array<double, 2>& range)
+{
+  if (name == "cool to warm")
+  {
+    // ParaView 5.11's default preset: Moreland's diverging map ("Diverging Color Maps for
+    // Scientific Visualization", ISVC 2009) through its three points, discretised to 256
+    // colours as ParaView draws it.
+    auto map = vtkSmartPointer<vtkDiscretizableColorTransferFunction>::New();
+    map->SetColorSpaceToDiverging();
+    const double middle = 0.5 * (range[0] + range[1]);
+    map->AddRGBPoint(range[0], 0.23137254902, 0.298039215686, 0.752941176471);
+    map->AddRGBPoint(middle, 0.865, 0.865, 0.865);
+    map->AddRGBPoint(range[1], 0.705882352941, 0.0156862745098, 0.149019607843);
+    map->DiscretizeOn();
+    map->SetNumberOfValues(256);
+    map->Build();
+    return map;
+  }
+  auto table = vtkSmartPointer<vtkLookupTable>::New();
+  if (name == "grayscale")
+  {
+    table->SetHueRange(0, 0);
+    table->SetSaturationRange(0, 0);
+    table->SetValueRange(0, 1);
+  }
+  // "rainbow": vtkLookupTable's defaults, 256 hues from red to blue, the table a vtkMapper
+  // makes when given none.
+  table->SetTableRange(range[0], range[1]);
+  table->Build();
+  return table;
+}
+
+void colorMaterialBy(Scene& scene, const std::string& name, const std::string& colorMap)
+{
+  Material& m = scene.material;
+  ArrayCoefficient source;
+  source.array = name;
+  source.colorMap = colorMap;
+  source.colorMapForFieldsOnly = true;
+  const bool vtk = scene.model == ShadingModel::VtkOpenGL2;
+  source.scale = vtk ? largestComponent(m.kd) : 1.0;
+  m.arrays[MaterialCoefficient::Diffuse] = source;
+  m.kd = Rgb(source.scale);
+  source.scale = vtk ? largestComponent(m.ka) : 1.0;
+  m.arrays[MaterialCoefficient::Ambient] = source;
+  m.ka = Rgb(source.scale);
+}
+
+std::string materialClampedArrayName(const std::string& prefix)
+{
+  return prefix + "material_clamped";
+}
+
+MaterialReading readVertexMaterial(vtkPolyData* piece, const Scene& scene, vtkMultiProcessController* processes,
+  const std::vector<vtkIdType>* vertexIds)
+{
+  MaterialReading reading;
+  const MaterialArrays& arrays = scene.material.arrays;
+  const vtkIdType count = piece->GetNumberOfPoints();
+  reading.material.clamped.assign(arrays.clamps() ? std::size_t(count) : 0, 0);
+  auto idOf = [&](vtkIdType i) { return vertexIds ? (*vertexIds)[i] : i; };
+  // ka that reads kd's array the same way (the lecture model's default) shares kd's values.
+  reading.material.ambientIsDiffuse = arrays[MaterialCoefficient::Ambient] &&
+    arrays[MaterialCoefficient::Diffuse] && *arrays[MaterialCoefficient::Ambient] == *arrays[MaterialCoefficient::Diffuse];
+  // In the scene file's order, so that a problem of kd's array is kd's where ka follows it.
+  for (const MaterialCoefficient coefficient : { MaterialCoefficient::Diffuse, MaterialCoefficient::Ambient,
+         MaterialCoefficient::Specular, MaterialCoefficient::Shininess })
+  {
+    const int c = int(coefficient);
+    const std::optional<ArrayCoefficient>& source = arrays[coefficient];
+    if (!source || (coefficient == MaterialCoefficient::Ambient && reading.material.ambientIsDiffuse))
+    {
+      continue;
+    }
+    const std::string at = std::string("/material/") + coefficientKey(coefficient) + ": ";
+    vtkDataArray* array = piece->GetPointData()->GetArray(source->array.c_str());
+    // Collective, so before anything that may stop this process.
+    std::array<double, 2> range{};
+    if (!source->colorMap.empty())
+    {
+      range = source->range ? *source->range : wholeFiniteRange(array, processes);
+    }
+    if (!reading.problem.empty() || count == 0) // an empty piece of a split mesh may have no arrays
+    {
+      continue;
+    }
+    reading.problem = arrayProblem(array, piece, coefficient, *source);
+    if (reading.problem.empty() && mapsColors(*source, array) && range[0] > range[1])
+    {
+      reading.problem = at + "array '" + source->array + "' has no finite value to span the colour map: give its \"range\"";
+    }
+    if (!reading.problem.empty())
+    {
+      continue;
+    }
+    const bool mapped = mapsColors(*source, array);
+    const bool eightBit = vtkUnsignedCharArray::SafeDownCast(array) || mapped;
+    const ArrayEncoding encoding = coefficient == MaterialCoefficient::Shininess
+      ? ArrayEncoding::Linear
+      : source->encoding.value_or(defaultEncoding(eightBit, scene.model == ShadingModel::VtkOpenGL2));
+    const int width = coefficient == MaterialCoefficient::Shininess ? 1 : 3;
+    std::vector<double>& values = reading.material.values[c];
+    values.resize(std::size_t(width) * count);
+    vtkSmartPointer<vtkDataArray> channels = array;
+    if (mapped)
+    {
+      vtkIdType firstNaN = -1;
+      channels = mappedColors(array, *source, coefficient, range, reading.material.clamped, firstNaN);
+      if (firstNaN >= 0)
+      {
+        reading.problem = at + vertexValueProblem(*source, idOf(firstNaN),
+          "it is NaN, which has no colour in the colour map (\"clamp\": true gives it the colour of the range's low end)");
+        continue;
+      }
+    }
+    ChannelDecoding decoding{ coefficient, *source, encoding, width, values, reading.material.clamped };
+    if (!vtkArrayDispatch::Dispatch::Execute(channels, decoding))
+    {
+      decoding(channels.Get()); // other value types, through vtkDataArray's own API
+    }
+    if (decoding.firstUnusable >= 0)
+    {
+      reading.problem = at + vertexValueProblem(*source, idOf(decoding.firstUnusable),
+        unusableVertex(channels, decoding.firstUnusable, coefficient, width));
+    }
+  }
+  if (!reading.problem.empty())
+  {
+    reading.material = VertexMaterial();
+  }
+  else if (reading.material.ambientIsDiffuse)
+  {
+    constexpr auto diffuseBit = std::uint8_t(1u << int(MaterialCoefficient::Diffuse));
+    constexpr auto ambientBit = std::uint8_t(1u << int(MaterialCoefficient::Ambient));
+    for (std::uint8_t& bits : reading.material.clamped) // ka's values are kd's, clamped alike
+    {
+      bits |= (bits & diffuseBit) ? ambientBit : 0;
+    }
+  }
+  return reading;
+}
+}
