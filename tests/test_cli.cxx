@@ -6,6 +6,8 @@
 #include "vtkNew.h"
 #include "vtkPNGReader.h"
 
+#include <fstream>
+#include <iterator>
 #include <set>
 
 namespace
@@ -448,6 +450,35 @@ TEST_F(Cli, EnvironmentMapOption)
 
 namespace
 {
+TEST_F(Cli, ColorByTakesTheMaterialsColourFromAnArray)
+{
+  // The head scan's own colours by --color-by are the scene's "kd": {"array": "RGB"}, bit for bit.
+  const std::string head = SHADELAB_SOURCE_DIR "/data/meshes/head_scan.ply";
+  const std::string scene = SHADELAB_SOURCE_DIR "/data/scenes/scan_colors.json";
+  const std::string byScene = (folder / "by_scene.vtp").string(), byOption = (folder / "by_option.vtp").string();
+  ASSERT_EQ(shadelab("shade " + head + " -s " + scene + " -o " + byScene).exitCode, 0);
+  std::ifstream sceneFile(scene);
+  std::string text((std::istreambuf_iterator<char>(sceneFile)), std::istreambuf_iterator<char>());
+  const std::string named = R"("kd": { "array": "RGB" })";
+  ASSERT_NE(text.find(named), std::string::npos);
+  text.replace(text.find(named), named.size(), R"("kd": 0.5)");
+  const std::string uniform = (folder / "uniform.json").string();
+  std::ofstream(uniform) << text;
+  const Result colored = shadelab("shade " + head + " -s " + uniform + " --color-by RGB -o " + byOption);
+  ASSERT_EQ(colored.exitCode, 0) << colored.err;
+  EXPECT_EQ(shadelab("compare " + byScene + " " + byOption + " --atol 0 --rtol 0").exitCode, 0);
+  ASSERT_EQ(shadelab("shade " + head + " -s " + uniform + " -o " + byOption).exitCode, 0);
+  EXPECT_EQ(shadelab("compare " + byScene + " " + byOption + " --atol 0 --rtol 0").exitCode, 1); // not its grey
+  // The errors: an array the mesh lacks, a colour map alone.
+  const Result missing = shadelab("shade " + goodMesh() + " --color-by RGB -o " + byOption);
+  EXPECT_EQ(missing.exitCode, 1);
+  EXPECT_EQ(missing.err, "shadelab: " + goodMesh() +
+      ": scene /material/kd: the mesh has no numeric point-data array 'RGB' (its point arrays: none)\n");
+  const Result alone = shadelab("shade " + goodMesh() + " --colormap rainbow -o " + byOption);
+  EXPECT_EQ(alone.exitCode, 2);
+  EXPECT_NE(alone.err.find("--colormap requires --color-by"), std::string::npos) << alone.err;
+}
+
 TEST_F(Cli, PrecomputedTransferRelightsWithoutRays)
 {
   // The bunny shaded by "prt" of order 4 under the studio map turned 90 degrees, and again

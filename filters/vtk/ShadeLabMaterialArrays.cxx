@@ -44,14 +44,16 @@ std::array<double, 2> wholeFiniteRange(vtkDataArray* array, vtkMultiProcessContr
 }
 
 /// Decodes every vertex's channels of a coefficient from an array of any value type, in
-/// parallel, into values (width per vertex); finds the first vertex whose value cannot be used.
+/// parallel, into values (width per vertex, stored as Stored: float or double); finds the first
+/// vertex whose value cannot be used.
+template <typename Stored>
 struct ChannelDecoding
 {
   MaterialCoefficient coefficient;
   const ArrayCoefficient& source;
   ArrayEncoding encoding;
   int width; // 3 for a colour, 1 for the shininess
-  std::vector<double>& values;
+  std::vector<Stored>& values;
   std::vector<std::uint8_t>& clamped;
   vtkIdType firstUnusable = -1;
 
@@ -72,10 +74,10 @@ struct ChannelDecoding
           {
             // A grey (1 component) gives all three channels; RGBA's alpha is not a reflectance.
             const Value raw = tuples[i][components == 1 ? 0 : channel];
-            double& value = values[std::size_t(width) * i + channel];
+            Stored& value = values[std::size_t(width) * i + channel];
             if constexpr (std::is_same_v<Value, unsigned char>)
             {
-              value = decodeByte(raw, encoding, source.scale);
+              value = Stored(decodeByte(raw, encoding, source.scale));
             }
             else
             {
@@ -90,7 +92,7 @@ struct ChannelDecoding
                 }
                 clamped[i] |= bit;
               }
-              value = decodeReal(double(raw), coefficient, encoding, source.scale);
+              value = Stored(decodeReal(double(raw), coefficient, encoding, source.scale));
             }
           }
         }
@@ -235,8 +237,8 @@ std::string materialClampedArrayName(const std::string& prefix)
   return prefix + "material_clamped";
 }
 
-MaterialReading readVertexMaterial(vtkPolyData* piece, const Scene& scene, vtkMultiProcessController* processes,
-  const std::vector<vtkIdType>* vertexIds)
+MaterialReading readVertexMaterial(vtkPolyData* piece, const Scene& scene, Precision storage,
+  vtkMultiProcessController* processes, const std::vector<vtkIdType>* vertexIds)
 {
   MaterialReading reading;
   const MaterialArrays& arrays = scene.material.arrays;
@@ -283,8 +285,7 @@ MaterialReading readVertexMaterial(vtkPolyData* piece, const Scene& scene, vtkMu
       ? ArrayEncoding::Linear
       : source->encoding.value_or(defaultEncoding(eightBit, scene.model == ShadingModel::VtkOpenGL2));
     const int width = coefficient == MaterialCoefficient::Shininess ? 1 : 3;
-    std::vector<double>& values = reading.material.values[c];
-    values.resize(std::size_t(width) * count);
+    const std::size_t size = std::size_t(width) * count;
     vtkSmartPointer<vtkDataArray> channels = array;
     if (mapped)
     {
@@ -297,15 +298,23 @@ MaterialReading readVertexMaterial(vtkPolyData* piece, const Scene& scene, vtkMu
         continue;
       }
     }
-    ChannelDecoding decoding{ coefficient, *source, encoding, width, values, reading.material.clamped };
-    if (!vtkArrayDispatch::Dispatch::Execute(channels, decoding))
+    auto decode = [&](auto& values)
     {
-      decoding(channels.Get()); // other value types, through vtkDataArray's own API
-    }
-    if (decoding.firstUnusable >= 0)
+      values.resize(size);
+      ChannelDecoding<typename std::decay_t<decltype(values)>::value_type> decoding{ coefficient, *source, encoding,
+        width, values, reading.material.clamped };
+      if (!vtkArrayDispatch::Dispatch::Execute(channels, decoding))
+      {
+        decoding(channels.Get()); // other value types, through vtkDataArray's own API
+      }
+      return decoding.firstUnusable;
+    };
+    const vtkIdType firstUnusable = storage == Precision::Float32 ? decode(reading.material.floatValues[c])
+                                                                 : decode(reading.material.values[c]);
+    if (firstUnusable >= 0)
     {
-      reading.problem = at + vertexValueProblem(*source, idOf(decoding.firstUnusable),
-        unusableVertex(channels, decoding.firstUnusable, coefficient, width));
+      reading.problem = at + vertexValueProblem(*source, idOf(firstUnusable),
+        unusableVertex(channels, firstUnusable, coefficient, width));
     }
   }
   if (!reading.problem.empty())

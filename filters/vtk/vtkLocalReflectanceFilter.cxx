@@ -780,7 +780,8 @@ std::optional<vtkLocalReflectanceFilter::ShadingPlan> vtkLocalReflectanceFilter:
 
 bool vtkLocalReflectanceFilter::MaterialSource::operator==(const MaterialSource& other) const
 {
-  return sources.coefficients == other.sources.coefficients && model == other.model && arrays == other.arrays;
+  return sources.coefficients == other.sources.coefficients && model == other.model && storage == other.storage &&
+    arrays == other.arrays;
 }
 
 bool vtkLocalReflectanceFilter::ReadMaterialArrays(
@@ -790,7 +791,12 @@ bool vtkLocalReflectanceFilter::ReadMaterialArrays(
   {
     return true;
   }
-  MaterialSource source{ plan.scene.material.arrays, plan.scene.model, {} };
+  // Stored in float32 where the run is float32 for sure (no tolerance to choose float64), which
+  // halves the memory; in float64 otherwise.
+  const shadelab::Precision storage = this->Tolerance == 0 && this->OutputPrecision == SINGLE_PRECISION
+    ? shadelab::Precision::Float32
+    : shadelab::Precision::Float64;
+  MaterialSource source{ plan.scene.material.arrays, plan.scene.model, storage, {} };
   for (const auto& coefficient : source.sources.coefficients)
   {
     vtkDataArray* array = coefficient ? input->GetPointData()->GetArray(coefficient->array.c_str()) : nullptr;
@@ -803,7 +809,7 @@ bool vtkLocalReflectanceFilter::ReadMaterialArrays(
   }
   this->VertexMaterialSource.reset();
   shadelab::MaterialReading reading =
-    shadelab::readVertexMaterial(input, plan.scene, processes, split ? &split->pieceIds : nullptr);
+    shadelab::readVertexMaterial(input, plan.scene, storage, processes, split ? &split->pieceIds : nullptr);
   this->VertexMaterial = std::move(reading.material);
   const std::string problem = split ? shadelab::firstText(processes, reading.problem) : reading.problem;
   if (!problem.empty())
@@ -1144,7 +1150,7 @@ std::vector<vtkSmartPointer<vtkDataArray>> vtkLocalReflectanceFilter::ShadedArra
   {
     if (plan.precision == shadelab::Precision::Float32)
     {
-      this->VertexMaterial.withFloat32(); // the float32 kernel reads half the bytes
+      this->VertexMaterial.withFloat32(); // under a tolerance that chose float32: from float64
     }
     inputs.material = &this->VertexMaterial;
   }

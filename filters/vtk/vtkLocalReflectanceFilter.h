@@ -256,6 +256,7 @@ private:
   {
     shadelab::MaterialArrays sources;
     shadelab::ShadingModel model = shadelab::ShadingModel::Lecture;
+    shadelab::Precision storage = shadelab::Precision::Float64; // float32: what the float32 kernel alone reads
     std::vector<std::pair<vtkDataArray*, vtkMTimeType>> arrays; // each array read, and its time then
     bool operator==(const MaterialSource& other) const;
   };

@@ -126,7 +126,7 @@ void VertexMaterial::withFloat32()
 {
   for (int c = 0; c < MaterialCoefficientCount; ++c)
   {
-    if (floatValues[c].size() != values[c].size())
+    if (floatValues[c].empty())
     {
       floatValues[c].assign(values[c].begin(), values[c].end());
     }

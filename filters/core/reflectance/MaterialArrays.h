@@ -90,8 +90,8 @@ bool operator==(const ArrayCoefficient& a, const ArrayCoefficient& b);
 
 /// Each vertex's coefficient, decoded and scaled: 3 values per vertex (r g b) for ka, kd and
 /// ks, 1 for the shininess; empty where the coefficient is the Material's number, or (ka) where
-/// ambientIsDiffuse. values holds float64; floatValues, once withFloat32 has run, the same in
-/// float32 for the float32 kernel (which then reads half the bytes).
+/// ambientIsDiffuse. values holds them in float64, floatValues in float32 for the float32 kernel
+/// (which then reads half the bytes): either, or both once withFloat32 has run.
 struct VertexMaterial
 {
   std::array<std::vector<double>, MaterialCoefficientCount> values;
@@ -102,7 +102,7 @@ struct VertexMaterial
   /// empty where nothing asked to clamp.
   std::vector<std::uint8_t> clamped;
 
-  /// Fills floatValues from values (rounded to float32), unless it is filled already.
+  /// Fills floatValues from values (rounded to float32) where only values holds them.
   void withFloat32();
   /// Coefficient c's values in the precision T, or nullptr where it has none of its own.
   template <typename T>
