@@ -514,8 +514,9 @@ CLI::App* addShadeCommand(CLI::App& cli, ShadeOptions& options)
     "Debian 12's ParaView 5.11 reads it as empty since its Expat security update (docs/guide/command-line.md, 'Files ParaView opens')");
   CLI::Option* colorBy = command->add_option("--color-by", options.colorBy,
     "colour the material (kd, and ka with it) by this point array of the mesh instead of the scene's kd: RGB or "
-    "RGBA colours as they are (8-bit ones decoded from sRGB), a 1-component field through --colormap over its "
-    "range (docs/guide/scene-files.md, 'A material from the mesh's arrays')");
+    "RGBA colours as they are (8-bit ones decoded from sRGB, except in the vtk model, which reads them as VTK "
+    "does), a 1-component field through --colormap over its range (docs/guide/scene-files.md, 'A material from "
+    "the mesh's arrays')");
   command->add_option("--colormap", options.colorMap, "the colour map of a --color-by field")
     ->check(CLI::IsMember(shadelab::colorMapNames()))
     ->needs(colorBy)

@@ -473,7 +473,8 @@ TEST_F(Cli, ColorByTakesTheMaterialsColourFromAnArray)
   const Result missing = shadelab("shade " + goodMesh() + " --color-by RGB -o " + byOption);
   EXPECT_EQ(missing.exitCode, 1);
   EXPECT_EQ(missing.err, "shadelab: " + goodMesh() +
-      ": scene /material/kd: the mesh has no numeric point-data array 'RGB' (its point arrays: none)\n");
+      ": the material's colour array (MaterialColorArray, --color-by): the mesh has no numeric point-data array "
+      "'RGB' (its point arrays: none)\n");
   const Result alone = shadelab("shade " + goodMesh() + " --colormap rainbow -o " + byOption);
   EXPECT_EQ(alone.exitCode, 2);
   EXPECT_NE(alone.err.find("--colormap requires --color-by"), std::string::npos) << alone.err;

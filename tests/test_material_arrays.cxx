@@ -10,6 +10,7 @@
 
 #include "vtkDoubleArray.h"
 #include "vtkFloatArray.h"
+#include "vtkIntArray.h"
 #include "vtkUnsignedCharArray.h"
 
 #include <gtest/gtest.h>
@@ -199,6 +200,26 @@ TEST(MaterialArrays, AToleranceKeepsTheExactPowForAShininessPerVertex)
     << run.plan.lights[0].why;
 }
 
+TEST(MaterialArrays, AConstantFieldTakesTheColorMapsLowEnd)
+{
+  const vtkSmartPointer<vtkPolyData> output = shadeWithFilter(sphereWithValues("T", { 7.0 }),
+    sceneWithMaterial(R"({ "kd": { "array": "T", "colormap": "cool to warm", "encoding": "linear" } })"), { "ambient" });
+  EXPECT_NEAR(output->GetPointData()->GetArray("ambient")->GetComponent(0, 2), 0.1 * 192 / 255.0, 1e-15);
+}
+
+TEST(MaterialArrays, AToleranceBoundsFloat32sRoundingAtTheLargestShininess)
+{
+  // A shininess of 1 rounds little in float32; 5000, at some vertices, 5000 times as much: the
+  // plan takes the array's largest (its scale, 1, would let float32 through).
+  vtkSmartPointer<vtkPolyData> sphere = sphereWithValues("eta", { 1, 5000 });
+  const std::string material = R"({ "kd": 0.5, "ks": 0.5, "shininess": )";
+  const auto uniform = shadelab::testing::shadeToTolerance(sphere, sceneWithMaterial(material + "1 }"), 1e-4, 1);
+  EXPECT_EQ(uniform.plan.precision, Precision::Float32);
+  const auto varying =
+    shadelab::testing::shadeToTolerance(sphere, sceneWithMaterial(material + R"({ "array": "eta" } })"), 1e-4, 1);
+  EXPECT_EQ(varying.plan.precision, Precision::Float64);
+}
+
 TEST(MaterialArrays, AFieldThroughAColorMapSpansItsOwnRangeByDefault)
 {
   const std::vector<double> values{ -2.0, 0.5, 3.0 };
@@ -295,8 +316,35 @@ TEST(MaterialArrays, ArraysThatCannotBeUsedAreRefusedByNameAndVertex)
     "scene /material/shininess: array 'Normals' has 3 components; a shininess takes 1");
   vtkSmartPointer<vtkPolyData> pairs = sphereWithColors("UV", 2, 1);
   EXPECT_EQ(filterError(pairs, sceneWithMaterial(R"({ "kd": { "array": "UV" } })")),
-    "scene /material/kd: array 'UV' has 2 components; a colour takes 3 (RGB), 4 (RGBA, alpha unused) or 1 (grey, "
-    "or a field with \"colormap\")");
+    "scene /material/kd: array 'UV' has 2 components; a colour takes 3 (RGB), 4 (RGBA, alpha unused) or 1 (a grey, "
+    "or a field through a colour map)");
+  // Another length than the mesh's points, another integer type, and from the filter's colour array.
+  vtkNew<vtkDoubleArray> few;
+  few->SetName("few");
+  few->SetNumberOfTuples(7);
+  few->FillValue(0.5);
+  sphere->GetPointData()->AddArray(few);
+  EXPECT_EQ(filterError(sphere, sceneWithMaterial(R"({ "kd": { "array": "few" } })")),
+    "scene /material/kd: array 'few' has 7 values for the mesh's 1522 points");
+  vtkNew<vtkIntArray> counts;
+  counts->SetName("counts");
+  counts->SetNumberOfTuples(sphere->GetNumberOfPoints());
+  counts->FillValue(1);
+  sphere->GetPointData()->AddArray(counts);
+  EXPECT_EQ(filterError(sphere, sceneWithMaterial(R"({ "kd": 0.5, "shininess": { "array": "counts" } })")),
+    "scene /material/shininess: array 'counts' holds int values; a material reads 8-bit (unsigned char) or "
+    "floating-point ones: convert it (16-bit colours divided by 65535 into a float array, say)");
+  {
+    vtkNew<vtkLocalReflectanceFilter> filter;
+    vtkNew<app::VtkErrorCapture> errors;
+    errors->watch(filter);
+    filter->SetInputData(sphere);
+    filter->SetColorByArray(true);
+    filter->SetMaterialColorArray("Colors");
+    filter->Update();
+    EXPECT_EQ(errors->message(), "the material's colour array (MaterialColorArray, --color-by): the mesh has no numeric "
+                                 "point-data array 'Colors' (its point arrays: 'Normals', 'gloss', 'few', 'counts')");
+  }
   vtkSmartPointer<vtkPolyData> flat = sphereWithValues("nothing", { std::nan("") });
   EXPECT_EQ(filterError(flat, sceneWithMaterial(R"({ "kd": { "array": "nothing", "colormap": "rainbow" } })")),
     "scene /material/kd: array 'nothing' has no finite value to span the colour map: give its \"range\"");

@@ -85,6 +85,7 @@ struct ChannelDecoding
               {
                 if (!source.clamp)
                 {
+                  // Only this vertex's channels are left: the scan goes on, for the first such vertex.
                   for (vtkIdType known = first; i < known && !first.compare_exchange_weak(known, i);)
                   {
                   }
@@ -150,11 +151,11 @@ bool mapsColors(const ArrayCoefficient& source, vtkDataArray* array)
   return !source.colorMap.empty() && !(source.colorMapForFieldsOnly && array->GetNumberOfComponents() != 1);
 }
 
-/// Why the array cannot give the coefficient at all (its kind, its components), or "".
+/// Why the array cannot give the coefficient at all (its kind, its length, its components), or
+/// "", after `at` (where the coefficient was asked for).
 std::string arrayProblem(vtkDataArray* array, vtkPolyData* piece, MaterialCoefficient coefficient,
-  const ArrayCoefficient& source)
+  const ArrayCoefficient& source, const std::string& at)
 {
-  const std::string which = std::string("/material/") + coefficientKey(coefficient) + ": ";
   if (!array)
   {
     std::string names;
@@ -166,19 +167,34 @@ std::string arrayProblem(vtkDataArray* array, vtkPolyData* piece, MaterialCoeffi
         names += (names.empty() ? "'" : ", '") + std::string(other->GetName() ? other->GetName() : "") + "'";
       }
     }
-    return which + "the mesh has no numeric point-data array '" + source.array + "' (its point arrays: " +
+    return at + "the mesh has no numeric point-data array '" + source.array + "' (its point arrays: " +
       (names.empty() ? "none" : names) + ")";
+  }
+  const std::string named = at + "array '" + source.array + "' ";
+  if (array->GetNumberOfTuples() != piece->GetNumberOfPoints())
+  {
+    return named + "has " + std::to_string(array->GetNumberOfTuples()) + " values for the mesh's " +
+      std::to_string(piece->GetNumberOfPoints()) + " points";
+  }
+  // 8-bit values are read over 255; other integers have no such rule, and would all be refused
+  // as outside [0, 1].
+  if (array->GetDataType() != VTK_UNSIGNED_CHAR && array->GetDataType() != VTK_FLOAT &&
+    array->GetDataType() != VTK_DOUBLE)
+  {
+    return named + "holds " + array->GetDataTypeAsString() +
+      " values; a material reads 8-bit (unsigned char) or floating-point ones: convert it (16-bit colours "
+      "divided by 65535 into a float array, say)";
   }
   const int components = array->GetNumberOfComponents();
   if ((coefficient == MaterialCoefficient::Shininess || mapsColors(source, array)) && components != 1)
   {
-    return which + "array '" + source.array + "' has " + std::to_string(components) + " components; " +
+    return named + "has " + std::to_string(components) + " components; " +
       (source.colorMap.empty() ? "a shininess takes 1" : "a colour map takes a field of 1");
   }
   if (components != 1 && components != 3 && components != 4)
   {
-    return which + "array '" + source.array + "' has " + std::to_string(components) +
-      " components; a colour takes 3 (RGB), 4 (RGBA, alpha unused) or 1 (grey, or a field with \"colormap\")";
+    return named + "has " + std::to_string(components) +
+      " components; a colour takes 3 (RGB), 4 (RGBA, alpha unused) or 1 (a grey, or a field through a colour map)";
   }
   return "";
 }
@@ -258,20 +274,26 @@ MaterialReading readVertexMaterial(vtkPolyData* piece, const Scene& scene, Preci
     {
       continue;
     }
-    const std::string at = std::string("/material/") + coefficientKey(coefficient) + ": ";
+    // Where the coefficient was asked for: the scene's material, or the filter's colour array.
+    const std::string at = source->colorMapForFieldsOnly
+      ? std::string("the material's colour array (MaterialColorArray, --color-by): ")
+      : std::string("scene /material/") + coefficientKey(coefficient) + ": ";
     vtkDataArray* array = piece->GetPointData()->GetArray(source->array.c_str());
     // Collective, so before anything that may stop this process.
     std::array<double, 2> range{};
     if (!source->colorMap.empty())
     {
       range = source->range ? *source->range : wholeFiniteRange(array, processes);
+      // A constant field spans one unit from its value (a colour map's ends must differ).
+      range[1] = range[0] == range[1] ? range[0] + 1 : range[1];
     }
     if (!reading.problem.empty() || count == 0) // an empty piece of a split mesh may have no arrays
     {
       continue;
     }
-    reading.problem = arrayProblem(array, piece, coefficient, *source);
-    if (reading.problem.empty() && mapsColors(*source, array) && range[0] > range[1])
+    reading.problem = arrayProblem(array, piece, coefficient, *source, at);
+    const bool mapped = reading.problem.empty() && mapsColors(*source, array);
+    if (mapped && range[0] > range[1])
     {
       reading.problem = at + "array '" + source->array + "' has no finite value to span the colour map: give its \"range\"";
     }
@@ -279,8 +301,7 @@ MaterialReading readVertexMaterial(vtkPolyData* piece, const Scene& scene, Preci
     {
       continue;
     }
-    const bool mapped = mapsColors(*source, array);
-    const bool eightBit = vtkUnsignedCharArray::SafeDownCast(array) || mapped;
+    const bool eightBit = array->GetDataType() == VTK_UNSIGNED_CHAR || mapped;
     const ArrayEncoding encoding = coefficient == MaterialCoefficient::Shininess
       ? ArrayEncoding::Linear
       : source->encoding.value_or(defaultEncoding(eightBit, scene.model == ShadingModel::VtkOpenGL2));

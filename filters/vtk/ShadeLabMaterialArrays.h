@@ -30,10 +30,11 @@ struct MaterialReading
 };
 
 /// Reads the scene's material arrays from the piece's point data: each vertex's coefficients in
-/// the storage precision (VertexMaterial's values, or floatValues for float32), or the first problem (a missing array, a wrong number of components, a value that cannot
-/// be used, naming the vertex by its id in vertexIds where given). A colour map without a
-/// range spans the array's finite values over every process (a collective call where
-/// processes has several; nullptr: this process alone).
+/// the storage precision (VertexMaterial's values, or floatValues for float32), or the first
+/// problem (a missing array, one of another length or type, a wrong number of components, a
+/// value that cannot be used, naming the vertex by its id in vertexIds where given). A colour
+/// map without a range spans the array's finite values over every process (a collective call
+/// where processes has several; nullptr: this process alone).
 SHADELABFILTERS_EXPORT MaterialReading readVertexMaterial(vtkPolyData* piece, const Scene& scene,
   Precision storage, vtkMultiProcessController* processes, const std::vector<vtkIdType>* vertexIds);
 

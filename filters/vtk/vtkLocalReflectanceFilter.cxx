@@ -781,11 +781,11 @@ std::optional<vtkLocalReflectanceFilter::ShadingPlan> vtkLocalReflectanceFilter:
 bool vtkLocalReflectanceFilter::MaterialSource::operator==(const MaterialSource& other) const
 {
   return sources.coefficients == other.sources.coefficients && model == other.model && storage == other.storage &&
-    arrays == other.arrays;
+    points == other.points && arrays == other.arrays;
 }
 
 bool vtkLocalReflectanceFilter::ReadMaterialArrays(
-  vtkPolyData* input, vtkMultiProcessController* processes, const shadelab::PieceLayout* split, const ShadingPlan& plan)
+  vtkPolyData* input, vtkMultiProcessController* processes, const shadelab::PieceLayout* split, ShadingPlan& plan)
 {
   if (!plan.scene.material.arrays.any())
   {
@@ -796,25 +796,42 @@ bool vtkLocalReflectanceFilter::ReadMaterialArrays(
   const shadelab::Precision storage = this->Tolerance == 0 && this->OutputPrecision == SINGLE_PRECISION
     ? shadelab::Precision::Float32
     : shadelab::Precision::Float64;
-  MaterialSource source{ plan.scene.material.arrays, plan.scene.model, storage, {} };
+  MaterialSource source{ plan.scene.material.arrays, plan.scene.model, storage, input->GetNumberOfPoints(), {} };
   for (const auto& coefficient : source.sources.coefficients)
   {
     vtkDataArray* array = coefficient ? input->GetPointData()->GetArray(coefficient->array.c_str()) : nullptr;
     source.arrays.emplace_back(array, array ? array->GetMTime() : 0);
   }
   const bool unchanged = this->VertexMaterialSource && *this->VertexMaterialSource == source;
-  if (split ? shadelab::everyProcessHolds(processes, unchanged) : unchanged)
+  if (!(split ? shadelab::everyProcessHolds(processes, unchanged) : unchanged) &&
+    !this->DecodeMaterialArrays(input, processes, split, plan, source))
   {
-    return true;
+    return false;
   }
+  if (plan.scene.material.arrays[shadelab::MaterialCoefficient::Shininess])
+  {
+    const double mine = this->VertexMaterial.largest(shadelab::MaterialCoefficient::Shininess);
+    double everywhere = mine;
+    if (split)
+    {
+      processes->AllReduce(&mine, &everywhere, 1, vtkCommunicator::MAX_OP);
+    }
+    plan.measured.largestShininess = everywhere;
+  }
+  return true;
+}
+
+bool vtkLocalReflectanceFilter::DecodeMaterialArrays(vtkPolyData* input, vtkMultiProcessController* processes,
+  const shadelab::PieceLayout* split, const ShadingPlan& plan, const MaterialSource& source)
+{
   this->VertexMaterialSource.reset();
   shadelab::MaterialReading reading =
-    shadelab::readVertexMaterial(input, plan.scene, storage, processes, split ? &split->pieceIds : nullptr);
+    shadelab::readVertexMaterial(input, plan.scene, source.storage, processes, split ? &split->pieceIds : nullptr);
   this->VertexMaterial = std::move(reading.material);
   const std::string problem = split ? shadelab::firstText(processes, reading.problem) : reading.problem;
   if (!problem.empty())
   {
-    vtkErrorMacro("scene " << problem);
+    vtkErrorMacro(<< problem);
     return false;
   }
   this->VertexMaterialSource = source;

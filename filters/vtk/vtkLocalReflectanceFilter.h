@@ -248,8 +248,14 @@ private:
   /// VertexMaterial, where the scene has any: read again only when the arrays, their points or
   /// what the scene reads from them have changed since the last run (decoding them costs more
   /// than shading does), on every process alike.
+  /// With a shininess read from an array, its largest over the whole mesh goes into
+  /// plan.measured for the tolerance's bounds.
   bool ReadMaterialArrays(vtkPolyData* input, vtkMultiProcessController* processes,
-    const shadelab::PieceLayout* split, const ShadingPlan& plan);
+    const shadelab::PieceLayout* split, ShadingPlan& plan);
+  /// ReadMaterialArrays' decoding, when what it reads has changed.
+  struct MaterialSource;
+  bool DecodeMaterialArrays(vtkPolyData* input, vtkMultiProcessController* processes,
+    const shadelab::PieceLayout* split, const ShadingPlan& plan, const MaterialSource& source);
   /// The last material read, and what it was read from.
   shadelab::VertexMaterial VertexMaterial;
   struct MaterialSource
@@ -257,6 +263,7 @@ private:
     shadelab::MaterialArrays sources;
     shadelab::ShadingModel model = shadelab::ShadingModel::Lecture;
     shadelab::Precision storage = shadelab::Precision::Float64; // float32: what the float32 kernel alone reads
+    vtkIdType points = 0;
     std::vector<std::pair<vtkDataArray*, vtkMTimeType>> arrays; // each array read, and its time then
     bool operator==(const MaterialSource& other) const;
   };

@@ -75,6 +75,13 @@ RgbLanes<T> sameLanes(const Lane<T>& term)
   return { term, term, term };
 }
 
+/// Three lanes as a term's channels.
+template <typename T>
+RgbLanes<T> lanesOf(const std::array<Lane<T>, 3>& channels)
+{
+  return { channels[0], channels[1], channels[2] };
+}
+
 /// A term times the vertices' own coefficient (a material from arrays), channel by channel.
 template <typename T>
 RgbLanes<T> timesCoefficient(
@@ -88,14 +95,14 @@ RgbLanes<T> timesCoefficient(
       product[channel][k] = (*channels[channel])[k] * coefficient[channel][k];
     }
   }
-  return { product[0], product[1], product[2] };
+  return lanesOf(product);
 }
 
-/// Vertex k's own coefficient (lanes), as a factor of the light's.
+/// Vertex k's own coefficient (lanes).
 template <typename T>
-Rgb coefficientAt(const std::array<Lane<T>, 3>& lanes, std::size_t k)
+Vec3<T> coefficientAt(const std::array<Lane<T>, 3>& lanes, std::size_t k)
 {
-  return Rgb(lanes[0][k], lanes[1][k], lanes[2][k]);
+  return Vec3<T>(lanes[0][k], lanes[1][k], lanes[2][k]);
 }
 
 /// An RGB term that is colour x (r, g, b) at each vertex.
@@ -656,15 +663,12 @@ void ShadingKernel<T>::storeLight(const PreparedLight& light, const VertexBlock<
   store(out[int(LightTerm::RDotV)], first, count, w.rDotV);
   store(out[int(LightTerm::HalfVector)], first, count, w.hx, w.hy, w.hz);
   store(out[int(LightTerm::NDotH)], first, count, w.nDotH);
-  const RgbLanes<T> diffuse = perVertex(MaterialCoefficient::Diffuse)
-    ? RgbLanes<T>{ w.diffuseRgb[0], w.diffuseRgb[1], w.diffuseRgb[2] }
-    : sameLanes(w.diffuse);
+  const RgbLanes<T> diffuse = perVertex(MaterialCoefficient::Diffuse) ? lanesOf(w.diffuseRgb) : sameLanes(w.diffuse);
   store(out[int(LightTerm::Diffuse)], first, count, diffuse.r, diffuse.g, diffuse.b, light.diffuseColor);
   if (light.needsSpecular)
   {
-    const RgbLanes<T> specular = perVertex(MaterialCoefficient::Specular)
-      ? RgbLanes<T>{ w.specularRgb[0], w.specularRgb[1], w.specularRgb[2] }
-      : sameLanes(w.specular);
+    const RgbLanes<T> specular =
+      perVertex(MaterialCoefficient::Specular) ? lanesOf(w.specularRgb) : sameLanes(w.specular);
     store(out[int(LightTerm::Specular)], first, count, specular.r, specular.g, specular.b, light.specularColor);
   }
   else if (T* specular = out[int(LightTerm::Specular)])
@@ -736,8 +740,8 @@ void ShadingKernel<T>::estimateDistributedLight(const DistributedLightSlot& ligh
     w.integralG[k] = T(terms.specular.y);
     w.integralB[k] = T(terms.specular.z);
     const std::size_t i = b.first + k;
-    const Rgb kd = perVertex(MaterialCoefficient::Diffuse) ? coefficientAt(w.kd, k) : light.kd;
-    const Rgb ks = perVertex(MaterialCoefficient::Specular) ? coefficientAt(w.ks, k) : light.ks;
+    const Rgb kd = perVertex(MaterialCoefficient::Diffuse) ? Rgb(coefficientAt(w.kd, k)) : light.kd;
+    const Rgb ks = perVertex(MaterialCoefficient::Specular) ? Rgb(coefficientAt(w.ks, k)) : light.ks;
     w.sampledError[k] += glm::max(kd, Rgb(1.0)) * terms.irradianceStdError + ks * terms.specularStdError;
     storeRgb(LightTerm::IrradianceStdError, i, terms.irradianceStdError);
     storeRgb(LightTerm::SpecularStdError, i, ks * terms.specularStdError);
@@ -840,7 +844,7 @@ void ShadingKernel<T>::storeTotals(const VertexBlock<T>& b, Workspace& w) const
   const std::size_t count = b.count;
   // ka La at vertex k, and times its occlusion where there is one.
   auto ambientLightAt = [&](std::size_t k)
-  { return perVertex(MaterialCoefficient::Ambient) ? ambient_ * Vec3<T>(w.ka[0][k], w.ka[1][k], w.ka[2][k]) : ambient_; };
+  { return perVertex(MaterialCoefficient::Ambient) ? ambient_ * coefficientAt(w.ka, k) : ambient_; };
   auto ambientAt = [&](std::size_t k)
   { return inputs_.ambientOcclusion ? ambientLightAt(k) * T(inputs_.ambientOcclusion[first + k]) : ambientLightAt(k); };
   if (T* ambient = totals[int(TotalTerm::Ambient)])

@@ -291,9 +291,13 @@ double arithmeticError(
     error += diffusePeak(source, m) * attenuation * (16 * u + lightDirectionError);
     if (specularComputed(scene, request, l))
     {
-      // x^eta turns an error e in x into about eta e; the lobe stays within [0, 1].
+      // x^eta turns an error e in x into about eta e; the lobe stays within [0, 1]. A shininess
+      // per vertex (from an array) counts at its largest, and unmeasured, at the lobe's full size.
       const double cosineError = 16 * u + 3 * lightDirectionError + 2 * viewerDirectionError;
-      error += specularPeak(source, m) * attenuation * std::min(1.0, 16 * u + m.shininess * cosineError);
+      const std::optional<double> eta =
+        m.arrays[MaterialCoefficient::Shininess] ? measured.largestShininess : std::optional<double>(m.shininess);
+      const double lobeError = eta ? std::min(1.0, 16 * u + *eta * cosineError) : 1.0;
+      error += specularPeak(source, m) * attenuation * lobeError;
     }
   }
   return error;
@@ -403,7 +407,8 @@ MethodPlan chooseMethods(const Scene& scene, const ArrayRequest& request, const 
   double float32 = float32Allowed ? arithmeticError(Precision::Float32, scene, request, mesh, measured) : unbounded;
   double float64 = arithmeticError(Precision::Float64, scene, request, mesh, measured);
   bool float32Sampled = false, float64Sampled = false;
-  if (float32Allowed && measured.sampledFloat32Difference)
+  // The sample is shaded with one shininess: a shininess per vertex keeps the bounds.
+  if (float32Allowed && measured.sampledFloat32Difference && !scene.material.arrays[MaterialCoefficient::Shininess])
   {
     const double sampled = errorFromSample(*measured.sampledFloat32Difference);
     float64Sampled = sampled * 0x1p-29 < float64;

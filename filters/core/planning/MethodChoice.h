@@ -102,6 +102,9 @@ struct MeshMeasurements
   /// Per scene light, the largest difference that Schlick's and the series pow make to its
   /// specular term on that sample (float64, the light where it is); empty: not measured.
   std::vector<SampledPowDifferences> sampledPowDifference;
+  /// The largest shininess over the whole mesh where the material reads it from an array;
+  /// nullopt: not measured (the lobe's rounding is then bounded by its full size).
+  std::optional<double> largestShininess;
 };
 
 /// The least distance from a light at `position` to any vertex: the measured one where there

@@ -14,8 +14,9 @@ enum class SpecularModel
 
 /// docs/formulas.md sections 2 to 7: RGB coefficients and shininess. The defaults follow
 /// section 7 (ambient RGB = diffuse RGB, specular = white). A coefficient may come from a
-/// point-data array instead (arrays); its number here is then the largest the array can give
-/// (its scale), the bound that the scene's checks and a tolerance's plan use.
+/// point-data array instead (arrays); its number here is then its scale: for ka, kd and ks the
+/// largest value the array can give, the bound that the scene's checks and a tolerance's plan
+/// use; for the shininess, which has no bound, nothing the plan relies on.
 struct Material
 {
   Rgb ka{ 0.8, 0.8, 0.8 };

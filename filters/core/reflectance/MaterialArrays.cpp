@@ -122,6 +122,15 @@ bool operator==(const ArrayCoefficient& a, const ArrayCoefficient& b)
     a.range == b.range && a.clamp == b.clamp && a.colorMapForFieldsOnly == b.colorMapForFieldsOnly;
 }
 
+double VertexMaterial::largest(MaterialCoefficient c) const
+{
+  const auto& doubles = values[int(c)];
+  const auto& floats = floatValues[int(c)];
+  const double fromDoubles = doubles.empty() ? 0.0 : *std::max_element(doubles.begin(), doubles.end());
+  const double fromFloats = floats.empty() ? 0.0 : double(*std::max_element(floats.begin(), floats.end()));
+  return std::max(fromDoubles, fromFloats);
+}
+
 void VertexMaterial::withFloat32()
 {
   for (int c = 0; c < MaterialCoefficientCount; ++c)

@@ -102,6 +102,8 @@ struct VertexMaterial
   /// empty where nothing asked to clamp.
   std::vector<std::uint8_t> clamped;
 
+  /// The largest value of coefficient c over the vertices (0 where it has none).
+  double largest(MaterialCoefficient c) const;
   /// Fills floatValues from values (rounded to float32) where only values holds them.
   void withFloat32();
   /// Coefficient c's values in the precision T, or nullptr where it has none of its own.
