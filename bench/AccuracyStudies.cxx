@@ -88,7 +88,7 @@ Scene bunnyScene(vtkPolyData* mesh, double shininess)
   const double radius = extent.radius;
   Scene scene;
   scene.viewer.position = centre + glm::dvec3(0, 0, 4 * radius);
-  scene.material = { Rgb(0.1), Rgb(0.7, 0.6, 0.5), Rgb(0.4), shininess, SpecularModel::BlinnPhong, false };
+  scene.material = { Rgb(0.1), Rgb(0.7, 0.6, 0.5), Rgb(0.4), shininess, SpecularModel::BlinnPhong, false, {} };
   PointLight key;
   key.position = centre + radius * glm::dvec3(2, 2, 2);
   key.intensity = 12 * radius * radius;
@@ -292,7 +292,7 @@ std::vector<AccuracyRow> tessellationStudy(ChartSpec& chart)
 {
   Scene scene;
   scene.viewer.viewDirection = { 0, 0, -1 };
-  scene.material = { Rgb(0.0), Rgb(0.5), Rgb(0.5), 1, SpecularModel::BlinnPhong, false };
+  scene.material = { Rgb(0.0), Rgb(0.5), Rgb(0.5), 1, SpecularModel::BlinnPhong, false, {} };
   scene.lights = { { "sun", DistantLight{ { -1, -0.3, -1 }, Rgb(1.0), 1.0, false } } };
   // Barycentric points inside each triangle: the centroid and three points near the corners.
   const glm::dvec3 samples[] = { { 1 / 3., 1 / 3., 1 / 3. }, { 2 / 3., 1 / 6., 1 / 6. }, { 1 / 6., 2 / 3., 1 / 6. },
@@ -544,7 +544,7 @@ std::vector<AccuracyRow> grazingRows()
   {
     const glm::dvec3 toLight = glm::normalize(tangent + elevation * n);
     Scene scene;
-    scene.material = { Rgb(0.0), Rgb(0.0), Rgb(1.0), 30, SpecularModel::Phong, false };
+    scene.material = { Rgb(0.0), Rgb(0.0), Rgb(1.0), 30, SpecularModel::Phong, false, {} };
     PointLight light;
     light.position = position + 10.0 * toLight;
     light.intensity = 100; // 1 at the vertex

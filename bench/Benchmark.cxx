@@ -240,7 +240,7 @@ std::vector<Case> casesAround(const glm::dvec3& centre, double radius)
 
   Scene base;
   base.viewer.position = at(0, 0, 4);
-  base.material = { Rgb(0.8, 0.6, 0.4), Rgb(0.8, 0.6, 0.4), Rgb(0.3), 30.0, SpecularModel::BlinnPhong, false };
+  base.material = { Rgb(0.8, 0.6, 0.4), Rgb(0.8, 0.6, 0.4), Rgb(0.3), 30.0, SpecularModel::BlinnPhong, false, {} };
   const NamedLight room{ "room", AmbientLight{ Rgb(1.0), 0.1 } };
 
   Scene lambert = base;
@@ -270,9 +270,12 @@ std::vector<Case> casesAround(const glm::dvec3& centre, double radius)
   // The scan's colours for ka and kd, its gloss for ks (addMaterialArrays).
   Scene threeScanned = three;
   MaterialArrays& arrays = threeScanned.material.arrays;
-  arrays[MaterialCoefficient::Diffuse] = ArrayCoefficient{ "Colors" };
-  arrays[MaterialCoefficient::Ambient] = arrays[MaterialCoefficient::Diffuse];
-  arrays[MaterialCoefficient::Specular] = ArrayCoefficient{ "Gloss" };
+  ArrayCoefficient colors, gloss;
+  colors.array = "Colors";
+  gloss.array = "Gloss";
+  arrays[MaterialCoefficient::Diffuse] = colors;
+  arrays[MaterialCoefficient::Ambient] = colors;
+  arrays[MaterialCoefficient::Specular] = gloss;
   threeScanned.material.ka = threeScanned.material.kd = threeScanned.material.ks = Rgb(1.0);
 
   return {

@@ -120,7 +120,7 @@ void expectInBothPrecisions(const Scene& scene, const std::map<std::string, Expe
 void distantLightOverhead(SpecularModel model, double eta, const Tolerance& float32 = float32Tolerance)
 {
   Scene scene;
-  scene.material = { Rgb(0.1), Rgb(0.6), Rgb(0.3), eta, model, false };
+  scene.material = { Rgb(0.1), Rgb(0.6), Rgb(0.3), eta, model, false, {} };
   scene.viewer.viewDirection = { 0, 0, -1 };
   scene.lights = { { "sun", DistantLight{ { 0, 0, -2 }, Rgb(1.0), 1.5, false } },
     { "sky", AmbientLight{ Rgb(1.0), 0.5 } } };
@@ -247,7 +247,7 @@ std::map<std::string, Expected> positionalLight(const std::string& name, const A
 Scene axisScene(LightSource light, double viewerHeight, double eta)
 {
   Scene scene;
-  scene.material = { Rgb(0.1), Rgb(0.6), Rgb(0.3), eta, SpecularModel::BlinnPhong, false };
+  scene.material = { Rgb(0.1), Rgb(0.6), Rgb(0.3), eta, SpecularModel::BlinnPhong, false, {} };
   scene.viewer.position = glm::dvec3(0, 0, viewerHeight);
   scene.lights = { { "bulb", std::move(light) } };
   return scene;
