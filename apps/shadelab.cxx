@@ -87,10 +87,17 @@ void printSummary(vtkPolyData* output, const Scene& scene, const std::string& pr
 {
   std::cout << "  arrays written (min and max over all components):\n";
   vtkPointData* pointData = output->GetPointData();
+  std::vector<std::string> names;
   for (const ArrayDescription& description : availableArrays(scene, prefix))
   {
-    vtkDataArray* array = pointData->GetArray(description.name.c_str());
-    if (!array || description.name == flagsArrayName(prefix))
+    names.push_back(description.name);
+  }
+  const std::vector<std::string> spectral = spectralArrayNames(scene, prefix);
+  names.insert(names.end(), spectral.begin(), spectral.end());
+  for (const std::string& name : names)
+  {
+    vtkDataArray* array = pointData->GetArray(name.c_str());
+    if (!array || name == flagsArrayName(prefix))
     {
       continue;
     }
@@ -103,10 +110,10 @@ void printSummary(vtkPolyData* output, const Scene& scene, const std::string& pr
       high = c == 0 ? range[1] : std::max(high, range[1]);
     }
     // Names in a column 28 wide; a longer one keeps a space before its component count.
-    std::cout << "    " << std::left << std::setw(28) << description.name << (description.name.size() >= 28 ? " " : "")
+    std::cout << "    " << std::left << std::setw(28) << name << (name.size() >= 28 ? " " : "")
               << std::right
               << std::setw(2) << array->GetNumberOfComponents() << "  " << std::setw(12)
-              << std::setprecision(6) << low << std::setw(12) << high << "\n";
+              << std::setprecision(6) << low << " " << std::setw(12) << high << "\n";
   }
   if (auto* flags = vtkUnsignedCharArray::SafeDownCast(pointData->GetArray(flagsArrayName(prefix).c_str())))
   {

@@ -168,7 +168,7 @@ TEST_F(Cli, ShadowsAndAmbientOcclusion)
   const Result result = shadelab("shade " + goodMesh() + " -o " + out + " --shadows --ambient-occlusion 16");
   EXPECT_EQ(result.exitCode, 0) << result.err;
   for (const char* line : { "    ambient_occlusion            1 ", "    ambient_occlusion_std_error  1 ",
-         "    key_visibility               1             0           1\n", "  visibility: Cast up to " })
+         "    key_visibility               1             0            1\n", "  visibility: Cast up to " })
   {
     EXPECT_NE(result.out.find(line), std::string::npos) << line << "\n" << result.out;
   }
@@ -181,7 +181,7 @@ TEST_F(Cli, ShadowsAndAmbientOcclusion)
   // a fixed count of rays must fit the share left to it, "auto" draws what it needs.
   const Result shadows = shadelab("shade " + goodMesh() + " -o " + out + " --shadows --tolerance 1e-3");
   EXPECT_EQ(shadows.exitCode, 0) << shadows.err;
-  EXPECT_NE(shadows.out.find("    key_visibility               1             0           1\n"), std::string::npos) << shadows.out;
+  EXPECT_NE(shadows.out.find("    key_visibility               1             0            1\n"), std::string::npos) << shadows.out;
   const Result fixed = shadelab("shade " + goodMesh() + " -o " + out + " --ambient-occlusion 16 --tolerance 0.05");
   EXPECT_EQ(fixed.exitCode, 1);
   EXPECT_EQ(fixed.err, "shadelab: " + goodMesh() + ": ambient occlusion's 16 rays per vertex can err by up to 0.25 "

@@ -1,11 +1,13 @@
 // Spectral colour (docs/formulas.md section 22): colord's CIE tables, blackbodies and linear
 // sRGB against the CIE's own white points and the Planckian locus.
 #include "Colorimetry.h"
+#include "ReflectanceUpsampling.h"
 
 #include <glm/matrix.hpp>
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 
@@ -83,6 +85,36 @@ TEST(Colorimetry, LinearSrgbOfD65WhiteIsOne)
     {
       EXPECT_NEAR(toXyz[column][row], printed[row][column], 5e-5) << row << ", " << column;
     }
+  }
+}
+
+TEST(ReflectanceUpsampling, SpectraGiveTheirRgbBack)
+{
+  const ColorMatchingFunctions observer = cie1931Observer();
+  const SampledSpectrum d65 = cieIlluminant("D65");
+  // Inner colours, and the sRGB cube's saturated corners, which sigmoid spectra reach too.
+  for (const glm::dvec3 rgb : { glm::dvec3(0.8, 0.2, 0.1), glm::dvec3(0.1, 0.5, 0.9), glm::dvec3(0.05, 0.6, 0.3),
+         glm::dvec3(0.9, 0.85, 0.1), glm::dvec3(0.3, 0.3, 0.31), glm::dvec3(1, 0, 0), glm::dvec3(0, 1, 0),
+         glm::dvec3(0, 0, 1), glm::dvec3(1, 1, 0), glm::dvec3(0, 1, 1), glm::dvec3(1, 0, 1) })
+  {
+    const UpsampledReflectance fit = upsampleReflectance(rgb, observer, d65);
+    const glm::dvec3 back = reflectanceRgb(fit.spectrum, observer, d65);
+    for (int c = 0; c < 3; ++c)
+    {
+      EXPECT_NEAR(back[c], rgb[c], 1e-9) << rgb.x << " " << rgb.y << " " << rgb.z;
+    }
+    EXPECT_LT(fit.rgbResidual, 1e-9);
+    const auto [low, high] = std::minmax_element(fit.spectrum.values.begin(), fit.spectrum.values.end());
+    EXPECT_GT(*low, 0.0);
+    EXPECT_LT(*high, 1.0); // a reflectance: the sigmoid keeps it inside (0, 1)
+  }
+  // A grey is its constant spectrum, white and black included.
+  for (const double grey : { 0.0, 0.4, 1.0 })
+  {
+    const UpsampledReflectance fit = upsampleReflectance(glm::dvec3(grey), observer, d65);
+    EXPECT_EQ(fit.spectrum.values.front(), grey);
+    EXPECT_EQ(fit.spectrum.values.back(), grey);
+    EXPECT_EQ(fit.rgbResidual, 0.0);
   }
 }
 

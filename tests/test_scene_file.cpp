@@ -131,11 +131,11 @@ TEST(SceneFile, WrongTypesAndUnknownFields)
   EXPECT_EQ(errorOf(R"({ "lights": [ { "type": "distant", "direction": [0, 1] } ] })"),
     "scene.json: /lights/0/direction: must be an array of 3 numbers, got [0,1]");
   EXPECT_EQ(errorOf(R"({ "lights": [ { "type": "point", "position": [0, 0, 1], "cone": {} } ] })"),
-    "scene.json: /lights/0/cone: unknown field; allowed here: name, type, color, intensity, shadows, "
+    "scene.json: /lights/0/cone: unknown field; allowed here: name, type, color, spectrum, intensity, shadows, "
     "position, attenuation, min_distance");
   EXPECT_EQ(errorOf(R"({ "lights": [], "materail": {} })"),
     "scene.json: /materail: unknown field; allowed here: model, frame, viewer, material, lights, shadows, "
-    "ambient_occlusion");
+    "ambient_occlusion, spectral");
   // Fields of another model are errors too, not silently ignored.
   EXPECT_EQ(errorOf(R"({ "lights": [ { "type": "point", "position": [0, 0, 1],
       "attenuation": { "model": "inverse", "range": 2 } } ] })"),
@@ -253,6 +253,56 @@ TEST(MaterialArrays, SrgbDecodingAndItsChecks)
   EXPECT_EQ(vertexValueProblem(source, 17, "it is NaN"), "array 'gloss', vertex 17: it is NaN");
 }
 
+TEST(SceneFile, SpectraAreTheirRgbInTheRgbModel)
+{
+  const Scene scene = parseScene(R"({
+    "material": { "kd": { "spectrum": { "start_nm": 350, "step_nm": 100, "values": [0.5, 0.5, 0.5, 0.5, 0.5, 0.5] } } },
+    "lights": [
+      { "name": "day", "type": "distant", "direction": [0, 0, -1], "spectrum": { "illuminant": "D65" } },
+      { "name": "bulb", "type": "point", "position": [0, 0, 2], "spectrum": { "blackbody": 2700 }, "intensity": 2 },
+      { "name": "lamp", "type": "ambient", "spectrum": { "illuminant": "F11" } } ] })", "scene.json");
+  // D65 is sRGB's white; its luminance is scaled to 1.
+  const Rgb day = std::get<DistantLight>(scene.lights[0].source).color;
+  EXPECT_NEAR(day.r, 1.0, 2e-3);
+  EXPECT_NEAR(day.g, 1.0, 2e-3);
+  EXPECT_NEAR(day.b, 1.0, 2e-3);
+  // A 2700 K bulb is orange: red above green above blue, and its intensity stays its own.
+  const PointLight& bulb = std::get<PointLight>(scene.lights[1].source);
+  EXPECT_GT(bulb.color.r, bulb.color.g);
+  EXPECT_GT(bulb.color.g, bulb.color.b);
+  EXPECT_EQ(bulb.intensity, 2.0);
+  ASSERT_TRUE(scene.lights[2].spectrum);
+  EXPECT_EQ(scene.lights[2].spectrum->values.size(), 81u); // F11, 380 to 780 nm
+  // A flat reflectance is its grey, exactly; ka follows kd's spectrum.
+  EXPECT_NEAR(scene.material.kd.r, 0.5, 1e-12);
+  EXPECT_NEAR(scene.material.kd.b, 0.5, 1e-12);
+  EXPECT_TRUE(scene.material.spectra[int(MaterialCoefficient::Ambient)]);
+}
+
+TEST(SceneFile, SpectrumErrors)
+{
+  const std::string light = R"({ "lights": [ { "type": "ambient", )";
+  EXPECT_EQ(errorOf(light + R"("color": 1, "spectrum": { "illuminant": "A" } } ] })"),
+    "scene.json: /lights/0/color: give the light a colour or a spectrum, not both");
+  EXPECT_EQ(errorOf(light + R"("spectrum": { "illuminant": "D60" } } ] })"),
+    "scene.json: /lights/0/spectrum/illuminant: \"D60\" is not one of \"A\", \"B\", \"C\", \"D50\", \"D55\", "
+    "\"D65\", \"D93\", \"E\", \"F1\", \"F2\", \"F3\", \"F4\", \"F5\", \"F6\", \"F7\", \"F8\", \"F9\", "
+    "\"F10\", \"F11\", \"F12\"");
+  EXPECT_EQ(errorOf(light + R"("spectrum": { "illuminant": "A", "blackbody": 3000 } } ] })"),
+    "scene.json: /lights/0/spectrum: give one of \"illuminant\" (a CIE name), \"blackbody\" (kelvin), or "
+    "\"start_nm\", \"step_nm\" and \"values\" (a table)");
+  EXPECT_EQ(errorOf(light + R"("spectrum": { "blackbody": 100 } } ] })"),
+    "scene.json: /lights/0/spectrum/blackbody: must be a temperature in kelvin from 500 to 1e6");
+  EXPECT_EQ(errorOf(light + R"("spectrum": { "start_nm": 380, "step_nm": 0, "values": [1, 1] } } ] })"),
+    "scene.json: /lights/0/spectrum/step_nm: must be a number of nm > 0 and <= 100");
+  EXPECT_EQ(errorOf(light + R"("spectrum": { "start_nm": 380, "step_nm": 10, "values": [1, -1] } } ] })"),
+    "scene.json: /lights/0/spectrum/values/1: must be a number >= 0");
+  EXPECT_EQ(errorOf(light + R"("spectrum": { "start_nm": 900, "step_nm": 10, "values": [1, 1] } } ] })"),
+    "scene.json: /lights/0/spectrum: emits no visible light (its luminance Y is 0)");
+  EXPECT_EQ(errorOf(R"({ "material": { "kd": { "spectrum": { "illuminant": "A" }, "array": "x" } }, "lights": [] })"),
+    "scene.json: /material/kd/array: unknown field; allowed here: spectrum");
+}
+
 TEST(SceneFile, ReadsAreaLightsAndEnvironmentMaps)
 {
   // The map's path is relative to the scene file's folder.
@@ -318,7 +368,7 @@ TEST(SceneFile, AreaLightAndEnvironmentMapErrors)
   EXPECT_EQ(errorOf(R"({ "lights": [ { "type": "sphere", "center": [0, 0, 0], "radius": 1, "estimator": "sh" } ] })"),
     "scene.json: /lights/0/estimator: \"sh\" is not one of \"exact\", \"monte_carlo\", \"point\"");
   EXPECT_EQ(errorOf(R"({ "lights": [ { "type": "sphere", "center": [0, 0, 0], "radius": 1, "two_sided": true } ] })"),
-    "scene.json: /lights/0/two_sided: unknown field; allowed here: name, type, color, intensity, shadows, center, radius, "
+    "scene.json: /lights/0/two_sided: unknown field; allowed here: name, type, color, spectrum, intensity, shadows, center, radius, "
     "estimator, samples, max_samples, stratified");
   EXPECT_EQ(errorOf(R"({ "model": "vtk", "viewer": { "position": [0, 0, 1] },
       "lights": [ { "type": "sphere", "center": [0, 0, 0], "radius": 1 } ] })"),

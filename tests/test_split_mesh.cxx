@@ -167,7 +167,8 @@ vtkSmartPointer<vtkPolyData> bunny()
 }
 
 // A material from the mesh's arrays: the head scan's own colours, and a field through a colour
-// map whose range is the whole mesh's, though each piece holds a part of the field.
+// map whose range is the whole mesh's, though each piece holds a part of the field; and the
+// spectral mode.
 TEST(SplitMeshMaterial, ColoursAndAFieldsRangeAreTheWholeMeshs)
 {
   const vtkSmartPointer<vtkPolyData> head = shadelab::app::readMesh(dataPath("meshes/head_scan.ply"));
@@ -189,6 +190,10 @@ TEST(SplitMeshMaterial, ColoursAndAFieldsRangeAreTheWholeMeshs)
   EXPECT_GT(expectPieceOfWhole(shaded(head, "studio_mesh.json", { "totals" }, nullptr, 0, byHeight),
               shaded(myPiece(head), "studio_mesh.json", { "totals" }, processes(), 0, byHeight)),
     5);
+  // The spectral mode, with its XYZ twins and its difference from the RGB model.
+  EXPECT_GT(expectPieceOfWhole(shaded(head, "spectral_fluorescent.json", { "totals" }, nullptr),
+              shaded(myPiece(head), "spectral_fluorescent.json", { "totals" }, processes())),
+    10);
 }
 
 // Shadows and ambient occlusion: each piece's rays meet the whole mesh's triangles.

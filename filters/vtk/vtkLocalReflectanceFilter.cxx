@@ -1,6 +1,7 @@
 #include "vtkLocalReflectanceFilter.h"
 
 #include "ArrayCatalog.h"
+#include "Colorimetry.h"
 #include "MethodChoice.h"
 #include "ShadeLabFieldNotes.h"
 #include "ShadeLabThreadCount.h"
@@ -33,6 +34,8 @@
 #include "vtkSmartPointer.h"
 #include "vtkTypeUInt64Array.h"
 #include "vtkUnsignedCharArray.h"
+
+#include <glm/matrix.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -554,6 +557,56 @@ std::string takenName(vtkPolyData* input, const std::vector<std::string>& names)
     }
   }
   return "";
+}
+
+/// The spectral mode's arrays besides the kernel's linear sRGB (docs/formulas.md section 22):
+/// each RGB total's XYZ twin ("<total>_xyz", by the inverse of the sRGB matrix), and
+/// "total_rgb_difference", the spectral total less the RGB model's (rgbTotal).
+void addSpectralArrays(std::vector<vtkSmartPointer<vtkDataArray>>& arrays, vtkDataArray* rgbTotal, const std::string& prefix)
+{
+  const glm::dmat3 toXyz = glm::inverse(shadelab::xyzToLinearSrgb());
+  std::vector<vtkSmartPointer<vtkDataArray>> added;
+  for (const vtkSmartPointer<vtkDataArray>& array : arrays)
+  {
+    for (int t = 0; t < shadelab::TotalTermCount; ++t)
+    {
+      const std::string name = shadelab::totalArrayName(prefix, shadelab::TotalTerm(t));
+      if (name != array->GetName())
+      {
+        continue;
+      }
+      vtkSmartPointer<vtkDataArray> xyz;
+      xyz.TakeReference(array->NewInstance());
+      xyz->SetName(shadelab::totalXyzArrayName(prefix, shadelab::TotalTerm(t)).c_str());
+      xyz->SetNumberOfComponents(3);
+      xyz->SetNumberOfTuples(array->GetNumberOfTuples());
+      for (vtkIdType i = 0; i < array->GetNumberOfTuples(); ++i)
+      {
+        double rgb[3];
+        array->GetTuple(i, rgb);
+        const glm::dvec3 value = toXyz * glm::dvec3(rgb[0], rgb[1], rgb[2]);
+        xyz->SetTuple3(i, value.x, value.y, value.z);
+      }
+      added.push_back(xyz);
+      if (t == int(shadelab::TotalTerm::Total))
+      {
+        vtkSmartPointer<vtkDataArray> difference;
+        difference.TakeReference(array->NewInstance());
+        difference->SetName(shadelab::rgbDifferenceArrayName(prefix).c_str());
+        difference->SetNumberOfComponents(3);
+        difference->SetNumberOfTuples(array->GetNumberOfTuples());
+        for (vtkIdType i = 0; i < array->GetNumberOfTuples(); ++i)
+        {
+          for (int c = 0; c < 3; ++c)
+          {
+            difference->SetComponent(i, c, array->GetComponent(i, c) - rgbTotal->GetComponent(i, c));
+          }
+        }
+        added.push_back(difference);
+      }
+    }
+  }
+  arrays.insert(arrays.end(), added.begin(), added.end());
 }
 
 /// The material_clamped array: per vertex, bit c where coefficient c's value was clamped.
@@ -1132,6 +1185,8 @@ std::vector<std::string> vtkLocalReflectanceFilter::WritableArrayNames(vtkPolyDa
   {
     names.push_back(shadelab::materialClampedArrayName(this->ArrayPrefix));
   }
+  const std::vector<std::string> spectral = shadelab::spectralArrayNames(scene, this->ArrayPrefix);
+  names.insert(names.end(), spectral.begin(), spectral.end());
   return names;
 }
 
@@ -1180,9 +1235,33 @@ std::vector<vtkSmartPointer<vtkDataArray>> vtkLocalReflectanceFilter::ShadedArra
     besideShading.push_back(clampedMaterialArray(this->VertexMaterial.clamped, this->ArrayPrefix));
   }
   vtkDataArray* points = input->GetPoints()->GetData();
-  std::vector<vtkSmartPointer<vtkDataArray>> arrays = plan.precision == shadelab::Precision::Float64
-    ? shade<double>(plan.scene, plan.request, plan.methods, this->ArrayPrefix, points, shadingNormals, inputs, this, &sampling.shortOfTarget, &sampling.standardError)
-    : shade<float>(plan.scene, plan.request, plan.methods, this->ArrayPrefix, points, shadingNormals, inputs, this, &sampling.shortOfTarget, &sampling.standardError);
+  // The spectral mode always has its total, in XYZ too, and its difference from the RGB model.
+  shadelab::ArrayRequest request = plan.request;
+  std::optional<shadelab::LightColors> spectralColors;
+  if (plan.scene.spectral)
+  {
+    spectralColors = shadelab::spectralLightColors(plan.scene);
+    inputs.lightColors = &*spectralColors;
+    request.totals[int(shadelab::TotalTerm::Total)] = true;
+  }
+  auto shadeWith = [&](const shadelab::ArrayRequest& asked, SamplingOutcome* outcome)
+  {
+    return plan.precision == shadelab::Precision::Float64
+      ? shade<double>(plan.scene, asked, plan.methods, this->ArrayPrefix, points, shadingNormals, inputs, this,
+          outcome ? &outcome->shortOfTarget : nullptr, outcome ? &outcome->standardError : nullptr)
+      : shade<float>(plan.scene, asked, plan.methods, this->ArrayPrefix, points, shadingNormals, inputs, this,
+          outcome ? &outcome->shortOfTarget : nullptr, outcome ? &outcome->standardError : nullptr);
+  };
+  std::vector<vtkSmartPointer<vtkDataArray>> arrays = shadeWith(request, &sampling);
+  if (spectralColors)
+  {
+    const shadelab::LightColors rgbColors = shadelab::rgbLightColors(plan.scene);
+    inputs.lightColors = &rgbColors;
+    shadelab::ArrayRequest totalAlone = shadelab::selectArrays(plan.scene, { "total" });
+    totalAlone.flags = false;
+    const std::vector<vtkSmartPointer<vtkDataArray>> rgbModel = shadeWith(totalAlone, nullptr);
+    addSpectralArrays(arrays, rgbModel.front(), this->ArrayPrefix);
+  }
   arrays.insert(arrays.end(), besideShading.begin(), besideShading.end());
   return arrays;
 }

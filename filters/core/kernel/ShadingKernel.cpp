@@ -329,9 +329,14 @@ ShadingKernel<T>::ShadingKernel(
     {
       lights_.push_back(prepareLocal(std::get<LocalEvaluation>(evaluation), out, m, needsSpecular, method.pow));
       lights_.back().visibility = l < inputs_.lightVisibility.size() ? inputs_.lightVisibility[l] : nullptr;
+      if (const LightColors* colors = inputs_.lightColors)
+      {
+        lights_.back().diffuseColor = toVec<T>(colors->diffuse.at(l));
+        lights_.back().specularColor = toVec<T>(colors->specular.at(l));
+      }
     }
   }
-  ambient_ = toVec<T>(m.ka * ambientLight);
+  ambient_ = toVec<T>(inputs_.lightColors ? inputs_.lightColors->ambient : m.ka * ambientLight);
   needsViewer_ = twoSided_ || outputs_.flags != nullptr ||
     std::any_of(lights_.begin(), lights_.end(),
       [](const PreparedLight& light)

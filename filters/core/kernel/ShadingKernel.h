@@ -11,6 +11,7 @@
 #include "LightMethod.h"
 #include "LightEvaluation.h"
 #include "Scene.h"
+#include "SpectralColors.h"
 #include "ShadingFlags.h"
 #include "SpecularPower.h"
 #include "SpotCone.h"
@@ -67,6 +68,10 @@ struct ShadingInputs
   /// The vertices' own coefficients where the scene's material comes from arrays, in the
   /// kernel's precision (VertexMaterial::of); nullptr: the scene's material gives them all.
   const VertexMaterial* material = nullptr;
+  /// The colours each local light's terms and the ambient term are multiplied by, instead of
+  /// the products of the scene's RGB values: the spectral mode's (SpectralColors.h); nullptr:
+  /// the RGB model's.
+  const LightColors* lightColors = nullptr;
 };
 
 /// Up to `capacity` vertices in structure-of-arrays form; first is the index of the block's

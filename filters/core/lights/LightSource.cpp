@@ -156,7 +156,7 @@ const std::vector<FileTypeEntry>& fileTypes()
   return entries;
 }
 
-const std::vector<const char*> commonFields = { "name", "type", "color", "intensity", "shadows" };
+const std::vector<const char*> commonFields = { "name", "type", "color", "spectrum", "intensity", "shadows" };
 
 std::vector<const char*> fieldsOf(const SceneFileType& type)
 {

@@ -9,7 +9,9 @@
 #include "Headlight.h"
 #include "PointLight.h"
 #include "SpotLight.h"
+#include "Spectrum.h"
 
+#include <optional>
 #include <string>
 #include <variant>
 
@@ -26,6 +28,9 @@ struct NamedLight
   LightSource source;
   /// Whether the mesh casts this light's shadows (local lights only; visibility/).
   bool shadows = false;
+  /// The light's emission where the scene gives it as a spectrum (its colour is then the
+  /// spectrum's RGB, its luminance scaled to 1: SpectrumFields.h).
+  std::optional<SampledSpectrum> spectrum{};
 };
 
 /// The light's "type" name, for messages and default light names: the shape it was read as

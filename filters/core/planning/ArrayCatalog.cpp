@@ -115,6 +115,30 @@ std::string totalArrayName(const std::string& prefix, TotalTerm term)
   return prefix + termInfo(term).name;
 }
 
+std::string totalXyzArrayName(const std::string& prefix, TotalTerm term)
+{
+  return totalArrayName(prefix, term) + "_xyz";
+}
+
+std::string rgbDifferenceArrayName(const std::string& prefix)
+{
+  return totalArrayName(prefix, TotalTerm::Total) + "_rgb_difference";
+}
+
+std::vector<std::string> spectralArrayNames(const Scene& scene, const std::string& prefix)
+{
+  std::vector<std::string> names;
+  for (int t = 0; t < TotalTermCount && scene.spectral; ++t)
+  {
+    names.push_back(totalXyzArrayName(prefix, TotalTerm(t)));
+  }
+  if (scene.spectral)
+  {
+    names.push_back(rgbDifferenceArrayName(prefix));
+  }
+  return names;
+}
+
 std::string flagsArrayName(const std::string& prefix)
 {
   return prefix + flagsInfo.name;

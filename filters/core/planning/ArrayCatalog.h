@@ -79,6 +79,12 @@ std::vector<ArrayDescription> availableArrays(const Scene& scene, const std::str
 std::string lightArrayName(const std::string& prefix, const std::string& light, LightTerm term);
 /// The array name of a total or the flags: <prefix><name>.
 std::string totalArrayName(const std::string& prefix, TotalTerm term);
+/// A total's XYZ twin in the spectral mode ("total_xyz"), and the spectral total's difference
+/// from the RGB model's ("total_rgb_difference").
+std::string totalXyzArrayName(const std::string& prefix, TotalTerm term);
+std::string rgbDifferenceArrayName(const std::string& prefix);
+/// Every array the spectral mode may add to the kernel's (none without it).
+std::vector<std::string> spectralArrayNames(const Scene& scene, const std::string& prefix);
 std::string flagsArrayName(const std::string& prefix);
 /// The name of vtkMeshVisibilityFilter's flags (FlagHiddenByOwnTriangle), which the kernel
 /// folds into shading_flags: <prefix>visibility_flags.

@@ -1,7 +1,11 @@
 #pragma once
 // What a surface reflects (docs/formulas.md sections 2 to 7), and which model evaluates it.
 #include "MaterialArrays.h"
+#include "Spectrum.h"
 #include "Vec3.h"
+
+#include <array>
+#include <optional>
 
 namespace shadelab
 {
@@ -27,7 +31,10 @@ struct Material
   /// Two-sided: a normal facing away from the viewer is flipped before shading, as VTK's
   /// renderer does for back faces. One-sided: it is used as it is.
   bool twoSided = false;
-  MaterialArrays arrays;
+  MaterialArrays arrays{};
+  /// Per MaterialCoefficient (ka, kd, ks), a reflectance spectrum where the scene gives one;
+  /// the coefficient's RGB is then the spectrum's under D65 (ReflectanceUpsampling.h).
+  std::array<std::optional<SampledSpectrum>, 3> spectra{};
 };
 
 enum class ShadingModel

@@ -1,5 +1,7 @@
 #include "Scene.h"
 
+#include "SpectralColors.h"
+
 #include <algorithm>
 #include <cmath>
 #include <set>
@@ -145,6 +147,10 @@ std::vector<SceneProblem> sceneProblems(const Scene& scene, Precision precision)
   list.check(isNonNegative(m.ks), "/material/ks", "components must be numbers >= 0");
   list.check(isNonNegative(m.shininess), "/material/shininess", "must be a number >= 0");
   checkMaterialArrays(scene, list);
+  if (const std::optional<SceneProblem> spectral = spectralModeProblem(scene))
+  {
+    list.problems.push_back(*spectral);
+  }
 
   std::set<std::string> lightNames;
   for (std::size_t i = 0; i < scene.lights.size(); ++i)

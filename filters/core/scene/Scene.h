@@ -55,6 +55,14 @@ struct AmbientOcclusion
   double maxDistance = std::numeric_limits<double>::infinity();
 };
 
+/// "spectral": colour evaluated wavelength by wavelength (docs/formulas.md section 22): each
+/// light's emission times the material's reflectance, summed over bands of bandNm nanometres
+/// through the CIE observer, instead of the product of their RGB values.
+struct SpectralMode
+{
+  double bandNm = 5;
+};
+
 struct Scene
 {
   ShadingModel model = ShadingModel::Lecture;
@@ -67,6 +75,7 @@ struct Scene
   /// headlight.
   bool vtkLoneHeadlight = false;
   std::optional<AmbientOcclusion> ambientOcclusion;
+  std::optional<SpectralMode> spectral;
 
   /// Whether anything needs rays cast against the mesh: a light's shadows or occlusion.
   bool needsVisibility() const;

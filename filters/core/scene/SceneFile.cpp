@@ -2,6 +2,7 @@
 
 #include "JsonNode.h"
 #include "LightFields.h"
+#include "SpectrumFields.h"
 
 #include <algorithm>
 #include <cmath>
@@ -20,6 +21,20 @@ NamedLight readLight(const JsonNode& node, std::size_t index, const std::string&
 {
   NamedLight light;
   light.source = readLightSource(node, sceneFile);
+  if (node.has("spectrum"))
+  {
+    if (node.has("color"))
+    {
+      node.at("color").fail("give the light a colour or a spectrum, not both");
+    }
+    light.spectrum = readSpectrum(node.at("spectrum"));
+    const Rgb rgb = withColorTables(node.at("spectrum"), [&] { return emitterRgb(*light.spectrum); });
+    if (!isFinite(rgb))
+    {
+      node.at("spectrum").fail("emits no visible light (its luminance Y is 0)");
+    }
+    std::visit([&](auto& source) { source.color = rgb; }, light.source);
+  }
   light.name = node.has("name") ? node.at("name").text() : lightTypeName(light.source) + std::to_string(index);
   light.shadows = node.has("shadows") ? node.at("shadows").boolean()
                                       : shadowsByDefault && castsShadows(light.source);
@@ -81,12 +96,21 @@ ArrayCoefficient readArrayCoefficient(const JsonNode& node, MaterialCoefficient 
   return c;
 }
 
-/// A colour coefficient: RGB numbers, or an array ({"array": ...}) whose number in the
-/// material becomes its bound (Material).
+/// A colour coefficient: RGB numbers, a reflectance spectrum ({"spectrum": ...}, whose RGB
+/// under D65 it is in the RGB model), or an array ({"array": ...}) whose number in the material
+/// becomes its bound (Material).
 void readColorCoefficient(const JsonNode& material, MaterialCoefficient coefficient, Material& m, Rgb& value)
 {
   const char* key = coefficientKey(coefficient);
-  if (material.has(key) && material.at(key).isObject())
+  if (material.has(key) && material.at(key).isObject() && material.at(key).has("spectrum"))
+  {
+    const JsonNode node = material.at(key);
+    node.expectObject({ "spectrum" });
+    const SampledSpectrum reflectance = readSpectrum(node.at("spectrum"));
+    value = withColorTables(node, [&] { return reflectorRgb(reflectance); });
+    m.spectra[int(coefficient)] = reflectance;
+  }
+  else if (material.has(key) && material.at(key).isObject())
   {
     m.arrays[coefficient] = readArrayCoefficient(material.at(key), coefficient);
     value = Rgb(m.arrays[coefficient]->scale);
@@ -119,6 +143,7 @@ Material readMaterial(const JsonNode& node, ShadingModel model)
   {
     m.ka = m.kd;
     m.arrays[MaterialCoefficient::Ambient] = m.arrays[MaterialCoefficient::Diffuse];
+    m.spectra[int(MaterialCoefficient::Ambient)] = m.spectra[int(MaterialCoefficient::Diffuse)];
   }
   else
   {
@@ -176,7 +201,7 @@ Viewer readViewer(const JsonNode& node)
 Scene readScene(const Json& document, const std::string& sceneFile)
 {
   const JsonNode root(document, "");
-  root.expectObject({ "model", "frame", "viewer", "material", "lights", "shadows", "ambient_occlusion" });
+  root.expectObject({ "model", "frame", "viewer", "material", "lights", "shadows", "ambient_occlusion", "spectral" });
   Scene scene;
   if (root.has("model"))
   {
@@ -205,6 +230,12 @@ Scene readScene(const Json& document, const std::string& sceneFile)
   if (root.has("ambient_occlusion"))
   {
     scene.ambientOcclusion = readAmbientOcclusion(root.at("ambient_occlusion"));
+  }
+  if (root.has("spectral"))
+  {
+    const JsonNode spectral = root.at("spectral");
+    spectral.expectObject({ "band_nm" });
+    scene.spectral = SpectralMode{ numberOr(spectral, "band_nm", SpectralMode{}.bandNm) };
   }
   if (scene.model == ShadingModel::VtkOpenGL2)
   {
