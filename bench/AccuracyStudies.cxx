@@ -5,6 +5,7 @@
 #include "Chart.h"
 #include "CsvText.h"
 #include "DistributedStudies.h"
+#include "SpectralStudies.h"
 #include "MeshFiles.h"
 #include "SceneFile.h"
 
@@ -667,6 +668,8 @@ void runAccuracyStudies(const AccuracyOptions& options)
     }
   }
   study("11_predicted_against_measured", [&](ChartSpec& chart) { return predictionStudy(chart); });
+  study("12_spectral_rgb_error", [&](ChartSpec& chart) { return spectralRgbErrorStudy(plainBunny, chart); });
+  study("13_spectral_bands", [&](ChartSpec& chart) { return spectralBandStudy(plainBunny, chart); });
   const std::vector<AccuracyRow> grazing = grazingRows();
   rows.insert(rows.end(), grazing.begin(), grazing.end());
   for (const AccuracyRow& r : grazing)
