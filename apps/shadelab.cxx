@@ -424,6 +424,13 @@ int runArrays(const std::string& sceneFile)
     std::cout << "  " << std::left << std::setw(28) << array.name << " " << array.components
               << "  " << array.description << "\n";
   }
+  if (scene.spectral)
+  {
+    std::cout << "The scene is spectral: shade also writes each total it computes in XYZ as "
+              << totalXyzArrayName("", TotalTerm::Ambient) << " and so on, and always "
+              << totalArrayName("", TotalTerm::Total) << ", " << totalXyzArrayName("", TotalTerm::Total) << " and "
+              << rgbDifferenceArrayName("") << " (the spectral total less the RGB model's), 3 components each.\n";
+  }
   return 0;
 }
 
