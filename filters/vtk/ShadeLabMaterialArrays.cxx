@@ -63,7 +63,7 @@ struct ChannelDecoding
     using Value = vtk::GetAPIType<Array>;
     const auto tuples = vtk::DataArrayTupleRange(array);
     const int components = array->GetNumberOfComponents();
-    const auto bit = std::uint8_t(1u << int(coefficient));
+    const std::uint8_t bit = clampedBit(coefficient);
     std::atomic<vtkIdType> first{ VTK_ID_MAX };
     vtkSMPTools::For(0, array->GetNumberOfTuples(),
       [&](vtkIdType begin, vtkIdType end)
@@ -138,7 +138,7 @@ vtkSmartPointer<vtkUnsignedCharArray> mappedColors(vtkDataArray* field, const Ar
         firstNaN = i;
         break;
       }
-      clamped[i] |= std::uint8_t(1u << int(coefficient));
+      clamped[i] |= clampedBit(coefficient);
       std::copy(lowColor.begin(), lowColor.end(), colors->GetPointer(4 * i));
     }
   }
@@ -344,11 +344,9 @@ MaterialReading readVertexMaterial(vtkPolyData* piece, const Scene& scene, Preci
   }
   else if (reading.material.ambientIsDiffuse)
   {
-    constexpr auto diffuseBit = std::uint8_t(1u << int(MaterialCoefficient::Diffuse));
-    constexpr auto ambientBit = std::uint8_t(1u << int(MaterialCoefficient::Ambient));
     for (std::uint8_t& bits : reading.material.clamped) // ka's values are kd's, clamped alike
     {
-      bits |= (bits & diffuseBit) ? ambientBit : 0;
+      bits |= (bits & clampedBit(MaterialCoefficient::Diffuse)) ? clampedBit(MaterialCoefficient::Ambient) : 0;
     }
   }
   return reading;

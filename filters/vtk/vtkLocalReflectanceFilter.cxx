@@ -1255,8 +1255,7 @@ std::vector<vtkSmartPointer<vtkDataArray>> vtkLocalReflectanceFilter::ShadedArra
   std::vector<vtkSmartPointer<vtkDataArray>> arrays = shadeWith(request, &sampling);
   if (spectralColors)
   {
-    const shadelab::LightColors rgbColors = shadelab::rgbLightColors(plan.scene);
-    inputs.lightColors = &rgbColors;
+    inputs.lightColors = nullptr; // the kernel's own products of RGB values: the RGB model
     shadelab::ArrayRequest totalAlone = shadelab::selectArrays(plan.scene, { "total" });
     totalAlone.flags = false;
     const std::vector<vtkSmartPointer<vtkDataArray>> rgbModel = shadeWith(totalAlone, nullptr);

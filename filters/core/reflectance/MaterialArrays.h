@@ -55,6 +55,12 @@ enum class MaterialCoefficient
 };
 constexpr int MaterialCoefficientCount = 4;
 
+/// The bit of material_clamped (VertexMaterial::clamped) that marks coefficient c.
+constexpr std::uint8_t clampedBit(MaterialCoefficient c)
+{
+  return std::uint8_t(1u << int(c));
+}
+
 /// The scene file's key for each coefficient ("ka", "kd", "ks", "shininess").
 const char* coefficientKey(MaterialCoefficient coefficient);
 

@@ -1,6 +1,7 @@
 #include "SpectralColors.h"
 
 #include "ReflectanceUpsampling.h"
+#include "SpectrumFields.h"
 
 #include <glm/matrix.hpp>
 
@@ -10,18 +11,6 @@ namespace shadelab
 {
 namespace
 {
-struct ColorTables
-{
-  ColorMatchingFunctions observer;
-  SampledSpectrum d65;
-};
-
-const ColorTables& colorTables()
-{
-  static const ColorTables tables{ cie1931Observer(), cieIlluminant("D65") };
-  return tables;
-}
-
 /// A spectrum as a function of the wavelength.
 using SpectralFunction = std::function<double(double)>;
 
@@ -29,21 +18,19 @@ using SpectralFunction = std::function<double(double)>;
 /// upsampled reflectance of the RGB over it.
 SpectralFunction upsampled(const Rgb& rgb)
 {
-  const ColorTables& tables = colorTables();
   const double largest = std::max({ rgb.x, rgb.y, rgb.z });
   if (largest <= 0)
   {
     return [](double) { return 0.0; };
   }
-  const SampledSpectrum shape = upsampleReflectance(rgb / largest, tables.observer, tables.d65).spectrum;
+  const SampledSpectrum shape = upsampleReflectance(rgb / largest, standardObserver(), d65Illuminant()).spectrum;
   return [shape, largest](double nm) { return largest * shape.at(nm); };
 }
 
 /// The light's emission, its luminance scaled to 1 for a spectrum, D65's luminance to 1 for an RGB.
 SpectralFunction emissionOf(const NamedLight& light, double bandNm)
 {
-  const ColorTables& tables = colorTables();
-  auto luminance = [&](const SpectralFunction& f) { return tristimulus(f, tables.observer, bandNm).y; };
+  auto luminance = [&](const SpectralFunction& f) { return tristimulus(f, standardObserver(), bandNm).y; };
   if (light.spectrum)
   {
     const SampledSpectrum s = *light.spectrum;
@@ -51,9 +38,9 @@ SpectralFunction emissionOf(const NamedLight& light, double bandNm)
     return [s, y](double nm) { return s.at(nm) / y; };
   }
   const SpectralFunction shape = upsampled(std::visit([](const auto& l) { return l.color; }, light.source));
-  const SampledSpectrum d65 = tables.d65;
+  const SampledSpectrum& d65 = d65Illuminant();
   const double y = luminance([&](double nm) { return d65.at(nm); });
-  return [shape, d65, y](double nm) { return d65.at(nm) * shape(nm) / y; };
+  return [shape, &d65, y](double nm) { return d65.at(nm) * shape(nm) / y; };
 }
 
 /// The material's coefficient as a reflectance: its spectrum, or its RGB upsampled.
@@ -76,24 +63,8 @@ Rgb emittedWith(const LightSource& source, const Rgb& color)
 }
 }
 
-LightColors rgbLightColors(const Scene& scene)
-{
-  const Material& m = scene.material;
-  LightColors colors;
-  for (const NamedLight& light : scene.lights)
-  {
-    const Rgb emitted = emittedColor(light.source);
-    const bool ambient = isAmbient(light.source);
-    colors.diffuse.push_back(ambient ? Rgb(0.0) : emitted * m.kd);
-    colors.specular.push_back(ambient ? Rgb(0.0) : emitted * m.ks);
-    colors.ambient += ambient ? emitted * m.ka : Rgb(0.0);
-  }
-  return colors;
-}
-
 LightColors spectralLightColors(const Scene& scene)
 {
-  const ColorTables& tables = colorTables();
   const double bandNm = scene.spectral ? scene.spectral->bandNm : SpectralMode{}.bandNm;
   const glm::dmat3 toRgb = xyzToLinearSrgb();
   const Material& m = scene.material;
@@ -102,7 +73,7 @@ LightColors spectralLightColors(const Scene& scene)
   const SpectralFunction ks = reflectanceOf(m, MaterialCoefficient::Specular, m.ks);
   // The emission times a reflectance, summed through the observer, as linear sRGB.
   auto reflected = [&](const SpectralFunction& emission, const SpectralFunction& reflectance)
-  { return toRgb * tristimulus([&](double nm) { return emission(nm) * reflectance(nm); }, tables.observer, bandNm); };
+  { return toRgb * tristimulus([&](double nm) { return emission(nm) * reflectance(nm); }, standardObserver(), bandNm); };
   LightColors colors;
   for (const NamedLight& light : scene.lights)
   {

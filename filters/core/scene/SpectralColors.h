@@ -11,15 +11,13 @@
 namespace shadelab
 {
 /// Per scene light, Ld kd and Ls ks (0 for ambient lights), and La ka summed over the ambient
-/// lights, as linear sRGB with D65 white.
+/// lights, as linear sRGB with D65 white. (The RGB model's are the kernel's own products of the
+/// scene's RGB values.)
 struct LightColors
 {
   std::vector<Rgb> diffuse, specular;
   Rgb ambient{ 0.0 };
 };
-
-/// The RGB model's: each light's colour x intensity times the material's RGB.
-LightColors rgbLightColors(const Scene& scene);
 
 /// The spectral mode's: each light's emission times the material's reflectance, band by band
 /// (scene.spectral's width), through the CIE 1931 observer, as linear sRGB. A light given as a

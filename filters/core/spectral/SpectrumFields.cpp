@@ -6,20 +6,16 @@
 
 namespace shadelab
 {
-namespace
-{
-/// The CIE tables, read once: every spectrum in a scene is weighed with them.
-const ColorMatchingFunctions& observer()
+const ColorMatchingFunctions& standardObserver()
 {
   static const ColorMatchingFunctions tables = cie1931Observer();
   return tables;
 }
 
-const SampledSpectrum& d65()
+const SampledSpectrum& d65Illuminant()
 {
   static const SampledSpectrum spectrum = cieIlluminant("D65");
   return spectrum;
-}
 }
 
 SampledSpectrum readSpectrum(const JsonNode& node)
@@ -48,7 +44,7 @@ SampledSpectrum readSpectrum(const JsonNode& node)
     {
       node.at("blackbody").fail("must be a temperature in kelvin from 500 to 1e6");
     }
-    const SampledSpectrum& grid = withColorTables(node, [&]() -> const SampledSpectrum& { return observer().y; });
+    const SampledSpectrum& grid = withColorTables(node, [&]() -> const SampledSpectrum& { return standardObserver().y; });
     return blackbody(kelvin, grid.startNm, grid.endNm(), grid.stepNm);
   }
   SampledSpectrum table;
@@ -81,13 +77,13 @@ SampledSpectrum readSpectrum(const JsonNode& node)
 
 glm::dvec3 reflectorRgb(const SampledSpectrum& reflectance)
 {
-  return reflectanceRgb(reflectance, observer(), d65());
+  return reflectanceRgb(reflectance, standardObserver(), d65Illuminant());
 }
 
 glm::dvec3 emitterRgb(const SampledSpectrum& emission)
 {
   const glm::dvec3 xyz =
-    tristimulus([&](double nm) { return emission.at(nm); }, observer(), observer().y.stepNm);
+    tristimulus([&](double nm) { return emission.at(nm); }, standardObserver(), standardObserver().y.stepNm);
   return xyzToLinearSrgb() * (xyz / xyz.y);
 }
 }

@@ -8,6 +8,11 @@
 
 namespace shadelab
 {
+/// The CIE 1931 observer and D65 from colordFolder(), read once: every spectrum in a scene is
+/// weighed with them. Throw std::runtime_error where colord's tables are missing.
+const ColorMatchingFunctions& standardObserver();
+const SampledSpectrum& d65Illuminant();
+
 /// compute(), or node's failure saying why where colord's tables are missing.
 template <typename Compute>
 auto withColorTables(const JsonNode& node, Compute&& compute)
