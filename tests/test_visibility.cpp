@@ -752,4 +752,42 @@ TEST(Visibility, ACopyOfThePointAtAHardEdgeCountsAsTheVertexsOwn)
       << toLight.x << " " << toLight.y << " " << toLight.z;
   }
 }
+
+TEST(Visibility, TheSearchForTheFirstHitEndingAtTheVertexsOwnTrianglesFindsWhatAWholeSearchFinds)
+{
+  // firstHitHasCorner with the vertex's id stops where the vertex's triangles (and its copies')
+  // end; without the id it searches to the ray's end. The answers must agree on every ray: from
+  // every point of a coarse sphere over a plane (its terminator is its own triangles) and of
+  // an open box written with a point per face (its corners have copies), in 64 directions
+  // spread over the sphere, rays that the mesh blocks.
+  Mesh spheres;
+  addPlane(spheres, 2.0, 8);
+  addSphere(spheres, { 0, 0, 0.6 }, 0.5, 5, 7);
+  for (const Mesh& mesh : { spheres, openBox(3, true) })
+  {
+    const OccluderMesh occluders = mesh.occluders();
+    std::size_t blocked = 0, own = 0;
+    for (std::size_t i = 0; i < mesh.points.size(); ++i)
+    {
+      for (int k = 0; k < 64; ++k)
+      {
+        const double z = 1 - (2 * k + 1) / 64.0, r = std::sqrt(1 - z * z), angle = 2.39996322972865332 * k;
+        const glm::dvec3 direction(r * std::cos(angle), r * std::sin(angle), z);
+        const glm::dvec3 side = glm::dot(direction, mesh.normals[i]) >= 0 ? mesh.normals[i] : -mesh.normals[i];
+        const OccluderMesh::FrameRay ray = occluders.inFrame({ mesh.points[i], side, direction, INFINITY, PointId(i) });
+        if (occluders.occluded(&ray, 1) == 0)
+        {
+          continue;
+        }
+        ++blocked;
+        const bool wholeSearch = occluders.firstHitHasCorner(ray, mesh.points[i]);
+        EXPECT_EQ(occluders.firstHitHasCorner(ray, mesh.points[i], PointId(i)), wholeSearch) << "point " << i << ", direction " << k;
+        own += wholeSearch ? 1 : 0;
+      }
+    }
+    // Both answers occur often: the test has cases of each.
+    EXPECT_GT(own, 200u);
+    EXPECT_GT(blocked - own, 200u);
+  }
+}
 }

@@ -86,6 +86,20 @@ public:
       std::min((row + uniform.y) * rowHeight_, 1 - 0x1.0p-53) };
   }
 
+  /// Points first .. first + count - 1, as point(j) gives them, into x[] and y[]: arrays of
+  /// coordinates, which the loops that warp them vectorize over. (This loop stays scalar: the
+  /// hashes' 64-bit products have no vector instruction below AVX-512, and GCC's emulation of
+  /// them took half as long again.)
+  void points(int first, int count, double* x, double* y) const
+  {
+    for (int k = 0; k < count; ++k)
+    {
+      const glm::dvec2 p = point(first + k);
+      x[k] = p.x;
+      y[k] = p.y;
+    }
+  }
+
 private:
   std::uint64_t key_;
   std::uint64_t firstHash_; // sample j is hashed from j + firstHash_

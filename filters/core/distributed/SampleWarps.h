@@ -31,15 +31,14 @@ inline glm::dvec2 cosSinOfSmallAngle(double a)
 inline glm::dvec2 concentricDisk(const glm::dvec2& u)
 {
   const glm::dvec2 s = 2.0 * u - 1.0;
-  if (s.x == 0 && s.y == 0)
-  {
-    return { 0, 0 };
-  }
   // The angle is (pi/4) s.y/s.x where |s.x| is the larger, pi/2 - (pi/4) s.x/s.y where |s.y| is,
   // whose cosine and sine are the sine and cosine of (pi/4) s.x/s.y: one angle within pi/4.
+  // Selects rather than branches, so that loops of samples vectorize; the centre, where both
+  // are 0, has radius 0 and any angle.
   const bool xMajor = std::abs(s.x) > std::abs(s.y);
   const double r = xMajor ? s.x : s.y;
-  const glm::dvec2 cs = cosSinOfSmallAngle((samplePi / 4) * (xMajor ? s.y / s.x : s.x / s.y));
+  const double ratio = r != 0 ? (xMajor ? s.y : s.x) / r : 0.0;
+  const glm::dvec2 cs = cosSinOfSmallAngle((samplePi / 4) * ratio);
   return xMajor ? r * cs : r * glm::dvec2(cs.y, cs.x);
 }
 
@@ -81,5 +80,21 @@ inline glm::dvec3 pointOnTriangle(const glm::dvec3& a, const glm::dvec3& b, cons
 {
   const double root = std::sqrt(u.x);
   return (1 - root) * a + root * (1 - u.y) * b + root * u.y * c;
+}
+
+/// Points first .. first + count - 1 of a sample sequence (anything with points(first, count,
+/// x, y), SampleSequence.h) warped by warp(u) onto a shape or directions, into x[], y[], z[]:
+/// arrays of coordinates, so that the loop vectorizes where the warp has no branches.
+template <typename Points, typename Warp>
+void warpedPoints(const Points& points, int first, int count, Warp warp, double* x, double* y, double* z)
+{
+  points.points(first, count, x, y);
+  for (int j = 0; j < count; ++j)
+  {
+    const glm::dvec3 p = warp(glm::dvec2(x[j], y[j]));
+    x[j] = p.x;
+    y[j] = p.y;
+    z[j] = p.z;
+  }
 }
 }

@@ -31,14 +31,13 @@ struct Reach
 
 Reach reachOf(const glm::dvec3& onEmitter, const glm::dvec3& receiver)
 {
+  // Selects rather than a branch, so that the loop of a vertex's shadow rays vectorizes.
   const glm::dvec3 offset = onEmitter - receiver;
   const double d2 = glm::dot(offset, offset);
-  if (!(d2 > 0))
-  {
-    return {};
-  }
+  const bool apart = d2 > 0;
   const double d = std::sqrt(d2);
-  return { offset * (1 / d), d, d2 };
+  const double inverse = 1 / d;
+  return { apart ? offset * inverse : glm::dvec3(0.0), apart ? d : 0.0, apart ? d2 : 0.0 };
 }
 }
 
@@ -49,6 +48,7 @@ AreaLightEstimator::AreaLightEstimator(
   , lightIndex_(lightIndex)
   , lobe_(lobe)
   , targets_(targets)
+  , backFace_(light.twoSided ? 1.0 : 0.0)
 {
   std::visit(Overloaded{ [&](const PolygonEmitter& polygon) { measurePolygon(polygon); },
                [&](const DiskEmitter& disk)
@@ -96,7 +96,7 @@ bool AreaLightEstimator::isPlanar() const
 double AreaLightEstimator::emittedCosine(const glm::dvec3& towardEmitter) const
 {
   const double cosEmitter = -glm::dot(normal_, towardEmitter); // > 0: the receiver is in front
-  return light_.twoSided ? std::abs(cosEmitter) : std::max(cosEmitter, 0.0);
+  return std::max(cosEmitter, -cosEmitter * backFace_);
 }
 
 bool AreaLightEstimator::sendsLightTo(const glm::dvec3& position) const
@@ -329,32 +329,41 @@ void AreaLightEstimator::shadowRaysOf(const SurfacePoint& point, const SampleSeq
     std::fill_n(rays, sequence.count(), ShadowRay{}); // no sample would cast one
     return;
   }
-  // Every sample's ray, as rayFor(u) makes it from its point of the unit square. A planar
-  // emitter's ray needs only the sign of the sample's weight, its emitted cosine, and not the
-  // weight, whose division it saves.
-  auto fill = [&](auto rayFor)
+  // A planar emitter's rays a block of samples at a time: their points on the emitter, then the
+  // rays toward them in arrays of coordinates, a loop that vectorizes.
+  auto fillToward = [&](auto emitterPoint)
   {
-    for (int j = 0; j < sequence.count(); ++j)
+    constexpr int block = 16;
+    for (int first = 0; first < sequence.count(); first += block)
     {
-      rays[j] = rayFor(sequence.point(j));
+      const int count = std::min(block, sequence.count() - first);
+      double x[block], y[block], z[block], distance[block], weight[block];
+      warpedPoints(sequence, first, count, emitterPoint, x, y, z);
+      for (int j = 0; j < count; ++j)
+      {
+        const Reach reach = reachOf({ x[j], y[j], z[j] }, point.position);
+        x[j] = reach.direction.x;
+        y[j] = reach.direction.y;
+        z[j] = reach.direction.z;
+        distance[j] = reach.distance;
+        weight[j] = emittedCosine(reach.direction); // its sign: the division by d^2 is saved
+      }
+      for (int j = 0; j < count; ++j)
+      {
+        rays[first + j] = ray({ x[j], y[j], z[j] }, weight[j], distance[j]);
+      }
     }
   };
-  auto rayToward = [&](const glm::dvec3& onEmitter)
-  {
-    const Reach reach = reachOf(onEmitter, point.position);
-    return ray(reach.direction, emittedCosine(reach.direction), reach.distance);
-  };
   std::visit(Overloaded{ [&](const PolygonEmitter& polygon)
-               { fill([&](const glm::dvec2& u) { return rayToward(pointOnPolygon(polygon, u)); }); },
-               [&](const DiskEmitter& disk) { fill([&](const glm::dvec2& u) { return rayToward(pointOnDisk(disk, u)); }); },
+               { fillToward([&](const glm::dvec2& u) { return pointOnPolygon(polygon, u); }); },
+               [&](const DiskEmitter& disk) { fillToward([&](const glm::dvec2& u) { return pointOnDisk(disk, u); }); },
                [&](const SphereEmitter& sphere)
                {
-                 fill(
-                   [&](const glm::dvec2& u)
-                   {
-                     const EmitterSample sample = towardSphere(sphere, u, point);
-                     return ray(sample.toward.direction, sample.toward.weight, sample.distance);
-                   });
+                 for (int j = 0; j < sequence.count(); ++j)
+                 {
+                   const EmitterSample sample = towardSphere(sphere, sequence.point(j), point);
+                   rays[j] = ray(sample.toward.direction, sample.toward.weight, sample.distance);
+                 }
                } },
     light_.shape);
 }

@@ -80,6 +80,7 @@ private:
   glm::dvec3 normal_{ 0.0 }; // polygons and disks
   glm::dvec3 tangent_{ 0.0 }, bitangent_{ 0.0 }; // disks: the plane's axes
   double area_ = 0;
+  double backFace_ = 0; // 1 for a two-sided emitter: its back emits as its front
   std::vector<double> fanAreaFraction_; // polygons: cumulative share of each fan triangle
 };
 }

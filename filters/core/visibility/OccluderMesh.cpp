@@ -31,10 +31,11 @@ std::uint64_t coordinateKey(const float* p)
   return key;
 }
 
-/// OccluderMesh::jointNormals_ for these points (x, y, z per point, in the unit frame) and
-/// triangles.
-std::vector<glm::vec3> jointNormalsOf(const std::vector<float>& xyz, std::size_t pointCount,
-  const std::vector<std::uint32_t>& triangles)
+constexpr std::uint32_t noCopies = std::numeric_limits<std::uint32_t>::max();
+
+/// Per point (x, y, z per point, in the unit frame), the group of the points with its
+/// coordinates, or noCopies where it has none; empty when no point has a copy.
+std::vector<std::uint32_t> copyGroupsOf(const std::vector<float>& xyz, std::size_t pointCount, std::uint32_t& groups)
 {
   std::vector<std::pair<std::uint64_t, std::uint32_t>> keys;
   keys.reserve(pointCount);
@@ -46,47 +47,93 @@ std::vector<glm::vec3> jointNormalsOf(const std::vector<float>& xyz, std::size_t
     }
   }
   std::sort(keys.begin(), keys.end());
-  constexpr std::uint32_t noGroup = std::numeric_limits<std::uint32_t>::max();
-  std::vector<std::uint32_t> group; // per point, filled once a copy is found
-  std::uint32_t groups = 0;
+  std::vector<std::uint32_t> group; // filled once a copy is found
+  groups = 0;
   auto same = [&](std::uint32_t a, std::uint32_t b) { return std::equal(&xyz[3 * a], &xyz[3 * a + 3], &xyz[3 * b]); };
   for (std::size_t k = 1; k < keys.size(); ++k)
   {
     const std::uint32_t previous = keys[k - 1].second, point = keys[k].second;
     if (keys[k].first == keys[k - 1].first && same(previous, point))
     {
-      group.resize(pointCount, noGroup);
-      if (group[previous] == noGroup)
+      group.resize(pointCount, noCopies);
+      if (group[previous] == noCopies)
       {
         group[previous] = groups++;
       }
       group[point] = group[previous];
     }
   }
+  return group;
+}
+
+glm::dvec3 unitPoint(const std::vector<float>& xyz, std::uint32_t id)
+{
+  return { xyz[3 * std::size_t(id)], xyz[3 * std::size_t(id) + 1], xyz[3 * std::size_t(id) + 2] };
+}
+
+/// OccluderMesh::jointNormals_ for these points and triangles, given their copy groups.
+std::vector<glm::vec3> jointNormalsOf(const std::vector<float>& xyz, const std::vector<std::uint32_t>& triangles,
+  const std::vector<std::uint32_t>& group, std::uint32_t groups)
+{
   if (groups == 0)
   {
     return {};
   }
   std::vector<glm::dvec3> sums(groups, glm::dvec3(0.0));
-  auto at = [&](std::uint32_t id) { return glm::dvec3(xyz[3 * id], xyz[3 * id + 1], xyz[3 * id + 2]); };
   for (std::size_t t = 0; t < triangles.size(); t += 3)
   {
-    const glm::dvec3 a = at(triangles[t]), area = glm::cross(at(triangles[t + 1]) - a, at(triangles[t + 2]) - a);
+    const glm::dvec3 a = unitPoint(xyz, triangles[t]);
+    const glm::dvec3 area = glm::cross(unitPoint(xyz, triangles[t + 1]) - a, unitPoint(xyz, triangles[t + 2]) - a);
     for (std::size_t c = t; c < t + 3; ++c)
     {
-      if (group[triangles[c]] != noGroup && std::isfinite(area.x + area.y + area.z))
+      if (group[triangles[c]] != noCopies && std::isfinite(area.x + area.y + area.z))
       {
         sums[group[triangles[c]]] += area;
       }
     }
   }
-  std::vector<glm::vec3> normals(pointCount, glm::vec3(0.0f));
-  for (std::size_t i = 0; i < pointCount; ++i)
+  std::vector<glm::vec3> normals(group.size(), glm::vec3(0.0f));
+  for (std::size_t i = 0; i < group.size(); ++i)
   {
-    const double length = group[i] == noGroup ? 0.0 : glm::length(sums[group[i]]);
+    const double length = group[i] == noCopies ? 0.0 : glm::length(sums[group[i]]);
     normals[i] = length > 0 ? glm::vec3(sums[group[i]] / length) : glm::vec3(0.0f);
   }
   return normals;
+}
+
+/// OccluderMesh::ownReach_ for these points and triangles, given their copy groups.
+std::vector<float> ownReachOf(const std::vector<float>& xyz, std::size_t pointCount,
+  const std::vector<std::uint32_t>& triangles, const std::vector<std::uint32_t>& group, std::uint32_t groups)
+{
+  std::vector<float> reach(pointCount, 0.0f);
+  auto reachAtLeast = [&](std::uint32_t point, float a, float b) { reach[point] = std::max({ reach[point], a, b }); };
+  for (std::size_t t = 0; t < triangles.size(); t += 3)
+  {
+    const std::uint32_t a = triangles[t], b = triangles[t + 1], c = triangles[t + 2];
+    // A NaN length (a point left out of the BVH) is passed over by std::max.
+    const float ab = static_cast<float>(glm::length(unitPoint(xyz, b) - unitPoint(xyz, a)));
+    const float bc = static_cast<float>(glm::length(unitPoint(xyz, c) - unitPoint(xyz, b)));
+    const float ca = static_cast<float>(glm::length(unitPoint(xyz, a) - unitPoint(xyz, c)));
+    reachAtLeast(a, ab, ca);
+    reachAtLeast(b, ab, bc);
+    reachAtLeast(c, bc, ca);
+  }
+  if (groups > 0)
+  {
+    std::vector<float> groupReach(groups, 0.0f);
+    for (std::size_t i = 0; i < pointCount; ++i)
+    {
+      if (group[i] != noCopies)
+      {
+        groupReach[group[i]] = std::max(groupReach[group[i]], reach[i]);
+      }
+    }
+    for (std::size_t i = 0; i < pointCount; ++i)
+    {
+      reach[i] = group[i] == noCopies ? reach[i] : groupReach[group[i]];
+    }
+  }
+  return reach;
 }
 }
 
@@ -148,7 +195,10 @@ OccluderMesh::OccluderMesh(UnitFrame frame, const PolygonList& polygons)
         static_cast<std::uint32_t>(ids[i]) });
     }
   }
-  jointNormals_ = jointNormalsOf(frame_.vertices, pointCount, triangles_);
+  std::uint32_t groups = 0;
+  const std::vector<std::uint32_t> copyGroups = copyGroupsOf(frame_.vertices, pointCount, groups);
+  jointNormals_ = jointNormalsOf(frame_.vertices, triangles_, copyGroups, groups);
+  ownReach_ = ownReachOf(frame_.vertices, pointCount, triangles_, copyGroups, groups);
   embree_ = std::make_unique<Embree>();
   embree_->device = rtcNewDevice(nullptr);
   if (!embree_->device)
@@ -260,12 +310,28 @@ unsigned OccluderMesh::occluded(const FrameRay* frameRays, int count) const
   return blocked;
 }
 
-bool OccluderMesh::firstHitHasCorner(const FrameRay& ray, const glm::dvec3& point) const
+float OccluderMesh::ownTrianglesReach(const FrameRay& ray, const glm::vec3& unitPoint, PointId vertex) const
 {
+  if (vertex < 0 || static_cast<std::size_t>(vertex) >= ownReach_.size())
+  {
+    return ray.maxDistance;
+  }
+  // A triangle with a corner at the point lies within its reach of the point, so within
+  // reach + |origin - point| of the ray's origin; the margin covers float's rounding of the
+  // lengths and of the hit's distance.
+  const float reach = 1.001f * (ownReach_[static_cast<std::size_t>(vertex)] + glm::length(ray.origin - unitPoint)) + 1e-6f;
+  return std::min(ray.maxDistance, reach);
+}
+
+bool OccluderMesh::firstHitHasCorner(const FrameRay& ray, const glm::dvec3& point, PointId vertex) const
+{
+  // The corners as the BVH holds them, against the point taken into the frame the same way.
+  const glm::vec3 unitPoint(frame_.toUnit(point));
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRayHit rayHit;
-  setRay(rayHit.ray, ray.origin, ray.direction, ray.maxDistance);
+  // The search ends where the point's own triangles end: beyond, a first hit is not its own.
+  setRay(rayHit.ray, ray.origin, ray.direction, ownTrianglesReach(ray, unitPoint, vertex));
   rayHit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rayHit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(embree_->scene, &context, &rayHit);
@@ -273,8 +339,6 @@ bool OccluderMesh::firstHitHasCorner(const FrameRay& ray, const glm::dvec3& poin
   {
     return false;
   }
-  // The corners as the BVH holds them, against the point taken into the frame the same way.
-  const glm::vec3 unitPoint(frame_.toUnit(point));
   for (int i = 0; i < 3; ++i)
   {
     const float* corner = &frame_.vertices[3 * std::size_t(triangles_[3 * rayHit.hit.primID + i])];

@@ -71,9 +71,12 @@ public:
   unsigned occluded(const FrameRay* rays, int count) const;
 
   /// Whether the first triangle the ray meets has a corner at `point` (in the mesh's
-  /// coordinates): the vertex itself, or a copy of it where the mesh is split at a seam or a
-  /// hard edge, which has another point id but the same coordinates.
-  bool firstHitHasCorner(const FrameRay& ray, const glm::dvec3& point) const;
+  /// coordinates), the point of id vertex (or -1) that the ray leaves: the vertex itself, or a
+  /// copy of it where the mesh is split at a seam or a hard edge, which has another point id
+  /// but the same coordinates. With the point's id, the search ends where the point's own
+  /// triangles end (ownReach_), which makes it short: about half the time that a search to
+  /// the ray's end took, per blocked shadow ray on the bunny.
+  bool firstHitHasCorner(const FrameRay& ray, const glm::dvec3& point, PointId vertex = -1) const;
 
   std::size_t triangleCount() const { return triangles_.size() / 3; }
 
@@ -94,6 +97,8 @@ private:
     static UnitFrame of(PackedPoints<Real> points, std::size_t pointCount);
   };
   OccluderMesh(UnitFrame frame, const PolygonList& polygons);
+  /// How far along the ray from the point of id vertex (or -1) its own triangles can be met.
+  float ownTrianglesReach(const FrameRay& ray, const glm::vec3& unitPoint, PointId vertex) const;
 
   UnitFrame frame_;
   std::vector<std::uint32_t> triangles_; // three point ids per triangle
@@ -102,6 +107,9 @@ private:
   /// copy. At a concave hard edge, the floor's copy of a point lies in the wall's plane: a ray
   /// moved off the floor alone would start on the wall and meet it at once.
   std::vector<glm::vec3> jointNormals_;
+  /// Per point, the largest distance in the unit frame from it to a corner of a triangle that
+  /// has it, or a copy of it, as a corner: where a ray from it can meet its own triangles.
+  std::vector<float> ownReach_;
   struct Embree;
   std::unique_ptr<Embree> embree_;
 };

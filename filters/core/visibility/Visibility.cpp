@@ -39,13 +39,30 @@ public:
 
   int count() const { return count_; }
 
-  glm::dvec2 point(int j) const
+  /// Points first .. first + count - 1 (first even) into x[] and y[]: consecutive pairs from
+  /// the two stratified sequences, an odd last one from the independent one.
+  void points(int first, int count, double* x, double* y) const
   {
-    if (!stratified_ || (j == count_ - 1 && count_ % 2 == 1))
+    if (!stratified_)
     {
-      return independent_.point(j);
+      independent_.points(first, count, x, y);
+      return;
     }
-    return (j % 2 == 0 ? first_ : second_).point(j / 2);
+    constexpr int most = OccluderMesh::bundleSize / 2;
+    double evenX[most], evenY[most], oddX[most], oddY[most];
+    first_.points(first / 2, (count + 1) / 2, evenX, evenY);
+    second_.points(first / 2, count / 2, oddX, oddY);
+    for (int k = 0; k < count; ++k)
+    {
+      x[k] = k % 2 == 0 ? evenX[k / 2] : oddX[k / 2];
+      y[k] = k % 2 == 0 ? evenY[k / 2] : oddY[k / 2];
+    }
+    if (count_ % 2 == 1 && first + count == count_)
+    {
+      const glm::dvec2 last = independent_.point(count_ - 1);
+      x[count - 1] = last.x;
+      y[count - 1] = last.y;
+    }
   }
 
 private:
@@ -80,17 +97,18 @@ void forEachRay(const OccluderMesh& occluders, const RayVertex& vertex, const Ra
   std::fill(std::begin(rays), std::end(rays), occluders.inFrame({ vertex.position, vertex.normal, {}, maxDistance, vertex.id }));
   for (int first = 0; first < samples.count(); first += OccluderMesh::bundleSize)
   {
-    glm::dvec3 directions[OccluderMesh::bundleSize];
     const int count = std::min(OccluderMesh::bundleSize, samples.count() - first);
+    // The directions in arrays of their coordinates, a loop that vectorizes, then into rays.
+    double x[OccluderMesh::bundleSize], y[OccluderMesh::bundleSize], z[OccluderMesh::bundleSize];
+    warpedPoints(samples, first, count, direction, x, y, z);
     for (int j = 0; j < count; ++j)
     {
-      directions[j] = direction(samples.point(first + j));
-      rays[j].direction = glm::vec3(directions[j]);
+      rays[j].direction = glm::vec3(glm::dvec3(x[j], y[j], z[j]));
     }
     const unsigned hidden = occluders.occluded(rays, count);
     for (int j = 0; j < count; ++j)
     {
-      seen(directions[j], ((hidden >> j) & 1u) != 0);
+      seen(glm::dvec3(x[j], y[j], z[j]), ((hidden >> j) & 1u) != 0);
     }
   }
 }
@@ -101,9 +119,9 @@ void forEachRay(const OccluderMesh& occluders, const RayVertex& vertex, const Ra
 /// three standard errors on the plane under a sphere). One ray's variance is added:
 /// (D + 1) / N^2, the mean of a count's rate given D under a flat prior. Never below 1 / N,
 /// one ray's weight.
-double openFractionError(const MonteCarloEstimate& open, int rays)
+double openFractionError(const MonteCarloMean<double>& open, int rays)
 {
-  return std::hypot(open.standardError().x, 1.0 / rays);
+  return std::hypot(open.standardError(), 1.0 / rays);
 }
 
 /// Casts the vertex's rays of one estimate (sample points from `seed`), calling
@@ -112,7 +130,7 @@ double openFractionError(const MonteCarloEstimate& open, int rays)
 /// Returns how many rays were cast.
 template <typename Direction, typename Seen>
 int drawRays(const OccluderMesh& occluders, const RayVertex& vertex, std::uint64_t seed, const OcclusionSettings& settings,
-  const MonteCarloEstimate& open, Direction direction, Seen seen)
+  const MonteCarloMean<double>& open, Direction direction, Seen seen)
 {
   if (!settings.target)
   {
@@ -142,9 +160,10 @@ void lightVisibility(const OccluderMesh& occluders, const RayVertex* vertices, c
     const unsigned hidden = rayCount > 0 ? occluders.occluded(rays, rayCount) : 0u;
     for (int j = 0; j < rayCount; ++j)
     {
+      const RayVertex& vertex = vertices[cast[j]];
       LightVisibility& seen = visibility[cast[j]];
       seen.visible = ((hidden >> j) & 1u) == 0;
-      seen.blockedByOwnTriangle = !seen.visible && occluders.firstHitHasCorner(rays[j], vertices[cast[j]].position);
+      seen.blockedByOwnTriangle = !seen.visible && occluders.firstHitHasCorner(rays[j], vertex.position, vertex.id);
     }
     rayCount = 0;
   };
@@ -263,16 +282,16 @@ OcclusionEstimate ambientOcclusion(const OccluderMesh& occluders, const RayVerte
   {
     return estimate;
   }
-  MonteCarloEstimate open(settings.sampling.stratified);
+  MonteCarloMean<double> open(settings.sampling.stratified);
   glm::dvec3 openDirections(0.0);
   estimate.rays = drawRays(occluders, vertex, occlusionSeed, settings, open,
     [&](const glm::dvec2& u) { return cosineWeightedDirection(vertex.normal, u).direction; },
     [&](const glm::dvec3& direction, bool hidden)
     {
-      open.add(Rgb(hidden ? 0.0 : 1.0));
+      open.add(hidden ? 0.0 : 1.0);
       openDirections += hidden ? glm::dvec3(0.0) : direction;
     });
-  estimate.occlusion = open.mean().x;
+  estimate.occlusion = open.mean();
   estimate.standardError = openFractionError(open, estimate.rays);
   if (settings.bentNormal && openDirections != glm::dvec3(0.0))
   {
@@ -280,11 +299,11 @@ OcclusionEstimate ambientOcclusion(const OccluderMesh& occluders, const RayVerte
   }
   if (settings.skyViewFactor)
   {
-    MonteCarloEstimate unblocked(settings.sampling.stratified);
+    MonteCarloMean<double> unblocked(settings.sampling.stratified);
     drawRays(occluders, vertex, skyViewSeed, settings, unblocked,
       [&](const glm::dvec2& u) { return uniformHemisphereDirection(vertex.normal, u); },
-      [&](const glm::dvec3&, bool hidden) { unblocked.add(Rgb(hidden ? 0.0 : 1.0)); });
-    estimate.skyViewFactor = unblocked.mean().x;
+      [&](const glm::dvec3&, bool hidden) { unblocked.add(hidden ? 0.0 : 1.0); });
+    estimate.skyViewFactor = unblocked.mean();
   }
   return estimate;
 }
