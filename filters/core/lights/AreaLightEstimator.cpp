@@ -158,11 +158,15 @@ AreaLightEstimator::EmitterSample AreaLightEstimator::sampleEmitter(const glm::d
 
 glm::dvec3 AreaLightEstimator::pointOnPolygon(const PolygonEmitter& polygon, const glm::dvec2& u) const
 {
-  // u.x picks a fan triangle by area and, stretched back to [0, 1), places the point in it.
+  // u.x picks a fan triangle by area and, stretched back to [0, 1), places the point in it:
+  // the first whose cumulative fraction is above u.x, the last at most. Counted without a
+  // branch on u.x, which a binary search takes the wrong way half the time.
   const auto& v = polygon.vertices;
-  const std::size_t k = std::min<std::size_t>(
-    std::upper_bound(fanAreaFraction_.begin(), fanAreaFraction_.end(), u.x) - fanAreaFraction_.begin(),
-    fanAreaFraction_.size() - 1);
+  std::size_t k = 0;
+  for (std::size_t i = 0; i + 1 < fanAreaFraction_.size(); ++i)
+  {
+    k += fanAreaFraction_[i] <= u.x ? 1 : 0;
+  }
   const double low = k == 0 ? 0.0 : fanAreaFraction_[k - 1];
   const double stretched = std::clamp((u.x - low) / (fanAreaFraction_[k] - low), 0.0, 1.0);
   return pointOnTriangle(v[0], v[k + 1], v[k + 2], { stretched, u.y });
