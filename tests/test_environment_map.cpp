@@ -874,6 +874,37 @@ TEST(EnvironmentSampler, MonteCarloIrradianceAgreesWithTheTexelSum)
   }
 }
 
+TEST(EnvironmentSampler, DirectionsDrawnTogetherAreTheDirectionsDrawnOneByOne)
+{
+  // sampleDirections draws every row of a batch first, fetching the columns' tables ahead:
+  // the directions must be sample's, bit for bit, for any count (batches of 16 and a part),
+  // on a map with light, with black texels, and on a black map (no tables).
+  std::mt19937_64 random(12);
+  std::uniform_real_distribution<double> uniform;
+  for (const EnvironmentMap& map : { mapOf(64, 32, [](const glm::dvec3& w) { return Rgb(w.x > 0.5 ? 0.0 : 1.0 + w.y, 0.5, 2.0); }),
+         mapOf(16, 8, [](const glm::dvec3&) { return Rgb(0.0); }) })
+  {
+    const EnvironmentSampler sampler(map);
+    for (int count : { 0, 1, 16, 37 })
+    {
+      std::vector<double> u1(std::size_t(count) + 1), u2(std::size_t(count) + 1);
+      for (int k = 0; k < count; ++k)
+      {
+        u1[std::size_t(k)] = k == 0 ? 0.0 : uniform(random); // an edge as well
+        u2[std::size_t(k)] = uniform(random);
+      }
+      std::vector<glm::dvec3> together(std::size_t(count) + 1, glm::dvec3(-7.0));
+      sampler.sampleDirections(count, u1.data(), u2.data(), together.data());
+      for (int k = 0; k < count; ++k)
+      {
+        const glm::dvec3 alone = sampler.sample(u1[std::size_t(k)], u2[std::size_t(k)]).direction;
+        EXPECT_EQ(together[std::size_t(k)], alone) << "sample " << k << " of " << count;
+      }
+      EXPECT_EQ(together[std::size_t(count)], glm::dvec3(-7.0)); // nothing written past count
+    }
+  }
+}
+
 TEST(EnvironmentSampler, BlackMapIsSampledUniformly)
 {
   const EnvironmentSampler sampler(mapOf(16, 8, [](const glm::dvec3&) { return Rgb(0.0); }));

@@ -126,12 +126,54 @@ EnvironmentSampler::EnvironmentSampler(const EnvironmentMap& map)
 
 EnvironmentSampler::Drawn EnvironmentSampler::draw(double u1, double u2) const
 {
+  return drawInRow(drawRow(u2), u1);
+}
+
+EnvironmentSampler::DrawnRow EnvironmentSampler::drawRow(double u2) const
+{
   const BinSample row = sampleCdf(rowCdf_.data(), rowGuide_.data(), map_.height, u2);
-  const std::size_t rowIndex = static_cast<std::size_t>(row.bin);
+  return { row.bin, row.offset };
+}
+
+EnvironmentSampler::Drawn EnvironmentSampler::drawInRow(const DrawnRow& row, double u1) const
+{
+  const std::size_t rowIndex = static_cast<std::size_t>(row.row);
   const BinSample column = sampleCdf(&columnCdfs_[rowIndex * (map_.width + 1)],
     &columnGuides_[rowIndex * map_.width], map_.width, u1);
-  return { column.bin, row.bin,
-    directionAt((column.bin + column.offset) / map_.width, (row.bin + row.offset) / map_.height) };
+  return { column.bin, row.row,
+    directionAt((column.bin + column.offset) / map_.width, (row.row + row.offset) / map_.height) };
+}
+
+void EnvironmentSampler::sampleDirections(int count, const double* u1, const double* u2, glm::dvec3* directions) const
+{
+  if (uvDensityPerWeight_ == 0.0)
+  {
+    for (int k = 0; k < count; ++k)
+    {
+      directions[k] = sampleDirection(u1[k], u2[k]); // a black map has no tables
+    }
+    return;
+  }
+  constexpr int batch = 16;
+  for (int first = 0; first < count; first += batch)
+  {
+    const int size = std::min(batch, count - first);
+    DrawnRow rows[batch];
+    for (int k = 0; k < size; ++k)
+    {
+      rows[k] = drawRow(u2[first + k]);
+      // Where the column's search will start: its guide's bin for u1, then that bin's cdf.
+      const std::size_t rowIndex = static_cast<std::size_t>(rows[k].row);
+      const double u = u1[first + k] > 0.0 ? std::min(u1[first + k], largestBelowOne) : 0.0; // as sampleCdf's
+      const int guess = std::min(static_cast<int>(u * map_.width), map_.width - 1);
+      __builtin_prefetch(&columnGuides_[rowIndex * map_.width + std::size_t(guess)]);
+      __builtin_prefetch(&columnCdfs_[rowIndex * (map_.width + 1) + std::size_t(guess)]);
+    }
+    for (int k = 0; k < size; ++k)
+    {
+      directions[first + k] = drawInRow(rows[k], u1[first + k]).direction;
+    }
+  }
 }
 
 EnvironmentSample EnvironmentSampler::sample(double u1, double u2) const

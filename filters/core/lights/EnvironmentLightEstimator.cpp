@@ -121,12 +121,65 @@ RadianceSample EnvironmentLightEstimator::weightedByDensity(const EnvironmentSam
   return { sample.direction, sample.pdf > 0 ? scale_ * sample.radiance / sample.pdf : Rgb(0.0), std::nullopt };
 }
 
+namespace
+{
+/// The mixture (Mis) draws by luminance where u.x < 1/2, by the cosine elsewhere, each from u.x
+/// stretched back to [0, 1).
+bool mixtureDrawsByLuminance(const glm::dvec2& u)
+{
+  return u.x < 0.5;
+}
+
+glm::dvec2 mixtureStretched(const glm::dvec2& u)
+{
+  return { mixtureDrawsByLuminance(u) ? 2 * u.x : 2 * u.x - 1, u.y };
+}
+}
+
 glm::dvec3 EnvironmentLightEstimator::mixtureDirection(const glm::dvec3& n, const glm::dvec2& u) const
 {
-  // u.x < 1/2 draws by luminance, the rest by the cosine, each from u.x stretched back to [0, 1).
-  const bool byLuminance = u.x < 0.5;
-  const glm::dvec2 stretched(byLuminance ? 2 * u.x : 2 * u.x - 1, u.y);
-  return byLuminance ? sampler_->sampleDirection(stretched.x, stretched.y) : cosineWeightedDirection(n, stretched).direction;
+  const glm::dvec2 stretched = mixtureStretched(u);
+  return mixtureDrawsByLuminance(u) ? sampler_->sampleDirection(stretched.x, stretched.y)
+                                    : cosineWeightedDirection(n, stretched).direction;
+}
+
+void EnvironmentLightEstimator::mixtureDirections(
+  const glm::dvec3& n, const SampleSequence& sequence, int first, int count, double* x, double* y, double* z) const
+{
+  // Every sample's cosine direction, a loop that vectorizes, then the luminance directions
+  // over them where the sample draws by luminance: no branch on which way a sample draws,
+  // which went either way at random.
+  double u[mixtureBlock], v[mixtureBlock];
+  int byLuminance[mixtureBlock];
+  int luminanceCount = 0;
+  sequence.points(first, count, u, v);
+  for (int j = 0; j < count; ++j)
+  {
+    byLuminance[luminanceCount] = j;
+    luminanceCount += mixtureDrawsByLuminance({ u[j], v[j] }) ? 1 : 0;
+    u[j] = mixtureStretched({ u[j], v[j] }).x;
+  }
+  for (int j = 0; j < count; ++j)
+  {
+    const glm::dvec3 direction = cosineWeightedDirection(n, { u[j], v[j] }).direction;
+    x[j] = direction.x;
+    y[j] = direction.y;
+    z[j] = direction.z;
+  }
+  double luminanceU[mixtureBlock] = {}, luminanceV[mixtureBlock] = {};
+  for (int k = 0; k < luminanceCount; ++k)
+  {
+    luminanceU[k] = u[byLuminance[k]];
+    luminanceV[k] = v[byLuminance[k]];
+  }
+  glm::dvec3 byLuminanceDirections[mixtureBlock];
+  sampler_->sampleDirections(luminanceCount, luminanceU, luminanceV, byLuminanceDirections);
+  for (int k = 0; k < luminanceCount; ++k)
+  {
+    x[byLuminance[k]] = byLuminanceDirections[k].x;
+    y[byLuminance[k]] = byLuminanceDirections[k].y;
+    z[byLuminance[k]] = byLuminanceDirections[k].z;
+  }
 }
 
 glm::dvec3 EnvironmentLightEstimator::drawDirection(const glm::dvec3& n, const glm::dvec2& u, EnvironmentDirections directions) const
@@ -256,10 +309,25 @@ void EnvironmentLightEstimator::shadowRaysOf(const glm::dvec3& n, const SampleSe
   // nothing. Nor does a sample of a black texel above it, whose ray is cast all the same (the
   // texel's radiance is not looked up for the ray: the estimate is the same bits whatever
   // that ray finds, and the lookup costs more than the ray).
-  for (int j = 0; j < sequence.count(); ++j)
+  if (light_.directions != EnvironmentDirections::Mis)
   {
-    const glm::dvec3 direction = drawDirection(n, sequence.point(j), light_.directions);
-    rays[j] = { mapToWorld_ * direction, std::numeric_limits<double>::infinity(), glm::dot(n, direction) > 0 };
+    for (int j = 0; j < sequence.count(); ++j)
+    {
+      const glm::dvec3 direction = drawDirection(n, sequence.point(j), light_.directions);
+      rays[j] = { mapToWorld_ * direction, std::numeric_limits<double>::infinity(), glm::dot(n, direction) > 0 };
+    }
+    return;
+  }
+  for (int first = 0; first < sequence.count(); first += mixtureBlock)
+  {
+    const int count = std::min(mixtureBlock, sequence.count() - first);
+    double x[mixtureBlock], y[mixtureBlock], z[mixtureBlock];
+    mixtureDirections(n, sequence, first, count, x, y, z);
+    for (int j = 0; j < count; ++j)
+    {
+      const glm::dvec3 direction(x[j], y[j], z[j]);
+      rays[first + j] = { mapToWorld_ * direction, std::numeric_limits<double>::infinity(), glm::dot(n, direction) > 0 };
+    }
   }
 }
 

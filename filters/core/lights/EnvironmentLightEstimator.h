@@ -74,6 +74,11 @@ private:
   glm::dvec3 drawDirection(const glm::dvec3& n, const glm::dvec2& u, EnvironmentDirections directions) const;
   /// The direction of a sample of the mixture of luminance and cosine (Mis).
   glm::dvec3 mixtureDirection(const glm::dvec3& n, const glm::dvec2& u) const;
+  /// mixtureDirection for the sequence's samples first .. first + count - 1 (count at most
+  /// mixtureBlock), into x[], y[], z[].
+  static constexpr int mixtureBlock = 16;
+  void mixtureDirections(const glm::dvec3& n, const SampleSequence& sequence, int first, int count, double* x, double* y,
+    double* z) const;
   /// A direction (map frame) drawn from u as `directions` says, with L(w) / pdf(w).
   RadianceSample draw(const glm::dvec3& n, const glm::dvec2& u, EnvironmentDirections directions) const;
   /// One estimate of S from the direction drawn by luminance and one drawn by the lobe.
