@@ -149,8 +149,8 @@ void EnvironmentLightEstimator::mixtureDirections(
   // Every sample's cosine direction, a loop that vectorizes, then the luminance directions
   // over them where the sample draws by luminance: no branch on which way a sample draws,
   // which went either way at random.
-  double u[mixtureBlock], v[mixtureBlock];
-  int byLuminance[mixtureBlock];
+  double u[directionBlock], v[directionBlock];
+  int byLuminance[directionBlock];
   int luminanceCount = 0;
   sequence.points(first, count, u, v);
   for (int j = 0; j < count; ++j)
@@ -166,13 +166,13 @@ void EnvironmentLightEstimator::mixtureDirections(
     y[j] = direction.y;
     z[j] = direction.z;
   }
-  double luminanceU[mixtureBlock] = {}, luminanceV[mixtureBlock] = {};
+  double luminanceU[directionBlock] = {}, luminanceV[directionBlock] = {};
   for (int k = 0; k < luminanceCount; ++k)
   {
     luminanceU[k] = u[byLuminance[k]];
     luminanceV[k] = v[byLuminance[k]];
   }
-  glm::dvec3 byLuminanceDirections[mixtureBlock];
+  glm::dvec3 byLuminanceDirections[directionBlock];
   sampler_->sampleDirections(luminanceCount, luminanceU, luminanceV, byLuminanceDirections);
   for (int k = 0; k < luminanceCount; ++k)
   {
@@ -194,6 +194,34 @@ glm::dvec3 EnvironmentLightEstimator::drawDirection(const glm::dvec3& n, const g
       break;
   }
   return mixtureDirection(n, u);
+}
+
+void EnvironmentLightEstimator::drawDirections(const glm::dvec3& n, const SampleSequence& sequence, int first, int count,
+  EnvironmentDirections directions, double* x, double* y, double* z) const
+{
+  switch (directions)
+  {
+    case EnvironmentDirections::Luminance:
+    {
+      double u[directionBlock] = {}, v[directionBlock] = {};
+      glm::dvec3 drawn[directionBlock];
+      sequence.points(first, count, u, v);
+      sampler_->sampleDirections(count, u, v, drawn);
+      for (int j = 0; j < count; ++j)
+      {
+        x[j] = drawn[j].x;
+        y[j] = drawn[j].y;
+        z[j] = drawn[j].z;
+      }
+      return;
+    }
+    case EnvironmentDirections::Cosine:
+      warpedPoints(sequence, first, count, [&](const glm::dvec2& u) { return cosineWeightedDirection(n, u).direction; }, x, y, z);
+      return;
+    case EnvironmentDirections::Mis:
+      break;
+  }
+  mixtureDirections(n, sequence, first, count, x, y, z);
 }
 
 RadianceSample EnvironmentLightEstimator::draw(const glm::dvec3& n, const glm::dvec2& u, EnvironmentDirections directions) const
@@ -309,20 +337,11 @@ void EnvironmentLightEstimator::shadowRaysOf(const glm::dvec3& n, const SampleSe
   // nothing. Nor does a sample of a black texel above it, whose ray is cast all the same (the
   // texel's radiance is not looked up for the ray: the estimate is the same bits whatever
   // that ray finds, and the lookup costs more than the ray).
-  if (light_.directions != EnvironmentDirections::Mis)
+  for (int first = 0; first < sequence.count(); first += directionBlock)
   {
-    for (int j = 0; j < sequence.count(); ++j)
-    {
-      const glm::dvec3 direction = drawDirection(n, sequence.point(j), light_.directions);
-      rays[j] = { mapToWorld_ * direction, std::numeric_limits<double>::infinity(), glm::dot(n, direction) > 0 };
-    }
-    return;
-  }
-  for (int first = 0; first < sequence.count(); first += mixtureBlock)
-  {
-    const int count = std::min(mixtureBlock, sequence.count() - first);
-    double x[mixtureBlock], y[mixtureBlock], z[mixtureBlock];
-    mixtureDirections(n, sequence, first, count, x, y, z);
+    const int count = std::min(directionBlock, sequence.count() - first);
+    double x[directionBlock], y[directionBlock], z[directionBlock];
+    drawDirections(n, sequence, first, count, light_.directions, x, y, z);
     for (int j = 0; j < count; ++j)
     {
       const glm::dvec3 direction(x[j], y[j], z[j]);

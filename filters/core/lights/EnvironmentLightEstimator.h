@@ -74,9 +74,13 @@ private:
   glm::dvec3 drawDirection(const glm::dvec3& n, const glm::dvec2& u, EnvironmentDirections directions) const;
   /// The direction of a sample of the mixture of luminance and cosine (Mis).
   glm::dvec3 mixtureDirection(const glm::dvec3& n, const glm::dvec2& u) const;
-  /// mixtureDirection for the sequence's samples first .. first + count - 1 (count at most
-  /// mixtureBlock), into x[], y[], z[].
-  static constexpr int mixtureBlock = 16;
+  /// drawDirection for the sequence's samples first .. first + count - 1 (count at most
+  /// directionBlock), into x[], y[], z[]: in loops that vectorize, and with the luminance
+  /// samples' tables fetched ahead (EnvironmentSampler::sampleDirections).
+  static constexpr int directionBlock = 16;
+  void drawDirections(const glm::dvec3& n, const SampleSequence& sequence, int first, int count,
+    EnvironmentDirections directions, double* x, double* y, double* z) const;
+  /// drawDirections for the mixture (Mis).
   void mixtureDirections(const glm::dvec3& n, const SampleSequence& sequence, int first, int count, double* x, double* y,
     double* z) const;
   /// A direction (map frame) drawn from u as `directions` says, with L(w) / pdf(w).
