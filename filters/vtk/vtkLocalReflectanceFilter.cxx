@@ -565,6 +565,16 @@ std::string takenName(vtkPolyData* input, const std::vector<std::string>& names)
 void addSpectralArrays(std::vector<vtkSmartPointer<vtkDataArray>>& arrays, vtkDataArray* rgbTotal, const std::string& prefix)
 {
   const glm::dmat3 toXyz = glm::inverse(shadelab::xyzToLinearSrgb());
+  // An array of the total's type and length, 3 components, to fill.
+  auto emptyLike = [](vtkDataArray* total, const std::string& name)
+  {
+    vtkSmartPointer<vtkDataArray> array;
+    array.TakeReference(total->NewInstance());
+    array->SetName(name.c_str());
+    array->SetNumberOfComponents(3);
+    array->SetNumberOfTuples(total->GetNumberOfTuples());
+    return array;
+  };
   std::vector<vtkSmartPointer<vtkDataArray>> added;
   for (const vtkSmartPointer<vtkDataArray>& array : arrays)
   {
@@ -575,11 +585,7 @@ void addSpectralArrays(std::vector<vtkSmartPointer<vtkDataArray>>& arrays, vtkDa
       {
         continue;
       }
-      vtkSmartPointer<vtkDataArray> xyz;
-      xyz.TakeReference(array->NewInstance());
-      xyz->SetName(shadelab::totalXyzArrayName(prefix, shadelab::TotalTerm(t)).c_str());
-      xyz->SetNumberOfComponents(3);
-      xyz->SetNumberOfTuples(array->GetNumberOfTuples());
+      const vtkSmartPointer<vtkDataArray> xyz = emptyLike(array, shadelab::totalXyzArrayName(prefix, shadelab::TotalTerm(t)));
       for (vtkIdType i = 0; i < array->GetNumberOfTuples(); ++i)
       {
         double rgb[3];
@@ -590,11 +596,7 @@ void addSpectralArrays(std::vector<vtkSmartPointer<vtkDataArray>>& arrays, vtkDa
       added.push_back(xyz);
       if (t == int(shadelab::TotalTerm::Total))
       {
-        vtkSmartPointer<vtkDataArray> difference;
-        difference.TakeReference(array->NewInstance());
-        difference->SetName(shadelab::rgbDifferenceArrayName(prefix).c_str());
-        difference->SetNumberOfComponents(3);
-        difference->SetNumberOfTuples(array->GetNumberOfTuples());
+        const vtkSmartPointer<vtkDataArray> difference = emptyLike(array, shadelab::rgbDifferenceArrayName(prefix));
         for (vtkIdType i = 0; i < array->GetNumberOfTuples(); ++i)
         {
           for (int c = 0; c < 3; ++c)

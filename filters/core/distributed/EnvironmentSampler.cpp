@@ -69,12 +69,23 @@ void buildGuide(const double* cdf, int count, int* guide)
   }
 }
 
+/// u brought into [0, 1) (0 for NaN): outside it no bin would hold u.
+double withinUnit(double u)
+{
+  return u > 0.0 ? std::min(u, largestBelowOne) : 0.0;
+}
+
+/// The guide table's cell of u in [0, 1) for `count` bins: floor(u count), the last at most.
+int guideCell(double u, int count)
+{
+  return std::min(static_cast<int>(u * count), count - 1);
+}
+
 /// Inverts a cdf of `count` bins with its guide table at u: the bin that holds u and where in it.
 BinSample sampleCdf(const double* cdf, const int* guide, int count, double u)
 {
-  // Outside [0, 1) (or NaN) no bin would hold u.
-  u = u > 0.0 ? std::min(u, largestBelowOne) : 0.0;
-  const int bin = binHolding(cdf, guide[std::min(static_cast<int>(u * count), count - 1)], u);
+  u = withinUnit(u);
+  const int bin = binHolding(cdf, guide[guideCell(u, count)], u);
   const double offset = (u - cdf[bin]) / (cdf[bin + 1] - cdf[bin]);
   return { bin, std::min(offset, largestBelowOne) };
 }
@@ -164,8 +175,7 @@ void EnvironmentSampler::sampleDirections(int count, const double* u1, const dou
       rows[k] = drawRow(u2[first + k]);
       // Where the column's search will start: its guide's bin for u1, then that bin's cdf.
       const std::size_t rowIndex = static_cast<std::size_t>(rows[k].row);
-      const double u = u1[first + k] > 0.0 ? std::min(u1[first + k], largestBelowOne) : 0.0; // as sampleCdf's
-      const int guess = std::min(static_cast<int>(u * map_.width), map_.width - 1);
+      const int guess = guideCell(withinUnit(u1[first + k]), map_.width);
       __builtin_prefetch(&columnGuides_[rowIndex * map_.width + std::size_t(guess)]);
       __builtin_prefetch(&columnCdfs_[rowIndex * (map_.width + 1) + std::size_t(guess)]);
     }
