@@ -135,6 +135,65 @@ std::vector<float> ownReachOf(const std::vector<float>& xyz, std::size_t pointCo
   }
   return reach;
 }
+
+/// OccluderMesh::ownNormalCones_ for these points and triangles, given their copy groups: per
+/// point, the sum of the unit normals of the triangles around it and its copies as its axis,
+/// and the least cosine between that axis (as stored, NormalCone) and any of them. No cone where
+/// a triangle's normal is too ill-conditioned for float to agree with it (an angle below 1e-3
+/// radians), where the normals cancel, or where the cone is half a sphere or wider.
+std::vector<OccluderMesh::NormalCone> ownNormalConesOf(const std::vector<float>& xyz, std::size_t pointCount,
+  const std::vector<std::uint32_t>& triangles, const std::vector<std::uint32_t>& group, std::uint32_t groups)
+{
+  constexpr double noCone = -1;
+  auto slotOf = [&](std::uint32_t point)
+  { return group.empty() || group[point] == noCopies ? std::size_t(point) : pointCount + group[point]; };
+  auto normalOf = [&](std::size_t t, bool& wellConditioned)
+  {
+    const glm::dvec3 a = unitPoint(xyz, triangles[t]), e1 = unitPoint(xyz, triangles[t + 1]) - a,
+                     e2 = unitPoint(xyz, triangles[t + 2]) - a;
+    const glm::dvec3 n = glm::cross(e1, e2);
+    const double length = glm::length(n);
+    wellConditioned = length > 1e-3 * glm::length(e1) * glm::length(e2) && std::isfinite(length);
+    return wellConditioned ? n / length : glm::dvec3(0.0);
+  };
+  std::vector<glm::dvec3> axes(pointCount + groups, glm::dvec3(0.0));
+  std::vector<double> least(pointCount + groups, 1.0);
+  for (std::size_t t = 0; t < triangles.size(); t += 3)
+  {
+    bool wellConditioned = false;
+    const glm::dvec3 n = normalOf(t, wellConditioned);
+    for (std::size_t c = t; c < t + 3; ++c)
+    {
+      axes[slotOf(triangles[c])] += n;
+      least[slotOf(triangles[c])] = wellConditioned ? least[slotOf(triangles[c])] : noCone;
+    }
+  }
+  // The least cosines are measured from the axes as stored.
+  std::vector<OccluderMesh::NormalCone> cones(pointCount + groups);
+  for (std::size_t slot = 0; slot < axes.size(); ++slot)
+  {
+    const double length = glm::length(axes[slot]);
+    cones[slot] = OccluderMesh::NormalCone::of(length > 1e-6 ? axes[slot] / length : glm::dvec3(0.0));
+    axes[slot] = cones[slot].axis();
+  }
+  for (std::size_t t = 0; t < triangles.size(); t += 3)
+  {
+    bool wellConditioned = false;
+    const glm::dvec3 n = normalOf(t, wellConditioned);
+    for (std::size_t c = t; c < t + 3; ++c)
+    {
+      const std::size_t slot = slotOf(triangles[c]);
+      least[slot] = std::min(least[slot], glm::dot(axes[slot], n));
+    }
+  }
+  std::vector<OccluderMesh::NormalCone> pointCones(pointCount);
+  for (std::size_t i = 0; i < pointCount; ++i)
+  {
+    const std::size_t slot = slotOf(static_cast<std::uint32_t>(i));
+    pointCones[i] = cones[slot].withCosine(axes[slot] == glm::dvec3(0.0) ? noCone : least[slot]);
+  }
+  return pointCones;
+}
 }
 
 /// The Embree device and scene, kept out of the header so that users of OccluderMesh need no
@@ -199,6 +258,7 @@ OccluderMesh::OccluderMesh(UnitFrame frame, const PolygonList& polygons)
   const std::vector<std::uint32_t> copyGroups = copyGroupsOf(frame_.vertices, pointCount, groups);
   jointNormals_ = jointNormalsOf(frame_.vertices, triangles_, copyGroups, groups);
   ownReach_ = ownReachOf(frame_.vertices, pointCount, triangles_, copyGroups, groups);
+  ownNormalCones_ = ownNormalConesOf(frame_.vertices, pointCount, triangles_, copyGroups, groups);
   embree_ = std::make_unique<Embree>();
   embree_->device = rtcNewDevice(nullptr);
   if (!embree_->device)
@@ -226,6 +286,31 @@ OccluderMesh::OccluderMesh(UnitFrame frame, const PolygonList& polygons)
   rtcReleaseGeometry(geometry);
   rtcCommitScene(embree_->scene);
   embree_->check("build the triangles' BVH");
+}
+
+OccluderMesh::NormalCone OccluderMesh::NormalCone::of(const glm::dvec3& unitAxis)
+{
+  NormalCone cone;
+  for (int i = 0; i < 3; ++i)
+  {
+    cone.axis_[i] = static_cast<std::int16_t>(std::lround(steps * std::clamp(unitAxis[i], -1.0, 1.0)));
+  }
+  return cone;
+}
+
+OccluderMesh::NormalCone OccluderMesh::NormalCone::withCosine(double cosine) const
+{
+  NormalCone cone = *this;
+  // Rounded down: a wider cone than the normals need, never a narrower one.
+  cone.cosine_ = static_cast<std::int16_t>(std::floor(steps * std::clamp(cosine, -1.0, 1.0)));
+  return cone;
+}
+
+glm::dvec3 OccluderMesh::NormalCone::axis() const
+{
+  const glm::dvec3 stored(axis_[0], axis_[1], axis_[2]);
+  const double length = glm::length(stored);
+  return length > 0 ? stored / length : glm::dvec3(0.0);
 }
 
 OccluderMesh::~OccluderMesh() = default;
@@ -323,10 +408,46 @@ float OccluderMesh::ownTrianglesReach(const FrameRay& ray, const glm::vec3& unit
   return std::min(ray.maxDistance, reach);
 }
 
+bool OccluderMesh::leavesAllOwnPlanes(const FrameRay& ray, const glm::vec3& unitPoint, std::size_t point) const
+{
+  if (point >= ownNormalCones_.size() || ownNormalCones_[point].cosine() <= 0)
+  {
+    return false;
+  }
+  // Every own triangle's normal n is within the cone: n.v is at least |v| cos(angle(axis, v) +
+  // the cone's half-angle). The ray starts on one side of every own plane (they all pass
+  // through the point) and moves away from all of them when that bound is positive, with the
+  // same sign, for its lift off the point and for its direction. The margins: a cosine of 1e-3
+  // (about 0.06 degrees; Embree's normals of the triangles, from the same float corners, differ
+  // from ownNormalConesOf's by at most 1e-4 radians), and a lift above the planes of 32 float
+  // units of the coordinates and edges involved, far above the rounding of Embree's distances.
+  const glm::dvec3 axis = ownNormalCones_[point].axis();
+  const double cosine = ownNormalCones_[point].cosine(), sine = std::sqrt(1 - cosine * cosine);
+  auto leastCosine = [&](const glm::dvec3& v, double side)
+  {
+    const double length = glm::length(v);
+    const double along = side * glm::dot(axis, v) / length, across = std::sqrt(std::max(0.0, 1 - along * along));
+    return length > 0 ? along * cosine - across * sine : -1.0; // cos(angle(axis, v) + half-angle)
+  };
+  const glm::dvec3 lift = glm::dvec3(ray.origin) - glm::dvec3(unitPoint), direction(ray.direction);
+  const glm::dvec3 magnitude = glm::abs(glm::dvec3(unitPoint));
+  const double leastLift = 32 * 0x1p-24 * (std::max({ magnitude.x, magnitude.y, magnitude.z }) + ownReach_[point] + glm::length(lift));
+  auto movesAway = [&](double side)
+  {
+    const double liftCosine = leastCosine(lift, side);
+    return liftCosine > 1e-3 && liftCosine * glm::length(lift) > leastLift && leastCosine(direction, side) > 1e-3;
+  };
+  return movesAway(1) || movesAway(-1);
+}
+
 bool OccluderMesh::firstHitHasCorner(const FrameRay& ray, const glm::dvec3& point, PointId vertex) const
 {
   // The corners as the BVH holds them, against the point taken into the frame the same way.
   const glm::vec3 unitPoint(frame_.toUnit(point));
+  if (vertex >= 0 && leavesAllOwnPlanes(ray, unitPoint, static_cast<std::size_t>(vertex)))
+  {
+    return false; // none of its own triangles is in the ray's way, whatever it meets first
+  }
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRayHit rayHit;
