@@ -3,6 +3,7 @@
 #include "MeshFiles.h"
 #include "RunWarnings.h"
 
+#include "NoiseTest.h"
 #include "NumberText.h"
 #include "ShadingFlags.h"
 #include "ToleranceRules.h"
@@ -206,14 +207,20 @@ const FileArray* find(const std::vector<FileArray>& arrays, const std::string& n
   return nullptr;
 }
 
+/// The statistical mode's chance that two honest runs fail, for an array.
+constexpr double defaultSignificance = 0.001;
+
 /// The tolerance rules of the command line, parsed.
 struct Rules
 {
   PatternRules<ToleranceValue> absolute, relative;
   PatternRules<long long> ulps;
 
+  std::optional<double> standardErrors;
+  double significance = defaultSignificance;
+
   /// The rule for an array of the baseline.
-  ValueRule ruleFor(const FileArray& array, std::optional<double> standardErrors) const
+  ValueRule ruleFor(const FileArray& array) const
   {
     ValueRule rule;
     const double range = array.values.range();
@@ -222,6 +229,7 @@ struct Rules
     rule.relative = given ? given->of(range) : defaultRelativeTolerance(array.values.type);
     rule.ulps = ulps.find(array.name);
     rule.standardErrors = standardErrors;
+    rule.significance = significance;
     return rule;
   }
 };
@@ -261,6 +269,17 @@ Rules parseRules(const CompareOptions& options)
   {
     throw UserError("--standard-errors must be a number > 0 (3 is usual)");
   }
+  if (options.significance && !options.standardErrors)
+  {
+    throw UserError("--significance is the statistical mode's: give --standard-errors K with it (3 is usual)");
+  }
+  // Each check's share stays far above the 1.4e-65 the binomial quantile leaves out.
+  if (options.significance && !(*options.significance >= 1e-12 && *options.significance <= 0.5))
+  {
+    throw UserError("--significance must be a number from 1e-12 to 0.5 (0.001 is usual)");
+  }
+  rules.standardErrors = options.standardErrors;
+  rules.significance = options.significance.value_or(defaultSignificance);
   return rules;
 }
 
@@ -294,20 +313,47 @@ std::string valueText(const ArrayValues& values, std::size_t i)
   return values.type == ValueType::Integer ? std::to_string(values.integers[i]) : exact(values.reals[i]);
 }
 
-std::string ruleText(const ArrayReport& report)
+/// The rule a value passes by itself: "atol 0, rtol 4.77e-07", "within 4 ULP", "equal".
+std::string toleranceText(const ArrayReport& report)
 {
-  const ValueType type = report.baseline->values.type;
-  if (type == ValueType::Integer)
+  if (report.baseline->values.type == ValueType::Integer)
   {
     return "equal";
   }
-  std::string text = report.rule.ulps ? "within " + std::to_string(*report.rule.ulps) + " ULP"
-                                      : "atol " + brief(report.rule.absolute) + ", rtol " + brief(report.rule.relative);
+  return report.rule.ulps ? "within " + std::to_string(*report.rule.ulps) + " ULP"
+                          : "atol " + brief(report.rule.absolute) + ", rtol " + brief(report.rule.relative);
+}
+
+std::string ruleText(const ArrayReport& report)
+{
+  std::string text = toleranceText(report);
   if (report.rule.standardErrors)
   {
-    text += ", or within " + brief(*report.rule.standardErrors) + " standard errors";
+    text += "; noise: " + brief(*report.rule.standardErrors) + " standard errors, significance " +
+      brief(report.rule.significance);
   }
   return text;
+}
+
+/// One component's noise checks in words, each that fails saying why.
+std::string noiseText(const NoiseCheck& check, double k)
+{
+  if (check.values == 0)
+  {
+    return "no value with a standard error > 0";
+  }
+  return std::to_string(check.outside) + " of " + std::to_string(check.values) + " values outside " + brief(k) +
+    " standard errors (" + brief(check.expected) + " expected, at most " + std::to_string(check.allowed) + " allowed" +
+    (check.countPasses() ? "" : ": too many") + "); mean difference " + brief(check.meanDifference) +
+    " (at most " + brief(check.meanDifferenceLimit) + " either way" + (check.biasPasses() ? "" : ": a bias") + ")";
+}
+
+/// "noise: ..." for an array of one component, "noise of component 1: ..." for the others.
+std::string noiseLine(const ArrayReport& report, std::size_t component)
+{
+  const bool several = report.baseline->values.components > 1;
+  return (several ? "noise of component " + std::to_string(component) + ": " : std::string("noise: ")) +
+    noiseText(report.difference->noise[component], *report.rule.standardErrors);
 }
 
 /// Where value i of the array is: "point 12 (x, y, z), component 1".
@@ -406,6 +452,22 @@ std::vector<std::string> detailsOf(const ArrayReport& report, const std::vector<
     }
     lines.push_back(text);
   }
+  for (std::size_t component = 0; component < d.noise.size(); ++component)
+  {
+    lines.push_back(noiseLine(report, component));
+  }
+  if (!d.noise.empty())
+  {
+    const int components = report.baseline->values.components;
+    lines.push_back("each check at significance " + brief(significancePerCheck(report.rule.significance, components)) +
+      " (" + brief(report.rule.significance) + " shared equally by the count and the mean difference" +
+      (components > 1 ? " of " + std::to_string(components) + " components" : std::string()) + ", Bonferroni)");
+  }
+  if (d.exactValues > 0)
+  {
+    lines.push_back(std::to_string(d.exactValues) + (d.exactValues == 1 ? " value has" : " values have") +
+      " both standard errors 0: judged by " + toleranceText(report));
+  }
   if (report.rule.standardErrors && d.withStandardError > 0)
   {
     const double n = static_cast<double>(d.withStandardError);
@@ -427,8 +489,16 @@ std::string verdictOf(const ArrayReport& report)
     return report.problem;
   }
   const ArrayDifference& d = *report.difference;
-  return std::to_string(d.failing) + " of " + std::to_string(d.values) + " values fail (" + ruleText(report) +
-    "); max |diff| " + brief(d.largest);
+  std::string verdict = std::to_string(d.failing) + " of " + std::to_string(d.values) + " values fail (" +
+    ruleText(report) + "); max |diff| " + brief(d.largest);
+  for (std::size_t component = 0; component < d.noise.size(); ++component)
+  {
+    if (!d.noise[component].passes())
+    {
+      verdict += "; " + noiseLine(report, component);
+    }
+  }
+  return verdict;
 }
 
 /// The array's row of the table, then its details.
@@ -527,17 +597,25 @@ std::string junitOf(const std::vector<ArrayReport>& reports, const CompareOption
   {
     xml << "    <testcase classname=\"shadelab.compare." << associationName(report.association) << "\" name=\""
         << xmlText(report.name) << "\"";
-    if (report.passes())
+    const bool noise = report.difference && !report.difference->noise.empty();
+    if (report.passes() && !noise)
     {
       xml << "/>\n";
       continue;
     }
-    xml << ">\n      <failure message=\"" << xmlText(verdictOf(report)) << "\">";
+    // A passing noise check says its counts too, as standard output.
+    const char* element = report.passes() ? "system-out" : "failure";
+    xml << ">\n      <" << element;
+    if (!report.passes())
+    {
+      xml << " message=\"" << xmlText(verdictOf(report)) << "\"";
+    }
+    xml << ">";
     for (const std::string& line : detailsOf(report, baseline, result))
     {
       xml << xmlText(line) << "\n";
     }
-    xml << "</failure>\n    </testcase>\n";
+    xml << "</" << element << ">\n    </testcase>\n";
   }
   xml << "  </testsuite>\n</testsuites>\n";
   return xml.str();
@@ -548,6 +626,26 @@ std::string junitOf(const std::vector<ArrayReport>& reports, const CompareOption
 nlohmann::json jsonNumber(double x)
 {
   return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(exact(x));
+}
+
+/// The statistical mode's checks: its parameters, then each component's counts and mean
+/// difference.
+nlohmann::json noiseJson(const ArrayReport& report)
+{
+  const ArrayDifference& d = *report.difference;
+  nlohmann::json components = nlohmann::json::array();
+  for (std::size_t component = 0; component < d.noise.size(); ++component)
+  {
+    const NoiseCheck& check = d.noise[component];
+    components.push_back({ { "component", component }, { "values", check.values }, { "outside", check.outside },
+      { "expected", check.expected }, { "allowed", check.allowed }, { "mean_difference", check.meanDifference },
+      { "mean_difference_standard_error", check.meanDifferenceError },
+      { "mean_difference_limit", check.meanDifferenceLimit }, { "count_passed", check.countPasses() },
+      { "bias_passed", check.biasPasses() } });
+  }
+  return { { "k", *report.rule.standardErrors }, { "significance", report.rule.significance },
+    { "significance_per_check", significancePerCheck(report.rule.significance, report.baseline->values.components) },
+    { "exact_values", d.exactValues }, { "components", components } };
 }
 
 nlohmann::json jsonOf(const ArrayReport& report, const std::vector<FileArray>& baseline, const std::vector<FileArray>& result)
@@ -601,6 +699,7 @@ nlohmann::json jsonOf(const ArrayReport& report, const std::vector<FileArray>& b
     entry["standard_errors"] = { { "k", *report.rule.standardErrors }, { "values", d.withStandardError },
       { "within_1", d.withinStandardErrors[0] }, { "within_2", d.withinStandardErrors[1] },
       { "within_3", d.withinStandardErrors[2] } };
+    entry["noise"] = noiseJson(report);
   }
   return entry;
 }
@@ -988,7 +1087,7 @@ ArrayReport compareArray(const FileArray& array, const ComparedFiles& files, con
     return report;
   }
   const ArrayValues& a = array.values;
-  report.rule = rules.ruleFor(array, options.standardErrors);
+  report.rule = rules.ruleFor(array);
   const FileArray* errorsA = find(files.baseline, array.name + "_std_error", array.association);
   const FileArray* errorsB = find(files.result, array.name + "_std_error", array.association);
   const bool statistical = options.standardErrors && errorsA && errorsB &&
@@ -1089,7 +1188,8 @@ CLI::App* addCompareCommand(CLI::App& cli, CompareOptions& options)
 {
   CLI::App* command = cli.add_subcommand("compare",
     "Compare two files' arrays value by value, for regression tests: point, cell and field data and the "
-    "points, each value passing when |a - b| <= max(rtol * max(|a|, |b|), atol). Exit code 0 when they agree, 1 "
+    "points, each value passing when |a - b| <= max(rtol * max(|a|, |b|), atol), or Monte Carlo arrays judged "
+    "as noise by their standard errors (--standard-errors). Exit code 0 when they agree, 1 "
     "when they differ, 2 when a file cannot be read or an option is wrong.");
   command->add_option("baseline", options.baseline, "the file to compare against (.vtp, .vtu, .vti, .vts, .vtr, .vtk, .ply, .obj, .stl)")->required();
   command->add_option("result", options.result, "the file to judge")->required();
@@ -1108,8 +1208,16 @@ CLI::App* addCompareCommand(CLI::App& cli, CompareOptions& options)
     "numbers of the array's type apart; where a ULP rule matches, it replaces --atol and --rtol")
     ->allow_extra_args(false);
   command->add_option("--standard-errors", options.standardErrors,
-    "statistical mode: where both files hold NAME_std_error beside NAME, a value also passes within K combined "
-    "standard errors sqrt(e_a^2 + e_b^2), and the fractions within 1, 2 and 3 are reported");
+    "statistical mode, for Monte Carlo arrays: where both files hold NAME_std_error beside NAME, NAME's values "
+    "are judged together as noise, component by component: the count of values outside K combined standard "
+    "errors sqrt(e_a^2 + e_b^2) must be at most the Binomial(n, 2 P(Z > K)) quantile, and the mean difference "
+    "within the normal quantile times its standard error sqrt(sum of e_a^2 + e_b^2) / n; values whose standard "
+    "errors are both 0 must pass --atol and --rtol. 3 is usual")
+    ->type_name("K");
+  command->add_option("--significance", options.significance,
+    "with --standard-errors: the chance that two honest runs fail, for an array; shared equally by the count and "
+    "the mean difference of each component (Bonferroni); from 1e-12 to 0.5, default 0.001")
+    ->type_name("ALPHA");
   command->add_option("--arrays", options.arrays, "compare only the arrays whose names match these wildcards (default *)")
     ->delimiter(',')->allow_extra_args(false);
   command->add_option("--exclude", options.exclude, "leave out the arrays whose names match these wildcards")->delimiter(',')->allow_extra_args(false);
@@ -1124,7 +1232,8 @@ CLI::App* addCompareCommand(CLI::App& cli, CompareOptions& options)
   command->add_option("--junit", options.junit, "also write the report as JUnit XML to this file (.xml), one test case per array, for CI systems");
   command->add_option("--diff", options.diff,
     "also write the result's mesh (.vtp or .vtk) with NAME_difference (result - baseline) for each array compared "
-    "and compare_passed (1 where every compared value of a point or cell passes, 0 where one fails), to open in ParaView");
+    "and compare_passed (1 where every compared value of a point or cell passes, 0 where one fails or, in statistical "
+    "mode, lies outside K standard errors), to open in ParaView");
   return command;
 }
 

@@ -17,6 +17,7 @@ struct CompareOptions
   std::vector<std::string> exclude;
   std::vector<std::string> flagArrays{ "*shading_flags" }; // integers whose bits are ShadeLab's flags
   std::optional<double> standardErrors;              // statistical mode: k
+  std::optional<double> significance;                // statistical mode: alpha (default 0.001)
   bool noPoints = false;
   std::optional<double> nearest; // match by nearest point within this distance, not by id
   std::string json, junit, diff; // report files, and the difference mesh

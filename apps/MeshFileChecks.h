@@ -1,21 +1,42 @@
 #pragma once
-// Checks of a mesh file's own claims before any reader trusts them: what a PLY header
-// declares against the bytes the file has, an OBJ's face indices against the vertices it
-// lists. A lie there is what crashes or stalls VTK's readers, or makes them read out of
-// bounds without a sign; found here, it gets a message that says what is wrong.
+// Checks of a mesh file before VTK's reader reads it. A PLY header's counts against the bytes
+// the file has, an OBJ's indices against what it lists: a lie there crashes or stalls VTK's
+// readers, or has them read out of bounds. And every number of a text file (OBJ, ASCII PLY,
+// ASCII STL), read strictly: VTK 9.1's readers read "1.0abc" as 1, "abc" as 0 or as the
+// previous value and "nan" as NaN, and skip a line they do not know, all without a word.
+// Found here, each gets a message that says where ("line 12: ...") and what is wrong.
 #include <cstdint>
 #include <string>
+#include <string_view>
 
 namespace shadelab::app
 {
-/// What is wrong with the file, or "" when nothing was found (a file that passes may still be
-/// refused by its reader). extension is lower case, with its dot; fileSize in bytes.
-std::string fileProblem(const std::string& fileName, const std::string& extension, std::uintmax_t fileSize);
+/// What a check of a mesh file found.
+struct MeshFileCheck
+{
+  /// What is wrong, or "" when nothing was found (a file that passes may still be refused by
+  /// its reader, or by the checks of the mesh it reads).
+  std::string problem;
+  /// What the file holds that the reader skips, for the command's summary ("3 's' statements
+  /// (smoothing groups are not read)"), or "".
+  std::string ignored;
+};
 
-/// The same for a PLY file's header; header is the file's text from its start.
-std::string plyHeaderProblem(const std::string& text, std::uintmax_t fileSize);
+/// Checks the file by its extension (lower case, with its dot); fileSize in bytes. Only .obj,
+/// .ply and .stl files are checked.
+MeshFileCheck checkMeshFile(const std::string& fileName, const std::string& extension, std::uintmax_t fileSize);
 
-/// The same for an OBJ file's text: every face index refers to a vertex, texture coordinate
-/// or normal listed before it.
-std::string objIndexProblem(const std::string& text);
+/// A PLY file's header; text is the file from its start (at least its header), fileSize the
+/// whole file's bytes.
+std::string plyHeaderProblem(std::string_view text, std::uintmax_t fileSize);
+
+/// A whole PLY file: its header, and then every value of its body, ASCII or binary.
+std::string plyFileProblem(std::string_view text);
+
+/// A whole OBJ file: every statement, number and index, as VTK 9.1's vtkOBJReader reads them.
+MeshFileCheck objFileCheck(std::string_view text);
+
+/// A whole STL file, ASCII or binary as VTK's reader takes it (vtksys's guess from its first
+/// 256 bytes).
+MeshFileCheck stlFileCheck(std::string_view text, bool ascii);
 }

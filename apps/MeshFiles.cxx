@@ -256,14 +256,18 @@ void checkCells(vtkPolyData* mesh, const std::string& fileName)
 }
 }
 
-vtkSmartPointer<vtkPolyData> readMesh(const std::string& fileName)
+vtkSmartPointer<vtkPolyData> readMesh(const std::string& fileName, std::string* ignored)
 {
   const std::string extension = lowerExtension(fileName);
   const std::uintmax_t size = readableFileSize(fileName);
-  const std::string problem = fileProblem(fileName, extension, size);
-  if (!problem.empty())
+  const MeshFileCheck check = checkMeshFile(fileName, extension, size);
+  if (!check.problem.empty())
   {
-    throw UserError(fileName + ": " + problem);
+    throw UserError(fileName + ": " + check.problem);
+  }
+  if (ignored)
+  {
+    *ignored = check.ignored;
   }
   vtkSmartPointer<vtkDataSet> data = readIsolated(fileName, "VTK's " + extension + " reader", size,
     [&](ChildChannel& channel)

@@ -21,11 +21,19 @@ void requireDisplay()
 
 vtkSmartPointer<vtkImageData> renderOffScreen(vtkRenderer* renderer, int width, int height)
 {
+  return renderOffScreen({ renderer }, width, height);
+}
+
+vtkSmartPointer<vtkImageData> renderOffScreen(std::initializer_list<vtkRenderer*> renderers, int width, int height)
+{
   vtkNew<vtkRenderWindow> window;
   window->SetOffScreenRendering(1);
   window->SetMultiSamples(0);
   window->SetSize(width, height);
-  window->AddRenderer(renderer);
+  for (vtkRenderer* renderer : renderers)
+  {
+    window->AddRenderer(renderer);
+  }
   window->Render();
   vtkNew<vtkWindowToImageFilter> grab;
   grab->SetInput(window);

@@ -18,6 +18,7 @@
 #include "DefaultLightKit.h"
 #include "EnvironmentMap.h"
 #include "MaterialArrays.h"
+#include "NumberText.h"
 #include "SceneFile.h"
 #include "SceneFrame.h"
 #include "ShadeLabMeshExtent.h"
@@ -82,11 +83,9 @@ std::vector<std::string> splitList(const std::string& text)
   return items;
 }
 
-/// Prints what a person wants to see after a run: the arrays and their ranges, the flags.
-void printSummary(vtkPolyData* output, const Scene& scene, const std::string& prefix)
+/// The names of every array the scene can add to the mesh.
+std::vector<std::string> arrayNamesOf(const Scene& scene, const std::string& prefix)
 {
-  std::cout << "  arrays written (min and max over all components):\n";
-  vtkPointData* pointData = output->GetPointData();
   std::vector<std::string> names;
   for (const ArrayDescription& description : availableArrays(scene, prefix))
   {
@@ -94,7 +93,43 @@ void printSummary(vtkPolyData* output, const Scene& scene, const std::string& pr
   }
   const std::vector<std::string> spectral = spectralArrayNames(scene, prefix);
   names.insert(names.end(), spectral.begin(), spectral.end());
-  for (const std::string& name : names)
+  return names;
+}
+
+/// Refuses to write a result with a NaN or Inf in an array the run computed: every estimator
+/// is finite over the values a scene file accepts (tests/test_accepted_ranges.cxx), so one
+/// here is a defect to report, never a result. The input's own arrays pass through as given.
+void refuseNonFinite(vtkPolyData* output, const Scene& scene, const std::string& prefix)
+{
+  for (const std::string& name : arrayNamesOf(scene, prefix))
+  {
+    vtkDataArray* array = output->GetPointData()->GetArray(name.c_str());
+    vtkIdType nonFinite = 0;
+    for (vtkIdType i = 0; array && i < array->GetNumberOfTuples(); ++i)
+    {
+      for (int c = 0; c < array->GetNumberOfComponents(); ++c)
+      {
+        if (!std::isfinite(array->GetComponent(i, c)))
+        {
+          ++nonFinite;
+          break;
+        }
+      }
+    }
+    if (nonFinite > 0)
+    {
+      throw UserError("'" + name + "' is NaN or Inf at " + countOf(std::size_t(nonFinite), "vertex") +
+        ", a defect of ShadeLab's: nothing was written; please report it with the mesh and the scene");
+    }
+  }
+}
+
+/// Prints what a person wants to see after a run: the arrays and their ranges, the flags.
+void printSummary(vtkPolyData* output, const Scene& scene, const std::string& prefix)
+{
+  std::cout << "  arrays written (min and max over all components):\n";
+  vtkPointData* pointData = output->GetPointData();
+  for (const std::string& name : arrayNamesOf(scene, prefix))
   {
     vtkDataArray* array = pointData->GetArray(name.c_str());
     if (!array || name == flagsArrayName(prefix))
@@ -124,6 +159,12 @@ void printSummary(vtkPolyData* output, const Scene& scene, const std::string& pr
       const vtkIdType count = std::count_if(values, values + flags->GetNumberOfValues(),
         [bit = flag.flag](unsigned char v) { return (v & bit) != 0; });
       std::cout << (flag.flag == FlagDegenerateNormal ? " " : ", ") << count << " with " << flag.meaning;
+      const std::size_t directed = std::count_if(scene.lights.begin(), scene.lights.end(),
+        [](const NamedLight& light) { return !std::holds_alternative<AmbientLight>(light.source); });
+      if (flag.flag == FlagLightBelowHorizon && directed > 1)
+      {
+        std::cout << " (any one of the " << directed << " lights: most vertices of a closed mesh face away from one)";
+      }
     }
     std::cout << "\n";
   }
@@ -172,17 +213,22 @@ struct ShadeOptions
   std::optional<double> splitAngle; // split sharp edges at this angle before shading
   EnvironmentOption environment;
   bool shadows = false;         // every light that can cast shadows casts them
+  std::string selfShadowing;    // "smooth" or "facets"; empty: as the scene says
   std::string ambientOcclusion; // RAYS or "auto"; empty: as the scene says
   std::string colorBy;          // a point array that colours the material; empty: the scene's
   std::string colorMap = "cool to warm";
 };
 
-/// The scene with --shadows and --ambient-occlusion applied.
+/// The scene with --shadows, --self-shadowing and --ambient-occlusion applied.
 Scene withVisibilityOptions(Scene scene, const ShadeOptions& options)
 {
   for (NamedLight& light : scene.lights)
   {
     light.shadows = light.shadows || (options.shadows && castsShadows(light.source));
+  }
+  if (!options.selfShadowing.empty())
+  {
+    scene.selfShadowing = options.selfShadowing == "facets" ? SelfShadowing::Facets : SelfShadowing::SmoothSurface;
   }
   if (!options.ambientOcclusion.empty())
   {
@@ -275,7 +321,8 @@ int runShade(const ShadeOptions& options)
   }
   RunWarnings warnings;
   const Clock::time_point readStart = Clock::now();
-  vtkSmartPointer<vtkPolyData> mesh = app::readMesh(options.mesh);
+  std::string ignored;
+  vtkSmartPointer<vtkPolyData> mesh = app::readMesh(options.mesh, &ignored);
   warnings.collect(options.mesh);
   const double readSeconds = secondsSince(readStart);
   if (mesh->GetNumberOfPoints() == 0)
@@ -338,6 +385,7 @@ int runShade(const ShadeOptions& options)
     throw UserError(options.mesh + ": " + errors->message());
   }
   vtkPolyData* output = filter->GetOutput();
+  refuseNonFinite(output, scene, options.prefix);
 
   const Clock::time_point writeStart = Clock::now();
   app::writeMesh(output, options.output, app::compressionNamed(options.compression),
@@ -349,13 +397,12 @@ int runShade(const ShadeOptions& options)
   std::cout << "shadelab shade: " << options.mesh << " -> " << options.output << "\n"
             << "  mesh: " << output->GetNumberOfPoints() << " vertices, "
             << output->GetNumberOfPolys() + output->GetNumberOfStrips() << " polygons and strips\n"
-            << "  scene: "
+            << (ignored.empty() ? "" : "  ignored: " + ignored + "\n") << "  scene: "
             << (!options.scene.empty()       ? options.scene
                  : options.environment.file.empty() ? "the default light kit, placed on the mesh"
                                                     : "default material and viewer")
             << (options.environment.file.empty() ? "" : " + --envmap " + options.environment.file) << " ("
-            << modelName(scene) << " model, "
-            << scene.lights.size() << " lights)\n"
+            << modelName(scene) << " model, " << countOf(scene.lights.size(), "light") << ")\n"
             << "  normals: " << (options.splitAngle ? splitter->GetReport() + " " : "")
             << filter->GetNormalsReport() << "\n";
   if (!filter->GetVisibilityReport().empty())
@@ -408,10 +455,14 @@ int runRender(RenderCommand& command)
   vtkSmartPointer<vtkPolyData> mesh = app::readMesh(command.mesh);
   warnings.collect(command.mesh);
   command.options.viewer = placedOnMesh(scene, meshExtentOf(mesh)).viewer;
-  app::renderToPng(mesh, command.mesh, command.options, command.output);
+  const std::vector<std::string> notes = app::renderToPng(mesh, command.mesh, command.options, command.output);
   warnings.show();
   std::cout << "shadelab render: " << command.options.array << " of " << command.mesh << " -> "
             << command.output << " (" << width << "x" << height << ")\n";
+  for (const std::string& note : notes)
+  {
+    std::cout << "  " << note << "\n";
+  }
   return 0;
 }
 
@@ -563,6 +614,11 @@ CLI::App* addShadeCommand(CLI::App& cli, ShadeOptions& options)
     "the mesh casts the shadows of every " + shadowCastingTypeNames() + " light (rays against its own "
     "triangles; a local light's <light>_visibility, 0 or 1, multiplies its diffuse and specular terms; an area "
     "light's or a map's is the visible fraction of its irradiance, from a ray per sample)");
+  command->add_option("--self-shadowing", options.selfShadowing,
+    "smooth or facets, as the scene's \"self_shadowing\" (default smooth): with smooth, a vertex's own facets do "
+    "not hide a light its normal faces (no speckles at the shadow terminator of a bumpy mesh); with facets, every "
+    "facet hides what it blocks")
+    ->check(CLI::IsMember({ "smooth", "facets" }));
   command->add_option("--ambient-occlusion", options.ambientOcclusion,
     "RAYS per vertex, or auto: the ambient term becomes ka La times the cosine-weighted fraction of the sky "
     "each vertex sees past the mesh (arrays ambient_occlusion and its _std_error; bent_normal and "
@@ -627,8 +683,10 @@ CLI::App* addRenderCommand(CLI::App& cli, RenderCommand& options)
 {
   CLI::App* command = cli.add_subcommand("render",
     "Render one point array of a mesh (usually shade's output) to a PNG, off screen.\n"
-    "3-component arrays are drawn as RGB colours clamped to [0, 1] with VTK's lighting off,\n"
-    "so the picture is ShadeLab's shading; 1-component arrays through a colour map.\n"
+    "3-component arrays are drawn as RGB colours clipped to [0, 1] with VTK's lighting off,\n"
+    "so the picture is ShadeLab's shading (it counts the vertices drawn clipped); 1-component\n"
+    "arrays through a colour map with a legend: flags and integers of a few values as named\n"
+    "categories, other values on a colour bar.\n"
     "Needs an X display: on a headless machine run it as xvfb-run -a shadelab render ...");
   command->add_option("mesh", options.mesh, "the mesh to draw")->required();
   command->add_option("--output,-o", options.output, "the PNG to write")->required();
@@ -640,6 +698,18 @@ CLI::App* addRenderCommand(CLI::App& cli, RenderCommand& options)
   command->add_flag("--srgb", options.options.srgb,
     "encode a 3-component array's values with the sRGB transfer function before drawing, as a renderer "
     "does with its linear output: a mesh shaded with its own colours (decoded from sRGB) then shows them");
+  command->add_option("--exposure", options.options.exposure,
+    "multiply a 3-component array's values by this before drawing them (and before --srgb): values above 1 "
+    "are drawn clipped, and render says how many and which exposure brings them into range")
+    ->check(CLI::Validator(
+      [](std::string& value)
+      {
+        const std::optional<double> number = numberIn(value);
+        return number && std::isfinite(*number) && *number > 0 ? std::string()
+                                                               : "'" + value + "' is not a finite number > 0";
+      },
+      "NUMBER > 0"))
+    ->capture_default_str();
   return command;
 }
 

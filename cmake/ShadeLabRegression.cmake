@@ -2,21 +2,23 @@
 # result with a baseline file by `shadelab compare` (docs/guide/regression-tests.md).
 #
 #   shadelab_add_regression_test(NAME name MESH mesh SCENE scene.json BASELINE baseline.vtp
-#     [ARRAYS list] [ATOL rule...] [RTOL rule...] [ULPS rule...] [STANDARD_ERRORS k]
-#     [NEAREST distance] [SHADE_ARGS arg...])
+#     [ARRAYS list] [ATOL rule...] [RTOL rule...] [ULPS rule...] [EXCLUDE pattern...]
+#     [STANDARD_ERRORS k [SIGNIFICANCE alpha]] [NEAREST distance] [SHADE_ARGS arg...])
 #
 # ARRAYS is shade's --arrays (default "default"); ATOL, RTOL and ULPS are compare's rules
-# ("1e-6", "total:1e-6", "1e-3*range"), which cannot hold ';' or '|' (CMake's lists, and the
-# separator the rules travel to the test with). Relative paths are from the calling folder. The test writes name.vtp and name.xml (JUnit) in the
-# build folder. With the environment variable SHADELAB_UPDATE_BASELINES=1 it writes the result
+# ("1e-6", "total:1e-6", "1e-3*range") and EXCLUDE its arrays left out ("*_std_error"), which
+# cannot hold ';' or '|' (CMake's lists, and the separator the rules travel to the test with).
+# STANDARD_ERRORS and SIGNIFICANCE are compare's statistical mode for Monte Carlo arrays.
+# Relative paths are from the calling folder. The test writes name.vtp and name.xml (JUnit) in
+# the build folder. With the environment variable SHADELAB_UPDATE_BASELINES=1 it writes the result
 # over the baseline instead (through a temporary file, renamed when complete) and says so:
 #   SHADELAB_UPDATE_BASELINES=1 ctest -R name
 # SHADELAB_EXECUTABLE is the shadelab command (default: this build's shadelab target).
 set(_shadelab_regression_script "${CMAKE_CURRENT_LIST_DIR}/ShadeLabRegressionRun.cmake")
 
 function(shadelab_add_regression_test)
-  cmake_parse_arguments(PARSE_ARGV 0 arg "" "NAME;MESH;SCENE;BASELINE;ARRAYS;STANDARD_ERRORS;NEAREST"
-    "ATOL;RTOL;ULPS;SHADE_ARGS")
+  cmake_parse_arguments(PARSE_ARGV 0 arg "" "NAME;MESH;SCENE;BASELINE;ARRAYS;STANDARD_ERRORS;SIGNIFICANCE;NEAREST"
+    "ATOL;RTOL;ULPS;EXCLUDE;SHADE_ARGS")
   foreach(required NAME MESH SCENE BASELINE)
     if(NOT arg_${required})
       message(FATAL_ERROR "shadelab_add_regression_test: ${required} is required")
@@ -24,6 +26,10 @@ function(shadelab_add_regression_test)
   endforeach()
   if(arg_UNPARSED_ARGUMENTS)
     message(FATAL_ERROR "shadelab_add_regression_test(${arg_NAME}): unknown arguments: ${arg_UNPARSED_ARGUMENTS}")
+  endif()
+  if(DEFINED arg_SIGNIFICANCE AND NOT DEFINED arg_STANDARD_ERRORS)
+    message(FATAL_ERROR "shadelab_add_regression_test(${arg_NAME}): SIGNIFICANCE is the statistical mode's: give "
+      "STANDARD_ERRORS k with it (3 is usual)")
   endif()
   if(NOT arg_ARRAYS)
     set(arg_ARRAYS "default")
@@ -33,18 +39,19 @@ function(shadelab_add_regression_test)
     get_filename_component(arg_${path} "${arg_${path}}" ABSOLUTE BASE_DIR "${CMAKE_CURRENT_SOURCE_DIR}")
   endforeach()
   set(compare_args "")
-  foreach(kind ATOL RTOL ULPS)
+  foreach(kind ATOL RTOL ULPS EXCLUDE)
     string(TOLOWER "${kind}" option)
     foreach(rule IN LISTS arg_${kind})
       list(APPEND compare_args "--${option}" "${rule}")
     endforeach()
   endforeach()
-  if(DEFINED arg_STANDARD_ERRORS)
-    list(APPEND compare_args "--standard-errors" "${arg_STANDARD_ERRORS}")
-  endif()
-  if(DEFINED arg_NEAREST) # NEAREST 0 too
-    list(APPEND compare_args "--nearest" "${arg_NEAREST}")
-  endif()
+  foreach(kind STANDARD_ERRORS SIGNIFICANCE NEAREST)
+    if(DEFINED arg_${kind}) # NEAREST 0 too
+      string(TOLOWER "${kind}" option)
+      string(REPLACE "_" "-" option "${option}")
+      list(APPEND compare_args "--${option}" "${arg_${kind}}")
+    endif()
+  endforeach()
   if(SHADELAB_EXECUTABLE)
     set(executable "${SHADELAB_EXECUTABLE}")
   else()

@@ -2,12 +2,24 @@
 // bad input, and no partial or spoilt output file after a failure.
 #include "CliFixture.h"
 
+#include "vtkCellArray.h"
+#include "vtkFloatArray.h"
 #include "vtkImageData.h"
+#include "vtkIntArray.h"
 #include "vtkNew.h"
 #include "vtkPNGReader.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkUnsignedCharArray.h"
+#include "vtkXMLPolyDataReader.h"
+#include "vtkXMLPolyDataWriter.h"
 
+#include <cmath>
 #include <fstream>
 #include <iterator>
+#include <limits>
+#include <map>
 #include <set>
 
 namespace
@@ -65,6 +77,25 @@ TEST_F(Cli, BadScenes)
   const std::string absent = (folder / "absent.json").string();
   expectError("shade " + mesh + " -s " + absent + " -o " + out,
     absent + ": cannot open the scene file (does it exist, and is it readable?)");
+}
+
+TEST_F(Cli, MisspeltOptionsAndSceneKeysGetTheNearestName)
+{
+  const std::string mesh = goodMesh(), out = (folder / "out.vtp").string();
+  const Result option = shadelab("shade " + mesh + " --tolerence 0.02 -o " + out);
+  EXPECT_EQ(option.exitCode, 2);
+  EXPECT_EQ(option.err, "shadelab shade: unknown option --tolerence: did you mean --tolerance?\n"
+                        "Run with --help for more information.\n");
+  const Result twoOptions = shadelab("render " + mesh + " --arary total --frobnicate -o " + (folder / "o.png").string());
+  EXPECT_EQ(twoOptions.exitCode, 2);
+  EXPECT_EQ(twoOptions.err, "shadelab render: unknown option --arary: did you mean --array?; unknown option "
+                            "--frobnicate\nRun with --help for more information.\n");
+  // A light's misspelt field is matched against its own type's fields.
+  const std::string intensity = file("intensity.json",
+    R"({ "lights": [ { "type": "point", "position": [0, 0, 1], "intesity": 2 } ] })");
+  expectError("shade " + mesh + " -s " + intensity + " -o " + out,
+    intensity + ": /lights/0/intesity: unknown field; did you mean \"intensity\"? allowed here: name, type, color, "
+                "spectrum, intensity, shadows, position, attenuation, min_distance");
 }
 
 TEST_F(Cli, CorruptAndTruncatedFiles)
@@ -173,7 +204,7 @@ TEST_F(Cli, ShadowsAndAmbientOcclusion)
     EXPECT_NE(result.out.find(line), std::string::npos) << line << "\n" << result.out;
   }
   EXPECT_EQ(result.out.find("sky_view_factor"), std::string::npos) << "only on request";
-  EXPECT_NE(result.out.find("with a shadowed light hidden by its own triangles, 0 with a shadowed light hidden inside "
+  EXPECT_NE(result.out.find("with a shadowed light's ray meeting its own triangles first, 0 with a shadowed light hidden inside "
                             "the mesh\n"),
     std::string::npos)
     << result.out;
@@ -189,7 +220,7 @@ TEST_F(Cli, ShadowsAndAmbientOcclusion)
                        "(--ambient-occlusion auto) to draw as many as the tolerance needs, or a larger tolerance\n");
   const Result untargeted = shadelab("shade " + goodMesh() + " -o " + out + " --ambient-occlusion auto");
   EXPECT_EQ(untargeted.exitCode, 1);
-  EXPECT_EQ(untargeted.err, "shadelab: " + goodMesh() + ": ambient occlusion with \"rays\": \"auto\" takes its count "
+  EXPECT_EQ(untargeted.err, "shadelab: the default light kit: /ambient_occlusion/rays: \"auto\" takes its count "
                             "of rays from a tolerance: give one (shadelab shade --tolerance, the filter's Tolerance), "
                             "or a number of rays\n");
   const Result adaptive = shadelab("shade " + goodMesh() + " -o " + out + " --ambient-occlusion auto --tolerance 0.05");
@@ -204,13 +235,52 @@ TEST_F(Cli, ShadowsAndAmbientOcclusion)
   EXPECT_NE(rays.err.find("--ambient-occlusion"), std::string::npos) << rays.err;
 }
 
+TEST_F(Cli, SelfShadowingFollowsTheSmoothSurfaceUnlessToldFacets)
+{
+  // The dragon under the sun with shadows: the vertices whose shadow ray meets one of their
+  // own facets first (flag 64) are all dark with --self-shadowing facets, and by default some
+  // of them are lit, where nothing beyond their own facets hides the sun.
+  const std::string mesh = SHADELAB_SOURCE_DIR "/data/meshes/xyzrgb_dragon_50k.ply";
+  const std::string scene = SHADELAB_SOURCE_DIR "/data/scenes/sun.json";
+  auto flaggedAndLit = [&](const std::string& option)
+  {
+    const std::string out = (folder / "dragon.vtp").string();
+    const Result run = shadelab("shade " + mesh + " -s " + scene + " --shadows -a all -o " + out + option);
+    EXPECT_EQ(run.exitCode, 0) << run.err;
+    vtkNew<vtkXMLPolyDataReader> reader;
+    reader->SetFileName(out.c_str());
+    reader->Update();
+    vtkDataArray* flags = reader->GetOutput()->GetPointData()->GetArray("shading_flags");
+    vtkDataArray* visibility = reader->GetOutput()->GetPointData()->GetArray("sun_visibility");
+    std::pair<int, int> counts{ 0, 0 };
+    for (vtkIdType i = 0; flags && visibility && i < flags->GetNumberOfTuples(); ++i)
+    {
+      const bool flagged = (int(flags->GetComponent(i, 0)) & 64) != 0;
+      counts.first += flagged;
+      counts.second += flagged && visibility->GetComponent(i, 0) == 1;
+    }
+    return counts;
+  };
+  const auto [flaggedFacets, litFacets] = flaggedAndLit(" --self-shadowing facets");
+  const auto [flaggedSmooth, litSmooth] = flaggedAndLit("");
+  EXPECT_EQ(flaggedFacets, flaggedSmooth);
+  EXPECT_GT(flaggedFacets, 1000);
+  EXPECT_EQ(litFacets, 0);
+  EXPECT_GT(litSmooth, flaggedSmooth / 4);
+  const Result wrong = shadelab("shade " + mesh + " --self-shadowing soft -o " + (folder / "x.vtp").string());
+  EXPECT_EQ(wrong.exitCode, 2);
+  EXPECT_NE(wrong.err.find("--self-shadowing: soft not in {smooth,facets}"), std::string::npos) << wrong.err;
+}
+
 TEST_F(Cli, ToleranceChoosesAndReportsMethods)
 {
   const std::string scene = SHADELAB_SOURCE_DIR "/data/scenes/three_lights.json";
   const std::string out = (folder / "tolerance.vtp").string();
   const Result result = shadelab("shade " + goodMesh() + " -s " + scene + " -o " + out + " --tolerance 1e-2");
   EXPECT_EQ(result.exitCode, 0) << result.err;
-  EXPECT_NE(result.out.find("  methods:\n    tolerance 0.01, predicted error 0.0052; arithmetic float32"),
+  EXPECT_NE(result.out.find("  methods:\n    arithmetic float32 (rounding "), std::string::npos) << result.out;
+  EXPECT_NE(result.out.find(") and the methods below, chosen so that their predicted errors, 0.0052 in all, stay within "
+                            "the tolerance 0.01\n"),
     std::string::npos) << result.out;
   EXPECT_NE(result.out.find("    key: Schlick pow, predicted error 0.0052"), std::string::npos) << result.out;
 
@@ -345,6 +415,331 @@ TEST_F(Cli, RenderErrors)
   EXPECT_FALSE(fs::exists(png));
 }
 
+/// Four unit squares in a 2 x 2 grid in the plane z = 0, each with four corners of its own,
+/// with an array of these values at the corners (square by square, a tuple per corner).
+template <typename Array>
+void writeFourSquares(const std::string& file, const char* arrayName, int components, const std::vector<double>& values)
+{
+  vtkNew<vtkPolyData> squares;
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkCellArray> quads;
+  for (int square = 0; square < 4; ++square)
+  {
+    const double x = 1.2 * (square % 2), y = 1.2 * (square / 2);
+    const vtkIdType first = points->GetNumberOfPoints();
+    const vtkIdType corners[4] = { first, first + 1, first + 2, first + 3 };
+    points->InsertNextPoint(x, y, 0);
+    points->InsertNextPoint(x + 1, y, 0);
+    points->InsertNextPoint(x + 1, y + 1, 0);
+    points->InsertNextPoint(x, y + 1, 0);
+    quads->InsertNextCell(4, corners);
+  }
+  vtkNew<Array> array;
+  array->SetName(arrayName);
+  array->SetNumberOfComponents(components);
+  for (double value : values)
+  {
+    array->InsertNextValue(value);
+  }
+  squares->SetPoints(points);
+  squares->SetPolys(quads);
+  squares->GetPointData()->AddArray(array);
+  vtkNew<vtkXMLPolyDataWriter> writer;
+  writer->SetInputData(squares);
+  writer->SetFileName(file.c_str());
+  ASSERT_EQ(writer->Write(), 1) << file;
+}
+
+/// A tuple per square (of `components` values each) given to each of its four corners.
+std::vector<double> atEachCorner(const std::vector<double>& squareValues, int components)
+{
+  std::vector<double> values;
+  for (std::size_t square = 0; square < 4; ++square)
+  {
+    for (int corner = 0; corner < 4; ++corner)
+    {
+      values.insert(values.end(), squareValues.begin() + static_cast<long>(square) * components,
+        squareValues.begin() + static_cast<long>(square + 1) * components);
+    }
+  }
+  return values;
+}
+
+/// How many pixels of a PNG have each colour.
+std::map<std::array<int, 3>, int> colourCounts(const std::string& png)
+{
+  vtkNew<vtkPNGReader> reader;
+  reader->SetFileName(png.c_str());
+  reader->Update();
+  vtkImageData* image = reader->GetOutput();
+  std::map<std::array<int, 3>, int> counts;
+  for (int y = 0; y < image->GetDimensions()[1]; ++y)
+  {
+    for (int x = 0; x < image->GetDimensions()[0]; ++x)
+    {
+      std::array<int, 3> rgb;
+      for (int c = 0; c < 3; ++c)
+      {
+        rgb[c] = int(image->GetScalarComponentAsDouble(x, y, 0, c));
+      }
+      ++counts[rgb];
+    }
+  }
+  return counts;
+}
+
+TEST_F(Cli, RendersFlagsAsNamedCategories)
+{
+  // Each square's flags in a colour of Okabe and Ito's palette, in the order of the values:
+  // 0 sky blue, 4 orange, 5 bluish green, 64 yellow; never as the grey levels (v, v, v) that
+  // VTK draws an 8-bit array as by default.
+  if (std::string(XVFB_RUN).empty())
+  {
+    GTEST_SKIP() << NO_XVFB_REASON;
+  }
+  const std::string mesh = (folder / "flags.vtp").string(), png = (folder / "flags.png").string();
+  writeFourSquares<vtkUnsignedCharArray>(mesh, "sl_shading_flags", 1, atEachCorner({ 0, 4, 5, 64 }, 1));
+  const Result result = shadelab("render " + mesh + " -a sl_shading_flags --size 400x300 -o " + png,
+    std::string(XVFB_RUN) + " --auto-servernum ");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_EQ(result.out, "shadelab render: sl_shading_flags of " + mesh + " -> " + png + " (400x300)\n");
+  const std::map<std::array<int, 3>, int> counts = colourCounts(png);
+  const std::array<std::array<int, 3>, 4> palette{
+    { { 86, 180, 233 }, { 230, 159, 0 }, { 0, 158, 115 }, { 240, 228, 66 } }
+  };
+  std::vector<int> areas;
+  for (const std::array<int, 3>& colour : palette)
+  {
+    areas.push_back(counts.count(colour) ? counts.at(colour) : 0);
+  }
+  // Each square, a quarter of the mesh's part of the picture: the same area to a few pixels
+  // (its swatch in the legend), and more than 2,000 pixels.
+  for (int area : areas)
+  {
+    EXPECT_GT(area, 2000);
+    EXPECT_NEAR(area, areas[0], 300);
+  }
+  for (int value : { 0, 4, 5, 64 })
+  {
+    EXPECT_EQ(counts.count({ value, value, value }), 0u) << value;
+  }
+  // Integers of a few values other than flags: categories too, named by their values.
+  const std::string labels = (folder / "labels.vtp").string();
+  writeFourSquares<vtkIntArray>(labels, "region", 1, atEachCorner({ 40, 30, 20, 10 }, 1));
+  const Result regions = shadelab("render " + labels + " -a region --size 400x300 -o " + png,
+    std::string(XVFB_RUN) + " --auto-servernum ");
+  ASSERT_EQ(regions.exitCode, 0) << regions.err;
+  const std::map<std::array<int, 3>, int> regionCounts = colourCounts(png);
+  // Square 0 holds the largest value, 40, the palette's fourth colour; square 3 the first. The
+  // legend is narrower than the flags', so the squares are larger; alike still.
+  const int regionArea = regionCounts.count(palette[3]) ? regionCounts.at(palette[3]) : 0;
+  EXPECT_GT(regionArea, 2000);
+  for (std::size_t square = 1; square < 4; ++square)
+  {
+    const std::array<int, 3>& colour = palette[3 - square];
+    EXPECT_NEAR(regionCounts.count(colour) ? regionCounts.at(colour) : 0, regionArea, 300) << square;
+  }
+}
+
+TEST_F(Cli, RendersFlagValuesBeyondThePaletteInGrey)
+{
+  // Nine flag values, more than the palette's seven colours: the seven most frequent keep one
+  // each, the other two share grey. Its colours are checked here (its words are text, which
+  // only a reader can judge).
+  if (std::string(XVFB_RUN).empty())
+  {
+    GTEST_SKIP() << NO_XVFB_REASON;
+  }
+  const std::string mesh = (folder / "many.vtp").string(), png = (folder / "many.png").string();
+  // 9 values at the 16 corners; the least frequent, 200 and 201, are the ones left over.
+  writeFourSquares<vtkUnsignedCharArray>(
+    mesh, "shading_flags", 1, { 1, 1, 1, 1, 2, 2, 2, 8, 4, 4, 16, 16, 32, 64, 200, 201 });
+  const Result result = shadelab("render " + mesh + " --size 400x300 -o " + png + " -a shading_flags",
+    std::string(XVFB_RUN) + " --auto-servernum ");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  const std::map<std::array<int, 3>, int> counts = colourCounts(png);
+  // Every palette colour is used (a swatch at least), and the grey of the other values.
+  for (const std::array<int, 3>& colour : std::vector<std::array<int, 3>>{ { 86, 180, 233 }, { 230, 159, 0 },
+         { 0, 158, 115 }, { 240, 228, 66 }, { 0, 114, 178 }, { 213, 94, 0 }, { 204, 121, 167 }, { 150, 150, 150 } })
+  {
+    EXPECT_GT(counts.count(colour) ? counts.at(colour) : 0, 20) << colour[0] << " " << colour[1] << " " << colour[2];
+  }
+  // Square 0 is all flag 1, the first colour.
+  EXPECT_GT(counts.at({ 86, 180, 233 }), 2000);
+}
+
+TEST_F(Cli, RenderCountsTheVerticesDrawnClipped)
+{
+  // Squares of (0.5, 0.5, 0.5), (2, 0, 0), (0, 4.5, 0) and (NaN, 0, 0), four vertices each: 8
+  // vertices above 1, the largest 4.5, so the exposure that brings them into range is 1/4.5 =
+  // 0.22 to one digit, rounded down: 0.2.
+  if (std::string(XVFB_RUN).empty())
+  {
+    GTEST_SKIP() << NO_XVFB_REASON;
+  }
+  const std::string mesh = (folder / "bright.vtp").string(), png = (folder / "bright.png").string();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  writeFourSquares<vtkFloatArray>(mesh, "total", 3, atEachCorner({ 0.5, 0.5, 0.5, 2, 0, 0, 0, 4.5, 0, nan, 0, 0 }, 3));
+  const std::string xvfb = std::string(XVFB_RUN) + " --auto-servernum ";
+  const std::string head = "shadelab render: total of " + mesh + " -> " + png + " (400x300)\n";
+  const std::string nonFinite = "  total: 4 of 16 vertices have a non-finite value, drawn black\n";
+  const Result clipped = shadelab("render " + mesh + " --size 400x300 -o " + png, xvfb);
+  ASSERT_EQ(clipped.exitCode, 0) << clipped.err;
+  EXPECT_EQ(clipped.out, head +
+      "  total: 8 of 16 vertices have a value above 1, drawn clipped; --exposure 0.2 scales them into range "
+      "(and --srgb encodes linear values for the screen, as a renderer does)\n" + nonFinite);
+  std::map<std::array<int, 3>, int> counts = colourCounts(png);
+  using Colours = std::vector<std::array<int, 3>>;
+  for (const std::array<int, 3>& square : Colours{ { 128, 128, 128 }, { 255, 0, 0 }, { 0, 255, 0 }, { 0, 0, 0 } })
+  {
+    EXPECT_GT(counts[square], 2000);
+  }
+  // At 0.2: round(255 x 0.1) = 26, round(255 x 0.4) = 102, round(255 x 0.9) = 230; nothing clipped.
+  const Result exposed = shadelab("render " + mesh + " --size 400x300 --exposure 0.2 -o " + png, xvfb);
+  ASSERT_EQ(exposed.exitCode, 0) << exposed.err;
+  EXPECT_EQ(exposed.out, head + nonFinite);
+  counts = colourCounts(png);
+  for (const std::array<int, 3>& square : Colours{ { 26, 26, 26 }, { 102, 0, 0 }, { 0, 230, 0 } })
+  {
+    EXPECT_GT(counts[square], 2000);
+  }
+  // With --srgb, the count without the advice to use it.
+  const Result encoded = shadelab("render " + mesh + " --size 400x300 --srgb -o " + png, xvfb);
+  EXPECT_EQ(encoded.out, head +
+      "  total: 8 of 16 vertices have a value above 1, drawn clipped; --exposure 0.2 scales them into range\n" +
+      nonFinite);
+}
+
+TEST_F(Cli, RendersEightBitColoursAsTheyAre)
+{
+  // An 8-bit RGB array (a scan's colours) is fractions of 255: drawn as its bytes, nothing
+  // clipped; at --exposure 2, every square with a component of 128 or more (2 x 128 / 255 > 1)
+  // is, and the largest value, 255/255 = 1, gives back an exposure of 1.
+  if (std::string(XVFB_RUN).empty())
+  {
+    GTEST_SKIP() << NO_XVFB_REASON;
+  }
+  const std::string mesh = (folder / "rgb.vtp").string(), png = (folder / "rgb.png").string();
+  writeFourSquares<vtkUnsignedCharArray>(
+    mesh, "RGB", 3, atEachCorner({ 255, 0, 0, 0, 128, 0, 10, 20, 30, 255, 255, 255 }, 3));
+  const std::string xvfb = std::string(XVFB_RUN) + " --auto-servernum ";
+  const std::string head = "shadelab render: RGB of " + mesh + " -> " + png + " (400x300)\n";
+  const Result asTheyAre = shadelab("render " + mesh + " -a RGB --size 400x300 -o " + png, xvfb);
+  ASSERT_EQ(asTheyAre.exitCode, 0) << asTheyAre.err;
+  EXPECT_EQ(asTheyAre.out, head);
+  std::map<std::array<int, 3>, int> counts = colourCounts(png);
+  using Colours = std::vector<std::array<int, 3>>;
+  for (const std::array<int, 3>& square : Colours{ { 255, 0, 0 }, { 0, 128, 0 }, { 10, 20, 30 }, { 255, 255, 255 } })
+  {
+    EXPECT_GT(counts[square], 2000);
+  }
+  const Result doubled = shadelab("render " + mesh + " -a RGB --exposure 2 --srgb --size 400x300 -o " + png, xvfb);
+  EXPECT_EQ(doubled.out, head +
+      "  RGB: 12 of 16 vertices have a value above 1, drawn clipped; --exposure 1 scales them into range\n");
+}
+
+TEST_F(Cli, RenderCountsTheGoldenBunnysBrightVertices)
+{
+  // The studio's total goes above 1 where the key light's highlight is: counted here from the
+  // file. Its largest component, 1.2691 (the README's Python example prints it), gives 1/1.2691 =
+  // 0.79, so 0.7; at that exposure nothing is clipped.
+  if (std::string(XVFB_RUN).empty())
+  {
+    GTEST_SKIP() << NO_XVFB_REASON;
+  }
+  const std::string golden = SHADELAB_SOURCE_DIR "/data/golden/bunny_studio.vtp";
+  vtkNew<vtkXMLPolyDataReader> reader;
+  reader->SetFileName(golden.c_str());
+  reader->Update();
+  vtkDataArray* total = reader->GetOutput()->GetPointData()->GetArray("total");
+  int above = 0;
+  double largest = 0;
+  for (vtkIdType i = 0; i < total->GetNumberOfTuples(); ++i)
+  {
+    const double* rgb = total->GetTuple3(i);
+    above += std::max({ rgb[0], rgb[1], rgb[2] }) > 1;
+    largest = std::max({ largest, rgb[0], rgb[1], rgb[2] });
+  }
+  ASSERT_GT(above, 0);
+  ASSERT_NEAR(largest, 1.2691, 1e-4);
+  const std::string png = (folder / "total.png").string(), xvfb = std::string(XVFB_RUN) + " --auto-servernum ";
+  const std::string head = "shadelab render: total of " + golden + " -> " + png + " (320x240)\n";
+  const Result clipped = shadelab("render " + golden + " --size 320x240 -o " + png, xvfb);
+  EXPECT_EQ(clipped.out, head + "  total: " + std::to_string(above) + " of 35947 vertices have a value above 1, "
+      "drawn clipped; --exposure 0.7 scales them into range (and --srgb encodes linear values for the screen, as a "
+      "renderer does)\n");
+  const Result exposed = shadelab("render " + golden + " --size 320x240 --exposure 0.7 -o " + png, xvfb);
+  EXPECT_EQ(exposed.exitCode, 0) << exposed.err;
+  EXPECT_EQ(exposed.out, head);
+}
+
+TEST_F(Cli, RenderExposureErrors)
+{
+  const std::string golden = SHADELAB_SOURCE_DIR "/data/golden/bunny_studio.vtp";
+  const std::string png = (folder / "out.png").string();
+  for (const char* exposure : { "0", "-1", "inf", "nan", "bright" })
+  {
+    const Result result = shadelab("render " + golden + " -o " + png + " --exposure " + exposure);
+    EXPECT_EQ(result.exitCode, 2) << exposure;
+    EXPECT_EQ(result.err, "--exposure: '" + std::string(exposure) + "' is not a finite number > 0\n"
+      "Run with --help for more information.\n");
+  }
+  if (std::string(XVFB_RUN).empty())
+  {
+    GTEST_SKIP() << NO_XVFB_REASON << " (the errors that need a display)";
+  }
+  const Result mapped = shadelab("render " + golden + " -a key_cos_incidence --exposure 2 -o " + png,
+    std::string(XVFB_RUN) + " --auto-servernum ");
+  EXPECT_EQ(mapped.exitCode, 1);
+  EXPECT_EQ(mapped.err, "shadelab: --exposure scales an array drawn as RGB colours; 'key_cos_incidence' has 1 "
+    "component, drawn through a colour map that spans its values\n");
+  EXPECT_FALSE(fs::exists(png));
+}
+
+TEST_F(Cli, RenderKeepsItsLegendInsideThePicture)
+{
+  // Labels as long as "-4.66e5": at the default size and at the smallest sensible one, the
+  // picture's edge (3 pixels wide) is the background all round, so no label runs off it.
+  if (std::string(XVFB_RUN).empty())
+  {
+    GTEST_SKIP() << NO_XVFB_REASON;
+  }
+  const std::string mesh = (folder / "big.vtp").string(), png = (folder / "big.png").string();
+  writeFourSquares<vtkFloatArray>(mesh, "big", 1, atEachCorner({ -466000, 1000, 31900, 466000 }, 1));
+  for (const std::string& size : { "800x600", "320x240", "160x120" })
+  {
+    const Result result = shadelab("render " + mesh + " -a big --size " + size + " -o " + png,
+      std::string(XVFB_RUN) + " --auto-servernum ");
+    ASSERT_EQ(result.exitCode, 0) << result.err;
+    vtkNew<vtkPNGReader> reader;
+    reader->SetFileName(png.c_str());
+    reader->Update();
+    vtkImageData* image = reader->GetOutput();
+    const int width = image->GetDimensions()[0], height = image->GetDimensions()[1];
+    auto pixel = [&](int x, int y)
+    {
+      std::array<int, 3> rgb;
+      for (int c = 0; c < 3; ++c)
+      {
+        rgb[c] = int(image->GetScalarComponentAsDouble(x, y, 0, c));
+      }
+      return rgb;
+    };
+    const std::array<int, 3> background = pixel(0, 0);
+    EXPECT_NEAR(background[0], 0.16 * 255, 1); // the renderer's background
+    int notBackground = 0;
+    for (int y = 0; y < height; ++y)
+    {
+      for (int x = 0; x < width; ++x)
+      {
+        const bool edge = x < 3 || y < 3 || x >= width - 3 || y >= height - 3;
+        notBackground += edge && pixel(x, y) != background;
+      }
+    }
+    EXPECT_EQ(notBackground, 0) << size;
+  }
+}
+
 TEST_F(Cli, BenchmarkTableAgreesWithItsBaseline)
 {
   // A small run: the table's rows, and vtkArrayCalculator's result for the same expression
@@ -438,8 +833,9 @@ TEST_F(Cli, EnvironmentMapOption)
   EXPECT_NE(shadowed.out.find("rays (16 per vertex)"), std::string::npos) << shadowed.out;
   // --envmap-samples auto takes the count from --tolerance, which must be given.
   expectError("shade " + mesh + " --envmap " SHADELAB_SOURCE_DIR "/data/envmaps/venice_sunset_1k.hdr --envmap-samples auto -o " + out,
-    mesh + ": light 'envmap' has \"samples\": \"auto\", which takes its count from a tolerance: give one (shadelab "
-           "shade --tolerance, the filter's Tolerance), or a number of samples");
+    "--envmap " SHADELAB_SOURCE_DIR "/data/envmaps/venice_sunset_1k.hdr: /lights/0/samples: \"auto\" takes the count "
+    "of light 'envmap' from a tolerance: give one (shadelab shade --tolerance, the filter's Tolerance), or a number of "
+    "samples");
   const Result badDirections = shadelab("shade " + mesh + " --envmap " SHADELAB_SOURCE_DIR
     "/data/envmaps/venice_sunset_1k.hdr --envmap-directions sun -o " + out);
   EXPECT_EQ(badDirections.exitCode, 2);

@@ -29,6 +29,7 @@
 #include <cmath>
 #include <functional>
 #include <iomanip>
+#include <iostream>
 #include <sstream>
 
 namespace
@@ -83,6 +84,23 @@ std::string digits17(double x)
   return text.str();
 }
 
+std::string digits3(double x)
+{
+  std::ostringstream text;
+  text << std::setprecision(3) << x;
+  return text.str();
+}
+
+/// The square's ambient_occlusion, these values, and its standard errors, all this one.
+std::function<void(vtkPolyData*)> occlusion(const std::vector<double>& values, double error)
+{
+  return [=](vtkPolyData* mesh)
+  {
+    addArray<vtkDoubleArray>(mesh, "ambient_occlusion", 1, values);
+    addArray<vtkDoubleArray>(mesh, "ambient_occlusion_std_error", 1, std::vector<double>(values.size(), error));
+  };
+}
+
 class Compare : public Cli
 {
 protected:
@@ -99,6 +117,16 @@ protected:
   }
 
   std::string write(const std::string& name, vtkPolyData* mesh) { return writeWith<vtkXMLPolyDataWriter>(name, mesh); }
+
+  /// Squares of ambient_occlusion (values, and one standard error for all), compared with these
+  /// options and their standard errors left out of the comparison.
+  Result compareOcclusion(const std::vector<double>& baseline, double baselineError, const std::vector<double>& result,
+    double resultError, const std::string& options)
+  {
+    const std::string a = write("a.vtp", square(occlusion(baseline, baselineError)));
+    const std::string b = write("b.vtp", square(occlusion(result, resultError)));
+    return shadelab("compare " + a + " " + b + " " + options + " --exclude '*_std_error'");
+  }
 
   /// The lines of the report that mention the array, after the heading.
   static std::string linesAbout(const std::string& report, const std::string& name)
@@ -207,7 +235,7 @@ TEST_F(Compare, FlagsAreComparedExactlyAndTheirBitsNamed)
   EXPECT_EQ(linesAbout(result.out, "shading_flags"),
     "  DIFFER shading_flags                  point  integer x1 2 / 4             64         32.1       64.1       equal\n"
     "         worst failing at point 0 (0, 0, 0): 0 in the baseline, 64 in the result\n"
-    "         bits that differ: 4 (a light below the horizon) in 1, 64 (a shadowed light hidden by its own triangles) "
+    "         bits that differ: 4 (a light below the horizon) in 1, 64 (a shadowed light's ray meeting its own triangles first) "
     "in 1\n");
   // Other integer arrays: bits by number.
   const Result plain = shadelab("compare " + a + " " + b + " --flags none");
@@ -271,32 +299,75 @@ TEST_F(Compare, NanEqualsNanOnlyInBothFiles)
   EXPECT_EQ(shadelab("compare " + a + " " + a).exitCode, 0);
 }
 
-TEST_F(Compare, StatisticalModeJudgesByTheStandardErrors)
+TEST_F(Compare, StatisticalModeCountsTheValuesOutsideKStandardErrors)
 {
-  // Combined errors sqrt(0.03^2 + 0.04^2) = 0.05: gaps 0.02, 0.07, 0.12 and 0.2 lie within 1,
-  // 2, 3 and 4 of them.
-  const std::string a = write("a.vtp", square([](vtkPolyData* mesh)
-    {
-      addArray<vtkDoubleArray>(mesh, "ambient_occlusion", 1, { 0.5, 0.5, 0.5, 0.5 });
-      addArray<vtkDoubleArray>(mesh, "ambient_occlusion_std_error", 1, { 0.03, 0.03, 0.03, 0.03 });
-    }));
-  const std::string b = write("b.vtp", square([](vtkPolyData* mesh)
-    {
-      addArray<vtkDoubleArray>(mesh, "ambient_occlusion", 1, { 0.52, 0.57, 0.62, 0.7 });
-      addArray<vtkDoubleArray>(mesh, "ambient_occlusion_std_error", 1, { 0.04, 0.04, 0.04, 0.04 });
-    }));
-  const Result three = shadelab("compare " + a + " " + b + " --standard-errors 3 --exclude '*_std_error'");
+  // Combined errors sqrt(0.03^2 + 0.04^2) = 0.05: differences 0.02, -0.07, 0.2 and -0.2 are z =
+  // 0.4, -1.4, 4 and -4. Two of 4 values outside 3 are too many: Binomial(4, 0.0027) exceeds 1
+  // with probability 4.4e-5, within each check's 0.0005, and 0 with 0.011, which is not. The
+  // mean difference, -0.0125, has standard error sqrt(4 * 0.05^2) / 4 = 0.025: within 3.48 of
+  // them.
+  const std::vector<double> baseline{ 0.5, 0.5, 0.5, 0.5 }, result{ 0.52, 0.43, 0.7, 0.3 };
+  const Result three = compareOcclusion(baseline, 0.03, result, 0.04, "--standard-errors 3");
   EXPECT_EQ(three.exitCode, 1);
   EXPECT_EQ(linesAbout(three.out, "ambient_occlusion"),
-    "  DIFFER ambient_occlusion              point  float64 x1 1 / 4             0.2        0.122      0.244      "
-    "atol 0, rtol 8.88e-16, or within 3 standard errors\n"
-    "         worst failing at point 3 (0, 1, 0): 0.5 in the baseline, 0.69999999999999996 in the result\n"
-    "         within 1, 2, 3 combined standard errors: 25.0%, 50.0%, 75.0% of 4 values (a normal error: 68.3%, "
+    "  DIFFER ambient_occlusion              point  float64 x1 0 / 4             0.2        0.146      0.292      "
+    "atol 0, rtol 8.88e-16; noise: 3 standard errors, significance 0.001\n"
+    "         largest difference at point 3 (0, 1, 0): 0.5 in the baseline, 0.29999999999999999 in the result\n"
+    "         noise: 2 of 4 values outside 3 standard errors (0.0108 expected, at most 1 allowed: too many); mean "
+    "difference -0.0125 (at most 0.087 either way)\n"
+    "         each check at significance 0.0005 (0.001 shared equally by the count and the mean difference, "
+    "Bonferroni)\n"
+    "         within 1, 2, 3 combined standard errors: 25.0%, 50.0%, 50.0% of 4 values (a normal error: 68.3%, "
     "95.4%, 99.7%)\n");
-  EXPECT_EQ(shadelab("compare " + a + " " + b + " --standard-errors 4.5 --exclude '*_std_error'").exitCode, 0);
-  const Result bad = shadelab("compare " + a + " " + b + " --standard-errors 0");
-  EXPECT_EQ(bad.exitCode, 2);
-  EXPECT_EQ(bad.err, "shadelab compare: --standard-errors must be a number > 0 (3 is usual)\n");
+  // Within 4.5 standard errors, none is outside.
+  EXPECT_EQ(compareOcclusion(baseline, 0.03, result, 0.04, "--standard-errors 4.5").exitCode, 0);
+  // Options out of range, or alone, exit with 2 and say why.
+  const std::pair<std::string, std::string> refusals[] = {
+    { "--standard-errors 0", "--standard-errors must be a number > 0 (3 is usual)" },
+    { "--significance 0.01",
+      "--significance is the statistical mode's: give --standard-errors K with it (3 is usual)" },
+    { "--standard-errors 3 --significance 0", "--significance must be a number from 1e-12 to 0.5 (0.001 is usual)" },
+  };
+  for (const auto& [options, message] : refusals)
+  {
+    const Result refused = compareOcclusion(baseline, 0.03, result, 0.04, options);
+    EXPECT_EQ(refused.exitCode, 2) << options;
+    EXPECT_EQ(refused.err, "shadelab compare: " + message + "\n");
+  }
+}
+
+TEST_F(Compare, StatisticalModeFindsABiasByTheMeanDifference)
+{
+  // Every value 2.4 standard errors up: none outside 3, but a mean difference of 0.12, beyond
+  // 3.48 times its standard error 0.025 (0.087); at a significance of 1e-12, 7.23 times (0.181).
+  const std::vector<double> baseline{ 0.5, 0.5, 0.5, 0.5 }, result{ 0.62, 0.62, 0.62, 0.62 };
+  const Result biased = compareOcclusion(baseline, 0.03, result, 0.04, "--standard-errors 3");
+  EXPECT_EQ(biased.exitCode, 1);
+  const std::string line = "         noise: 0 of 4 values outside 3 standard errors (0.0108 expected, at most 1 "
+                           "allowed); mean difference 0.12 (at most 0.087 either way: a bias)\n";
+  EXPECT_NE(linesAbout(biased.out, "ambient_occlusion").find(line), std::string::npos) << biased.out;
+  const Result loose = compareOcclusion(baseline, 0.03, result, 0.04, "--standard-errors 3 --significance 1e-12");
+  EXPECT_EQ(loose.exitCode, 0) << loose.out;
+  EXPECT_NE(loose.out.find("mean difference 0.12 (at most 0.181 either way)\n"), std::string::npos) << loose.out;
+  EXPECT_NE(loose.out.find("each check at significance 5e-13 (1e-12 shared equally"), std::string::npos) << loose.out;
+}
+
+TEST_F(Compare, StatisticalModeJudgesExactValuesByTheRule)
+{
+  // Where both standard errors are 0 (every ray of both runs missed), the values must be equal
+  // within atol and rtol.
+  const std::vector<double> baseline{ 1, 1, 1, 1 }, changed{ 1, 1, 1, 0.999 };
+  const Result result = compareOcclusion(baseline, 0, changed, 0, "--standard-errors 3");
+  EXPECT_EQ(result.exitCode, 1);
+  EXPECT_EQ(linesAbout(result.out, "ambient_occlusion"),
+    "  DIFFER ambient_occlusion              point  float64 x1 1 / 4             0.001      0.0005     0.001      "
+    "atol 0, rtol 8.88e-16; noise: 3 standard errors, significance 0.001\n"
+    "         worst failing at point 3 (0, 1, 0): 1 in the baseline, 0.999 in the result\n"
+    "         noise: no value with a standard error > 0\n"
+    "         each check at significance 0.0005 (0.001 shared equally by the count and the mean difference, "
+    "Bonferroni)\n"
+    "         4 values have both standard errors 0: judged by atol 0, rtol 8.88e-16\n");
+  EXPECT_EQ(compareOcclusion(baseline, 0, changed, 0, "--standard-errors 3 --atol 2e-3").exitCode, 0);
 }
 
 TEST_F(Compare, TheJsonReportHoldsWhatTheTableSays)
@@ -325,7 +396,7 @@ TEST_F(Compare, TheJsonReportHoldsWhatTheTableSays)
   EXPECT_NEAR(total["max_difference"].get<double>(), 0.001, 1e-7);
   const nlohmann::json& flags = json["arrays"][2];
   const nlohmann::json bits = nlohmann::json::array(
-    { { { "bit", 6 }, { "name", "64 (a shadowed light hidden by its own triangles)" }, { "values", 1 } } });
+    { { { "bit", 6 }, { "name", "64 (a shadowed light's ray meeting its own triangles first)" }, { "values", 1 } } });
   EXPECT_EQ(flags["bits_that_differ"], bits);
   EXPECT_EQ(json["arrays"][0]["passed"], true);
 }
@@ -620,5 +691,142 @@ TEST_F(Compare, NamesThatAreNotUtf8GiveValidReports)
   parser->SetFileName(junit.c_str());
   ASSERT_EQ(parser->Parse(), 1);
   EXPECT_STREQ(parser->GetRootElement()->GetNestedElement(0)->GetNestedElement(1)->GetAttribute("name"), "caf?");
+}
+}
+
+namespace
+{
+vtkSmartPointer<vtkPolyData> readPolyData(const std::string& path)
+{
+  vtkNew<vtkXMLPolyDataReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  return reader->GetOutput();
+}
+
+/// The noise checks of the array of this name in a JSON report.
+nlohmann::json noiseIn(const nlohmann::json& report, const std::string& name)
+{
+  for (const nlohmann::json& array : report["arrays"])
+  {
+    if (array["name"] == name)
+    {
+      return array["noise"]["components"][0];
+    }
+  }
+  return {};
+}
+
+/// The console's line for a component's noise checks, from the JSON report's figures.
+std::string noiseLine(const nlohmann::json& check)
+{
+  const bool countPasses = check["count_passed"], biasPasses = check["bias_passed"];
+  return "noise: " + std::to_string(check["outside"].get<int>()) + " of " + std::to_string(check["values"].get<int>()) +
+    " values outside 3 standard errors (" + digits3(check["expected"]) + " expected, at most " +
+    std::to_string(check["allowed"].get<int>()) + " allowed" + (countPasses ? "" : ": too many") +
+    "); mean difference " + digits3(check["mean_difference"]) + " (at most " + digits3(check["mean_difference_limit"]) +
+    " either way" + (biasPasses ? "" : ": a bias") + ")";
+}
+
+/// Runs of a sampled scene: the teapot's ambient occlusion under
+/// data/scenes/shadows_occlusion.json, a second or so each.
+class CompareSampled : public Compare
+{
+protected:
+  static constexpr const char* mesh = SHADELAB_SOURCE_DIR "/data/meshes/teapot.obj";
+  static constexpr const char* scene = SHADELAB_SOURCE_DIR "/data/scenes/shadows_occlusion.json";
+  static constexpr const char* arrays = "ambient_occlusion,ambient_occlusion_std_error";
+
+  /// The occlusion from this many rays per vertex, in the test's folder.
+  std::string shadeOcclusion(int rays)
+  {
+    const std::string path = (folder / ("teapot_" + std::to_string(rays) + ".vtp")).string();
+    const Result run = shadelab(std::string("shade ") + mesh + " --scene " + scene + " --ambient-occlusion " +
+      std::to_string(rays) + " -a " + arrays + " -o " + path);
+    EXPECT_EQ(run.exitCode, 0) << run.err;
+    return path;
+  }
+};
+
+TEST_F(CompareSampled, TwoRunsAgreeAsNoiseAndAShiftedCopyDoesNot)
+{
+  // 256 rays and 32: two honest runs.
+  const std::string many = shadeOcclusion(256), few = shadeOcclusion(32);
+  const std::string json = (folder / "r.json").string(), junit = (folder / "r.xml").string();
+  const std::string options = " --standard-errors 3 --arrays ambient_occlusion --json " + json + " --junit " + junit;
+  const Result agree = shadelab("compare " + many + " " + few + options);
+  EXPECT_EQ(agree.exitCode, 0) << agree.out;
+  const nlohmann::json check = noiseIn(nlohmann::json::parse(slurp(json)), "ambient_occlusion");
+  ASSERT_FALSE(check.is_null()) << slurp(json);
+  // n P(|Z| > 3) expected; each check at 0.0005, the mean difference two-sided: z = 3.4808.
+  const double values = check["values"];
+  EXPECT_GT(values, 3000);
+  EXPECT_NEAR(check["expected"].get<double>(), values * std::erfc(3 / std::sqrt(2.0)), 1e-9);
+  EXPECT_GT(check["allowed"].get<double>(), check["expected"].get<double>());
+  EXPECT_LE(check["outside"].get<double>(), check["allowed"].get<double>());
+  EXPECT_NEAR(check["mean_difference_limit"].get<double>(),
+    3.4807564043462128 * check["mean_difference_standard_error"].get<double>(), 1e-12);
+  EXPECT_LE(std::abs(check["mean_difference"].get<double>()), check["mean_difference_limit"].get<double>());
+  EXPECT_NE(agree.out.find("         " + noiseLine(check) + "\n"), std::string::npos) << agree.out;
+  // The JUnit report says it too, as the passing test case's output.
+  vtkNew<vtkXMLDataParser> parser;
+  parser->SetFileName(junit.c_str());
+  ASSERT_EQ(parser->Parse(), 1);
+  vtkXMLDataElement* occlusion = parser->GetRootElement()->GetNestedElement(0)->FindNestedElementWithNameAndAttribute(
+    "testcase", "name", "ambient_occlusion");
+  ASSERT_NE(occlusion, nullptr);
+  vtkXMLDataElement* output = occlusion->FindNestedElementWithName("system-out");
+  ASSERT_NE(output, nullptr);
+  EXPECT_NE(std::string(output->GetCharacterData()).find(noiseLine(check)), std::string::npos);
+  std::cout << "teapot, 256 against 32 rays: " << noiseLine(check) << "\n";
+
+  // Every 20th point of the 32-ray run moved by 4 combined standard errors, up and down in turn.
+  vtkSmartPointer<vtkPolyData> shifted = readPolyData(few), baseline = readPolyData(many);
+  vtkDataArray* occlusionValues = shifted->GetPointData()->GetArray("ambient_occlusion");
+  vtkDataArray* errors = shifted->GetPointData()->GetArray("ambient_occlusion_std_error");
+  vtkDataArray* baselineErrors = baseline->GetPointData()->GetArray("ambient_occlusion_std_error");
+  ASSERT_TRUE(occlusionValues && errors && baselineErrors);
+  for (vtkIdType i = 0; i < occlusionValues->GetNumberOfTuples(); i += 20)
+  {
+    const double combined = std::hypot(errors->GetComponent(i, 0), baselineErrors->GetComponent(i, 0));
+    occlusionValues->SetComponent(i, 0, occlusionValues->GetComponent(i, 0) + (i % 40 == 0 ? 4 : -4) * combined);
+  }
+  const Result differ = shadelab("compare " + many + " " + write("shifted.vtp", shifted) + options);
+  EXPECT_EQ(differ.exitCode, 1) << differ.out;
+  const nlohmann::json moved = noiseIn(nlohmann::json::parse(slurp(json)), "ambient_occlusion");
+  EXPECT_EQ(moved["count_passed"], false);
+  EXPECT_GT(moved["outside"].get<double>(), moved["allowed"].get<double>());
+  EXPECT_NE(differ.out.find("  DIFFER ambient_occlusion "), std::string::npos) << differ.out;
+  EXPECT_NE(differ.out.find("         " + noiseLine(moved) + "\n"), std::string::npos) << differ.out;
+  std::cout << "5% of it shifted by 4 standard errors: " << noiseLine(moved) << "\n";
+}
+}
+
+namespace
+{
+TEST_F(CompareSampled, TheCTestHelperPassesTheStatisticalModeThrough)
+{
+  // A project of its own with one test: the 32-ray run against the 256-ray baseline, the
+  // standard errors left out of the comparison and the significance 0.01.
+  const std::string baseline = shadeOcclusion(256);
+  const std::filesystem::path project = folder / "project", build = folder / "build";
+  std::filesystem::create_directories(project);
+  file("project/CMakeLists.txt",
+    "cmake_minimum_required(VERSION 3.20)\nproject(SampledRegression NONE)\nenable_testing()\n"
+    "include(\"" SHADELAB_SOURCE_DIR "/cmake/ShadeLabRegression.cmake\")\n"
+    "shadelab_add_regression_test(NAME teapot_occlusion MESH \"" + std::string(mesh) + "\" SCENE \"" + scene +
+      "\" BASELINE \"" + baseline + "\" ARRAYS \"" + arrays + "\" EXCLUDE \"*_std_error\" STANDARD_ERRORS 3 "
+      "SIGNIFICANCE 0.01 SHADE_ARGS --ambient-occlusion 32)\n");
+  const Result configured =
+    run("cmake", "-S " + project.string() + " -B " + build.string() + " -DSHADELAB_EXECUTABLE=" SHADELAB_EXECUTABLE);
+  ASSERT_EQ(configured.exitCode, 0) << configured.out << configured.err;
+  const Result tested = run("ctest", "--test-dir " + build.string() + " -V");
+  EXPECT_EQ(tested.exitCode, 0) << tested.out << tested.err;
+  EXPECT_NE(tested.out.find("  ok     ambient_occlusion "), std::string::npos) << tested.out;
+  EXPECT_NE(tested.out.find("; noise: 3 standard errors, significance 0.01\n"), std::string::npos) << tested.out;
+  EXPECT_NE(tested.out.find("values outside 3 standard errors ("), std::string::npos) << tested.out;
+  EXPECT_NE(tested.out.find("each check at significance 0.005 (0.01 shared equally"), std::string::npos) << tested.out;
+  EXPECT_EQ(tested.out.find("ok     ambient_occlusion_std_error"), std::string::npos) << tested.out;
+  EXPECT_NE(slurp(build / "teapot_occlusion.xml").find("<system-out>"), std::string::npos);
 }
 }

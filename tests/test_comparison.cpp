@@ -1,12 +1,16 @@
 // The comparison behind `shadelab compare`: the pass rule, its defaults, ULPs, NaN, integers
-// and their bits, standard errors, and the tolerance rules by array name.
+// and their bits, standard errors and the noise checks of Monte Carlo arrays, and the
+// tolerance rules by array name.
+#include "NoiseTest.h"
 #include "ToleranceRules.h"
 #include "ValueComparison.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <iostream>
 #include <limits>
+#include <random>
 
 namespace
 {
@@ -128,22 +132,63 @@ TEST(Comparison, IntegersMustBeEqualAndTheirDifferingBitsAreCounted)
   EXPECT_EQ(compareArrays(integers({ big }), integers({ big - 1 }), ValueRule{}).failing, 1u);
 }
 
-TEST(Comparison, WithStandardErrorsAValueAlsoPassesWithinKOfTheirCombinedError)
+TEST(Comparison, WithStandardErrorsTheValuesOutsideKAreCountedAndTheExactOnesJudgedByTheRule)
 {
   ValueRule rule = defaultRule(ValueType::Float64);
   rule.standardErrors = 3;
-  // Combined errors: sqrt(0.06^2 + 0.08^2) = 0.1. Gaps 0.05, 0.15, 0.25 and 0.35: within
-  // 1, 2, 3 and none; the last fails. A value with no error passes only by the rule.
-  const ArrayValues errorsA = reals(ValueType::Float64, { 0.06, 0.06, 0.06, 0.06, 0 });
-  const ArrayValues errorsB = reals(ValueType::Float64, { 0.08, 0.08, 0.08, 0.08, 0 });
-  const ArrayDifference d = compareArrays(reals(ValueType::Float64, { 1, 1, 1, 1, 1 }),
-    reals(ValueType::Float64, { 1.05, 1.15, 1.25, 1.35, 1.01 }), rule, &errorsA, &errorsB);
+  // Combined errors: sqrt(0.06^2 + 0.08^2) = 0.1. Gaps 0.05, -0.15, 0.35 and -0.35: z = 0.5,
+  // -1.5, 3.5 and -3.5, two of them outside 3. The last two values have no error: 1 against
+  // 1.01 fails the rule, 2 against 2 passes it.
+  const ArrayValues errorsA = reals(ValueType::Float64, { 0.06, 0.06, 0.06, 0.06, 0, 0 });
+  const ArrayValues errorsB = reals(ValueType::Float64, { 0.08, 0.08, 0.08, 0.08, 0, 0 });
+  const ArrayDifference d = compareArrays(reals(ValueType::Float64, { 1, 1, 1, 1, 1, 2 }),
+    reals(ValueType::Float64, { 1.05, 0.85, 1.35, 0.65, 1.01, 2 }), rule, &errorsA, &errorsB);
   EXPECT_EQ(d.withStandardError, 4u);
   EXPECT_EQ(d.withinStandardErrors[0], 1u);
   EXPECT_EQ(d.withinStandardErrors[1], 2u);
-  EXPECT_EQ(d.withinStandardErrors[2], 3u);
-  EXPECT_EQ(d.failing, 2u); // 1.35, and 1.01 where there is no error
-  EXPECT_EQ(d.worst, 3u);
+  EXPECT_EQ(d.withinStandardErrors[2], 2u);
+  EXPECT_EQ(d.exactValues, 2u);
+  EXPECT_EQ(d.failing, 1u); // 1.01 where there is no error; the noisy values are judged together
+  EXPECT_EQ(d.worst, 4u);
+  EXPECT_EQ(d.tuplePasses, (std::vector<unsigned char>{ 1, 1, 0, 0, 0, 1 }));
+  ASSERT_EQ(d.noise.size(), 1u);
+  const NoiseCheck& noise = d.noise[0];
+  EXPECT_EQ(noise.values, 4u);
+  EXPECT_EQ(noise.outside, 2u);
+  const double p = std::erfc(3 / std::sqrt(2.0)); // 2 P(Z > 3)
+  EXPECT_DOUBLE_EQ(noise.expected, 4 * p);
+  // P(X > 1) = 1 - (1 - p)^4 - 4 p (1 - p)^3 = 4.4e-5 is within each check's 0.0005, P(X > 0)
+  // = 0.011 is not: 1 value outside is allowed, 2 are not.
+  EXPECT_EQ(noise.allowed, 1u);
+  EXPECT_FALSE(noise.countPasses());
+  // The mean difference (0.05 - 0.15 + 0.35 - 0.35) / 4, its standard error sqrt(4 * 0.1^2) / 4.
+  EXPECT_NEAR(noise.meanDifference, -0.025, 1e-15);
+  EXPECT_NEAR(noise.meanDifferenceError, 0.05, 1e-15);
+  EXPECT_DOUBLE_EQ(noise.meanDifferenceLimit, normalUpperQuantile(0.001 / 4) * noise.meanDifferenceError);
+  EXPECT_TRUE(noise.biasPasses());
+  EXPECT_FALSE(d.passes());
+  // Without the failing exact value, and with k = 4 (no value outside), the array passes.
+  rule.standardErrors = 4;
+  const ArrayValues fourA = reals(ValueType::Float64, { 0.06, 0.06, 0.06, 0.06 });
+  const ArrayValues fourB = reals(ValueType::Float64, { 0.08, 0.08, 0.08, 0.08 });
+  const ArrayDifference four = compareArrays(reals(ValueType::Float64, { 1, 1, 1, 1 }),
+    reals(ValueType::Float64, { 1.05, 0.85, 1.35, 0.65 }), rule, &fourA, &fourB);
+  EXPECT_TRUE(four.passes());
+}
+
+TEST(Comparison, WithStandardErrorsAValueWithinTheRuleAgrees)
+{
+  // float32 values 1 ULP apart under a standard error of 1e-12: their rounding, not noise.
+  ValueRule rule = defaultRule(ValueType::Float32);
+  rule.standardErrors = 3;
+  const ArrayValues errors = reals(ValueType::Float32, { 1e-12, 1e-12 });
+  const ArrayDifference d = compareArrays(reals(ValueType::Float32, { 0.5, 0.5 }),
+    reals(ValueType::Float32, { std::nextafter(0.5f, 1.0f), 0.5 }), rule, &errors, &errors);
+  ASSERT_EQ(d.noise.size(), 1u);
+  EXPECT_EQ(d.noise[0].values, 2u);
+  EXPECT_EQ(d.noise[0].outside, 0u);
+  EXPECT_EQ(d.noise[0].meanDifference, 0.0);
+  EXPECT_TRUE(d.passes());
 }
 
 TEST(Comparison, ARangeIsTheBaselinesLargestFiniteValueLessItsSmallest)
@@ -200,5 +245,216 @@ TEST(ToleranceRules, ARuleIsAPatternAColonAndAValue)
   EXPECT_EQ(messageOf([] { parseToleranceValue("*range"); }),
     "'*range' is not a tolerance: write a number >= 0 (1e-6), or one times the array's range (1e-3*range)");
   EXPECT_EQ(messageOf([] { parseUlps("2.5"); }), "'2.5' is not a count of units in the last place: write a whole number >= 0");
+}
+
+TEST(NoiseTest, TheNormalTailAndItsQuantileAgreeWithPublishedValues)
+{
+  // To 1e-15 of the value: erfc's own accuracy.
+  EXPECT_NEAR(normalUpperTail(3), 0.0013498980316300946, 1e-15 * 0.0013498980316300946);
+  EXPECT_NEAR(normalUpperTail(1), 0.15865525393145705, 1e-15 * 0.15865525393145705);
+  EXPECT_EQ(normalUpperTail(0), 0.5);
+  EXPECT_NEAR(normalUpperTail(-2) + normalUpperTail(2), 1.0, 1e-15);
+  EXPECT_NEAR(normalUpperQuantile(0.025), 1.959963984540054, 1e-13);
+  EXPECT_NEAR(normalUpperQuantile(0.0005), 3.2905267314918948, 1e-13);
+  EXPECT_NEAR(normalUpperQuantile(0.00025), 3.4807564043462128, 1e-13);
+  EXPECT_NEAR(normalUpperQuantile(0.5), 0.0, 1e-15);
+  for (const double z : { 0.5, 2.0, 5.0, 10.0, 30.0 })
+  {
+    EXPECT_NEAR(normalUpperQuantile(normalUpperTail(z)), z, 1e-13 * z) << z;
+  }
+}
+
+/// The binomial quantile by another method: the pmf summed upwards from P(X = 0) = (1 - p)^n
+/// by the ratio P(X = k + 1) / P(X = k) = (n - k) p / ((k + 1) (1 - p)), in long double.
+std::size_t quantileByRecurrence(std::size_t n, long double p, long double tail)
+{
+  long double term = std::pow(1 - p, static_cast<long double>(n)), atMost = term;
+  std::size_t c = 0;
+  while (1 - atMost > tail && c < n)
+  {
+    term *= static_cast<long double>(n - c) * p / (static_cast<long double>(c + 1) * (1 - p));
+    ++c;
+    atMost += term;
+  }
+  return c;
+}
+
+TEST(NoiseTest, TheBinomialQuantileAgreesWithThePmfSummedByItsRecurrence)
+{
+  const double threeSigma = 2 * normalUpperTail(3); // 0.0027
+  EXPECT_NEAR(6002 * threeSigma, 16.2042, 1e-4);
+  EXPECT_EQ(binomialUpperQuantile(6002, threeSigma, 0.0005), 31u);
+  for (const std::size_t n : std::vector<std::size_t>{ 1, 4, 37, 6002 })
+  {
+    for (const double p : { threeSigma, 0.01, 0.3, 0.5 })
+    {
+      for (const double tail : { 0.1, 0.0005, 1e-6, 1e-12 })
+      {
+        EXPECT_EQ(binomialUpperQuantile(n, p, tail), quantileByRecurrence(n, p, tail)) << n << " " << p << " " << tail;
+      }
+    }
+  }
+  for (const double tail : { 0.0005, 1e-12 })
+  {
+    EXPECT_EQ(binomialUpperQuantile(1000000, threeSigma, tail), quantileByRecurrence(1000000, threeSigma, tail));
+  }
+  // Closed forms: Binomial(2, 1/2) exceeds 0 with 3/4, 1 with 1/4, 2 never.
+  EXPECT_EQ(binomialUpperQuantile(2, 0.5, 0.8), 0u);
+  EXPECT_EQ(binomialUpperQuantile(2, 0.5, 0.3), 1u);
+  EXPECT_EQ(binomialUpperQuantile(2, 0.5, 0.2), 2u);
+  EXPECT_EQ(binomialUpperQuantile(100, 0.0, 1e-12), 0u);
+  EXPECT_EQ(binomialUpperQuantile(100, 1.0, 1e-12), 100u);
+  EXPECT_NEAR(std::exp(binomialLogProbability(3, 0.5, 1)), 3.0 / 8, 1e-15);
+  double total = 0;
+  for (std::size_t k = 0; k <= 50; ++k)
+  {
+    total += std::exp(binomialLogProbability(50, 0.3, k));
+  }
+  EXPECT_NEAR(total, 1.0, 1e-13);
+}
+
+TEST(NoiseTest, EachCheckTakesItsShareOfTheSignificance)
+{
+  EXPECT_EQ(significancePerCheck(0.001, 1), 0.0005);
+  EXPECT_EQ(significancePerCheck(0.003, 3), 0.0005);
+  // 6002 values of standard error 1: the mean difference has standard error 1 / sqrt(6002).
+  NoiseTally tally;
+  tally.values = 6002;
+  tally.outside = 31;
+  tally.sumOfDifferences = 0.0449 * 6002;
+  tally.sumOfVariances = 6002;
+  const NoiseCheck check = checkNoise(tally, 3, 0.0005);
+  EXPECT_NEAR(check.expected, 16.2042, 1e-4);
+  EXPECT_EQ(check.allowed, 31u);
+  EXPECT_NEAR(check.meanDifferenceError, 1 / std::sqrt(6002.0), 1e-15);
+  EXPECT_NEAR(check.meanDifferenceLimit, 3.4807564043462128 / std::sqrt(6002.0), 1e-15);
+  EXPECT_TRUE(check.passes()); // 31 outside, a mean difference of 0.0449 within 0.04493
+  tally.outside = 32;
+  EXPECT_FALSE(checkNoise(tally, 3, 0.0005).countPasses());
+  tally.sumOfDifferences = -0.0450 * 6002;
+  EXPECT_FALSE(checkNoise(tally, 3, 0.0005).biasPasses());
+  EXPECT_TRUE(checkNoise(NoiseTally{}, 3, 0.0005).passes());
+}
+
+/// Two Monte Carlo runs of the same values, float32 as shade writes them: the first with 32
+/// samples, the second with 256 (standard errors sqrt(8) times smaller), each estimate its
+/// true value plus a normal error of its standard error.
+struct TwoRuns
+{
+  ArrayValues a, b, errorsA, errorsB;
+
+  double combinedError(std::size_t i) const { return std::hypot(errorsA.reals[i], errorsB.reals[i]); }
+};
+
+TwoRuns twoRuns(std::mt19937_64& random, std::size_t values, int components = 1)
+{
+  std::uniform_real_distribution<double> truth(0.2, 0.8), spread(0.005, 0.05);
+  std::normal_distribution<double> normal;
+  TwoRuns runs{ reals(ValueType::Float32, {}, components), reals(ValueType::Float32, {}, components),
+    reals(ValueType::Float32, {}, components), reals(ValueType::Float32, {}, components) };
+  for (std::size_t i = 0; i < values * static_cast<std::size_t>(components); ++i)
+  {
+    const double mean = truth(random), errorA = spread(random), errorB = errorA / std::sqrt(8.0);
+    runs.a.reals.push_back(static_cast<float>(mean + errorA * normal(random)));
+    runs.b.reals.push_back(static_cast<float>(mean + errorB * normal(random)));
+    runs.errorsA.reals.push_back(static_cast<float>(errorA));
+    runs.errorsB.reals.push_back(static_cast<float>(errorB));
+  }
+  return runs;
+}
+
+ArrayDifference compareRuns(const TwoRuns& runs)
+{
+  ValueRule rule = defaultRule(ValueType::Float32);
+  rule.standardErrors = 3;
+  rule.significance = 0.001;
+  return compareArrays(runs.a, runs.b, rule, &runs.errorsA, &runs.errorsB);
+}
+
+constexpr int trials = 200;
+constexpr std::size_t homerVertices = 6002;
+
+TEST(NoiseTest, TwoHonestRunsPassInAtLeast198Of200Trials)
+{
+  std::mt19937_64 random(44);
+  int passed = 0;
+  std::size_t fewest = homerVertices, most = 0;
+  for (int trial = 0; trial < trials; ++trial)
+  {
+    const ArrayDifference d = compareRuns(twoRuns(random, homerVertices));
+    passed += d.passes() ? 1 : 0;
+    fewest = std::min(fewest, d.noise[0].outside);
+    most = std::max(most, d.noise[0].outside);
+    EXPECT_EQ(d.noise[0].allowed, 31u);
+  }
+  EXPECT_GE(passed, 198);
+  std::cout << "honest runs: " << passed << " of " << trials << " trials pass; " << fewest << " to " << most
+            << " of " << homerVertices << " values outside 3 standard errors (16.2 expected, at most 31 allowed)\n";
+}
+
+TEST(NoiseTest, FivePercentOfTheValuesShiftedByFourStandardErrorsFailEveryTrial)
+{
+  // Every 20th value moved by 4 combined standard errors, up and down in turn: the mean
+  // difference hardly moves, the count of values outside 3 does.
+  std::mt19937_64 random(45);
+  int failed = 0;
+  std::size_t fewest = homerVertices;
+  for (int trial = 0; trial < trials; ++trial)
+  {
+    TwoRuns runs = twoRuns(random, homerVertices);
+    for (std::size_t i = 0; i < homerVertices; i += 20)
+    {
+      const double sign = i % 40 == 0 ? 1.0 : -1.0;
+      runs.b.reals[i] = static_cast<float>(runs.b.reals[i] + sign * 4 * runs.combinedError(i));
+    }
+    const ArrayDifference d = compareRuns(runs);
+    failed += d.noise[0].countPasses() ? 0 : 1;
+    fewest = std::min(fewest, d.noise[0].outside);
+  }
+  EXPECT_EQ(failed, trials);
+  std::cout << "5% shifted by 4 standard errors: " << failed << " of " << trials << " trials fail the count; at least "
+            << fewest << " values outside 3 standard errors\n";
+}
+
+TEST(NoiseTest, ABiasOfATenthOfAStandardErrorEverywhereIsFoundByTheMeanDifference)
+{
+  // Within 3 standard errors nearly as often as before, but the mean difference is 0.1 of the
+  // mean standard error, 7 of its own standard errors (0.1 sqrt(6002) times the mean over the
+  // RMS of the errors, 0.9 here), beyond 3.48.
+  std::mt19937_64 random(46);
+  int failed = 0;
+  for (int trial = 0; trial < trials; ++trial)
+  {
+    TwoRuns runs = twoRuns(random, homerVertices);
+    for (std::size_t i = 0; i < homerVertices; ++i)
+    {
+      runs.b.reals[i] = static_cast<float>(runs.b.reals[i] + 0.1 * runs.combinedError(i));
+    }
+    failed += compareRuns(runs).noise[0].biasPasses() ? 0 : 1;
+  }
+  EXPECT_GE(failed, 198);
+  std::cout << "a bias of 0.1 standard errors: " << failed << " of " << trials << " trials fail the mean difference\n";
+}
+
+TEST(NoiseTest, EachComponentOfAnRgbArrayIsJudgedOnItsOwn)
+{
+  // Component 1 of every 20th tuple moved by 4 standard errors: that component fails, the
+  // others pass; each of the 6 checks at 0.001 / 6.
+  std::mt19937_64 random(47);
+  TwoRuns runs = twoRuns(random, homerVertices, 3);
+  for (std::size_t tuple = 0; tuple < homerVertices; tuple += 20)
+  {
+    const std::size_t i = 3 * tuple + 1;
+    runs.b.reals[i] = static_cast<float>(runs.b.reals[i] + (tuple % 40 == 0 ? 4 : -4) * runs.combinedError(i));
+  }
+  const ArrayDifference d = compareRuns(runs);
+  ASSERT_EQ(d.noise.size(), 3u);
+  EXPECT_EQ(d.noise[0].values, homerVertices);
+  EXPECT_EQ(d.noise[0].allowed, binomialUpperQuantile(homerVertices, 2 * normalUpperTail(3), 0.001 / 6));
+  EXPECT_DOUBLE_EQ(d.noise[0].meanDifferenceLimit, normalUpperQuantile(0.001 / 12) * d.noise[0].meanDifferenceError);
+  EXPECT_TRUE(d.noise[0].passes());
+  EXPECT_FALSE(d.noise[1].countPasses());
+  EXPECT_TRUE(d.noise[2].passes());
+  EXPECT_FALSE(d.passes());
 }
 }

@@ -37,7 +37,6 @@ void expectCleanRefusal(const Result& result, const fs::path& folder, const std:
   }
 }
 
-const std::string crashedPly = "VTK's .ply reader crashed on it (SIGSEGV): the file is damaged or not a valid .ply file";
 const std::string crashedVtk = "VTK's .vtk reader crashed on it (SIGSEGV): the file is damaged or not a valid .vtk file";
 const std::string lyingPly = "the PLY header declares ";
 const std::string cutShort = " after its header: it is cut short or its counts are wrong";
@@ -76,8 +75,11 @@ TEST_F(Cli, HostileMeshesAreRefusedInOneLine)
     { "meshes/reader_crash_bus_on_unknown_address_pcbps_vtkply_ply_close_mesh.ply",
       "line 4 of the PLY header ('properTy float x') is not a PLY header line" },
     { "meshes/reader_crash_segv_null_vtkdatareader_readstring_mesh.vtk", crashedVtk },
-    { "meshes/reader_crash_segv_null_vtkplyreader_requestdata_mesh.ply", crashedPly },
-    { "meshes/reader_crash_segv_vtkaosdataarraytemplate_float_gettuple_mesh.ply", crashedPly },
+    { "meshes/reader_crash_segv_null_vtkplyreader_requestdata_mesh.ply",
+      "line 10: 'NaN' is not a finite number (the 'vertex' property 'z')" },
+    { "meshes/reader_crash_segv_vtkaosdataarraytemplate_float_gettuple_mesh.ply",
+      "'face' element 0 of 448 (counting from 0): vertex index -1090885662 refers to no vertex: the header declares "
+      "226, numbered from 0" },
     { "meshes/reader_crash_segv_vtkply_add_property_mesh.ply", "line 2 of the PLY header is not text: the file is damaged" },
     { "meshes/reader_crash_segv_vtkply_find_element_mesh.ply", "line 6 of the PLY header is not text: the file is damaged" },
     { "meshes/reader_crash_segv_vtkply_get_ascii_item_mesh.ply",
@@ -119,8 +121,8 @@ TEST_F(Cli, HostileScenesAndMapsAreRefusedInOneLine)
       "nested more than 32 levels deep: a scene file has a few levels (lights, a light, its fields)" },
     // Refused by the filter for float32 once placed, and named as the scene's problem.
     { "scenes/float32_overflow_bright_sun.json",
-      "/lights: together the lights can reach 8e+38 at a vertex (colour x intensity x k x attenuation at "
-      "min_distance), beyond what float32 holds: use float64 or smaller values" },
+      "/lights/0/intensity: this light alone can reach 8e+38 at a vertex (colour x intensity x k x attenuation "
+      "at min_distance), beyond what float32 holds: use float64 or a smaller intensity or colour" },
     { "scenes/light_name_100000_chars.json", "/lights/0/name: a name of 100001 characters is too long: use at most 64" },
   };
   for (const Hostile& scene : scenes)

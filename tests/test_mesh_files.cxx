@@ -277,15 +277,16 @@ TEST(MeshFileChecks, PlyHeaderCountsAgainstTheFileSize)
 TEST(MeshFileChecks, ObjFaceIndicesReferToListedVertices)
 {
   const std::string triangle = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\n";
-  EXPECT_EQ(objIndexProblem(triangle + "f 1/1 2/1 3/1\n"), "");
-  EXPECT_EQ(objIndexProblem(triangle + "f -3 -2 -1\n"), ""); // relative to the last vertex
-  EXPECT_EQ(objIndexProblem(triangle + "f 1 2 4\n"),
+  EXPECT_EQ(objFileCheck(triangle + "f 1/1 2/1 3/1\n").problem, "");
+  EXPECT_EQ(objFileCheck(triangle + "f -3 -2 -1\n").problem, ""); // relative to the last vertex
+  EXPECT_EQ(objFileCheck(triangle + "f 1 2 4\n").problem,
     "line 5: face index 4 refers to vertex 4, but the file lists 3 before that line");
-  EXPECT_EQ(objIndexProblem(triangle + "f 1//1 2//1 3//1\n"),
+  EXPECT_EQ(objFileCheck(triangle + "f 1//1 2//1 3//1\n").problem,
     "line 5: face index 1 refers to normal 1, but the file lists 0 before that line");
-  EXPECT_EQ(objIndexProblem(triangle + "f 0 1 2\n"),
-    "line 5: face index 0 refers to vertex 0, but the file lists 3 before that line");
-  EXPECT_EQ(objIndexProblem(triangle + "f 1 2 x\n"), "line 5: 'x' is not an OBJ face corner");
+  EXPECT_EQ(objFileCheck(triangle + "f 0 1 2\n").problem,
+    "line 5: face index 0 refers to no vertex: OBJ indices start at 1 (and negative ones count back from the last "
+    "listed, -1 for the last)");
+  EXPECT_EQ(objFileCheck(triangle + "f 1 2 x\n").problem, "line 5: 'x' is not an OBJ face corner");
 }
 
 TEST(WriteMesh, ArrayNamesAVtpCannotHoldAreRefused)

@@ -149,14 +149,24 @@ class SameAsTheCommandLine(unittest.TestCase):
 
 
 class Errors(unittest.TestCase):
+    """A run that fails raises shadelab.ShadeLabError with the command line's message, and VTK
+    prints nothing of it."""
+
+    def raised_by(self, update):
+        with ErrorText() as printed:
+            with self.assertRaises(shadelab.ShadeLabError) as raised:
+                update()
+        self.assertEqual(printed.text(), "")
+        self.assertIsInstance(raised.exception, RuntimeError)
+        return str(raised.exception)
+
     def run_with_error(self, configure):
         shade = shadelab.vtkLocalReflectanceFilter()
         shade.SetInputData(read_bunny())
         configure(shade)
-        with ErrorText() as errors:
-            shade.Update()
+        message = self.raised_by(shade.Update)
         self.assertEqual(shade.GetOutput().GetNumberOfPoints(), 0)
-        return errors.text()
+        return message
 
     def command_line_message(self, *arguments):
         """The command line's message for these arguments, without its 'shadelab: '."""
@@ -170,21 +180,62 @@ class Errors(unittest.TestCase):
         missing = os.path.join(WORK, "no_such_scene.json")
         message = self.command_line_message("-s", missing)
         self.assertEqual(message, missing + ": cannot open the scene file (does it exist, and is it readable?)")
-        self.assertIn(message, self.run_with_error(lambda shade: shade.SetSceneFileName(missing)))
+        self.assertEqual(self.run_with_error(lambda shade: shade.SetSceneFileName(missing)), message)
 
-    def test_a_wrong_field_in_json_text(self):
+    def test_a_negative_intensity_in_a_file_and_in_json_text(self):
         text = '{"lights": [{"type": "point", "position": [0, 1, 0], "intensity": -2}]}'
         scene_file = os.path.join(WORK, "negative_intensity.json")
         with open(scene_file, "w") as scene:
             scene.write(text)
         message = self.command_line_message("-s", scene_file)
-        self.assertTrue(message.startswith(scene_file + ": /lights/0/intensity: "), message)
-        expected = "SceneJson" + message[len(scene_file):]
-        self.assertIn(expected, self.run_with_error(lambda shade: shade.SetSceneJson(text)))
+        self.assertEqual(message, scene_file + ": /lights/0/intensity: must be a number >= 0")
+        self.assertEqual(self.run_with_error(lambda shade: shade.SetSceneFileName(scene_file)), message)
+        self.assertEqual(self.run_with_error(lambda shade: shade.SetSceneJson(text)),
+                         "SceneJson: /lights/0/intensity: must be a number >= 0")
 
     def test_an_unknown_array(self):
-        errors = self.run_with_error(lambda shade: select(shade, "key_nonsense"))
-        self.assertIn("key_nonsense", errors)
+        message = self.command_line_message("-a", "key_nonsense")
+        self.assertTrue(message.startswith("--arrays: unknown array 'key_nonsense'; this scene has: default, "),
+                        message)
+        self.assertEqual(self.run_with_error(lambda shade: select(shade, "key_nonsense")), message[len("--arrays: "):])
+
+    def test_the_first_error_upstream_is_raised_downstream(self):
+        missing = os.path.join(WORK, "no_such_scene.json")
+        normals = shadelab.vtkShadingNormalsFilter()
+        normals.SetInputData(read_bunny())
+        seen = shadelab.vtkMeshVisibilityFilter()
+        seen.SetInputConnection(normals.GetOutputPort())
+        seen.SetSceneFileName(missing)
+        shade = shadelab.vtkLocalReflectanceFilter()
+        shade.SetInputConnection(seen.GetOutputPort())
+        shade.SetSceneFileName(STUDIO)
+        self.assertEqual(self.raised_by(shade.Update),
+                         missing + ": cannot open the scene file (does it exist, and is it readable?)")
+        # The observers are gone with the run: a good scene runs and raises nothing.
+        seen.SetSceneFileName(SHADOWS)
+        shade.Update()
+        self.assertEqual(shade.GetOutput().GetNumberOfPoints(), 35947)
+
+    def test_every_update_method_raises(self):
+        shade = shadelab.vtkLocalReflectanceFilter()
+        shade.SetInputData(read_bunny())
+        shade.SetSceneJson("{")
+        for update in (shade.Update, lambda: shade.Update(0), shade.UpdateWholeExtent,
+                       lambda: shade.UpdatePiece(0, 1, 0)):
+            shade.Modified()
+            self.assertTrue(self.raised_by(update).startswith("SceneJson: not valid JSON: "))
+
+    def test_an_algorithm_upstream_that_fails_without_an_error(self):
+        reader = vtkPLYReader()
+        reader.SetFileName(os.path.join(WORK, "no_such_mesh.ply"))
+        shade = shadelab.vtkLocalReflectanceFilter()
+        shade.SetInputConnection(reader.GetOutputPort())
+        with ErrorText() as printed:
+            with self.assertRaises(shadelab.ShadeLabError) as raised:
+                shade.Update()
+        self.assertEqual(str(raised.exception), "vtkPLYReader failed without an error of its own (its warnings, "
+                         "if VTK printed any, say why)")
+        self.assertIn("Could not open PLY file", printed.text())  # the reader's warning, printed as VTK prints it
 
 
 class Properties(unittest.TestCase):
@@ -345,9 +396,10 @@ class Relighting(unittest.TestCase):
         # Twice the intensity, twice the irradiance (to float32's rounding).
         once = arrays_of(shadelab.relight(reader.GetOutput(), sunset, rotation=30, transfer_array="envmap_sh_transfer"))
         self.assertTrue(np.allclose(2 * once["relit_irradiance"], actual["sunset"], rtol=1e-6, atol=1e-6))
-        with self.assertRaises(RuntimeError) as refused:
-            with ErrorText():
+        with ErrorText() as printed:
+            with self.assertRaises(shadelab.ShadeLabError) as refused:
                 shadelab.relight(read_bunny(), sunset)
+        self.assertEqual(printed.text(), "")
         self.assertEqual(str(refused.exception),
                          "the input has no point array whose name ends in '_sh_transfer': shade the mesh with "
                          "\"estimator\": \"prt\" (shadelab shade --envmap-estimator prt) first")

@@ -8,6 +8,7 @@
 #include "SceneFile.h"
 #include "NormalOrientation.h"
 #include "SceneFrame.h"
+#include "ShadingFlags.h"
 #include "ShadeLabMeshExtent.h"
 
 #include "vtkCellArray.h"
@@ -127,6 +128,103 @@ TEST_P(RealMesh, DefaultLightKitLightsItWell)
   EXPECT_GE(quantile(0.95) - quantile(0.05), 0.15);
   std::cout << meshCase.file << ": " << seen.size() << " vertices seen, luminance from " << seen.front()
             << ", median " << quantile(0.5) << ", 5-95% spread " << quantile(0.95) - quantile(0.05) << "\n";
+}
+
+/// Whether the segment from p, lifted along n above the corners of every triangle around it,
+/// to q meets a triangle of the mesh that has no corner at p: Moller and Trumbore's test in
+/// double precision, triangle by triangle, sharing no code with the ray casting it checks.
+bool blockedByAnotherTriangle(vtkPolyData* mesh, const glm::dvec3& p, const glm::dvec3& n, const glm::dvec3& q)
+{
+  double lift = 0;
+  {
+    auto cell = vtk::TakeSmartPointer(mesh->GetPolys()->NewIterator());
+    for (cell->GoToFirstCell(); !cell->IsDoneWithTraversal(); cell->GoToNextCell())
+    {
+      vtkIdType size;
+      const vtkIdType* ids;
+      cell->GetCurrentCell(size, ids);
+      bool own = false;
+      double rise = 0;
+      for (vtkIdType k = 0; k < size; ++k)
+      {
+        const glm::dvec3 corner = tupleOf(mesh->GetPoints()->GetData(), ids[k]);
+        own = own || corner == p;
+        rise = std::max(rise, glm::dot(corner - p, n));
+      }
+      lift = own ? std::max(lift, rise) : lift;
+    }
+  }
+  const glm::dvec3 start = p + lift * n;
+  const glm::dvec3 d = q - start;
+  auto cell = vtk::TakeSmartPointer(mesh->GetPolys()->NewIterator());
+  for (cell->GoToFirstCell(); !cell->IsDoneWithTraversal(); cell->GoToNextCell())
+  {
+    vtkIdType size;
+    const vtkIdType* ids;
+    cell->GetCurrentCell(size, ids);
+    auto point = [&](vtkIdType id) { return tupleOf(mesh->GetPoints()->GetData(), id); };
+    bool own = false;
+    for (vtkIdType k = 0; k < size; ++k)
+    {
+      own = own || point(ids[k]) == p;
+    }
+    for (vtkIdType k = 2; k < size && !own; ++k)
+    {
+      const glm::dvec3 a = point(ids[0]), e1 = point(ids[k - 1]) - a, e2 = point(ids[k]) - a;
+      const glm::dvec3 h = glm::cross(d, e2);
+      const double det = glm::dot(e1, h);
+      if (std::abs(det) < 1e-300)
+      {
+        continue;
+      }
+      const glm::dvec3 s = start - a;
+      const double u = glm::dot(s, h) / det;
+      const glm::dvec3 qv = glm::cross(s, e1);
+      const double v = glm::dot(d, qv) / det, t = glm::dot(e2, qv) / det;
+      if (u >= 0 && v >= 0 && u + v <= 1 && t > 1e-9 && t < 1)
+      {
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
+TEST_P(RealMesh, APointLightsShadowDarkensNoVertexByItsOwnTrianglesAlone)
+{
+  // The shadow terminator: by default a light that the normal faces is not hidden by the
+  // vertex's own facets (docs/formulas.md section 20). Every vertex that the light's shadow
+  // darkens, where its first hit was one of its own triangles (flag 64), must be blocked by
+  // another triangle too, as an independent test finds from the vertex lifted above its own
+  // facets. (With "self_shadowing": "facets", 64 of the bunny's vertices are not, 20 of spot's,
+  // 5 of the teapot's, 9 of the owl's and 642 of the dragon's.)
+  const MeshCase meshCase = GetParam();
+  vtkSmartPointer<vtkPolyData> mesh = app::readMesh(std::string(SHADELAB_SOURCE_DIR "/data/meshes/") + meshCase.file);
+  const Scene scene = parseScene(R"({ "frame": "mesh", "viewer": { "position": [0, 0, 5] }, "lights": [
+    { "name": "lamp", "type": "point", "position": [1.5, 2.5, 2], "shadows": true } ] })", "lamp.json");
+  vtkSmartPointer<vtkPolyData> output =
+    shadelab::testing::shadeWithFilter(mesh, scene, { "all" }, vtkAlgorithm::SINGLE_PRECISION);
+  const glm::dvec3 lamp = std::get<PointLight>(placedOnMesh(scene, meshExtentOf(output)).lights[0].source).position;
+  vtkDataArray* visibility = output->GetPointData()->GetArray("lamp_visibility");
+  vtkDataArray* flags = output->GetPointData()->GetArray("shading_flags");
+  ASSERT_NE(visibility, nullptr);
+  int flagged = 0, darkenedByOwnTrianglesAlone = 0;
+  for (vtkIdType i = 0; i < output->GetNumberOfPoints(); ++i)
+  {
+    if ((int(flags->GetComponent(i, 0)) & FlagHiddenByOwnTriangle) == 0)
+    {
+      continue;
+    }
+    ++flagged;
+    const glm::dvec3 p = tupleOf(output->GetPoints()->GetData(), i);
+    if (visibility->GetComponent(i, 0) == 0 &&
+      !blockedByAnotherTriangle(output, p, tupleOf(output->GetPointData()->GetNormals(), i), lamp))
+    {
+      ++darkenedByOwnTrianglesAlone;
+    }
+  }
+  EXPECT_EQ(darkenedByOwnTrianglesAlone, 0);
+  std::cout << meshCase.file << ": " << flagged << " vertices whose first hit is their own triangle\n";
 }
 
 TEST(MeshFrame, AScenePlacedOnTheMeshLightsItAlikeAnywhereAtAnySize)

@@ -2,6 +2,7 @@
 #include "SceneFileErrors.h"
 #include "ArrayCatalog.h"
 #include "EnvironmentMap.h"
+#include "NearestName.h"
 #include "SceneFile.h"
 #include "SceneSource.h"
 #include "DefaultLightKit.h"
@@ -126,6 +127,19 @@ TEST(SceneFile, MissingField)
   EXPECT_EQ(errorOf(R"({ "lights": [ { "name": "x" } ] })"), "scene.json: /lights/0/type: missing");
 }
 
+TEST(SceneFile, TheNearestNameIsOneWithinAThirdOfTheLettersAndUnique)
+{
+  EXPECT_EQ(editDistance("tolerence", "tolerance"), 1u);
+  EXPECT_EQ(editDistance("materail", "material"), 1u); // a swap of neighbours counts once
+  EXPECT_EQ(editDistance("", "abc"), 3u);
+  EXPECT_EQ(editDistance("kitten", "sitting"), 3u);
+  EXPECT_EQ(nearestName("intesity", { "position", "intensity", "name" }), "intensity");
+  EXPECT_EQ(nearestName("colour", { "color", "intensity" }), "color");
+  EXPECT_EQ(nearestName("hue", { "color", "intensity" }), ""); // nothing within a third of its letters
+  EXPECT_EQ(nearestName("ks", { "ka", "kd" }), "");                  // as near to both
+  EXPECT_EQ(nearestName("shinyness", { "shininess", "specular" }), "shininess");
+}
+
 TEST(SceneFile, WrongTypesAndUnknownFields)
 {
   EXPECT_EQ(errorOf(R"({ "lights": [ { "type": "distant", "direction": [0, 1] } ] })"),
@@ -134,8 +148,11 @@ TEST(SceneFile, WrongTypesAndUnknownFields)
     "scene.json: /lights/0/cone: unknown field; allowed here: name, type, color, spectrum, intensity, shadows, "
     "position, attenuation, min_distance");
   EXPECT_EQ(errorOf(R"({ "lights": [], "materail": {} })"),
-    "scene.json: /materail: unknown field; allowed here: model, frame, viewer, material, lights, shadows, "
-    "ambient_occlusion, spectral");
+    "scene.json: /materail: unknown field; did you mean \"material\"? allowed here: model, frame, viewer, material, "
+    "lights, shadows, self_shadowing, ambient_occlusion, spectral");
+  EXPECT_EQ(errorOf(R"({ "lights": [], "colour": {} })"),
+    "scene.json: /colour: unknown field; allowed here: model, frame, viewer, material, lights, shadows, "
+    "self_shadowing, ambient_occlusion, spectral");
   // Fields of another model are errors too, not silently ignored.
   EXPECT_EQ(errorOf(R"({ "lights": [ { "type": "point", "position": [0, 0, 1],
       "attenuation": { "model": "inverse", "range": 2 } } ] })"),
@@ -438,8 +455,10 @@ TEST(SceneFile, ShadowsAndAmbientOcclusion)
   EXPECT_TRUE(automatic.ambientOcclusion->sampling.fromTolerance);
   EXPECT_EQ(automatic.ambientOcclusion->sampling.maximum, 1000);
   EXPECT_FALSE(automatic.ambientOcclusion->target) << "a tolerance's plan sets it";
-  EXPECT_EQ(untargetedSamplingProblem(automatic, false),
-    "ambient occlusion with \"rays\": \"auto\" takes its count of rays from a tolerance: give one (shadelab shade "
+  const std::vector<SceneProblem> untargeted = untargetedSamplingProblems(automatic, false);
+  ASSERT_EQ(untargeted.size(), 1u);
+  EXPECT_EQ(untargeted[0].path + ": " + untargeted[0].message,
+    "/ambient_occlusion/rays: \"auto\" takes its count of rays from a tolerance: give one (shadelab shade "
     "--tolerance, the filter's Tolerance), or a number of rays");
   EXPECT_EQ(errorOf(R"({ "lights": [], "shadows": 1 })"), "scene.json: /shadows: must be true or false, got 1");
 }
@@ -551,16 +570,24 @@ TEST(ScenePrecision, ValuesThatWouldOverflowFloat32AreRefused)
   const std::string bright = R"({ "lights": [ { "type": "distant", "direction": [0, 0, -1], "intensity": 1e39 } ] })";
   EXPECT_EQ(problemsOf(bright, Precision::Float64), "none");
   EXPECT_EQ(problemsOf(bright, Precision::Float32),
-    "/lights: together the lights can reach 1e+39 at a vertex (colour x intensity x k x "
-    "attenuation at min_distance), beyond what float32 holds: use float64 or smaller values");
+    "/lights/0/intensity: this light alone can reach 1e+39 at a vertex (colour x intensity x k x "
+    "attenuation at min_distance), beyond what float32 holds: use float64 or a smaller intensity or colour");
+  // Two lights each within float32, together beyond it (a quarter of its largest value).
+  const std::string twoBright = R"({ "lights": [ { "type": "distant", "direction": [0, 0, -1], "intensity": 6e37 },
+    { "type": "ambient", "intensity": 6e37 } ] })";
+  EXPECT_EQ(problemsOf(twoBright, Precision::Float32),
+    "/lights: together the lights can reach 1.1e+38 at a vertex (colour x intensity x k x "
+    "attenuation at min_distance), beyond what float32 holds: use float64 or smaller intensities");
   // A tiny minimum distance: 1/d^2 at 1e-30 is 1e60.
   const std::string close = R"({ "lights": [ { "type": "point", "position": [0, 0, 1], "min_distance": 1e-30 } ] })";
   EXPECT_EQ(problemsOf(close, Precision::Float64), "none");
-  EXPECT_NE(problemsOf(close, Precision::Float32).find("can reach 1e+60"), std::string::npos);
+  EXPECT_EQ(problemsOf(close, Precision::Float32),
+    "/lights/0/min_distance: this light alone can reach 1e+60 at a vertex (colour x intensity x k x attenuation at "
+    "min_distance), beyond what float32 holds: use float64 or a larger min_distance");
   // Even float64 cannot hold colour 1e200 x intensity 1e200 (the file reader checks float64).
   EXPECT_EQ(errorOf(R"({ "lights": [ { "type": "ambient", "color": 1e200, "intensity": 1e200 } ] })"),
-    "scene.json: /lights: together the lights can reach inf at a vertex (colour x intensity x k "
-    "x attenuation at min_distance), beyond what float64 holds: use smaller values");
+    "scene.json: /lights/0/intensity: this light alone can reach more than 1.8e+308 at a vertex (colour x "
+    "intensity x k x attenuation at min_distance), beyond what float64 holds: use a smaller intensity or colour");
 }
 
 // Where a filter's scene comes from: JSON text, else a file, else a Scene set in C++, else the

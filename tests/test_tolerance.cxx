@@ -119,7 +119,7 @@ TEST(Tolerance, TheChoiceFollowsTheTolerance)
   {
     for (const std::string& text : shadelab::testing::methodsNote(shade(bunny, scene, tolerance)))
     {
-      if (text.rfind(light + ":", 0) == 0 || (light.empty() && text.rfind("tolerance", 0) == 0))
+      if (text.rfind(light + ":", 0) == 0 || (light.empty() && text.rfind("arithmetic ", 0) == 0))
       {
         return text;
       }
@@ -128,8 +128,9 @@ TEST(Tolerance, TheChoiceFollowsTheTolerance)
   };
   EXPECT_NE(line(1e-2, "key").find("key: Schlick pow"), std::string::npos) << line(1e-2, "key");
   EXPECT_NE(line(1e-4, "key").find("key: series pow"), std::string::npos) << line(1e-4, "key");
-  EXPECT_NE(line(1e-4, "").find("arithmetic float32"), std::string::npos) << line(1e-4, "");
-  EXPECT_NE(line(1e-6, "").find("arithmetic float64"), std::string::npos) << line(1e-6, "");
+  EXPECT_EQ(line(1e-4, "").find("arithmetic float32"), 0u) << line(1e-4, "");
+  EXPECT_NE(line(1e-4, "").find("stay within the tolerance 0.0001"), std::string::npos) << line(1e-4, "");
+  EXPECT_EQ(line(1e-6, "").find("arithmetic float64"), 0u) << line(1e-6, "");
   EXPECT_NE(line(1e-9, "fill").find("fill: exact"), std::string::npos) << line(1e-9, "fill");
 
   // Diffuse only, the key light 30 bunny sizes away: taken as distant at 1e-2, not at 1e-4.
@@ -478,10 +479,10 @@ TEST(Tolerance, AreaLightsAndMapsItCannotBoundAreRefusedWithTheRemedy)
   Scene shadowed = studioMapToATolerance();
   shadowed.lights[0].shadows = true;
   EXPECT_EQ(shadelab::testing::filterError(sphere, shadowed, 0),
-    "light 'studio' has \"samples\": \"auto\", which takes its count from a tolerance: give one (shadelab shade "
+    "scene /lights/0/samples: \"auto\" takes the count of light 'studio' from a tolerance: give one (shadelab shade "
     "--tolerance, the filter's Tolerance), or a number of samples");
   EXPECT_EQ(shadelab::testing::filterError(sphere, studioMapToATolerance(), 0),
-    "light 'studio' has \"samples\": \"auto\", which takes its count from a tolerance: give one (shadelab shade "
+    "scene /lights/0/samples: \"auto\" takes the count of light 'studio' from a tolerance: give one (shadelab shade "
     "--tolerance, the filter's Tolerance), or a number of samples");
 
   Scene point = readSceneFile(data + "scenes/area_lights.json");

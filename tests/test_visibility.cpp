@@ -168,11 +168,12 @@ double openBoxOcclusion(const glm::dvec3& p, const glm::dvec3& n)
 }
 
 /// The visibility of one light from one vertex.
-LightVisibility visibilityOf(const OccluderMesh& occluders, const RayVertex& vertex, const glm::dvec3& toLight, double distance)
+LightVisibility visibilityOf(const OccluderMesh& occluders, const RayVertex& vertex, const glm::dvec3& toLight,
+  double distance, SelfShadowing selfShadowing = SelfShadowing::SmoothSurface)
 {
   LightVisibility visibility;
   const LightDirection direction{ toLight, distance };
-  lightVisibility(occluders, &vertex, &direction, 1, false, &visibility);
+  lightVisibility(occluders, &vertex, &direction, 1, false, &visibility, selfShadowing);
   return visibility;
 }
 
@@ -700,9 +701,11 @@ TEST(Visibility, AVertexInsideAClosedMeshSeesNoSky)
 TEST(Visibility, ALightBehindAWallAtAConcaveCornerIsBlockedByTheCornersOwnTriangles)
 {
   // At the box's floor corner (0, 0, 0), the mean normal points into the box; a light whose
-  // direction it faces but which lies behind the wall x = 0 is hidden by that wall, which is
-  // made of triangles around the corner point itself: blocked, and flagged as such.
-  const Mesh box = openBox(4);
+  // direction it faces but which lies behind the wall x = 0 is hidden by that wall, whose
+  // first triangles have the corner point itself as a corner: flagged as such. With the
+  // smooth surface, the walls' triangles around the corner (55 degrees from its normal) are
+  // passed over as its rounding, and the wall beyond them hides the light.
+  const Mesh box = openBox(8);
   const OccluderMesh occluders = box.occluders();
   std::size_t corner = 0;
   while (glm::length(box.points[corner]) > 1e-12)
@@ -711,9 +714,12 @@ TEST(Visibility, ALightBehindAWallAtAConcaveCornerIsBlockedByTheCornersOwnTriang
   }
   const glm::dvec3 behindWall = glm::normalize(glm::dvec3(-0.2, 1.0, 1.0));
   ASSERT_GT(glm::dot(behindWall, box.normals[corner]), 0.0);
-  const LightVisibility v = visibilityOf(occluders, box.vertex(corner), behindWall, INFINITY);
-  EXPECT_FALSE(v.visible);
-  EXPECT_TRUE(v.blockedByOwnTriangle);
+  for (const SelfShadowing selfShadowing : { SelfShadowing::SmoothSurface, SelfShadowing::Facets })
+  {
+    const LightVisibility v = visibilityOf(occluders, box.vertex(corner), behindWall, INFINITY, selfShadowing);
+    EXPECT_FALSE(v.visible);
+    EXPECT_TRUE(v.blockedByOwnTriangle);
+  }
   // Into the box, past the opposite rim: visible.
   const LightVisibility open = visibilityOf(occluders, box.vertex(corner), glm::normalize(glm::dvec3(0.3, 0.3, 1.0)), INFINITY);
   EXPECT_TRUE(open.visible);
@@ -751,6 +757,111 @@ TEST(Visibility, ACopyOfThePointAtAHardEdgeCountsAsTheVertexsOwn)
     EXPECT_TRUE(visibilityOf(occluders, box.vertex(floorCorner), glm::normalize(toLight), INFINITY).visible)
       << toLight.x << " " << toLight.y << " " << toLight.z;
   }
+}
+
+/// A flat square grid at z = 0 (cells x cells of side 1 / cells about the origin, normals +z)
+/// whose centre point is pushed down by depth: a dimple one ring wide, whose area-weighted
+/// normal is still +z, the smallest bump of a scanned surface.
+Mesh dimple(int cells, double depth)
+{
+  Mesh grid;
+  addPlane(grid, 0.5, cells);
+  const std::size_t centre = std::size_t(cells / 2) * std::size_t(cells + 1) + std::size_t(cells / 2);
+  grid.points[centre].z = -depth;
+  return grid;
+}
+
+TEST(Visibility, TheSmoothSurfacesOwnFacetsDoNotHideALightItsNormalFaces)
+{
+  // The dimple's walls rise at atan(depth / cell) = 21.8 degrees around its centre; a light 10
+  // degrees above the horizon, which the centre's normal faces, is hidden there by the centre's
+  // own triangles alone: the shadow terminator.
+  const int cells = 8;
+  const Mesh grid = dimple(cells, 0.05);
+  const std::size_t centre = std::size_t(cells / 2) * std::size_t(cells + 1) + std::size_t(cells / 2);
+  const OccluderMesh occluders = grid.occluders();
+  const double elevation = 10 * M_PI / 180;
+  for (double azimuth = 0; azimuth < 2 * M_PI; azimuth += M_PI / 8)
+  {
+    const glm::dvec3 toLight(std::cos(elevation) * std::cos(azimuth), std::cos(elevation) * std::sin(azimuth), std::sin(elevation));
+    const LightVisibility facets = visibilityOf(occluders, grid.vertex(centre), toLight, INFINITY, SelfShadowing::Facets);
+    EXPECT_FALSE(facets.visible) << azimuth;
+    EXPECT_TRUE(facets.blockedByOwnTriangle) << azimuth;
+    // The smooth surface: visible, and still flagged; and so for a point light as far as the
+    // grid's edge (the ray, lifted above the dimple's rim, aims at the light again).
+    const LightVisibility smooth = visibilityOf(occluders, grid.vertex(centre), toLight, INFINITY);
+    EXPECT_TRUE(smooth.visible) << azimuth;
+    EXPECT_TRUE(smooth.blockedByOwnTriangle) << azimuth;
+    EXPECT_TRUE(visibilityOf(occluders, grid.vertex(centre), toLight, 0.5).visible) << azimuth;
+  }
+
+  // A wall across the light's path beyond the dimple still hides it.
+  Mesh walled = grid;
+  const PointId a = walled.addPoint({ 0.3, -1, -1 }, { -1, 0, 0 }), b = walled.addPoint({ 0.3, 1, -1 }, { -1, 0, 0 }),
+                c = walled.addPoint({ 0.3, 1, 1 }, { -1, 0, 0 }), d = walled.addPoint({ 0.3, -1, 1 }, { -1, 0, 0 });
+  walled.addTriangle(a, b, c);
+  walled.addTriangle(a, c, d);
+  const OccluderMesh walledOccluders = walled.occluders();
+  const glm::dvec3 towardWall(std::cos(elevation), 0, std::sin(elevation));
+  const LightVisibility behindWall = visibilityOf(walledOccluders, walled.vertex(centre), towardWall, INFINITY);
+  EXPECT_FALSE(behindWall.visible);
+  EXPECT_TRUE(behindWall.blockedByOwnTriangle);
+
+  // Soft shadows alike: an area light's samples 10 degrees up, each hidden by the facets alone.
+  std::vector<ShadowRay> rays;
+  for (double azimuth = 0; azimuth < 2 * M_PI; azimuth += M_PI / 8)
+  {
+    rays.push_back({ { std::cos(elevation) * std::cos(azimuth), std::cos(elevation) * std::sin(azimuth), std::sin(elevation) },
+      std::numeric_limits<double>::infinity(), true });
+  }
+  const SurfaceRay from{ grid.points[centre], grid.normals[centre], {}, 0.0, PointId(centre) };
+  for (const SelfShadowing selfShadowing : { SelfShadowing::SmoothSurface, SelfShadowing::Facets })
+  {
+    std::uint64_t hidden = 0;
+    HiddenSampleTracer tracer(occluders, selfShadowing);
+    tracer.addRays(from, occluders.inFrame(from), rays.data(), int(rays.size()), &hidden);
+    tracer.flush();
+    EXPECT_EQ(hidden, selfShadowing == SelfShadowing::Facets ? (std::uint64_t(1) << rays.size()) - 1 : 0u);
+  }
+}
+
+TEST(Visibility, ASpheresPointsOfEveryResolutionSeeEveryLightTheirNormalsFace)
+{
+  // Spheres of 12 to 400 segments around, under point lights near and far: no point whose
+  // normal faces the light (n.s > 0.01) is darkened by the sphere itself.
+  std::size_t facing = 0;
+  for (int segments = 12; segments <= 400; ++segments)
+  {
+    Mesh sphere;
+    addSphere(sphere, { 0.2, 0.1, -0.3 }, 1.5, segments / 2, segments);
+    const OccluderMesh occluders = sphere.occluders();
+    for (const glm::dvec3& light : { glm::dvec3(2.1, 0.3, 0.4), glm::dvec3(-40, 25, 10) })
+    {
+      std::vector<RayVertex> vertices;
+      std::vector<LightDirection> directions;
+      for (std::size_t i = 0; i < sphere.points.size(); ++i)
+      {
+        const glm::dvec3 toLight = light - sphere.points[i];
+        if (glm::dot(glm::normalize(toLight), sphere.normals[i]) > 0.01)
+        {
+          vertices.push_back(sphere.vertex(i));
+          directions.push_back({ glm::normalize(toLight), glm::length(toLight) });
+        }
+      }
+      std::vector<LightVisibility> seen(vertices.size());
+      for (std::size_t first = 0; first < vertices.size(); first += rayVertexGroup)
+      {
+        const int count = int(std::min<std::size_t>(rayVertexGroup, vertices.size() - first));
+        lightVisibility(occluders, &vertices[first], &directions[first], count, false, &seen[first]);
+      }
+      for (std::size_t k = 0; k < seen.size(); ++k)
+      {
+        ASSERT_TRUE(seen[k].visible) << segments << " segments, point " << vertices[k].id;
+      }
+      facing += seen.size();
+    }
+  }
+  std::cout << facing << " points facing a light, every one lit\n";
 }
 
 TEST(Visibility, ANormalConeHoldsTheAxisItWasGivenAndAHalfAngleAtLeastAsWide)

@@ -578,7 +578,7 @@ TEST(Visibility, WhatIsRefusedAndWhy)
   occluded.lights[1].shadows = false;
   occluded.ambientOcclusion = AmbientOcclusion{};
   occluded.ambientOcclusion->sampling.fromTolerance = true;
-  const std::string untargeted = "ambient occlusion with \"rays\": \"auto\" takes its count of rays from a tolerance: "
+  const std::string untargeted = "scene /ambient_occlusion/rays: \"auto\" takes its count of rays from a tolerance: "
                                  "give one (shadelab shade --tolerance, the filter's Tolerance), or a number of rays";
   EXPECT_EQ(filterError(mesh, occluded), untargeted);
   EXPECT_EQ(filterError(mesh, occluded, 0.05), "");
@@ -599,8 +599,8 @@ TEST(Visibility, WhatIsRefusedAndWhy)
     EXPECT_EQ(aloneError(occluded), untargeted);
     Scene softAuto = diskLightAbove(true, AreaEstimator::Exact);
     std::get<AreaLight>(softAuto.lights[1].source).sampling.fromTolerance = true;
-    EXPECT_EQ(aloneError(softAuto), "light 'panel' casts shadows with \"samples\": \"auto\", which takes its count from "
-                                 "a tolerance's plan: shade it with vtkLocalReflectanceFilter under a tolerance "
+    EXPECT_EQ(aloneError(softAuto), "scene /lights/1/samples: \"auto\" with shadows takes the count of light 'panel' "
+                                 "from a tolerance's plan: shade it with vtkLocalReflectanceFilter under a tolerance "
                                  "(shadelab shade --tolerance), or give it a number of samples");
   }
   Scene shadowedAmbient = pointLightAbove(false);

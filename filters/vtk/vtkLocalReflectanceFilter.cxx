@@ -1011,13 +1011,7 @@ bool vtkLocalReflectanceFilter::ChooseArraysAndMethods(ShadingPlan& plan)
     return false;
   }
   // Under a tolerance, its plan gives every "auto" its target (in the second pass at the latest).
-  const std::string untargeted = this->Tolerance > 0 ? "" : shadelab::untargetedSamplingProblem(plan.scene, false);
-  if (!untargeted.empty())
-  {
-    vtkErrorMacro(<< untargeted);
-    return false;
-  }
-  return true;
+  return this->Tolerance > 0 || this->SceneIsValid(shadelab::untargetedSamplingProblems(plan.scene, false));
 }
 
 bool vtkLocalReflectanceFilter::ChooseMethods(ShadingPlan& plan, bool roundingMeasuredLater)

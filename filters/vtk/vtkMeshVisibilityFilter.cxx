@@ -228,6 +228,7 @@ class RayVertices
 public:
   RayVertices(vtkPolyData* input, const std::vector<vtkIdType>* rayPoints, const shadelab::Scene& scene)
     : twoSided(shadelab::shadesBothSides(scene))
+    , selfShadowing(scene.selfShadowing)
     , points(vtk::DataArrayTupleRange<3>(input->GetPoints()->GetData()))
     , normals(vtk::DataArrayTupleRange<3>(input->GetPointData()->GetNormals()))
     , rayPoints(rayPoints)
@@ -237,6 +238,8 @@ public:
 
   /// Whether the surface is shaded on both sides, which the rays leave from alike.
   const bool twoSided;
+  /// Which triangles hide a shadowed light.
+  const shadelab::SelfShadowing selfShadowing;
 
   /// Ray point i: the input's point that rayPoints lists at i (without a list, point i), and the
   /// unit direction to the viewer from it.
@@ -300,7 +303,7 @@ void addFlag(vtkUnsignedCharArray* flags, vtkIdType i, shadelab::ShadingFlag fla
 /// round's rays traced before it is weighted. Flags the points that send a ray to a light the
 /// mesh encloses.
 void estimateSoftShadows(const shadelab::OccluderMesh& occluders, const ShadowedLight& light, const RayGroup& group,
-  vtkUnsignedCharArray* flags)
+  shadelab::SelfShadowing selfShadowing, vtkUnsignedCharArray* flags)
 {
   std::uint64_t cast = 0;
   for (int k = 0; k < group.size; ++k)
@@ -314,7 +317,7 @@ void estimateSoftShadows(const shadelab::OccluderMesh& occluders, const Shadowed
     }
     const shadelab::SurfacePoint point{ vertex.position, group.occlusionNormals[k], group.toViewer[k],
       static_cast<std::uint64_t>(vertex.id) };
-    shadelab::RoundShadowTracer tracer(occluders, point, vertex.id);
+    shadelab::RoundShadowTracer tracer(occluders, point, vertex.id, selfShadowing);
     shadelab::packTerms(light.distributed->estimate(point, tracer), row);
     cast += tracer.cast();
     if (tracer.cast() > 0 && light.enclosed)
@@ -329,10 +332,10 @@ void estimateSoftShadows(const shadelab::OccluderMesh& occluders, const Shadowed
 /// side the kernel shades (the occlusion normal), the points' rays sharing packets; flags the
 /// points that send a ray to a light the mesh encloses.
 void traceSoftShadows(const shadelab::OccluderMesh& occluders, const ShadowedLight& light, const RayGroup& group,
-  vtkUnsignedCharArray* flags)
+  shadelab::SelfShadowing selfShadowing, vtkUnsignedCharArray* flags)
 {
   const int words = light.hidden->GetNumberOfComponents();
-  shadelab::HiddenSampleTracer tracer(occluders);
+  shadelab::HiddenSampleTracer tracer(occluders, selfShadowing);
   for (int k = 0; k < group.size; ++k)
   {
     const shadelab::RayVertex& vertex = group.vertices[k];
@@ -356,16 +359,16 @@ void traceSoftShadows(const shadelab::OccluderMesh& occluders, const ShadowedLig
 /// The light's visibility from the group's points, their rays sharing packets; flags the points
 /// whose own triangles hide it, and those it is hidden from when the mesh encloses it.
 void traceShadows(const shadelab::OccluderMesh& occluders, const ShadowedLight& light, const RayGroup& group,
-  bool twoSided, vtkUnsignedCharArray* flags)
+  const RayVertices& vertices, vtkUnsignedCharArray* flags)
 {
   if (light.terms)
   {
-    estimateSoftShadows(occluders, light, group, flags);
+    estimateSoftShadows(occluders, light, group, vertices.selfShadowing, flags);
     return;
   }
   if (light.distributed)
   {
-    traceSoftShadows(occluders, light, group, flags);
+    traceSoftShadows(occluders, light, group, vertices.selfShadowing, flags);
     return;
   }
   shadelab::LightDirection directions[groupSize];
@@ -374,7 +377,8 @@ void traceShadows(const shadelab::OccluderMesh& occluders, const ShadowedLight& 
   {
     directions[k] = shadelab::towardLight(light.evaluation, group.vertices[k].position);
   }
-  shadelab::lightVisibility(occluders, group.vertices, directions, group.size, twoSided, seen);
+  shadelab::lightVisibility(
+    occluders, group.vertices, directions, group.size, vertices.twoSided, seen, vertices.selfShadowing);
   for (int k = 0; k < group.size; ++k)
   {
     const vtkIdType i = group.first + k;
@@ -443,7 +447,7 @@ void castRays(const shadelab::OccluderMesh& occluders, const std::vector<Shadowe
           startGroup(vertices, g, count, arrays.flags, group);
           for (const ShadowedLight& light : lights)
           {
-            traceShadows(occluders, light, group, vertices.twoSided, arrays.flags);
+            traceShadows(occluders, light, group, vertices, arrays.flags);
           }
           if (arrays.occlusion)
           {
@@ -702,24 +706,20 @@ std::optional<shadelab::Scene> vtkMeshVisibilityFilter::PlacedScene(vtkPolyData*
   {
     return std::nullopt;
   }
-  std::string untargeted = shadelab::untargetedSamplingProblem(scene, true);
+  std::vector<shadelab::SceneProblem> untargeted = shadelab::untargetedSamplingProblems(scene, true);
   for (std::size_t l = 0; l < scene.lights.size() && untargeted.empty(); ++l)
   {
     const shadelab::Sampling* sampling = shadelab::samplingOf(scene.lights[l].source);
     if (scene.lights[l].shadows && sampling && sampling->fromTolerance &&
       !(l < this->DrawnLights.size() && this->DrawnLights[l].targets.any()))
     {
-      untargeted = "light '" + scene.lights[l].name + "' casts shadows with \"samples\": \"auto\", which takes its "
-        "count from a tolerance's plan: shade it with vtkLocalReflectanceFilter under a tolerance (shadelab shade "
-        "--tolerance), or give it a number of samples";
+      untargeted.push_back({ "/lights/" + std::to_string(l) + "/samples",
+        "\"auto\" with shadows takes the count of light '" + scene.lights[l].name + "' from a tolerance's plan: "
+        "shade it with vtkLocalReflectanceFilter under a tolerance (shadelab shade --tolerance), or give it a number "
+        "of samples" });
     }
   }
-  if (!untargeted.empty())
-  {
-    vtkErrorMacro(<< untargeted);
-    return std::nullopt;
-  }
-  return scene;
+  return this->SceneIsValid(untargeted) ? std::optional<shadelab::Scene>(scene) : std::nullopt;
 }
 
 void vtkMeshVisibilityFilter::SetDrawnLights(const std::vector<DrawnLight>& lights)

@@ -2,6 +2,7 @@
 // A value in a JSON document together with its JSON pointer, so that every error can say
 // where it is ("/lights/2/min_distance"). The scene file reader and each light type's own
 // fields (lights/) read through it.
+#include "NearestName.h"
 #include "Vec3.h"
 
 #include <nlohmann/json.hpp>
@@ -64,7 +65,9 @@ public:
         {
           list += (list.empty() ? "" : ", ") + std::string(key);
         }
-        JsonNode(item.value(), path_ + "/" + item.key()).fail("unknown field; allowed here: " + list);
+        const std::string meant = nearestName(item.key(), std::vector<std::string>(allowed.begin(), allowed.end()));
+        JsonNode(item.value(), path_ + "/" + item.key())
+          .fail("unknown field; " + (meant.empty() ? "" : "did you mean \"" + meant + "\"? ") + "allowed here: " + list);
       }
     }
   }

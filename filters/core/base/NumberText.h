@@ -1,5 +1,6 @@
 #pragma once
 // Numbers as text for messages and generated expressions.
+#include <cstddef>
 #include <sstream>
 #include <string>
 
@@ -13,5 +14,11 @@ inline std::string withDigits(double x, int digits)
   text.precision(digits);
   text << x;
   return text.str();
+}
+
+/// "1 light", "3 lights": a count and its noun, plural where the count is not 1.
+inline std::string countOf(std::size_t count, const std::string& noun)
+{
+  return std::to_string(count) + " " + noun + (count == 1 ? "" : "s");
 }
 }

@@ -36,6 +36,12 @@ double defaultRelativeTolerance(ValueType type)
   return 0.0;
 }
 
+bool ArrayDifference::passes() const
+{
+  return failing == 0 &&
+    std::all_of(noise.begin(), noise.end(), [](const NoiseCheck& check) { return check.passes(); });
+}
+
 double ArrayDifference::rms() const
 {
   const std::size_t counted = values - nanInBoth - nanInOne;
@@ -92,6 +98,7 @@ ArrayDifference compareArrays(const ArrayValues& a, const ArrayValues& b, const 
   difference.tuplePasses.assign(count / components, 1);
   const bool statistical = rule.standardErrors && errorsA && errorsB && errorsA->type != ValueType::Integer &&
     errorsB->type != ValueType::Integer && errorsA->reals.size() == count && errorsB->reals.size() == count;
+  std::vector<NoiseTally> tallies(statistical ? components : 0);
   // The largest gap among failing values, and among all; infinite for a NaN against a number.
   double worstFailingGap = -1, worstGap = 0;
   std::optional<std::size_t> worstFailing, worstOverall;
@@ -149,14 +156,26 @@ ArrayDifference compareArrays(const ArrayValues& a, const ArrayValues& b, const 
       {
         const double ex = errorsA->reals[i], ey = errorsB->reals[i];
         const double combined = std::sqrt(ex * ex + ey * ey);
-        if (combined > 0 && std::isfinite(combined))
+        if (combined > 0 && std::isfinite(combined) && std::isfinite(gap))
         {
           ++difference.withStandardError;
           for (int k = 0; k < 3; ++k)
           {
             difference.withinStandardErrors[static_cast<std::size_t>(k)] += gap <= (k + 1) * combined ? 1 : 0;
           }
-          passes = passes || gap <= *rule.standardErrors * combined;
+          // A value within the rule agrees (the rounding of a float under a tiny standard
+          // error is no noise): it is not outside, and its difference counts as 0.
+          const bool outside = !passes && gap > *rule.standardErrors * combined;
+          tallies[i % components].add(passes ? 0.0 : y - x, combined * combined, outside);
+          if (outside)
+          {
+            difference.tuplePasses[i / components] = 0;
+          }
+          passes = true; // judged by the count of values outside, not one by one
+        }
+        else if (combined == 0)
+        {
+          ++difference.exactValues;
         }
       }
     }
@@ -170,6 +189,11 @@ ArrayDifference compareArrays(const ArrayValues& a, const ArrayValues& b, const 
     consider(i, gap, passes);
   }
   difference.worst = worstFailing ? worstFailing : worstOverall;
+  const double perCheck = significancePerCheck(rule.significance, static_cast<int>(components));
+  for (const NoiseTally& tally : tallies)
+  {
+    difference.noise.push_back(checkNoise(tally, *rule.standardErrors, perCheck));
+  }
   return difference;
 }
 }

@@ -3,8 +3,11 @@
 //   |a - b| <= max(rtol * max(|a|, |b|), atol),
 // or, in ULP mode, when a and b are at most that many representable numbers of the array's
 // type apart; integers must be equal. NaN equals NaN only where both are NaN, and an infinity
-// only the same infinity. Where standard
-// errors of both values are known, a value also passes within k of their combined error.
+// only the same infinity. Where the standard errors of both files' values are known
+// (statistical mode), the values with a combined standard error > 0 are judged together as
+// Monte Carlo noise (NoiseTest.h), component by component; the others by the rule.
+#include "NoiseTest.h"
+
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -47,15 +50,17 @@ struct ValueRule
   double absolute = 0;
   double relative = 0;
   std::optional<long long> ulps; // ULP mode: replaces absolute and relative
-  /// Statistical mode: also within this many combined standard errors.
+  /// Statistical mode: k, the combined standard errors beyond which a value counts as outside.
   std::optional<double> standardErrors;
+  /// Statistical mode: the chance that two honest runs fail, for the whole array.
+  double significance = 0.001;
 };
 
 /// The differences between two arrays of the same type and shape.
 struct ArrayDifference
 {
   std::size_t values = 0;  // compared
-  std::size_t failing = 0; // values that do not pass
+  std::size_t failing = 0; // values that do not pass the rule (in statistical mode, of those judged by it)
   std::size_t nanInBoth = 0, nanInOne = 0;
   double largest = 0; // of |a - b| over values that are not NaN in both
   double sumOfSquares = 0;
@@ -68,10 +73,15 @@ struct ArrayDifference
   /// within 1, 2 and 3 of it.
   std::size_t withStandardError = 0;
   std::array<std::size_t, 3> withinStandardErrors{};
-  /// Per tuple: whether every component passes.
+  /// Statistical mode: the values whose standard errors are both 0, judged by the rule.
+  std::size_t exactValues = 0;
+  /// Statistical mode: the noise checks of each component (empty otherwise).
+  std::vector<NoiseCheck> noise;
+  /// Per tuple: whether every component passes (in statistical mode, lies within k standard
+  /// errors or passes the rule).
   std::vector<unsigned char> tuplePasses;
 
-  bool passes() const { return failing == 0; }
+  bool passes() const;
   double rms() const;
   double l2() const;
 };

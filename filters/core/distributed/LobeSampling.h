@@ -25,9 +25,10 @@ inline glm::dvec3 cosinePowerDirection(const glm::dvec3& axis, double eta, const
   return sinTheta * std::cos(phi) * t + sinTheta * std::sin(phi) * b + cosTheta * axis;
 }
 
+/// The density of cosinePowerDirection at a cosine to the axis (above 1 by rounding: 1).
 inline double cosinePowerDensity(double cosine, double eta)
 {
-  return cosine > 0 ? (eta + 1) / (2 * samplePi) * std::pow(cosine, eta) : 0.0;
+  return cosine > 0 ? (eta + 1) / (2 * samplePi) * std::pow(std::min(cosine, 1.0), eta) : 0.0;
 }
 
 /// Phong's lobe max(0, r.v)^eta, r the mirror of s, is max(0, s.m)^eta about m, the mirror of v.

@@ -22,9 +22,10 @@ enum ShadingFlag : ShadingFlags
   FlagNonFiniteInput = 1u << 4,
   /// Two-sided shading flipped the normal to face the viewer.
   FlagNormalFlipped = 1u << 5,
-  /// A shadowed light that the normal faces is hidden by a triangle that has the vertex as a
-  /// corner: a concave crease, or the shadow terminator of a coarse mesh, where the smooth
-  /// normal faces a light that a neighbouring facet hides (visibility/Visibility.h).
+  /// The shadow ray to a light that the normal faces met first a triangle that has the vertex
+  /// as a corner: a concave crease, or the shadow terminator of a coarse mesh, where the smooth
+  /// normal faces a light that a neighbouring facet hides. Under SelfShadowing::SmoothSurface
+  /// the light is hidden only by what lies beyond those facets (visibility/Visibility.h).
   FlagHiddenByOwnTriangle = 1u << 6,
   /// A shadowed light hidden from the vertex is enclosed by the mesh: every ray from inside it
   /// meets a triangle (a light inside a closed mesh), so no vertex outside gets its light
@@ -45,7 +46,7 @@ inline constexpr FlagMeaning flagMeanings[] = {
   { FlagHalfVectorUndefined, "half vector undefined" },
   { FlagNonFiniteInput, "non-finite position or normal" },
   { FlagNormalFlipped, "normal flipped to face the viewer" },
-  { FlagHiddenByOwnTriangle, "a shadowed light hidden by its own triangles" },
+  { FlagHiddenByOwnTriangle, "a shadowed light's ray meeting its own triangles first" },
   { FlagLightEnclosed, "a shadowed light hidden inside the mesh" },
 };
 }

@@ -227,11 +227,10 @@ std::string shadowCastingTypeNames()
 
 LightSource readLightSource(const JsonNode& node, const std::string& sceneFile)
 {
-  // First every field any light may have (so that a non-object or a misspelt field is caught
-  // before the type is read), then only those of this light's type.
-  node.expectObject(anyLightFields());
+  // The fields of the light's type, so that a misspelt one is matched against those alone;
+  // without a type, every field any light may have (the type is then reported missing).
+  node.expectObject(node.isObject() && node.has("type") ? fieldsOf(*fileTypeNamed(node.at("type")).type) : anyLightFields());
   const FileTypeEntry& entry = fileTypeNamed(node.at("type"));
-  node.expectObject(fieldsOf(*entry.type));
   return entry.read(node, *entry.type, sceneFile);
 }
 }

@@ -31,11 +31,12 @@ SpotCone readCone(const JsonNode& light);
 void checkCone(const SpotCone& cone, LightChecks& checks);
 
 // VTK 9.1 vtkOpenGLPolyDataMapper, positional lights with ConeAngle < 90:
-// inside (coneDot >= cos(angle)) the factor is coneDot^exponent, outside it is 0.
+// inside (coneDot >= cos(angle)) the factor is coneDot^exponent, outside it is 0. A coneDot
+// that rounding puts above 1 is taken as 1, so that the factor never exceeds 1.
 template <typename T>
 T vtkConeFactor(T cosToAxis, T cosHalfAngle, T exponent)
 {
-  return cosToAxis >= cosHalfAngle ? std::pow(cosToAxis, exponent) : T(0);
+  return cosToAxis >= cosHalfAngle ? std::pow(std::min(cosToAxis, T(1)), exponent) : T(0);
 }
 
 // KHR_lights_punctual, "Inner and Outer Cone Angles":

@@ -336,9 +336,11 @@ std::string targetText(const SamplingTarget& target, const char* unit)
 std::vector<std::string> MethodPlan::describe() const
 {
   std::vector<std::string> lines;
-  lines.push_back(std::string("tolerance ") + scientific(tolerance) + ", predicted error " +
-    scientific(predictedError()) + "; arithmetic " + (precision == Precision::Float32 ? "float32" : "float64") +
-    " (rounding " + scientific(arithmeticError) + (roundingSampled ? ", measured on a sample of the points" : "") + ")");
+  // What was chosen, then why: the predicted errors of all of it fit the tolerance.
+  lines.push_back(std::string("arithmetic ") + (precision == Precision::Float32 ? "float32" : "float64") + " (rounding " +
+    scientific(arithmeticError) + (roundingSampled ? ", measured on a sample of the points" : "") +
+    ") and the methods below, chosen so that their predicted errors, " + scientific(predictedError()) +
+    " in all, stay within the tolerance " + scientific(tolerance));
   for (const LightChoice& light : lights)
   {
     std::string line = light.name + ": ";

@@ -71,11 +71,13 @@ bool halfVector(const Vec3<T>& s, const Vec3<T>& v, Vec3<T>& h)
 
 // docs/formulas.md sections 4 and 5: the specular lobe cos^eta, for Phong (cos = r.v) and
 // Blinn-Phong (cos = n.h). Negative cosines are clamped to 0 before pow (section 16.1), and
-// only a lit vertex (n.s > 0) has a lobe. eta = 0 follows C++'s pow(0, 0) = 1: the lobe is
+// cosines that rounding puts above 1 to 1, which a shininess of 1e30 would otherwise raise to
+// Inf (and Inf / Inf to NaN where a sampler divides by the lobe's density). Only a lit vertex
+// (n.s > 0) has a lobe. eta = 0 follows C++'s pow(0, 0) = 1: the lobe is
 // the constant 1 on every lit vertex (section 16.3).
 template <typename T>
 T specularLobe(bool lit, T cosine, T eta)
 {
-  return lit ? std::pow(std::max(cosine, T(0)), eta) : T(0);
+  return lit ? std::pow(std::clamp(cosine, T(0), T(1)), eta) : T(0);
 }
 }

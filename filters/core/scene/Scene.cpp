@@ -178,16 +178,30 @@ std::vector<SceneProblem> sceneProblems(const Scene& scene, Precision precision)
   {
     // The outputs are sums of the lights' contributions: keep them below a quarter of the
     // largest finite value, a margin for the rounding of the products that form them.
-    double sum = 0;
-    for (const NamedLight& light : scene.lights)
+    // A light that overflows alone is named by its intensity, the field to change.
+    const double limit = largestFinite(precision) / 4;
+    auto beyond = [&](double peak)
     {
-      sum += peakContribution(light.source, m);
+      const std::string reach = std::isfinite(peak) ? scientific(peak) : "more than " + scientific(largestFinite(Precision::Float64));
+      return reach + " at a vertex (colour x intensity x k x attenuation at min_distance), beyond what " +
+        precisionName(precision) + " holds: use " + (precision == Precision::Float32 ? "float64 or " : "");
+    };
+    double sum = 0;
+    for (std::size_t i = 0; i < scene.lights.size(); ++i)
+    {
+      const double peak = peakContribution(scene.lights[i].source, m);
+      // The light of colour and intensity 1 reaches k x attenuation: where that is the larger
+      // factor, a tiny min_distance is what overflows, not the light's strength.
+      LightSource unit = scene.lights[i].source;
+      std::visit([](auto& light) { light.color = Rgb(1.0), light.intensity = 1.0; }, unit);
+      const double unitPeak = peakContribution(unit, m);
+      const bool nearness = unitPeak > 1 && unitPeak * unitPeak > peak;
+      list.check(peak <= limit, "/lights/" + std::to_string(i) + (nearness ? "/min_distance" : "/intensity"),
+        "this light alone can reach " + beyond(peak) + (nearness ? "a larger min_distance" : "a smaller intensity or colour"));
+      sum += peak;
     }
-    list.check(sum <= largestFinite(precision) / 4, "/lights",
-      std::string("together the lights can reach ") + scientific(sum) +
-        " at a vertex (colour x intensity x k x attenuation at min_distance), beyond what " +
-        precisionName(precision) + " holds: use " +
-        (precision == Precision::Float32 ? "float64 or " : "") + "smaller values");
+    list.check(list.problems.size() > 0 || sum <= limit, "/lights",
+      "together the lights can reach " + beyond(sum) + "smaller intensities");
   }
   return list.problems;
 }
@@ -197,22 +211,22 @@ bool shadesBothSides(const Scene& scene)
   return scene.material.twoSided || scene.model == ShadingModel::VtkOpenGL2;
 }
 
-std::string untargetedSamplingProblem(const Scene& scene, bool lightsPlanned)
+std::vector<SceneProblem> untargetedSamplingProblems(const Scene& scene, bool lightsPlanned)
 {
   const std::string remedy = "give one (shadelab shade --tolerance, the filter's Tolerance), or a number of ";
   if (scene.ambientOcclusion && scene.ambientOcclusion->sampling.fromTolerance && !scene.ambientOcclusion->target)
   {
-    return "ambient occlusion with \"rays\": \"auto\" takes its count of rays from a tolerance: " + remedy + "rays";
+    return { { "/ambient_occlusion/rays", "\"auto\" takes its count of rays from a tolerance: " + remedy + "rays" } };
   }
-  for (const NamedLight& light : scene.lights)
+  for (std::size_t i = 0; i < scene.lights.size(); ++i)
   {
-    const Sampling* sampling = samplingOf(light.source);
+    const Sampling* sampling = samplingOf(scene.lights[i].source);
     if (sampling && sampling->fromTolerance && !lightsPlanned)
     {
-      return "light '" + light.name + "' has \"samples\": \"auto\", which takes its count from a tolerance: " + remedy +
-        "samples";
+      return { { "/lights/" + std::to_string(i) + "/samples",
+        "\"auto\" takes the count of light '" + scene.lights[i].name + "' from a tolerance: " + remedy + "samples" } };
     }
   }
-  return "";
+  return {};
 }
 }

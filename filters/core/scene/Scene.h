@@ -5,6 +5,7 @@
 #include "Material.h"
 #include "Precision.h"
 #include "SampleSequence.h"
+#include "SelfShadowing.h"
 #include "SequentialSampling.h"
 #include "Vec3.h"
 
@@ -76,6 +77,8 @@ struct Scene
   bool vtkLoneHeadlight = false;
   std::optional<AmbientOcclusion> ambientOcclusion;
   std::optional<SpectralMode> spectral;
+  /// Which triangles hide a shadowed light: "self_shadowing" in a scene file.
+  SelfShadowing selfShadowing = SelfShadowing::SmoothSurface;
 
   /// Whether anything needs rays cast against the mesh: a light's shadows or occlusion.
   bool needsVisibility() const;
@@ -110,9 +113,9 @@ std::vector<SceneProblem> sceneProblems(const Scene& scene, Precision precision 
 /// always flips back faces): the normal turned toward the viewer where it faces away.
 bool shadesBothSides(const Scene& scene);
 
-/// Why the scene's samples cannot be drawn as it stands, or "": ambient occlusion with
-/// "rays": "auto" that no tolerance has given a target (MethodChoice.h), and unless
-/// lightsPlanned (a tolerance's plan gives each light its targets), any light with
-/// "samples": "auto".
-std::string untargetedSamplingProblem(const Scene& scene, bool lightsPlanned);
+/// Why the scene's samples cannot be drawn as it stands, at the field that says so (none
+/// where they can): ambient occlusion with "rays": "auto" that no tolerance has given a target
+/// (MethodChoice.h), and unless lightsPlanned (a tolerance's plan gives each light its
+/// targets), any light with "samples": "auto".
+std::vector<SceneProblem> untargetedSamplingProblems(const Scene& scene, bool lightsPlanned);
 }

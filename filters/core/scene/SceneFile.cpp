@@ -201,7 +201,8 @@ Viewer readViewer(const JsonNode& node)
 Scene readScene(const Json& document, const std::string& sceneFile)
 {
   const JsonNode root(document, "");
-  root.expectObject({ "model", "frame", "viewer", "material", "lights", "shadows", "ambient_occlusion", "spectral" });
+  root.expectObject(
+    { "model", "frame", "viewer", "material", "lights", "shadows", "self_shadowing", "ambient_occlusion", "spectral" });
   Scene scene;
   if (root.has("model"))
   {
@@ -226,6 +227,11 @@ Scene readScene(const Json& document, const std::string& sceneFile)
   for (std::size_t i = 0; i < lights.size(); ++i)
   {
     scene.lights.push_back(readLight(lights.element(i), i, sceneFile, shadowsByDefault));
+  }
+  if (root.has("self_shadowing"))
+  {
+    scene.selfShadowing = root.at("self_shadowing").choice<SelfShadowing>(
+      { { "smooth", SelfShadowing::SmoothSurface }, { "facets", SelfShadowing::Facets } });
   }
   if (root.has("ambient_occlusion"))
   {

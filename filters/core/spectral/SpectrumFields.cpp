@@ -2,6 +2,9 @@
 
 #include "ReflectanceUpsampling.h"
 
+#include <glm/common.hpp>
+#include <glm/matrix.hpp>
+
 #include <cmath>
 
 namespace shadelab
@@ -75,15 +78,27 @@ SampledSpectrum readSpectrum(const JsonNode& node)
   return table;
 }
 
+namespace
+{
+/// Linear sRGB with its negative channels set to 0: the colour of a spectrum outside sRGB's
+/// gamut (a blackbody below about 1900 K, a narrow band) as the nearest colour the RGB model can
+/// hold channel by channel.
+glm::dvec3 clippedToGamut(const glm::dvec3& rgb)
+{
+  return glm::max(rgb, glm::dvec3(0.0));
+}
+}
+
 glm::dvec3 reflectorRgb(const SampledSpectrum& reflectance)
 {
-  return reflectanceRgb(reflectance, standardObserver(), d65Illuminant());
+  return clippedToGamut(reflectanceRgb(reflectance, standardObserver(), d65Illuminant()));
 }
 
 glm::dvec3 emitterRgb(const SampledSpectrum& emission)
 {
   const glm::dvec3 xyz =
     tristimulus([&](double nm) { return emission.at(nm); }, standardObserver(), standardObserver().y.stepNm);
-  return xyzToLinearSrgb() * (xyz / xyz.y);
+  const glm::dvec3 clipped = clippedToGamut(xyzToLinearSrgb() * (xyz / xyz.y));
+  return clipped / (glm::inverse(xyzToLinearSrgb()) * clipped).y;
 }
 }

@@ -33,10 +33,12 @@ auto withColorTables(const JsonNode& node, Compute&& compute)
 SampledSpectrum readSpectrum(const JsonNode& node);
 
 /// The linear sRGB of light with this spectrum, its luminance Y scaled to 1: what it is in the
-/// RGB model (D65 is (1, 1, 1)). Throws std::runtime_error where colord's tables are missing.
+/// RGB model (D65 is (1, 1, 1)). Outside sRGB's gamut (a blackbody below about 1900 K) its
+/// negative channels are set to 0 before the scaling. Infinite where Y is 0. Throws
+/// std::runtime_error where colord's tables are missing.
 glm::dvec3 emitterRgb(const SampledSpectrum& emission);
 
 /// A reflectance's linear sRGB under D65, a flat 1.0 being (1, 1, 1): what it is in the RGB
-/// model. Throws std::runtime_error where colord's tables are missing.
+/// model, negative channels (outside sRGB's gamut) set to 0. Throws std::runtime_error where colord's tables are missing.
 glm::dvec3 reflectorRgb(const SampledSpectrum& reflectance);
 }

@@ -320,9 +320,8 @@ void OccluderMesh::checkTracing() const
   embree_->check("trace the rays");
 }
 
-OccluderMesh::FrameRay OccluderMesh::inFrame(const SurfaceRay& ray) const
+glm::vec3 OccluderMesh::leavingSide(const SurfaceRay& ray) const
 {
-  const glm::vec3 point(frame_.toUnit(ray.point));
   glm::vec3 side(ray.side);
   if (ray.vertex >= 0 && static_cast<std::size_t>(ray.vertex) < jointNormals_.size())
   {
@@ -331,7 +330,12 @@ OccluderMesh::FrameRay OccluderMesh::inFrame(const SurfaceRay& ray) const
     const float along = glm::dot(joint, side);
     side = along > 0 ? joint : along < 0 ? -joint : side;
   }
-  return { offsetRayOrigin(point, side), glm::vec3(ray.direction),
+  return side;
+}
+
+OccluderMesh::FrameRay OccluderMesh::inFrame(const SurfaceRay& ray) const
+{
+  return { offsetRayOrigin(glm::vec3(frame_.toUnit(ray.point)), leavingSide(ray)), glm::vec3(ray.direction),
     frameDistance(ray.maxDistance) };
 }
 
@@ -440,6 +444,31 @@ bool OccluderMesh::leavesAllOwnPlanes(const FrameRay& ray, const glm::vec3& unit
   return movesAway(1) || movesAway(-1);
 }
 
+std::int64_t OccluderMesh::firstHit(const FrameRay& ray) const
+{
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRayHit rayHit;
+  setRay(rayHit.ray, ray.origin, ray.direction, ray.maxDistance);
+  rayHit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rayHit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(embree_->scene, &context, &rayHit);
+  return rayHit.hit.geomID == RTC_INVALID_GEOMETRY_ID ? -1 : std::int64_t(rayHit.hit.primID);
+}
+
+bool OccluderMesh::hasCornerAt(std::size_t t, const glm::vec3& unitPoint) const
+{
+  for (int i = 0; i < 3; ++i)
+  {
+    const float* corner = &frame_.vertices[3 * std::size_t(triangles_[3 * t + i])];
+    if (corner[0] == unitPoint.x && corner[1] == unitPoint.y && corner[2] == unitPoint.z)
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
 bool OccluderMesh::firstHitHasCorner(const FrameRay& ray, const glm::dvec3& point, PointId vertex) const
 {
   // The corners as the BVH holds them, against the point taken into the frame the same way.
@@ -448,26 +477,99 @@ bool OccluderMesh::firstHitHasCorner(const FrameRay& ray, const glm::dvec3& poin
   {
     return false; // none of its own triangles is in the ray's way, whatever it meets first
   }
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
-  RTCRayHit rayHit;
   // The search ends where the point's own triangles end: beyond, a first hit is not its own.
-  setRay(rayHit.ray, ray.origin, ray.direction, ownTrianglesReach(ray, unitPoint, vertex));
-  rayHit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  rayHit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-  rtcIntersect1(embree_->scene, &context, &rayHit);
-  if (rayHit.hit.geomID == RTC_INVALID_GEOMETRY_ID)
+  FrameRay nearby = ray;
+  nearby.maxDistance = ownTrianglesReach(ray, unitPoint, vertex);
+  const std::int64_t hit = firstHit(nearby);
+  return hit >= 0 && hasCornerAt(std::size_t(hit), unitPoint);
+}
+
+bool OccluderMesh::aroundOnItsSurface(std::size_t t, PointId vertex, const glm::vec3& point, const glm::dvec3& side) const
+{
+  for (int i = 0; i < 3; ++i)
+  {
+    if (PointId(triangles_[3 * t + i]) == vertex)
+    {
+      return true; // its normal is the mean of this facet's and its neighbours'
+    }
+  }
+  if (!hasCornerAt(t, point))
   {
     return false;
   }
-  for (int i = 0; i < 3; ++i)
+  // A copy's facet: across a UV seam, the same surface; across a hard edge, where a mesh is
+  // split at its feature edges (30 degrees by default in vtkPolyDataNormals), another one.
+  const glm::dvec3 a = unitPoint(frame_.vertices, triangles_[3 * t]);
+  const glm::dvec3 normal = glm::cross(
+    unitPoint(frame_.vertices, triangles_[3 * t + 1]) - a, unitPoint(frame_.vertices, triangles_[3 * t + 2]) - a);
+  constexpr double cos30Degrees = 0.86602540378443865;
+  return std::abs(glm::dot(normal, side)) >= cos30Degrees * glm::length(normal);
+}
+
+double OccluderMesh::ownFacetsRise(const glm::vec3& point, PointId vertex, const glm::dvec3& side) const
+{
+  // Every triangle with the point or a copy as a corner lies within the point's reach of it.
+  struct Query
   {
-    const float* corner = &frame_.vertices[3 * std::size_t(triangles_[3 * rayHit.hit.primID + i])];
-    if (corner[0] == unitPoint.x && corner[1] == unitPoint.y && corner[2] == unitPoint.z)
+    const OccluderMesh& mesh;
+    glm::vec3 point;
+    PointId vertex;
+    glm::dvec3 side;
+    double rise = 0;
+  } query{ *this, point, vertex, side };
+  RTCPointQuery sphere;
+  sphere.x = point.x;
+  sphere.y = point.y;
+  sphere.z = point.z;
+  sphere.time = 0.0f;
+  sphere.radius = 1.001f * ownReach_[static_cast<std::size_t>(vertex)] + 1e-6f;
+  RTCPointQueryContext context;
+  rtcInitPointQueryContext(&context);
+  rtcPointQuery(embree_->scene, &sphere, &context,
+    [](RTCPointQueryFunctionArguments* args)
     {
-      return true;
-    }
+      Query& q = *static_cast<Query*>(args->userPtr);
+      const std::size_t t = args->primID;
+      if (q.mesh.aroundOnItsSurface(t, q.vertex, q.point, q.side))
+      {
+        for (int i = 0; i < 3; ++i)
+        {
+          const glm::dvec3 corner = unitPoint(q.mesh.frame_.vertices, q.mesh.triangles_[3 * t + i]);
+          q.rise = std::max(q.rise, glm::dot(corner - glm::dvec3(q.point), q.side));
+        }
+      }
+      return false; // the query sphere stays as it is
+    },
+    &query);
+  return query.rise;
+}
+
+bool OccluderMesh::hiddenPastOwnFacets(const SurfaceRay& surfaceRay) const
+{
+  const glm::vec3 start(frame_.toUnit(surfaceRay.point));
+  const glm::dvec3 side(leavingSide(surfaceRay));
+  FrameRay ray = inFrame(surfaceRay);
+  const bool hasOwnFacets = surfaceRay.vertex >= 0 && static_cast<std::size_t>(surfaceRay.vertex) < ownReach_.size();
+  if (!hasOwnFacets || leavesAllOwnPlanes(ray, start, static_cast<std::size_t>(surfaceRay.vertex)))
+  {
+    return true; // no own triangle is in its way: what blocks it is something else
   }
-  return false;
+  const std::int64_t hit = firstHit(ray);
+  if (hit < 0 || !aroundOnItsSurface(std::size_t(hit), surfaceRay.vertex, start, side))
+  {
+    return hit >= 0;
+  }
+  // From above every corner of the point's facets, a ray that leaves their side meets none of
+  // them (nor any facet between them); the light is retargeted from there.
+  const double lift = ownFacetsRise(start, surfaceRay.vertex, side);
+  const glm::dvec3 light = glm::dvec3(start) + glm::dvec3(ray.direction) * double(ray.maxDistance);
+  ray.origin = offsetRayOrigin(glm::vec3(glm::dvec3(start) + lift * side), glm::vec3(side));
+  if (!std::isinf(ray.maxDistance))
+  {
+    const glm::dvec3 toLight = light - glm::dvec3(ray.origin);
+    ray.maxDistance = static_cast<float>(glm::length(toLight));
+    ray.direction = glm::vec3(toLight / glm::length(toLight));
+  }
+  return occluded(&ray, 1) != 0;
 }
 }

@@ -81,6 +81,14 @@ public:
   /// took, per blocked shadow ray on the bunny.
   bool firstHitHasCorner(const FrameRay& ray, const glm::dvec3& point, PointId vertex = -1) const;
 
+  /// Whether a blocked ray stays blocked once the point's own facets on its smooth surface are
+  /// passed over (docs/formulas.md section 20, the shadow terminator): where the first
+  /// triangle the ray meets lies around the point on its surface (aroundOnItsSurface), the ray
+  /// starts again from the point lifted along the side it leaves from, above every corner of
+  /// those triangles (a terminator offset, as Blender's at a vertex). A copy's triangle across
+  /// a hard edge still blocks it, and so does every other triangle.
+  bool hiddenPastOwnFacets(const SurfaceRay& ray) const;
+
   std::size_t triangleCount() const { return triangles_.size() / 3; }
 
   /// Unit vectors within an angle of an axis, in 8 bytes: the axis and the cosine of the
@@ -120,6 +128,20 @@ private:
     static UnitFrame of(PackedPoints<Real> points, std::size_t pointCount);
   };
   OccluderMesh(UnitFrame frame, const PolygonList& polygons);
+  /// The unit normal of the side a ray from the surface leaves from: the joint normal of the
+  /// point and its copies where it has copies, else ray.side, in the BVH's frame.
+  glm::vec3 leavingSide(const SurfaceRay& ray) const;
+  /// The triangle the ray meets first, or -1.
+  std::int64_t firstHit(const FrameRay& ray) const;
+  /// Whether triangle t has a corner at unitPoint (in the unit frame).
+  bool hasCornerAt(std::size_t t, const glm::vec3& unitPoint) const;
+  /// Whether triangle t lies around the point of id vertex at `point` (in the unit frame) on the surface its
+  /// normal describes: the point is its corner, or a copy of the point is and the triangle's
+  /// normal is within 30 degrees of side (a seam, not a hard edge).
+  bool aroundOnItsSurface(std::size_t t, PointId vertex, const glm::vec3& point, const glm::dvec3& side) const;
+  /// How far above the plane through `point` (in the unit frame) with unit normal side the
+  /// corners of the triangles around the point on its surface reach (0 where none rises).
+  double ownFacetsRise(const glm::vec3& point, PointId vertex, const glm::dvec3& side) const;
   /// How far along the ray from the point of id vertex (or -1) its own triangles can be met.
   float ownTrianglesReach(const FrameRay& ray, const glm::vec3& unitPoint, PointId vertex) const;
   /// Whether the ray, from the point (in the unit frame) of index `point`, starts on one side of

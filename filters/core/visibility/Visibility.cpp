@@ -150,8 +150,9 @@ int drawRays(const OccluderMesh& occluders, const RayVertex& vertex, std::uint64
 }
 
 void lightVisibility(const OccluderMesh& occluders, const RayVertex* vertices, const LightDirection* directions,
-  int count, bool twoSided, LightVisibility* visibility)
+  int count, bool twoSided, LightVisibility* visibility, SelfShadowing selfShadowing)
 {
+  SurfaceRay surfaceRays[OccluderMesh::bundleSize];
   OccluderMesh::FrameRay rays[OccluderMesh::bundleSize];
   int cast[OccluderMesh::bundleSize]; // the vertex of each ray
   int rayCount = 0;
@@ -164,6 +165,10 @@ void lightVisibility(const OccluderMesh& occluders, const RayVertex* vertices, c
       LightVisibility& seen = visibility[cast[j]];
       seen.visible = ((hidden >> j) & 1u) == 0;
       seen.blockedByOwnTriangle = !seen.visible && occluders.firstHitHasCorner(rays[j], vertex.position, vertex.id);
+      if (seen.blockedByOwnTriangle && selfShadowing == SelfShadowing::SmoothSurface)
+      {
+        seen.visible = !occluders.hiddenPastOwnFacets(surfaceRays[j]);
+      }
     }
     rayCount = 0;
   };
@@ -174,8 +179,9 @@ void lightVisibility(const OccluderMesh& occluders, const RayVertex* vertices, c
     visibility[k] = {};
     if (hasNormal(vertex) && cosine != 0 && (cosine > 0 || twoSided))
     {
-      rays[rayCount] = occluders.inFrame({ vertex.position, cosine > 0 ? vertex.normal : -vertex.normal,
-        directions[k].toLight, directions[k].distance, vertex.id });
+      surfaceRays[rayCount] = { vertex.position, cosine > 0 ? vertex.normal : -vertex.normal, directions[k].toLight,
+        directions[k].distance, vertex.id };
+      rays[rayCount] = occluders.inFrame(surfaceRays[rayCount]);
       cast[rayCount++] = k;
       if (rayCount == OccluderMesh::bundleSize)
       {
@@ -192,10 +198,12 @@ int HiddenSampleTracer::add(const ShadowedLightEstimator& light, const SurfacePo
   rays_.resize(static_cast<std::size_t>(count));
   light.shadowRays(point, rays_.data());
   // The rays differ only in direction and length: the start is moved off the surface once.
-  return addRays(occluders_.inFrame({ point.position, point.normal, {}, 0.0, vertex }), rays_.data(), count, words);
+  const SurfaceRay from{ point.position, point.normal, {}, 0.0, vertex };
+  return addRays(from, occluders_.inFrame(from), rays_.data(), count, words);
 }
 
-int HiddenSampleTracer::addRays(const OccluderMesh::FrameRay& start, const ShadowRay* rays, int count, std::uint64_t* words)
+int HiddenSampleTracer::addRays(
+  const SurfaceRay& from, const OccluderMesh::FrameRay& start, const ShadowRay* rays, int count, std::uint64_t* words)
 {
   std::fill_n(words, hiddenSampleWords(count), 0u);
   int cast = 0;
@@ -206,6 +214,7 @@ int HiddenSampleTracer::addRays(const OccluderMesh::FrameRay& start, const Shado
       continue;
     }
     packet_[queued_] = { start.origin, glm::vec3(rays[j].direction), occluders_.frameDistance(rays[j].distance) };
+    surfaceRays_[queued_] = { from.point, from.side, rays[j].direction, rays[j].distance, from.vertex };
     wordOf_[queued_] = &words[j / 64];
     bitOf_[queued_++] = j % 64;
     ++cast;
@@ -222,29 +231,33 @@ void HiddenSampleTracer::flush()
   const unsigned hidden = queued_ > 0 ? occluders_.occluded(packet_, queued_) : 0u;
   for (int j = 0; j < queued_; ++j)
   {
-    *wordOf_[j] |= std::uint64_t((hidden >> j) & 1u) << bitOf_[j];
+    const bool blocked = ((hidden >> j) & 1u) != 0 &&
+      (selfShadowing_ == SelfShadowing::Facets || occluders_.hiddenPastOwnFacets(surfaceRays_[j]));
+    *wordOf_[j] |= std::uint64_t(blocked) << bitOf_[j];
   }
   queued_ = 0;
 }
 
-RoundShadowTracer::RoundShadowTracer(const OccluderMesh& occluders, const SurfacePoint& point, PointId vertex)
-  : tracer_(occluders)
-  , start_(occluders.inFrame({ point.position, point.normal, {}, 0.0, vertex }))
+RoundShadowTracer::RoundShadowTracer(
+  const OccluderMesh& occluders, const SurfacePoint& point, PointId vertex, SelfShadowing selfShadowing)
+  : tracer_(occluders, selfShadowing)
+  , from_{ point.position, point.normal, {}, 0.0, vertex }
+  , start_(occluders.inFrame(from_))
 {
 }
 
 HiddenSamples RoundShadowTracer::trace(const ShadowRay* rays, int count)
 {
   words_.resize(static_cast<std::size_t>(hiddenSampleWords(count)));
-  cast_ += static_cast<std::uint64_t>(tracer_.addRays(start_, rays, count, words_.data()));
+  cast_ += static_cast<std::uint64_t>(tracer_.addRays(from_, start_, rays, count, words_.data()));
   tracer_.flush();
   return { words_.data() };
 }
 
 void hiddenSamples(const OccluderMesh& occluders, const ShadowedLightEstimator& light, const SurfacePoint& point,
-  PointId vertex, std::uint64_t* words)
+  PointId vertex, std::uint64_t* words, SelfShadowing selfShadowing)
 {
-  HiddenSampleTracer tracer(occluders);
+  HiddenSampleTracer tracer(occluders, selfShadowing);
   tracer.add(light, point, vertex, words);
   tracer.flush();
 }

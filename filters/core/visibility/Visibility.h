@@ -7,6 +7,7 @@
 #include "LightEvaluation.h"
 #include "OccluderMesh.h"
 #include "SampleSequence.h"
+#include "SelfShadowing.h"
 #include "SequentialSampling.h"
 
 #include <glm/vec3.hpp>
@@ -32,9 +33,10 @@ struct RayVertex
 struct LightVisibility
 {
   bool visible = false;
-  /// Blocked by a triangle that has the vertex, or a copy of it at a seam, as a corner: a
-  /// concave crease, or, on a coarse mesh, a light the smooth normal faces but a neighbouring
-  /// facet hides (the shadow terminator).
+  /// The ray's first hit is a triangle that has the vertex, or a copy of it at a seam, as a
+  /// corner: a concave crease, or, on a coarse mesh, a light the smooth normal faces but a
+  /// neighbouring facet hides (the shadow terminator). Under SelfShadowing::SmoothSurface the
+  /// light may still be visible.
   bool blockedByOwnTriangle = false;
 };
 
@@ -48,9 +50,9 @@ constexpr int rayVertexGroup = 64;
 /// leaves on the side of the normal that faces the light; where the light is on the normal's
 /// back side and the material is not two-sided, or the vertex has no normal, no ray is cast and
 /// the light counts as hidden (the surface itself hides it, and the terms it multiplies are 0
-/// there).
+/// there). selfShadowing says whether the vertex's own facets hide a light (SelfShadowing.h).
 void lightVisibility(const OccluderMesh& occluders, const RayVertex* vertices, const LightDirection* directions,
-  int count, bool twoSided, LightVisibility* visibility);
+  int count, bool twoSided, LightVisibility* visibility, SelfShadowing selfShadowing = SelfShadowing::SmoothSurface);
 
 /// The samples of shadowed area lights or maps that the mesh hides from surface points, as the
 /// bits of HiddenSamples: the rays of several points gathered into full packets, each ray's
@@ -60,8 +62,9 @@ void lightVisibility(const OccluderMesh& occluders, const RayVertex* vertices, c
 class HiddenSampleTracer
 {
 public:
-  explicit HiddenSampleTracer(const OccluderMesh& occluders)
+  explicit HiddenSampleTracer(const OccluderMesh& occluders, SelfShadowing selfShadowing = SelfShadowing::SmoothSurface)
     : occluders_(occluders)
+    , selfShadowing_(selfShadowing)
   {
   }
   HiddenSampleTracer(const HiddenSampleTracer&) = delete;
@@ -73,15 +76,19 @@ public:
   /// copies at seams). Their bits are set when their packet is traced, by flush() at the
   /// latest. Returns how many rays the point casts.
   int add(const ShadowedLightEstimator& light, const SurfacePoint& point, PointId vertex, std::uint64_t* words);
-  /// The same for rays[0..count-1] from start (a point moved off its surface, inFrame).
-  int addRays(const OccluderMesh::FrameRay& start, const ShadowRay* rays, int count, std::uint64_t* words);
+  /// The same for rays[0..count-1] from the surface point `from` (its direction and distance
+  /// unused), whose start off the surface is `start` (occluders.inFrame(from)).
+  int addRays(const SurfaceRay& from, const OccluderMesh::FrameRay& start, const ShadowRay* rays, int count,
+    std::uint64_t* words);
   /// Traces the rays still queued: after it, every added point's bits are set.
   void flush();
 
 private:
   const OccluderMesh& occluders_;
+  SelfShadowing selfShadowing_;
   std::vector<ShadowRay> rays_; // one point's rays, as the light names them
   OccluderMesh::FrameRay packet_[OccluderMesh::bundleSize];
+  SurfaceRay surfaceRays_[OccluderMesh::bundleSize]; // the queued rays as they leave the surface
   std::uint64_t* wordOf_[OccluderMesh::bundleSize]; // where each queued ray's answer goes
   int bitOf_[OccluderMesh::bundleSize];
   int queued_ = 0;
@@ -96,13 +103,15 @@ class RoundShadowTracer final : public RoundShadows
 public:
   /// point: the kernel's point, whose rays leave on the side of point.normal; vertex: its id in
   /// the occluders (for its copies at seams).
-  RoundShadowTracer(const OccluderMesh& occluders, const SurfacePoint& point, PointId vertex);
+  RoundShadowTracer(const OccluderMesh& occluders, const SurfacePoint& point, PointId vertex,
+    SelfShadowing selfShadowing = SelfShadowing::SmoothSurface);
   HiddenSamples trace(const ShadowRay* rays, int count) override;
   /// How many rays it has cast.
   std::uint64_t cast() const { return cast_; }
 
 private:
   HiddenSampleTracer tracer_;
+  SurfaceRay from_;
   OccluderMesh::FrameRay start_;
   std::vector<std::uint64_t> words_;
   std::uint64_t cast_ = 0;
@@ -110,7 +119,7 @@ private:
 
 /// The hidden samples of one point, traced at once (HiddenSampleTracer).
 void hiddenSamples(const OccluderMesh& occluders, const ShadowedLightEstimator& light, const SurfacePoint& point,
-  PointId vertex, std::uint64_t* words);
+  PointId vertex, std::uint64_t* words, SelfShadowing selfShadowing = SelfShadowing::SmoothSurface);
 
 /// Whether the mesh encloses the point: every one of enclosureRays rays from it, spread evenly
 /// over the sphere, meets a triangle. Then a light there is hidden from every vertex outside

@@ -1,0 +1,17 @@
+#pragma once
+// Which triangles hide a light from a vertex on its own surface (docs/formulas.md section 20).
+
+namespace shadelab
+{
+/// What hides a light from a vertex of a faceted mesh whose normals describe a smooth surface
+/// (docs/formulas.md section 20, the shadow terminator).
+enum class SelfShadowing
+{
+  /// The smooth surface: facets around the vertex that lie within 60 degrees of its normal do
+  /// not hide a light its normal faces (OccluderMesh::hiddenPastOwnFacets); every other
+  /// triangle does.
+  SmoothSurface,
+  /// The facets as given: every triangle hides what it blocks.
+  Facets,
+};
+}
