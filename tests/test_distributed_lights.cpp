@@ -14,6 +14,7 @@
 #include <iostream>
 #include <memory>
 #include <numeric>
+#include <random>
 
 using namespace shadelab;
 
@@ -561,6 +562,36 @@ TEST(LobeSampling, DensityIntegratesToOne)
       EXPECT_NEAR(integral, 1.0, 2e-3) << (model == SpecularModel::Phong ? "Phong" : "Blinn-Phong") << " eta " << eta;
     }
   }
+}
+
+// lobeWithDensity shares Blinn-Phong's power between the lobe and its density: both must be
+// the bits of the lobe and lobeDensity, on every side of the normal and the viewer (n.h and
+// n.s of either sign), at eta 0 (pow(0, 0) = 1) and where s = -v leaves h undefined.
+TEST(LobeSampling, LobeWithDensityIsTheLobeAndTheDensity)
+{
+  std::mt19937_64 random(21);
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  auto direction = [&] { return glm::normalize(glm::dvec3(uniform(random), uniform(random), uniform(random))); };
+  int compared = 0, bothPositive = 0;
+  for (const SpecularModel model : { SpecularModel::Phong, SpecularModel::BlinnPhong })
+  {
+    for (const double eta : { 0.0, 1.0, 40.0, 1e6 })
+    {
+      const LobeModel lobe{ model, eta };
+      for (int i = 0; i < 2000; ++i)
+      {
+        const glm::dvec3 n = direction(), v = direction();
+        const glm::dvec3 s = i == 0 ? -v : direction();
+        const LobeAtDirection both = lobeWithDensity(lobe, n, v, s);
+        EXPECT_EQ(both.value, lobe(n, s, v)) << eta;
+        EXPECT_EQ(both.density, lobeDensity(lobe, n, v, s)) << eta;
+        bothPositive += both.value > 0 && both.density > 0 ? 1 : 0;
+        ++compared;
+      }
+    }
+  }
+  EXPECT_EQ(compared, 16000);
+  EXPECT_GT(bothPositive, 3000);
 }
 
 // S by luminance and lobe together against the brute-force sum over every texel of a smooth

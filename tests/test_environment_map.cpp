@@ -723,6 +723,35 @@ TEST(ShRotation, TurningAMapsNineCoefficientsIsTurningItsIrradiance)
 
 // --- Importance sampling --------------------------------------------------------------------
 
+/// The cumulative distribution of weights, from 0 to 1, as the sampler builds it.
+std::vector<double> cumulativeDistribution(const std::vector<double>& weights)
+{
+  std::vector<double> cdf(weights.size() + 1, 0.0);
+  for (std::size_t i = 0; i < weights.size(); ++i)
+  {
+    cdf[i + 1] = cdf[i] + weights[i];
+  }
+  const double sum = cdf.back();
+  for (double& value : cdf)
+  {
+    value /= sum;
+  }
+  return cdf;
+}
+
+struct BinAndOffset
+{
+  int bin;
+  double offset;
+};
+
+/// The bin of a cdf of `bins` bins that holds u, by std::upper_bound, and where in it.
+BinAndOffset invertedAt(const double* cdf, int bins, double u)
+{
+  const int bin = static_cast<int>(std::upper_bound(cdf, cdf + bins + 1, u) - cdf) - 1;
+  return { bin, (u - cdf[bin]) / (cdf[bin + 1] - cdf[bin]) };
+}
+
 /// A smooth, coloured map: a soft bright lobe around d on a dim sky.
 EnvironmentMap smoothMap(int width)
 {
@@ -791,20 +820,6 @@ TEST(EnvironmentSampler, DrawsTheTexelThatABinarySearchOfItsDistributionDraws)
   }
   const EnvironmentSampler sampler(map);
   // The distribution as the sampler builds it: luminance times the row centre's sine, summed.
-  auto cumulative = [](const std::vector<double>& weights)
-  {
-    std::vector<double> cdf(weights.size() + 1, 0.0);
-    for (std::size_t i = 0; i < weights.size(); ++i)
-    {
-      cdf[i + 1] = cdf[i] + weights[i];
-    }
-    const double sum = cdf.back();
-    for (double& value : cdf)
-    {
-      value /= sum;
-    }
-    return cdf;
-  };
   std::vector<std::vector<double>> columnCdfs;
   std::vector<double> rowWeights;
   for (int row = 0; row < map.height; ++row)
@@ -815,11 +830,11 @@ TEST(EnvironmentSampler, DrawsTheTexelThatABinarySearchOfItsDistributionDraws)
       weights.push_back(luminance(map.texel(column, row)) * std::sin(pi * (row + 0.5) / map.height));
     }
     rowWeights.push_back(std::accumulate(weights.begin(), weights.end(), 0.0));
-    columnCdfs.push_back(row == 3 ? std::vector<double>() : cumulative(weights));
+    columnCdfs.push_back(row == 3 ? std::vector<double>() : cumulativeDistribution(weights));
   }
-  const std::vector<double> rowCdf = cumulative(rowWeights);
+  const std::vector<double> rowCdf = cumulativeDistribution(rowWeights);
   auto binOf = [](const std::vector<double>& cdf, double u)
-  { return static_cast<int>(std::upper_bound(cdf.begin(), cdf.end(), u) - cdf.begin()) - 1; };
+  { return invertedAt(cdf.data(), static_cast<int>(cdf.size()) - 1, u).bin; };
   std::vector<double> us;
   for (int i = 0; i < 4001; ++i)
   {
@@ -895,13 +910,73 @@ TEST(EnvironmentSampler, DirectionsDrawnTogetherAreTheDirectionsDrawnOneByOne)
       }
       std::vector<glm::dvec3> together(std::size_t(count) + 1, glm::dvec3(-7.0));
       sampler.sampleDirections(count, u1.data(), u2.data(), together.data());
+      // samples() and at() for many: the bits of sample() and at() for one.
+      const EnvironmentSample unwritten{ glm::dvec3(-7.0), -7.0, Rgb(-7.0) };
+      std::vector<EnvironmentSample> samples(std::size_t(count) + 1, unwritten), there(samples);
+      sampler.samples(count, u1.data(), u2.data(), samples.data());
+      std::vector<glm::dvec3> elsewhere(std::size_t(count) + 1);
+      for (glm::dvec3& direction : elsewhere)
+      {
+        direction = randomDirection(random);
+      }
+      sampler.at(count, elsewhere.data(), there.data());
       for (int k = 0; k < count; ++k)
       {
-        const glm::dvec3 alone = sampler.sample(u1[std::size_t(k)], u2[std::size_t(k)]).direction;
-        EXPECT_EQ(together[std::size_t(k)], alone) << "sample " << k << " of " << count;
+        const std::size_t i = std::size_t(k);
+        const EnvironmentSample alone = sampler.sample(u1[i], u2[i]);
+        EXPECT_EQ(together[i], alone.direction) << "sample " << k << " of " << count;
+        EXPECT_EQ(samples[i].direction, alone.direction) << "sample " << k << " of " << count;
+        EXPECT_EQ(samples[i].pdf, alone.pdf) << "sample " << k << " of " << count;
+        EXPECT_EQ(samples[i].radiance, alone.radiance) << "sample " << k << " of " << count;
+        const EnvironmentSample atAlone = sampler.at(elsewhere[i]);
+        EXPECT_EQ(there[i].direction, atAlone.direction);
+        EXPECT_EQ(there[i].pdf, atAlone.pdf);
+        EXPECT_EQ(there[i].radiance, atAlone.radiance);
       }
-      EXPECT_EQ(together[std::size_t(count)], glm::dvec3(-7.0)); // nothing written past count
+      // Nothing written past count.
+      EXPECT_EQ(together[std::size_t(count)], glm::dvec3(-7.0));
+      EXPECT_EQ(samples[std::size_t(count)].pdf, -7.0);
+      EXPECT_EQ(there[std::size_t(count)].pdf, -7.0);
     }
+  }
+}
+
+TEST(EnvironmentSampler, DirectionsAreDirectionAtOfTheTexelAndTheOffsetDrawn)
+{
+  // On a map of 128 x 64 texels or more, a sample's direction is found from tables of each
+  // row's and column's edge and series for the offset into the texel, not by directionAt's
+  // sine and cosine. Here the texel and the offsets are found again by inverting the map's
+  // distribution with std::upper_bound, and directionAt of them must agree to a few roundings.
+  for (const EnvironmentMap& map : { smoothMap(128), downsampled(readEnvironmentMap(venicePath + ".hdr"), 256) })
+  {
+    const EnvironmentSampler sampler(map);
+    std::vector<double> rowWeights, columnCdfs;
+    for (int row = 0; row < map.height; ++row)
+    {
+      std::vector<double> weights;
+      for (int column = 0; column < map.width; ++column)
+      {
+        weights.push_back(luminance(map.texel(column, row)) * std::sin(pi * (row + 0.5) / map.height));
+      }
+      rowWeights.push_back(std::accumulate(weights.begin(), weights.end(), 0.0));
+      const std::vector<double> cdf = cumulativeDistribution(weights);
+      columnCdfs.insert(columnCdfs.end(), cdf.begin(), cdf.end());
+    }
+    const std::vector<double> rowCdf = cumulativeDistribution(rowWeights);
+    std::mt19937_64 random(13);
+    std::uniform_real_distribution<double> uniform;
+    double largest = 0;
+    for (int i = 0; i < 20000; ++i)
+    {
+      const double u1 = uniform(random), u2 = uniform(random);
+      const BinAndOffset row = invertedAt(rowCdf.data(), map.height, u2);
+      const BinAndOffset column = invertedAt(&columnCdfs[std::size_t(row.bin) * (map.width + 1)], map.width, u1);
+      const glm::dvec3 expected =
+        directionAt((column.bin + column.offset) / map.width, (row.bin + row.offset) / map.height);
+      largest = std::max(largest, glm::length(sampler.sampleDirection(u1, u2) - expected));
+    }
+    EXPECT_LT(largest, 1e-15) << map.width;
+    EXPECT_GT(largest, 0.0) << map.width; // not directionAt's own bits: the tables are used
   }
 }
 

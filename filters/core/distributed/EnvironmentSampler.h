@@ -14,6 +14,11 @@
 
 namespace shadelab
 {
+struct SineCosine
+{
+  double sin, cos;
+};
+
 struct EnvironmentSample
 {
   glm::dvec3 direction;
@@ -36,11 +41,14 @@ public:
   /// The direction sample(u1, u2) draws, bit for bit, without its density and texel: all a
   /// shadow ray needs.
   glm::dvec3 sampleDirection(double u1, double u2) const;
-  /// sampleDirection(u1[k], u2[k]) for k < count, into directions[k]: every row drawn first,
-  /// and the columns' tables of those rows fetched ahead, so that the cache misses of the
-  /// samples overlap (a 1k map's tables are 4 MB, more than a core's cache) rather than come
-  /// one after another.
+  /// sampleDirection(u1[k], u2[k]) for k < count, into directions[k], bit for bit: every row
+  /// drawn first, and the columns' tables of those rows fetched ahead, so that the cache misses
+  /// of the samples overlap (a 1k map's tables and texels are 18 MB, more than a core's cache)
+  /// rather than come one after another.
   void sampleDirections(int count, const double* u1, const double* u2, glm::dvec3* directions) const;
+  /// sample(u1[k], u2[k]) for k < count, into samples[k], bit for bit: as sampleDirections,
+  /// with each drawn texel fetched ahead too.
+  void samples(int count, const double* u1, const double* u2, EnvironmentSample* samples) const;
 
   /// The density per unit solid angle that sample() draws unitDirection with: positive
   /// wherever the radiance is, but 0 exactly at a pole.
@@ -48,6 +56,9 @@ public:
 
   /// The same density and the radiance of the texel unitDirection falls in, found together.
   EnvironmentSample at(const glm::dvec3& unitDirection) const;
+  /// at(unitDirections[k]) for k < count, into samples[k], bit for bit: every texel found
+  /// first and fetched, then read, so that the cache misses overlap.
+  void at(int count, const glm::dvec3* unitDirections, EnvironmentSample* samples) const;
 
 private:
   struct Drawn
@@ -66,7 +77,17 @@ private:
   Drawn draw(double u1, double u2) const;
   DrawnRow drawRow(double u2) const;
   Drawn drawInRow(const DrawnRow& row, double u1) const;
+  /// directionAt((column + columnOffset) / width, (row + rowOffset) / height), to within a few
+  /// roundings, from the texel's edges (where the map has their tables).
+  glm::dvec3 directionInTexel(int column, double columnOffset, int row, double rowOffset) const;
+  /// onDrawn(k, draw(u1[k], u2[k])) for k < count, the rows drawn and the columns' tables
+  /// fetched ahead a batch at a time. A map with light only.
+  template <typename OnDrawn>
+  void drawBatches(int count, const double* u1, const double* u2, OnDrawn&& onDrawn) const;
+  EnvironmentSample sampleOf(const Drawn& drawn) const;
   double pdfAt(int column, int row, const glm::dvec3& direction) const;
+  /// at(unitDirection) for the texel it falls in.
+  EnvironmentSample atTexel(const glm::dvec3& unitDirection, const glm::ivec2& texel) const;
 
   EnvironmentMap map_;
   std::vector<double> rowCdf_; // height + 1 values from 0 to 1
@@ -74,6 +95,9 @@ private:
   std::vector<int> rowGuide_; // the rows' cdf's guide table: height bins
   std::vector<int> columnGuides_; // each row's: height rows of width bins
   std::vector<double> rowCentreSinTheta_;
+  /// The angles of directionAt at each row's top edge (theta) and column's left edge (phi), for
+  /// maps of at least 128 x 64 texels; empty for smaller ones, whose texels are wider.
+  std::vector<SineCosine> rowEdges_, columnEdges_;
   double uvDensityPerWeight_ = 0.0; // width x height / sum of texel weights; 0 for black
 };
 }

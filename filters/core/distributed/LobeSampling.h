@@ -58,6 +58,32 @@ inline double lobeDensity(const LobeModel& lobe, const glm::dvec3& n, const glm:
   return vDotH > 0 ? detail::cosinePowerDensity(glm::dot(n, h), lobe.eta) / (4 * vDotH) : 0.0;
 }
 
+/// The lobe at s, lobe(n, s, v), and the density lobeDensity(lobe, n, v, s), found together.
+struct LobeAtDirection
+{
+  double value, density;
+};
+
+/// lobe(n, s, v) and lobeDensity(lobe, n, v, s), the same bits: Blinn-Phong's two share their
+/// half vector and, where n.h > 0, their power (the power is most of either's cost).
+inline LobeAtDirection lobeWithDensity(const LobeModel& lobe, const glm::dvec3& n, const glm::dvec3& v, const glm::dvec3& s)
+{
+  glm::dvec3 h;
+  if (lobe.model == SpecularModel::Phong || !halfVector(s, v, h))
+  {
+    return { lobe(n, s, v), lobeDensity(lobe, n, v, s) };
+  }
+  const double cosine = glm::dot(n, h);
+  const bool lit = glm::dot(n, s) > 0;
+  if (!(cosine > 0))
+  {
+    return { specularLobe(lit, cosine, lobe.eta), lobeDensity(lobe, n, v, s) };
+  }
+  const double power = std::pow(cosine, lobe.eta);
+  const double vDotH = std::abs(glm::dot(v, h));
+  return { lit ? power : 0.0, vDotH > 0 ? (lobe.eta + 1) / (2 * samplePi) * power / (4 * vDotH) : 0.0 };
+}
+
 /// A direction drawn in proportion to the lobe (lobe.wanted()), from u in [0, 1)^2.
 inline glm::dvec3 lobeDirection(const LobeModel& lobe, const glm::dvec3& n, const glm::dvec3& v, const glm::dvec2& u)
 {

@@ -8,6 +8,7 @@
 #include "Vec3.h"
 #include "VisibleFraction.h"
 
+#include <algorithm>
 #include <array>
 #include <optional>
 #include <vector>
@@ -63,26 +64,48 @@ inline SampleTargets withVisibilityTarget(SampleTargets targets, const Rgb& unsh
   return targets;
 }
 
+/// The most samples that sampledTerms asks its samplesAt for at once.
+constexpr int sampleBlock = 16;
+
+/// A samplesAt for sampledTerms from sampleAt(u), which turns one point into its RadianceSample.
+template <typename SampleAt>
+auto pointByPoint(SampleAt&& sampleAt)
+{
+  return [&sampleAt](const SampleSequence& sequence, int first, int count, RadianceSample* samples)
+  {
+    for (int k = 0; k < count; ++k)
+    {
+      samples[k] = sampleAt(sequence.point(first + k));
+    }
+  };
+}
+
 /// Averages L(w) max(0, n.w) / pdf(w) (when irradiance is wanted) and L(w) lobe(w) / pdf(w)
 /// (when the lobe is) over the vertex's sample points (SampleSequence of this light and vertex),
-/// which sampleAt(u) turns into RadianceSamples: sampling's fixed count or, with targets, rounds
+/// which samplesAt(sequence, first, count, samples) turns into RadianceSamples, at most
+/// sampleBlock at a time (so that it can fetch their data ahead): sampling's fixed count or, with targets, rounds
 /// until each sampled estimate meets its target (SequentialSampling.h). With shadows, each
 /// sample counts only where its ray got through, as hiddenOf(round) says of the round's samples
 /// (the bits of the visibility step for the one round of a fixed count, or a round's rays traced
 /// as it is drawn), and the visible fraction of the irradiance is estimated from the same samples.
-template <typename HiddenOfRound, typename SampleAt>
+template <typename HiddenOfRound, typename SamplesAt>
 DistributedTerms sampledTerms(std::uint64_t light, std::uint64_t vertex, const Sampling& sampling,
   const SampleTargets& targets, bool irradiance, const LobeModel& lobe, const glm::dvec3& n, const glm::dvec3& v,
-  bool shadowed, HiddenOfRound&& hiddenOf, SampleAt&& sampleAt)
+  bool shadowed, HiddenOfRound&& hiddenOf, SamplesAt&& samplesAt)
 {
   MonteCarloEstimate e(sampling.stratified), s(sampling.stratified);
   VisibleFraction visible(sampling.stratified);
   auto draw = [&](const SampleSequence& sequence)
   {
     const HiddenSamples hidden = shadowed ? hiddenOf(sequence) : HiddenSamples{};
+    RadianceSample block[sampleBlock];
     for (int j = 0; j < sequence.count(); ++j)
     {
-      const RadianceSample sample = sampleAt(sequence.point(j));
+      if (j % sampleBlock == 0)
+      {
+        samplesAt(sequence, j, std::min(sampleBlock, sequence.count() - j), block);
+      }
+      const RadianceSample& sample = block[j % sampleBlock];
       const bool through = !shadowed || !hidden.hidden(j);
       const double seen = through ? 1.0 : 0.0;
       const Rgb unshadowed = sample.weighted * std::max(0.0, glm::dot(n, sample.direction));

@@ -219,11 +219,12 @@ DistributedTerms AreaLightEstimator::monteCarlo(
     shadowing.on(),
     [&](const SampleSequence& round)
     { return shadowing.of(round, [&](const SampleSequence& s, ShadowRay* rays) { shadowRaysOf(point, s, rays); }); },
-    [&](const glm::dvec2& u)
-    {
-      const WeightedDirection sample = this->sample(u, point);
-      return RadianceSample{ sample.direction, radiance_ * sample.weight, std::nullopt };
-    });
+    pointByPoint(
+      [&](const glm::dvec2& u)
+      {
+        const WeightedDirection sample = this->sample(u, point);
+        return RadianceSample{ sample.direction, radiance_ * sample.weight, std::nullopt };
+      }));
 }
 
 DistributedTerms AreaLightEstimator::pointApproximation(const SurfacePoint& point) const

@@ -252,23 +252,43 @@ DistributedTerms EnvironmentLightEstimator::monteCarlo(const glm::dvec3& n, cons
   return sampledTerms(lightIndex_, vertex, light_.sampling, targets, irradiance, lobe_, n, v, shadowing.on(),
     [&](const SampleSequence& round)
     { return shadowing.of(round, [&](const SampleSequence& s, ShadowRay* rays) { shadowRaysOf(n, s, rays); }); },
-    [&](const glm::dvec2& u)
+    [&](const SampleSequence& sequence, int first, int count, RadianceSample* samples)
     {
+      if (directions != EnvironmentDirections::Luminance)
+      {
+        pointByPoint([&](const glm::dvec2& u) { return draw(n, u, directions); })(sequence, first, count, samples);
+        return;
+      }
       // The lobe's own direction would need a ray of its own: with shadows, S is taken from
       // the light's samples alone.
-      if (lobe_.wanted() && !shadowing.on() && directions == EnvironmentDirections::Luminance)
+      const bool bothStrategies = lobe_.wanted() && !shadowing.on();
+      double u[sampleBlock], w[sampleBlock];
+      EnvironmentSample drawn[sampleBlock], byLobe[sampleBlock];
+      sequence.points(first, count, u, w);
+      sampler_->samples(count, u, w, drawn);
+      if (bothStrategies)
       {
-        const EnvironmentSample sample = sampler_->sample(u.x, u.y);
-        RadianceSample drawn = weightedByDensity(sample);
-        drawn.specular = specularByBothStrategies(n, v, u, sample.direction, scale_ * sample.radiance, sample.pdf);
-        return drawn;
+        // The lobe's directions and their texels, found together (EnvironmentSampler::at).
+        glm::dvec3 lobeDirections[sampleBlock];
+        for (int k = 0; k < count; ++k)
+        {
+          lobeDirections[k] = lobeDirection(lobe_, n, v, { u[k], w[k] });
+        }
+        sampler_->at(count, lobeDirections, byLobe);
       }
-      return draw(n, u, directions);
+      for (int k = 0; k < count; ++k)
+      {
+        samples[k] = weightedByDensity(drawn[k]);
+        if (bothStrategies)
+        {
+          samples[k].specular = specularByBothStrategies(n, v, drawn[k], byLobe[k]);
+        }
+      }
     });
 }
 
-Rgb EnvironmentLightEstimator::specularByBothStrategies(const glm::dvec3& n, const glm::dvec3& v, const glm::dvec2& u,
-  const glm::dvec3& byLuminance, const Rgb& radiance, double luminanceDensity) const
+Rgb EnvironmentLightEstimator::specularByBothStrategies(
+  const glm::dvec3& n, const glm::dvec3& v, const EnvironmentSample& byLuminance, const EnvironmentSample& byLobe) const
 {
   // Veach's balance heuristic with one sample of each strategy (E. Veach, "Robust Monte Carlo
   // Methods for Light Transport Simulation", 1997, section 9.2): f(x) / (p_L(x) + p_B(x)) +
@@ -276,16 +296,15 @@ Rgb EnvironmentLightEstimator::specularByBothStrategies(const glm::dvec3& n, con
   // either density covers f. Luminance alone misses a sharp lobe under a dim sky; the lobe alone
   // misses a small sun.
   Rgb estimate(0.0);
-  if (luminanceDensity > 0)
+  if (byLuminance.pdf > 0)
   {
-    estimate += radiance * lobe_(n, byLuminance, v) / (luminanceDensity + lobeDensity(lobe_, n, v, byLuminance));
+    const LobeAtDirection lobe = lobeWithDensity(lobe_, n, v, byLuminance.direction);
+    estimate += scale_ * byLuminance.radiance * lobe.value / (byLuminance.pdf + lobe.density);
   }
-  const glm::dvec3 byLobe = lobeDirection(lobe_, n, v, u);
-  const double density = lobeDensity(lobe_, n, v, byLobe);
-  if (density > 0)
+  const LobeAtDirection lobe = lobeWithDensity(lobe_, n, v, byLobe.direction);
+  if (lobe.density > 0)
   {
-    const EnvironmentSample there = sampler_->at(byLobe);
-    estimate += scale_ * there.radiance * lobe_(n, byLobe, v) / (there.pdf + density);
+    estimate += scale_ * byLobe.radiance * lobe.value / (byLobe.pdf + lobe.density);
   }
   return estimate;
 }

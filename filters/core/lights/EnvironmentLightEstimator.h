@@ -85,9 +85,9 @@ private:
     double* z) const;
   /// A direction (map frame) drawn from u as `directions` says, with L(w) / pdf(w).
   RadianceSample draw(const glm::dvec3& n, const glm::dvec2& u, EnvironmentDirections directions) const;
-  /// One estimate of S from the direction drawn by luminance and one drawn by the lobe.
-  Rgb specularByBothStrategies(const glm::dvec3& n, const glm::dvec3& v, const glm::dvec2& u,
-    const glm::dvec3& byLuminance, const Rgb& radiance, double luminanceDensity) const;
+  /// One estimate of S from a sample drawn by luminance and the map at a direction drawn by the lobe.
+  Rgb specularByBothStrategies(
+    const glm::dvec3& n, const glm::dvec3& v, const EnvironmentSample& byLuminance, const EnvironmentSample& byLobe) const;
   Rgb radianceAt(const glm::dvec3& mapDirection) const;
 
   EnvironmentLight light_;
