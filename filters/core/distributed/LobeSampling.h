@@ -79,7 +79,7 @@ inline LobeAtDirection lobeWithDensity(const LobeModel& lobe, const glm::dvec3& 
   {
     return { specularLobe(lit, cosine, lobe.eta), lobeDensity(lobe, n, v, s) };
   }
-  const double power = std::pow(cosine, lobe.eta);
+  const double power = std::pow(std::min(cosine, 1.0), lobe.eta); // as specularLobe and cosinePowerDensity clamp it
   const double vDotH = std::abs(glm::dot(v, h));
   return { lit ? power : 0.0, vDotH > 0 ? (lobe.eta + 1) / (2 * samplePi) * power / (4 * vDotH) : 0.0 };
 }
