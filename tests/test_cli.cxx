@@ -293,6 +293,22 @@ TEST_F(Cli, ToleranceChoosesAndReportsMethods)
                  "2.9e-15: give a larger tolerance, or none for the exact methods");
 }
 
+TEST_F(Cli, SaysWhichStatementsOfAnObjItDidNotRead)
+{
+  // OBJ lets a reader skip object names and smoothing groups; the run says it did, and a mesh
+  // without them says nothing.
+  const std::string named = file("named.obj", "o tetra\ns 1\ns off\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n"
+                                              "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n");
+  const Result result = shadelab("shade " + named + " -o " + (folder / "named.vtp").string());
+  EXPECT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_NE(result.out.find("  mesh: 4 vertices, 4 polygons and strips\n  ignored: 1 'o', 2 's' statements (object "
+                            "names and smoothing groups are not read)\n"),
+    std::string::npos)
+    << result.out;
+  const Result plain = shadelab("shade " + goodMesh() + " -o " + (folder / "plain.vtp").string());
+  EXPECT_EQ(plain.out.find("ignored:"), std::string::npos) << plain.out;
+}
+
 TEST_F(Cli, ReadsObjAndStlAndWritesLegacyVtk)
 {
   // A tetrahedron in both formats: 4 vertices (OBJ) and 12 unshared corners (STL, which
