@@ -375,6 +375,12 @@ int runShade(const ShadeOptions& options)
     // A problem of the scene's values names the scene's source, as the scene file's own
     // checks do; any other, the mesh.
     const std::string sceneProblem = filter->GetSceneProblem();
+    // Occlusion's rays, when --ambient-occlusion set them, are the option's problem.
+    const std::string occlusionRays = "/ambient_occlusion/rays: ";
+    if (!options.ambientOcclusion.empty() && sceneProblem.rfind(occlusionRays, 0) == 0)
+    {
+      throw UserError("--ambient-occlusion " + options.ambientOcclusion + ": " + sceneProblem.substr(occlusionRays.size()));
+    }
     if (!sceneProblem.empty())
     {
       const std::string source = !options.scene.empty() ? options.scene

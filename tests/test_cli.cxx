@@ -220,9 +220,8 @@ TEST_F(Cli, ShadowsAndAmbientOcclusion)
                        "(--ambient-occlusion auto) to draw as many as the tolerance needs, or a larger tolerance\n");
   const Result untargeted = shadelab("shade " + goodMesh() + " -o " + out + " --ambient-occlusion auto");
   EXPECT_EQ(untargeted.exitCode, 1);
-  EXPECT_EQ(untargeted.err, "shadelab: the default light kit: /ambient_occlusion/rays: \"auto\" takes its count "
-                            "of rays from a tolerance: give one (shadelab shade --tolerance, the filter's Tolerance), "
-                            "or a number of rays\n");
+  EXPECT_EQ(untargeted.err, "shadelab: --ambient-occlusion auto: \"auto\" takes its count of rays from a tolerance: "
+                            "give one (shadelab shade --tolerance, the filter's Tolerance), or a number of rays\n");
   const Result adaptive = shadelab("shade " + goodMesh() + " -o " + out + " --ambient-occlusion auto --tolerance 0.05");
   EXPECT_EQ(adaptive.exitCode, 0) << adaptive.err;
   for (const char* line : { "    ambient_occlusion_rays       1 ", "    ambient occlusion: rays auto, within 0.05 at 95% "
