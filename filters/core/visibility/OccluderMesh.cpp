@@ -554,10 +554,14 @@ bool OccluderMesh::hiddenPastOwnFacets(const SurfaceRay& surfaceRay) const
   {
     return true; // no own triangle is in its way: what blocks it is something else
   }
-  const std::int64_t hit = firstHit(ray);
+  // The search for the first hit ends where the point's own facets end: beyond, what blocks
+  // the ray is not one of them.
+  FrameRay nearby = ray;
+  nearby.maxDistance = ownTrianglesReach(ray, start, surfaceRay.vertex);
+  const std::int64_t hit = firstHit(nearby);
   if (hit < 0 || !aroundOnItsSurface(std::size_t(hit), surfaceRay.vertex, start, side))
   {
-    return hit >= 0;
+    return true;
   }
   // From above every corner of the point's facets, a ray that leaves their side meets none of
   // them (nor any facet between them); the light is retargeted from there.
