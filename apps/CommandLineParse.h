@@ -15,9 +15,6 @@
 
 namespace shadelab::app
 {
-/// Parses argv into cli's options. Returns the exit code when the program ends here (0 after
-/// --help, 2 for a command line that does not parse, CLI11's message printed), nothing
-/// otherwise; then quietens VTK's own output (quietenVtk) unless verbose was set.
 /// What to say of the options on the command line that its command does not have: each with
 /// the nearest option the command has, where one is near enough to be what was meant; "" where
 /// every option is known.
@@ -52,6 +49,10 @@ inline std::string unknownOptionsAdvice(const CLI::App& cli, int argc, char** ar
   return advice.empty() ? "" : (command == &cli ? program : program + " " + command->get_name()) + ": " + advice;
 }
 
+/// Parses argv into cli's options. Returns the exit code when the program ends here (0 after
+/// --help, 2 for a command line that does not parse, CLI11's message or the nearest names of
+/// unknown options printed), nothing otherwise; then quietens VTK's own output (quietenVtk)
+/// unless verbose was set.
 inline std::optional<int> parseCommandLine(CLI::App& cli, int argc, char** argv, const bool& verbose)
 {
   try

@@ -26,7 +26,9 @@
 #include "vtkLocalReflectanceFilter.h"
 #include "vtkShadingNormalsFilter.h"
 
+#include "vtkArrayDispatch.h"
 #include "vtkDataArray.h"
+#include "vtkDataArrayRange.h"
 #include "vtkPointData.h"
 #include "vtkSMPTools.h"
 #include "vtkUnsignedCharArray.h"
@@ -96,6 +98,22 @@ std::vector<std::string> arrayNamesOf(const Scene& scene, const std::string& pre
   return names;
 }
 
+/// How many tuples of a float32 or float64 array have a NaN or Inf component, read through
+/// its own type (no virtual call per value); 0 for an integer array.
+vtkIdType nonFiniteTuples(vtkDataArray* array)
+{
+  vtkIdType count = 0;
+  auto tally = [&count](auto* typed)
+  {
+    for (const auto tuple : vtk::DataArrayTupleRange(typed))
+    {
+      count += std::any_of(tuple.begin(), tuple.end(), [](auto value) { return !std::isfinite(value); }) ? 1 : 0;
+    }
+  };
+  vtkArrayDispatch::DispatchByValueType<vtkArrayDispatch::Reals>::Execute(array, tally);
+  return count;
+}
+
 /// Refuses to write a result with a NaN or Inf in an array the run computed: every estimator
 /// is finite over the values a scene file accepts (tests/test_accepted_ranges.cxx), so one
 /// here is a defect to report, never a result. The input's own arrays pass through as given.
@@ -104,18 +122,7 @@ void refuseNonFinite(vtkPolyData* output, const Scene& scene, const std::string&
   for (const std::string& name : arrayNamesOf(scene, prefix))
   {
     vtkDataArray* array = output->GetPointData()->GetArray(name.c_str());
-    vtkIdType nonFinite = 0;
-    for (vtkIdType i = 0; array && i < array->GetNumberOfTuples(); ++i)
-    {
-      for (int c = 0; c < array->GetNumberOfComponents(); ++c)
-      {
-        if (!std::isfinite(array->GetComponent(i, c)))
-        {
-          ++nonFinite;
-          break;
-        }
-      }
-    }
+    const vtkIdType nonFinite = array ? nonFiniteTuples(array) : 0;
     if (nonFinite > 0)
     {
       throw UserError("'" + name + "' is NaN or Inf at " + countOf(std::size_t(nonFinite), "vertex") +
@@ -154,13 +161,13 @@ void printSummary(vtkPolyData* output, const Scene& scene, const std::string& pr
   {
     std::cout << "  " << flagsArrayName(prefix) << ":";
     const unsigned char* values = flags->GetPointer(0);
+    const std::size_t directed = std::count_if(scene.lights.begin(), scene.lights.end(),
+      [](const NamedLight& light) { return !std::holds_alternative<AmbientLight>(light.source); });
     for (const FlagMeaning& flag : flagMeanings)
     {
       const vtkIdType count = std::count_if(values, values + flags->GetNumberOfValues(),
         [bit = flag.flag](unsigned char v) { return (v & bit) != 0; });
       std::cout << (flag.flag == FlagDegenerateNormal ? " " : ", ") << count << " with " << flag.meaning;
-      const std::size_t directed = std::count_if(scene.lights.begin(), scene.lights.end(),
-        [](const NamedLight& light) { return !std::holds_alternative<AmbientLight>(light.source); });
       if (flag.flag == FlagLightBelowHorizon && directed > 1)
       {
         std::cout << " (any one of the " << directed << " lights: most vertices of a closed mesh face away from one)";

@@ -71,6 +71,14 @@ glm::dvec3 unitPoint(const std::vector<float>& xyz, std::uint32_t id)
   return { xyz[3 * std::size_t(id)], xyz[3 * std::size_t(id) + 1], xyz[3 * std::size_t(id) + 2] };
 }
 
+/// The area vector (twice the area, along the normal) of the triangle whose corners are
+/// corners[0..2].
+glm::dvec3 areaVectorOf(const std::vector<float>& xyz, const std::uint32_t* corners)
+{
+  const glm::dvec3 a = unitPoint(xyz, corners[0]);
+  return glm::cross(unitPoint(xyz, corners[1]) - a, unitPoint(xyz, corners[2]) - a);
+}
+
 /// OccluderMesh::jointNormals_ for these points and triangles, given their copy groups.
 std::vector<glm::vec3> jointNormalsOf(const std::vector<float>& xyz, const std::vector<std::uint32_t>& triangles,
   const std::vector<std::uint32_t>& group, std::uint32_t groups)
@@ -82,8 +90,7 @@ std::vector<glm::vec3> jointNormalsOf(const std::vector<float>& xyz, const std::
   std::vector<glm::dvec3> sums(groups, glm::dvec3(0.0));
   for (std::size_t t = 0; t < triangles.size(); t += 3)
   {
-    const glm::dvec3 a = unitPoint(xyz, triangles[t]);
-    const glm::dvec3 area = glm::cross(unitPoint(xyz, triangles[t + 1]) - a, unitPoint(xyz, triangles[t + 2]) - a);
+    const glm::dvec3 area = areaVectorOf(xyz, &triangles[t]);
     for (std::size_t c = t; c < t + 3; ++c)
     {
       if (group[triangles[c]] != noCopies && std::isfinite(area.x + area.y + area.z))
@@ -469,18 +476,23 @@ bool OccluderMesh::hasCornerAt(std::size_t t, const glm::vec3& unitPoint) const
   return false;
 }
 
-bool OccluderMesh::firstHitHasCorner(const FrameRay& ray, const glm::dvec3& point, PointId vertex) const
+std::int64_t OccluderMesh::firstHitNearby(const FrameRay& ray, const glm::vec3& unitPoint, PointId vertex) const
 {
-  // The corners as the BVH holds them, against the point taken into the frame the same way.
-  const glm::vec3 unitPoint(frame_.toUnit(point));
   if (vertex >= 0 && leavesAllOwnPlanes(ray, unitPoint, static_cast<std::size_t>(vertex)))
   {
-    return false; // none of its own triangles is in the ray's way, whatever it meets first
+    return -1; // none of its own triangles is in the ray's way, whatever it meets first
   }
   // The search ends where the point's own triangles end: beyond, a first hit is not its own.
   FrameRay nearby = ray;
   nearby.maxDistance = ownTrianglesReach(ray, unitPoint, vertex);
-  const std::int64_t hit = firstHit(nearby);
+  return firstHit(nearby);
+}
+
+bool OccluderMesh::firstHitHasCorner(const FrameRay& ray, const glm::dvec3& point, PointId vertex) const
+{
+  // The corners as the BVH holds them, against the point taken into the frame the same way.
+  const glm::vec3 unitPoint(frame_.toUnit(point));
+  const std::int64_t hit = firstHitNearby(ray, unitPoint, vertex);
   return hit >= 0 && hasCornerAt(std::size_t(hit), unitPoint);
 }
 
@@ -499,9 +511,7 @@ bool OccluderMesh::aroundOnItsSurface(std::size_t t, PointId vertex, const glm::
   }
   // A copy's facet: across a UV seam, the same surface; across a hard edge, where a mesh is
   // split at its feature edges (30 degrees by default in vtkPolyDataNormals), another one.
-  const glm::dvec3 a = unitPoint(frame_.vertices, triangles_[3 * t]);
-  const glm::dvec3 normal = glm::cross(
-    unitPoint(frame_.vertices, triangles_[3 * t + 1]) - a, unitPoint(frame_.vertices, triangles_[3 * t + 2]) - a);
+  const glm::dvec3 normal = areaVectorOf(frame_.vertices, &triangles_[3 * t]);
   constexpr double cos30Degrees = 0.86602540378443865;
   return std::abs(glm::dot(normal, side)) >= cos30Degrees * glm::length(normal);
 }
@@ -549,16 +559,11 @@ bool OccluderMesh::hiddenPastOwnFacets(const SurfaceRay& surfaceRay) const
   const glm::vec3 start(frame_.toUnit(surfaceRay.point));
   const glm::dvec3 side(leavingSide(surfaceRay));
   FrameRay ray = inFrame(surfaceRay);
-  const bool hasOwnFacets = surfaceRay.vertex >= 0 && static_cast<std::size_t>(surfaceRay.vertex) < ownReach_.size();
-  if (!hasOwnFacets || leavesAllOwnPlanes(ray, start, static_cast<std::size_t>(surfaceRay.vertex)))
+  if (surfaceRay.vertex < 0 || static_cast<std::size_t>(surfaceRay.vertex) >= ownReach_.size())
   {
-    return true; // no own triangle is in its way: what blocks it is something else
+    return true; // a point without facets of its own: what blocks the ray is something else
   }
-  // The search for the first hit ends where the point's own facets end: beyond, what blocks
-  // the ray is not one of them.
-  FrameRay nearby = ray;
-  nearby.maxDistance = ownTrianglesReach(ray, start, surfaceRay.vertex);
-  const std::int64_t hit = firstHit(nearby);
+  const std::int64_t hit = firstHitNearby(ray, start, surfaceRay.vertex);
   if (hit < 0 || !aroundOnItsSurface(std::size_t(hit), surfaceRay.vertex, start, side))
   {
     return true;

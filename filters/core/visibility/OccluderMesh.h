@@ -133,6 +133,10 @@ private:
   glm::vec3 leavingSide(const SurfaceRay& ray) const;
   /// The triangle the ray meets first, or -1.
   std::int64_t firstHit(const FrameRay& ray) const;
+  /// The triangle the ray from the point of id vertex (or -1) at unitPoint meets first, if it
+  /// can be one of the point's own triangles (within their reach, and unless the ray leaves
+  /// all their planes); -1 otherwise.
+  std::int64_t firstHitNearby(const FrameRay& ray, const glm::vec3& unitPoint, PointId vertex) const;
   /// Whether triangle t has a corner at unitPoint (in the unit frame).
   bool hasCornerAt(std::size_t t, const glm::vec3& unitPoint) const;
   /// Whether triangle t lies around the point of id vertex at `point` (in the unit frame) on the surface its

@@ -7,9 +7,9 @@ namespace shadelab
 /// (docs/formulas.md section 20, the shadow terminator).
 enum class SelfShadowing
 {
-  /// The smooth surface: facets around the vertex that lie within 60 degrees of its normal do
-  /// not hide a light its normal faces (OccluderMesh::hiddenPastOwnFacets); every other
-  /// triangle does.
+  /// The smooth surface: the facets around the vertex (its own, and a copy's within 30 degrees
+  /// of its normal) do not hide a light its normal faces (OccluderMesh::hiddenPastOwnFacets);
+  /// every other triangle does.
   SmoothSurface,
   /// The facets as given: every triangle hides what it blocks.
   Facets,
