@@ -6,6 +6,7 @@
 // (The developers' benchmark and studies are bench/shadelab-bench.)
 #include "CompareCommand.h"
 #include "MeshFiles.h"
+#include "PlanBeforeRun.h"
 #include "ProgressLine.h"
 #include "RelightCommand.h"
 #include "RenderImage.h"
@@ -136,13 +137,23 @@ void printSummary(vtkPolyData* output, const Scene& scene, const std::string& pr
 {
   std::cout << "  arrays written (min and max over all components):\n";
   vtkPointData* pointData = output->GetPointData();
+  std::vector<std::pair<std::string, vtkDataArray*>> written;
   for (const std::string& name : arrayNamesOf(scene, prefix))
   {
     vtkDataArray* array = pointData->GetArray(name.c_str());
-    if (!array || name == flagsArrayName(prefix))
+    if (array && name != flagsArrayName(prefix))
     {
-      continue;
+      written.emplace_back(name, array);
     }
+  }
+  // Names in a column 28 wide, or as wide as the longest and a space.
+  std::size_t width = 28;
+  for (const auto& [name, array] : written)
+  {
+    width = std::max(width, name.size() + 1);
+  }
+  for (const auto& [name, array] : written)
+  {
     double low = 0, high = 0;
     for (int c = 0; c < array->GetNumberOfComponents(); ++c)
     {
@@ -151,9 +162,7 @@ void printSummary(vtkPolyData* output, const Scene& scene, const std::string& pr
       low = c == 0 ? range[0] : std::min(low, range[0]);
       high = c == 0 ? range[1] : std::max(high, range[1]);
     }
-    // Names in a column 28 wide; a longer one keeps a space before its component count.
-    std::cout << "    " << std::left << std::setw(28) << name << (name.size() >= 28 ? " " : "")
-              << std::right
+    std::cout << "    " << std::left << std::setw(static_cast<int>(width)) << name << std::right
               << std::setw(2) << array->GetNumberOfComponents() << "  " << std::setw(12)
               << std::setprecision(6) << low << " " << std::setw(12) << high << "\n";
   }
@@ -373,6 +382,8 @@ int runShade(const ShadeOptions& options)
   errors->watch(filter);
   vtkNew<app::ProgressLine> progress;
   progress->watch(filter, "shading");
+  vtkNew<app::PlanBeforeRun> planBeforeRun;
+  planBeforeRun->watch(filter);
   const Clock::time_point shadeStart = Clock::now();
   filter->Update();
   const double shadeSeconds = secondsSince(shadeStart);
@@ -424,10 +435,12 @@ int runShade(const ShadeOptions& options)
   }
   if (filter->GetMethodPlan())
   {
-    std::cout << "  methods:\n";
-    for (const std::string& line : filter->GetMethodPlan()->describe())
+    const std::vector<std::string> lines = filter->GetMethodPlan()->describe();
+    const std::size_t shown = planBeforeRun->shownLines();
+    std::cout << "  methods:" << (shown ? " as printed before shading, then\n" : "\n");
+    for (std::size_t l = shown; l < lines.size(); ++l)
     {
-      std::cout << "    " << line << "\n";
+      std::cout << "    " << lines[l] << "\n";
     }
     for (const std::string& line : filter->GetSamplingReport())
     {

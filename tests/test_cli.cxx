@@ -215,7 +215,7 @@ TEST_F(Cli, ShadowsAndAmbientOcclusion)
   EXPECT_NE(shadows.out.find("    key_visibility               1             0            1\n"), std::string::npos) << shadows.out;
   const Result fixed = shadelab("shade " + goodMesh() + " -o " + out + " --ambient-occlusion 16 --tolerance 0.05");
   EXPECT_EQ(fixed.exitCode, 1);
-  EXPECT_EQ(fixed.err, "shadelab: " + goodMesh() + ": ambient occlusion's 16 rays per vertex can err by up to 0.25 "
+  EXPECT_EQ(fixed.err, "shadelab: --ambient-occlusion 16: ambient occlusion's 16 rays per vertex can err by up to 0.25 "
                        "(95%), more than the 0.05 the tolerance leaves it: give \"rays\": \"auto\" "
                        "(--ambient-occlusion auto) to draw as many as the tolerance needs, or a larger tolerance\n");
   const Result untargeted = shadelab("shade " + goodMesh() + " -o " + out + " --ambient-occlusion auto");
@@ -224,8 +224,11 @@ TEST_F(Cli, ShadowsAndAmbientOcclusion)
                             "give one (shadelab shade --tolerance, the filter's Tolerance), or a number of rays\n");
   const Result adaptive = shadelab("shade " + goodMesh() + " -o " + out + " --ambient-occlusion auto --tolerance 0.05");
   EXPECT_EQ(adaptive.exitCode, 0) << adaptive.err;
-  for (const char* line : { "    ambient_occlusion_rays       1 ", "    ambient occlusion: rays auto, within 0.05 at 95% "
-                                                                     "(standard error at most 0.025), 64 to 4096 rays per vertex\n" })
+  // Before the run, the plan and its forecast from a pilot; after it, what the rays drew. The
+  // names' column is as wide as ambient_occlusion_short_of_target's.
+  for (const char* line : { "    ambient_occlusion_rays             1 ", "    ambient occlusion: rays auto, within 0.05 at 95% "
+                                                                     "(standard error at most 0.025), 64 to 4096 rays per vertex\n    forecast from 554 of the 35947 vertices: about ",
+         "  methods: as printed before shading, then\n    drew " })
   {
     EXPECT_NE(adaptive.out.find(line), std::string::npos) << line << "\n" << adaptive.out;
   }
@@ -277,7 +280,10 @@ TEST_F(Cli, ToleranceChoosesAndReportsMethods)
   const std::string out = (folder / "tolerance.vtp").string();
   const Result result = shadelab("shade " + goodMesh() + " -s " + scene + " -o " + out + " --tolerance 1e-2");
   EXPECT_EQ(result.exitCode, 0) << result.err;
-  EXPECT_NE(result.out.find("  methods:\n    arithmetic float32 (rounding "), std::string::npos) << result.out;
+  // The plan is printed as soon as it is chosen, before the run's report.
+  EXPECT_EQ(result.out.rfind("shadelab shade: methods for the tolerance, chosen before shading:\n    arithmetic float32 (rounding ", 0), 0u)
+    << result.out;
+  EXPECT_NE(result.out.find("  methods: as printed before shading, then\n"), std::string::npos) << result.out;
   EXPECT_NE(result.out.find(") and the methods below, chosen so that their predicted errors, 0.0052 in all, stay within "
                             "the tolerance 0.01\n"),
     std::string::npos) << result.out;
@@ -921,7 +927,7 @@ TEST_F(Cli, PrecomputedTransferRelightsWithoutRays)
   // By default, as what "prt" is chosen for.
   const Result shadowed = shadelab("shade " + mesh + prt + "--shadows --envmap-samples 16 -o " + turned);
   ASSERT_EQ(shadowed.exitCode, 0) << shadowed.err;
-  EXPECT_NE(shadowed.out.find("    envmap_sh_transfer          25 "), std::string::npos) << shadowed.out;
+  EXPECT_NE(shadowed.out.find("    envmap_sh_transfer           25 "), std::string::npos) << shadowed.out;
   EXPECT_NE(shadowed.out.find("    envmap_sh_transfer_std_error 25 "), std::string::npos) << shadowed.out;
   expectError("shade " + mesh + " --envmap " + map + " --envmap-order 3 -o " + relit,
     "--envmap-order: only --envmap-estimator prt has an order");
@@ -932,7 +938,7 @@ TEST_F(Cli, PrecomputedTransferRelightsWithoutRays)
   const Result bounded = shadelab("shade " + mesh + prt + "--shadows --tolerance 0.05 -o " + relit);
   EXPECT_EQ(bounded.exitCode, 1);
   EXPECT_EQ(bounded.err,
-    "shadelab: " + mesh + ": a tolerance cannot bound light 'envmap' of type \"environment\": its shadowed transfer vectors can "
+    "shadelab: --envmap " + map + ": /lights/0/estimator: a tolerance cannot bound light 'envmap' of type \"environment\": its shadowed transfer vectors can "
            "err by up to 95 through their bands alone, and are estimated from a fixed \"samples\" count, which "
            "no target stops: use \"estimator\": \"monte_carlo\" (--envmap-estimator monte_carlo) with \"samples\": "
            "\"auto\" (--envmap-samples auto); or shade without a tolerance\n") << bounded.err;

@@ -180,7 +180,7 @@ TEST(DistributedLightsFilter, RefusedWhereTheyCannotApply)
   lecture.lights = { { "panel", panel } };
   // Its specular integral is sampled, 64 samples: a tolerance needs them drawn to its share.
   EXPECT_EQ(errorOf(lecture, 1e-3),
-    "a tolerance cannot bound light 'panel' of type \"sphere\": its Monte Carlo estimates from 64 samples have no "
+    "scene /lights/0/samples: a tolerance cannot bound light 'panel' of type \"sphere\": its Monte Carlo estimates from 64 samples have no "
     "error bound before they are drawn: give it \"samples\": \"auto\", which draws each vertex's samples until "
     "their standard error meets a share of the tolerance; or shade without a tolerance");
   EXPECT_EQ(errorOf(lecture, 0), "");

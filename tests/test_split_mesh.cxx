@@ -21,6 +21,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <cstring>
 #include <filesystem>
 #include <functional>
@@ -136,7 +138,13 @@ TEST_P(SplitMesh, DrawsSoftShadowsToATargetAsTheWholeMesh)
   const vtkSmartPointer<vtkPolyData> piece = shaded(myPiece(mesh), scene, { "all" }, processes(), 0.02);
   ASSERT_GT(piece->GetNumberOfPoints(), 0);
   EXPECT_GE(expectPieceOfWhole(whole, piece), 13);
-  EXPECT_EQ(shadelab::testing::methodsNote(piece), shadelab::testing::methodsNote(whole));
+  // The same plan; the whole mesh's has its cost forecast too (a split mesh is shaded without one).
+  std::vector<std::string> plan = shadelab::testing::methodsNote(whole);
+  const auto forecast = std::find_if(plan.begin(), plan.end(),
+    [](const std::string& line) { return line.rfind("forecast from ", 0) == 0; });
+  ASSERT_TRUE(forecast != plan.end() && forecast + 1 != plan.end() && forecast[1].rfind("drew ", 0) == 0);
+  plan.erase(forecast, forecast + 2);
+  EXPECT_EQ(shadelab::testing::methodsNote(piece), plan);
 }
 
 // The normals filter alone, computed and flipped outward on the whole mesh.

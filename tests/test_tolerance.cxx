@@ -5,9 +5,11 @@
 #include "MeshFiles.h"
 #include "VtkErrorCapture.h"
 
+#include "NumberText.h"
 #include "SceneFile.h"
 #include "vtkLocalReflectanceFilter.h"
 
+#include "vtkCallbackCommand.h"
 #include "vtkDataArray.h"
 #include "vtkPlaneSource.h"
 #include "vtkPointData.h"
@@ -446,13 +448,15 @@ TEST(Tolerance, AMaterialWithABlackKsSamplesNoLobe)
 TEST(Tolerance, AreaLightsAndMapsItCannotBoundAreRefusedWithTheRemedy)
 {
   vtkSmartPointer<vtkPolyData> sphere = coarseSphere();
+  // The scene's problem, at the field that keeps the tolerance from bounding the light.
   const std::string cannot = "a tolerance cannot bound light ";
+  const std::string atSamples = "scene /lights/0/samples: ", atEstimator = "scene /lights/0/estimator: ";
   const std::string orNone = "; or shade without a tolerance";
 
   Scene fixed = studioMapToATolerance();
   std::get<EnvironmentLight>(fixed.lights[0].source).sampling.fromTolerance = false;
   EXPECT_EQ(shadelab::testing::filterError(sphere, fixed, 0.02),
-    cannot + "'studio' of type \"environment\": its Monte Carlo estimates from 64 samples have no error bound before "
+    atSamples + cannot + "'studio' of type \"environment\": its Monte Carlo estimates from 64 samples have no error bound before "
              "they are drawn: give it \"samples\": \"auto\" (--envmap-samples auto), which draws each vertex's "
              "samples until their standard error meets a share of the tolerance" + orNone);
 
@@ -460,7 +464,7 @@ TEST(Tolerance, AreaLightsAndMapsItCannotBoundAreRefusedWithTheRemedy)
   auto& studio = std::get<EnvironmentLight>(harmonics.lights[0].source);
   studio.sampling.fromTolerance = true;
   const std::string shError = shadelab::testing::filterError(sphere, harmonics, 0.02);
-  EXPECT_EQ(shError.rfind(cannot + "'studio' of type \"environment\": its spherical-harmonic irradiance can err by ", 0), 0u)
+  EXPECT_EQ(shError.rfind(atEstimator + cannot + "'studio' of type \"environment\": its spherical-harmonic irradiance can err by ", 0), 0u)
     << shError;
   // With no specular term and a large enough tolerance, SH's bound fits the tolerance's tenth.
   harmonics.material.specular = SpecularModel::None;
@@ -473,7 +477,7 @@ TEST(Tolerance, AreaLightsAndMapsItCannotBoundAreRefusedWithTheRemedy)
 
   studio.estimator = EnvironmentEstimator::BruteForce;
   EXPECT_EQ(shadelab::testing::filterError(sphere, harmonics, 2.0),
-    cannot + "'studio' of type \"environment\": the \"brute_force\" sum of a downsampled map has no error bound: use "
+    atEstimator + cannot + "'studio' of type \"environment\": the \"brute_force\" sum of a downsampled map has no error bound: use "
              "\"sh\" or \"monte_carlo\"" + orNone);
 
   Scene shadowed = studioMapToATolerance();
@@ -497,4 +501,134 @@ TEST(Tolerance, AreaLightsAndMapsItCannotBoundAreRefusedWithTheRemedy)
   EXPECT_NE(pointError.find("its \"point\" estimator has no error bound: use \"exact\" or \"monte_carlo\"" + orNone),
     std::string::npos)
     << pointError;
+}
+
+namespace
+{
+/// A filter's plan as it stands when MethodsChosenEvent fires, before the rays and the shading.
+struct PlanAtEvent : vtkCommand
+{
+  static PlanAtEvent* New() { return new PlanAtEvent; }
+  void Execute(vtkObject* caller, unsigned long, void*) override
+  {
+    plan = static_cast<vtkLocalReflectanceFilter*>(caller)->GetMethodPlan();
+    progressBefore = progressSeen;
+  }
+  std::optional<MethodPlan> plan;
+  bool progressSeen = false, progressBefore = false;
+};
+
+/// The sum of a point array's first component.
+double sumOf(vtkDataArray* array)
+{
+  double sum = 0;
+  for (vtkIdType i = 0; i < array->GetNumberOfTuples(); ++i)
+  {
+    sum += array->GetComponent(i, 0);
+  }
+  return sum;
+}
+
+/// Shades mesh under scene to tolerance with the arrays `selection`, keeping the plan the
+/// event gave and the plan after the run.
+struct ForecastRun
+{
+  vtkNew<vtkLocalReflectanceFilter> filter;
+  vtkNew<PlanAtEvent> atEvent;
+
+  ForecastRun(vtkPolyData* mesh, const Scene& scene, double tolerance, const std::vector<std::string>& selection)
+  {
+    filter->SetInputData(mesh);
+    filter->SetScene(scene);
+    filter->SetArraySelection(selection);
+    filter->SetTolerance(tolerance);
+    filter->AddObserver(vtkLocalReflectanceFilter::MethodsChosenEvent, atEvent);
+    vtkNew<vtkCallbackCommand> progress;
+    progress->SetClientData(atEvent.GetPointer());
+    // Past the normals' 5% of the progress: the rays' and the shading's.
+    progress->SetCallback([](vtkObject*, unsigned long, void* seen, void* done)
+      { static_cast<PlanAtEvent*>(seen)->progressSeen |= *static_cast<double*>(done) > 0.05; });
+    filter->AddObserver(vtkCommand::ProgressEvent, progress);
+    filter->Update();
+  }
+};
+}
+
+TEST(Tolerance, ACostForecastIsMadeBeforeTheRunFromAPilotAndMeetsWhatTheRunDraws)
+{
+  // A sphere of 4034 points under the studio map: a pilot of every 16th vertex (253), before
+  // any shading, forecasts the samples that the run then draws.
+  vtkNew<vtkSphereSource> source;
+  source->SetThetaResolution(64);
+  source->SetPhiResolution(65);
+  source->Update();
+  ForecastRun run(source->GetOutput(), studioMapToATolerance(), 0.05, { "totals" });
+  ASSERT_TRUE(run.atEvent->plan && run.atEvent->plan->forecast);
+  EXPECT_FALSE(run.atEvent->progressBefore) << "the event comes before the rays' and the shading's progress";
+  EXPECT_TRUE(run.atEvent->progressSeen);
+  const CostForecast& before = *run.atEvent->plan->forecast;
+  EXPECT_EQ(before.pilotVertices, 253u);
+  EXPECT_EQ(before.meshVertices, 4034u);
+  EXPECT_FALSE(before.drawn) << "not drawn yet";
+  EXPECT_GT(before.seconds, 0.0);
+  EXPECT_EQ(before.shareShortOfTarget, 0.0) << "no vertex reaches 65536 samples";
+  EXPECT_EQ(before.counts.occlusionRays, 0.0);
+  const CostForecast& after = *run.filter->GetMethodPlan()->forecast;
+  ASSERT_TRUE(after.drawn);
+  EXPECT_EQ(after.counts.samples, before.counts.samples);
+  EXPECT_NEAR(before.counts.samples / after.drawn->samples, 1.0, 0.1)
+    << before.counts.samples << " forecast, " << after.drawn->samples << " drawn";
+  const std::vector<std::string> lines = run.filter->GetMethodPlan()->describe();
+  EXPECT_EQ(lines[2].rfind("forecast from 253 of the 4034 vertices: about ", 0), 0u) << lines[2];
+  EXPECT_EQ(lines[3], "drew " + roughCount(after.drawn->samples) + " samples (" + roughCount(after.drawn->samples / 4034) +
+      " per vertex)");
+
+  // A mesh under 1024 points is shaded without one: its run is short.
+  ForecastRun small(coarseSphere(), studioMapToATolerance(), 0.05, { "totals" });
+  ASSERT_TRUE(small.atEvent->plan);
+  EXPECT_FALSE(small.atEvent->plan->forecast);
+}
+
+TEST(Tolerance, ACostForecastCountsTheRaysThatShadowsAndOcclusionDraw)
+{
+  // The bunny under a shadowed softbox drawn to a target, estimated where its rays are (the
+  // visibility step), and ambient occlusion drawn to a target: the pilot's rays are cast from
+  // its own points, and both counts come within 10% of the run's.
+  vtkSmartPointer<vtkPolyData> bunny = app::readMesh(data + "meshes/bunny_zipper.ply");
+  Scene scene = readSceneFile(data + "scenes/soft_shadows_to_a_tolerance.json");
+  scene.ambientOcclusion = AmbientOcclusion{};
+  scene.ambientOcclusion->sampling.fromTolerance = true;
+  scene.ambientOcclusion->maxDistance = 0.02;
+  ForecastRun run(bunny, scene, 0.05, { "totals", "ambient_occlusion_rays" });
+  ASSERT_TRUE(run.filter->GetMethodPlan() && run.filter->GetMethodPlan()->forecast);
+  const CostForecast& forecast = *run.filter->GetMethodPlan()->forecast;
+  EXPECT_EQ(forecast.pilotVertices, 554u); // every 65th of 35947
+  ASSERT_TRUE(forecast.drawn);
+  EXPECT_NEAR(forecast.counts.samples / forecast.drawn->samples, 1.0, 0.1)
+    << forecast.counts.samples << " forecast, " << forecast.drawn->samples;
+  vtkDataArray* rays = run.filter->GetOutput()->GetPointData()->GetArray("ambient_occlusion_rays");
+  ASSERT_NE(rays, nullptr);
+  EXPECT_EQ(forecast.drawn->occlusionRays, sumOf(rays));
+  EXPECT_NEAR(forecast.counts.occlusionRays / sumOf(rays), 1.0, 0.1) << forecast.counts.occlusionRays << " forecast, " << sumOf(rays);
+}
+
+TEST(Tolerance, AForecastSaysItsCountsInWords)
+{
+  EXPECT_EQ(roughCount(0), "0");
+  EXPECT_EQ(roughCount(9999), "9999");
+  EXPECT_EQ(roughCount(41234), "41 thousand");
+  EXPECT_EQ(roughCount(2.54e6), "2.5 million");
+  EXPECT_EQ(roughCount(735e6), "735 million");
+  EXPECT_EQ(roughCount(1.2e10), "12 billion");
+  CostForecast forecast;
+  forecast.pilotVertices = 256;
+  forecast.meshVertices = 6002;
+  forecast.counts = { 24.6e6, 6002 * 120 };
+  forecast.shareShortOfTarget = 0.643;
+  forecast.seconds = 14.93;
+  forecast.threads = 2;
+  EXPECT_EQ(forecast.describe(), "forecast from 256 of the 6002 vertices: about 25 million samples (4099 per vertex) and "
+                                 "720 thousand occlusion rays (120 per vertex), 64% of the vertices at a maximum short "
+                                 "of their target, about 15 s on 2 threads");
+  EXPECT_EQ(SampleCounts{}.describe(10), "nothing sampled");
 }

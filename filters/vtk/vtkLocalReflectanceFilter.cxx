@@ -12,6 +12,7 @@
 #include "ShadeLabMeshChecks.h"
 #include "ShadeLabMeshExtent.h"
 #include "ShadeLabMeshPolygons.h"
+#include "ShadeLabRunAborted.h"
 #include "ShadingKernel.h"
 
 #include "vtkArrayDispatch.h"
@@ -21,6 +22,7 @@
 #include "vtkCellData.h"
 #include "vtkCommunicator.h"
 #include "vtkDataArrayRange.h"
+#include "vtkDemandDrivenPipeline.h"
 #include "vtkDoubleArray.h"
 #include "vtkFloatArray.h"
 #include "vtkInformation.h"
@@ -38,7 +40,9 @@
 #include <glm/matrix.hpp>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <numeric>
 #include <sstream>
@@ -122,13 +126,17 @@ private:
   }
 };
 
+/// Told the share of the points done after each block of the shading; may throw
+/// shadelab::RunAborted to stop it.
+using ProgressReport = std::function<void(double)>;
+
 /// Runs the kernel over all points in a vtkSMPTools loop, for any real point and normal
 /// array types (dispatched once, so the loop reads raw memory).
 template <typename T>
 struct ShadeAllPoints
 {
   const shadelab::ShadingKernel<T>& kernel;
-  vtkAlgorithm* progressOwner;
+  const ProgressReport* progress;
 
   template <typename PointArray, typename NormalArray>
   void operator()(PointArray* points, NormalArray* normals) const
@@ -155,9 +163,9 @@ struct ShadeAllPoints
                 shadelab::Vec3<T>(T(n[0]), T(n[1]), T(n[2])));
             });
         });
-      if (progressOwner)
+      if (progress)
       {
-        progressOwner->UpdateProgress(static_cast<double>(last) / count);
+        (*progress)(static_cast<double>(last) / count);
       }
     }
   }
@@ -167,20 +175,26 @@ struct ShadeAllPoints
 /// maximum short of its target.
 using ShortOfTarget = std::vector<std::vector<std::uint8_t>>;
 
-/// The requested arrays, shaded in precision T. progressOwner (or nullptr) reports progress;
+/// The requested arrays, shaded in precision T. progress (or nullptr) is told how far it is;
 /// shortOfTarget (or nullptr) receives the vertices that stopped short of their targets, and
-/// standardError (or nullptr), where it is sized for every point, each one's sampled standard
-/// error (shadelab::ShadingOutputs::sampledStandardError).
+/// standardError and samplesDrawn (or nullptr), where they are sized for every point, each
+/// one's sampled standard error and count of samples (shadelab::ShadingOutputs').
 template <typename T>
 std::vector<vtkSmartPointer<vtkDataArray>> shade(const shadelab::Scene& scene,
   const shadelab::ArrayRequest& request, const std::vector<shadelab::LightMethod>& methods,
   const std::string& prefix, vtkDataArray* points, vtkDataArray* normals, const shadelab::ShadingInputs& inputs,
-  vtkAlgorithm* progressOwner, ShortOfTarget* shortOfTarget = nullptr, std::vector<double>* standardError = nullptr)
+  const ProgressReport* progress, ShortOfTarget* shortOfTarget = nullptr, std::vector<double>* standardError = nullptr,
+  std::vector<std::uint32_t>* samplesDrawn = nullptr)
 {
+  const auto count = static_cast<std::size_t>(points->GetNumberOfTuples());
   OutputArrays<T> arrays(scene, request, prefix, points->GetNumberOfTuples());
-  if (standardError && standardError->size() == static_cast<std::size_t>(points->GetNumberOfTuples()))
+  if (standardError && standardError->size() == count)
   {
     arrays.outputs.sampledStandardError = standardError->data();
+  }
+  if (samplesDrawn && samplesDrawn->size() == count)
+  {
+    arrays.outputs.samplesDrawn = samplesDrawn->data();
   }
   if (shortOfTarget)
   {
@@ -196,7 +210,7 @@ std::vector<vtkSmartPointer<vtkDataArray>> shade(const shadelab::Scene& scene,
     }
   }
   const shadelab::ShadingKernel<T> kernel(scene, arrays.outputs, methods, inputs);
-  ShadeAllPoints<T> worker{ kernel, progressOwner };
+  ShadeAllPoints<T> worker{ kernel, progress };
   using Reals = vtkArrayDispatch::Reals;
   if (!vtkArrayDispatch::Dispatch2ByValueType<Reals, Reals>::Execute(points, normals, worker))
   {
@@ -407,6 +421,40 @@ vtkLocalReflectanceFilter::vtkLocalReflectanceFilter()
   this->NormalsStep->SetController(nullptr);
   this->VisibilityStep->SetController(nullptr);
   this->AvailableArrays->AddObserver(vtkCommand::ModifiedEvent, this, &vtkLocalReflectanceFilter::AvailableArraysChanged);
+  this->NormalsStep->AddObserver(vtkCommand::ProgressEvent, this, &vtkLocalReflectanceFilter::ForwardStepProgress);
+  this->VisibilityStep->AddObserver(vtkCommand::ProgressEvent, this, &vtkLocalReflectanceFilter::ForwardStepProgress);
+}
+
+void vtkLocalReflectanceFilter::ForwardStepProgress(vtkObject* step, unsigned long, void* done)
+{
+  if (this->Progress.span > 0)
+  {
+    this->UpdateProgress(this->Progress.start + this->Progress.span * *static_cast<double*>(done));
+  }
+  if (this->Stoppable && this->GetAbortExecute())
+  {
+    static_cast<vtkAlgorithm*>(step)->SetAbortExecute(1);
+  }
+}
+
+void vtkLocalReflectanceFilter::ReportProgress(double done)
+{
+  this->UpdateProgress(this->Progress.start + this->Progress.span * done);
+  this->StopIfAborted();
+}
+
+void vtkLocalReflectanceFilter::StopIfAborted()
+{
+  if (this->Stoppable && this->GetAbortExecute())
+  {
+    throw shadelab::RunAborted();
+  }
+}
+
+void vtkLocalReflectanceFilter::StartStep(double start, double span)
+{
+  this->Progress = { start, span };
+  this->StopIfAborted();
 }
 
 void vtkLocalReflectanceFilter::AvailableArraysChanged()
@@ -686,9 +734,24 @@ int vtkLocalReflectanceFilter::Shade(vtkInformationVector** inputVector, vtkInfo
   this->ForgetSceneProblem();
   this->NormalsReport.clear();
   this->VisibilityReport.clear();
-  if (!shadelab::isPieceOfSplitMesh(this->Controller, input))
+  // A split mesh's processes must all take part in its exchanges: only a whole mesh stops.
+  this->Stoppable = !shadelab::isPieceOfSplitMesh(this->Controller, input);
+  if (this->Stoppable)
   {
-    return this->ShadeMesh(input, output, nullptr);
+    try
+    {
+      return this->ShadeMesh(input, output, nullptr);
+    }
+    catch (const shadelab::RunAborted&) // an empty output, and no error
+    {
+      output->Initialize();
+      this->SamplingReport.clear();
+      // Not generated, so that the next update runs again, and the steps with it.
+      outputVector->GetInformationObject(0)->Set(vtkDemandDrivenPipeline::DATA_NOT_GENERATED(), 1);
+      this->NormalsStep->Modified();
+      this->VisibilityStep->Modified();
+      return 1;
+    }
   }
   const shadelab::PieceLayout layout = shadelab::pieceLayout(this->Controller, input);
   if (!layout.problem.empty())
@@ -699,6 +762,66 @@ int vtkLocalReflectanceFilter::Shade(vtkInformationVector** inputVector, vtkInfo
   // Pieces not put together: one process holds the whole mesh, and shades it alone.
   const bool shaded = this->ShadeMesh(input, output, layout.putTogether ? &layout : nullptr) == 1;
   return shadelab::agreedOutcome(this->Controller, this, output, shaded);
+}
+
+namespace
+{
+/// The share of a run's progress that preparing the normals takes.
+constexpr double normalsShare = 0.05;
+
+/// The share the rays take: most of the run where each vertex casts many (ambient occlusion, an
+/// area light's or a map's shadows), a quarter where it casts one per light, none without rays.
+double raysShareOf(const shadelab::Scene& scene)
+{
+  if (!scene.needsVisibility())
+  {
+    return 0;
+  }
+  const bool manyRays = scene.ambientOcclusion ||
+    std::any_of(scene.lights.begin(), scene.lights.end(),
+      [](const shadelab::NamedLight& light) { return light.shadows && shadelab::isDistributed(light.source); });
+  return manyRays ? 0.75 : 0.25;
+}
+
+/// A cost forecast's pilot: enough vertices for their mean cost to a few percent, a small share
+/// of a large mesh's; a mesh under pilotMeshLeast is shaded without one (the run is short).
+constexpr vtkIdType pilotLeast = 256, pilotMost = 2048, pilotMeshLeast = 4 * pilotLeast;
+
+/// How many of the pilot's vertices stopped at a maximum short of a target: a light's, or the
+/// ambient occlusion's (its array in `seen`, where there is one).
+std::size_t shortOfTargetCount(const ShortOfTarget& lights, vtkPolyData* seen, const std::string& prefix, std::size_t count)
+{
+  vtkDataArray* occlusion = seen ? seen->GetPointData()->GetArray(
+    shadelab::occlusionArrayName(prefix, shadelab::OcclusionTerm::ShortOfTarget).c_str()) : nullptr;
+  std::size_t stopped = 0;
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    bool marked = occlusion && occlusion->GetComponent(static_cast<vtkIdType>(i), 0) != 0;
+    for (const std::vector<std::uint8_t>& marks : lights)
+    {
+      marked = marked || (!marks.empty() && marks[i]);
+    }
+    stopped += marked ? 1 : 0;
+  }
+  return stopped;
+}
+
+/// The ambient occlusion's rays from the pilot's points: its rays array where drawn to a
+/// target, else its fixed count each.
+double occlusionRayCount(const shadelab::Scene& scene, vtkPolyData* seen, const std::string& prefix, std::size_t count)
+{
+  if (!scene.ambientOcclusion)
+  {
+    return 0;
+  }
+  vtkDataArray* rays = seen->GetPointData()->GetArray(shadelab::occlusionArrayName(prefix, shadelab::OcclusionTerm::Rays).c_str());
+  double sum = rays ? 0 : double(scene.ambientOcclusion->sampling.samples) * double(count);
+  for (vtkIdType i = 0; rays && i < rays->GetNumberOfTuples(); ++i)
+  {
+    sum += rays->GetComponent(i, 0);
+  }
+  return sum;
+}
 }
 
 /// What the checks before shading settle, for the steps that write.
@@ -732,6 +855,9 @@ int vtkLocalReflectanceFilter::ShadeMesh(vtkPolyData* input, vtkPolyData* output
   }
 
   output->ShallowCopy(input);
+  // Progress: the normals, then the rays where there are any, then the shading.
+  const double raysShare = raysShareOf(plan->scene);
+  this->StartStep(0, normalsShare);
   vtkDataArray* shadingNormals = this->PrepareNormals(input, output, split != nullptr);
   // The step failed (on a split mesh, on every process, having said why). An empty piece has
   // none where the others kept their own.
@@ -765,13 +891,33 @@ int vtkLocalReflectanceFilter::ShadeMesh(vtkPolyData* input, vtkPolyData* output
   try
   {
     sampling.standardError.resize(estimatesSampling ? static_cast<std::size_t>(input->GetNumberOfPoints()) : 0);
+    if (this->Tolerance > 0)
+    {
+      this->StartStep(normalsShare, 0); // a forecast's pilot moves no progress bar
+      this->MethodPlan->forecast =
+        estimatesSampling ? this->ForecastCost(input, shadingNormals, *plan, split != nullptr) : std::nullopt;
+      sampling.samplesDrawn.resize(this->MethodPlan->forecast ? static_cast<std::size_t>(input->GetNumberOfPoints()) : 0);
+      this->InvokeEvent(MethodsChosenEvent);
+    }
+    this->StartStep(normalsShare, raysShare);
     vtkPolyData* seen = this->PrepareVisibility(input, shadingNormals, *plan, split != nullptr);
+    this->StartStep(normalsShare + raysShare, 1 - normalsShare - raysShare);
     if (!empty)
     {
       arrays = this->ShadedArrays(input, shadingNormals, seen, *plan, split, sampling);
     }
+    if (this->Tolerance > 0 && this->MethodPlan->forecast) // what the run drew, against it
+    {
+      this->MethodPlan->forecast->drawn = shadelab::SampleCounts{
+        std::accumulate(sampling.samplesDrawn.begin(), sampling.samplesDrawn.end(), 0.0),
+        occlusionRayCount(plan->scene, seen, this->ArrayPrefix, sampling.samplesDrawn.size()) };
+    }
     // The rays' arrays have been used (those asked for are in `arrays`): not kept until the next run.
     this->VisibilityStep->GetOutput()->Initialize();
+  }
+  catch (const shadelab::RunAborted&)
+  {
+    throw; // for Shade to leave an empty output
   }
   catch (const std::exception& error) // an array, or anything else, that could not be allocated
   {
@@ -1029,6 +1175,10 @@ bool vtkLocalReflectanceFilter::ChooseMethods(ShadingPlan& plan, bool roundingMe
     }
     return roundingMeasuredLater;
   }
+  catch (const shadelab::UnboundedSceneField& error) // the scene's problem, at its field
+  {
+    return this->SceneIsValid({ { error.field, error.what() } });
+  }
   catch (const std::invalid_argument& error)
   {
     vtkErrorMacro(<< error.what());
@@ -1240,13 +1390,16 @@ std::vector<vtkSmartPointer<vtkDataArray>> vtkLocalReflectanceFilter::ShadedArra
     inputs.lightColors = &*spectralColors;
     request.totals[int(shadelab::TotalTerm::Total)] = true;
   }
+  const ProgressReport progress = [this](double done) { this->ReportProgress(done); };
   auto shadeWith = [&](const shadelab::ArrayRequest& asked, SamplingOutcome* outcome)
   {
     return plan.precision == shadelab::Precision::Float64
-      ? shade<double>(plan.scene, asked, plan.methods, this->ArrayPrefix, points, shadingNormals, inputs, this,
-          outcome ? &outcome->shortOfTarget : nullptr, outcome ? &outcome->standardError : nullptr)
-      : shade<float>(plan.scene, asked, plan.methods, this->ArrayPrefix, points, shadingNormals, inputs, this,
-          outcome ? &outcome->shortOfTarget : nullptr, outcome ? &outcome->standardError : nullptr);
+      ? shade<double>(plan.scene, asked, plan.methods, this->ArrayPrefix, points, shadingNormals, inputs, &progress,
+          outcome ? &outcome->shortOfTarget : nullptr, outcome ? &outcome->standardError : nullptr,
+          outcome ? &outcome->samplesDrawn : nullptr)
+      : shade<float>(plan.scene, asked, plan.methods, this->ArrayPrefix, points, shadingNormals, inputs, &progress,
+          outcome ? &outcome->shortOfTarget : nullptr, outcome ? &outcome->standardError : nullptr,
+          outcome ? &outcome->samplesDrawn : nullptr);
   };
   std::vector<vtkSmartPointer<vtkDataArray>> arrays = shadeWith(request, &sampling);
   if (spectralColors)
@@ -1369,8 +1522,8 @@ vtkDataArray* vtkLocalReflectanceFilter::PrepareNormals(vtkPolyData* input, vtkP
   return shading;
 }
 
-vtkPolyData* vtkLocalReflectanceFilter::PrepareVisibility(
-  vtkPolyData* input, vtkDataArray* shadingNormals, const ShadingPlan& plan, bool split)
+vtkPolyData* vtkLocalReflectanceFilter::PrepareVisibility(vtkPolyData* input, vtkDataArray* shadingNormals,
+  const ShadingPlan& plan, bool split, const std::vector<vtkIdType>& rayPoints)
 {
   const shadelab::Scene& scene = plan.scene;
   const shadelab::ArrayRequest& request = plan.request;
@@ -1418,7 +1571,9 @@ vtkPolyData* vtkLocalReflectanceFilter::PrepareVisibility(
       scene.material.shininess };
   }
   step->SetDrawnLights(drawn);
+  step->SetRayPointIds(rayPoints);
   step->Update();
+  this->StopIfAborted(); // the step stopped (ForwardStepProgress asked it to)
   vtkPolyData* seen = step->GetOutput();
   if (input->GetNumberOfPoints() > 0 && !seen->GetPointData()->GetArray(shadelab::visibilityFlagsArrayName(this->ArrayPrefix).c_str()))
   {
@@ -1426,6 +1581,63 @@ vtkPolyData* vtkLocalReflectanceFilter::PrepareVisibility(
   }
   this->VisibilityReport = step->GetReport();
   return seen;
+}
+
+std::optional<shadelab::CostForecast> vtkLocalReflectanceFilter::ForecastCost(
+  vtkPolyData* input, vtkDataArray* shadingNormals, const ShadingPlan& plan, bool split)
+{
+  const vtkIdType count = input->GetNumberOfPoints();
+  if (split || count < pilotMeshLeast)
+  {
+    return std::nullopt;
+  }
+  const vtkIdType stride = everyKth(count, std::clamp<vtkIdType>(count / 64, pilotLeast, pilotMost));
+  std::vector<vtkIdType> pilot;
+  for (vtkIdType id = 0; id < count; id += stride)
+  {
+    pilot.push_back(id);
+  }
+  const auto start = std::chrono::steady_clock::now();
+  // Its rays from the pilot's points only (the BVH built here is kept for the run), seeded by
+  // their ids, as in the run.
+  vtkPolyData* seen = this->PrepareVisibility(input, shadingNormals, plan, false, pilot);
+  const double buildSeconds = seen ? std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() -
+      this->VisibilityStep->GetRaySeconds()
+                                   : 0.0;
+  shadelab::ShadingInputs inputs; // the scene's own material: per-vertex values are read for the whole mesh
+  const std::vector<long long> ids(pilot.begin(), pilot.end());
+  inputs.sampleIds = ids.data();
+  if (seen)
+  {
+    useVisibility(seen, plan.scene, plan.request, this->ArrayPrefix, inputs);
+  }
+  const vtkSmartPointer<vtkDataArray> points = shadelab::tuplesAt(input->GetPoints()->GetData(), pilot);
+  const vtkSmartPointer<vtkDataArray> normals = shadelab::tuplesAt(shadingNormals, pilot);
+  std::vector<std::uint32_t> samples(pilot.size(), 0);
+  ShortOfTarget shortOfTarget;
+  if (plan.precision == shadelab::Precision::Float64)
+  {
+    shade<double>(plan.scene, plan.request, plan.methods, this->ArrayPrefix, points, normals, inputs, nullptr,
+      &shortOfTarget, nullptr, &samples);
+  }
+  else
+  {
+    shade<float>(plan.scene, plan.request, plan.methods, this->ArrayPrefix, points, normals, inputs, nullptr,
+      &shortOfTarget, nullptr, &samples);
+  }
+  const double pilotSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() - buildSeconds;
+
+  shadelab::CostForecast forecast;
+  const double scale = double(count) / double(pilot.size());
+  forecast.pilotVertices = pilot.size();
+  forecast.meshVertices = static_cast<std::size_t>(count);
+  forecast.counts.samples = scale * std::accumulate(samples.begin(), samples.end(), 0.0);
+  forecast.counts.occlusionRays = scale * occlusionRayCount(plan.scene, seen, this->ArrayPrefix, pilot.size());
+  forecast.shareShortOfTarget =
+    double(shortOfTargetCount(shortOfTarget, seen, this->ArrayPrefix, pilot.size())) / double(pilot.size());
+  forecast.seconds = scale * pilotSeconds;
+  forecast.threads = vtkSMPTools::GetEstimatedNumberOfThreads();
+  return forecast;
 }
 
 void vtkLocalReflectanceFilter::PrintSelf(ostream& os, vtkIndent indent)

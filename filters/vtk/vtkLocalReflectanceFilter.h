@@ -21,12 +21,17 @@
  * the whole mesh, bit for bit: the normals, the outward test, the extent that places the scene
  * and plans the tolerance, and the occluders are the whole mesh's, and each point's samples
  * are seeded by its id in it (ShadeLabWholeMesh.h).
+ *
+ * Progress moves through the normals, the rays and the shading. SetAbortExecute (ParaView's
+ * Cancel) stops the run between blocks of the rays or the shading, leaving an empty output and
+ * no error; a piece of a split mesh runs to its end, as its processes must all take part.
  */
 #ifndef vtkLocalReflectanceFilter_h
 #define vtkLocalReflectanceFilter_h
 
 #include "ShadeLabFiltersModule.h"
 #include "vtkDataArraySelection.h" // the scene's arrays, a member
+#include "vtkCommand.h" // MethodsChosenEvent
 #include "vtkMultiProcessController.h" // the controller, a member
 #include "vtkNew.h"
 #include "vtkMeshVisibilityFilter.h" // the visibility step, a member
@@ -112,6 +117,11 @@ public:
   /// tolerance is 0: for comparing methods side by side, as `shadelab-bench --charts` does.
   void SetLightMethods(const std::vector<shadelab::LightMethod>& methods);
   const std::vector<shadelab::LightMethod>& GetLightMethods() const { return this->LightMethods; }
+
+  /// Fired under a tolerance once the methods are chosen and, where they sample, their cost
+  /// forecast, before the rays and the shading: GetMethodPlan() then says what the run will
+  /// do and about what it will cost (`shadelab shade` prints it then).
+  static constexpr unsigned long MethodsChosenEvent = vtkCommand::UserEvent + 1;
 
   /// What the last run chose under the tolerance, with its predicted errors; empty when the
   /// tolerance is 0. Its describe() lines are the field data array shadelab_methods.
@@ -222,11 +232,40 @@ private:
     /// Where the plan samples, sized for every point: each one's sampled standard error
     /// (shadelab::ShadingOutputs::sampledStandardError); empty elsewhere.
     std::vector<double> standardError;
+    /// Where a forecast was made, sized for every point: each one's count of samples, to set
+    /// against the forecast; empty elsewhere.
+    std::vector<std::uint32_t> samplesDrawn;
   };
+  /// Progress and abort. The steps' progress is forwarded as this filter's, within the share
+  /// of the run that Progress says (span 0: not forwarded, as for a forecast's pilot), and an
+  /// abort asked of this filter is passed on to them; the shading reports between its blocks.
+  /// Where Stoppable (a whole mesh: a split mesh's processes must all take part in its
+  /// exchanges), an abort throws shadelab::RunAborted, which Shade turns into an empty output.
+  struct ProgressShare
+  {
+    double start = 0, span = 0;
+  };
+  ProgressShare Progress;
+  bool Stoppable = true;
+  void ForwardStepProgress(vtkObject* step, unsigned long, void* done);
+  /// This filter's progress, `done` (0 to 1) of the current share, then StopIfAborted.
+  void ReportProgress(double done);
+  void StopIfAborted();
+  /// The next step's share of the progress, after StopIfAborted.
+  void StartStep(double start, double span);
+
   /// Runs VisibilityStep when the plan's scene needs it (a collective call where the input is a
-  /// piece of a split mesh), with the plan's targets for the shadowed lights drawn to one;
-  /// returns its output (nullptr: not needed), or throws std::runtime_error when it failed.
-  vtkPolyData* PrepareVisibility(vtkPolyData* input, vtkDataArray* shadingNormals, const ShadingPlan& plan, bool split);
+  /// piece of a split mesh), with the plan's targets for the shadowed lights drawn to one, from
+  /// the points rayPoints lists (empty: every point; not on a split mesh); returns its output
+  /// (nullptr: not needed), or throws std::runtime_error when it failed.
+  vtkPolyData* PrepareVisibility(vtkPolyData* input, vtkDataArray* shadingNormals, const ShadingPlan& plan, bool split,
+    const std::vector<vtkIdType>& rayPoints = {});
+  /// Where the tolerance's plan samples, on a whole mesh large enough for a pilot to be a small
+  /// part of the run: the pilot's vertices (every k-th by id) given their rays and shaded with
+  /// the plan, and what they cost scaled to the mesh. nullopt on a split mesh or a small one.
+  /// Throws std::runtime_error where the rays failed.
+  std::optional<shadelab::CostForecast> ForecastCost(
+    vtkPolyData* input, vtkDataArray* shadingNormals, const ShadingPlan& plan, bool split);
   /// The name of the normals the filter computes when the input has none.
   std::string ComputedNormalsName() const { return this->ArrayPrefix + "Normals"; }
 

@@ -8,12 +8,14 @@
 #include "ShadeLabMeshChecks.h"
 #include "ShadeLabMeshExtent.h"
 #include "ShadeLabMeshPolygons.h"
+#include "ShadeLabRunAborted.h"
 #include "ShadeLabWholeMesh.h"
 #include "ShadingFlags.h"
 #include "SceneFrame.h"
 #include "Visibility.h"
 
 #include "vtkDataArrayRange.h"
+#include "vtkDemandDrivenPipeline.h"
 #include "vtkDoubleArray.h"
 #include "vtkFloatArray.h"
 #include "vtkInformation.h"
@@ -425,9 +427,10 @@ void traceOcclusion(const shadelab::OccluderMesh& occluders, const RayGroup& gro
 }
 
 /// Every ray from the count ray points into the arrays, in a vtkSMPTools loop, with progress
-/// reported through `filter`. Throws where the tracing failed.
+/// reported through `filter`. Throws where the tracing failed, and shadelab::RunAborted where
+/// `stoppable` and the filter was asked to abort (checked before each block).
 void castRays(const shadelab::OccluderMesh& occluders, const std::vector<ShadowedLight>& lights, const RayArrays& arrays,
-  const RayVertices& vertices, vtkIdType count, vtkAlgorithm* filter)
+  const RayVertices& vertices, vtkIdType count, vtkAlgorithm* filter, bool stoppable)
 {
   // Vertices in fixed groups (not split by the threads' ranges), each light's rays from a group
   // sharing packets: the same packets on any thread count (and Embree's answer to a ray does
@@ -437,6 +440,10 @@ void castRays(const shadelab::OccluderMesh& occluders, const std::vector<Shadowe
   const vtkIdType block = std::max<vtkIdType>(groups / 10, 64);
   for (vtkIdType firstGroup = 0; firstGroup < groups; firstGroup += block)
   {
+    if (stoppable && filter->GetAbortExecute())
+    {
+      throw shadelab::RunAborted();
+    }
     const vtkIdType lastGroup = std::min(groups, firstGroup + block);
     vtkSMPTools::For(firstGroup, lastGroup,
       [&](vtkIdType beginGroup, vtkIdType endGroup)
@@ -610,9 +617,17 @@ int vtkMeshVisibilityFilter::CastRays(vtkInformationVector** inputVector, vtkInf
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   this->ForgetSceneProblem();
   this->Report.clear();
-  if (!shadelab::isPieceOfSplitMesh(this->Controller, input))
+  this->RaySeconds = 0;
+  // A split mesh's processes must all take part in its exchanges: only a whole mesh stops.
+  this->Stoppable = !shadelab::isPieceOfSplitMesh(this->Controller, input);
+  if (this->Stoppable)
   {
-    return this->CastRaysFrom(input, output, nullptr);
+    const int result = this->CastRaysFrom(input, output, this->RayPointIds.empty() ? nullptr : &this->RayPointIds);
+    if (this->GetAbortExecute()) // not generated, so that the next update runs again
+    {
+      outputVector->GetInformationObject(0)->Set(vtkDemandDrivenPipeline::DATA_NOT_GENERATED(), 1);
+    }
+    return result;
   }
   // Every process holds every triangle, which its own points' rays may meet.
   return shadelab::computeOnPiece(this->Controller, this, input, output, true, shadelab::WholeMeshOn::EveryProcess,
@@ -658,8 +673,14 @@ int vtkMeshVisibilityFilter::CastRaysFrom(vtkPolyData* input, vtkPolyData* outpu
     findEnclosedLights(*occluders, lights);
     arrays = allocateRayArrays(lights, *scene, this->ArrayPrefix, this->ComputeBentNormal, this->ComputeSkyViewFactor, count);
     const auto raysStart = std::chrono::steady_clock::now();
-    castRays(*occluders, lights, arrays, RayVertices(input, rayPoints, *scene), count, this);
+    castRays(*occluders, lights, arrays, RayVertices(input, rayPoints, *scene), count, this, this->Stoppable);
     times.raySeconds = secondsSince(raysStart);
+  }
+  catch (const shadelab::RunAborted&) // an empty output, and no error
+  {
+    output->Initialize();
+    this->Report = "Aborted.";
+    return 1;
   }
   catch (const std::exception& error) // Embree's, no memory for the triangles or the arrays, or a ray's failure
   {
@@ -672,6 +693,7 @@ int vtkMeshVisibilityFilter::CastRaysFrom(vtkPolyData* input, vtkPolyData* outpu
     output->GetPointData()->AddArray(array);
   }
   this->Report = raysReport(arrays, lights, count, occluders->triangleCount(), times);
+  this->RaySeconds = times.raySeconds;
   shadelab::addFieldNote(output, shadelab::visibilityNoteName, { this->Report });
   return 1;
 }
@@ -720,6 +742,15 @@ std::optional<shadelab::Scene> vtkMeshVisibilityFilter::PlacedScene(vtkPolyData*
     }
   }
   return this->SceneIsValid(untargeted) ? std::optional<shadelab::Scene>(scene) : std::nullopt;
+}
+
+void vtkMeshVisibilityFilter::SetRayPointIds(const std::vector<vtkIdType>& ids)
+{
+  if (ids != this->RayPointIds)
+  {
+    this->RayPointIds = ids;
+    this->Modified();
+  }
 }
 
 void vtkMeshVisibilityFilter::SetDrawnLights(const std::vector<DrawnLight>& lights)

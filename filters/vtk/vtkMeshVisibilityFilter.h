@@ -24,6 +24,10 @@
  * The scene, set as vtkShadeLabSceneFilter says, gives the lights (those with shadows count)
  * and the ambient occlusion settings; a scene in the mesh's frame is placed on the input.
  *
+ * SetAbortExecute (ParaView's Cancel) stops the rays between blocks of a tenth of the points,
+ * leaving an empty output and no error; a piece of a split mesh runs to its end, as its
+ * processes must all take part in its exchanges.
+ *
  * Results are the same bits on any number of threads: each vertex's samples are a hash of its
  * id, and a ray's answer does not depend on the order the BVH is traversed in. A piece of a
  * mesh split over processes (see SetController) casts its points' rays against the whole
@@ -103,6 +107,14 @@ public:
   void SetDrawnLights(const std::vector<DrawnLight>& lights);
   const std::vector<DrawnLight>& GetDrawnLights() const { return this->DrawnLights; }
 
+  /// Cast rays from these points only, by id (empty, the default: from every point); the
+  /// output's arrays then hold a value for each listed point, in the list's order, with the
+  /// samples of those ids (a tolerance's cost forecast, vtkLocalReflectanceFilter). Not on a
+  /// split mesh, whose pieces list their own.
+  void SetRayPointIds(const std::vector<vtkIdType>& ids);
+  /// How long the last run's rays took, in seconds (the BVH's build not included).
+  double GetRaySeconds() const { return this->RaySeconds; }
+
   /// The processes over which the mesh may be split, as vtkShadingNormalsFilter's (default:
   /// the global controller; nullptr: this process alone).
   vtkSetSmartPointerMacro(Controller, vtkMultiProcessController);
@@ -131,6 +143,9 @@ private:
   std::string Report;
   vtkSmartPointer<vtkMultiProcessController> Controller;
   std::vector<DrawnLight> DrawnLights;
+  std::vector<vtkIdType> RayPointIds;
+  double RaySeconds = 0;
+  bool Stoppable = true; // by an abort (not a piece of a split mesh)
 
   /// The BVH of the mesh it was built for: the same point and cell objects, none modified since.
   struct BuiltOccluders

@@ -1,5 +1,6 @@
 #pragma once
 // Numbers as text for messages and generated expressions.
+#include <cmath>
 #include <cstddef>
 #include <sstream>
 #include <string>
@@ -20,5 +21,20 @@ inline std::string withDigits(double x, int digits)
 inline std::string countOf(std::size_t count, const std::string& noun)
 {
   return std::to_string(count) + " " + noun + (count == 1 ? "" : "s");
+}
+
+/// A count in words, to two significant digits or whole: "960", "41 thousand", "2.5 million".
+inline std::string roughCount(double count)
+{
+  auto rough = [](double x) { return x < 100 ? withDigits(x, 2) : std::to_string(std::llround(x)); };
+  if (count >= 1e9)
+  {
+    return rough(count / 1e9) + " billion";
+  }
+  if (count >= 1e6)
+  {
+    return rough(count / 1e6) + " million";
+  }
+  return count >= 1e4 ? rough(count / 1e3) + " thousand" : std::to_string(std::llround(count));
 }
 }

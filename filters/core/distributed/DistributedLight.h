@@ -46,6 +46,8 @@ struct DistributedTerms
   /// Drawn to a target (SequentialSampling.h): stopped at the maximum with a standard error
   /// still above it.
   bool shortOfTarget = false;
+  /// How many samples the estimate drew (0: computed without samples).
+  int samples = 0;
   /// Precomputed radiance transfer only (RadianceTransfer.h): the vertex's transfer vector in
   /// world axes and its coefficients' standard errors (0 without shadows), 0 past its order's.
   ShBasis transfer{};
@@ -119,10 +121,11 @@ public:
 
 /// DistributedTerms as a row of numbers, for the visibility step to hand its estimates to the
 /// shading (soft shadows drawn to a target): E, S, their standard errors (RGB each), the
-/// visibility and its standard error, and whether the vertex stopped short of its target. Not
+/// visibility and its standard error, whether the vertex stopped short of its target, and how
+/// many samples it drew. Not
 /// a transfer vector: precomputed transfer is drawn to a fixed count only (a tolerance refuses
 /// it with shadows), so it never comes this way.
-constexpr int packedTermsSize = 15;
+constexpr int packedTermsSize = 16;
 
 inline void packTerms(const DistributedTerms& terms, double* row)
 {
@@ -136,6 +139,7 @@ inline void packTerms(const DistributedTerms& terms, double* row)
   row[12] = terms.visibility;
   row[13] = terms.visibilityStdError;
   row[14] = terms.shortOfTarget ? 1.0 : 0.0;
+  row[15] = terms.samples;
 }
 
 inline DistributedTerms unpackTerms(const double* row)
@@ -149,6 +153,7 @@ inline DistributedTerms unpackTerms(const double* row)
   terms.visibility = row[12];
   terms.visibilityStdError = row[13];
   terms.shortOfTarget = row[14] != 0;
+  terms.samples = static_cast<int>(row[15]);
   return terms;
 }
 

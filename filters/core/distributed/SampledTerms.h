@@ -124,9 +124,12 @@ DistributedTerms sampledTerms(std::uint64_t light, std::uint64_t vertex, const S
     }
   };
   bool shortOfTarget = false;
+  int drawn = 0;
   if (!targets.any())
   {
-    draw(SampleSequence(light, vertex, sampling));
+    const SampleSequence sequence(light, vertex, sampling);
+    draw(sequence);
+    drawn = sequence.count();
   }
   else
   {
@@ -153,7 +156,6 @@ DistributedTerms sampledTerms(std::uint64_t light, std::uint64_t vertex, const S
       }
       return round;
     };
-    int drawn = 0;
     for (int round = nextRound(0); round > 0; round = nextRound(drawn))
     {
       draw(SampleSequence(light, vertex, { round, sampling.stratified }, static_cast<std::uint64_t>(drawn)));
@@ -167,6 +169,7 @@ DistributedTerms sampledTerms(std::uint64_t light, std::uint64_t vertex, const S
   }
   DistributedTerms terms;
   terms.shortOfTarget = shortOfTarget;
+  terms.samples = drawn;
   if (irradiance)
   {
     terms.irradiance = e.mean();

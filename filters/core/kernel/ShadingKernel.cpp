@@ -766,6 +766,10 @@ void ShadingKernel<T>::estimateDistributedLight(const DistributedLightSlot& ligh
     {
       light.shortOfTarget[i] = terms.shortOfTarget ? 1 : 0;
     }
+    if (std::uint32_t* samples = outputs_.samplesDrawn)
+    {
+      samples[i] += static_cast<std::uint32_t>(terms.samples);
+    }
     storeCoefficients(LightTerm::ShTransfer, i, terms.transfer);
     storeCoefficients(LightTerm::ShTransferStdError, i, terms.transferStdError);
   }

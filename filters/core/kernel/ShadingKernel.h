@@ -43,6 +43,9 @@ struct ShadingOutputs
   /// max(1, kd) sigma_E + ks sigma_S, plus max(1, ka La) sigma_AO, added as if they erred
   /// together; nullptr: not computed.
   double* sampledStandardError = nullptr;
+  /// Per vertex, the samples that its area lights' and maps' estimates drew, added to what it
+  /// holds (what a run costs, for a tolerance's forecast); nullptr: not counted.
+  std::uint32_t* samplesDrawn = nullptr;
 };
 
 /// What the mesh hides, computed before shading (visibility/Visibility.h), one value per

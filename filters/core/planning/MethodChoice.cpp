@@ -1,5 +1,6 @@
 #include "MethodChoice.h"
 
+#include "NumberText.h"
 #include "Overloaded.h"
 #include "Precision.h"
 #include "RadianceTransfer.h"
@@ -114,19 +115,21 @@ EstimatorBounds estimatorBoundsOf(const LightSource& source)
 /// An area light's or a map's choice: its deterministic error charged to what is `left`, and
 /// which of its estimates are sampled (their shares come later, drawToShare). Throws
 /// std::invalid_argument where the tolerance cannot bound the light.
-LightChoice distributedChoice(const NamedLight& light, const Material& m, bool specular, double left)
+LightChoice distributedChoice(const NamedLight& light, std::size_t index, const Material& m, bool specular, double left)
 {
   LightChoice choice;
   choice.name = light.name;
   const EstimatorBounds bounds = estimatorBoundsOf(light.source);
-  auto refuse = [&](const std::string& why)
+  // field: the light's field at fault, "estimator" or "samples".
+  auto refuse = [&](const std::string& field, const std::string& why)
   {
-    throw std::invalid_argument("a tolerance cannot bound light '" + light.name + "' of type \"" +
-      lightTypeName(light.source) + "\": " + why + "; or shade without a tolerance");
+    throw UnboundedSceneField("/lights/" + std::to_string(index) + "/" + field,
+      "a tolerance cannot bound light '" + light.name + "' of type \"" + lightTypeName(light.source) + "\": " + why +
+        "; or shade without a tolerance");
   };
   if (!bounds.unbounded.empty())
   {
-    refuse(bounds.unbounded);
+    refuse("estimator", bounds.unbounded);
   }
   const auto* map = std::get_if<EnvironmentLight>(&light.source);
   if (map && map->estimator == EnvironmentEstimator::PrecomputedTransfer && light.shadows)
@@ -135,7 +138,7 @@ LightChoice distributedChoice(const NamedLight& light, const Material& m, bool s
     // (docs/formulas.md section 12.10), and its rays are a fixed count.
     const Rgb bandLimit = bandLimitError(*map->map, map->shOrder);
     const double error = largestComponent(map->color * map->intensity * bandLimit) * std::max(1.0, largestComponent(m.kd));
-    refuse("its shadowed transfer vectors can err by up to " + scientific(error) +
+    refuse("estimator", "its shadowed transfer vectors can err by up to " + scientific(error) +
       " through their bands alone, and are estimated from a fixed \"samples\" count, which no target stops: use "
       "\"estimator\": \"monte_carlo\" (--envmap-estimator monte_carlo) with " + bounds.autoSamples);
   }
@@ -145,7 +148,7 @@ LightChoice distributedChoice(const NamedLight& light, const Material& m, bool s
   choice.sampledSpecular = specular;
   if ((choice.sampledIrradiance || choice.sampledSpecular) && !samplingOf(light.source)->fromTolerance)
   {
-    refuse("its Monte Carlo estimates from " + std::to_string(samplingOf(light.source)->samples) +
+    refuse("samples", "its Monte Carlo estimates from " + std::to_string(samplingOf(light.source)->samples) +
       " samples have no error bound before they are drawn: give it " + bounds.autoSamples +
       ", which draws each vertex's samples until their standard error meets a share of the tolerance");
   }
@@ -153,7 +156,7 @@ LightChoice distributedChoice(const NamedLight& light, const Material& m, bool s
   choice.approximationError = bounds.irradianceError * std::max(1.0, largestComponent(m.kd));
   if (!(choice.approximationError <= left))
   {
-    refuse("its spherical-harmonic irradiance can err by " + scientific(choice.approximationError) + ", more than the " +
+    refuse("estimator", "its spherical-harmonic irradiance can err by " + scientific(choice.approximationError) + ", more than the " +
       scientific(left) + " of the tolerance left for it: use \"estimator\": \"monte_carlo\" (--envmap-estimator "
       "monte_carlo) with " + bounds.autoSamples);
   }
@@ -200,7 +203,7 @@ OcclusionChoice chooseOcclusion(const Scene& scene, double share)
   choice.predictedError = fixedRaysError(occlusion.sampling.samples);
   if (!(choice.predictedError <= ownShare))
   {
-    throw std::invalid_argument("ambient occlusion's " + std::to_string(occlusion.sampling.samples) +
+    throw UnboundedSceneField("/ambient_occlusion/rays", "ambient occlusion's " + std::to_string(occlusion.sampling.samples) +
       " rays per vertex can err by up to " + scientific(choice.predictedError) + " (95%), more than the " +
       scientific(ownShare) + " the tolerance leaves it: give \"rays\": \"auto\" (--ambient-occlusion auto) to draw "
       "as many as the tolerance needs, or a larger tolerance");
@@ -333,6 +336,28 @@ std::string targetText(const SamplingTarget& target, const char* unit)
 }
 }
 
+std::string SampleCounts::describe(std::size_t vertices) const
+{
+  const double perVertex = vertices ? 1.0 / double(vertices) : 0.0;
+  std::string text;
+  for (const auto& [count, noun] : { std::pair{ samples, " samples (" }, std::pair{ occlusionRays, " occlusion rays (" } })
+  {
+    if (count > 0)
+    {
+      text += (text.empty() ? "" : " and ") + roughCount(count) + noun + roughCount(count * perVertex) + " per vertex)";
+    }
+  }
+  return text.empty() ? "nothing sampled" : text;
+}
+
+std::string CostForecast::describe() const
+{
+  return "forecast from " + std::to_string(pilotVertices) + " of the " + std::to_string(meshVertices) +
+    " vertices: about " + counts.describe(meshVertices) + ", " + std::to_string(std::lround(100 * shareShortOfTarget)) +
+    "% of the vertices at a maximum short of their target, about " + withDigits(seconds, 2) + " s on " +
+    countOf(std::size_t(threads), "thread");
+}
+
 std::vector<std::string> MethodPlan::describe() const
 {
   std::vector<std::string> lines;
@@ -385,6 +410,14 @@ std::vector<std::string> MethodPlan::describe() const
   {
     lines.push_back("ambient occlusion: a fixed count of rays, predicted error " + scientific(occlusion->predictedError) +
       " (95%)");
+  }
+  if (forecast)
+  {
+    lines.push_back(forecast->describe());
+  }
+  if (forecast && forecast->drawn)
+  {
+    lines.push_back("drew " + forecast->drawn->describe(forecast->meshVertices));
   }
   if (estimatedSamplingError)
   {
@@ -463,7 +496,7 @@ MethodPlan chooseMethods(const Scene& scene, const ArrayRequest& request, const 
     const bool specular = specularComputed(scene, request, l);
     if (isDistributed(named.source))
     {
-      choice = distributedChoice(named, scene.material, specular, left);
+      choice = distributedChoice(named, l, scene.material, specular, left);
       left -= choice.predictedError;
       plan.lights.push_back(choice);
       continue;

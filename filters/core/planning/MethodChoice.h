@@ -12,6 +12,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace shadelab
@@ -45,6 +46,33 @@ struct OcclusionChoice
   double errorInTotals() const { return predictedError * weightInTotals; }
 };
 
+/// The samples that area lights and maps draw, and the rays of ambient occlusion, over a mesh.
+struct SampleCounts
+{
+  double samples = 0;
+  double occlusionRays = 0;
+
+  /// "25 million samples (4100 per vertex) and 720 thousand occlusion rays (120 per vertex)",
+  /// each where there are any, per vertex of a mesh of `vertices`.
+  std::string describe(std::size_t vertices) const;
+};
+
+/// What a plan that samples is forecast to cost, before the run: a pilot of a few of the
+/// vertices, evenly spaced by id, is shaded with it (rays included) and scaled to the mesh.
+struct CostForecast
+{
+  std::size_t pilotVertices = 0, meshVertices = 0;
+  SampleCounts counts; // the pilot's, scaled to the mesh
+  double shareShortOfTarget = 0; // of the pilot's vertices, those stopped at a maximum short of a target
+  double seconds = 0; // casting the rays and shading, at the pilot's pace per vertex
+  int threads = 1;
+  /// After the run, what it drew (nullopt before it).
+  std::optional<SampleCounts> drawn;
+
+  /// "forecast from 256 of the 6002 vertices: about 25 million samples (4100 per vertex), ..."
+  std::string describe() const;
+};
+
 struct MethodPlan
 {
   Precision precision = Precision::Float64;
@@ -61,6 +89,8 @@ struct MethodPlan
   /// not a bound like samplingError: where the stopping rule stops a vertex on a standard error
   /// that its few samples put too low, the error can exceed it. nullopt before the run.
   std::optional<double> estimatedSamplingError;
+  /// Where the plan samples, its cost forecast before the run (nullopt: not forecast).
+  std::optional<CostForecast> forecast;
 
   std::vector<LightMethod> methods() const;
   /// arithmeticError, every light's predictedError and the sampled estimates' errors as they
@@ -71,8 +101,9 @@ struct MethodPlan
   {
     return estimatedSamplingError ? predictedError() - samplingError + *estimatedSamplingError : predictedError();
   }
-  /// One line for the precision, then one per light, for the console and the field data, and
-  /// once sampling's part is estimated after the run, a line for it.
+  /// One line for the precision, then one per light, for the console and the field data, the
+  /// forecast's where there is one, and after the run the samples drawn against it and
+  /// sampling's part of the error as estimated.
   std::vector<std::string> describe() const;
 };
 
@@ -140,6 +171,19 @@ struct RoundingAboveTolerance : std::invalid_argument
   using std::invalid_argument::invalid_argument;
 };
 
+/// What chooseMethods throws when a field of the scene keeps the tolerance from bounding it (a
+/// fixed count of samples or rays, an estimator without a bound): the field as a JSON pointer
+/// ("/lights/0/samples"), so that the message can name the scene and the field the user wrote.
+struct UnboundedSceneField : std::invalid_argument
+{
+  UnboundedSceneField(std::string field, const std::string& why)
+    : std::invalid_argument(why)
+    , field(std::move(field))
+  {
+  }
+  std::string field;
+};
+
 /// The error at 95% confidence of a fraction estimated from n rays, whatever the fraction:
 /// two standard errors of a mean of n values in [0, 1], whose variance is at most 1/4
 /// (stratification only lowers it), so 1 / sqrt(n).
@@ -159,7 +203,7 @@ double fixedRaysError(int n);
 /// float64 with exact methods is predicted to exceed the tolerance (RoundingAboveTolerance),
 /// a fixed count of rays to exceed the share left for it, or an area light or map cannot be
 /// bounded (its estimator has no bound, its samples are a fixed count, or its SH irradiance
-/// errs by more than is left). measured: what the filter measured on the points
+/// errs by more than is left): UnboundedSceneField, naming the field. measured: what the filter measured on the points
 /// (nothing: the bounding sphere's bounds and float32's a priori).
 MethodPlan chooseMethods(const Scene& scene, const ArrayRequest& request, const MeshExtent& mesh, double tolerance,
   bool float32Allowed = true, const MeshMeasurements& measured = {});
