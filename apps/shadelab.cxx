@@ -591,7 +591,7 @@ CLI::App* addShadeCommand(CLI::App& cli, ShadeOptions& options)
       "largest absolute error allowed in the shaded values: ShadeLab then chooses the cheapest "
       "precision and, per light, approximations (a point light as distant, a faster pow) whose "
       "predicted errors fit, and with ambient occlusion the rays' share (the sampled part at 95% "
-      "confidence; --ambient-occlusion auto draws as many rays as it needs), and prints what it chose; "
+      "confidence; --ambient-occlusion auto draws as many rays as it needs), and prints what it chose before the run, with a forecast of the samples, rays and time where it samples; "
       "0 (default): exact methods")
     ->check(finiteNonNegative())
     ->excludes(precisionOption);
