@@ -227,7 +227,7 @@ TEST_F(Cli, ShadowsAndAmbientOcclusion)
   // Before the run, the plan and its forecast from a pilot; after it, what the rays drew. The
   // names' column is as wide as ambient_occlusion_short_of_target's.
   for (const char* line : { "    ambient_occlusion_rays             1 ", "    ambient occlusion: rays auto, within 0.05 at 95% "
-                                                                     "(standard error at most 0.025), 64 to 4096 rays per vertex\n    forecast from 554 of the 35947 vertices: about ",
+                                                                     "(standard error at most 0.025), 64 to 4096 rays per vertex\n    forecast from 279 of the 35947 vertices: about ",
          "  methods: as printed before shading, then\n    drew " })
   {
     EXPECT_NE(adaptive.out.find(line), std::string::npos) << line << "\n" << adaptive.out;

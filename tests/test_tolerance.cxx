@@ -556,7 +556,7 @@ struct ForecastRun
 
 TEST(Tolerance, ACostForecastIsMadeBeforeTheRunFromAPilotAndMeetsWhatTheRunDraws)
 {
-  // A sphere of 4034 points under the studio map: a pilot of every 16th vertex (253), before
+  // A sphere of 4034 points under the studio map: a pilot of every 32nd vertex (127), before
   // any shading, forecasts the samples that the run then draws.
   vtkNew<vtkSphereSource> source;
   source->SetThetaResolution(64);
@@ -567,7 +567,7 @@ TEST(Tolerance, ACostForecastIsMadeBeforeTheRunFromAPilotAndMeetsWhatTheRunDraws
   EXPECT_FALSE(run.atEvent->progressBefore) << "the event comes before the rays' and the shading's progress";
   EXPECT_TRUE(run.atEvent->progressSeen);
   const CostForecast& before = *run.atEvent->plan->forecast;
-  EXPECT_EQ(before.pilotVertices, 253u);
+  EXPECT_EQ(before.pilotVertices, 127u);
   EXPECT_EQ(before.meshVertices, 4034u);
   EXPECT_FALSE(before.drawn) << "not drawn yet";
   EXPECT_GT(before.seconds, 0.0);
@@ -579,7 +579,7 @@ TEST(Tolerance, ACostForecastIsMadeBeforeTheRunFromAPilotAndMeetsWhatTheRunDraws
   EXPECT_NEAR(before.counts.samples / after.drawn->samples, 1.0, 0.1)
     << before.counts.samples << " forecast, " << after.drawn->samples << " drawn";
   const std::vector<std::string> lines = run.filter->GetMethodPlan()->describe();
-  EXPECT_EQ(lines[2].rfind("forecast from 253 of the 4034 vertices: about ", 0), 0u) << lines[2];
+  EXPECT_EQ(lines[2].rfind("forecast from 127 of the 4034 vertices: about ", 0), 0u) << lines[2];
   EXPECT_EQ(lines[3], "drew " + roughCount(after.drawn->samples) + " samples (" + roughCount(after.drawn->samples / 4034) +
       " per vertex)");
 
@@ -602,7 +602,7 @@ TEST(Tolerance, ACostForecastCountsTheRaysThatShadowsAndOcclusionDraw)
   ForecastRun run(bunny, scene, 0.05, { "totals", "ambient_occlusion_rays" });
   ASSERT_TRUE(run.filter->GetMethodPlan() && run.filter->GetMethodPlan()->forecast);
   const CostForecast& forecast = *run.filter->GetMethodPlan()->forecast;
-  EXPECT_EQ(forecast.pilotVertices, 554u); // every 65th of 35947
+  EXPECT_EQ(forecast.pilotVertices, 279u); // every 129th of 35947
   ASSERT_TRUE(forecast.drawn);
   EXPECT_NEAR(forecast.counts.samples / forecast.drawn->samples, 1.0, 0.1)
     << forecast.counts.samples << " forecast, " << forecast.drawn->samples;

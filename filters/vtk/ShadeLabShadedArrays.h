@@ -113,9 +113,10 @@ struct ShadeAllPoints
     const auto pointRange = vtk::DataArrayTupleRange<3>(points);
     const auto normalRange = vtk::DataArrayTupleRange<3>(normals);
     const vtkIdType count = pointRange.size();
-    // Blocks of the SMP loop, so progress can be reported between them: tenths of a large
-    // mesh, hundredths where area lights or environment maps make every vertex slow.
-    const vtkIdType block = kernel.hasDistributedLights() ? std::max<vtkIdType>(count / 100, 1024)
+    // Blocks of the SMP loop, so progress can be reported (and an abort heard) between them:
+    // tenths of a large mesh, hundredths where area lights or environment maps make every
+    // vertex slow (a few hundred vertices at least, a share of a second's work for two threads).
+    const vtkIdType block = kernel.hasDistributedLights() ? std::max<vtkIdType>(count / 100, 256)
                                                           : std::max<vtkIdType>(count / 10, 100000);
     for (vtkIdType first = 0; first < count; first += block)
     {

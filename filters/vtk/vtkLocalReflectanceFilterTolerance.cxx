@@ -170,7 +170,7 @@ double largestDifference(
 
 /// A cost forecast's pilot: enough vertices for their mean cost to a few percent, a small share
 /// of a large mesh's; a mesh under pilotMeshLeast is shaded without one (the run is short).
-constexpr vtkIdType pilotLeast = 256, pilotMost = 2048, pilotMeshLeast = 4 * pilotLeast;
+constexpr vtkIdType pilotLeast = 128, pilotMost = 2048, pilotMeshLeast = 1024;
 
 /// How many of the pilot's vertices stopped at a maximum short of a target: a light's, or the
 /// ambient occlusion's (its array in `seen`, where there is one).
@@ -414,7 +414,7 @@ std::optional<shadelab::CostForecast> vtkLocalReflectanceFilter::ForecastCost(
   {
     return std::nullopt;
   }
-  const vtkIdType stride = everyKth(count, std::clamp<vtkIdType>(count / 64, pilotLeast, pilotMost));
+  const vtkIdType stride = everyKth(count, std::clamp<vtkIdType>(count / 128, pilotLeast, pilotMost));
   std::vector<vtkIdType> pilot;
   for (vtkIdType id = 0; id < count; id += stride)
   {

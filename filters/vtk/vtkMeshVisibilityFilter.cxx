@@ -435,9 +435,11 @@ void castRays(const shadelab::OccluderMesh& occluders, const std::vector<Shadowe
   // Vertices in fixed groups (not split by the threads' ranges), each light's rays from a group
   // sharing packets: the same packets on any thread count (and Embree's answer to a ray does
   // not depend on its packet, HiddenSampleTracer).
-  // Tenths of the mesh at a time, so that progress is reported between them.
+  // Hundredths of the mesh at a time, so that progress is reported, and an abort heard,
+  // between them within a share of a second; at least 32 groups, so that the threads' wait at
+  // the end of each block stays a small part of it.
   const vtkIdType groups = (count + groupSize - 1) / groupSize;
-  const vtkIdType block = std::max<vtkIdType>(groups / 10, 64);
+  const vtkIdType block = std::max<vtkIdType>(groups / 100, 32);
   for (vtkIdType firstGroup = 0; firstGroup < groups; firstGroup += block)
   {
     if (stoppable && filter->GetAbortExecute())
