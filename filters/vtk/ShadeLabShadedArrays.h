@@ -20,6 +20,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace shadelab::shading
@@ -188,6 +189,14 @@ std::vector<vtkSmartPointer<vtkDataArray>> shade(const shadelab::Scene& scene,
   }
 
   return arrays.arrays;
+}
+
+/// shade<T> in the plan's precision: float64's or float32's arithmetic and arrays.
+template <typename... Arguments>
+std::vector<vtkSmartPointer<vtkDataArray>> shadeIn(Precision precision, Arguments&&... arguments)
+{
+  return precision == Precision::Float64 ? shade<double>(std::forward<Arguments>(arguments)...)
+                                         : shade<float>(std::forward<Arguments>(arguments)...);
 }
 
 /// Points the kernel's inputs at the rays' arrays in `seen`: each shadowed light's visibility,

@@ -768,14 +768,11 @@ std::vector<vtkSmartPointer<vtkDataArray>> vtkLocalReflectanceFilter::ShadedArra
   const ProgressReport progress = [this](double done) { this->ReportProgress(done); };
   auto shadeWith = [&](const shadelab::ArrayRequest& asked, SamplingOutcome* outcome)
   {
-    return plan.precision == shadelab::Precision::Float64
-      ? shade<double>(plan.scene, asked, plan.methods, this->ArrayPrefix, points, shadingNormals, inputs, &progress,
-          outcome ? &outcome->shortOfTarget : nullptr, outcome ? &outcome->standardError : nullptr,
-          outcome ? &outcome->samplesDrawn : nullptr)
-      : shade<float>(plan.scene, asked, plan.methods, this->ArrayPrefix, points, shadingNormals, inputs, &progress,
-          outcome ? &outcome->shortOfTarget : nullptr, outcome ? &outcome->standardError : nullptr,
-          outcome ? &outcome->samplesDrawn : nullptr);
+    return shadeIn(plan.precision, plan.scene, asked, plan.methods, this->ArrayPrefix, points, shadingNormals, inputs,
+      &progress, outcome ? &outcome->shortOfTarget : nullptr, outcome ? &outcome->standardError : nullptr,
+      outcome ? &outcome->samplesDrawn : nullptr);
   };
+
   std::vector<vtkSmartPointer<vtkDataArray>> arrays = shadeWith(request, &sampling);
   if (spectralColors)
   {

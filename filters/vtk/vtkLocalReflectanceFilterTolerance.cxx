@@ -420,13 +420,11 @@ std::optional<shadelab::CostForecast> vtkLocalReflectanceFilter::ForecastCost(
   {
     pilot.push_back(id);
   }
-  const auto start = std::chrono::steady_clock::now();
   // Its rays from the pilot's points only (the BVH built here is kept for the run), seeded by
-  // their ids, as in the run.
+  // their ids, as in the run; the time is the rays' (the BVH's build not included) and the shading's.
   vtkPolyData* seen = this->PrepareVisibility(input, shadingNormals, plan, false, pilot);
-  const double buildSeconds = seen ? std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() -
-      this->VisibilityStep->GetRaySeconds()
-                                   : 0.0;
+  const double raySeconds = seen ? this->VisibilityStep->GetRaySeconds() : 0.0;
+  const auto shadingStart = std::chrono::steady_clock::now();
   shadelab::ShadingInputs inputs; // the scene's own material: per-vertex values are read for the whole mesh
   const std::vector<long long> ids(pilot.begin(), pilot.end());
   inputs.sampleIds = ids.data();
@@ -434,21 +432,13 @@ std::optional<shadelab::CostForecast> vtkLocalReflectanceFilter::ForecastCost(
   {
     useVisibility(seen, plan.scene, plan.request, this->ArrayPrefix, inputs);
   }
-  const vtkSmartPointer<vtkDataArray> points = shadelab::tuplesAt(input->GetPoints()->GetData(), pilot);
-  const vtkSmartPointer<vtkDataArray> normals = shadelab::tuplesAt(shadingNormals, pilot);
   std::vector<std::uint32_t> samples(pilot.size(), 0);
   ShortOfTarget shortOfTarget;
-  if (plan.precision == shadelab::Precision::Float64)
-  {
-    shade<double>(plan.scene, plan.request, plan.methods, this->ArrayPrefix, points, normals, inputs, nullptr,
-      &shortOfTarget, nullptr, &samples);
-  }
-  else
-  {
-    shade<float>(plan.scene, plan.request, plan.methods, this->ArrayPrefix, points, normals, inputs, nullptr,
-      &shortOfTarget, nullptr, &samples);
-  }
-  const double pilotSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() - buildSeconds;
+  shadeIn(plan.precision, plan.scene, plan.request, plan.methods, this->ArrayPrefix,
+    shadelab::tuplesAt(input->GetPoints()->GetData(), pilot), shadelab::tuplesAt(shadingNormals, pilot), inputs,
+    nullptr, &shortOfTarget, nullptr, &samples);
+  const double pilotSeconds =
+    raySeconds + std::chrono::duration<double>(std::chrono::steady_clock::now() - shadingStart).count();
 
   shadelab::CostForecast forecast;
   const double scale = double(count) / double(pilot.size());

@@ -24,7 +24,7 @@
  * The scene, set as vtkShadeLabSceneFilter says, gives the lights (those with shadows count)
  * and the ambient occlusion settings; a scene in the mesh's frame is placed on the input.
  *
- * SetAbortExecute (ParaView's Cancel) stops the rays between blocks of a tenth of the points,
+ * SetAbortExecute (ParaView's Cancel) stops the rays between blocks of a hundredth of the points,
  * leaving an empty output and no error; a piece of a split mesh runs to its end, as its
  * processes must all take part in its exchanges.
  *
