@@ -38,12 +38,14 @@ inline std::string unknownOptionsAdvice(const CLI::App& cli, int argc, char** ar
   {
     const std::string word = argv[i];
     const std::string name = word.substr(0, word.find('='));
-    if (word.rfind("--", 0) != 0 || name.size() < 3 || std::find(known.begin(), known.end(), name.substr(2)) != known.end())
+    if (word.rfind("--", 0) != 0 || name.size() < 3 ||
+      std::find(known.begin(), known.end(), name.substr(2)) != known.end())
     {
       continue;
     }
     const std::string meant = nearestName(name.substr(2), known);
-    advice += (advice.empty() ? "" : "; ") + ("unknown option " + name) + (meant.empty() ? "" : ": did you mean --" + meant + "?");
+    advice += (advice.empty() ? "" : "; ") + ("unknown option " + name) +
+      (meant.empty() ? "" : ": did you mean --" + meant + "?");
   }
   const std::string program = std::filesystem::path(argv[0]).filename().string();
   return advice.empty() ? "" : (command == &cli ? program : program + " " + command->get_name()) + ": " + advice;
@@ -61,7 +63,8 @@ inline std::optional<int> parseCommandLine(CLI::App& cli, int argc, char** argv,
   }
   catch (const CLI::ParseError& error)
   {
-    const std::string advice = dynamic_cast<const CLI::ExtrasError*>(&error) ? unknownOptionsAdvice(cli, argc, argv) : "";
+    const std::string advice =
+      dynamic_cast<const CLI::ExtrasError*>(&error) ? unknownOptionsAdvice(cli, argc, argv) : "";
     if (!advice.empty())
     {
       std::cerr << advice << "\nRun with --help for more information.\n";

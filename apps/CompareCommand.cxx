@@ -11,21 +11,21 @@
 
 #include "vtkArrayDispatch.h"
 #include "vtkCellCenters.h"
-#include "vtkIdList.h"
-#include "vtkMath.h"
-#include "vtkStaticPointLocator.h"
 #include "vtkCellData.h"
 #include "vtkDataArray.h"
 #include "vtkDataArrayRange.h"
 #include "vtkDataSet.h"
 #include "vtkDoubleArray.h"
-#include "vtkPolyData.h"
-#include "vtkTypeInt64Array.h"
-#include "vtkUnsignedCharArray.h"
 #include "vtkFieldData.h"
+#include "vtkIdList.h"
+#include "vtkMath.h"
 #include "vtkPointData.h"
 #include "vtkPointSet.h"
 #include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkStaticPointLocator.h"
+#include "vtkTypeInt64Array.h"
+#include "vtkUnsignedCharArray.h"
 
 #include <nlohmann/json.hpp>
 
@@ -55,14 +55,10 @@ const char* associationName(Association association)
 {
   switch (association)
   {
-    case Association::Points:
-      return "points";
-    case Association::PointData:
-      return "point";
-    case Association::CellData:
-      return "cell";
-    case Association::FieldData:
-      break;
+    case Association::Points: return "points";
+    case Association::PointData: return "point";
+    case Association::CellData: return "cell";
+    case Association::FieldData: break;
   }
   return "field";
 }
@@ -79,12 +75,9 @@ const char* typeName(ValueType type)
 {
   switch (type)
   {
-    case ValueType::Float32:
-      return "float32";
-    case ValueType::Float64:
-      return "float64";
-    case ValueType::Integer:
-      break;
+    case ValueType::Float32: return "float32";
+    case ValueType::Float64: return "float64";
+    case ValueType::Integer: break;
   }
   return "integer";
 }
@@ -94,7 +87,7 @@ struct CopyValues
 {
   ArrayValues& out;
 
-  template <typename Array>
+  template<typename Array>
   void operator()(Array* array)
   {
     using Value = vtk::GetAPIType<Array>;
@@ -181,7 +174,8 @@ std::vector<FileArray> arraysOf(vtkDataSet* data, bool withPoints, std::vector<S
       auto* numbers = vtkDataArray::SafeDownCast(array);
       if (!numbers)
       {
-        skipped.push_back({ name, name + " (" + associationName(association) + " data, " + array->GetClassName() + ")" });
+        skipped.push_back(
+          { name, name + " (" + associationName(association) + " data, " + array->GetClassName() + ")" });
         continue;
       }
       arrays.push_back({ name, association, valuesOf(numbers) });
@@ -250,8 +244,9 @@ Rules parseRules(const CompareOptions& options)
       const ToleranceValue tolerance = parseToleranceValue(value);
       if (tolerance.timesRange)
       {
-        throw UserError("--rtol '" + text + "': a relative tolerance is a plain number (a fraction of the values); "
-                        "a tolerance relative to the range is --atol's");
+        throw UserError("--rtol '" + text +
+          "': a relative tolerance is a plain number (a fraction of the values); "
+          "a tolerance relative to the range is --atol's");
       }
       rules.relative.add(pattern, tolerance);
     }
@@ -344,8 +339,8 @@ std::string noiseText(const NoiseCheck& check, double k)
   }
   return std::to_string(check.outside) + " of " + std::to_string(check.values) + " values outside " + brief(k) +
     " standard errors (" + brief(check.expected) + " expected, at most " + std::to_string(check.allowed) + " allowed" +
-    (check.countPasses() ? "" : ": too many") + "); mean difference " + brief(check.meanDifference) +
-    " (at most " + brief(check.meanDifferenceLimit) + " either way" + (check.biasPasses() ? "" : ": a bias") + ")";
+    (check.countPasses() ? "" : ": too many") + "); mean difference " + brief(check.meanDifference) + " (at most " +
+    brief(check.meanDifferenceLimit) + " either way" + (check.biasPasses() ? "" : ": a bias") + ")";
 }
 
 /// "noise: ..." for an array of one component, "noise of component 1: ..." for the others.
@@ -376,12 +371,8 @@ std::string placeOf(const ArrayReport& report, std::size_t i, const std::vector<
       }
       break;
     }
-    case Association::CellData:
-      text << "cell " << tuple;
-      break;
-    case Association::FieldData:
-      text << "tuple " << tuple;
-      break;
+    case Association::CellData: text << "cell " << tuple; break;
+    case Association::FieldData: text << "tuple " << tuple; break;
   }
   if (values.components > 1)
   {
@@ -408,17 +399,18 @@ constexpr int nameWidth = 30, dataWidth = 7, typeWidth = 11, failingWidth = 18, 
 
 void printHeading()
 {
-  std::cout << "  " << std::left << std::setw(7) << "" << std::setw(nameWidth) << "array" << " " << std::setw(dataWidth)
-            << "data" << std::setw(typeWidth) << "type" << std::setw(failingWidth) << "failing / values"
-            << std::setw(numberWidth) << "max |diff|" << std::setw(numberWidth) << "RMS" << std::setw(numberWidth)
-            << "L2" << "rule" << std::right << "\n";
+  std::cout << "  " << std::left << std::setw(7) << "" << std::setw(nameWidth) << "array"
+            << " " << std::setw(dataWidth) << "data" << std::setw(typeWidth) << "type" << std::setw(failingWidth)
+            << "failing / values" << std::setw(numberWidth) << "max |diff|" << std::setw(numberWidth) << "RMS"
+            << std::setw(numberWidth) << "L2"
+            << "rule" << std::right << "\n";
 }
 
 /// The array's row of the table, then what a person needs to see about its differences.
 /// What a person needs to see about an array's differences beyond its row: the worst value,
 /// NaNs, the bits, the standard errors. One line each.
-std::vector<std::string> detailsOf(const ArrayReport& report, const std::vector<FileArray>& baseline,
-  const std::vector<FileArray>& result)
+std::vector<std::string> detailsOf(
+  const ArrayReport& report, const std::vector<FileArray>& baseline, const std::vector<FileArray>& result)
 {
   std::vector<std::string> lines;
   if (!report.difference)
@@ -446,7 +438,8 @@ std::vector<std::string> detailsOf(const ArrayReport& report, const std::vector<
     {
       if (d.bitCounts[static_cast<std::size_t>(bit)] > 0)
       {
-        text += separator + bitName(bit, report.flags) + " in " + std::to_string(d.bitCounts[static_cast<std::size_t>(bit)]);
+        text +=
+          separator + bitName(bit, report.flags) + " in " + std::to_string(d.bitCounts[static_cast<std::size_t>(bit)]);
         separator = ", ";
       }
     }
@@ -502,15 +495,18 @@ std::string verdictOf(const ArrayReport& report)
 }
 
 /// The array's row of the table, then its details.
-void printReport(const ArrayReport& report, const std::vector<FileArray>& baseline, const std::vector<FileArray>& result)
+void printReport(
+  const ArrayReport& report, const std::vector<FileArray>& baseline, const std::vector<FileArray>& result)
 {
   std::string type;
   if (report.baseline)
   {
-    type = std::string(typeName(report.baseline->values.type)) + " x" + std::to_string(report.baseline->values.components);
+    type =
+      std::string(typeName(report.baseline->values.type)) + " x" + std::to_string(report.baseline->values.components);
   }
   std::cout << "  " << std::left << std::setw(7) << (report.passes() ? "ok" : "DIFFER") << std::setw(nameWidth)
-            << report.name << " " << std::setw(dataWidth) << associationName(report.association) << std::setw(typeWidth) << type;
+            << report.name << " " << std::setw(dataWidth) << associationName(report.association) << std::setw(typeWidth)
+            << type;
   if (!report.problem.empty())
   {
     std::cout << report.problem << std::right << "\n";
@@ -532,8 +528,11 @@ std::size_t xmlCharacterLength(const std::string& text, std::size_t i)
 {
   const auto byte = [&](std::size_t k) { return k < text.size() ? static_cast<unsigned char>(text[k]) : 0u; };
   const unsigned lead = byte(i);
-  const std::size_t length = lead < 0x80 ? 1 : lead >= 0xC2 && lead <= 0xDF ? 2 : lead >= 0xE0 && lead <= 0xEF ? 3
-    : lead >= 0xF0 && lead <= 0xF4 ? 4 : 0;
+  const std::size_t length = lead < 0x80 ? 1
+    : lead >= 0xC2 && lead <= 0xDF       ? 2
+    : lead >= 0xE0 && lead <= 0xEF       ? 3
+    : lead >= 0xF0 && lead <= 0xF4       ? 4
+                                         : 0;
   if (length == 0)
   {
     return 0;
@@ -648,7 +647,8 @@ nlohmann::json noiseJson(const ArrayReport& report)
     { "exact_values", d.exactValues }, { "components", components } };
 }
 
-nlohmann::json jsonOf(const ArrayReport& report, const std::vector<FileArray>& baseline, const std::vector<FileArray>& result)
+nlohmann::json jsonOf(
+  const ArrayReport& report, const std::vector<FileArray>& baseline, const std::vector<FileArray>& result)
 {
   nlohmann::json entry = { { "name", report.name }, { "data", associationName(report.association) },
     { "passed", report.passes() } };
@@ -670,8 +670,9 @@ nlohmann::json jsonOf(const ArrayReport& report, const std::vector<FileArray>& b
   entry["l2"] = jsonNumber(d.l2());
   entry["nan_in_both"] = d.nanInBoth;
   entry["nan_in_one"] = d.nanInOne;
-  entry["rule"] = report.rule.ulps ? nlohmann::json{ { "ulps", *report.rule.ulps } }
-                                   : nlohmann::json{ { "absolute", report.rule.absolute }, { "relative", report.rule.relative } };
+  entry["rule"] = report.rule.ulps
+    ? nlohmann::json{ { "ulps", *report.rule.ulps } }
+    : nlohmann::json{ { "absolute", report.rule.absolute }, { "relative", report.rule.relative } };
   if (d.worst && d.largest > 0)
   {
     const FileArray* other = find(result, report.name, report.association);
@@ -689,7 +690,8 @@ nlohmann::json jsonOf(const ArrayReport& report, const std::vector<FileArray>& b
     {
       if (d.bitCounts[static_cast<std::size_t>(bit)] > 0)
       {
-        bits.push_back({ { "bit", bit }, { "name", bitName(bit, report.flags) }, { "values", d.bitCounts[static_cast<std::size_t>(bit)] } });
+        bits.push_back({ { "bit", bit }, { "name", bitName(bit, report.flags) },
+          { "values", d.bitCounts[static_cast<std::size_t>(bit)] } });
       }
     }
     entry["bits_that_differ"] = bits;
@@ -725,8 +727,8 @@ struct Matching
 /// coordinates, copies at a seam, match one to one in the order of their ids), within
 /// tolerance: a greedy search among each point's 16 nearest. Empty, with the reason in
 /// problem, where a point finds none; what says what the points are.
-std::vector<vtkIdType> nearestMatches(vtkDataSet* from, vtkDataSet* to, double tolerance, const std::string& what,
-  double& farthest, std::string& problem)
+std::vector<vtkIdType> nearestMatches(
+  vtkDataSet* from, vtkDataSet* to, double tolerance, const std::string& what, double& farthest, std::string& problem)
 {
   vtkNew<vtkStaticPointLocator> locator;
   locator->SetDataSet(to);
@@ -813,7 +815,9 @@ Matching matchByNearest(vtkDataSet* baseline, vtkDataSet* result, std::vector<Fi
     vtkSmartPointer<vtkDataSet> from = cells ? cellCentres(result) : vtkSmartPointer<vtkDataSet>(result);
     vtkSmartPointer<vtkDataSet> to = cells ? cellCentres(baseline) : vtkSmartPointer<vtkDataSet>(baseline);
     std::string& problem = cells ? matching.cellProblem : matching.pointProblem;
-    if (cells && (from->GetNumberOfPoints() != result->GetNumberOfCells() || to->GetNumberOfPoints() != baseline->GetNumberOfCells()))
+    if (cells &&
+      (from->GetNumberOfPoints() != result->GetNumberOfCells() ||
+        to->GetNumberOfPoints() != baseline->GetNumberOfCells()))
     {
       problem = "cells without points have no centre, so the cells cannot be matched by their centres";
       continue;
@@ -823,7 +827,8 @@ Matching matchByNearest(vtkDataSet* baseline, vtkDataSet* result, std::vector<Fi
       continue; // the arrays' counts differ, which their rows will say
     }
     double farthest = 0;
-    std::vector<vtkIdType> matches = nearestMatches(from, to, tolerance, cells ? "cell centre" : "point", farthest, problem);
+    std::vector<vtkIdType> matches =
+      nearestMatches(from, to, tolerance, cells ? "cell centre" : "point", farthest, problem);
     if (!problem.empty())
     {
       continue;
@@ -854,8 +859,8 @@ struct ComparedFiles
   Matching matching;
 };
 
-std::string jsonReport(const std::vector<ArrayReport>& reports, bool passed, const ComparedFiles& files,
-  const CompareOptions& options)
+std::string jsonReport(
+  const std::vector<ArrayReport>& reports, bool passed, const ComparedFiles& files, const CompareOptions& options)
 {
   nlohmann::json report = { { "baseline", options.baseline }, { "result", options.result }, { "passed", passed },
     { "arrays", nlohmann::json::array() }, { "not_compared", nlohmann::json::array() },
@@ -864,8 +869,8 @@ std::string jsonReport(const std::vector<ArrayReport>& reports, bool passed, con
   {
     report["arrays"].push_back(jsonOf(r, files.baseline, files.result));
   }
-  for (const auto& [key, skipped] :
-    { std::pair{ "not_compared", &files.skippedBaseline }, std::pair{ "not_compared_in_result", &files.skippedResult } })
+  for (const auto& [key, skipped] : { std::pair{ "not_compared", &files.skippedBaseline },
+         std::pair{ "not_compared_in_result", &files.skippedResult } })
   {
     for (const SkippedArray& array : *skipped)
     {
@@ -931,7 +936,8 @@ vtkSmartPointer<vtkPolyData> differenceMesh(vtkDataSet* resultData, const std::v
           // Wrapping, as a difference of 64-bit values may not fit in 64 bits.
           const std::size_t i = valueIndex(t, c);
           integers->SetValue(static_cast<vtkIdType>(t * components + c),
-            static_cast<std::int64_t>(static_cast<std::uint64_t>(b.integers[i]) - static_cast<std::uint64_t>(a.integers[i])));
+            static_cast<std::int64_t>(
+              static_cast<std::uint64_t>(b.integers[i]) - static_cast<std::uint64_t>(a.integers[i])));
         }
       }
     }
@@ -956,8 +962,8 @@ vtkSmartPointer<vtkPolyData> differenceMesh(vtkDataSet* resultData, const std::v
     const std::vector<unsigned char>& tuplePasses = report.difference->tuplePasses;
     for (std::size_t t = 0; t < tuplePasses.size() && t < static_cast<std::size_t>(passed->GetNumberOfValues()); ++t)
     {
-      passed->SetValue(static_cast<vtkIdType>(t), passed->GetValue(static_cast<vtkIdType>(t)) &
-        tuplePasses[matching.baselineOf(onCells, t)]);
+      passed->SetValue(static_cast<vtkIdType>(t),
+        passed->GetValue(static_cast<vtkIdType>(t)) & tuplePasses[matching.baselineOf(onCells, t)]);
     }
   }
   mesh->GetPointData()->AddArray(pointsPassed);
@@ -1038,14 +1044,14 @@ const std::string& matchingProblem(const Matching& matching, Association associa
 {
   static const std::string none;
   return association == Association::CellData ? matching.cellProblem
-    : association == Association::FieldData  ? none
+    : association == Association::FieldData   ? none
                                               : matching.pointProblem;
 }
 
 /// Why the baseline's array and the result's of the same name cannot be compared value by
 /// value, or "" when they can.
-std::string pairingProblem(const FileArray& array, const FileArray* other, const ComparedFiles& files,
-  const CompareOptions& options)
+std::string pairingProblem(
+  const FileArray& array, const FileArray* other, const ComparedFiles& files, const CompareOptions& options)
 {
   const ArrayValues& a = array.values;
   if (!other)
@@ -1058,22 +1064,26 @@ std::string pairingProblem(const FileArray& array, const FileArray* other, const
   }
   if (other->values.type != a.type)
   {
-    return std::string(typeName(a.type)) + " in " + options.baseline + ", " + typeName(other->values.type) + " in " + options.result;
+    return std::string(typeName(a.type)) + " in " + options.baseline + ", " + typeName(other->values.type) + " in " +
+      options.result;
   }
   if (other->values.components != a.components)
   {
-    return std::to_string(a.components) + " components in " + options.baseline + ", " + std::to_string(other->values.components) + " in " + options.result;
+    return std::to_string(a.components) + " components in " + options.baseline + ", " +
+      std::to_string(other->values.components) + " in " + options.result;
   }
   if (other->values.tuples() != a.tuples())
   {
-    return std::to_string(a.tuples()) + " tuples in " + options.baseline + ", " + std::to_string(other->values.tuples()) + " in " + options.result;
+    return std::to_string(a.tuples()) + " tuples in " + options.baseline + ", " +
+      std::to_string(other->values.tuples()) + " in " + options.result;
   }
   return "";
 }
 
 /// The baseline's array judged against the result's of the same name, with its rule and,
 /// with --standard-errors, both files' NAME_std_error where they hold them.
-ArrayReport compareArray(const FileArray& array, const ComparedFiles& files, const Rules& rules, const CompareOptions& options)
+ArrayReport compareArray(
+  const FileArray& array, const ComparedFiles& files, const Rules& rules, const CompareOptions& options)
 {
   ArrayReport report;
   report.baseline = &array;
@@ -1090,15 +1100,15 @@ ArrayReport compareArray(const FileArray& array, const ComparedFiles& files, con
   report.rule = rules.ruleFor(array);
   const FileArray* errorsA = find(files.baseline, array.name + "_std_error", array.association);
   const FileArray* errorsB = find(files.result, array.name + "_std_error", array.association);
-  const bool statistical = options.standardErrors && errorsA && errorsB &&
-    errorsA->values.type != ValueType::Integer && errorsB->values.type != ValueType::Integer &&
-    errorsA->values.size() == a.size() && errorsB->values.size() == a.size();
+  const bool statistical = options.standardErrors && errorsA && errorsB && errorsA->values.type != ValueType::Integer &&
+    errorsB->values.type != ValueType::Integer && errorsA->values.size() == a.size() &&
+    errorsB->values.size() == a.size();
   if (!statistical)
   {
     report.rule.standardErrors.reset();
   }
-  report.difference = compareArrays(a, other->values, report.rule, statistical ? &errorsA->values : nullptr,
-    statistical ? &errorsB->values : nullptr);
+  report.difference = compareArrays(
+    a, other->values, report.rule, statistical ? &errorsA->values : nullptr, statistical ? &errorsB->values : nullptr);
   return report;
 }
 
@@ -1133,7 +1143,8 @@ std::vector<ArrayReport> pairArrays(const ComparedFiles& files, const Rules& rul
 /// and the verdict. True when every array passes.
 bool printReports(const std::vector<ArrayReport>& reports, const ComparedFiles& files, const CompareOptions& options)
 {
-  const std::size_t differing = static_cast<std::size_t>(std::count_if(reports.begin(), reports.end(), [](const ArrayReport& r) { return !r.passes(); }));
+  const std::size_t differing = static_cast<std::size_t>(
+    std::count_if(reports.begin(), reports.end(), [](const ArrayReport& r) { return !r.passes(); }));
   std::cout << "shadelab compare: the result " << options.result << " (" << datasetText(files.resultData)
             << ") against the baseline " << options.baseline << " (" << datasetText(files.baselineData) << "); "
             << files.matching.description << "\n";
@@ -1167,7 +1178,8 @@ bool printReports(const std::vector<ArrayReport>& reports, const ComparedFiles& 
 }
 
 /// The reports asked for by --json, --junit and --diff.
-void writeReports(const std::vector<ArrayReport>& reports, bool passed, const ComparedFiles& files, const CompareOptions& options)
+void writeReports(
+  const std::vector<ArrayReport>& reports, bool passed, const ComparedFiles& files, const CompareOptions& options)
 {
   if (!options.json.empty())
   {
@@ -1191,45 +1203,61 @@ CLI::App* addCompareCommand(CLI::App& cli, CompareOptions& options)
     "points, each value passing when |a - b| <= max(rtol * max(|a|, |b|), atol), or Monte Carlo arrays judged "
     "as noise by their standard errors (--standard-errors). Exit code 0 when they agree, 1 "
     "when they differ, 2 when a file cannot be read or an option is wrong.");
-  command->add_option("baseline", options.baseline, "the file to compare against (.vtp, .vtu, .vti, .vts, .vtr, .vtk, .ply, .obj, .stl)")->required();
+  command
+    ->add_option("baseline", options.baseline,
+      "the file to compare against (.vtp, .vtu, .vti, .vts, .vtr, .vtk, .ply, .obj, .stl)")
+    ->required();
   command->add_option("result", options.result, "the file to judge")->required();
   // One value to each occurrence (repeat the option for more), so that an option before the
   // files does not take them as its values.
-  command->add_option("--atol", options.absolute,
-    "absolute tolerance, for every array (1e-6) or by name with wildcards ('total:1e-6', '*_cos_incidence:1e-7'), "
-    "or relative to the baseline array's range ('1e-3*range'); the last rule that matches wins; default 0")
+  command
+    ->add_option("--atol", options.absolute,
+      "absolute tolerance, for every array (1e-6) or by name with wildcards ('total:1e-6', '*_cos_incidence:1e-7'), "
+      "or relative to the baseline array's range ('1e-3*range'); the last rule that matches wins; default 0")
     ->allow_extra_args(false);
-  command->add_option("--rtol", options.relative,
-    "relative tolerance, a number, for every array or by name as --atol; default 4 units in the last place of the array's type "
-    "(4.8e-7 for float32, 8.9e-16 for float64)")
+  command
+    ->add_option("--rtol", options.relative,
+      "relative tolerance, a number, for every array or by name as --atol; default 4 units in the last place of the "
+      "array's type "
+      "(4.8e-7 for float32, 8.9e-16 for float64)")
     ->allow_extra_args(false);
-  command->add_option("--ulps", options.ulps,
-    "judge floating-point values by units in the last place instead ('3', 'total:4'): pass when at most that many "
-    "numbers of the array's type apart; where a ULP rule matches, it replaces --atol and --rtol")
+  command
+    ->add_option("--ulps", options.ulps,
+      "judge floating-point values by units in the last place instead ('3', 'total:4'): pass when at most that many "
+      "numbers of the array's type apart; where a ULP rule matches, it replaces --atol and --rtol")
     ->allow_extra_args(false);
-  command->add_option("--standard-errors", options.standardErrors,
-    "statistical mode, for Monte Carlo arrays: where both files hold NAME_std_error beside NAME, NAME's values "
-    "are judged together as noise, component by component: the count of values outside K combined standard "
-    "errors sqrt(e_a^2 + e_b^2) must be at most the Binomial(n, 2 P(Z > K)) quantile, and the mean difference "
-    "within the normal quantile times its standard error sqrt(sum of e_a^2 + e_b^2) / n; values whose standard "
-    "errors are both 0 must pass --atol and --rtol. 3 is usual")
+  command
+    ->add_option("--standard-errors", options.standardErrors,
+      "statistical mode, for Monte Carlo arrays: where both files hold NAME_std_error beside NAME, NAME's values "
+      "are judged together as noise, component by component: the count of values outside K combined standard "
+      "errors sqrt(e_a^2 + e_b^2) must be at most the Binomial(n, 2 P(Z > K)) quantile, and the mean difference "
+      "within the normal quantile times its standard error sqrt(sum of e_a^2 + e_b^2) / n; values whose standard "
+      "errors are both 0 must pass --atol and --rtol. 3 is usual")
     ->type_name("K");
-  command->add_option("--significance", options.significance,
-    "with --standard-errors: the chance that two honest runs fail, for an array; shared equally by the count and "
-    "the mean difference of each component (Bonferroni); from 1e-12 to 0.5, default 0.001")
+  command
+    ->add_option("--significance", options.significance,
+      "with --standard-errors: the chance that two honest runs fail, for an array; shared equally by the count and "
+      "the mean difference of each component (Bonferroni); from 1e-12 to 0.5, default 0.001")
     ->type_name("ALPHA");
-  command->add_option("--arrays", options.arrays, "compare only the arrays whose names match these wildcards (default *)")
-    ->delimiter(',')->allow_extra_args(false);
-  command->add_option("--exclude", options.exclude, "leave out the arrays whose names match these wildcards")->delimiter(',')->allow_extra_args(false);
-  command->add_option("--flags", options.flagArrays,
-    "integer arrays whose bits are ShadeLab's shading flags, named in the report (default *shading_flags)")
-    ->delimiter(',')->allow_extra_args(false);
+  command
+    ->add_option("--arrays", options.arrays, "compare only the arrays whose names match these wildcards (default *)")
+    ->delimiter(',')
+    ->allow_extra_args(false);
+  command->add_option("--exclude", options.exclude, "leave out the arrays whose names match these wildcards")
+    ->delimiter(',')
+    ->allow_extra_args(false);
+  command
+    ->add_option("--flags", options.flagArrays,
+      "integer arrays whose bits are ShadeLab's shading flags, named in the report (default *shading_flags)")
+    ->delimiter(',')
+    ->allow_extra_args(false);
   command->add_flag("--no-points", options.noPoints, "do not compare the point coordinates");
   command->add_option("--nearest", options.nearest,
     "match the result's points to the baseline's by nearest point within this distance, and its cells by their "
     "centres, instead of by id (for meshes whose points were re-ordered)");
   command->add_option("--json", options.json, "also write the report as JSON to this file");
-  command->add_option("--junit", options.junit, "also write the report as JUnit XML to this file (.xml), one test case per array, for CI systems");
+  command->add_option("--junit", options.junit,
+    "also write the report as JUnit XML to this file (.xml), one test case per array, for CI systems");
   command->add_option("--diff", options.diff,
     "also write the result's mesh (.vtp or .vtk) with NAME_difference (result - baseline) for each array compared "
     "and compare_passed (1 where every compared value of a point or cell passes, 0 where one fails or, in statistical "

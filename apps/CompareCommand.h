@@ -13,11 +13,11 @@ struct CompareOptions
 {
   std::string baseline, result;
   std::vector<std::string> absolute, relative, ulps; // rules: "PATTERN:VALUE" or "VALUE"
-  std::vector<std::string> arrays{ "*" };             // the arrays to compare, by wildcard
+  std::vector<std::string> arrays{ "*" };            // the arrays to compare, by wildcard
   std::vector<std::string> exclude;
   std::vector<std::string> flagArrays{ "*shading_flags" }; // integers whose bits are ShadeLab's flags
-  std::optional<double> standardErrors;              // statistical mode: k
-  std::optional<double> significance;                // statistical mode: alpha (default 0.001)
+  std::optional<double> standardErrors;                    // statistical mode: k
+  std::optional<double> significance;                      // statistical mode: alpha (default 0.001)
   bool noPoints = false;
   std::optional<double> nearest; // match by nearest point within this distance, not by id
   std::string json, junit, diff; // report files, and the difference mesh

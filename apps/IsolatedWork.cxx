@@ -50,9 +50,11 @@ std::string readAll(int fd, std::chrono::steady_clock::time_point deadline, bool
   char buffer[1 << 16];
   for (;;)
   {
-    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+    const auto left =
+      std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
     pollfd wait{ fd, POLLIN, 0 };
-    const int ready = left.count() > 0 ? ::poll(&wait, 1, static_cast<int>(std::min<long long>(left.count(), 1 << 30))) : 0;
+    const int ready =
+      left.count() > 0 ? ::poll(&wait, 1, static_cast<int>(std::min<long long>(left.count(), 1 << 30))) : 0;
     if (ready < 0 && errno == EINTR)
     {
       continue;
@@ -238,8 +240,8 @@ IsolatedOutcome runIsolated(const std::function<void(ChildChannel&)>& work, cons
   }
   ::close(channel[1]);
   bool stalled = false;
-  const auto deadline = std::chrono::steady_clock::now() +
-    std::chrono::milliseconds(static_cast<long long>(limits.wallSeconds * 1000));
+  const auto deadline =
+    std::chrono::steady_clock::now() + std::chrono::milliseconds(static_cast<long long>(limits.wallSeconds * 1000));
   const std::string bytes = readAll(channel[0], deadline, stalled);
   ::close(channel[0]);
   if (stalled)
@@ -259,8 +261,8 @@ IsolatedOutcome runIsolated(const std::function<void(ChildChannel&)>& work, cons
   else if (WIFSIGNALED(status))
   {
     const int signal = WTERMSIG(status);
-    outcome.end = signal == SIGXCPU || signal == SIGKILL ? IsolatedOutcome::End::TimedOut
-                                                         : IsolatedOutcome::End::Crashed;
+    outcome.end =
+      signal == SIGXCPU || signal == SIGKILL ? IsolatedOutcome::End::TimedOut : IsolatedOutcome::End::Crashed;
     outcome.signalName = std::string("SIG") + (sigabbrev_np(signal) ? sigabbrev_np(signal) : "?");
   }
   else if (WIFEXITED(status) && WEXITSTATUS(status) == 4)

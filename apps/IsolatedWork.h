@@ -17,9 +17,9 @@ namespace shadelab::app
 /// What the child may use.
 struct IsolationLimits
 {
-  double cpuSeconds = 60;                          // processor time, after which the child is stopped
-  double wallSeconds = 180;                        // time on the clock, likewise: a child that waits
-                                                   // (on a lock, a pipe) uses no processor time
+  double cpuSeconds = 60;                         // processor time, after which the child is stopped
+  double wallSeconds = 180;                       // time on the clock, likewise: a child that waits
+                                                  // (on a lock, a pipe) uses no processor time
   std::size_t memoryBytes = std::size_t(1) << 30; // address space beyond what the process has,
                                                   // and the largest result file
 };
@@ -77,7 +77,8 @@ struct IsolatedOutcome
 };
 
 /// Runs work(channel) in a forked child under the limits. The work ends by writing its result
-/// to channel.resultPath() and calling channel.finished(), or by throwing. Progress written to standard error while it runs still reaches a terminal.
+/// to channel.resultPath() and calling channel.finished(), or by throwing. Progress written to standard error while it
+/// runs still reaches a terminal.
 IsolatedOutcome runIsolated(const std::function<void(ChildChannel&)>& work, const IsolationLimits& limits);
 
 /// text with every byte that is not printable ASCII shown as '?', cut to at most maxLength

@@ -9,39 +9,39 @@
 #include "ShadeLabMeshChecks.h"
 
 #include "vtkAlgorithm.h"
-#include "vtkPointData.h"
-#include "vtkFieldData.h"
-#include "vtkInformation.h"
 #include "vtkCellData.h"
 #include "vtkErrorCode.h"
+#include "vtkFieldData.h"
 #include "vtkGenericDataObjectReader.h"
+#include "vtkInformation.h"
 #include "vtkOBJReader.h"
 #include "vtkPLYReader.h"
+#include "vtkPointData.h"
 #include "vtkPolyDataReader.h"
 #include "vtkPolyDataWriter.h"
+#include "vtkRectilinearGridReader.h"
 #include "vtkSMPTools.h"
 #include "vtkSTLReader.h"
-#include "vtkRectilinearGridReader.h"
 #include "vtkStructuredGridReader.h"
 #include "vtkStructuredPointsReader.h"
 #include "vtkUnstructuredGridReader.h"
 #include "vtkXMLImageDataReader.h"
+#include "vtkXMLPolyDataReader.h"
+#include "vtkXMLPolyDataWriter.h"
 #include "vtkXMLRectilinearGridReader.h"
 #include "vtkXMLStructuredGridReader.h"
 #include "vtkXMLUnstructuredGridReader.h"
-#include "vtkXMLPolyDataReader.h"
-#include "vtkXMLPolyDataWriter.h"
 
 #include <algorithm>
 #include <cctype>
+#include <csignal>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <signal.h>
 #include <sstream>
 #include <stdexcept>
-#include <csignal>
-#include <cstring>
-#include <signal.h>
 #include <unistd.h>
 #include <vector>
 
@@ -79,8 +79,9 @@ vtkSmartPointer<vtkAlgorithm> readerFor(const std::string& fileName, const std::
     reader->SetFileName(fileName.c_str());
     if (!reader->IsFilePolyData())
     {
-      throw UserError(fileName + ": not a legacy VTK polydata file (ShadeLab shades surfaces: "
-                                 "extract one first, e.g. with vtkGeometryFilter)");
+      throw UserError(fileName +
+        ": not a legacy VTK polydata file (ShadeLab shades surfaces: "
+        "extract one first, e.g. with vtkGeometryFilter)");
     }
     return reader;
   }
@@ -106,14 +107,13 @@ vtkSmartPointer<vtkAlgorithm> readerFor(const std::string& fileName, const std::
     reader->SetFileName(fileName.c_str());
     return reader;
   }
-  throw UserError(fileName + ": unknown mesh format '" + extension + "'; ShadeLab reads " +
-    readableExtensions);
+  throw UserError(fileName + ": unknown mesh format '" + extension + "'; ShadeLab reads " + readableExtensions);
 }
 
 /// Runs the reader of the file, in this process, showing progress on terminal (null:
 /// nowhere), and returns its output as a Data (kind names it in the message where it is not
 /// one). Throws UserError with VTK's reason.
-template <typename Data>
+template<typename Data>
 vtkSmartPointer<Data> outputOf(vtkAlgorithm* reader, const std::string& fileName, const std::string& extension,
   std::FILE* terminal, const char* kind)
 {
@@ -136,7 +136,8 @@ vtkSmartPointer<Data> outputOf(vtkAlgorithm* reader, const std::string& fileName
 
 /// Reads the file with VTK's reader for its extension, in this process, showing progress on
 /// terminal (null: nowhere). Throws UserError.
-vtkSmartPointer<vtkPolyData> readDirectly(const std::string& fileName, const std::string& extension, std::FILE* terminal)
+vtkSmartPointer<vtkPolyData> readDirectly(
+  const std::string& fileName, const std::string& extension, std::FILE* terminal)
 {
   return outputOf<vtkPolyData>(readerFor(fileName, extension), fileName, extension, terminal, "polydata");
 }
@@ -299,7 +300,8 @@ vtkSmartPointer<vtkAlgorithm> datasetReaderFor(const std::string& fileName, cons
   {
     if (!reader->CanReadFile(fileName.c_str()))
     {
-      throw UserError(fileName + ": not a VTK XML " + type + " file (a " + extension + " must be VTK XML of type " + type + ")");
+      throw UserError(
+        fileName + ": not a VTK XML " + type + " file (a " + extension + " must be VTK XML of type " + type + ")");
     }
     return withFile(reader);
   };
@@ -324,24 +326,18 @@ vtkSmartPointer<vtkAlgorithm> datasetReaderFor(const std::string& fileName, cons
   header->SetFileName(fileName.c_str());
   switch (header->ReadOutputType())
   {
-    case VTK_POLY_DATA:
-      return withFile(vtkSmartPointer<vtkPolyDataReader>::New());
-    case VTK_UNSTRUCTURED_GRID:
-      return withFile(vtkSmartPointer<vtkUnstructuredGridReader>::New());
+    case VTK_POLY_DATA: return withFile(vtkSmartPointer<vtkPolyDataReader>::New());
+    case VTK_UNSTRUCTURED_GRID: return withFile(vtkSmartPointer<vtkUnstructuredGridReader>::New());
     case VTK_STRUCTURED_POINTS:
-    case VTK_IMAGE_DATA:
-      return withFile(vtkSmartPointer<vtkStructuredPointsReader>::New());
-    case VTK_STRUCTURED_GRID:
-      return withFile(vtkSmartPointer<vtkStructuredGridReader>::New());
-    case VTK_RECTILINEAR_GRID:
-      return withFile(vtkSmartPointer<vtkRectilinearGridReader>::New());
-    case -1:
-      throw UserError(fileName + ": not a legacy VTK file (its header does not name a dataset)");
-    default:
-      break;
+    case VTK_IMAGE_DATA: return withFile(vtkSmartPointer<vtkStructuredPointsReader>::New());
+    case VTK_STRUCTURED_GRID: return withFile(vtkSmartPointer<vtkStructuredGridReader>::New());
+    case VTK_RECTILINEAR_GRID: return withFile(vtkSmartPointer<vtkRectilinearGridReader>::New());
+    case -1: throw UserError(fileName + ": not a legacy VTK file (its header does not name a dataset)");
+    default: break;
   }
-  throw UserError(fileName + ": the legacy VTK file holds no dataset of a type ShadeLab compares (polydata, "
-                             "unstructured, structured or rectilinear grid, image)");
+  throw UserError(fileName +
+    ": the legacy VTK file holds no dataset of a type ShadeLab compares (polydata, "
+    "unstructured, structured or rectilinear grid, image)");
 }
 }
 
@@ -356,8 +352,8 @@ vtkSmartPointer<vtkDataSet> readDataSet(const std::string& fileName)
   {
     if (extension != ".vtp" && extension != ".ply" && extension != ".obj" && extension != ".stl")
     {
-      throw UserError(fileName + ": unknown dataset format '" + extension + "'; ShadeLab reads " +
-        readableDataSetExtensions);
+      throw UserError(
+        fileName + ": unknown dataset format '" + extension + "'; ShadeLab reads " + readableDataSetExtensions);
     }
     return readMesh(fileName);
   }
@@ -544,8 +540,8 @@ void writeTextFile(const std::string& fileName, const std::string& text)
     });
 }
 
-vtkSmartPointer<vtkAlgorithm> vtkWriterFor(vtkPolyData* mesh, const std::string& path, const std::string& extension,
-  Compression compression, VtpLayout layout)
+vtkSmartPointer<vtkAlgorithm> vtkWriterFor(
+  vtkPolyData* mesh, const std::string& path, const std::string& extension, Compression compression, VtpLayout layout)
 {
   if (extension == ".vtp")
   {
@@ -562,8 +558,8 @@ vtkSmartPointer<vtkAlgorithm> vtkWriterFor(vtkPolyData* mesh, const std::string&
       writer->SetDataModeToBinary(); // base64 in each array's element
     }
     writer->SetCompressorType(compression == Compression::LZ4 ? vtkXMLWriterBase::LZ4
-        : compression == Compression::ZLib                   ? vtkXMLWriterBase::ZLIB
-                                                             : vtkXMLWriterBase::NONE);
+        : compression == Compression::ZLib                    ? vtkXMLWriterBase::ZLIB
+                                                              : vtkXMLWriterBase::NONE);
     return writer;
   }
   auto writer = vtkSmartPointer<vtkPolyDataWriter>::New();
@@ -591,7 +587,8 @@ void writeMesh(vtkPolyData* mesh, const std::string& fileName, Compression compr
   writeThroughTemporary(fileName,
     [&](const std::string& temporary) -> std::string
     {
-      vtkSmartPointer<vtkAlgorithm> writer = vtkWriterFor(mesh, temporary, lowerExtension(fileName), compression, layout);
+      vtkSmartPointer<vtkAlgorithm> writer =
+        vtkWriterFor(mesh, temporary, lowerExtension(fileName), compression, layout);
       vtkNew<VtkErrorCapture> errors;
       errors->watch(writer);
       vtkNew<ProgressLine> progress;

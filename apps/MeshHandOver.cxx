@@ -40,8 +40,17 @@ constexpr std::size_t page = 4096;
 enum Place : std::int32_t
 {
   Points,
-  VertOffsets, VertIds, LineOffsets, LineIds, PolyOffsets, PolyIds, StripOffsets, StripIds,
-  PointData, CellData, FieldData,
+  VertOffsets,
+  VertIds,
+  LineOffsets,
+  LineIds,
+  PolyOffsets,
+  PolyIds,
+  StripOffsets,
+  StripIds,
+  PointData,
+  CellData,
+  FieldData,
   PlaceCount
 };
 
@@ -88,7 +97,8 @@ std::vector<Entry> entriesOf(vtkPolyData* mesh)
     entry.components = array->GetNumberOfComponents();
     entry.attribute = attribute;
     entry.tuples = array->GetNumberOfTuples();
-    entry.bytes = static_cast<std::uint64_t>(array->GetNumberOfValues()) * static_cast<std::uint64_t>(array->GetDataTypeSize());
+    entry.bytes =
+      static_cast<std::uint64_t>(array->GetNumberOfValues()) * static_cast<std::uint64_t>(array->GetDataTypeSize());
     entry.named = array->GetName() != nullptr;
     entry.name = entry.named ? array->GetName() : "";
     entry.componentsNamed = array->HasAComponentName();
@@ -125,7 +135,7 @@ std::vector<Entry> entriesOf(vtkPolyData* mesh)
 
 // The table: fixed-width numbers (native byte order: both sides are one program on one
 // machine) and length-prefixed strings.
-template <typename Number>
+template<typename Number>
 void put(std::string& table, Number value)
 {
   table.append(reinterpret_cast<const char*>(&value), sizeof value);
@@ -226,7 +236,7 @@ public:
   {
   }
 
-  template <typename Number>
+  template<typename Number>
   Number number()
   {
     Number value;
@@ -290,8 +300,10 @@ vtkSmartPointer<vtkDataArray> mappedArray(const Entry& entry, int fd, std::uint6
   auto array = vtk::TakeSmartPointer(vtkDataArray::CreateDataArray(entry.type));
   const std::uint64_t values = static_cast<std::uint64_t>(entry.tuples) * static_cast<std::uint64_t>(entry.components);
   if (!array || !array->HasStandardMemoryLayout() || entry.type == VTK_BIT || entry.components < 1 ||
-    entry.tuples < 0 || entry.offset % page != 0 || entry.bytes > fileSize || (entry.bytes > 0 && entry.offset > fileSize - entry.bytes) ||
-    (entry.components > 0 && values / static_cast<std::uint64_t>(entry.components) != static_cast<std::uint64_t>(entry.tuples)) ||
+    entry.tuples < 0 || entry.offset % page != 0 || entry.bytes > fileSize ||
+    (entry.bytes > 0 && entry.offset > fileSize - entry.bytes) ||
+    (entry.components > 0 &&
+      values / static_cast<std::uint64_t>(entry.components) != static_cast<std::uint64_t>(entry.tuples)) ||
     values * static_cast<std::uint64_t>(array->GetDataTypeSize()) != entry.bytes)
   {
     TableReader::fail();
@@ -312,8 +324,8 @@ vtkSmartPointer<vtkDataArray> mappedArray(const Entry& entry, int fd, std::uint6
   }
   // Private: copy on write, so that the arrays can be changed like any other. Populated: the
   // pages are mapped in one go here, not one fault at a time when first read.
-  void* pages = ::mmap(nullptr, entry.bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_POPULATE, fd,
-    static_cast<off_t>(entry.offset));
+  void* pages = ::mmap(
+    nullptr, entry.bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_POPULATE, fd, static_cast<off_t>(entry.offset));
   if (pages == MAP_FAILED)
   {
     throw std::bad_alloc();
@@ -393,10 +405,14 @@ vtkSmartPointer<vtkPolyData> takeOverRaw(const std::string& table, int fd, std::
       {
         TableReader::fail();
       }
-      (kind == 0 ? mesh->SetVerts(cells) : kind == 1 ? mesh->SetLines(cells) : kind == 2 ? mesh->SetPolys(cells) : mesh->SetStrips(cells));
+      (kind == 0      ? mesh->SetVerts(cells)
+          : kind == 1 ? mesh->SetLines(cells)
+          : kind == 2 ? mesh->SetPolys(cells)
+                      : mesh->SetStrips(cells));
     }
   }
-  for (vtkDataSetAttributes* data : { static_cast<vtkDataSetAttributes*>(mesh->GetPointData()), static_cast<vtkDataSetAttributes*>(mesh->GetCellData()) })
+  for (vtkDataSetAttributes* data : { static_cast<vtkDataSetAttributes*>(mesh->GetPointData()),
+         static_cast<vtkDataSetAttributes*>(mesh->GetCellData()) })
   {
     const vtkIdType expected = data == mesh->GetPointData() ? mesh->GetNumberOfPoints() : mesh->GetNumberOfCells();
     for (int a = 0; a < data->GetNumberOfArrays(); ++a)
@@ -413,7 +429,7 @@ vtkSmartPointer<vtkPolyData> takeOverRaw(const std::string& table, int fd, std::
 // ---- XML, for meshes with arrays that are not plain ----
 
 /// Calls rename(array) for every array of the mesh: point, cell and field data.
-template <typename Rename>
+template<typename Rename>
 void forEachArray(vtkDataSet* mesh, Rename rename)
 {
   for (vtkFieldData* data : { static_cast<vtkFieldData*>(mesh->GetPointData()),
@@ -451,7 +467,7 @@ std::string decodedName(const char* text)
 }
 
 /// Renames the array and its components with code(name); unnamed ones stay unnamed.
-template <typename Code>
+template<typename Code>
 void recodeNames(vtkAbstractArray* array, Code code)
 {
   if (array->GetName())
@@ -490,7 +506,7 @@ void handOverXml(vtkDataSet* mesh, const std::string& path)
   writer->EncodeAppendedDataOff();
   writer->SetCompressorTypeToNone();
   writer->SetHeaderTypeToUInt64(); // arrays of more than 4 GB
-  writer->Update(); // writes
+  writer->Update();                // writes
   if (writer->GetErrorCode() != vtkErrorCode::NoError)
   {
     throw std::runtime_error("the mesh could not be handed over (out of memory?)");
@@ -577,7 +593,8 @@ vtkSmartPointer<vtkDataSet> takeOverDataSet(const std::string& path)
       TableReader::fail();
     }
     std::string content(static_cast<std::size_t>(length), '\0');
-    if (::pread(fd, content.data(), content.size(), static_cast<off_t>(table.size())) != static_cast<ssize_t>(content.size()))
+    if (::pread(fd, content.data(), content.size(), static_cast<off_t>(table.size())) !=
+      static_cast<ssize_t>(content.size()))
     {
       TableReader::fail();
     }

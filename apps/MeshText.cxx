@@ -3,8 +3,8 @@
 #include "IsolatedWork.h"
 
 #include <algorithm>
-#include <charconv>
 #include <cfloat>
+#include <charconv>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -86,16 +86,11 @@ std::string numberMessage(NumberFault fault, std::string_view word, const std::s
 {
   switch (fault)
   {
-    case NumberFault::None:
-      break;
-    case NumberFault::NotANumber:
-      return quotedWord(word) + " is not a number (" + what + ")";
-    case NumberFault::NotFinite:
-      return quotedWord(word) + " is not a finite number (" + what + ")";
-    case NumberFault::NotAnInteger:
-      return quotedWord(word) + " is not an integer (" + what + ")";
-    case NumberFault::OutOfRange:
-      return quotedWord(word) + " is beyond " + range + " (" + what + ")";
+    case NumberFault::None: break;
+    case NumberFault::NotANumber: return quotedWord(word) + " is not a number (" + what + ")";
+    case NumberFault::NotFinite: return quotedWord(word) + " is not a finite number (" + what + ")";
+    case NumberFault::NotAnInteger: return quotedWord(word) + " is not an integer (" + what + ")";
+    case NumberFault::OutOfRange: return quotedWord(word) + " is beyond " + range + " (" + what + ")";
   }
   return "";
 }

@@ -62,7 +62,7 @@ inline bool isPlySpace(char c)
 
 /// Takes the next word off the front of text: the characters before the next separator, after
 /// any separators. False when only separators are left.
-template <typename IsSeparator>
+template<typename IsSeparator>
 bool nextWord(std::string_view& text, std::string_view& word, IsSeparator isSeparator)
 {
   std::size_t start = 0;
@@ -86,7 +86,7 @@ bool nextWord(std::string_view& text, std::string_view& word, IsSeparator isSepa
 }
 
 /// text after its leading separators.
-template <typename IsSeparator>
+template<typename IsSeparator>
 std::string_view trimmedStart(std::string_view text, IsSeparator isSeparator)
 {
   std::size_t start = 0;

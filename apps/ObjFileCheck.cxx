@@ -138,8 +138,9 @@ MeshFileCheck ObjCheck::run(std::string_view text)
       {
         continue;
       }
-      return { atLine(1, "the file starts with a byte order mark, which VTK's reader does not skip: save it without one"),
-        "" };
+      return {
+        atLine(1, "the file starts with a byte order mark, which VTK's reader does not skip: save it without one"), ""
+      };
     }
     const std::string problem = statementProblem(keyword, rest);
     if (!problem.empty())
@@ -277,7 +278,8 @@ std::string ObjCheck::elementProblem(std::string_view keyword, std::string_view 
     {
       first = corner, firstWord = word;
     }
-    else if (kind == 'f' && (corner.has[TextureSlot] != first.has[TextureSlot] || corner.has[NormalSlot] != first.has[NormalSlot]))
+    else if (kind == 'f' &&
+      (corner.has[TextureSlot] != first.has[TextureSlot] || corner.has[NormalSlot] != first.has[NormalSlot]))
     {
       return "the corners " + quotedWord(firstWord) + " and " + quotedWord(word) +
         " differ in form: VTK's reader needs every corner of a face to give a texture coordinate, or none; likewise "
@@ -286,9 +288,11 @@ std::string ObjCheck::elementProblem(std::string_view keyword, std::string_view 
     if (kind == 'f')
     {
       textured_ = textured_ || corner.has[TextureSlot];
-      texturesMatch_ = texturesMatch_ && (!corner.has[TextureSlot] || corner.index[TextureSlot] == corner.index[VertexSlot]);
+      texturesMatch_ =
+        texturesMatch_ && (!corner.has[TextureSlot] || corner.index[TextureSlot] == corner.index[VertexSlot]);
       normals_ = normals_ || corner.has[NormalSlot];
-      normalsMatch_ = normalsMatch_ && (!corner.has[NormalSlot] || corner.index[NormalSlot] == corner.index[VertexSlot]);
+      normalsMatch_ =
+        normalsMatch_ && (!corner.has[NormalSlot] || corner.index[NormalSlot] == corner.index[VertexSlot]);
     }
   }
   const int least = kind == 'f' ? 3 : kind == 'l' ? 2 : 1;
@@ -316,7 +320,8 @@ std::string ObjCheck::cornerProblem(char kind, std::string_view word, Corner& co
 {
   splitCorner(word, corner);
   NumberFault faults[3] = { NumberFault::None, NumberFault::None, NumberFault::None };
-  bool integers = kind == 'f' || (kind == 'l' && !corner.has[NormalSlot]) || (!corner.has[TextureSlot] && !corner.has[NormalSlot]);
+  bool integers =
+    kind == 'f' || (kind == 'l' && !corner.has[NormalSlot]) || (!corner.has[TextureSlot] && !corner.has[NormalSlot]);
   for (int slot = 0; integers && slot < 3; ++slot)
   {
     faults[slot] = corner.has[slot] ? readInteger(corner.fields[slot], corner.index[slot]) : NumberFault::None;
@@ -324,8 +329,10 @@ std::string ObjCheck::cornerProblem(char kind, std::string_view word, Corner& co
   }
   if (!integers)
   {
-    return quotedWord(word) + (kind == 'f' ? " is not an OBJ face corner" : kind == 'l' ? " is not an OBJ line corner (v or v/vt)"
-                                                                                     : " is not an OBJ point (v)");
+    return quotedWord(word) +
+      (kind == 'f'      ? " is not an OBJ face corner"
+          : kind == 'l' ? " is not an OBJ line corner (v or v/vt)"
+                        : " is not an OBJ point (v)");
   }
   for (int slot = 0; slot < 3; ++slot)
   {
@@ -341,7 +348,8 @@ std::string ObjCheck::cornerProblem(char kind, std::string_view word, Corner& co
 
 /// An index counts from 1, or back from the last listed with -1; it must refer to data listed
 /// before its line.
-std::string ObjCheck::indexProblem(char kind, Slot slot, std::string_view field, long long index, NumberFault fault) const
+std::string ObjCheck::indexProblem(
+  char kind, Slot slot, std::string_view field, long long index, NumberFault fault) const
 {
   const long long listed = listed_[slot];
   if (fault != NumberFault::OutOfRange && index != 0 && listed + std::min(index, 0LL) >= 0 && index <= listed)
@@ -392,8 +400,10 @@ std::string ObjCheck::wholeFileProblem() const
     if (!copiesPoints && used && listed_[slot] != listed_[VertexSlot])
     {
       const std::string noun = slotNames[slot] + std::string(listed_[slot] == 1 ? "" : "s");
-      return "the faces give each corner the " + std::string(slotNames[slot]) + " of its vertex's number, but the file "
-        "lists " + std::to_string(listed_[slot]) + " " + noun + " for " + std::to_string(listed_[VertexSlot]) +
+      return "the faces give each corner the " + std::string(slotNames[slot]) +
+        " of its vertex's number, but the file "
+        "lists " +
+        std::to_string(listed_[slot]) + " " + noun + " for " + std::to_string(listed_[VertexSlot]) +
         " vertices, which VTK's reader cannot match: list one for every vertex";
     }
   }

@@ -14,7 +14,10 @@ class PlanBeforeRun : public vtkCommand
 public:
   static PlanBeforeRun* New() { return new PlanBeforeRun; }
 
-  void watch(vtkLocalReflectanceFilter* filter) { filter->AddObserver(vtkLocalReflectanceFilter::MethodsChosenEvent, this); }
+  void watch(vtkLocalReflectanceFilter* filter)
+  {
+    filter->AddObserver(vtkLocalReflectanceFilter::MethodsChosenEvent, this);
+  }
 
   void Execute(vtkObject* caller, unsigned long, void*) override
   {

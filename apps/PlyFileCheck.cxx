@@ -34,7 +34,8 @@ public:
     {
       return "the '" + element.name + "' property '" + property.name + "'";
     }
-    return std::string(count ? "the count of" : "a value of") + " the '" + element.name + "' list '" + property.name + "'";
+    return std::string(count ? "the count of" : "a value of") + " the '" + element.name + "' list '" + property.name +
+      "'";
   }
 
   /// Whether value keeps the rules: the test alone, with no text made, for every value of a
@@ -133,8 +134,8 @@ std::string asciiElementProblem(const PlyValueRules& rules, const PlyElement& el
     {
       if (!nextWord(line, word, isPlySpace))
       {
-        return "this '" + element.name + "' line ends after " + std::to_string(values) + (values == 1 ? " value" : " values") +
-          ", before its '" + property.name + "' is complete";
+        return "this '" + element.name + "' line ends after " + std::to_string(values) +
+          (values == 1 ? " value" : " values") + ", before its '" + property.name + "' is complete";
       }
       ++values;
       double value = 0;
@@ -160,7 +161,9 @@ std::string elementCounts(const PlyHeader& header)
   std::string text;
   for (std::size_t i = 0; i < header.elements.size(); ++i)
   {
-    text += (i == 0 ? "" : i + 1 == header.elements.size() ? " and " : ", ") +
+    text += (i == 0                               ? ""
+                : i + 1 == header.elements.size() ? " and "
+                                                  : ", ") +
       std::to_string(header.elements[i].count) + " '" + header.elements[i].name + "'";
   }
   return text;
@@ -178,8 +181,9 @@ std::string asciiBodyProblem(const PlyHeader& header, std::string_view body)
     {
       if (!lines.next(line))
       {
-        return atLine(lines.number() + 1, "the file ends after " + std::to_string(i) + " of the " +
-            std::to_string(element.count) + " '" + element.name + "' lines the header declares");
+        return atLine(lines.number() + 1,
+          "the file ends after " + std::to_string(i) + " of the " + std::to_string(element.count) + " '" +
+            element.name + "' lines the header declares");
       }
       if (!lines.ended())
       {
@@ -223,14 +227,10 @@ double binaryValue(const PlyType& type, const char* bytes, bool swap)
   };
   switch (type.bytes)
   {
-    case 1:
-      return type.least < 0 ? as(std::int8_t()) : as(std::uint8_t());
-    case 2:
-      return type.least < 0 ? as(std::int16_t()) : as(std::uint16_t());
-    case 4:
-      return type.real ? as(float()) : type.least < 0 ? as(std::int32_t()) : as(std::uint32_t());
-    default:
-      return as(double());
+    case 1: return type.least < 0 ? as(std::int8_t()) : as(std::uint8_t());
+    case 2: return type.least < 0 ? as(std::int16_t()) : as(std::uint16_t());
+    case 4: return type.real ? as(float()) : type.least < 0 ? as(std::int32_t()) : as(std::uint32_t());
+    default: return as(double());
   }
 }
 

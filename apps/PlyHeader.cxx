@@ -86,7 +86,8 @@ std::string parsePlyHeader(std::string_view text, PlyHeader& header)
     }
     const std::vector<std::string> words = wordsOf(line);
     const std::string keyword = words.empty() ? "" : words[0];
-    const std::string where = "line " + std::to_string(lineNumber) + " of the PLY header ('" + printableText(line, 60) + "')";
+    const std::string where =
+      "line " + std::to_string(lineNumber) + " of the PLY header ('" + printableText(line, 60) + "')";
     if (lineNumber == 1)
     {
       if (line != "ply")
@@ -101,7 +102,8 @@ std::string parsePlyHeader(std::string_view text, PlyHeader& header)
     }
     if (keyword == "format")
     {
-      if (words.size() != 3 || (words[1] != "ascii" && words[1] != "binary_little_endian" && words[1] != "binary_big_endian"))
+      if (words.size() != 3 ||
+        (words[1] != "ascii" && words[1] != "binary_little_endian" && words[1] != "binary_big_endian"))
       {
         return where + " is not 'format ascii|binary_little_endian|binary_big_endian 1.0'";
       }
@@ -136,7 +138,8 @@ std::string parsePlyHeader(std::string_view text, PlyHeader& header)
       }
       // vtkPLY reads "vertex_index" as "vertex_indices", wherever it is.
       property.name = words.back() == "vertex_index" ? "vertex_indices" : words.back();
-      property.coordinate = element.name == "vertex" && (property.name == "x" || property.name == "y" || property.name == "z");
+      property.coordinate =
+        element.name == "vertex" && (property.name == "x" || property.name == "y" || property.name == "z");
       property.vertexIndices = element.name == "face" && property.name == "vertex_indices";
       if (hasProperty(element, property.name))
       {
@@ -169,7 +172,8 @@ std::string plyCountsProblem(const PlyHeader& header, std::uintmax_t fileSize)
     double leastBytesEach = 0;
     for (const PlyProperty& property : element.properties)
     {
-      leastBytesEach += header.format == PlyFormat::Ascii ? 2 : (property.countType ? property.countType : property.type)->bytes;
+      leastBytesEach +=
+        header.format == PlyFormat::Ascii ? 2 : (property.countType ? property.countType : property.type)->bytes;
     }
     leastBody += static_cast<double>(element.count) * leastBytesEach;
     if (element.name == "vertex")

@@ -26,7 +26,8 @@ public:
 
   /// Shows the progress of algorithm under this label, on terminal (by default standard
   /// error, if it is a terminal; null: nowhere).
-  void watch(vtkAlgorithm* algorithm, const std::string& label, std::FILE* terminal = ::isatty(STDERR_FILENO) ? stderr : nullptr)
+  void watch(
+    vtkAlgorithm* algorithm, const std::string& label, std::FILE* terminal = ::isatty(STDERR_FILENO) ? stderr : nullptr)
   {
     terminal_ = terminal;
     if (terminal_)

@@ -25,19 +25,22 @@ CLI::App* addRelightCommand(CLI::App& cli, RelightOptions& options)
     "dot product of the map's spherical-harmonic coefficients with its transfer vector, written as an\n"
     "RGB array (docs/guide/relighting.md).");
   command->add_option("mesh", options.mesh, "the shaded mesh (.vtp, .vtk) with a transfer array")->required();
-  command->add_option("--envmap", options.environmentMap,
-    "the equirectangular map (.hdr, .exr) to light it with")->required();
-  command->add_option("--output,-o", options.output, "the mesh to write (.vtp, .vtk), with every input array")->required();
-  command->add_option("--rotation", options.rotation,
-    "turn the map about +y by this many degrees (anticlockwise seen from above), as a scene's \"rotation\"")
+  command->add_option("--envmap", options.environmentMap, "the equirectangular map (.hdr, .exr) to light it with")
+    ->required();
+  command->add_option("--output,-o", options.output, "the mesh to write (.vtp, .vtk), with every input array")
+    ->required();
+  command
+    ->add_option("--rotation", options.rotation,
+      "turn the map about +y by this many degrees (anticlockwise seen from above), as a scene's \"rotation\"")
     ->capture_default_str();
   command->add_option("--intensity", options.intensity, "multiply the map's radiance")
     ->check(CLI::NonNegativeNumber)
     ->capture_default_str();
   command->add_option("--transfer", options.transferArray,
     "the transfer array (default: the one array whose name ends in _sh_transfer, such as envmap_sh_transfer)");
-  command->add_option("--name", options.outputArray,
-    "the name of the irradiance array it writes (an input array of that name is replaced, and the run says so)")
+  command
+    ->add_option("--name", options.outputArray,
+      "the name of the irradiance array it writes (an input array of that name is replaced, and the run says so)")
     ->capture_default_str();
   addCompressionOption(command, options.compression, ".vtp compression, as shade's");
   return command;
@@ -85,7 +88,8 @@ int runRelight(const RelightOptions& options)
   {
     double range[2];
     irradiance->GetRange(range, c);
-    std::cout << "    " << "RGB"[c] << " from " << std::setprecision(6) << range[0] << " to " << range[1] << "\n";
+    std::cout << "    "
+              << "RGB"[c] << " from " << std::setprecision(6) << range[0] << " to " << range[1] << "\n";
   }
   const int threads = vtkSMPTools::GetEstimatedNumberOfThreads();
   std::cout << std::setprecision(3) << "  time: read " << readSeconds << " s, relight " << relightSeconds << " s ("

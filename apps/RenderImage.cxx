@@ -44,8 +44,8 @@ using Rgb = std::array<unsigned char, 3>;
 
 /// Okabe and Ito's palette for colour-blind readers ("Color Universal Design", 2008), without
 /// its black, which the dark background would hide: the categories' colours, in order.
-constexpr std::array<Rgb, 7> categoryColours{ { { 86, 180, 233 }, { 230, 159, 0 }, { 0, 158, 115 },
-  { 240, 228, 66 }, { 0, 114, 178 }, { 213, 94, 0 }, { 204, 121, 167 } } };
+constexpr std::array<Rgb, 7> categoryColours{ { { 86, 180, 233 }, { 230, 159, 0 }, { 0, 158, 115 }, { 240, 228, 66 },
+  { 0, 114, 178 }, { 213, 94, 0 }, { 204, 121, 167 } } };
 /// The colour of the values that the palette has no colour left for.
 constexpr Rgb otherValuesColour{ 150, 150, 150 };
 constexpr double background[3] = { 0.16, 0.17, 0.2 };
@@ -198,8 +198,7 @@ std::string flagMeaningsOf(double value)
 std::vector<Category> categoriesOf(const std::map<double, vtkIdType>& counts, bool flags)
 {
   std::vector<std::pair<double, vtkIdType>> byCount(counts.begin(), counts.end());
-  std::stable_sort(
-    byCount.begin(), byCount.end(), [](const auto& a, const auto& b) { return a.second > b.second; });
+  std::stable_sort(byCount.begin(), byCount.end(), [](const auto& a, const auto& b) { return a.second > b.second; });
   const std::size_t coloured = std::min(byCount.size(), categoryColours.size());
   std::vector<double> values;
   for (std::size_t c = 0; c < coloured; ++c)
@@ -461,8 +460,8 @@ vtkSmartPointer<vtkTextActor> titleFor(const std::string& name, int font, int he
 
 /// Maps the 1-component array through a colour table on mapper (categories for flags and for
 /// integers of a few values, the diverging map otherwise), and returns its legend.
-Legend mapScalars(vtkDataArray* array, const std::string& name, vtkPolyDataMapper* mapper, int font,
-  int width, int height)
+Legend mapScalars(
+  vtkDataArray* array, const std::string& name, vtkPolyDataMapper* mapper, int font, int width, int height)
 {
   mapper->SetColorModeToMapScalars(); // 8-bit values too, which VTK would draw as grey levels
   const bool flags = isFlagsArray(array, name);
@@ -518,16 +517,16 @@ void placeCamera(vtkRenderer* renderer, vtkPolyData* mesh, const std::optional<V
 }
 }
 
-std::vector<std::string> renderToPng(vtkPolyData* mesh, const std::string& meshName, const RenderOptions& options,
-  const std::string& pngFile)
+std::vector<std::string> renderToPng(
+  vtkPolyData* mesh, const std::string& meshName, const RenderOptions& options, const std::string& pngFile)
 {
   checkOutputFile(pngFile, { ".png" });
   requireDisplay();
   vtkDataArray* array = mesh->GetPointData()->GetArray(options.array.c_str());
   if (!array)
   {
-    throw UserError(meshName + ": has no point array '" + options.array + "'; it has: " +
-      arrayNames(mesh->GetPointData()));
+    throw UserError(
+      meshName + ": has no point array '" + options.array + "'; it has: " + arrayNames(mesh->GetPointData()));
   }
   const int components = array->GetNumberOfComponents();
   if (components != 1 && components != 3)

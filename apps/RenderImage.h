@@ -33,6 +33,6 @@ struct RenderOptions
 /// xvfb-run on a headless machine). Writes through a temporary file. Returns notes for the
 /// user on what the picture does not show as it is (values drawn clipped), one line each.
 /// Throws UserError.
-std::vector<std::string> renderToPng(vtkPolyData* mesh, const std::string& meshName, const RenderOptions& options,
-  const std::string& pngFile);
+std::vector<std::string> renderToPng(
+  vtkPolyData* mesh, const std::string& meshName, const RenderOptions& options, const std::string& pngFile);
 }

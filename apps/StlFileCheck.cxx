@@ -197,7 +197,8 @@ std::string binaryStlProblem(std::string_view bytes)
   {
     for (int i = 0; i < 9; ++i)
     {
-      const auto* at = reinterpret_cast<const unsigned char*>(bytes.data() + headerBytes + t * triangleBytes + 12 + 4 * i);
+      const auto* at =
+        reinterpret_cast<const unsigned char*>(bytes.data() + headerBytes + t * triangleBytes + 12 + 4 * i);
       const std::uint32_t bits = at[0] | at[1] << 8 | at[2] << 16 | std::uint32_t(at[3]) << 24; // little-endian
       float coordinate = 0;
       std::memcpy(&coordinate, &bits, 4);

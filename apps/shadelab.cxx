@@ -4,6 +4,7 @@
 //   shadelab render MESH -o OUT.png                     a picture of one array
 //   shadelab compare BASELINE RESULT                    two files' arrays value by value
 // (The developers' benchmark and studies are bench/shadelab-bench.)
+#include "CommandLineParse.h"
 #include "CompareCommand.h"
 #include "MeshFiles.h"
 #include "PlanBeforeRun.h"
@@ -12,7 +13,6 @@
 #include "RenderImage.h"
 #include "RunWarnings.h"
 #include "StageTime.h"
-#include "CommandLineParse.h"
 #include "VtkErrorCapture.h"
 
 #include "ArrayCatalog.h"
@@ -49,8 +49,8 @@
 namespace
 {
 using namespace shadelab;
-using app::RunWarnings;
 using app::Clock;
+using app::RunWarnings;
 using app::secondsSince;
 using app::UserError;
 
@@ -162,9 +162,9 @@ void printSummary(vtkPolyData* output, const Scene& scene, const std::string& pr
       low = c == 0 ? range[0] : std::min(low, range[0]);
       high = c == 0 ? range[1] : std::max(high, range[1]);
     }
-    std::cout << "    " << std::left << std::setw(static_cast<int>(width)) << name << std::right
-              << std::setw(2) << array->GetNumberOfComponents() << "  " << std::setw(12)
-              << std::setprecision(6) << low << " " << std::setw(12) << high << "\n";
+    std::cout << "    " << std::left << std::setw(static_cast<int>(width)) << name << std::right << std::setw(2)
+              << array->GetNumberOfComponents() << "  " << std::setw(12) << std::setprecision(6) << low << " "
+              << std::setw(12) << high << "\n";
   }
   if (auto* flags = vtkUnsignedCharArray::SafeDownCast(pointData->GetArray(flagsArrayName(prefix).c_str())))
   {
@@ -174,8 +174,8 @@ void printSummary(vtkPolyData* output, const Scene& scene, const std::string& pr
       [](const NamedLight& light) { return !std::holds_alternative<AmbientLight>(light.source); });
     for (const FlagMeaning& flag : flagMeanings)
     {
-      const vtkIdType count = std::count_if(values, values + flags->GetNumberOfValues(),
-        [bit = flag.flag](unsigned char v) { return (v & bit) != 0; });
+      const vtkIdType count = std::count_if(
+        values, values + flags->GetNumberOfValues(), [bit = flag.flag](unsigned char v) { return (v & bit) != 0; });
       std::cout << (flag.flag == FlagDegenerateNormal ? " " : ", ") << count << " with " << flag.meaning;
       if (flag.flag == FlagLightBelowHorizon && directed > 1)
       {
@@ -287,7 +287,8 @@ Scene sceneWithEnvironment(const std::string& sceneFile, const EnvironmentOption
   const bool transfer = light.estimator == EnvironmentEstimator::PrecomputedTransfer;
   if (transfer && !environment.directions.empty() && environment.directions != "cosine")
   {
-    throw UserError("--envmap-directions " + environment.directions + ": prt draws its shadow rays by the cosine, "
+    throw UserError("--envmap-directions " + environment.directions +
+      ": prt draws its shadow rays by the cosine, "
       "the density its transfer vectors are estimated for: leave --envmap-directions out");
   }
   if (!transfer && environment.order != 0)
@@ -372,8 +373,8 @@ int runShade(const ShadeOptions& options)
   filter->SetColorByArray(!options.colorBy.empty());
   filter->SetMaterialColorArray(options.colorBy);
   filter->SetMaterialColorMap(options.colorMap);
-  filter->SetOutputPrecision(options.precision == "float64" ? vtkAlgorithm::DOUBLE_PRECISION
-                                                            : vtkAlgorithm::SINGLE_PRECISION);
+  filter->SetOutputPrecision(
+    options.precision == "float64" ? vtkAlgorithm::DOUBLE_PRECISION : vtkAlgorithm::SINGLE_PRECISION);
   filter->SetOrientNormalsOutward(!options.keepNormals);
   filter->SetWeldCoincidentPoints(!options.noWeld);
   filter->SetFeatureAngle(options.featureAngle);
@@ -397,13 +398,14 @@ int runShade(const ShadeOptions& options)
     const std::string occlusionRays = "/ambient_occlusion/rays: ";
     if (!options.ambientOcclusion.empty() && sceneProblem.rfind(occlusionRays, 0) == 0)
     {
-      throw UserError("--ambient-occlusion " + options.ambientOcclusion + ": " + sceneProblem.substr(occlusionRays.size()));
+      throw UserError(
+        "--ambient-occlusion " + options.ambientOcclusion + ": " + sceneProblem.substr(occlusionRays.size()));
     }
     if (!sceneProblem.empty())
     {
       const std::string source = !options.scene.empty() ? options.scene
-        : options.environment.file.empty()               ? "the default light kit"
-                                                         : "--envmap " + options.environment.file;
+        : options.environment.file.empty()              ? "the default light kit"
+                                                        : "--envmap " + options.environment.file;
       throw UserError(source + ": " + sceneProblem);
     }
     throw UserError(options.mesh + ": " + errors->message());
@@ -422,13 +424,13 @@ int runShade(const ShadeOptions& options)
             << "  mesh: " << output->GetNumberOfPoints() << " vertices, "
             << output->GetNumberOfPolys() + output->GetNumberOfStrips() << " polygons and strips\n"
             << (ignored.empty() ? "" : "  ignored: " + ignored + "\n") << "  scene: "
-            << (!options.scene.empty()       ? options.scene
-                 : options.environment.file.empty() ? "the default light kit, placed on the mesh"
-                                                    : "default material and viewer")
+            << (!options.scene.empty()                ? options.scene
+                   : options.environment.file.empty() ? "the default light kit, placed on the mesh"
+                                                      : "default material and viewer")
             << (options.environment.file.empty() ? "" : " + --envmap " + options.environment.file) << " ("
             << modelName(scene) << " model, " << countOf(scene.lights.size(), "light") << ")\n"
-            << "  normals: " << (options.splitAngle ? splitter->GetReport() + " " : "")
-            << filter->GetNormalsReport() << "\n";
+            << "  normals: " << (options.splitAngle ? splitter->GetReport() + " " : "") << filter->GetNormalsReport()
+            << "\n";
   if (!filter->GetVisibilityReport().empty())
   {
     std::cout << "  visibility: " << filter->GetVisibilityReport() << "\n";
@@ -449,8 +451,8 @@ int runShade(const ShadeOptions& options)
   }
   printSummary(output, scene, options.prefix);
   const int threads = vtkSMPTools::GetEstimatedNumberOfThreads();
-  std::cout << std::setprecision(3) << "  time: read " << readSeconds << " s, shade "
-            << shadeSeconds << " s (" << threads << (threads == 1 ? " thread, " : " threads, ")
+  std::cout << std::setprecision(3) << "  time: read " << readSeconds << " s, shade " << shadeSeconds << " s ("
+            << threads << (threads == 1 ? " thread, " : " threads, ")
             << (options.tolerance > 0 ? "methods above" : options.precision) << "), write " << writeSeconds << " s\n";
   return 0;
 }
@@ -469,8 +471,8 @@ int runRender(RenderCommand& command)
   int width = 0, height = 0;
   char separator = 0;
   std::istringstream size(command.size);
-  if (!(size >> width >> separator >> height) || separator != 'x' || width < 16 || height < 16 ||
-    width > 8192 || height > 8192)
+  if (!(size >> width >> separator >> height) || separator != 'x' || width < 16 || height < 16 || width > 8192 ||
+    height > 8192)
   {
     throw UserError("--size: '" + command.size + "' is not WIDTHxHEIGHT with each from 16 to 8192");
   }
@@ -483,8 +485,8 @@ int runRender(RenderCommand& command)
   command.options.viewer = placedOnMesh(scene, meshExtentOf(mesh)).viewer;
   const std::vector<std::string> notes = app::renderToPng(mesh, command.mesh, command.options, command.output);
   warnings.show();
-  std::cout << "shadelab render: " << command.options.array << " of " << command.mesh << " -> "
-            << command.output << " (" << width << "x" << height << ")\n";
+  std::cout << "shadelab render: " << command.options.array << " of " << command.mesh << " -> " << command.output
+            << " (" << width << "x" << height << ")\n";
   for (const std::string& note : notes)
   {
     std::cout << "  " << note << "\n";
@@ -498,8 +500,8 @@ int runArrays(const std::string& sceneFile)
   std::cout << "Arrays for " << sceneFile << " (select them with shade --arrays):\n";
   for (const ArrayDescription& array : availableArrays(scene))
   {
-    std::cout << "  " << std::left << std::setw(28) << array.name << " " << array.components
-              << "  " << array.description << "\n";
+    std::cout << "  " << std::left << std::setw(28) << array.name << " " << array.components << "  "
+              << array.description << "\n";
   }
   if (scene.spectral)
   {
@@ -532,7 +534,7 @@ CLI::Validator finiteNonNegative()
     {
       const std::optional<double> number = numberIn(value);
       return number && std::isfinite(*number) && *number >= 0 ? std::string()
-                                                               : "'" + value + "' is not a finite number >= 0";
+                                                              : "'" + value + "' is not a finite number >= 0";
     },
     "NUMBER >= 0");
 }
@@ -545,7 +547,8 @@ CLI::Validator arrayNamePrefix()
     [](std::string& value)
     {
       const bool valid = value.size() <= 64 &&
-        std::all_of(value.begin(), value.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
+        std::all_of(
+          value.begin(), value.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
       return valid ? std::string() : "use at most 64 letters, digits and _";
     },
     "PREFIX");
@@ -577,32 +580,34 @@ CLI::App* addShadeCommand(CLI::App& cli, ShadeOptions& options)
     "little ambient light, placed and scaled to fit the mesh, or with --envmap, the map alone under the "
     "default material and a viewer at infinity looking down -z");
   command->add_option("--output,-o", options.output, "output file, .vtp or .vtk")->required();
-  command->add_option("--arrays,-a", options.arrays,
-    "comma-separated arrays to compute: default (totals and shading_flags), totals, all, "
-    "*_TERM (that term for every light, e.g. *_cos_incidence) or full names (e.g. key_diffuse); "
-    "'shadelab arrays --scene FILE' lists them")
+  command
+    ->add_option("--arrays,-a", options.arrays,
+      "comma-separated arrays to compute: default (totals and shading_flags), totals, all, "
+      "*_TERM (that term for every light, e.g. *_cos_incidence) or full names (e.g. key_diffuse); "
+      "'shadelab arrays --scene FILE' lists them")
     ->capture_default_str();
-  CLI::Option* precisionOption =
-    command->add_option("--precision", options.precision, "arithmetic and output arrays")
-      ->check(CLI::IsMember({ "float32", "float64" }))
-      ->capture_default_str();
+  CLI::Option* precisionOption = command->add_option("--precision", options.precision, "arithmetic and output arrays")
+                                   ->check(CLI::IsMember({ "float32", "float64" }))
+                                   ->capture_default_str();
   command
     ->add_option("--tolerance", options.tolerance,
       "largest absolute error allowed in the shaded values: ShadeLab then chooses the cheapest "
       "precision and, per light, approximations (a point light as distant, a faster pow) whose "
       "predicted errors fit, and with ambient occlusion the rays' share (the sampled part at 95% "
-      "confidence; --ambient-occlusion auto draws as many rays as it needs), and prints what it chose before the run, with a forecast of the samples, rays and time where it samples; "
+      "confidence; --ambient-occlusion auto draws as many rays as it needs), and prints what it chose before the run, "
+      "with a forecast of the samples, rays and time where it samples; "
       "0 (default): exact methods")
     ->check(finiteNonNegative())
     ->excludes(precisionOption);
   command->add_option("--threads,-j", options.threads, "threads (0: all cores)")
     ->check(CLI::Range(0, 256))
     ->capture_default_str();
-  app::addCompressionOption(command, options.compression,
-    ".vtp compression: lz4 is fastest, zlib gives files about a third smaller");
+  app::addCompressionOption(
+    command, options.compression, ".vtp compression: lz4 is fastest, zlib gives files about a third smaller");
   command->add_flag("--raw-appended", options.rawAppended,
     ".vtp with its data raw in one block at the end: a quarter smaller and faster to write, but "
-    "Debian 12's ParaView 5.11 reads it as empty since its Expat security update (docs/guide/command-line.md, 'Files ParaView opens')");
+    "Debian 12's ParaView 5.11 reads it as empty since its Expat security update (docs/guide/command-line.md, 'Files "
+    "ParaView opens')");
   CLI::Option* colorBy = command->add_option("--color-by", options.colorBy,
     "colour the material (kd, and ka with it) by this point array of the mesh instead of the scene's kd: RGB or "
     "RGBA colours as they are (8-bit ones decoded from sRGB, except in the vtk model, which reads them as VTK "
@@ -612,82 +617,94 @@ CLI::App* addShadeCommand(CLI::App& cli, ShadeOptions& options)
     ->check(CLI::IsMember(shadelab::colorMapNames()))
     ->needs(colorBy)
     ->capture_default_str();
-  command->add_option("--prefix", options.prefix,
-    "prepended to every array name written (to keep clear of the input's own arrays): letters, digits and _")
+  command
+    ->add_option("--prefix", options.prefix,
+      "prepended to every array name written (to keep clear of the input's own arrays): letters, digits and _")
     ->check(arrayNamePrefix());
-  command->add_flag("--keep-normal-orientation", options.keepNormals,
-    "do not flip normals that point into a closed mesh");
+  command->add_flag(
+    "--keep-normal-orientation", options.keepNormals, "do not flip normals that point into a closed mesh");
   command->add_flag("--no-weld", options.noWeld,
     "computed normals: give each point the normal of its own polygons only, even where several points "
     "share a position (by default they share one, as if the file had not split them at seams)");
-  command->add_option("--feature-angle", options.featureAngle,
-    "computed normals: points at one position whose polygons meet at an edge sharper than this many "
-    "degrees keep their own normals, so that edges the file split on purpose stay sharp")
+  command
+    ->add_option("--feature-angle", options.featureAngle,
+      "computed normals: points at one position whose polygons meet at an edge sharper than this many "
+      "degrees keep their own normals, so that edges the file split on purpose stay sharp")
     ->check(numberFromTo(0, 180))
     ->capture_default_str();
-  command->add_option("--weld-tolerance", options.weldTolerance,
-    "computed normals: points closer than this fraction of the mesh's bounding-box diagonal count as "
-    "one position (default 0: the same coordinates, as files store the copies of a split point)")
+  command
+    ->add_option("--weld-tolerance", options.weldTolerance,
+      "computed normals: points closer than this fraction of the mesh's bounding-box diagonal count as "
+      "one position (default 0: the same coordinates, as files store the copies of a split point)")
     ->check(numberFromTo(0, 0.1))
     ->capture_default_str();
-  command->add_option("--split-sharp-edges", options.splitAngle,
-    "DEGREES (30 is usual): compute normals after duplicating the points of edges sharper than this "
-    "(vtkPolyDataNormals' splitting), so that each side of a sharp edge gets its own normal, for a mesh "
-    "that stores such edges' points once; the output then has MORE points than the input, and the "
-    "mesh's own normals are replaced")
+  command
+    ->add_option("--split-sharp-edges", options.splitAngle,
+      "DEGREES (30 is usual): compute normals after duplicating the points of edges sharper than this "
+      "(vtkPolyDataNormals' splitting), so that each side of a sharp edge gets its own normal, for a mesh "
+      "that stores such edges' points once; the output then has MORE points than the input, and the "
+      "mesh's own normals are replaced")
     ->check(numberFromTo(0, 180));
   command->add_flag("--shadows", options.shadows,
-    "the mesh casts the shadows of every " + shadowCastingTypeNames() + " light (rays against its own "
-    "triangles; a local light's <light>_visibility, 0 or 1, multiplies its diffuse and specular terms; an area "
-    "light's or a map's is the visible fraction of its irradiance, from a ray per sample)");
-  command->add_option("--self-shadowing", options.selfShadowing,
-    "smooth or facets, as the scene's \"self_shadowing\" (default smooth): with smooth, a vertex's own facets do "
-    "not hide a light its normal faces (no speckles at the shadow terminator of a bumpy mesh); with facets, every "
-    "facet hides what it blocks")
+    "the mesh casts the shadows of every " + shadowCastingTypeNames() +
+      " light (rays against its own "
+      "triangles; a local light's <light>_visibility, 0 or 1, multiplies its diffuse and specular terms; an area "
+      "light's or a map's is the visible fraction of its irradiance, from a ray per sample)");
+  command
+    ->add_option("--self-shadowing", options.selfShadowing,
+      "smooth or facets, as the scene's \"self_shadowing\" (default smooth): with smooth, a vertex's own facets do "
+      "not hide a light its normal faces (no speckles at the shadow terminator of a bumpy mesh); with facets, every "
+      "facet hides what it blocks")
     ->check(CLI::IsMember({ "smooth", "facets" }));
-  command->add_option("--ambient-occlusion", options.ambientOcclusion,
-    "RAYS per vertex, or auto: the ambient term becomes ka La times the cosine-weighted fraction of the sky "
-    "each vertex sees past the mesh (arrays ambient_occlusion and its _std_error; bent_normal and "
-    "sky_view_factor on request, -a all); 64 is usual. auto (with --tolerance): each vertex draws rays in "
-    "rounds until its standard error is within its share of the tolerance, at most the scene's max_rays "
-    "(4096), and ambient_occlusion_rays says how many it drew")
+  command
+    ->add_option("--ambient-occlusion", options.ambientOcclusion,
+      "RAYS per vertex, or auto: the ambient term becomes ka La times the cosine-weighted fraction of the sky "
+      "each vertex sees past the mesh (arrays ambient_occlusion and its _std_error; bent_normal and "
+      "sky_view_factor on request, -a all); 64 is usual. auto (with --tolerance): each vertex draws rays in "
+      "rounds until its standard error is within its share of the tolerance, at most the scene's max_rays "
+      "(4096), and ambient_occlusion_rays says how many it drew")
     ->check(CLI::Range(2, maxSamplesPerVertex) | CLI::IsMember({ "auto" }));
   EnvironmentOption& environment = options.environment;
   CLI::Option* envmapOption = command->add_option("--envmap", environment.file,
     "add an environment light named 'envmap' from this equirectangular map (.hdr, .exr: twice as wide "
     "as high, +y up, the image centre toward -z; docs/guide/lights-and-estimators.md)");
-  command->add_option("--envmap-estimator", environment.estimator,
-    "its irradiance: sh (9 spherical-harmonic coefficients), monte_carlo (sampled, as --envmap-directions "
-    "says), brute_force (every texel of the map downsampled to 128x64) or prt (precomputed radiance transfer: "
-    "the array envmap_sh_transfer holds each vertex's transfer vector, with --shadows from --envmap-samples "
-    "cosine-weighted shadow rays, and `shadelab relight` lights it with any other map)")
+  command
+    ->add_option("--envmap-estimator", environment.estimator,
+      "its irradiance: sh (9 spherical-harmonic coefficients), monte_carlo (sampled, as --envmap-directions "
+      "says), brute_force (every texel of the map downsampled to 128x64) or prt (precomputed radiance transfer: "
+      "the array envmap_sh_transfer holds each vertex's transfer vector, with --shadows from --envmap-samples "
+      "cosine-weighted shadow rays, and `shadelab relight` lights it with any other map)")
     ->check(CLI::IsMember({ "sh", "monte_carlo", "brute_force", "prt" }))
     ->capture_default_str()
     ->needs(envmapOption);
-  command->add_option("--envmap-order", environment.order,
-    "prt's highest spherical-harmonic band, 2 to 4: (order + 1)^2 transfer coefficients per vertex (default 2)")
+  command
+    ->add_option("--envmap-order", environment.order,
+      "prt's highest spherical-harmonic band, 2 to 4: (order + 1)^2 transfer coefficients per vertex (default 2)")
     ->check(CLI::Range(2, largestShOrder))
     ->needs(envmapOption);
-  command->add_option("--envmap-rotation", environment.rotation,
-    "turn the map about +y by this many degrees (anticlockwise seen from above)")
+  command
+    ->add_option("--envmap-rotation", environment.rotation,
+      "turn the map about +y by this many degrees (anticlockwise seen from above)")
     ->capture_default_str()
     ->needs(envmapOption);
   command->add_option("--envmap-intensity", environment.intensity, "multiply the map's radiance")
     ->check(finiteNonNegative())
     ->capture_default_str()
     ->needs(envmapOption);
-  command->add_option("--envmap-directions", environment.directions,
-    "where its samples' directions come from: luminance (importance sampling of the map), cosine "
-    "(cosine-weighted about the normal) or mis (half each way, weighted by both densities: robust where a "
-    "shadow hides the bright part of the map); for monte_carlo, and with --shadows for every estimator's rays "
-    "(default luminance; prt's are always cosine)")
+  command
+    ->add_option("--envmap-directions", environment.directions,
+      "where its samples' directions come from: luminance (importance sampling of the map), cosine "
+      "(cosine-weighted about the normal) or mis (half each way, weighted by both densities: robust where a "
+      "shadow hides the bright part of the map); for monte_carlo, and with --shadows for every estimator's rays "
+      "(default luminance; prt's are always cosine)")
     ->check(CLI::IsMember({ "luminance", "cosine", "mis" }))
     ->needs(envmapOption);
-  command->add_option("--envmap-samples", environment.samples,
-    "Monte Carlo samples per vertex (monte_carlo, the specular term of sh and prt, and with --shadows every "
-    "estimator's shadow rays, from which prt estimates its transfer vectors), or auto with --tolerance: as many as "
-    "each vertex needs for the map's share of the tolerance, at least 64 and at most 4096 (with --shadows, their "
-    "shadow rays drawn with them; not for prt with --shadows, whose count is fixed)")
+  command
+    ->add_option("--envmap-samples", environment.samples,
+      "Monte Carlo samples per vertex (monte_carlo, the specular term of sh and prt, and with --shadows every "
+      "estimator's shadow rays, from which prt estimates its transfer vectors), or auto with --tolerance: as many as "
+      "each vertex needs for the map's share of the tolerance, at least 64 and at most 4096 (with --shadows, their "
+      "shadow rays drawn with them; not for prt with --shadows, whose count is fixed)")
     ->check(CLI::Range(2, maxSamplesPerVertex) | CLI::IsMember({ "auto" }))
     ->capture_default_str()
     ->needs(envmapOption);
@@ -724,9 +741,10 @@ CLI::App* addRenderCommand(CLI::App& cli, RenderCommand& options)
   command->add_flag("--srgb", options.options.srgb,
     "encode a 3-component array's values with the sRGB transfer function before drawing, as a renderer "
     "does with its linear output: a mesh shaded with its own colours (decoded from sRGB) then shows them");
-  command->add_option("--exposure", options.options.exposure,
-    "multiply a 3-component array's values by this before drawing them (and before --srgb): values above 1 "
-    "are drawn clipped, and render says how many and which exposure brings them into range")
+  command
+    ->add_option("--exposure", options.options.exposure,
+      "multiply a 3-component array's values by this before drawing them (and before --srgb): values above 1 "
+      "are drawn clipped, and render says how many and which exposure brings them into range")
     ->check(CLI::Validator(
       [](std::string& value)
       {

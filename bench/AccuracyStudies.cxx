@@ -5,9 +5,9 @@
 #include "Chart.h"
 #include "CsvText.h"
 #include "DistributedStudies.h"
-#include "SpectralStudies.h"
 #include "MeshFiles.h"
 #include "SceneFile.h"
+#include "SpectralStudies.h"
 
 #include "vtkLocalReflectanceFilter.h"
 
@@ -29,8 +29,8 @@
 
 namespace shadelab::app
 {
-MethodRun runMethod(vtkPolyData* mesh, const Scene& scene, const std::vector<std::string>& arrays,
-  Precision precision, const std::vector<LightMethod>& methods, int maxRepeats, int minRepeats)
+MethodRun runMethod(vtkPolyData* mesh, const Scene& scene, const std::vector<std::string>& arrays, Precision precision,
+  const std::vector<LightMethod>& methods, int maxRepeats, int minRepeats)
 {
   vtkNew<vtkLocalReflectanceFilter> filter;
   filter->SetInputData(mesh);
@@ -112,8 +112,8 @@ std::vector<AccuracyRow> arithmeticStudy(const Mesh& mesh, int maxRepeats, Chart
         runMethod(mesh.data, scene, { "total" }, precision, { LightMethod{ std::nullopt, pow, {} } }, maxRepeats);
       const Differences stats = compareArrays(arrayOf(reference, "total"), arrayOf(run, "total"));
       // The kernel's exact power in float32 at a whole eta is binary exponentiation.
-      const std::string method = precision == Precision::Float32 && pow == PowMethod::Exact &&
-          isWholeExponent(scene.material.shininess)
+      const std::string method =
+        precision == Precision::Float32 && pow == PowMethod::Exact && isWholeExponent(scene.material.shininess)
         ? "exact pow (binary exponentiation)"
         : powMethodName(pow);
       AccuracyRow row{ "1 arithmetic and pow", precisionText(precision) + ", " + method, "eta", 30,
@@ -123,7 +123,8 @@ std::vector<AccuracyRow> arithmeticStudy(const Mesh& mesh, int maxRepeats, Chart
         row.note = "the reference";
       }
       rows.push_back(row);
-      chart.series.push_back({ row.method, { run.milliseconds }, { stats.largest }, false, palette[chart.series.size()] });
+      chart.series.push_back(
+        { row.method, { run.milliseconds }, { stats.largest }, false, palette[chart.series.size()] });
       times.push_back(run.milliseconds);
       errors.push_back(stats.largest);
     }
@@ -209,8 +210,8 @@ std::vector<AccuracyRow> distantStudy(const Mesh& mesh, int maxRepeats, ChartSpe
     const MethodRun exact32 = runMethod(mesh.data, scene, { "diffuse" }, Precision::Float32, {}, maxRepeats);
     const MethodRun distant = runMethod(mesh.data, scene, { "diffuse" }, Precision::Float32,
       { LightMethod{ extent.centre, PowMethod::Exact, {} } }, maxRepeats);
-    const MethodRun distant64 = runMethod(mesh.data, scene, { "diffuse" }, Precision::Float64,
-      { LightMethod{ extent.centre, PowMethod::Exact, {} } }, 1);
+    const MethodRun distant64 = runMethod(
+      mesh.data, scene, { "diffuse" }, Precision::Float64, { LightMethod{ extent.centre, PowMethod::Exact, {} } }, 1);
     const Differences stats = compareArrays(arrayOf(exact, "diffuse"), arrayOf(distant64, "diffuse"));
     const double predicted = distantApproximationError(key, scene.material, false, extent);
     std::ostringstream note;
@@ -219,8 +220,8 @@ std::vector<AccuracyRow> distantStudy(const Mesh& mesh, int maxRepeats, ChartSpe
     {
       note << "; failure point: the light is inside the mesh's bounding sphere";
     }
-    rows.push_back({ "3 point light as distant", "distant from the centre (float32 time)", "distance / radius",
-      ratio, mesh.data->GetNumberOfPoints(), distant.milliseconds, stats.largest, stats.rms,
+    rows.push_back({ "3 point light as distant", "distant from the centre (float32 time)", "distance / radius", ratio,
+      mesh.data->GetNumberOfPoints(), distant.milliseconds, stats.largest, stats.rms,
       std::isfinite(predicted) ? std::optional<double>(predicted) : std::nullopt, note.str() });
     for (ChartSeries* series : { &largest, &rms, &bound })
     {
@@ -271,9 +272,9 @@ std::vector<AccuracyRow> phongStudy(const Mesh& mesh, int maxRepeats, ChartSpec&
 
 /// One total of the core kernel, evaluated in arithmetic of type T, at arbitrary points with
 /// given normals.
-template <typename T>
-std::vector<glm::dvec3> totalAt(const Scene& scene, TotalTerm term, const std::vector<glm::dvec3>& points,
-  const std::vector<glm::dvec3>& normals)
+template<typename T>
+std::vector<glm::dvec3> totalAt(
+  const Scene& scene, TotalTerm term, const std::vector<glm::dvec3>& points, const std::vector<glm::dvec3>& normals)
 {
   std::vector<T> total(3 * points.size());
   const ShadingKernel<T> kernel(scene, oneTotal(scene, term, total.data()));
@@ -443,10 +444,12 @@ std::vector<AccuracyRow> predictionStudy(ChartSpec& chart)
         double largest = 0;
         for (const char* total : { "ambient", "diffuse", "specular", "total" })
         {
-          largest = std::max(largest, compareArrays(chosen->GetPointData()->GetArray(total), exact->GetPointData()->GetArray(total)).largest);
+          largest = std::max(largest,
+            compareArrays(chosen->GetPointData()->GetArray(total), exact->GetPointData()->GetArray(total)).largest);
         }
-        rows.push_back({ study, std::string(file) + " under " + name + ".json", "tolerance", tolerance,
-          mesh->GetNumberOfPoints(), std::nullopt, largest, std::nullopt, plan->predictedError(), plan->describe()[0] });
+        rows.push_back(
+          { study, std::string(file) + " under " + name + ".json", "tolerance", tolerance, mesh->GetNumberOfPoints(),
+            std::nullopt, largest, std::nullopt, plan->predictedError(), plan->describe()[0] });
         plans.x.push_back(plan->predictedError());
         plans.y.push_back(largest);
       }
@@ -476,7 +479,8 @@ std::vector<AccuracyRow> predictionStudy(ChartSpec& chart)
     plans.y.push_back(largest);
   }
   ChartSeries sampledPlans{ "sampled to a target: the plan's share, 95th percentile", {}, {}, false, palette[1] };
-  ChartSeries afterSampling{ "sampled to a target: estimated after sampling, 95th percentile", {}, {}, false, palette[2] };
+  ChartSeries afterSampling{ "sampled to a target: estimated after sampling, 95th percentile", {}, {}, false,
+    palette[2] };
   Scene occluded = readSceneFile("data/scenes/studio.json");
   occluded.ambientOcclusion = AmbientOcclusion{};
   Scene studioMap = readSceneFile("data/scenes/studio_envmap.json");
@@ -503,10 +507,12 @@ std::vector<AccuracyRow> predictionStudy(ChartSpec& chart)
   {
     Scene fixed = sampled.drawn;
     Scene drawn = sampled.drawn;
-    Sampling& fixedSampling = fixed.ambientOcclusion ? fixed.ambientOcclusion->sampling : samplingIn(fixed.lights[0].source);
+    Sampling& fixedSampling =
+      fixed.ambientOcclusion ? fixed.ambientOcclusion->sampling : samplingIn(fixed.lights[0].source);
     fixedSampling.fromTolerance = false;
     fixedSampling.samples = 16384;
-    (drawn.ambientOcclusion ? drawn.ambientOcclusion->sampling : samplingIn(drawn.lights[0].source)).fromTolerance = true;
+    (drawn.ambientOcclusion ? drawn.ambientOcclusion->sampling : samplingIn(drawn.lights[0].source)).fromTolerance =
+      true;
     const vtkSmartPointer<vtkPolyData> reference = shadedUnder(bunny, fixed, 0, sampled.arrays);
     for (const double tolerance : sampled.tolerances)
     {
@@ -516,8 +522,8 @@ std::vector<AccuracyRow> predictionStudy(ChartSpec& chart)
       const std::string measured = "95th percentile " + std::to_string(percentile95);
       rows.push_back({ study, sampled.label + ": the plan", "tolerance", tolerance, bunny->GetNumberOfPoints(),
         std::nullopt, largest, std::nullopt, plan->predictedError(), measured });
-      rows.push_back({ study, sampled.label + ": estimated after sampling", "tolerance", tolerance, bunny->GetNumberOfPoints(),
-        std::nullopt, largest, std::nullopt, plan->estimatedError(), measured });
+      rows.push_back({ study, sampled.label + ": estimated after sampling", "tolerance", tolerance,
+        bunny->GetNumberOfPoints(), std::nullopt, largest, std::nullopt, plan->estimatedError(), measured });
       sampledPlans.x.push_back(plan->predictedError());
       sampledPlans.y.push_back(percentile95);
       afterSampling.x.push_back(plan->estimatedError());
@@ -653,17 +659,19 @@ void runAccuracyStudies(const AccuracyOptions& options)
   for (const bool shadows : { false, true })
   {
     study(shadows ? "6b_soft_shadows" : "6_area_light",
-      [&](ChartSpec& chart) { return areaLightStudy(plainBunny, distributed.softbox, shadows, options.maxRepeats, chart); });
+      [&](ChartSpec& chart)
+      { return areaLightStudy(plainBunny, distributed.softbox, shadows, options.maxRepeats, chart); });
   }
   for (const bool shadows : { false, true })
   {
-    for (const auto& [map, number, name] : { std::tuple{ &distributed.sunset, "7", "sunset" },
-           std::tuple{ &distributed.studio, "8", "studio" } })
+    for (const auto& [map, number, name] :
+      { std::tuple{ &distributed.sunset, "7", "sunset" }, std::tuple{ &distributed.studio, "8", "studio" } })
     {
       const std::string id = std::string(number) + (shadows ? "b" : "");
       const std::string title = id + " " + name + " map" + (shadows ? ", shadows" : "");
       const auto measure = shadows ? environmentShadowStudy : environmentMapStudy;
-      study(id + "_" + name + "_map" + (shadows ? "_shadows" : ""), [&, map = map](ChartSpec& chart)
+      study(id + "_" + name + "_map" + (shadows ? "_shadows" : ""),
+        [&, map = map](ChartSpec& chart)
         { return measure(plainBunny, distributed.softbox, *map, title, options.maxRepeats, chart); });
     }
   }

@@ -37,8 +37,8 @@ struct MethodRun
 
 /// Runs the filter on the mesh computing `arrays`, at least minRepeats times and more up to
 /// maxRepeats while the runs fit in about two seconds. Preparing the normals is not timed.
-MethodRun runMethod(vtkPolyData* mesh, const Scene& scene, const std::vector<std::string>& arrays,
-  Precision precision, const std::vector<LightMethod>& methods, int maxRepeats, int minRepeats = 3);
+MethodRun runMethod(vtkPolyData* mesh, const Scene& scene, const std::vector<std::string>& arrays, Precision precision,
+  const std::vector<LightMethod>& methods, int maxRepeats, int minRepeats = 3);
 
 vtkDataArray* arrayOf(const MethodRun& run, const std::string& name);
 
@@ -46,7 +46,7 @@ inline const std::array<unsigned char, 3> palette[] = { { 31, 119, 180 }, { 255,
   { 214, 39, 40 }, { 148, 103, 189 }, { 140, 86, 75 }, { 227, 119, 194 }, { 127, 127, 127 } };
 
 /// Kernel outputs that ask for one total of the scene, into `values` (3 per vertex), and nothing else.
-template <typename T>
+template<typename T>
 ShadingOutputs<T> oneTotal(const Scene& scene, TotalTerm term, T* values)
 {
   ShadingOutputs<T> outputs;

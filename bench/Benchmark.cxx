@@ -13,8 +13,8 @@
 #include "vtkCleanPolyData.h"
 #include "vtkDataArray.h"
 #include "vtkDataSet.h"
-#include "vtkFloatArray.h"
 #include "vtkFieldData.h"
+#include "vtkFloatArray.h"
 #include "vtkLoopSubdivisionFilter.h"
 #include "vtkPointData.h"
 #include "vtkSMPTools.h"
@@ -223,7 +223,6 @@ struct Case
   double tolerance = 0;
 };
 
-
 /// The lighting cases, with lights placed around a mesh of this centre and radius.
 std::vector<Case> casesAround(const glm::dvec3& centre, double radius)
 {
@@ -235,8 +234,9 @@ std::vector<Case> casesAround(const glm::dvec3& centre, double radius)
     light.intensity = intensity * radius * radius; // about 1 at the mesh
     return NamedLight{ name, light };
   };
-  auto distant = [](const char* name, glm::dvec3 direction, double intensity)
-  { return NamedLight{ name, DistantLight{ direction, Rgb(1.0), intensity, false } }; };
+  auto distant = [](const char* name, glm::dvec3 direction, double intensity) {
+    return NamedLight{ name, DistantLight{ direction, Rgb(1.0), intensity, false } };
+  };
 
   Scene base;
   base.viewer.position = at(0, 0, 4);
@@ -384,13 +384,12 @@ Row measure(const Mesh& mesh, const Case& c, int maxRepeats)
   row.arrayMegabytes = outputBytes / 1e6;
   // The filter and the floor in turn, so that their ratio holds under a changing load.
   FloorCopy floor(mesh.data, outputBytes);
-  const std::vector<double> medians = interleavedMedianMilliseconds(
-    { [&]
-      {
-        filter->Modified();
-        filter->Update();
-      },
-      std::ref(floor) },
+  const std::vector<double> medians = interleavedMedianMilliseconds({ [&]
+                                                                      {
+                                                                        filter->Modified();
+                                                                        filter->Update();
+                                                                      },
+                                                                      std::ref(floor) },
     3, maxRepeats);
   row.milliseconds = medians[0];
   row.floorMilliseconds = medians[1];
@@ -409,8 +408,7 @@ Row measure(const Mesh& mesh, const Case& c, int maxRepeats)
     calculator->SetResultArrayName("calculator");
     calculator->SetResultArrayType(VTK_FLOAT);
     calculator->Update(); // its first run, like ours, is not timed
-    vtkDataArray* theirs =
-      vtkDataSet::SafeDownCast(calculator->GetOutput())->GetPointData()->GetArray("calculator");
+    vtkDataArray* theirs = vtkDataSet::SafeDownCast(calculator->GetOutput())->GetPointData()->GetArray("calculator");
     if (theirs)
     {
       row.calculatorDifference =
@@ -527,8 +525,8 @@ void runBenchmark(const BenchmarkOptions& options)
   const std::vector<Case> allCases = casesAround(glm::dvec3(0), 1);
   for (const std::string& filter : options.caseFilters)
   {
-    if (std::none_of(allCases.begin(), allCases.end(),
-          [&](const Case& c) { return c.name.find(filter) != std::string::npos; }))
+    if (std::none_of(
+          allCases.begin(), allCases.end(), [&](const Case& c) { return c.name.find(filter) != std::string::npos; }))
     {
       std::string names;
       for (const Case& c : allCases)

@@ -55,20 +55,18 @@ std::optional<std::string> lightTerms(
     return std::nullopt;
   }
   const std::string cosIncidence = "dot(" + normals + "," + toLight + ")";
-  std::string terms =
-    "max(" + cosIncidence + ",0)*" + attenuation + "*" + vectorOf(strength * m.kd);
+  std::string terms = "max(" + cosIncidence + ",0)*" + attenuation + "*" + vectorOf(strength * m.kd);
   if (diffuseOnly || m.specular == SpecularModel::None)
   {
     return terms;
   }
-  const std::string toViewer = scene.viewer.position
-    ? "norm(" + vectorOf(*scene.viewer.position) + "-coords)"
-    : vectorOf(-unitVector(scene.viewer.viewDirection));
+  const std::string toViewer = scene.viewer.position ? "norm(" + vectorOf(*scene.viewer.position) + "-coords)"
+                                                     : vectorOf(-unitVector(scene.viewer.viewDirection));
   const std::string cosine = m.specular == SpecularModel::Phong
     ? "dot(2*" + cosIncidence + "*" + normals + "-" + toLight + "," + toViewer + ")"
     : "dot(" + normals + ",norm(" + toLight + "+" + toViewer + "))";
-  terms += "+(" + cosIncidence + ">0)*max(" + cosine + ",0)^" + number(m.shininess) + "*" +
-    attenuation + "*" + vectorOf(strength * m.ks);
+  terms += "+(" + cosIncidence + ">0)*max(" + cosine + ",0)^" + number(m.shininess) + "*" + attenuation + "*" +
+    vectorOf(strength * m.ks);
   return terms;
 }
 }

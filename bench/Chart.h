@@ -21,7 +21,7 @@ struct ChartSpec
 {
   std::string title, xTitle, yTitle;
   bool logX = false, logY = false;
-  bool legendOutside = false; // beside the plot, for series that fill every corner of it
+  bool legendOutside = false;      // beside the plot, for series that fill every corner of it
   std::vector<ChartSeries> series; // drawn in this order
 };
 

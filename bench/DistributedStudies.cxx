@@ -100,7 +100,8 @@ public:
         const Differences errors = compareArrays(arrayOf(reference_, term), arrayOf(run, term));
         rows.push_back({ name_, method + ": " + term, parameter, value, bunny_.data->GetNumberOfPoints(),
           run.milliseconds, errors.largest, errors.rms, term == chartedTerm_ ? predicted : std::nullopt,
-          predicted && term == chartedTerm_ ? withinText(arrayOf(reference_, term), arrayOf(run, term), *predicted) : "" });
+          predicted && term == chartedTerm_ ? withinText(arrayOf(reference_, term), arrayOf(run, term), *predicted)
+                                            : "" });
         if (term == chartedTerm_)
         {
           addPoint(method, run.milliseconds, errors);
@@ -224,8 +225,9 @@ DistributedStudyInputs readDistributedStudyInputs(const AccuracyOptions& options
 
   if (!std::filesystem::is_directory(options.envmapFolder))
   {
-    throw UserError(options.envmapFolder + ": no such folder (the environment-map studies read the maps bundled "
-                                           "in data/envmaps: run from the repository's top folder)");
+    throw UserError(options.envmapFolder +
+      ": no such folder (the environment-map studies read the maps bundled "
+      "in data/envmaps: run from the repository's top folder)");
   }
   auto mapLight = [&](const std::string& file, double intensity)
   {
@@ -263,8 +265,8 @@ std::vector<AccuracyRow> areaLightStudy(
   const MethodRun& reference = study.measureReference(lit(), { stdErrorArray });
   const Differences referenceError = magnitudes(arrayOf(reference, stdErrorArray));
   std::ostringstream note;
-  note << std::setprecision(2) << "E exact (Lambert's polygon formula), S " << (shadows ? "and the visible fraction " : "")
-       << "by Monte Carlo with " << areaReferenceSamples
+  note << std::setprecision(2) << "E exact (Lambert's polygon formula), S "
+       << (shadows ? "and the visible fraction " : "") << "by Monte Carlo with " << areaReferenceSamples
        << " stratified samples, float64; the standard error of its specular term is at most " << referenceError.largest
        << " (RMS " << referenceError.rms << ")";
   study.addReferenceRow("samples", areaReferenceSamples, note.str());
@@ -356,7 +358,8 @@ std::vector<AccuracyRow> environmentMapStudy(const Mesh& bunny, const Scene& mat
   }
   chart.series = study.chartSeries();
   chart.title = diffuseUnderMapTitle(map, bunny, "");
-  chart.xTitle = "time per run, diffuse term only (ms, median; widths 32 to 128, samples 4 to 1024, targets 0.1 to 0.003)";
+  chart.xTitle =
+    "time per run, diffuse term only (ms, median; widths 32 to 128, samples 4 to 1024, targets 0.1 to 0.003)";
   chart.yTitle = "|error| of the diffuse term against brute force " + std::to_string(mapReferenceWidth) +
     ": largest (solid), RMS (dashed)";
   chart.logX = chart.logY = true;
@@ -382,7 +385,8 @@ std::vector<AccuracyRow> environmentShadowStudy(const Mesh& bunny, const Scene& 
        << referenceError.largest << " (RMS " << referenceError.rms << "), to be multiplied by kd";
   study.addReferenceRow("samples", areaReferenceSamples, note.str());
   // The light as it is set, at each sample count, with the charted term's predicted bound.
-  auto overSampleCounts = [&](const std::string& family, bool stratified, std::optional<double> predicted = std::nullopt)
+  auto overSampleCounts = [&](
+                            const std::string& family, bool stratified, std::optional<double> predicted = std::nullopt)
   {
     for (const int samples : sampleCounts)
     {
@@ -455,8 +459,8 @@ std::vector<AccuracyRow> speedRequirementRows(const Mesh& bunny, const Scene& ma
 
   const double projection = medianMilliseconds([&] { projectRadiance(*map.map); }, 5, 15);
   const std::string mapSize = std::to_string(map.map->width) + "x" + std::to_string(map.map->height);
-  return { { "speed requirements", "sh irradiance time per vertex / Lambert's", "ratio", shPerVertex / lambert,
-             count, std::nullopt, std::nullopt, std::nullopt, std::nullopt, note.str() },
+  return { { "speed requirements", "sh irradiance time per vertex / Lambert's", "ratio", shPerVertex / lambert, count,
+             std::nullopt, std::nullopt, std::nullopt, std::nullopt, note.str() },
     { "speed requirements", "projectRadiance of a " + mapSize + " map", "texels",
       double(map.map->width) * map.map->height, 0, projection, std::nullopt, std::nullopt, std::nullopt,
       "one thread, median; " + std::filesystem::path(map.file).filename().string() } };

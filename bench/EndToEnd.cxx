@@ -30,7 +30,9 @@ namespace fs = std::filesystem;
 
 std::size_t arrayBytes(vtkAbstractArray* array)
 {
-  return array ? static_cast<std::size_t>(array->GetNumberOfValues()) * static_cast<std::size_t>(array->GetDataTypeSize()) : 0;
+  return array
+    ? static_cast<std::size_t>(array->GetNumberOfValues()) * static_cast<std::size_t>(array->GetDataTypeSize())
+    : 0;
 }
 
 /// The bytes of the mesh's points and cells, and of its point and cell data.
@@ -41,7 +43,8 @@ std::size_t meshBytes(vtkPolyData* mesh)
   {
     bytes += arrayBytes(cells->GetOffsetsArray()) + arrayBytes(cells->GetConnectivityArray());
   }
-  for (vtkFieldData* data : { static_cast<vtkFieldData*>(mesh->GetPointData()), static_cast<vtkFieldData*>(mesh->GetCellData()) })
+  for (vtkFieldData* data :
+    { static_cast<vtkFieldData*>(mesh->GetPointData()), static_cast<vtkFieldData*>(mesh->GetCellData()) })
   {
     for (int a = 0; a < data->GetNumberOfArrays(); ++a)
     {
@@ -96,7 +99,8 @@ void printStage(const char* name, double milliseconds, const char* note)
 void runEndToEnd(const EndToEndOptions& options)
 {
   const Scene scene = options.scene.empty() ? defaultLightKit() : readSceneFile(options.scene);
-  const std::string output = (fs::temp_directory_path() / ("shadelab-bench-" + std::to_string(::getpid()) + ".vtp")).string();
+  const std::string output =
+    (fs::temp_directory_path() / ("shadelab-bench-" + std::to_string(::getpid()) + ".vtp")).string();
   const std::string floorOutput = output + ".floor.vtp";
 
   // Memory first, on a fresh read: the peak above the resident size before reading.
@@ -140,8 +144,9 @@ void runEndToEnd(const EndToEndOptions& options)
             << options.minRepeats << " rounds taken in turn:\n";
   printStage("read (shadelab)", read, "checks, VTK's reader in its own process, hand-over");
   printStage("  floor: VTK's reader alone", readFloor, "in this process, no checks");
-  printStage("normals", normals, hasNormals ? "the mesh has normals: kept, orientation checked" :
-    "computed, with the winding's orientation, in one pass");
+  printStage("normals", normals,
+    hasNormals ? "the mesh has normals: kept, orientation checked"
+               : "computed, with the winding's orientation, in one pass");
   printStage("orientation of given normals", orientation, "what a mesh with normals pays instead");
   printStage("shade stage (normals + shading)", shade, "what shadelab shade reports as 'shade'");
   printStage("  shading alone", shadeGivenNormals, "on the mesh with its normals (orientation checked)");
@@ -156,8 +161,8 @@ void runEndToEnd(const EndToEndOptions& options)
     const double peakMegabytes = (static_cast<double>(*peak) - static_cast<double>(*before)) / 1e6;
     const double bytesMegabytes = static_cast<double>(inputBytes + writtenBytes) / 1e6;
     std::cout << "  peak memory above the start: " << std::setprecision(1) << peakMegabytes << " MB for "
-              << bytesMegabytes << " MB of mesh (" << inputBytes / 1e6 << ") and arrays written ("
-              << writtenBytes / 1e6 << "): " << std::setprecision(2) << peakMegabytes / bytesMegabytes
+              << bytesMegabytes << " MB of mesh (" << inputBytes / 1e6 << ") and arrays written (" << writtenBytes / 1e6
+              << "): " << std::setprecision(2) << peakMegabytes / bytesMegabytes
               << " (target 1.3); the program itself held " << std::setprecision(1) << *before / 1e6
               << " MB before reading\n";
   }

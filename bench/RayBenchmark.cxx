@@ -26,8 +26,8 @@
 #include <glm/geometric.hpp>
 
 #include <algorithm>
-#include <cmath>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -83,9 +83,10 @@ RayMesh rayMesh(const std::string& name, vtkPolyData* mesh, int repeats)
     throw UserError(name + ": the benchmark expects float points");
   }
   prepared.buildMilliseconds = medianMilliseconds(
-    [&] {
-      prepared.occluders = std::make_unique<OccluderMesh>(PackedPoints<float>{ xyz->GetPointer(0) },
-        prepared.vertices.size(), list);
+    [&]
+    {
+      prepared.occluders =
+        std::make_unique<OccluderMesh>(PackedPoints<float>{ xyz->GetPointer(0) }, prepared.vertices.size(), list);
     },
     repeats, repeats);
   return prepared;
@@ -103,7 +104,7 @@ constexpr double shortestTimedSeconds = 0.05;
 
 /// The median over `runs` runs of the seconds that body(i) takes for every i in [0, count), in
 /// a vtkSMPTools loop.
-template <typename Body>
+template<typename Body>
 double medianParallelSeconds(int runs, std::size_t count, Body body)
 {
   auto pass = [&]
@@ -241,7 +242,8 @@ EnvironmentLight studioMapOf(const std::string& file)
   }
   catch (const std::runtime_error& error)
   {
-    throw UserError(std::string(error.what()) + "; --visibility casts its shadows: run from the repository's top folder");
+    throw UserError(
+      std::string(error.what()) + "; --visibility casts its shadows: run from the repository's top folder");
   }
   studio.file = file;
   studio.estimator = EnvironmentEstimator::MonteCarlo;
@@ -291,7 +293,8 @@ double rayMakingSeconds(const RayMesh& mesh, const ShadowedLightEstimator& light
 }
 
 /// The same rays made beforehand in the BVH's frame, for Embree alone.
-std::vector<OccluderMesh::FrameRay> softShadowFrameRays(const RayMesh& mesh, const ShadowedLightEstimator& light, std::size_t stride)
+std::vector<OccluderMesh::FrameRay> softShadowFrameRays(
+  const RayMesh& mesh, const ShadowedLightEstimator& light, std::size_t stride)
 {
   std::vector<OccluderMesh::FrameRay> frameRays;
   std::vector<ShadowRay> rays(static_cast<std::size_t>(light.shadowRayCount()));
@@ -317,7 +320,8 @@ double locatorRaysPerSecond(const RayMesh& mesh, std::size_t stride, double& bui
 {
   vtkNew<vtkStaticCellLocator> locator;
   buildMilliseconds = medianMilliseconds(
-    [&] {
+    [&]
+    {
       locator->SetDataSet(mesh.data);
       locator->Modified();
       locator->BuildLocator();
@@ -418,7 +422,8 @@ double secondsToReach(double rms, const std::vector<std::pair<double, double>>& 
     const auto [t1, e1] = secondsAndRms[i];
     if (e1 <= rms && e0 > rms)
     {
-      return std::exp(std::log(t0) + (std::log(t1) - std::log(t0)) * (std::log(rms) - std::log(e0)) / (std::log(e1) - std::log(e0)));
+      return std::exp(
+        std::log(t0) + (std::log(t1) - std::log(t0)) * (std::log(rms) - std::log(e0)) / (std::log(e1) - std::log(e0)));
     }
   }
   return INFINITY;
@@ -451,7 +456,8 @@ ChartSpec penumbraChart(int samples)
   };
   const std::vector<glm::dvec3> plate = { { -50, -50, 1 }, { 0, -50, 1 }, { 0, 50, 1 }, { -50, 50, 1 } };
   const std::vector<PointId> offsets = { 0, 4 }, corners = { 0, 1, 2, 3 };
-  const OccluderMesh occluders(PackedPoints<double>{ &plate[0].x }, plate.size(), { offsets.data(), corners.data(), 1 });
+  const OccluderMesh occluders(
+    PackedPoints<double>{ &plate[0].x }, plate.size(), { offsets.data(), corners.data(), 1 });
   ChartSeries closed{ "closed form", {}, {}, true, { 0, 0, 0 } };
   ChartSeries exact{ "exact, " + std::to_string(samples) + " samples", {}, {}, false, { 40, 40, 200 } };
   ChartSeries sampled{ "monte_carlo, " + std::to_string(samples) + " samples", {}, {}, false, { 200, 40, 40 } };
@@ -465,7 +471,8 @@ ChartSpec penumbraChart(int samples)
     const SurfacePoint point{ { x, 0, 0 }, { 0, 0, 1 }, { 0, 0, 1 }, std::uint64_t(i) };
     closed.x.push_back(x);
     closed.y.push_back(-x >= 0.5 ? 0.0 : polygonProjectedSolidAngle(lightPart(-x), point.position, point.normal));
-    for (auto [estimator, series] : { std::pair{ AreaEstimator::Exact, &exact }, std::pair{ AreaEstimator::MonteCarlo, &sampled } })
+    for (auto [estimator, series] :
+      { std::pair{ AreaEstimator::Exact, &exact }, std::pair{ AreaEstimator::MonteCarlo, &sampled } })
     {
       light.estimator = estimator;
       const AreaLightEstimator estimate(light, 0, LobeModel{});
@@ -474,7 +481,8 @@ ChartSpec penumbraChart(int samples)
       series->y.push_back(estimate.estimate(point, HiddenSamples{ words.data() }).irradiance.x);
     }
   }
-  return { "Penumbra of a straight edge: a square light over a plate (" + std::to_string(samples) + " samples per receiver)",
+  return { "Penumbra of a straight edge: a square light over a plate (" + std::to_string(samples) +
+      " samples per receiver)",
     "receiver x (the plate's edge at 0; full shadow below -0.5, full light above 0.5)", "visible irradiance E / L",
     false, false, false, { closed, exact, sampled } };
 }
@@ -512,7 +520,8 @@ void runRayBenchmark(const RayBenchmarkOptions& options)
     record("BVH build", mesh.buildMilliseconds, "ms");
     std::size_t shadowRays = 0;
     const double embree = shadowRaysPerSecond(mesh, shadowRays);
-    record("shadow rays to a point light", embree / 1e6, "Mrays/s", std::to_string(shadowRays) + " rays, groups of " + std::to_string(rayVertexGroup) + " vertices");
+    record("shadow rays to a point light", embree / 1e6, "Mrays/s",
+      std::to_string(shadowRays) + " rays, groups of " + std::to_string(rayVertexGroup) + " vertices");
     const std::size_t stride = std::max<std::size_t>(1, vertices / 2000);
     double locatorBuild = 0;
     const double vtk = locatorRaysPerSecond(mesh, stride, locatorBuild);
@@ -580,7 +589,10 @@ void runRayBenchmark(const RayBenchmarkOptions& options)
     const std::vector<double> reference = occlusionAt(mesh, fixedRays(4096), stride, 1).values;
     const std::size_t count = reference.size();
     auto recordStudy = [&](const std::string& quantity, double value, const std::string& unit)
-    { csv << csvText(mesh.name) << "," << count << "," << mesh.occluders->triangleCount() << "," << quantity << "," << value << "," << unit << "\n"; };
+    {
+      csv << csvText(mesh.name) << "," << count << "," << mesh.occluders->triangleCount() << "," << quantity << ","
+          << value << "," << unit << "\n";
+    };
     std::cout << "ambient occlusion on the " << mesh.name << " against 4096 rays per vertex"
               << (stride > 1 ? ", every 64th vertex" : "") << ":\n";
     ChartSeries largest{ "largest error, fixed rays", {}, {}, true, { 200, 40, 40 }, true };
@@ -623,16 +635,17 @@ void runRayBenchmark(const RayBenchmarkOptions& options)
       targetLadder.emplace_back(run.seconds, errors.rms);
     }
     const double fixedSeconds = secondsToReach(0.01, fixedLadder), targetSeconds = secondsToReach(0.01, targetLadder);
-    std::cout << "  RMS 0.01: fixed rays in " << std::setprecision(1) << fixedSeconds * 1e3 << " ms, rays to a target in "
-              << targetSeconds * 1e3 << " ms: " << std::setprecision(2) << targetSeconds / fixedSeconds
-              << "x (target 0.5); no split of the rays among the vertices can beat " << 1 / neymanCeiling(reference)
-              << "x (Neyman)\n";
+    std::cout << "  RMS 0.01: fixed rays in " << std::setprecision(1) << fixedSeconds * 1e3
+              << " ms, rays to a target in " << targetSeconds * 1e3 << " ms: " << std::setprecision(2)
+              << targetSeconds / fixedSeconds << "x (target 0.5); no split of the rays among the vertices can beat "
+              << 1 / neymanCeiling(reference) << "x (Neyman)\n";
     recordStudy("ao_rms_0.01_to_a_target_over_fixed", targetSeconds / fixedSeconds, "x");
     recordStudy("ao_rms_neyman_floor", 1 / neymanCeiling(reference), "x");
     if (stride == 1)
     {
       ChartSpec chart{ "Ambient occlusion on the bunny against 4096 rays per vertex: fixed counts and rays to a target",
-        "time for the mesh (ms)", "error in ambient_occlusion", true, true, true, { largest, rms, largestToTarget, rmsToTarget } };
+        "time for the mesh (ms)", "error in ambient_occlusion", true, true, true,
+        { largest, rms, largestToTarget, rmsToTarget } };
       writeChartPng(chart, options.folder + "/9_ambient_occlusion.png");
     }
   }

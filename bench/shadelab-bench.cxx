@@ -5,11 +5,11 @@
 //   shadelab-bench --visibility DIR        what casting rays costs, and ambient occlusion's error
 #include "AccuracyStudies.h"
 #include "Benchmark.h"
-#include "EndToEnd.h"
-#include "RayBenchmark.h"
-#include "MeshFiles.h"
 #include "CommandLineParse.h"
+#include "EndToEnd.h"
+#include "MeshFiles.h"
 #include "OffScreenImage.h"
+#include "RayBenchmark.h"
 
 #include "SceneFile.h"
 
@@ -78,8 +78,9 @@ int run(BenchCommand& command)
   {
     if (!std::ifstream(command.bunny))
     {
-      throw UserError(command.bunny + ": no such file (the subdivided bunny is one of the meshes; "
-                                      "run from the repository's top folder, give --bunny FILE, or pass --no-bunny)");
+      throw UserError(command.bunny +
+        ": no such file (the subdivided bunny is one of the meshes; "
+        "run from the repository's top folder, give --bunny FILE, or pass --no-bunny)");
     }
     command.options.bunnyFile = command.bunny;
   }
@@ -139,24 +140,30 @@ int main(int argc, char** argv)
     "alone, and print its peak memory against the bytes of the mesh and of the arrays written");
   cli.add_option("--scene,-s", command.endToEnd.scene, "the scene for --end-to-end (default: the default light kit)")
     ->needs(endToEnd);
-  cli.add_option("--charts", command.chartsFolder,
-    "instead, run the accuracy studies (float32, pow methods, a point light as distant, Phong against "
-    "Blinn-Phong, tessellation, each at its failure point; the estimators of an area light and of two "
-    "environment maps, and the SH estimator's speed) and write accuracy.csv and one PNG chart per study into "
-    "this folder; reads data/scenes/area_lights.json and data/envmaps/; needs an X display (xvfb-run -a)")
+  cli
+    .add_option("--charts", command.chartsFolder,
+      "instead, run the accuracy studies (float32, pow methods, a point light as distant, Phong against "
+      "Blinn-Phong, tessellation, each at its failure point; the estimators of an area light and of two "
+      "environment maps, and the SH estimator's speed) and write accuracy.csv and one PNG chart per study into "
+      "this folder; reads data/scenes/area_lights.json and data/envmaps/; needs an X display (xvfb-run -a)")
     ->excludes(endToEnd);
-  cli.add_option("--study", command.studyFilters,
-    "with --charts: only the studies whose names contain this text (repeatable), such as --study 8b; "
-    "accuracy.csv then has their rows alone")
+  cli
+    .add_option("--study", command.studyFilters,
+      "with --charts: only the studies whose names contain this text (repeatable), such as --study 8b; "
+      "accuracy.csv then has their rows alone")
     ->needs("--charts");
-  cli.add_option("--visibility", command.visibilityFolder,
-    "instead, time ray casting (the BVH, shadow rays, ambient occlusion at 16, 64 and 256 rays, a softbox's and the "
-    "studio map's soft shadows at 64 samples) on the bunny and the bunny subdivided to 2.2M vertices against vtkStaticCellLocator "
-    "and Embree alone, ambient occlusion's error against its time (4 to 1024 rays against 4096) and a penumbra "
-    "against its closed form; writes visibility.csv, 9_ambient_occlusion.png and 10_penumbra.png into this "
-    "folder; needs an X display (xvfb-run -a); about a minute")
+  cli
+    .add_option("--visibility", command.visibilityFolder,
+      "instead, time ray casting (the BVH, shadow rays, ambient occlusion at 16, 64 and 256 rays, a softbox's and the "
+      "studio map's soft shadows at 64 samples) on the bunny and the bunny subdivided to 2.2M vertices against "
+      "vtkStaticCellLocator "
+      "and Embree alone, ambient occlusion's error against its time (4 to 1024 rays against 4096) and a penumbra "
+      "against its closed form; writes visibility.csv, 9_ambient_occlusion.png and 10_penumbra.png into this "
+      "folder; needs an X display (xvfb-run -a); about a minute")
     ->excludes(endToEnd);
-  cli.add_option("--threads,-j", command.threads, "threads (0: all cores)")->check(CLI::Range(0, 256))->capture_default_str();
+  cli.add_option("--threads,-j", command.threads, "threads (0: all cores)")
+    ->check(CLI::Range(0, 256))
+    ->capture_default_str();
   bool verbose = false;
   cli.add_flag("--verbose,-v", verbose, "also show VTK's own log and error output");
   if (const std::optional<int> exitCode = shadelab::app::parseCommandLine(cli, argc, argv, verbose))

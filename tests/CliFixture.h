@@ -81,8 +81,7 @@ protected:
 
   std::string goodScene()
   {
-    return file("scene.json",
-      R"({ "lights": [ { "name": "sun", "type": "distant", "direction": [0, 0, -1] } ] })");
+    return file("scene.json", R"({ "lights": [ { "name": "sun", "type": "distant", "direction": [0, 0, -1] } ] })");
   }
 
   std::string goodMesh() { return SHADELAB_SOURCE_DIR "/data/meshes/bunny_zipper.ply"; }

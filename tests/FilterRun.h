@@ -6,8 +6,8 @@
 
 #include "vtkFieldData.h"
 #include "vtkNew.h"
-#include "vtkSMPTools.h"
 #include "vtkPolyData.h"
+#include "vtkSMPTools.h"
 #include "vtkSmartPointer.h"
 #include "vtkStringArray.h"
 

@@ -10,12 +10,12 @@
 
 namespace shadelab::testing
 {
-template <typename T>
+template<typename T>
 class KernelHarness
 {
 public:
-  KernelHarness(const Scene& scene, const std::vector<Vec3<T>>& positions,
-    const std::vector<Vec3<T>>& normals, const std::vector<std::string>& selection = { "all" })
+  KernelHarness(const Scene& scene, const std::vector<Vec3<T>>& positions, const std::vector<Vec3<T>>& normals,
+    const std::vector<std::string>& selection = { "all" })
     : flags(positions.size(), 0xff)
   {
     const ArrayRequest request = selectArrays(scene, selection);

@@ -116,7 +116,8 @@ protected:
     {
       colorBy(sphere, scene);
     }
-    vtkSmartPointer<vtkDataArray> total = shadeWithFilter(sphere, scene, { "total" })->GetPointData()->GetArray("total");
+    vtkSmartPointer<vtkDataArray> total =
+      shadeWithFilter(sphere, scene, { "total" })->GetPointData()->GetArray("total");
     EXPECT_NE(total, nullptr);
     return { sphere, total };
   }

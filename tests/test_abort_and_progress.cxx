@@ -88,7 +88,8 @@ TEST(AbortAndProgress, AnAbortStopsA2048RayOcclusionRunWithinAQuarterOfItsTime)
     vtkNew<app::VtkErrorCapture> errors;
     errors->watch(stopped);
     const double seconds = secondsToUpdate(stopped);
-    std::cout << "aborted at progress " << threshold << ": " << seconds << " s, against " << full << " s for the whole run\n";
+    std::cout << "aborted at progress " << threshold << ": " << seconds << " s, against " << full
+              << " s for the whole run\n";
     EXPECT_TRUE(abort.asked);
     EXPECT_LT(seconds, full / 4) << "aborted at progress " << threshold << " after " << seconds << " s; the whole run "
                                  << full << " s";

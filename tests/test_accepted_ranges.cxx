@@ -102,7 +102,8 @@ std::string firstNonFinite(vtkPolyData* output)
     vtkDataArray* array = data->GetArray(a);
     for (vtkIdType i = 0; array && i < array->GetNumberOfValues(); ++i)
     {
-      if (!std::isfinite(array->GetComponent(i / array->GetNumberOfComponents(), int(i % array->GetNumberOfComponents()))))
+      if (!std::isfinite(
+            array->GetComponent(i / array->GetNumberOfComponents(), int(i % array->GetNumberOfComponents()))))
       {
         return std::string(array->GetName()) + "[" + std::to_string(i / array->GetNumberOfComponents()) + "]";
       }
@@ -125,8 +126,10 @@ TEST(AcceptedRanges, EveryLightAndEstimatorIsFiniteOrRefusedByField)
         for (const int precision : { vtkAlgorithm::SINGLE_PRECISION, vtkAlgorithm::DOUBLE_PRECISION })
         {
           const std::string scene = R"({ "viewer": { "position": [0, 0, 6], "focal_point": [0, 0, 0] },
-            "material": { "kd": 0.7, "ks": 0.3, "shininess": )" + shininess + R"( },
-            "lights": [ )" + replaced(replaced(light, "INTENSITY", intensity), "ENVMAP", envmap) + " ] }";
+            "material": { "kd": 0.7, "ks": 0.3, "shininess": )" +
+            shininess + R"( },
+            "lights": [ )" +
+            replaced(replaced(light, "INTENSITY", intensity), "ENVMAP", envmap) + " ] }";
           SCOPED_TRACE(scene + (precision == vtkAlgorithm::SINGLE_PRECISION ? " in float32" : " in float64"));
           const Outcome outcome = shade(sphere, scene, precision);
           if (!outcome.error.empty())
@@ -157,7 +160,8 @@ TEST(AcceptedRanges, BlackbodiesFromTheLowestToTheHighestTemperatureAreShaded)
   for (const std::string& kelvin : { "500", "1500", "1e6" })
   {
     const std::string scene = R"({ "viewer": { "position": [0, 0, 6] }, "lights": [
-      { "type": "point", "position": [0, 0, 3], "spectrum": { "blackbody": )" + kelvin + " } } ] }";
+      { "type": "point", "position": [0, 0, 3], "spectrum": { "blackbody": )" +
+      kelvin + " } } ] }";
     SCOPED_TRACE(kelvin + " K");
     const Outcome outcome = shade(sphere, scene, vtkAlgorithm::DOUBLE_PRECISION);
     ASSERT_EQ(outcome.error, "");

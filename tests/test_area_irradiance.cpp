@@ -50,8 +50,8 @@ double parallelDiskOffAxis(double r, double h, double s)
 
 /// The surface integrand of the projected solid angle: dP = max(0, cos_receiver) cos_emitter
 /// dA / d^2, for an emitter element at x with unit normal emitterNormal.
-double surfaceIntegrand(const glm::dvec3& x, const glm::dvec3& emitterNormal, const glm::dvec3& point,
-  const glm::dvec3& normal)
+double surfaceIntegrand(
+  const glm::dvec3& x, const glm::dvec3& emitterNormal, const glm::dvec3& point, const glm::dvec3& normal)
 {
   const glm::dvec3 w = x - point;
   const double d2 = glm::dot(w, w);
@@ -246,7 +246,8 @@ TEST(PolygonIrradiance, CentredSquareMatchesHowellsRectangle)
 TEST(PolygonIrradiance, OffAxisRectangleMatchesHowellsRectangle)
 {
   // [-0.3, 0.7] x [-0.2, 1.1] at height 0.8 over the origin: four unequal corner rectangles.
-  const std::vector<glm::dvec3> rectangle = { { -0.3, -0.2, 0.8 }, { 0.7, -0.2, 0.8 }, { 0.7, 1.1, 0.8 }, { -0.3, 1.1, 0.8 } };
+  const std::vector<glm::dvec3> rectangle = { { -0.3, -0.2, 0.8 }, { 0.7, -0.2, 0.8 }, { 0.7, 1.1, 0.8 },
+    { -0.3, 1.1, 0.8 } };
   const double truth = cornerRectangle(0.3, 0.2, 0.8) + cornerRectangle(0.7, 0.2, 0.8) +
     cornerRectangle(0.7, 1.1, 0.8) + cornerRectangle(0.3, 1.1, 0.8);
   const double measured = polygonProjectedSolidAngle(rectangle, origin, up);
@@ -269,7 +270,7 @@ TEST(PolygonIrradiance, PointInThePolygonsPlaneSeesItEdgeOn)
 {
   const std::vector<glm::dvec3> triangle = { { 0, 0, 1 }, { 1, 0, 2 }, { 0, 1, 3 } }; // z = 1 + x + 2y
   const glm::dvec3 tilted = glm::normalize(glm::dvec3(1, 1, 1));
-  EXPECT_EQ(polygonProjectedSolidAngle(triangle, { 3, 3, 10 }, tilted), 0);     // outside the triangle
+  EXPECT_EQ(polygonProjectedSolidAngle(triangle, { 3, 3, 10 }, tilted), 0);      // outside the triangle
   EXPECT_EQ(polygonProjectedSolidAngle(triangle, { 0.2, 0.2, 1.6 }, tilted), 0); // inside it
   EXPECT_EQ(polygonProjectedSolidAngle(triangle, { 0.5, 0, 1.5 }, tilted), 0);   // on an edge
 }
@@ -294,7 +295,8 @@ TEST(PolygonIrradiance, NonConvexPolygonCutByTheHorizonMatchesSurfaceIntegral)
   // arms each keep a part above and the clipped polygon has an edge along the plane.
   const glm::dvec3 p(0, 0, 0);
   const glm::dvec3 n = glm::normalize(glm::dvec3(-0.4, 0, 1));
-  const std::vector<glm::dvec3> ell = { { -1, 1, -1 }, { 2, 1, -1 }, { 2, 1, 0 }, { 0, 1, 0 }, { 0, 1, 2 }, { -1, 1, 2 } };
+  const std::vector<glm::dvec3> ell = { { -1, 1, -1 }, { 2, 1, -1 }, { 2, 1, 0 }, { 0, 1, 0 }, { 0, 1, 2 },
+    { -1, 1, 2 } };
   // The L as two rectangles: [-1, 2] x [-1, 0] and [-1, 0] x [0, 2] in (x, z).
   const double truth = parallelogramByMidpoints({ -1, 1, -1 }, { 3, 0, 0 }, { 0, 0, 1 }, p, n, 2000) +
     parallelogramByMidpoints({ -1, 1, 0 }, { 1, 0, 0 }, { 0, 0, 2 }, p, n, 2000);
@@ -311,7 +313,8 @@ TEST(PolygonIrradiance, VerticesOnTheHorizonAreKeptOnce)
   const std::vector<glm::dvec3> diamond = { { 0, 1, -1 }, { 1, 1, 0 }, { 0, 1, 1 }, { -1, 1, 0 } };
   const std::vector<glm::dvec3> upperHalf = { { 1, 1, 0 }, { 0, 1, 1 }, { -1, 1, 0 } };
   const double truth = parallelogramByMidpoints({ 1, 1, 0 }, { -1, 0, 1 }, { -1, 0, -1 }, origin, up, 2000);
-  EXPECT_NEAR(polygonProjectedSolidAngle(diamond, origin, up), polygonProjectedSolidAngle(upperHalf, origin, up), 1e-15);
+  EXPECT_NEAR(
+    polygonProjectedSolidAngle(diamond, origin, up), polygonProjectedSolidAngle(upperHalf, origin, up), 1e-15);
   report("diamond with vertices on the horizon", polygonProjectedSolidAngle(diamond, origin, up), truth);
   EXPECT_NEAR(polygonProjectedSolidAngle(diamond, origin, up), truth, 1e-5 * truth);
 }
@@ -322,7 +325,8 @@ TEST(PolygonIrradiance, BelowTheHorizonGivesZeroAndAHugePlaneGivesPi)
   EXPECT_EQ(polygonProjectedSolidAngle(below, origin, up), 0);
   // A square 1e6 wide one unit above: the whole upper hemisphere but for about 1e-12.
   const double half = 5e5;
-  const std::vector<glm::dvec3> huge = { { -half, -half, 1 }, { half, -half, 1 }, { half, half, 1 }, { -half, half, 1 } };
+  const std::vector<glm::dvec3> huge = { { -half, -half, 1 }, { half, -half, 1 }, { half, half, 1 },
+    { -half, half, 1 } };
   const double measured = polygonProjectedSolidAngle(huge, origin, up);
   report("huge square", measured, pi);
   EXPECT_NEAR(measured, pi, 1e-5 * pi);
@@ -406,8 +410,8 @@ TEST(SphereIrradiance, SameAsTheDiskOfItsSilhouette)
   {
     const glm::dvec3 w(std::sin(beta), 0, std::cos(beta));
     const double cosAlpha = std::cos(alpha);
-    const double disk = diskProjectedSolidAngle(distance * cosAlpha * cosAlpha * w, -w,
-      distance * cosAlpha * std::sin(alpha), origin, up);
+    const double disk = diskProjectedSolidAngle(
+      distance * cosAlpha * cosAlpha * w, -w, distance * cosAlpha * std::sin(alpha), origin, up);
     worst = std::max(worst, std::abs(sphereAt(distance, beta) - disk));
     EXPECT_NEAR(sphereAt(distance, beta), disk, 1e-12) << "beta = " << beta;
   }
@@ -436,7 +440,7 @@ TEST(DiskIrradiance, ParallelOffAxisMatchesHowellsDisk)
   // points within 1e-6 r of the rim, where the rim integrand is sharpest. The rim integral
   // sums terms up to r / delta, delta the distance to the rim, whose rounding is absolute.
   const double r = 1;
-  double worstRelative = 0; // where P > 1e-3
+  double worstRelative = 0;   // where P > 1e-3
   double worstInRimUnits = 0; // absolute error over 1e-16 max(1, r / delta)
   for (const double h : { 1e-6, 1e-3, 0.2, 2.0 })
   {

@@ -35,8 +35,8 @@ TEST_F(Cli, MissingOrUnreadableMesh)
   expectError("shade " + missing + " -s " + scene + " -o " + out, missing + ": no such file");
   fs::create_directories(folder / "dir.ply");
   const std::string directory = (folder / "dir.ply").string();
-  expectError("shade " + directory + " -s " + scene + " -o " + out,
-    directory + ": cannot be read (is it a readable file?)");
+  expectError(
+    "shade " + directory + " -s " + scene + " -o " + out, directory + ": cannot be read (is it a readable file?)");
   const std::string garbage = file("garbage.ply", "not a mesh\n");
   expectError("shade " + garbage + " -s " + scene + " -o " + out,
     garbage + ": not a PLY file (it does not start with a PLY header)");
@@ -48,7 +48,8 @@ TEST_F(Cli, MissingOrUnreadableMesh)
 TEST_F(Cli, EmptyMeshAndMeshWithoutPolygons)
 {
   const std::string scene = goodScene(), out = (folder / "out.vtp").string();
-  const std::string empty = file("empty.vtk", "# vtk DataFile Version 3.0\nempty\nASCII\nDATASET POLYDATA\nPOINTS 0 float\n");
+  const std::string empty =
+    file("empty.vtk", "# vtk DataFile Version 3.0\nempty\nASCII\nDATASET POLYDATA\nPOINTS 0 float\n");
   expectError("shade " + empty + " -s " + scene + " -o " + out, empty + ": the mesh has no points");
   const std::string points = file("points.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\np 1 2 3\n");
   expectError("shade " + points + " -s " + scene + " -o " + out,
@@ -60,20 +61,23 @@ TEST_F(Cli, BadScenes)
   const std::string mesh = goodMesh(), out = (folder / "out.vtp").string();
   const std::string malformed = file("malformed.json", "{ \"lights\": [\n  { \"type\": \"distant\" \n");
   expectError("shade " + mesh + " -s " + malformed + " -o " + out,
-    malformed + ": not valid JSON: parse error at line 3, column 1: syntax error while parsing "
-                "object - unexpected end of input; expected '}'");
+    malformed +
+      ": not valid JSON: parse error at line 3, column 1: syntax error while parsing "
+      "object - unexpected end of input; expected '}'");
   const std::string laser = file("laser.json", R"({ "lights": [ { "type": "laser" } ] })");
   expectError("shade " + mesh + " -s " + laser + " -o " + out,
-    laser + ": /lights/0/type: \"laser\" is not one of \"distant\", \"headlight\", \"point\", \"spot\", \"ambient\", "
-    "\"polygon\", \"rectangle\", \"disk\", \"sphere\", \"environment\"");
-  const std::string negative = file("negative.json",
-    R"({ "lights": [ { "type": "point", "position": [0, 0, 1], "intensity": -3 } ] })");
-  expectError("shade " + mesh + " -s " + negative + " -o " + out,
-    negative + ": /lights/0/intensity: must be a number >= 0");
+    laser +
+      ": /lights/0/type: \"laser\" is not one of \"distant\", \"headlight\", \"point\", \"spot\", \"ambient\", "
+      "\"polygon\", \"rectangle\", \"disk\", \"sphere\", \"environment\"");
+  const std::string negative =
+    file("negative.json", R"({ "lights": [ { "type": "point", "position": [0, 0, 1], "intensity": -3 } ] })");
+  expectError(
+    "shade " + mesh + " -s " + negative + " -o " + out, negative + ": /lights/0/intensity: must be a number >= 0");
   const std::string missing = file("missing.json", R"({ "lights": [ { "type": "spot", "direction": [0, 0, -1] } ] })");
   expectError("shade " + mesh + " -s " + missing + " -o " + out, missing + ": /lights/0/position: missing");
   const std::string huge = file("huge.json", R"({ "lights": [ { "type": "ambient", "intensity": 1e400 } ] })");
-  expectError("shade " + mesh + " -s " + huge + " -o " + out, huge + ": not valid JSON: number overflow parsing '1e400'");
+  expectError(
+    "shade " + mesh + " -s " + huge + " -o " + out, huge + ": not valid JSON: number overflow parsing '1e400'");
   const std::string absent = (folder / "absent.json").string();
   expectError("shade " + mesh + " -s " + absent + " -o " + out,
     absent + ": cannot open the scene file (does it exist, and is it readable?)");
@@ -84,41 +88,47 @@ TEST_F(Cli, MisspeltOptionsAndSceneKeysGetTheNearestName)
   const std::string mesh = goodMesh(), out = (folder / "out.vtp").string();
   const Result option = shadelab("shade " + mesh + " --tolerence 0.02 -o " + out);
   EXPECT_EQ(option.exitCode, 2);
-  EXPECT_EQ(option.err, "shadelab shade: unknown option --tolerence: did you mean --tolerance?\n"
-                        "Run with --help for more information.\n");
-  const Result twoOptions = shadelab("render " + mesh + " --arary total --frobnicate -o " + (folder / "o.png").string());
+  EXPECT_EQ(option.err,
+    "shadelab shade: unknown option --tolerence: did you mean --tolerance?\n"
+    "Run with --help for more information.\n");
+  const Result twoOptions =
+    shadelab("render " + mesh + " --arary total --frobnicate -o " + (folder / "o.png").string());
   EXPECT_EQ(twoOptions.exitCode, 2);
-  EXPECT_EQ(twoOptions.err, "shadelab render: unknown option --arary: did you mean --array?; unknown option "
-                            "--frobnicate\nRun with --help for more information.\n");
+  EXPECT_EQ(twoOptions.err,
+    "shadelab render: unknown option --arary: did you mean --array?; unknown option "
+    "--frobnicate\nRun with --help for more information.\n");
   // A light's misspelt field is matched against its own type's fields.
-  const std::string intensity = file("intensity.json",
-    R"({ "lights": [ { "type": "point", "position": [0, 0, 1], "intesity": 2 } ] })");
+  const std::string intensity =
+    file("intensity.json", R"({ "lights": [ { "type": "point", "position": [0, 0, 1], "intesity": 2 } ] })");
   expectError("shade " + mesh + " -s " + intensity + " -o " + out,
-    intensity + ": /lights/0/intesity: unknown field; did you mean \"intensity\"? allowed here: name, type, color, "
-                "spectrum, intensity, shadows, position, attenuation, min_distance");
+    intensity +
+      ": /lights/0/intesity: unknown field; did you mean \"intensity\"? allowed here: name, type, color, "
+      "spectrum, intensity, shadows, position, attenuation, min_distance");
 }
 
 TEST_F(Cli, CorruptAndTruncatedFiles)
 {
   const std::string scene = goodScene(), out = (folder / "out.vtp").string();
-  const std::string header = "# vtk DataFile Version 3.0\nt\nASCII\nDATASET POLYDATA\nPOINTS 3 float\n0 0 0 1 0 0 0 1 0\n";
+  const std::string header =
+    "# vtk DataFile Version 3.0\nt\nASCII\nDATASET POLYDATA\nPOINTS 3 float\n0 0 0 1 0 0 0 1 0\n";
   const std::string corrupt = file("corrupt.vtk", header + "POLYGONS 1 4\n3 0 1 2000000\n");
   expectError("shade " + corrupt + " -s " + scene + " -o " + out,
     corrupt + ": the mesh's cells use point id 2000000, but it has 3 points: the mesh is corrupt");
   // A NORMALS block cut short: the reader only warns, and so does shadelab, naming the file.
-  const std::string truncated = file("truncated.vtk",
-    header + "POLYGONS 1 4\n3 0 1 2\nPOINT_DATA 3\nNORMALS Normals float\n0 0 1 0 0\n");
+  const std::string truncated =
+    file("truncated.vtk", header + "POLYGONS 1 4\n3 0 1 2\nPOINT_DATA 3\nNORMALS Normals float\n0 0 1 0 0\n");
   const Result result = shadelab("shade " + truncated + " -s " + scene + " -o " + out);
   EXPECT_EQ(result.exitCode, 0);
-  EXPECT_EQ(result.err, "shadelab: warning: " + truncated +
+  EXPECT_EQ(result.err,
+    "shadelab: warning: " + truncated +
       ": Error reading ascii data. Possible mismatch of datasize with declaration.\n");
 }
 
 TEST_F(Cli, UnknownArrayNameAndBadOutput)
 {
   const std::string mesh = goodMesh(), scene = goodScene();
-  const Result unknown = shadelab("shade " + mesh + " -s " + scene + " -o " + (folder / "o.vtp").string() +
-    " --arrays total,sun_glare");
+  const Result unknown =
+    shadelab("shade " + mesh + " -s " + scene + " -o " + (folder / "o.vtp").string() + " --arrays total,sun_glare");
   EXPECT_EQ(unknown.exitCode, 1);
   EXPECT_EQ(unknown.err,
     "shadelab: --arrays: unknown array 'sun_glare'; this scene has: default, totals, all, "
@@ -130,13 +140,15 @@ TEST_F(Cli, UnknownArrayNameAndBadOutput)
     "sun_cos_incidence, sun_incidence_angle, sun_reflection, sun_r_dot_v, sun_half_vector, "
     "sun_n_dot_h, sun_diffuse, sun_specular\n");
   const std::string png = (folder / "out.png").string();
-  expectError("shade " + mesh + " -s " + scene + " -o " + png, png + ": cannot write '.png' files here; use .vtp, .vtk");
+  expectError(
+    "shade " + mesh + " -s " + scene + " -o " + png, png + ": cannot write '.png' files here; use .vtp, .vtk");
   expectError("shade " + mesh + " -s " + scene + " -o " + (folder / "o.vtp").string() + " --arrays ,",
     "--arrays: no arrays selected; this scene has: default, totals, all, *_to_light, *_distance, "
     "*_attenuation, *_spot_factor, *_cos_incidence, *_incidence_angle, *_reflection, *_r_dot_v, "
     "*_half_vector, *_n_dot_h, *_diffuse, *_specular, *_irradiance, *_irradiance_std_error, "
     "*_specular_std_error, *_visibility, *_visibility_std_error, *_short_of_target, *_sh_transfer, "
-    "*_sh_transfer_std_error, ambient, diffuse, specular, total, shading_flags, sun_to_light, sun_attenuation, sun_spot_factor, sun_cos_incidence, "
+    "*_sh_transfer_std_error, ambient, diffuse, specular, total, shading_flags, sun_to_light, sun_attenuation, "
+    "sun_spot_factor, sun_cos_incidence, "
     "sun_incidence_angle, sun_reflection, sun_r_dot_v, sun_half_vector, sun_n_dot_h, sun_diffuse, "
     "sun_specular");
   const std::string nowhere = (folder / "no" / "such" / "out.vtp").string();
@@ -204,31 +216,37 @@ TEST_F(Cli, ShadowsAndAmbientOcclusion)
     EXPECT_NE(result.out.find(line), std::string::npos) << line << "\n" << result.out;
   }
   EXPECT_EQ(result.out.find("sky_view_factor"), std::string::npos) << "only on request";
-  EXPECT_NE(result.out.find("with a shadowed light's ray meeting its own triangles first, 0 with a shadowed light hidden inside "
-                            "the mesh\n"),
+  EXPECT_NE(result.out.find(
+              "with a shadowed light's ray meeting its own triangles first, 0 with a shadowed light hidden inside "
+              "the mesh\n"),
     std::string::npos)
     << result.out;
   // A tolerance covers hard shadows (their visibility is exact: 0 or 1) and ambient occlusion:
   // a fixed count of rays must fit the share left to it, "auto" draws what it needs.
   const Result shadows = shadelab("shade " + goodMesh() + " -o " + out + " --shadows --tolerance 1e-3");
   EXPECT_EQ(shadows.exitCode, 0) << shadows.err;
-  EXPECT_NE(shadows.out.find("    key_visibility               1             0            1\n"), std::string::npos) << shadows.out;
+  EXPECT_NE(shadows.out.find("    key_visibility               1             0            1\n"), std::string::npos)
+    << shadows.out;
   const Result fixed = shadelab("shade " + goodMesh() + " -o " + out + " --ambient-occlusion 16 --tolerance 0.05");
   EXPECT_EQ(fixed.exitCode, 1);
-  EXPECT_EQ(fixed.err, "shadelab: --ambient-occlusion 16: ambient occlusion's 16 rays per vertex can err by up to 0.25 "
-                       "(95%), more than the 0.05 the tolerance leaves it: give \"rays\": \"auto\" "
-                       "(--ambient-occlusion auto) to draw as many as the tolerance needs, or a larger tolerance\n");
+  EXPECT_EQ(fixed.err,
+    "shadelab: --ambient-occlusion 16: ambient occlusion's 16 rays per vertex can err by up to 0.25 "
+    "(95%), more than the 0.05 the tolerance leaves it: give \"rays\": \"auto\" "
+    "(--ambient-occlusion auto) to draw as many as the tolerance needs, or a larger tolerance\n");
   const Result untargeted = shadelab("shade " + goodMesh() + " -o " + out + " --ambient-occlusion auto");
   EXPECT_EQ(untargeted.exitCode, 1);
-  EXPECT_EQ(untargeted.err, "shadelab: --ambient-occlusion auto: \"auto\" takes its count of rays from a tolerance: "
-                            "give one (shadelab shade --tolerance, the filter's Tolerance), or a number of rays\n");
+  EXPECT_EQ(untargeted.err,
+    "shadelab: --ambient-occlusion auto: \"auto\" takes its count of rays from a tolerance: "
+    "give one (shadelab shade --tolerance, the filter's Tolerance), or a number of rays\n");
   const Result adaptive = shadelab("shade " + goodMesh() + " -o " + out + " --ambient-occlusion auto --tolerance 0.05");
   EXPECT_EQ(adaptive.exitCode, 0) << adaptive.err;
   // Before the run, the plan and its forecast from a pilot; after it, what the rays drew. The
   // names' column is as wide as ambient_occlusion_short_of_target's.
-  for (const char* line : { "    ambient_occlusion_rays             1 ", "    ambient occlusion: rays auto, within 0.05 at 95% "
-                                                                     "(standard error at most 0.025), 64 to 4096 rays per vertex\n    forecast from 279 of the 35947 vertices: about ",
-         "  methods: as printed before shading, then\n    drew " })
+  for (const char* line :
+    { "    ambient_occlusion_rays             1 ",
+      "    ambient occlusion: rays auto, within 0.05 at 95% "
+      "(standard error at most 0.025), 64 to 4096 rays per vertex\n    forecast from 279 of the 35947 vertices: about ",
+      "  methods: as printed before shading, then\n    drew " })
   {
     EXPECT_NE(adaptive.out.find(line), std::string::npos) << line << "\n" << adaptive.out;
   }
@@ -281,29 +299,36 @@ TEST_F(Cli, ToleranceChoosesAndReportsMethods)
   const Result result = shadelab("shade " + goodMesh() + " -s " + scene + " -o " + out + " --tolerance 1e-2");
   EXPECT_EQ(result.exitCode, 0) << result.err;
   // The plan is printed as soon as it is chosen, before the run's report.
-  EXPECT_EQ(result.out.rfind("shadelab shade: methods for the tolerance, chosen before shading:\n    arithmetic float32 (rounding ", 0), 0u)
+  EXPECT_EQ(
+    result.out.rfind(
+      "shadelab shade: methods for the tolerance, chosen before shading:\n    arithmetic float32 (rounding ", 0),
+    0u)
     << result.out;
   EXPECT_NE(result.out.find("  methods: as printed before shading, then\n"), std::string::npos) << result.out;
-  EXPECT_NE(result.out.find(") and the methods below, chosen so that their predicted errors, 0.0052 in all, stay within "
-                            "the tolerance 0.01\n"),
-    std::string::npos) << result.out;
+  EXPECT_NE(
+    result.out.find(") and the methods below, chosen so that their predicted errors, 0.0052 in all, stay within "
+                    "the tolerance 0.01\n"),
+    std::string::npos)
+    << result.out;
   EXPECT_NE(result.out.find("    key: Schlick pow, predicted error 0.0052"), std::string::npos) << result.out;
 
-  const Result both = shadelab("shade " + goodMesh() + " -s " + scene + " -o " + out +
-    " --tolerance 1e-2 --precision float64");
+  const Result both =
+    shadelab("shade " + goodMesh() + " -s " + scene + " -o " + out + " --tolerance 1e-2 --precision float64");
   EXPECT_EQ(both.exitCode, 2);
   EXPECT_EQ(both.err, "--precision excludes --tolerance\nRun with --help for more information.\n");
   expectError("shade " + goodMesh() + " -s " + scene + " -o " + out + " --tolerance 1e-30",
-    goodMesh() + ": tolerance 1e-30 is below the predicted float64 rounding error of this scene on this mesh, "
-                 "2.9e-15: give a larger tolerance, or none for the exact methods");
+    goodMesh() +
+      ": tolerance 1e-30 is below the predicted float64 rounding error of this scene on this mesh, "
+      "2.9e-15: give a larger tolerance, or none for the exact methods");
 }
 
 TEST_F(Cli, SaysWhichStatementsOfAnObjItDidNotRead)
 {
   // OBJ lets a reader skip object names and smoothing groups; the run says it did, and a mesh
   // without them says nothing.
-  const std::string named = file("named.obj", "o tetra\ns 1\ns off\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n"
-                                              "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n");
+  const std::string named = file("named.obj",
+    "o tetra\ns 1\ns off\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n"
+    "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n");
   const Result result = shadelab("shade " + named + " -o " + (folder / "named.vtp").string());
   EXPECT_EQ(result.exitCode, 0) << result.err;
   EXPECT_NE(result.out.find("  mesh: 4 vertices, 4 polygons and strips\n  ignored: 1 'o', 2 's' statements (object "
@@ -318,10 +343,10 @@ TEST_F(Cli, ReadsObjAndStlAndWritesLegacyVtk)
 {
   // A tetrahedron in both formats: 4 vertices (OBJ) and 12 unshared corners (STL, which
   // vtkSTLReader merges back to 4).
-  const std::string obj = file("tetra.obj",
-    "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n");
+  const std::string obj = file("tetra.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n");
   std::string stl = "solid tetra\n";
-  for (const char* facet : { "0 0 0  0 1 0  1 0 0", "0 0 0  1 0 0  0 0 1", "0 0 0  0 0 1  0 1 0", "1 0 0  0 1 0  0 0 1" })
+  for (const char* facet :
+    { "0 0 0  0 1 0  1 0 0", "0 0 0  1 0 0  0 0 1", "0 0 0  0 0 1  0 1 0", "1 0 0  0 1 0  0 0 1" })
   {
     std::istringstream corners(facet);
     stl += "facet normal 0 0 0\nouter loop\n";
@@ -358,7 +383,8 @@ TEST_F(Cli, RendersArraysToPng)
   const std::string png = (folder / "ambient.png").string();
   const std::string xvfb = std::string(XVFB_RUN) + " --auto-servernum ";
   const Result result = shadelab("render " + golden + " --array ambient --size 320x240 -s " +
-      SHADELAB_SOURCE_DIR "/data/scenes/studio.json -o " + png, xvfb);
+      SHADELAB_SOURCE_DIR "/data/scenes/studio.json -o " + png,
+    xvfb);
   ASSERT_EQ(result.exitCode, 0) << result.err;
   EXPECT_EQ(result.out, "shadelab render: ambient of " + golden + " -> " + png + " (320x240)\n");
   vtkNew<vtkPNGReader> reader;
@@ -419,26 +445,28 @@ TEST_F(Cli, RenderErrors)
   expectError("render " + golden + " -o " + (folder / "out.jpg").string(),
     (folder / "out.jpg").string() + ": cannot write '.jpg' files here; use .png");
   const std::string nowhere = (folder / "no" / "out.png").string();
-  expectError("render " + golden + " -o " + nowhere, nowhere + ": the folder " + (folder / "no").string() + " does not exist");
+  expectError(
+    "render " + golden + " -o " + nowhere, nowhere + ": the folder " + (folder / "no").string() + " does not exist");
   const Result noDisplay = shadelab("render " + golden + " -o " + png, "env -u DISPLAY ");
   EXPECT_EQ(noDisplay.exitCode, 1);
-  EXPECT_EQ(noDisplay.err,
-    "shadelab: no X display to render with: run the command under xvfb-run -a (package xvfb)\n");
+  EXPECT_EQ(noDisplay.err, "shadelab: no X display to render with: run the command under xvfb-run -a (package xvfb)\n");
   if (std::string(XVFB_RUN).empty())
   {
     GTEST_SKIP() << NO_XVFB_REASON << " (the errors that need a display)";
   }
   const Result unknown = shadelab("render " + golden + " -a glare -o " + png, std::string(XVFB_RUN) + " -a ");
   EXPECT_EQ(unknown.exitCode, 1);
-  EXPECT_EQ(unknown.err, "shadelab: " + golden + ": has no point array 'glare'; it has: Normals, ambient, "
-    "diffuse, specular, total, shading_flags, key_distance, key_cos_incidence, fill_cos_incidence, "
-    "rim_spot_factor, rim_cos_incidence\n");
+  EXPECT_EQ(unknown.err,
+    "shadelab: " + golden +
+      ": has no point array 'glare'; it has: Normals, ambient, "
+      "diffuse, specular, total, shading_flags, key_distance, key_cos_incidence, fill_cos_incidence, "
+      "rim_spot_factor, rim_cos_incidence\n");
   EXPECT_FALSE(fs::exists(png));
 }
 
 /// Four unit squares in a 2 x 2 grid in the plane z = 0, each with four corners of its own,
 /// with an array of these values at the corners (square by square, a tuple per corner).
-template <typename Array>
+template<typename Array>
 void writeFourSquares(const std::string& file, const char* arrayName, int components, const std::vector<double>& values)
 {
   vtkNew<vtkPolyData> squares;
@@ -520,14 +548,13 @@ TEST_F(Cli, RendersFlagsAsNamedCategories)
   }
   const std::string mesh = (folder / "flags.vtp").string(), png = (folder / "flags.png").string();
   writeFourSquares<vtkUnsignedCharArray>(mesh, "sl_shading_flags", 1, atEachCorner({ 0, 4, 5, 64 }, 1));
-  const Result result = shadelab("render " + mesh + " -a sl_shading_flags --size 400x300 -o " + png,
-    std::string(XVFB_RUN) + " --auto-servernum ");
+  const Result result = shadelab(
+    "render " + mesh + " -a sl_shading_flags --size 400x300 -o " + png, std::string(XVFB_RUN) + " --auto-servernum ");
   ASSERT_EQ(result.exitCode, 0) << result.err;
   EXPECT_EQ(result.out, "shadelab render: sl_shading_flags of " + mesh + " -> " + png + " (400x300)\n");
   const std::map<std::array<int, 3>, int> counts = colourCounts(png);
-  const std::array<std::array<int, 3>, 4> palette{
-    { { 86, 180, 233 }, { 230, 159, 0 }, { 0, 158, 115 }, { 240, 228, 66 } }
-  };
+  const std::array<std::array<int, 3>, 4> palette{ { { 86, 180, 233 }, { 230, 159, 0 }, { 0, 158, 115 },
+    { 240, 228, 66 } } };
   std::vector<int> areas;
   for (const std::array<int, 3>& colour : palette)
   {
@@ -547,8 +574,8 @@ TEST_F(Cli, RendersFlagsAsNamedCategories)
   // Integers of a few values other than flags: categories too, named by their values.
   const std::string labels = (folder / "labels.vtp").string();
   writeFourSquares<vtkIntArray>(labels, "region", 1, atEachCorner({ 40, 30, 20, 10 }, 1));
-  const Result regions = shadelab("render " + labels + " -a region --size 400x300 -o " + png,
-    std::string(XVFB_RUN) + " --auto-servernum ");
+  const Result regions =
+    shadelab("render " + labels + " -a region --size 400x300 -o " + png, std::string(XVFB_RUN) + " --auto-servernum ");
   ASSERT_EQ(regions.exitCode, 0) << regions.err;
   const std::map<std::array<int, 3>, int> regionCounts = colourCounts(png);
   // Square 0 holds the largest value, 40, the palette's fourth colour; square 3 the first. The
@@ -575,8 +602,8 @@ TEST_F(Cli, RendersFlagValuesBeyondThePaletteInGrey)
   // 9 values at the 16 corners; the least frequent, 200 and 201, are the ones left over.
   writeFourSquares<vtkUnsignedCharArray>(
     mesh, "shading_flags", 1, { 1, 1, 1, 1, 2, 2, 2, 8, 4, 4, 16, 16, 32, 64, 200, 201 });
-  const Result result = shadelab("render " + mesh + " --size 400x300 -o " + png + " -a shading_flags",
-    std::string(XVFB_RUN) + " --auto-servernum ");
+  const Result result = shadelab(
+    "render " + mesh + " --size 400x300 -o " + png + " -a shading_flags", std::string(XVFB_RUN) + " --auto-servernum ");
   ASSERT_EQ(result.exitCode, 0) << result.err;
   const std::map<std::array<int, 3>, int> counts = colourCounts(png);
   // Every palette colour is used (a swatch at least), and the grey of the other values.
@@ -606,9 +633,11 @@ TEST_F(Cli, RenderCountsTheVerticesDrawnClipped)
   const std::string nonFinite = "  total: 4 of 16 vertices have a non-finite value, drawn black\n";
   const Result clipped = shadelab("render " + mesh + " --size 400x300 -o " + png, xvfb);
   ASSERT_EQ(clipped.exitCode, 0) << clipped.err;
-  EXPECT_EQ(clipped.out, head +
+  EXPECT_EQ(clipped.out,
+    head +
       "  total: 8 of 16 vertices have a value above 1, drawn clipped; --exposure 0.2 scales them into range "
-      "(and --srgb encodes linear values for the screen, as a renderer does)\n" + nonFinite);
+      "(and --srgb encodes linear values for the screen, as a renderer does)\n" +
+      nonFinite);
   std::map<std::array<int, 3>, int> counts = colourCounts(png);
   using Colours = std::vector<std::array<int, 3>>;
   for (const std::array<int, 3>& square : Colours{ { 128, 128, 128 }, { 255, 0, 0 }, { 0, 255, 0 }, { 0, 0, 0 } })
@@ -626,8 +655,8 @@ TEST_F(Cli, RenderCountsTheVerticesDrawnClipped)
   }
   // With --srgb, the count without the advice to use it.
   const Result encoded = shadelab("render " + mesh + " --size 400x300 --srgb -o " + png, xvfb);
-  EXPECT_EQ(encoded.out, head +
-      "  total: 8 of 16 vertices have a value above 1, drawn clipped; --exposure 0.2 scales them into range\n" +
+  EXPECT_EQ(encoded.out,
+    head + "  total: 8 of 16 vertices have a value above 1, drawn clipped; --exposure 0.2 scales them into range\n" +
       nonFinite);
 }
 
@@ -655,8 +684,8 @@ TEST_F(Cli, RendersEightBitColoursAsTheyAre)
     EXPECT_GT(counts[square], 2000);
   }
   const Result doubled = shadelab("render " + mesh + " -a RGB --exposure 2 --srgb --size 400x300 -o " + png, xvfb);
-  EXPECT_EQ(doubled.out, head +
-      "  RGB: 12 of 16 vertices have a value above 1, drawn clipped; --exposure 1 scales them into range\n");
+  EXPECT_EQ(doubled.out,
+    head + "  RGB: 12 of 16 vertices have a value above 1, drawn clipped; --exposure 1 scales them into range\n");
 }
 
 TEST_F(Cli, RenderCountsTheGoldenBunnysBrightVertices)
@@ -686,7 +715,9 @@ TEST_F(Cli, RenderCountsTheGoldenBunnysBrightVertices)
   const std::string png = (folder / "total.png").string(), xvfb = std::string(XVFB_RUN) + " --auto-servernum ";
   const std::string head = "shadelab render: total of " + golden + " -> " + png + " (320x240)\n";
   const Result clipped = shadelab("render " + golden + " --size 320x240 -o " + png, xvfb);
-  EXPECT_EQ(clipped.out, head + "  total: " + std::to_string(above) + " of 35947 vertices have a value above 1, "
+  EXPECT_EQ(clipped.out,
+    head + "  total: " + std::to_string(above) +
+      " of 35947 vertices have a value above 1, "
       "drawn clipped; --exposure 0.7 scales them into range (and --srgb encodes linear values for the screen, as a "
       "renderer does)\n");
   const Result exposed = shadelab("render " + golden + " --size 320x240 --exposure 0.7 -o " + png, xvfb);
@@ -702,17 +733,20 @@ TEST_F(Cli, RenderExposureErrors)
   {
     const Result result = shadelab("render " + golden + " -o " + png + " --exposure " + exposure);
     EXPECT_EQ(result.exitCode, 2) << exposure;
-    EXPECT_EQ(result.err, "--exposure: '" + std::string(exposure) + "' is not a finite number > 0\n"
-      "Run with --help for more information.\n");
+    EXPECT_EQ(result.err,
+      "--exposure: '" + std::string(exposure) +
+        "' is not a finite number > 0\n"
+        "Run with --help for more information.\n");
   }
   if (std::string(XVFB_RUN).empty())
   {
     GTEST_SKIP() << NO_XVFB_REASON << " (the errors that need a display)";
   }
-  const Result mapped = shadelab("render " + golden + " -a key_cos_incidence --exposure 2 -o " + png,
-    std::string(XVFB_RUN) + " --auto-servernum ");
+  const Result mapped = shadelab(
+    "render " + golden + " -a key_cos_incidence --exposure 2 -o " + png, std::string(XVFB_RUN) + " --auto-servernum ");
   EXPECT_EQ(mapped.exitCode, 1);
-  EXPECT_EQ(mapped.err, "shadelab: --exposure scales an array drawn as RGB colours; 'key_cos_incidence' has 1 "
+  EXPECT_EQ(mapped.err,
+    "shadelab: --exposure scales an array drawn as RGB colours; 'key_cos_incidence' has 1 "
     "component, drawn through a colour map that spans its values\n");
   EXPECT_FALSE(fs::exists(png));
 }
@@ -729,8 +763,8 @@ TEST_F(Cli, RenderKeepsItsLegendInsideThePicture)
   writeFourSquares<vtkFloatArray>(mesh, "big", 1, atEachCorner({ -466000, 1000, 31900, 466000 }, 1));
   for (const std::string& size : { "800x600", "320x240", "160x120" })
   {
-    const Result result = shadelab("render " + mesh + " -a big --size " + size + " -o " + png,
-      std::string(XVFB_RUN) + " --auto-servernum ");
+    const Result result = shadelab(
+      "render " + mesh + " -a big --size " + size + " -o " + png, std::string(XVFB_RUN) + " --auto-servernum ");
     ASSERT_EQ(result.exitCode, 0) << result.err;
     vtkNew<vtkPNGReader> reader;
     reader->SetFileName(png.c_str());
@@ -771,8 +805,9 @@ TEST_F(Cli, BenchmarkTableAgreesWithItsBaseline)
   std::istringstream lines(slurp(csv));
   std::string header;
   std::getline(lines, header);
-  EXPECT_EQ(header, "vertices,mesh,case,first ms,ms,Mvertices/s,x floor,floor ms,calculator ms,"
-                    "x faster,max |diff|,peak MB,arrays MB");
+  EXPECT_EQ(header,
+    "vertices,mesh,case,first ms,ms,Mvertices/s,x floor,floor ms,calculator ms,"
+    "x faster,max |diff|,peak MB,arrays MB");
   int rows = 0, compared = 0;
   for (std::string line; std::getline(lines, line); ++rows)
   {
@@ -808,7 +843,8 @@ TEST_F(Cli, HelpAndUsageErrors)
   EXPECT_NE(help.out.find("Reads .vtp, .vtk, .ply, .obj, .stl"), std::string::npos);
   const Result featureAngle = shadelab("shade " + goodMesh() + " -o out.vtp --feature-angle 200");
   EXPECT_EQ(featureAngle.exitCode, 2);
-  EXPECT_EQ(featureAngle.err, "--feature-angle: Value 200 not in range 0 to 180\nRun with --help for more information.\n");
+  EXPECT_EQ(
+    featureAngle.err, "--feature-angle: Value 200 not in range 0 to 180\nRun with --help for more information.\n");
   const Result threads = shadelab("shade " + goodMesh() + " -s " + goodScene() + " -o out.vtp --threads 1000");
   EXPECT_EQ(threads.exitCode, 2);
   EXPECT_EQ(threads.err, "--threads: Value 1000 not in range 0 to 256\nRun with --help for more information.\n");
@@ -832,33 +868,38 @@ TEST_F(Cli, EnvironmentMapOption)
   const Result noMap = shadelab("shade " + mesh + " --envmap-rotation 30 -s " + goodScene() + " -o " + out);
   EXPECT_EQ(noMap.exitCode, 2);
   EXPECT_EQ(noMap.err, "--envmap-rotation requires --envmap\nRun with --help for more information.\n");
-  const std::string named = file("named.json",
-    R"({ "lights": [ { "name": "envmap", "type": "ambient" } ] })");
-  expectError("shade " + mesh + " -s " + named + " --envmap " + SHADELAB_SOURCE_DIR "/data/envmaps/venice_sunset_1k.hdr -o " + out,
+  const std::string named = file("named.json", R"({ "lights": [ { "name": "envmap", "type": "ambient" } ] })");
+  expectError("shade " + mesh + " -s " + named + " --envmap " +
+      SHADELAB_SOURCE_DIR "/data/envmaps/venice_sunset_1k.hdr -o " + out,
     "--envmap: " + named + " already has a light named 'envmap', the name --envmap gives its light: rename that light");
 
   // The map alone lights the bunny; its arrays are listed in the summary.
-  const Result shaded = shadelab("shade " + mesh + " --envmap " SHADELAB_SOURCE_DIR
-    "/data/envmaps/venice_sunset_1k.hdr --envmap-estimator monte_carlo --envmap-samples 16 -a all -o " + out);
+  const Result shaded = shadelab("shade " + mesh +
+    " --envmap " SHADELAB_SOURCE_DIR
+    "/data/envmaps/venice_sunset_1k.hdr --envmap-estimator monte_carlo --envmap-samples 16 -a all -o " +
+    out);
   EXPECT_EQ(shaded.exitCode, 0) << shaded.err;
   EXPECT_NE(shaded.out.find("scene: default material and viewer + --envmap "), std::string::npos) << shaded.out;
   EXPECT_NE(shaded.out.find("envmap_irradiance_std_error"), std::string::npos) << shaded.out;
   EXPECT_TRUE(fs::exists(out));
 
   // With --shadows the map casts the mesh's shadows, its rays drawn as --envmap-directions says.
-  const Result shadowed = shadelab("shade " + mesh + " --envmap " SHADELAB_SOURCE_DIR
-    "/data/envmaps/venice_sunset_1k.hdr --envmap-directions mis --envmap-samples 16 --shadows -o " + out);
+  const Result shadowed = shadelab("shade " + mesh +
+    " --envmap " SHADELAB_SOURCE_DIR
+    "/data/envmaps/venice_sunset_1k.hdr --envmap-directions mis --envmap-samples 16 --shadows -o " +
+    out);
   EXPECT_EQ(shadowed.exitCode, 0) << shadowed.err;
   EXPECT_NE(shadowed.out.find("    envmap_visibility            1 "), std::string::npos) << shadowed.out;
   EXPECT_NE(shadowed.out.find("    envmap_visibility_std_error  1 "), std::string::npos) << shadowed.out;
   EXPECT_NE(shadowed.out.find("rays (16 per vertex)"), std::string::npos) << shadowed.out;
   // --envmap-samples auto takes the count from --tolerance, which must be given.
-  expectError("shade " + mesh + " --envmap " SHADELAB_SOURCE_DIR "/data/envmaps/venice_sunset_1k.hdr --envmap-samples auto -o " + out,
+  expectError("shade " + mesh +
+      " --envmap " SHADELAB_SOURCE_DIR "/data/envmaps/venice_sunset_1k.hdr --envmap-samples auto -o " + out,
     "--envmap " SHADELAB_SOURCE_DIR "/data/envmaps/venice_sunset_1k.hdr: /lights/0/samples: \"auto\" takes the count "
     "of light 'envmap' from a tolerance: give one (shadelab shade --tolerance, the filter's Tolerance), or a number of "
     "samples");
-  const Result badDirections = shadelab("shade " + mesh + " --envmap " SHADELAB_SOURCE_DIR
-    "/data/envmaps/venice_sunset_1k.hdr --envmap-directions sun -o " + out);
+  const Result badDirections = shadelab("shade " + mesh +
+    " --envmap " SHADELAB_SOURCE_DIR "/data/envmaps/venice_sunset_1k.hdr --envmap-directions sun -o " + out);
   EXPECT_EQ(badDirections.exitCode, 2);
   EXPECT_EQ(badDirections.err,
     "--envmap-directions: sun not in {luminance,cosine,mis}\nRun with --help for more information.\n");
@@ -889,7 +930,8 @@ TEST_F(Cli, ColorByTakesTheMaterialsColourFromAnArray)
   // The errors: an array the mesh lacks, a colour map alone.
   const Result missing = shadelab("shade " + goodMesh() + " --color-by RGB -o " + byOption);
   EXPECT_EQ(missing.exitCode, 1);
-  EXPECT_EQ(missing.err, "shadelab: " + goodMesh() +
+  EXPECT_EQ(missing.err,
+    "shadelab: " + goodMesh() +
       ": the material's colour array (MaterialColorArray, --color-by): the mesh has no numeric point-data array "
       "'RGB' (its point arrays: none)\n");
   const Result alone = shadelab("shade " + goodMesh() + " --colormap rainbow -o " + byOption);
@@ -916,11 +958,15 @@ TEST_F(Cli, PrecomputedTransferRelightsWithoutRays)
   ASSERT_EQ(relighting.exitCode, 0) << relighting.err;
   EXPECT_NE(relighting.out.find("'envmap_irradiance' from 'envmap_sh_transfer' (order 4, 25 coefficients) under " +
               map + "; it replaces the input's array of that name"),
-    std::string::npos) << relighting.out;
+    std::string::npos)
+    << relighting.out;
   const Result compared = shadelab("compare " + turned + " " + relit + " --arrays envmap_irradiance --atol 1e-5");
   EXPECT_EQ(compared.exitCode, 0) << compared.out;
   // Relit 90 degrees the wrong way, it differs.
-  ASSERT_EQ(shadelab("relight " + unturned + " --envmap " + map + " --rotation -90 --name envmap_irradiance -o " + relit).exitCode, 0);
+  ASSERT_EQ(
+    shadelab("relight " + unturned + " --envmap " + map + " --rotation -90 --name envmap_irradiance -o " + relit)
+      .exitCode,
+    0);
   EXPECT_EQ(shadelab("compare " + turned + " " + relit + " --arrays envmap_irradiance --atol 1e-5").exitCode, 1);
 
   // Shadowed, the transfer has its standard errors; --envmap-order and directions are prt's alone.
@@ -938,25 +984,31 @@ TEST_F(Cli, PrecomputedTransferRelightsWithoutRays)
   const Result bounded = shadelab("shade " + mesh + prt + "--shadows --tolerance 0.05 -o " + relit);
   EXPECT_EQ(bounded.exitCode, 1);
   EXPECT_EQ(bounded.err,
-    "shadelab: --envmap " + map + ": /lights/0/estimator: a tolerance cannot bound light 'envmap' of type \"environment\": its shadowed transfer vectors can "
-           "err by up to 95 through their bands alone, and are estimated from a fixed \"samples\" count, which "
-           "no target stops: use \"estimator\": \"monte_carlo\" (--envmap-estimator monte_carlo) with \"samples\": "
-           "\"auto\" (--envmap-samples auto); or shade without a tolerance\n") << bounded.err;
+    "shadelab: --envmap " + map +
+      ": /lights/0/estimator: a tolerance cannot bound light 'envmap' of type \"environment\": its shadowed transfer "
+      "vectors can "
+      "err by up to 95 through their bands alone, and are estimated from a fixed \"samples\" count, which "
+      "no target stops: use \"estimator\": \"monte_carlo\" (--envmap-estimator monte_carlo) with \"samples\": "
+      "\"auto\" (--envmap-samples auto); or shade without a tolerance\n")
+    << bounded.err;
 
   // A mesh without transfer vectors, or with two, is refused, saying what to do.
   expectError("relight " + mesh + " --envmap " + map + " -o " + relit,
-    mesh + ": the input has no point array whose name ends in '_sh_transfer': shade the mesh with \"estimator\": "
-           "\"prt\" (shadelab shade --envmap-estimator prt) first");
+    mesh +
+      ": the input has no point array whose name ends in '_sh_transfer': shade the mesh with \"estimator\": "
+      "\"prt\" (shadelab shade --envmap-estimator prt) first");
   expectError("relight " + unturned + " --envmap " + map + " --transfer key_sh_transfer -o " + relit,
     unturned + ": the input has no point array 'key_sh_transfer'");
   expectError("relight " + unturned + " --envmap " + (folder / "none.hdr").string() + " -o " + relit,
     unturned + ": " + (folder / "none.hdr").string() + ": no such file");
   expectError("relight " + unturned + " --envmap " + map + " --name envmap_sh_transfer -o " + relit,
-    unturned + ": OutputArrayName is the transfer array's name, 'envmap_sh_transfer': choose another name for the "
-               "irradiance");
+    unturned +
+      ": OutputArrayName is the transfer array's name, 'envmap_sh_transfer': choose another name for the "
+      "irradiance");
   expectError("relight " + unturned + " --envmap " + map + " --transfer envmap_irradiance -o " + relit,
-    unturned + ": point array 'envmap_irradiance' is not a transfer vector: it must have 9, 16 or 25 components "
-               "(orders 2, 3, 4), not 3");
+    unturned +
+      ": point array 'envmap_irradiance' is not a transfer vector: it must have 9, 16 or 25 components "
+      "(orders 2, 3, 4), not 3");
 }
 
 TEST_F(Cli, AnyMeshWithoutASceneUnderTheDefaultLightKit)
@@ -966,10 +1018,12 @@ TEST_F(Cli, AnyMeshWithoutASceneUnderTheDefaultLightKit)
   const Result spot = shadelab("shade " SHADELAB_SOURCE_DIR "/data/meshes/spot.obj -o " + out);
   EXPECT_EQ(spot.exitCode, 0) << spot.err;
   EXPECT_NE(spot.out.find("  mesh: 17568 vertices, 5856 polygons and strips\n"), std::string::npos) << spot.out;
-  EXPECT_NE(spot.out.find("  scene: the default light kit, placed on the mesh (lecture model, 5 lights)\n"),
-    std::string::npos) << spot.out;
+  EXPECT_NE(
+    spot.out.find("  scene: the default light kit, placed on the mesh (lecture model, 5 lights)\n"), std::string::npos)
+    << spot.out;
   EXPECT_NE(spot.out.find("2930 positions are shared by several points: averaged 17568 points with their copies."),
-    std::string::npos) << spot.out;
+    std::string::npos)
+    << spot.out;
   EXPECT_TRUE(fs::exists(out));
   const Result faceted = shadelab("shade " SHADELAB_SOURCE_DIR "/data/meshes/spot.obj --no-weld -o " + out);
   EXPECT_EQ(faceted.exitCode, 0) << faceted.err;
@@ -986,6 +1040,7 @@ TEST_F(Cli, AnyMeshWithoutASceneUnderTheDefaultLightKit)
   EXPECT_EQ(split.exitCode, 0) << split.err;
   EXPECT_NE(split.out.find("  mesh: 24 vertices, 6 polygons and strips\n"), std::string::npos) << split.out;
   EXPECT_NE(split.out.find("Split the mesh at edges sharper than 30 degrees (vtkPolyDataNormals): 8 points became 24"),
-    std::string::npos) << split.out;
+    std::string::npos)
+    << split.out;
 }
 }

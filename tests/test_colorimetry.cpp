@@ -27,9 +27,9 @@ TEST(Colorimetry, ColordShipsTheCieTables)
   EXPECT_EQ(observer.y.startNm, 360.0);
   EXPECT_EQ(observer.y.endNm(), 830.0);
   EXPECT_EQ(observer.y.values.size(), 95u);
-  EXPECT_EQ(observer.y.at(555), 1.0); // the photopic peak
+  EXPECT_EQ(observer.y.at(555), 1.0);                              // the photopic peak
   EXPECT_DOUBLE_EQ(observer.x.at(602.5), 0.5 * (1.0622 + 1.0456)); // between two samples
-  EXPECT_EQ(observer.z.at(900), 0.0); // outside the table
+  EXPECT_EQ(observer.z.at(900), 0.0);                              // outside the table
   for (const std::string& name : cieIlluminantNames())
   {
     EXPECT_GT(cieIlluminant(name).values.size(), 80u) << name;

@@ -6,22 +6,22 @@
 #include "vtkCellData.h"
 #include "vtkDoubleArray.h"
 #include "vtkFloatArray.h"
+#include "vtkImageData.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkStringArray.h"
-#include "vtkUnsignedCharArray.h"
-#include "vtkImageData.h"
 #include "vtkStructuredGrid.h"
+#include "vtkUnsignedCharArray.h"
 #include "vtkUnstructuredGrid.h"
 #include "vtkUnstructuredGridWriter.h"
-#include "vtkXMLImageDataWriter.h"
-#include "vtkXMLStructuredGridWriter.h"
 #include "vtkXMLDataElement.h"
 #include "vtkXMLDataParser.h"
+#include "vtkXMLImageDataWriter.h"
 #include "vtkXMLPolyDataReader.h"
 #include "vtkXMLPolyDataWriter.h"
+#include "vtkXMLStructuredGridWriter.h"
 #include "vtkXMLUnstructuredGridWriter.h"
 
 #include <nlohmann/json.hpp>
@@ -56,7 +56,7 @@ vtkSmartPointer<vtkPolyData> square(const std::function<void(vtkPolyData*)>& edi
   return mesh;
 }
 
-template <typename Array>
+template<typename Array>
 void addArray(vtkPolyData* mesh, const char* name, int components, const std::vector<double>& values)
 {
   vtkNew<Array> array;
@@ -105,7 +105,7 @@ class Compare : public Cli
 {
 protected:
   /// data written to name in the test's folder by a VTK writer of type Writer; its path.
-  template <typename Writer>
+  template<typename Writer>
   std::string writeWith(const std::string& name, vtkDataObject* data)
   {
     const std::string path = (folder / name).string();
@@ -173,11 +173,14 @@ TEST_F(Compare, ADifferenceBeyondTheDefaultToleranceFailsAndTheWorstIsShown)
 {
   // 0.5 + 1e-7 is within 4 ULP of float32 (rtol 4.8e-7); 0.75 + 1e-3 is not.
   const std::string a = write("a.vtp", square(shaded));
-  const std::string b = write("b.vtp", square([](vtkPolyData* mesh)
-    {
-      addArray<vtkFloatArray>(mesh, "total", 3, { 0.5 + 1e-7, 0.25, 0.125, 0.5, 0.5, 0.5, 1, 0, 0, 0.75, 0.751, 0.75 });
-      addArray<vtkUnsignedCharArray>(mesh, "shading_flags", 1, { 0, 64, 4, 0 });
-    }));
+  const std::string b = write("b.vtp",
+    square(
+      [](vtkPolyData* mesh)
+      {
+        addArray<vtkFloatArray>(
+          mesh, "total", 3, { 0.5 + 1e-7, 0.25, 0.125, 0.5, 0.5, 0.5, 1, 0, 0, 0.75, 0.751, 0.75 });
+        addArray<vtkUnsignedCharArray>(mesh, "shading_flags", 1, { 0, 64, 4, 0 });
+      }));
   const Result result = shadelab("compare " + a + " " + b);
   EXPECT_EQ(result.exitCode, 1);
   const float changed = 0.751f;
@@ -210,11 +213,13 @@ TEST_F(Compare, UlpModeCountsTheFloatsBetween)
   {
     up = std::nextafter(up, 1.0f);
   }
-  const std::string b = write("b.vtp", square([&](vtkPolyData* mesh)
-    {
-      addArray<vtkFloatArray>(mesh, "total", 3, { 0.5, 0.25, up, 0.5, 0.5, 0.5, 1, 0, 0, 0.75, 0.75, 0.75 });
-      addArray<vtkUnsignedCharArray>(mesh, "shading_flags", 1, { 0, 64, 4, 0 });
-    }));
+  const std::string b = write("b.vtp",
+    square(
+      [&](vtkPolyData* mesh)
+      {
+        addArray<vtkFloatArray>(mesh, "total", 3, { 0.5, 0.25, up, 0.5, 0.5, 0.5, 1, 0, 0, 0.75, 0.75, 0.75 });
+        addArray<vtkUnsignedCharArray>(mesh, "shading_flags", 1, { 0, 64, 4, 0 });
+      }));
   EXPECT_EQ(shadelab("compare " + a + " " + b).exitCode, 1);
   EXPECT_EQ(shadelab("compare " + a + " " + b + " --ulps 5").exitCode, 0);
   const Result four = shadelab("compare " + a + " " + b + " --ulps total:4");
@@ -225,17 +230,21 @@ TEST_F(Compare, UlpModeCountsTheFloatsBetween)
 TEST_F(Compare, FlagsAreComparedExactlyAndTheirBitsNamed)
 {
   const std::string a = write("a.vtp", square(shaded));
-  const std::string b = write("b.vtp", square([](vtkPolyData* mesh)
-    {
-      addArray<vtkFloatArray>(mesh, "total", 3, { 0.5, 0.25, 0.125, 0.5, 0.5, 0.5, 1, 0, 0, 0.75, 0.75, 0.75 });
-      addArray<vtkUnsignedCharArray>(mesh, "shading_flags", 1, { 64, 64, 0, 0 });
-    }));
+  const std::string b = write("b.vtp",
+    square(
+      [](vtkPolyData* mesh)
+      {
+        addArray<vtkFloatArray>(mesh, "total", 3, { 0.5, 0.25, 0.125, 0.5, 0.5, 0.5, 1, 0, 0, 0.75, 0.75, 0.75 });
+        addArray<vtkUnsignedCharArray>(mesh, "shading_flags", 1, { 64, 64, 0, 0 });
+      }));
   const Result result = shadelab("compare " + a + " " + b + " --atol 1");
   EXPECT_EQ(result.exitCode, 1);
   EXPECT_EQ(linesAbout(result.out, "shading_flags"),
-    "  DIFFER shading_flags                  point  integer x1 2 / 4             64         32.1       64.1       equal\n"
+    "  DIFFER shading_flags                  point  integer x1 2 / 4             64         32.1       64.1       "
+    "equal\n"
     "         worst failing at point 0 (0, 0, 0): 0 in the baseline, 64 in the result\n"
-    "         bits that differ: 4 (a light below the horizon) in 1, 64 (a shadowed light's ray meeting its own triangles first) "
+    "         bits that differ: 4 (a light below the horizon) in 1, 64 (a shadowed light's ray meeting its own "
+    "triangles first) "
     "in 1\n");
   // Other integer arrays: bits by number.
   const Result plain = shadelab("compare " + a + " " + b + " --flags none");
@@ -245,42 +254,58 @@ TEST_F(Compare, FlagsAreComparedExactlyAndTheirBitsNamed)
 TEST_F(Compare, EachMismatchIsAClearFailure)
 {
   const std::string a = write("a.vtp", square(shaded));
-  const std::string missing = write("missing.vtp", square([](vtkPolyData* mesh)
-    { addArray<vtkUnsignedCharArray>(mesh, "shading_flags", 1, { 0, 64, 4, 0 }); }));
-  const std::string extra = write("extra.vtp", square([](vtkPolyData* mesh)
-    {
-      shaded(mesh);
-      addArray<vtkFloatArray>(mesh, "key_diffuse", 1, { 0, 0, 0, 0 });
-    }));
-  const std::string doubles = write("doubles.vtp", square([](vtkPolyData* mesh)
-    {
-      addArray<vtkDoubleArray>(mesh, "total", 3, { 0.5, 0.25, 0.125, 0.5, 0.5, 0.5, 1, 0, 0, 0.75, 0.75, 0.75 });
-      addArray<vtkUnsignedCharArray>(mesh, "shading_flags", 1, { 0, 64, 4, 0 });
-    }));
-  const std::string flat = write("flat.vtp", square([](vtkPolyData* mesh)
-    {
-      addArray<vtkFloatArray>(mesh, "total", 4, { 0.5, 0.25, 0.125, 0, 0.5, 0.5, 0.5, 0, 1, 0, 0, 0, 0.75, 0.75, 0.75, 0 });
-      addArray<vtkUnsignedCharArray>(mesh, "shading_flags", 1, { 0, 64, 4, 0 });
-    }));
+  const std::string missing = write("missing.vtp",
+    square(
+      [](vtkPolyData* mesh) {
+        addArray<vtkUnsignedCharArray>(mesh, "shading_flags", 1, { 0, 64, 4, 0 });
+      }));
+  const std::string extra = write("extra.vtp",
+    square(
+      [](vtkPolyData* mesh)
+      {
+        shaded(mesh);
+        addArray<vtkFloatArray>(mesh, "key_diffuse", 1, { 0, 0, 0, 0 });
+      }));
+  const std::string doubles = write("doubles.vtp",
+    square(
+      [](vtkPolyData* mesh)
+      {
+        addArray<vtkDoubleArray>(mesh, "total", 3, { 0.5, 0.25, 0.125, 0.5, 0.5, 0.5, 1, 0, 0, 0.75, 0.75, 0.75 });
+        addArray<vtkUnsignedCharArray>(mesh, "shading_flags", 1, { 0, 64, 4, 0 });
+      }));
+  const std::string flat = write("flat.vtp",
+    square(
+      [](vtkPolyData* mesh)
+      {
+        addArray<vtkFloatArray>(
+          mesh, "total", 4, { 0.5, 0.25, 0.125, 0, 0.5, 0.5, 0.5, 0, 1, 0, 0, 0, 0.75, 0.75, 0.75, 0 });
+        addArray<vtkUnsignedCharArray>(mesh, "shading_flags", 1, { 0, 64, 4, 0 });
+      }));
   auto row = [&](const std::string& result, const std::string& name)
   {
     const Result run = shadelab("compare " + a + " " + result);
     EXPECT_EQ(run.exitCode, 1) << run.out;
     return linesAbout(run.out, name);
   };
-  EXPECT_EQ(row(missing, "total"), "  DIFFER total                          point  float32 x3 missing from " + missing + "\n");
+  EXPECT_EQ(
+    row(missing, "total"), "  DIFFER total                          point  float32 x3 missing from " + missing + "\n");
   EXPECT_EQ(row(extra, "key_diffuse"), "  DIFFER key_diffuse                    point             not in " + a + "\n");
   EXPECT_EQ(row(doubles, "total"),
     "  DIFFER total                          point  float32 x3 float32 in " + a + ", float64 in " + doubles + "\n");
-  EXPECT_EQ(row(flat, "total"), "  DIFFER total                          point  float32 x3 3 components in " + a + ", 4 in " + flat + "\n");
+  EXPECT_EQ(row(flat, "total"),
+    "  DIFFER total                          point  float32 x3 3 components in " + a + ", 4 in " + flat + "\n");
   // Another number of points: every point array says so.
-  const std::string five = write("five.vtp", square([](vtkPolyData* mesh)
-    {
-      mesh->GetPoints()->InsertNextPoint(2, 2, 0);
-      addArray<vtkFloatArray>(mesh, "total", 3, { 0.5, 0.25, 0.125, 0.5, 0.5, 0.5, 1, 0, 0, 0.75, 0.75, 0.75, 0, 0, 0 });
-      addArray<vtkUnsignedCharArray>(mesh, "shading_flags", 1, { 0, 64, 4, 0, 0 });
-    }));
-  EXPECT_EQ(row(five, "points"), "  DIFFER points                         points float32 x3 4 tuples in " + a + ", 5 in " + five + "\n");
+  const std::string five = write("five.vtp",
+    square(
+      [](vtkPolyData* mesh)
+      {
+        mesh->GetPoints()->InsertNextPoint(2, 2, 0);
+        addArray<vtkFloatArray>(
+          mesh, "total", 3, { 0.5, 0.25, 0.125, 0.5, 0.5, 0.5, 1, 0, 0, 0.75, 0.75, 0.75, 0, 0, 0 });
+        addArray<vtkUnsignedCharArray>(mesh, "shading_flags", 1, { 0, 64, 4, 0, 0 });
+      }));
+  EXPECT_EQ(row(five, "points"),
+    "  DIFFER points                         points float32 x3 4 tuples in " + a + ", 5 in " + five + "\n");
   EXPECT_EQ(row(five, "shading_flags"),
     "  DIFFER shading_flags                  point  integer x1 4 tuples in " + a + ", 5 in " + five + "\n");
 }
@@ -288,14 +313,22 @@ TEST_F(Compare, EachMismatchIsAClearFailure)
 TEST_F(Compare, NanEqualsNanOnlyInBothFiles)
 {
   const double nan = std::nan("");
-  const std::string a = write("a.vtp", square([&](vtkPolyData* mesh)
-    { addArray<vtkFloatArray>(mesh, "value", 1, { nan, 1, nan, 2 }); }));
-  const std::string b = write("b.vtp", square([&](vtkPolyData* mesh)
-    { addArray<vtkFloatArray>(mesh, "value", 1, { nan, nan, 3, 2 }); }));
+  const std::string a = write("a.vtp",
+    square(
+      [&](vtkPolyData* mesh) {
+        addArray<vtkFloatArray>(mesh, "value", 1, { nan, 1, nan, 2 });
+      }));
+  const std::string b = write("b.vtp",
+    square(
+      [&](vtkPolyData* mesh) {
+        addArray<vtkFloatArray>(mesh, "value", 1, { nan, nan, 3, 2 });
+      }));
   const Result result = shadelab("compare " + a + " " + b);
   EXPECT_EQ(result.exitCode, 1);
-  EXPECT_NE(linesAbout(result.out, "value").find("         NaN in both files at 1 values (equal), in one only at 2 (they fail)\n"),
-    std::string::npos) << result.out;
+  EXPECT_NE(linesAbout(result.out, "value")
+              .find("         NaN in both files at 1 values (equal), in one only at 2 (they fail)\n"),
+    std::string::npos)
+    << result.out;
   EXPECT_EQ(shadelab("compare " + a + " " + a).exitCode, 0);
 }
 
@@ -373,11 +406,13 @@ TEST_F(Compare, StatisticalModeJudgesExactValuesByTheRule)
 TEST_F(Compare, TheJsonReportHoldsWhatTheTableSays)
 {
   const std::string a = write("a.vtp", square(shaded));
-  const std::string b = write("b.vtp", square([](vtkPolyData* mesh)
-    {
-      addArray<vtkFloatArray>(mesh, "total", 3, { 0.5, 0.25, 0.125, 0.5, 0.5, 0.5, 1, 0, 0, 0.75, 0.751, 0.75 });
-      addArray<vtkUnsignedCharArray>(mesh, "shading_flags", 1, { 64, 64, 4, 0 });
-    }));
+  const std::string b = write("b.vtp",
+    square(
+      [](vtkPolyData* mesh)
+      {
+        addArray<vtkFloatArray>(mesh, "total", 3, { 0.5, 0.25, 0.125, 0.5, 0.5, 0.5, 1, 0, 0, 0.75, 0.751, 0.75 });
+        addArray<vtkUnsignedCharArray>(mesh, "shading_flags", 1, { 64, 64, 4, 0 });
+      }));
   const std::string report = (folder / "report.json").string();
   EXPECT_EQ(shadelab("compare " + a + " " + b + " --json " + report).exitCode, 1);
   const nlohmann::json json = nlohmann::json::parse(slurp(report));
@@ -445,7 +480,8 @@ TEST_F(Compare, AnyDatasetIsRead)
   const std::string vtu = writeWith<vtkXMLUnstructuredGridWriter>("grid.vtu", grid);
   const Result result = shadelab("compare " + vtu + " " + write("a.vtp", mesh));
   EXPECT_EQ(result.exitCode, 0) << result.out << result.err;
-  EXPECT_NE(result.out.find("(4 points, 2 cells) against the baseline " + vtu + " (4 points, 1 cells)"), std::string::npos)
+  EXPECT_NE(
+    result.out.find("(4 points, 2 cells) against the baseline " + vtu + " (4 points, 1 cells)"), std::string::npos)
     << result.out;
   // The same grid as legacy .vtk agrees with its .vtu.
   const std::string legacy = writeWith<vtkUnstructuredGridWriter>("grid.vtk", grid);
@@ -476,11 +512,13 @@ TEST_F(Compare, AnyDatasetIsRead)
   const Result grids = shadelab("compare " + vti + " " + vts);
   EXPECT_EQ(grids.exitCode, 0) << grids.out << grids.err;
   EXPECT_NE(grids.out.find("  ok     value "), std::string::npos) << grids.out;
-  EXPECT_NE(grids.out.find("  ok     points                         points float64 x3 0 / 12"), std::string::npos) << grids.out;
+  EXPECT_NE(grids.out.find("  ok     points                         points float64 x3 0 / 12"), std::string::npos)
+    << grids.out;
   const Result diff = shadelab("compare " + vtu + " " + vtu + " --diff " + (folder / "diff.vtp").string());
   EXPECT_EQ(diff.exitCode, 2);
-  EXPECT_EQ(diff.err, "shadelab compare: --diff writes a mesh (.vtp or .vtk), and the result is a vtkUnstructuredGrid: "
-                      "leave --diff out for it\n");
+  EXPECT_EQ(diff.err,
+    "shadelab compare: --diff writes a mesh (.vtp or .vtk), and the result is a vtkUnstructuredGrid: "
+    "leave --diff out for it\n");
   EXPECT_FALSE(std::filesystem::exists(folder / "diff.vtp"));
 }
 
@@ -496,12 +534,15 @@ TEST_F(Compare, UnreadableFilesAndBadOptionsExitWithTwo)
   EXPECT_EQ(broken.exitCode, 2);
   EXPECT_EQ(broken.err.rfind("shadelab compare: " + garbage + ": cannot be read as .vtu: ", 0), 0u) << broken.err;
   const std::string unknown = file("data.xyz", "1 2 3\n");
-  EXPECT_EQ(shadelab("compare " + unknown + " " + a).err, "shadelab compare: " + unknown +
-    ": unknown dataset format '.xyz'; ShadeLab reads .vtp, .vtu, .vti, .vts, .vtr, .vtk (legacy), .ply, .obj, .stl\n");
+  EXPECT_EQ(shadelab("compare " + unknown + " " + a).err,
+    "shadelab compare: " + unknown +
+      ": unknown dataset format '.xyz'; ShadeLab reads .vtp, .vtu, .vti, .vts, .vtr, .vtk (legacy), .ply, .obj, "
+      ".stl\n");
   const Result tolerance = shadelab("compare " + a + " " + a + " --atol total:lots");
   EXPECT_EQ(tolerance.exitCode, 2);
   EXPECT_EQ(tolerance.err,
-    "shadelab compare: 'lots' is not a tolerance: write a number >= 0 (1e-6), or one times the array's range (1e-3*range)\n");
+    "shadelab compare: 'lots' is not a tolerance: write a number >= 0 (1e-6), or one times the array's range "
+    "(1e-3*range)\n");
   EXPECT_EQ(shadelab("compare " + a).exitCode, 2); // CLI11: the result is required
   const Result typo = shadelab("compare " + a + " " + a + " --arrays totl");
   EXPECT_EQ(typo.exitCode, 2);
@@ -511,8 +552,9 @@ TEST_F(Compare, UnreadableFilesAndBadOptionsExitWithTwo)
   EXPECT_EQ(nothing.err, "shadelab compare: no array to compare (see --arrays, --exclude and --no-points)\n");
   const Result ranged = shadelab("compare " + a + " " + a + " --rtol 'total:1e-3*range'");
   EXPECT_EQ(ranged.exitCode, 2);
-  EXPECT_EQ(ranged.err, "shadelab compare: --rtol 'total:1e-3*range': a relative tolerance is a plain number (a fraction "
-                        "of the values); a tolerance relative to the range is --atol's\n");
+  EXPECT_EQ(ranged.err,
+    "shadelab compare: --rtol 'total:1e-3*range': a relative tolerance is a plain number (a fraction "
+    "of the values); a tolerance relative to the range is --atol's\n");
 }
 }
 
@@ -521,11 +563,13 @@ namespace
 TEST_F(Compare, JunitAndTheDifferenceMeshShowWhereTheFilesDiffer)
 {
   const std::string a = write("a.vtp", square(shaded));
-  const std::string b = write("b.vtp", square([](vtkPolyData* mesh)
-    {
-      addArray<vtkFloatArray>(mesh, "total", 3, { 0.5, 0.25, 0.125, 0.5, 0.5, 0.5, 1, 0, 0, 0.75, 0.751, 0.75 });
-      addArray<vtkUnsignedCharArray>(mesh, "shading_flags", 1, { 64, 64, 4, 0 });
-    }));
+  const std::string b = write("b.vtp",
+    square(
+      [](vtkPolyData* mesh)
+      {
+        addArray<vtkFloatArray>(mesh, "total", 3, { 0.5, 0.25, 0.125, 0.5, 0.5, 0.5, 1, 0, 0, 0.75, 0.751, 0.75 });
+        addArray<vtkUnsignedCharArray>(mesh, "shading_flags", 1, { 64, 64, 4, 0 });
+      }));
   const std::string junit = (folder / "report.xml").string(), diff = (folder / "diff.vtp").string();
   EXPECT_EQ(shadelab("compare " + a + " " + b + " --junit " + junit + " --diff " + diff).exitCode, 1);
 
@@ -565,7 +609,8 @@ TEST_F(Compare, JunitAndTheDifferenceMeshShowWhereTheFilesDiffer)
   EXPECT_EQ(std::vector<int>({ passed->GetValue(0), passed->GetValue(1), passed->GetValue(2), passed->GetValue(3) }),
     std::vector<int>({ 0, 1, 1, 0 }));
   ASSERT_NE(data->GetArray("total"), nullptr); // the result's own arrays stay beside them
-  auto* cellsPassed = vtkUnsignedCharArray::SafeDownCast(reader->GetOutput()->GetCellData()->GetArray("compare_passed"));
+  auto* cellsPassed =
+    vtkUnsignedCharArray::SafeDownCast(reader->GetOutput()->GetCellData()->GetArray("compare_passed"));
   ASSERT_NE(cellsPassed, nullptr);
   EXPECT_EQ(cellsPassed->GetNumberOfValues(), 2);
 }
@@ -627,8 +672,10 @@ TEST_F(Compare, ReorderedMeshesMatchByNearestPoint)
   EXPECT_EQ(shadelab("compare " + a + " " + b).exitCode, 1);
   const Result nearest = shadelab("compare " + a + " " + b + " --nearest 1e-9");
   EXPECT_EQ(nearest.exitCode, 0) << nearest.out;
-  EXPECT_NE(nearest.out.find("; points matched by nearest point, the farthest 0 away; cells by their centres, the farthest 0 away\n"),
-    std::string::npos) << nearest.out;
+  EXPECT_NE(nearest.out.find(
+              "; points matched by nearest point, the farthest 0 away; cells by their centres, the farthest 0 away\n"),
+    std::string::npos)
+    << nearest.out;
   // A point moved by 0.01: within 0.1 it matches and its coordinate differs; within 0.001 it
   // has no match.
   const std::string moved = write("moved.vtp", reversedSquare(0.01));
@@ -642,8 +689,11 @@ TEST_F(Compare, ReorderedMeshesMatchByNearestPoint)
   EXPECT_EQ(shadelab("compare " + once + " " + moved).exitCode, 1);
   const Result loose = shadelab("compare " + a + " " + moved + " --nearest 0.1");
   EXPECT_EQ(loose.exitCode, 1);
-  EXPECT_NE(linesAbout(loose.out, "points").find("worst failing at point 3 (0, 1, 0), component 0: 0 in the baseline, 0.0099999997764825821 in the result"),
-    std::string::npos) << loose.out;
+  EXPECT_NE(
+    linesAbout(loose.out, "points")
+      .find("worst failing at point 3 (0, 1, 0), component 0: 0 in the baseline, 0.0099999997764825821 in the result"),
+    std::string::npos)
+    << loose.out;
   // The difference mesh is the result's: the moved point is its point 0.
   const std::string diff = (folder / "diff.vtp").string();
   EXPECT_EQ(shadelab("compare " + a + " " + moved + " --nearest 0.1 --diff " + diff).exitCode, 1);
@@ -814,8 +864,9 @@ TEST_F(CompareSampled, TheCTestHelperPassesTheStatisticalModeThrough)
   file("project/CMakeLists.txt",
     "cmake_minimum_required(VERSION 3.20)\nproject(SampledRegression NONE)\nenable_testing()\n"
     "include(\"" SHADELAB_SOURCE_DIR "/cmake/ShadeLabRegression.cmake\")\n"
-    "shadelab_add_regression_test(NAME teapot_occlusion MESH \"" + std::string(mesh) + "\" SCENE \"" + scene +
-      "\" BASELINE \"" + baseline + "\" ARRAYS \"" + arrays + "\" EXCLUDE \"*_std_error\" STANDARD_ERRORS 3 "
+    "shadelab_add_regression_test(NAME teapot_occlusion MESH \"" +
+      std::string(mesh) + "\" SCENE \"" + scene + "\" BASELINE \"" + baseline + "\" ARRAYS \"" + arrays +
+      "\" EXCLUDE \"*_std_error\" STANDARD_ERRORS 3 "
       "SIGNIFICANCE 0.01 SHADE_ARGS --ambient-occlusion 32)\n");
   const Result configured =
     run("cmake", "-S " + project.string() + " -B " + build.string() + " -DSHADELAB_EXECUTABLE=" SHADELAB_EXECUTABLE);

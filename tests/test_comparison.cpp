@@ -64,8 +64,8 @@ TEST(Comparison, AValuePassesWithinTheLargerOfItsRelativeAndAbsoluteTolerances)
   rule.relative = 1e-3;
   // 0 against 1e-7: within atol. 1 against 1.0005: within rtol (1.0005e-3). 1 against 1.01 and
   // 100 against 100.5: neither.
-  const ArrayDifference d = compareArrays(reals(ValueType::Float64, { 0, 1, 1, 100 }),
-    reals(ValueType::Float64, { 1e-7, 1.0005, 1.01, 100.5 }), rule);
+  const ArrayDifference d = compareArrays(
+    reals(ValueType::Float64, { 0, 1, 1, 100 }), reals(ValueType::Float64, { 1e-7, 1.0005, 1.01, 100.5 }), rule);
   EXPECT_EQ(d.failing, 2u);
   EXPECT_EQ(d.worst, 3u);
   EXPECT_DOUBLE_EQ(d.largest, 0.5);
@@ -73,8 +73,8 @@ TEST(Comparison, AValuePassesWithinTheLargerOfItsRelativeAndAbsoluteTolerances)
   EXPECT_DOUBLE_EQ(d.rms(), std::sqrt(d.sumOfSquares / 4));
   EXPECT_DOUBLE_EQ(d.l2(), std::sqrt(d.sumOfSquares));
   // Tuples pass only if every component does.
-  const ArrayDifference byTuple = compareArrays(reals(ValueType::Float64, { 0, 1, 1, 100 }, 2),
-    reals(ValueType::Float64, { 1e-7, 1.0005, 1.01, 100.5 }, 2), rule);
+  const ArrayDifference byTuple = compareArrays(
+    reals(ValueType::Float64, { 0, 1, 1, 100 }, 2), reals(ValueType::Float64, { 1e-7, 1.0005, 1.01, 100.5 }, 2), rule);
   EXPECT_EQ(byTuple.tuplePasses, (std::vector<unsigned char>{ 1, 0 }));
 }
 
@@ -100,21 +100,25 @@ TEST(Comparison, UlpDistanceCountsTheNumbersOfTheTypeBetween)
   const float tiny = std::numeric_limits<float>::denorm_min();
   EXPECT_EQ(ulpDistance(-tiny, tiny, ValueType::Float32), 2);
   EXPECT_EQ(ulpDistance(std::nan(""), 1.0, ValueType::Float64), 1ll << 62);
-  EXPECT_EQ(ulpDistance(-std::numeric_limits<double>::max(), std::numeric_limits<double>::max(), ValueType::Float64), 1ll << 62);
+  EXPECT_EQ(ulpDistance(-std::numeric_limits<double>::max(), std::numeric_limits<double>::max(), ValueType::Float64),
+    1ll << 62);
 
   ValueRule rule;
   rule.ulps = 2;
   const float x = 3.0f;
   const ArrayDifference d = compareArrays(reals(ValueType::Float32, { x, x, x }),
-    reals(ValueType::Float32, { std::nextafter(x, 4.0f), std::nextafter(std::nextafter(x, 4.0f), 4.0f),
-      std::nextafter(std::nextafter(std::nextafter(x, 4.0f), 4.0f), 4.0f) }), rule);
+    reals(ValueType::Float32,
+      { std::nextafter(x, 4.0f), std::nextafter(std::nextafter(x, 4.0f), 4.0f),
+        std::nextafter(std::nextafter(std::nextafter(x, 4.0f), 4.0f), 4.0f) }),
+    rule);
   EXPECT_EQ(d.failing, 1u);
   EXPECT_EQ(d.worst, 2u);
 }
 
 TEST(Comparison, IntegersMustBeEqualAndTheirDifferingBitsAreCounted)
 {
-  const ArrayDifference d = compareArrays(integers({ 0, 64, 5, 7, 1ll << 40 }), integers({ 64, 64, 1, 7, 0 }), ValueRule{});
+  const ArrayDifference d =
+    compareArrays(integers({ 0, 64, 5, 7, 1ll << 40 }), integers({ 64, 64, 1, 7, 0 }), ValueRule{});
   EXPECT_EQ(d.failing, 3u);
   EXPECT_EQ(d.bitCounts[6], 1u);  // 0 against 64
   EXPECT_EQ(d.bitCounts[2], 1u);  // 5 against 1
@@ -123,7 +127,8 @@ TEST(Comparison, IntegersMustBeEqualAndTheirDifferingBitsAreCounted)
   EXPECT_EQ(d.worst, 4u);
   EXPECT_EQ(d.largest, std::ldexp(1.0, 40));
   // Values of another sign differ in the top bit too.
-  const ArrayDifference signs = compareArrays(integers({ -1, 0 }), integers({ 1, std::numeric_limits<std::int64_t>::min() }), ValueRule{});
+  const ArrayDifference signs =
+    compareArrays(integers({ -1, 0 }), integers({ 1, std::numeric_limits<std::int64_t>::min() }), ValueRule{});
   EXPECT_EQ(signs.failing, 2u);
   EXPECT_EQ(signs.bitCounts[63], 2u);
   EXPECT_EQ(signs.bitCounts[1], 1u);
@@ -244,7 +249,8 @@ TEST(ToleranceRules, ARuleIsAPatternAColonAndAValue)
     "'1e-3*max' is not a tolerance: write a number >= 0 (1e-6), or one times the array's range (1e-3*range)");
   EXPECT_EQ(messageOf([] { parseToleranceValue("*range"); }),
     "'*range' is not a tolerance: write a number >= 0 (1e-6), or one times the array's range (1e-3*range)");
-  EXPECT_EQ(messageOf([] { parseUlps("2.5"); }), "'2.5' is not a count of units in the last place: write a whole number >= 0");
+  EXPECT_EQ(
+    messageOf([] { parseUlps("2.5"); }), "'2.5' is not a count of units in the last place: write a whole number >= 0");
 }
 
 TEST(NoiseTest, TheNormalTailAndItsQuantileAgreeWithPublishedValues)
@@ -388,8 +394,8 @@ TEST(NoiseTest, TwoHonestRunsPassInAtLeast198Of200Trials)
     EXPECT_EQ(d.noise[0].allowed, 31u);
   }
   EXPECT_GE(passed, 198);
-  std::cout << "honest runs: " << passed << " of " << trials << " trials pass; " << fewest << " to " << most
-            << " of " << homerVertices << " values outside 3 standard errors (16.2 expected, at most 31 allowed)\n";
+  std::cout << "honest runs: " << passed << " of " << trials << " trials pass; " << fewest << " to " << most << " of "
+            << homerVertices << " values outside 3 standard errors (16.2 expected, at most 31 allowed)\n";
 }
 
 TEST(NoiseTest, FivePercentOfTheValuesShiftedByFourStandardErrorsFailEveryTrial)

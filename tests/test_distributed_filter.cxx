@@ -1,9 +1,9 @@
 // Area lights and environment maps through vtkLocalReflectanceFilter: the arrays they add,
 // their agreement with the local lights where the two must agree, threads, and errors.
 #include "ArrayComparison.h"
-#include "FilterRun.h"
 #include "EnvironmentLightEstimator.h"
 #include "EnvironmentMap.h"
+#include "FilterRun.h"
 #include "ShadingFlags.h"
 #include "TestMeshes.h"
 #include "VtkErrorCapture.h"
@@ -149,8 +149,10 @@ TEST(DistributedLightsFilter, OneAndTwoThreadsGiveTheSameBits)
   environment.estimator = EnvironmentEstimator::MonteCarlo;
   scene.lights = { { "disk", disk }, { "sky", environment } };
   vtkSmartPointer<vtkPolyData> one, two;
-  vtkSMPTools::LocalScope(vtkSMPTools::Config{ 1 }, [&] { one = shadeWithFilter(sphere, scene, { "all" }, vtkAlgorithm::SINGLE_PRECISION); });
-  vtkSMPTools::LocalScope(vtkSMPTools::Config{ 2 }, [&] { two = shadeWithFilter(sphere, scene, { "all" }, vtkAlgorithm::SINGLE_PRECISION); });
+  vtkSMPTools::LocalScope(
+    vtkSMPTools::Config{ 1 }, [&] { one = shadeWithFilter(sphere, scene, { "all" }, vtkAlgorithm::SINGLE_PRECISION); });
+  vtkSMPTools::LocalScope(
+    vtkSMPTools::Config{ 2 }, [&] { two = shadeWithFilter(sphere, scene, { "all" }, vtkAlgorithm::SINGLE_PRECISION); });
   shadelab::testing::expectSamePointArrays(one, two);
 }
 
@@ -180,7 +182,8 @@ TEST(DistributedLightsFilter, RefusedWhereTheyCannotApply)
   lecture.lights = { { "panel", panel } };
   // Its specular integral is sampled, 64 samples: a tolerance needs them drawn to its share.
   EXPECT_EQ(errorOf(lecture, 1e-3),
-    "scene /lights/0/samples: a tolerance cannot bound light 'panel' of type \"sphere\": its Monte Carlo estimates from 64 samples have no "
+    "scene /lights/0/samples: a tolerance cannot bound light 'panel' of type \"sphere\": its Monte Carlo estimates "
+    "from 64 samples have no "
     "error bound before they are drawn: give it \"samples\": \"auto\", which draws each vertex's samples until "
     "their standard error meets a share of the tolerance; or shade without a tolerance");
   EXPECT_EQ(errorOf(lecture, 0), "");
@@ -195,7 +198,8 @@ TEST(DistributedLightsFilter, RefusedWhereTheyCannotApply)
   EnvironmentLight sky;
   sky.map = map;
   lecture.lights = { { "sky", sky } };
-  EXPECT_EQ(errorOf(lecture, 0), "scene /lights/0/file: the map must be twice as wide as high, with width x height texels");
+  EXPECT_EQ(
+    errorOf(lecture, 0), "scene /lights/0/file: the map must be twice as wide as high, with width x height texels");
   map->width = 4;
   map->radiance.assign(8, Rgb(1.0));
   map->radiance[5].y = std::nan("");
@@ -204,8 +208,9 @@ TEST(DistributedLightsFilter, RefusedWhereTheyCannotApply)
   sky.estimator = EnvironmentEstimator::BruteForce;
   sky.bruteForceWidth = 3;
   lecture.lights = { { "sky", sky } };
-  EXPECT_EQ(errorOf(lecture, 0), "scene /lights/0/brute_force_width: must be an even number that divides the map's "
-                                 "width (4), or at least that width");
+  EXPECT_EQ(errorOf(lecture, 0),
+    "scene /lights/0/brute_force_width: must be an even number that divides the map's "
+    "width (4), or at least that width");
   sky.bruteForceWidth = 2;
   lecture.lights = { { "sky", sky } };
   EXPECT_EQ(errorOf(lecture, 0), "");

@@ -118,7 +118,8 @@ TEST(EnvironmentEstimators, SingleBrightTexelIsADistantLight)
   EnvironmentLight bruteForce = environmentLight(map, EnvironmentEstimator::BruteForce);
   bruteForce.bruteForceWidth = map->width; // every texel, no downsampling
   const EnvironmentLightEstimator exact(bruteForce, 0, blinnPhong30);
-  const EnvironmentLightEstimator sampled(environmentLight(map, EnvironmentEstimator::MonteCarlo, 256), 0, blinnPhong30);
+  const EnvironmentLightEstimator sampled(
+    environmentLight(map, EnvironmentEstimator::MonteCarlo, 256), 0, blinnPhong30);
   // A texel spans at most this angle from its centre: 2 pi / 64 across the widest row.
   const double texelAngle = 2 * pi / map->width;
   int lit = 0;
@@ -397,8 +398,8 @@ TEST(AreaEstimators, PointApproximationBeyondFiveTimesTheSize)
   sphereAsPoint.estimator = AreaEstimator::Point;
   const SurfacePoint tilted = surfacePoint({ 0, 0, 0 }, { 0.4, 1, 0.2 });
   const double sphereExact = AreaLightEstimator(sphere, 0, noSpecular).estimate(tilted).irradiance.x;
-  EXPECT_NEAR(AreaLightEstimator(sphereAsPoint, 0, noSpecular).estimate(tilted).irradiance.x, sphereExact,
-    1e-12 * sphereExact);
+  EXPECT_NEAR(
+    AreaLightEstimator(sphereAsPoint, 0, noSpecular).estimate(tilted).irradiance.x, sphereExact, 1e-12 * sphereExact);
 
   // Near the horizon the point lights all or nothing where the sphere is partly seen: over
   // every normal, the largest error relative to the sphere's peak pi L (r/d)^2: measured 0.043,
@@ -415,7 +416,8 @@ TEST(AreaEstimators, PointApproximationBeyondFiveTimesTheSize)
     for (const glm::dvec3& n : spreadDirections(20000))
     {
       const SurfacePoint receiver = surfacePoint({ 0, 0, 0 }, n);
-      largest = std::max(largest, std::abs(point.estimate(receiver).irradiance.x - exact.estimate(receiver).irradiance.x));
+      largest =
+        std::max(largest, std::abs(point.estimate(receiver).irradiance.x - exact.estimate(receiver).irradiance.x));
     }
     std::cout << "sphere at " << radii << " radii: the point errs by at most " << largest / peak << " of the peak\n";
     EXPECT_LE(largest / peak, 0.25 / radii) << radii;
@@ -476,7 +478,8 @@ TEST(AreaEstimators, MonteCarloErrorFallsAsOneOverRootN)
     std::vector<double> rmsErrors;
     for (const double count : counts)
     {
-      const AreaLightEstimator monteCarlo(squareLight(AreaEstimator::MonteCarlo, int(count), stratified), 0, noSpecular);
+      const AreaLightEstimator monteCarlo(
+        squareLight(AreaEstimator::MonteCarlo, int(count), stratified), 0, noSpecular);
       double sum = 0;
       for (const SurfacePoint& point : receivers)
       {

@@ -12,13 +12,13 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <numeric>
 #include <chrono>
 #include <cmath>
 #include <fstream>
 #include <functional>
 #include <iostream>
 #include <limits>
+#include <numeric>
 #include <random>
 #include <stdexcept>
 #include <string>
@@ -187,8 +187,7 @@ TEST(Downsampled, KeepsTheIntegralOfRadiance)
 TEST(Downsampled, ConstantMapStaysConstant)
 {
   const Rgb value(0.25, 3.0, 1e4);
-  const EnvironmentMap coarse =
-    downsampled(mapOf(128, 64, [&](const glm::dvec3&) { return value; }), 8);
+  const EnvironmentMap coarse = downsampled(mapOf(128, 64, [&](const glm::dvec3&) { return value; }), 8);
   for (const Rgb& texel : coarse.radiance)
   {
     // To the rounding of sums of 16 x 16 products.
@@ -209,11 +208,9 @@ TEST(Downsampled, RefusesWidthsThatAreNotEvenDivisors)
   }
   catch (const std::invalid_argument& error)
   {
-    EXPECT_STREQ(error.what(),
-      "downsampled: width 6 must be an even divisor of the map's width 64 and at least 2");
+    EXPECT_STREQ(error.what(), "downsampled: width 6 must be an even divisor of the map's width 64 and at least 2");
   }
-  EXPECT_THROW(downsampled(mapOf(64, 64, [](const glm::dvec3&) { return Rgb(1.0); }), 32),
-    std::invalid_argument);
+  EXPECT_THROW(downsampled(mapOf(64, 64, [](const glm::dvec3&) { return Rgb(1.0); }), 32), std::invalid_argument);
 }
 
 // --- Reading files --------------------------------------------------------------------------
@@ -223,8 +220,8 @@ std::string tempPath(const std::string& name)
   return ::testing::TempDir() + "shadelab_envmap_" + name;
 }
 
-void writeImage(const std::string& path, int width, int height, int channels,
-  const std::vector<float>& pixels, OIIO::TypeDesc storedAs)
+void writeImage(const std::string& path, int width, int height, int channels, const std::vector<float>& pixels,
+  OIIO::TypeDesc storedAs)
 {
   const auto output = OIIO::ImageOutput::create(path);
   ASSERT_TRUE(output) << OIIO::geterror();
@@ -343,8 +340,10 @@ TEST(ReadEnvironmentMap, HeaderDeclaresMoreThanTheFileCanHold)
   whole.read(start.data(), static_cast<std::streamsize>(start.size()));
   const std::string path = tempPath("cut_short.hdr");
   std::ofstream(path, std::ios::binary).write(start.data(), whole.gcount());
-  EXPECT_EQ(readError(path), path + ": the header declares 1024x512 texels (0.00629146 GB as floats), more than a "
-    "file of 2000 bytes can hold: it is damaged, or too large a map");
+  EXPECT_EQ(readError(path),
+    path +
+      ": the header declares 1024x512 texels (0.00629146 GB as floats), more than a "
+      "file of 2000 bytes can hold: it is damaged, or too large a map");
 }
 
 TEST(ReadEnvironmentMap, TruncatedFile)
@@ -379,8 +378,7 @@ TEST(ReadEnvironmentMap, NotTwiceAsWideAsHigh)
 {
   const std::string path = tempPath("square.exr");
   writeImage(path, 6, 4, 3, std::vector<float>(6 * 4 * 3, 1.0f), OIIO::TypeDesc::HALF);
-  EXPECT_EQ(readError(path),
-    path + ": an equirectangular map must be twice as wide as it is high; this one is 6x4");
+  EXPECT_EQ(readError(path), path + ": an equirectangular map must be twice as wide as it is high; this one is 6x4");
 }
 
 TEST(ReadEnvironmentMap, NegativeOrNonFiniteTexel)
@@ -389,15 +387,13 @@ TEST(ReadEnvironmentMap, NegativeOrNonFiniteTexel)
   std::vector<float> pixels(8 * 4 * 3, 1.0f);
   pixels[3 * (2 * 8 + 5) + 1] = -1.5f; // column 5, row 2, green
   writeImage(path, 8, 4, 3, pixels, OIIO::TypeDesc::FLOAT);
-  EXPECT_EQ(readError(path),
-    path + ": texel (column 5, row 2) is not a finite non-negative radiance (1, -1.5, 1)");
+  EXPECT_EQ(readError(path), path + ": texel (column 5, row 2) is not a finite non-negative radiance (1, -1.5, 1)");
 
   // The first bad texel in row-major order is the one named.
   pixels[3 * (1 * 8 + 3) + 2] = std::numeric_limits<float>::quiet_NaN(); // column 3, row 1
   pixels[3 * (3 * 8 + 0) + 0] = std::numeric_limits<float>::infinity();
   writeImage(path, 8, 4, 3, pixels, OIIO::TypeDesc::FLOAT);
-  EXPECT_EQ(readError(path),
-    path + ": texel (column 3, row 1) is not a finite non-negative radiance (1, 1, nan)");
+  EXPECT_EQ(readError(path), path + ": texel (column 3, row 1) is not a finite non-negative radiance (1, 1, nan)");
 }
 
 Rgb meanRadiance(const EnvironmentMap& map)
@@ -439,7 +435,7 @@ TEST(SphericalHarmonics, ConstantsAgreeWithThePublishedTable)
   EXPECT_DOUBLE_EQ(atZ[2], std::sqrt(3.0 / (4.0 * pi)));
   EXPECT_DOUBLE_EQ(atZ[6], 2.0 * std::sqrt(5.0 / (16.0 * pi)));
   EXPECT_NEAR(atZ[0], 0.282095, tolerance);
-  EXPECT_NEAR(atZ[2], 0.488603, tolerance); // Y10 = 0.488603 z
+  EXPECT_NEAR(atZ[2], 0.488603, tolerance);         // Y10 = 0.488603 z
   EXPECT_NEAR(atZ[6], 2 * 0.315392, 2 * tolerance); // Y20 = 0.315392 (3 z^2 - 1)
   const std::array<double, 9> atX = shBasis9({ 1, 0, 0 });
   EXPECT_NEAR(atX[8], 0.546274, tolerance); // Y22 = 0.546274 (x^2 - y^2)
@@ -451,24 +447,24 @@ TEST(SphericalHarmonics, ConstantsAgreeWithThePublishedTable)
   // Eq. 13 with one unit coefficient at a time picks out c1..c5. R&H computed them from the
   // rounded basis constants, so their c2 and c3 are off the closed forms (0.5116634,
   // 0.7431239) by 6e-7 and 1.1e-6.
-  const auto irradianceOfUnit = [](int k, const glm::dvec3& n) {
+  const auto irradianceOfUnit = [](int k, const glm::dvec3& n)
+  {
     ShCoefficients9 unit;
     unit.fill(Rgb(0.0));
     unit[k] = Rgb(1.0);
     return irradianceFromSh9(unit, n).r;
   };
   const double c5 = -irradianceOfUnit(6, { 1, 0, 0 });
-  EXPECT_NEAR(irradianceOfUnit(8, { 1, 0, 0 }), 0.429043, tolerance); // c1
-  EXPECT_NEAR(irradianceOfUnit(3, { 1, 0, 0 }) / 2, 0.511664, 1.5e-6); // c2
+  EXPECT_NEAR(irradianceOfUnit(8, { 1, 0, 0 }), 0.429043, tolerance);   // c1
+  EXPECT_NEAR(irradianceOfUnit(3, { 1, 0, 0 }) / 2, 0.511664, 1.5e-6);  // c2
   EXPECT_NEAR(irradianceOfUnit(6, { 0, 0, 1 }) + c5, 0.743125, 1.5e-6); // c3
-  EXPECT_NEAR(irradianceOfUnit(0, { 0, 1, 0 }), 0.886227, tolerance); // c4
+  EXPECT_NEAR(irradianceOfUnit(0, { 0, 1, 0 }), 0.886227, tolerance);   // c4
   EXPECT_NEAR(c5, 0.247708, tolerance);
 }
 
 std::vector<glm::dvec3> testNormals()
 {
-  std::vector<glm::dvec3> normals = { { 1, 0, 0 }, { -1, 0, 0 }, { 0, 1, 0 }, { 0, -1, 0 },
-    { 0, 0, 1 }, { 0, 0, -1 } };
+  std::vector<glm::dvec3> normals = { { 1, 0, 0 }, { -1, 0, 0 }, { 0, 1, 0 }, { 0, -1, 0 }, { 0, 0, 1 }, { 0, 0, -1 } };
   std::mt19937_64 random(7);
   for (int i = 0; i < 20; ++i)
   {
@@ -486,15 +482,13 @@ TEST(SphericalHarmonics, ConstantMapGivesPiL)
   // H = 1024 (2e-6 for H = 512).
   const int height = 1024;
   const Rgb value(0.5, 1.0, 2.0);
-  const ShCoefficients9 sh =
-    projectRadiance(mapOf(2 * height, height, [&](const glm::dvec3&) { return value; }));
+  const ShCoefficients9 sh = projectRadiance(mapOf(2 * height, height, [&](const glm::dvec3&) { return value; }));
   const double h = pi / height;
   for (const glm::dvec3& n : testNormals())
   {
     const Rgb irradiance = irradianceFromSh9(sh, n);
     EXPECT_LT(relativeError(irradiance, pi * value), 1e-6) << n.x << " " << n.y << " " << n.z;
-    EXPECT_NEAR(irradiance.g / (pi * value.g) - 1.0, (30.0 * n.y * n.y - 10.0) * h * h / 384.0,
-      1e-10);
+    EXPECT_NEAR(irradiance.g / (pi * value.g) - 1.0, (30.0 * n.y * n.y - 10.0) * h * h / 384.0, 1e-10);
   }
 }
 
@@ -508,16 +502,13 @@ TEST(SphericalHarmonics, LinearRadianceGivesExactIrradiance)
   const glm::dvec3 bRed(1.0, -0.5, 0.7);
   const glm::dvec3 bGreen(0.2, 1.5, -0.3);
   const glm::dvec3 bBlue(-1.0, 0.4, 2.0);
-  const auto radiance = [&](const glm::dvec3& w) {
-    return a + Rgb(glm::dot(bRed, w), glm::dot(bGreen, w), glm::dot(bBlue, w));
-  };
+  const auto radiance = [&](const glm::dvec3& w)
+  { return a + Rgb(glm::dot(bRed, w), glm::dot(bGreen, w), glm::dot(bBlue, w)); };
   const ShCoefficients9 sh = projectRadiance(mapOf(1024, 512, radiance));
   for (const glm::dvec3& n : testNormals())
   {
-    const Rgb exact =
-      pi * a + (2.0 * pi / 3.0) * Rgb(glm::dot(bRed, n), glm::dot(bGreen, n), glm::dot(bBlue, n));
-    EXPECT_LT(relativeError(irradianceFromSh9(sh, n), exact), 1e-5)
-      << n.x << " " << n.y << " " << n.z;
+    const Rgb exact = pi * a + (2.0 * pi / 3.0) * Rgb(glm::dot(bRed, n), glm::dot(bGreen, n), glm::dot(bBlue, n));
+    EXPECT_LT(relativeError(irradianceFromSh9(sh, n), exact), 1e-5) << n.x << " " << n.y << " " << n.z;
   }
 }
 
@@ -563,13 +554,11 @@ TEST(SphericalHarmonics, ProjectionTimeOf1024x512)
   {
     const auto start = std::chrono::steady_clock::now();
     sh = projectRadiance(map);
-    const std::chrono::duration<double, std::milli> elapsed =
-      std::chrono::steady_clock::now() - start;
+    const std::chrono::duration<double, std::milli> elapsed = std::chrono::steady_clock::now() - start;
     fastest = std::min(fastest, elapsed.count());
     slowest = std::max(slowest, elapsed.count());
   }
-  std::cout << "projectRadiance of 1024x512: " << fastest << " ms fastest, " << slowest
-            << " ms slowest of 5 runs\n";
+  std::cout << "projectRadiance of 1024x512: " << fastest << " ms fastest, " << slowest << " ms slowest of 5 runs\n";
   // Band 0 is the mean radiance over the sphere times 4 pi Y00.
   EXPECT_LT(relativeError(sh[0], radiantIntegral(map) * 0.5 / std::sqrt(pi)), 1e-12);
 }
@@ -703,7 +692,8 @@ TEST(ShRotation, TurningAMapsNineCoefficientsIsTurningItsIrradiance)
 {
   // The SH estimator turns its irradiance polynomial (composedWith); turning the coefficients
   // instead gives the same irradiance: a map of a bright patch, turned 70 degrees about +y.
-  const EnvironmentMap map = mapOf(128, 64, [](const glm::dvec3& w) { return Rgb(w.x > 0.6 ? 5.0 : 0.2, 1.0, w.y > 0 ? 2.0 : 0.5); });
+  const EnvironmentMap map =
+    mapOf(128, 64, [](const glm::dvec3& w) { return Rgb(w.x > 0.6 ? 5.0 : 0.2, 1.0, w.y > 0 ? 2.0 : 0.5); });
   const ShCoefficients9 nine = projectRadiance(map);
   const double angle = glm::radians(70.0);
   const glm::dmat3 r = glm::dmat3(glm::rotate(glm::dmat4(1.0), angle, glm::dvec3(0, 1, 0)));
@@ -756,10 +746,12 @@ BinAndOffset invertedAt(const double* cdf, int bins, double u)
 EnvironmentMap smoothMap(int width)
 {
   const glm::dvec3 d = unitVector(glm::dvec3(0.6, 0.5, -0.4));
-  return mapOf(width, width / 2, [&](const glm::dvec3& w) {
-    const double lobe = std::exp(8.0 * (glm::dot(w, d) - 1.0));
-    return Rgb(0.2, 0.3, 0.5) + Rgb(20.0, 15.0, 8.0) * lobe;
-  });
+  return mapOf(width, width / 2,
+    [&](const glm::dvec3& w)
+    {
+      const double lobe = std::exp(8.0 * (glm::dot(w, d) - 1.0));
+      return Rgb(0.2, 0.3, 0.5) + Rgb(20.0, 15.0, 8.0) * lobe;
+    });
 }
 
 TEST(EnvironmentSampler, PdfIntegratesToOne)
@@ -767,8 +759,7 @@ TEST(EnvironmentSampler, PdfIntegratesToOne)
   // Not exactly 1: the density per solid angle at a texel centre is uniform over the texel
   // only to first order, and the sum is 2 H sin(pi / 2H) / pi = 1 - (pi / 2H)^2 / 6, 1 - 1e-4
   // for H = 64.
-  for (const EnvironmentMap& map :
-    { smoothMap(128), downsampled(readEnvironmentMap(venicePath + ".hdr"), 256) })
+  for (const EnvironmentMap& map : { smoothMap(128), downsampled(readEnvironmentMap(venicePath + ".hdr"), 256) })
   {
     const EnvironmentSampler sampler(map);
     double sum = 0.0;
@@ -776,8 +767,7 @@ TEST(EnvironmentSampler, PdfIntegratesToOne)
     {
       for (int column = 0; column < map.width; ++column)
       {
-        sum += sampler.pdf(texelCentreDirection(map, column, row)) *
-          texelSolidAngle(row, map.width, map.height);
+        sum += sampler.pdf(texelCentreDirection(map, column, row)) * texelSolidAngle(row, map.width, map.height);
       }
     }
     EXPECT_NEAR(sum, 1.0, 1e-3) << map.width;
@@ -797,8 +787,7 @@ TEST(EnvironmentSampler, PdfOfASampleIsTheSamplesPdf)
     ASSERT_GT(s.pdf, 0.0);
     EXPECT_NEAR(sampler.pdf(s.direction), s.pdf, 1e-9 * s.pdf);
     const glm::dvec2 uv = uvOfDirection(s.direction);
-    EXPECT_EQ(s.radiance, map.texel(static_cast<int>(uv.x * map.width),
-                            static_cast<int>(uv.y * map.height)));
+    EXPECT_EQ(s.radiance, map.texel(static_cast<int>(uv.x * map.width), static_cast<int>(uv.y * map.height)));
     EXPECT_GT(luminance(s.radiance), 0.0);
   }
 }
@@ -896,8 +885,9 @@ TEST(EnvironmentSampler, DirectionsDrawnTogetherAreTheDirectionsDrawnOneByOne)
   // on a map with light, with black texels, and on a black map (no tables).
   std::mt19937_64 random(12);
   std::uniform_real_distribution<double> uniform;
-  for (const EnvironmentMap& map : { mapOf(64, 32, [](const glm::dvec3& w) { return Rgb(w.x > 0.5 ? 0.0 : 1.0 + w.y, 0.5, 2.0); }),
-         mapOf(16, 8, [](const glm::dvec3&) { return Rgb(0.0); }) })
+  for (const EnvironmentMap& map :
+    { mapOf(64, 32, [](const glm::dvec3& w) { return Rgb(w.x > 0.5 ? 0.0 : 1.0 + w.y, 0.5, 2.0); }),
+      mapOf(16, 8, [](const glm::dvec3&) { return Rgb(0.0); }) })
   {
     const EnvironmentSampler sampler(map);
     for (int count : { 0, 1, 16, 37 })

@@ -104,7 +104,8 @@ std::vector<SurfacePoint> floorPoints()
   return points;
 }
 
-DistributedTerms shadowed(const OccluderMesh& occluders, const EnvironmentLightEstimator& light, const SurfacePoint& point)
+DistributedTerms shadowed(
+  const OccluderMesh& occluders, const EnvironmentLightEstimator& light, const SurfacePoint& point)
 {
   std::vector<std::uint64_t> words(std::size_t(hiddenSampleWords(light.shadowRayCount())));
   hiddenSamples(occluders, light, point, -1, words.data());
@@ -152,7 +153,8 @@ TEST(EnvironmentShadows, AConstantMapOverAnOpenBoxGivesTheOpeningsFormFactorOnTh
       // Below the worst an estimate of a visible fraction can err with 256 independent
       // cosine-weighted rays, pi L sqrt(1/4 / 256) = 0.196 (the floor's E runs from 0.9 to 2.6):
       // measured 0.064 (cosine), 0.096 (mis) and 0.136 to 0.147 (luminance, here uniform).
-      EXPECT_LT(agreement.rmsError, samplePi * radiance / (2 * std::sqrt(256.0))) << int(estimator) << " " << int(directions);
+      EXPECT_LT(agreement.rmsError, samplePi * radiance / (2 * std::sqrt(256.0)))
+        << int(estimator) << " " << int(directions);
     }
   }
 }
@@ -165,7 +167,8 @@ TEST(EnvironmentShadows, TheErrorFallsWithTheSamples)
   {
     const auto map = constantMap(64);
     const double few = againstTheClosedForm(mapLight(map, EnvironmentEstimator::MonteCarlo, directions, 64)).rmsError;
-    const double many = againstTheClosedForm(mapLight(map, EnvironmentEstimator::MonteCarlo, directions, 1024)).rmsError;
+    const double many =
+      againstTheClosedForm(mapLight(map, EnvironmentEstimator::MonteCarlo, directions, 1024)).rmsError;
     EXPECT_GT(few / many, 3.5) << int(directions);
   }
 }
@@ -190,7 +193,8 @@ TEST(EnvironmentShadows, AnOpenSkyIsTheUnshadowedValueAndAClosedBoxIsDark)
       EXPECT_EQ(seen.visibility, 1.0);
       // With shadows S comes from the light's samples alone (no lobe strategy): the same
       // integral, within the two estimates' errors.
-      EXPECT_NEAR(seen.specular.x, open.specular.x, 3 * std::hypot(seen.specularStdError.x, open.specularStdError.x) + 1e-12);
+      EXPECT_NEAR(
+        seen.specular.x, open.specular.x, 3 * std::hypot(seen.specularStdError.x, open.specularStdError.x) + 1e-12);
       const DistributedTerms dark = shadowed(occluders, light, inside);
       EXPECT_EQ(dark.irradiance, Rgb(0.0));
       EXPECT_EQ(dark.specular, Rgb(0.0));
@@ -240,8 +244,8 @@ TEST(EnvironmentShadows, ShadowedTransferIsMonteCarloWithinTheBandLimitAndThreeS
   // coefficients, integrated) plus three standard errors of the difference. A sharp sun is what
   // a few bands hold worst: the bound is loose, and the measured differences are charted
   // by order in charts 7b and 8b (shadelab-bench --charts DIR --study 7b).
-  EnvironmentLight light = mapLight(std::make_shared<const EnvironmentMap>(readEnvironmentMap(
-                                      SHADELAB_SOURCE_DIR "/data/envmaps/venice_sunset_1k.hdr")),
+  EnvironmentLight light = mapLight(std::make_shared<const EnvironmentMap>(
+                                      readEnvironmentMap(SHADELAB_SOURCE_DIR "/data/envmaps/venice_sunset_1k.hdr")),
     EnvironmentEstimator::MonteCarlo, EnvironmentDirections::Mis, 1024);
   const Quads walls = box(false);
   const OccluderMesh occluders = walls.occluders();
@@ -292,7 +296,8 @@ TEST(EnvironmentShadows, ShadowedTransferOfAnOpenSkyIsTheUnshadowedOneAndOfAClos
   const SurfacePoint inside{ { 0.2, 0.0, 0.1 }, { 0, 1, 0 }, { 0, 1, 0 }, 6 };
   for (int order = 2; order <= largestShOrder; ++order)
   {
-    EnvironmentLight light = mapLight(map, EnvironmentEstimator::PrecomputedTransfer, EnvironmentDirections::Cosine, 64);
+    EnvironmentLight light =
+      mapLight(map, EnvironmentEstimator::PrecomputedTransfer, EnvironmentDirections::Cosine, 64);
     light.shOrder = order;
     const EnvironmentLightEstimator estimator(light, 3, LobeModel{ SpecularModel::BlinnPhong, 20 });
     const DistributedTerms open = estimator.estimate(above), seen = shadowed(occluders, estimator, above);

@@ -27,7 +27,7 @@ Scene oneLightScene(LightSource source, SpecularModel specular, double shininess
   return scene;
 }
 
-template <typename T>
+template<typename T>
 void expectAllFinite(const KernelHarness<T>& run)
 {
   for (const auto& [name, values] : run.arrays)
@@ -39,7 +39,7 @@ void expectAllFinite(const KernelHarness<T>& run)
   }
 }
 
-template <typename T>
+template<typename T>
 class FailurePoints : public ::testing::Test
 {
 };
@@ -51,10 +51,9 @@ TYPED_TEST(FailurePoints, ShininessZeroGivesConstantSpecularOnLitVertices)
   using T = TypeParam;
   // s = normalize(0, 1, 0.2), v = +z. Vertex 0 (n = +y) is lit with r.v < 0, vertex 1
   // (n = +z) is lit with r.v > 0, vertex 2 (n = -y) is unlit.
-  const Scene scene = oneLightScene(DistantLight{ { 0, -1, -0.2 }, Rgb(1.0), 2.0, false },
-    SpecularModel::Phong, 0.0);
-  const KernelHarness<T> run(scene, { Vec3<T>(0), Vec3<T>(0), Vec3<T>(0) },
-    { Vec3<T>(0, 1, 0), Vec3<T>(0, 0, 1), Vec3<T>(0, -1, 0) });
+  const Scene scene = oneLightScene(DistantLight{ { 0, -1, -0.2 }, Rgb(1.0), 2.0, false }, SpecularModel::Phong, 0.0);
+  const KernelHarness<T> run(
+    scene, { Vec3<T>(0), Vec3<T>(0), Vec3<T>(0) }, { Vec3<T>(0, 1, 0), Vec3<T>(0, 0, 1), Vec3<T>(0, -1, 0) });
   expectAllFinite(run);
   EXPECT_GT(run.value("lamp_cos_incidence", 0), T(0));
   EXPECT_LT(run.value("lamp_r_dot_v", 0), T(0));
@@ -68,24 +67,23 @@ TYPED_TEST(FailurePoints, ShininessZeroGivesConstantSpecularOnLitVertices)
 TYPED_TEST(FailurePoints, ShininessTenThousandUnderflowsWithoutNaN)
 {
   using T = TypeParam;
-  const Scene scene = oneLightScene(DistantLight{ { 0, 0, -1 }, Rgb(1.0), 1.0, false },
-    SpecularModel::BlinnPhong, 10000.0);
+  const Scene scene =
+    oneLightScene(DistantLight{ { 0, 0, -1 }, Rgb(1.0), 1.0, false }, SpecularModel::BlinnPhong, 10000.0);
   const double tilt = 0.01; // n.h = cos(0.01 rad)
-  const KernelHarness<T> run(scene, { Vec3<T>(0), Vec3<T>(0) },
-    { Vec3<T>(0, 0, 1), Vec3<T>(T(std::sin(tilt)), 0, T(std::cos(tilt))) });
+  const KernelHarness<T> run(
+    scene, { Vec3<T>(0), Vec3<T>(0) }, { Vec3<T>(0, 0, 1), Vec3<T>(T(std::sin(tilt)), 0, T(std::cos(tilt))) });
   expectAllFinite(run);
   EXPECT_EQ(run.value("lamp_specular", 0), T(0.25));
   const double expected = 0.25 * std::pow(std::cos(tilt), 10000.0); // about 0.152
   // float32: within ks Ls eta 2^-23 (docs/guide/accuracy.md, "Precision"); measured 1.3e-5.
-  EXPECT_NEAR(run.value("lamp_specular", 1), expected,
-    (std::is_same_v<T, float> ? 0.25 * 10000 * std::ldexp(1.0, -23) : 1e-12));
+  EXPECT_NEAR(
+    run.value("lamp_specular", 1), expected, (std::is_same_v<T, float> ? 0.25 * 10000 * std::ldexp(1.0, -23) : 1e-12));
 }
 
 TYPED_TEST(FailurePoints, GrazingLightExactlyOnTheHorizon)
 {
   using T = TypeParam;
-  const Scene scene = oneLightScene(DistantLight{ { -1, 0, 0 }, Rgb(1.0), 1.0, false },
-    SpecularModel::Phong, 10.0);
+  const Scene scene = oneLightScene(DistantLight{ { -1, 0, 0 }, Rgb(1.0), 1.0, false }, SpecularModel::Phong, 10.0);
   const KernelHarness<T> run(scene, { Vec3<T>(0) }, { Vec3<T>(0, 0, 1) });
   expectAllFinite(run);
   EXPECT_EQ(run.value("lamp_cos_incidence", 0), T(0));
@@ -99,8 +97,7 @@ TYPED_TEST(FailurePoints, LightOppositeTheViewerLeavesHalfVectorUndefined)
 {
   using T = TypeParam;
   // s = -v: the light shines from behind the surface toward the viewer.
-  const Scene scene = oneLightScene(DistantLight{ { 0, 0, 1 }, Rgb(1.0), 1.0, false },
-    SpecularModel::BlinnPhong, 10.0);
+  const Scene scene = oneLightScene(DistantLight{ { 0, 0, 1 }, Rgb(1.0), 1.0, false }, SpecularModel::BlinnPhong, 10.0);
   const KernelHarness<T> run(scene, { Vec3<T>(0) }, { Vec3<T>(0, 0, -1) });
   expectAllFinite(run);
   EXPECT_EQ(run.vec("lamp_half_vector", 0), Vec3<T>(0));
@@ -121,7 +118,7 @@ TYPED_TEST(FailurePoints, PointLightAtTheVertex)
   expectAllFinite(run);
   EXPECT_EQ(run.value("lamp_distance", 0), T(0));
   EXPECT_NEAR(run.value("lamp_attenuation", 0), T(1e4), T(1e4) * T(1e-6)); // 1 / 0.01^2
-  EXPECT_EQ(run.vec("lamp_to_light", 0), Vec3<T>(0, 0, 1)); // along the normal
+  EXPECT_EQ(run.vec("lamp_to_light", 0), Vec3<T>(0, 0, 1));                // along the normal
   EXPECT_NEAR(run.value("lamp_diffuse", 0), T(0.5), T(1e-6));
   EXPECT_EQ(run.flags[0], FlagLightAtMinimumDistance);
 }
@@ -129,8 +126,7 @@ TYPED_TEST(FailurePoints, PointLightAtTheVertex)
 TYPED_TEST(FailurePoints, ZeroNormalGetsAmbientOnly)
 {
   using T = TypeParam;
-  const Scene scene = oneLightScene(DistantLight{ { 0, 0, -1 }, Rgb(1.0), 1.0, false },
-    SpecularModel::Phong, 0.0);
+  const Scene scene = oneLightScene(DistantLight{ { 0, 0, -1 }, Rgb(1.0), 1.0, false }, SpecularModel::Phong, 0.0);
   const KernelHarness<T> run(scene, { Vec3<T>(0) }, { Vec3<T>(0) });
   expectAllFinite(run);
   // ka La is formed in float64, then rounded once.
@@ -146,7 +142,8 @@ TYPED_TEST(FailurePoints, HugeNormalShadesAsItsDirection)
   // A finite normal whose squared length overflows (1e30 in float32, 1e200 in float64) shades
   // exactly as the unit normal along it: under a point light and a sphere light, every term.
   using T = TypeParam;
-  Scene scene = oneLightScene(PointLight{ { 0.3, 0.2, 2.0 }, Rgb(1.0), 2.0, Attenuation{} }, SpecularModel::BlinnPhong, 20);
+  Scene scene =
+    oneLightScene(PointLight{ { 0.3, 0.2, 2.0 }, Rgb(1.0), 2.0, Attenuation{} }, SpecularModel::BlinnPhong, 20);
   AreaLight bulb;
   bulb.shape = SphereEmitter{ { -0.5, 0.4, 3.0 }, 0.5 };
   scene.lights.push_back({ "bulb", bulb });
@@ -159,7 +156,8 @@ TYPED_TEST(FailurePoints, HugeNormalShadesAsItsDirection)
   {
     for (std::size_t i = 0; i < values.size(); ++i)
     {
-      EXPECT_NEAR(scaled.arrays.at(name)[i], values[i], 4 * std::numeric_limits<T>::epsilon() * (1 + std::abs(values[i])))
+      EXPECT_NEAR(
+        scaled.arrays.at(name)[i], values[i], 4 * std::numeric_limits<T>::epsilon() * (1 + std::abs(values[i])))
         << name;
     }
   }
@@ -188,8 +186,7 @@ TYPED_TEST(FailurePoints, NaNCoordinateZeroesEveryOutput)
 TYPED_TEST(FailurePoints, TwoSidedFlipsNormalsFacingAway)
 {
   using T = TypeParam;
-  Scene scene = oneLightScene(DistantLight{ { 0, 0, -1 }, Rgb(1.0), 1.0, false },
-    SpecularModel::Phong, 1.0);
+  Scene scene = oneLightScene(DistantLight{ { 0, 0, -1 }, Rgb(1.0), 1.0, false }, SpecularModel::Phong, 1.0);
   scene.material.twoSided = true;
   const KernelHarness<T> run(scene, { Vec3<T>(0), Vec3<T>(0) }, { Vec3<T>(0, 0, -2), Vec3<T>(0, 0, 2) });
   EXPECT_EQ(run.value("lamp_cos_incidence", 0), T(1));

@@ -42,8 +42,8 @@ Scene overheadLight()
 }
 
 /// The filter's output in its default precision, float32.
-vtkSmartPointer<vtkPolyData> run(vtkPolyData* input, const Scene& scene,
-  const std::vector<std::string>& arrays = { "default" }, bool orient = true)
+vtkSmartPointer<vtkPolyData> run(
+  vtkPolyData* input, const Scene& scene, const std::vector<std::string>& arrays = { "default" }, bool orient = true)
 {
   return shadeWithFilter(input, scene, arrays, vtkAlgorithm::SINGLE_PRECISION, orient);
 }
@@ -69,7 +69,7 @@ vtkSmartPointer<vtkPolyData> sphereWithoutNormals(bool woundInward)
 }
 
 /// Calls visit(ids) for each triangle of a triangle mesh.
-template <typename Visit>
+template<typename Visit>
 void forEachTriangle(vtkPolyData* mesh, Visit&& visit)
 {
   auto cells = vtk::TakeSmartPointer(mesh->GetPolys()->NewIterator());
@@ -118,8 +118,8 @@ TEST(Normals, OutwardWindingNeedsNoFlip)
 {
   vtkSmartPointer<vtkPolyData> output = run(sphereWithoutNormals(false), overheadLight());
   EXPECT_GT(smallestOutwardness(output, output->GetPointData()->GetNormals()), 0.99);
-  EXPECT_EQ(normalsReport(output),
-    "The mesh has no point normals: computed area-weighted ones and added them as 'Normals'.");
+  EXPECT_EQ(
+    normalsReport(output), "The mesh has no point normals: computed area-weighted ones and added them as 'Normals'.");
 }
 
 TEST(Normals, OrientationCanBeLeftAlone)
@@ -145,7 +145,8 @@ TEST(Normals, InwardInputNormalsAreUsedFlippedButPassThroughUnchanged)
   EXPECT_LT(smallestOutwardness(output, normals), -0.99);
   vtkDataArray* cosine = output->GetPointData()->GetArray("sun_cos_incidence");
   EXPECT_DOUBLE_EQ(cosine->GetComponent(0, 0), 1.0); // vertex 0 is the top of the sphere
-  EXPECT_NE(normalsReport(output).find("; flipped them outward. Shaded with the flipped copy; the input's array passes through unchanged."),
+  EXPECT_NE(normalsReport(output).find(
+              "; flipped them outward. Shaded with the flipped copy; the input's array passes through unchanged."),
     std::string::npos);
 }
 
@@ -206,7 +207,8 @@ TEST(Normals, PreparedOnceAndRedoneWhenTheirInputsChange)
   renamed->Modified();
   filter->SetScene(overheadLight());
   filter->Update();
-  EXPECT_GT(smallestOutwardness(filter->GetOutput(), filter->GetOutput()->GetPointData()->GetArray("lit_Normals")), 0.99);
+  EXPECT_GT(
+    smallestOutwardness(filter->GetOutput(), filter->GetOutput()->GetPointData()->GetArray("lit_Normals")), 0.99);
 
   // Another mesh with the same points object, so the same modification time: only the top
   // half of the sphere's triangles, whose normals are not the whole sphere's.
@@ -224,7 +226,7 @@ TEST(Normals, PreparedOnceAndRedoneWhenTheirInputsChange)
   cap->SetPolys(top);
   mesh->GetPoints()->Modified(); // now both meshes report the points' time as theirs
   ASSERT_EQ(cap->GetMTime(), mesh->GetMTime());
-  filter->Update(); // prepared for the sphere, at that time
+  filter->Update();          // prepared for the sphere, at that time
   filter->SetInputData(cap); // nothing else changes: only the input's identity tells
   filter->Update();
   vtkNew<vtkLocalReflectanceFilter> fresh;
@@ -266,8 +268,8 @@ TEST(PassThrough, InputArraysAndAttributesAreUntouched)
   EXPECT_EQ(temperature->GetValue(5), 21.5f);
 }
 
-std::string filterError(vtkPolyData* input, const Scene& scene, const std::vector<std::string>& arrays,
-  const std::string& prefix = "")
+std::string filterError(
+  vtkPolyData* input, const Scene& scene, const std::vector<std::string>& arrays, const std::string& prefix = "")
 {
   vtkNew<vtkLocalReflectanceFilter> filter;
   vtkNew<app::VtkErrorCapture> errors;
@@ -357,7 +359,8 @@ TEST(FilterErrors, CorruptOrOutOfRangeInput)
   sphere->GetPointData()->SetNormals(shortNormals);
   EXPECT_EQ(filterError(sphere, overheadLight(), { "default" }),
     "the point normals 'Normals' have 5 tuples of 3 components: there must be one 3-component "
-    "normal per point (" + std::to_string(sphere->GetNumberOfPoints()) + ")");
+    "normal per point (" +
+      std::to_string(sphere->GetNumberOfPoints()) + ")");
 }
 
 TEST(FilterErrors, CoordinatesBeyondThePrecision)

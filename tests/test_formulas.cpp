@@ -93,8 +93,7 @@ TEST(SpotCone, GltfSmoothFalloff)
   EXPECT_DOUBLE_EQ(prepared.factor(std::cos(10 * degree)), 1.0);
   EXPECT_NEAR(prepared.factor(std::cos(30 * degree)), 0.0, 1e-15);
   EXPECT_EQ(prepared.factor(std::cos(40 * degree)), 0.0);
-  const double a = (std::cos(20 * degree) - std::cos(30 * degree)) /
-    (std::cos(10 * degree) - std::cos(30 * degree));
+  const double a = (std::cos(20 * degree) - std::cos(30 * degree)) / (std::cos(10 * degree) - std::cos(30 * degree));
   EXPECT_NEAR(prepared.factor(std::cos(20 * degree)), a * a, 1e-15);
 }
 
@@ -108,8 +107,7 @@ TEST(Reflectance, AngleOfIncidence)
   EXPECT_EQ(incidenceAngleDegrees(glm::dvec3(0), n), 90.0); // zero normal: n.s = 0
   // Near 0 degrees, where acos(n.s) would lose half its digits: 1e-4 degrees in float32.
   const float small = 1e-4f * float(degree);
-  EXPECT_NEAR(incidenceAngleDegrees(glm::vec3(0, 0, 1), glm::vec3(std::sin(small), 0, std::cos(small))),
-    1e-4f, 1e-9f);
+  EXPECT_NEAR(incidenceAngleDegrees(glm::vec3(0, 0, 1), glm::vec3(std::sin(small), 0, std::cos(small))), 1e-4f, 1e-9f);
 }
 
 TEST(Reflectance, ReflectionAndHalfVector)

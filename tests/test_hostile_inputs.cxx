@@ -37,7 +37,8 @@ void expectCleanRefusal(const Result& result, const fs::path& folder, const std:
   }
 }
 
-const std::string crashedVtk = "VTK's .vtk reader crashed on it (SIGSEGV): the file is damaged or not a valid .vtk file";
+const std::string crashedVtk =
+  "VTK's .vtk reader crashed on it (SIGSEGV): the file is damaged or not a valid .vtk file";
 const std::string lyingPly = "the PLY header declares ";
 const std::string cutShort = " after its header: it is cut short or its counts are wrong";
 
@@ -58,20 +59,27 @@ TEST_F(Cli, HostileMeshesAreRefusedInOneLine)
     { "meshes/obj_texture_index_out_of_range.obj",
       "line 6: face index 9 refers to texture coordinate 9, but the file lists 1 before that line" },
     { "meshes/ply_count_f2147483647.ply",
-      (lyingPly + "4 vertices and 2147483647 faces, which need at least 4294967318 bytes, but the file has 56" + cutShort) },
+      (lyingPly + "4 vertices and 2147483647 faces, which need at least 4294967318 bytes, but the file has 56" +
+        cutShort) },
     { "meshes/ply_count_f99999999.ply",
-      (lyingPly + "4 vertices and 99999999 faces, which need at least 200000022 bytes, but the file has 56" + cutShort) },
+      (lyingPly + "4 vertices and 99999999 faces, which need at least 200000022 bytes, but the file has 56" +
+        cutShort) },
     { "meshes/ply_count_v0.ply", "the PLY header declares 4 faces but no vertices for them to join" },
     { "meshes/ply_count_v2147483648.ply",
-      "line 3 of the PLY header ('element vertex 2147483648') is not 'element NAME COUNT' with a COUNT from 0 to 2147483647" },
+      "line 3 of the PLY header ('element vertex 2147483648') is not 'element NAME COUNT' with a COUNT from 0 to "
+      "2147483647" },
     { "meshes/ply_count_v99999999.ply",
-      (lyingPly + "99999999 vertices and 4 faces, which need at least 600000002 bytes, but the file has 56" + cutShort) },
+      (lyingPly + "99999999 vertices and 4 faces, which need at least 600000002 bytes, but the file has 56" +
+        cutShort) },
     { "meshes/ply_count_vm1.ply",
       "line 3 of the PLY header ('element vertex -1') is not 'element NAME COUNT' with a COUNT from 0 to 2147483647" },
-    { "meshes/polygon_with_no_vertices.ply", "polygon 1 has 0 points, and a polygon needs at least 3: the mesh is corrupt" },
-    { "meshes/polygon_with_no_vertices.vtk", "polygon 1 has 0 points, and a polygon needs at least 3: the mesh is corrupt" },
+    { "meshes/polygon_with_no_vertices.ply",
+      "polygon 1 has 0 points, and a polygon needs at least 3: the mesh is corrupt" },
+    { "meshes/polygon_with_no_vertices.vtk",
+      "polygon 1 has 0 points, and a polygon needs at least 3: the mesh is corrupt" },
     { "meshes/reader_crash_attempting_free_on_address_mesh.ply",
-      (lyingPly + "35947 vertices and 69451 faces, which need at least 498372 bytes, but the file has 820" + cutShort) },
+      (lyingPly + "35947 vertices and 69451 faces, which need at least 498372 bytes, but the file has 820" +
+        cutShort) },
     { "meshes/reader_crash_bus_on_unknown_address_pcbps_vtkply_ply_close_mesh.ply",
       "line 4 of the PLY header ('properTy float x') is not a PLY header line" },
     { "meshes/reader_crash_segv_null_vtkdatareader_readstring_mesh.vtk", crashedVtk },
@@ -80,14 +88,19 @@ TEST_F(Cli, HostileMeshesAreRefusedInOneLine)
     { "meshes/reader_crash_segv_vtkaosdataarraytemplate_float_gettuple_mesh.ply",
       "'face' element 0 of 448 (counting from 0): vertex index -1090885662 refers to no vertex: the header declares "
       "226, numbered from 0" },
-    { "meshes/reader_crash_segv_vtkply_add_property_mesh.ply", "line 2 of the PLY header is not text: the file is damaged" },
-    { "meshes/reader_crash_segv_vtkply_find_element_mesh.ply", "line 6 of the PLY header is not text: the file is damaged" },
+    { "meshes/reader_crash_segv_vtkply_add_property_mesh.ply",
+      "line 2 of the PLY header is not text: the file is damaged" },
+    { "meshes/reader_crash_segv_vtkply_find_element_mesh.ply",
+      "line 6 of the PLY header is not text: the file is damaged" },
     { "meshes/reader_crash_segv_vtkply_get_ascii_item_mesh.ply",
-      (lyingPly + "35947 vertices and 69451 faces, which need at least 498372 bytes, but the file has 756" + cutShort) },
+      (lyingPly + "35947 vertices and 69451 faces, which need at least 498372 bytes, but the file has 756" +
+        cutShort) },
     { "meshes/reader_throws_std_bad_all_mesh.ply",
-      (lyingPly + "2147483647 vertices and 4 faces, which need at least 12884901890 bytes, but the file has 56" + cutShort) },
+      (lyingPly + "2147483647 vertices and 4 faces, which need at least 12884901890 bytes, but the file has 56" +
+        cutShort) },
     { "meshes/reader_throws_std_length_mesh.ply",
-      "line 3 of the PLY header ('element vertex 2147483648') is not 'element NAME COUNT' with a COUNT from 0 to 2147483647" },
+      "line 3 of the PLY header ('element vertex 2147483648') is not 'element NAME COUNT' with a COUNT from 0 to "
+      "2147483647" },
   };
   const std::string out = (folder / "out.vtp").string();
   for (const Hostile& mesh : meshes)
@@ -102,8 +115,9 @@ TEST_F(Cli, HostileMeshesAreRefusedInOneLine)
     if (mesh.message.rfind("the mesh's coordinates reach", 0) == 0)
     {
       EXPECT_TRUE(compared.exitCode == 0 || compared.exitCode == 1) << compared.out << compared.err;
-      EXPECT_EQ(compared.err, "shadelab: warning: " + path + ": Error reading binary data!\n" +
-        "shadelab: warning: " + path + ": Error reading binary data!\n");
+      EXPECT_EQ(compared.err,
+        "shadelab: warning: " + path + ": Error reading binary data!\n" + "shadelab: warning: " + path +
+          ": Error reading binary data!\n");
     }
     else
     {
@@ -123,7 +137,8 @@ TEST_F(Cli, HostileScenesAndMapsAreRefusedInOneLine)
     { "scenes/float32_overflow_bright_sun.json",
       "/lights/0/intensity: this light alone can reach 8e+38 at a vertex (colour x intensity x k x attenuation "
       "at min_distance), beyond what float32 holds: use float64 or a smaller intensity or colour" },
-    { "scenes/light_name_100000_chars.json", "/lights/0/name: a name of 100001 characters is too long: use at most 64" },
+    { "scenes/light_name_100000_chars.json",
+      "/lights/0/name: a name of 100001 characters is too long: use at most 64" },
   };
   for (const Hostile& scene : scenes)
   {

@@ -29,8 +29,8 @@ Scene sceneWithMaterial(const std::string& material, const std::string& model = 
 {
   return parseScene(R"({ "model": ")" + model + R"(", "viewer": { "position": [0, 0, 6] }, "material": )" + material +
       R"(, "lights": [ { "name": "sun", "type": "distant", "direction": [0.3, -0.2, -1], "color": [0.9, 0.8, 0.7],
-        "intensity": 1.25 })" + (model == "lecture" ? R"(, { "name": "sky", "type": "ambient", "intensity": 0.1 })" : "") +
-      R"( ] })",
+        "intensity": 1.25 })" +
+      (model == "lecture" ? R"(, { "name": "sky", "type": "ambient", "intensity": 0.1 })" : "") + R"( ] })",
     "scene.json");
 }
 
@@ -68,8 +68,8 @@ vtkSmartPointer<vtkPolyData> sphereWithValues(const std::string& name, const std
 }
 
 /// Each vertex's expected diffuse term of the sun, and ambient term, from its linear colour.
-void expectDiffuseAndAmbient(vtkPolyData* output, const std::function<glm::dvec3(vtkIdType)>& linearColor,
-  double tolerance)
+void expectDiffuseAndAmbient(
+  vtkPolyData* output, const std::function<glm::dvec3(vtkIdType)>& linearColor, double tolerance)
 {
   vtkDataArray* diffuse = output->GetPointData()->GetArray("sun_diffuse");
   vtkDataArray* ambient = output->GetPointData()->GetArray("ambient");
@@ -105,11 +105,12 @@ TEST(MaterialArrays, RandomEightBitColorsAreDecodedFromSrgb)
   vtkSmartPointer<vtkPolyData> output =
     shadeWithFilter(sphere, scene, { "sun_diffuse", "ambient" }, vtkAlgorithm::SINGLE_PRECISION);
   auto* colors = vtkUnsignedCharArray::SafeDownCast(sphere->GetPointData()->GetArray("Colors"));
-  expectDiffuseAndAmbient(output,
+  expectDiffuseAndAmbient(
+    output,
     [&](vtkIdType i)
     {
-      return glm::dvec3(srgbToLinear(colors->GetComponent(i, 0) / 255.0), srgbToLinear(colors->GetComponent(i, 1) / 255.0),
-        srgbToLinear(colors->GetComponent(i, 2) / 255.0));
+      return glm::dvec3(srgbToLinear(colors->GetComponent(i, 0) / 255.0),
+        srgbToLinear(colors->GetComponent(i, 1) / 255.0), srgbToLinear(colors->GetComponent(i, 2) / 255.0));
     },
     float32Rounding);
   // The input's array passes through untouched.
@@ -129,28 +130,32 @@ TEST(MaterialArrays, LinearFloatColorsAreUsedAsTheyAreAndGreysAndAlphaToo)
     albedo->InsertNextValue(unit(random));
   }
   sphere->GetPointData()->AddArray(albedo);
-  vtkSmartPointer<vtkPolyData> output = shadeWithFilter(sphere,
-    sceneWithMaterial(R"({ "kd": { "array": "Albedo", "scale": 0.5 }, "specular": "none" })"), { "sun_diffuse", "ambient" },
-    vtkAlgorithm::SINGLE_PRECISION);
-  expectDiffuseAndAmbient(output, [&](vtkIdType i)
+  vtkSmartPointer<vtkPolyData> output =
+    shadeWithFilter(sphere, sceneWithMaterial(R"({ "kd": { "array": "Albedo", "scale": 0.5 }, "specular": "none" })"),
+      { "sun_diffuse", "ambient" }, vtkAlgorithm::SINGLE_PRECISION);
+  expectDiffuseAndAmbient(
+    output,
+    [&](vtkIdType i)
     { return 0.5 * glm::dvec3(albedo->GetComponent(i, 0), albedo->GetComponent(i, 1), albedo->GetComponent(i, 2)); },
     float32Rounding);
 
   // A grey (1 component) in every channel; RGBA's alpha is not a reflectance.
   vtkSmartPointer<vtkPolyData> grey = sphereWithColors("Grey", 1, 3);
   auto* greys = grey->GetPointData()->GetArray("Grey");
-  expectDiffuseAndAmbient(shadeWithFilter(grey,
-                            sceneWithMaterial(R"({ "kd": { "array": "Grey", "encoding": "linear" }, "specular": "none" })"),
-                            { "sun_diffuse", "ambient" }),
+  expectDiffuseAndAmbient(
+    shadeWithFilter(grey,
+      sceneWithMaterial(R"({ "kd": { "array": "Grey", "encoding": "linear" }, "specular": "none" })"),
+      { "sun_diffuse", "ambient" }),
     [&](vtkIdType i) { return glm::dvec3(greys->GetComponent(i, 0) / 255.0); }, 1e-15);
   vtkSmartPointer<vtkPolyData> rgba = sphereWithColors("RGBA", 4, 9);
   auto* rgbas = rgba->GetPointData()->GetArray("RGBA");
-  expectDiffuseAndAmbient(shadeWithFilter(rgba, sceneWithMaterial(R"({ "kd": { "array": "RGBA" }, "specular": "none" })"),
-                            { "sun_diffuse", "ambient" }),
+  expectDiffuseAndAmbient(
+    shadeWithFilter(
+      rgba, sceneWithMaterial(R"({ "kd": { "array": "RGBA" }, "specular": "none" })"), { "sun_diffuse", "ambient" }),
     [&](vtkIdType i)
     {
-      return glm::dvec3(srgbToLinear(rgbas->GetComponent(i, 0) / 255.0), srgbToLinear(rgbas->GetComponent(i, 1) / 255.0),
-        srgbToLinear(rgbas->GetComponent(i, 2) / 255.0));
+      return glm::dvec3(srgbToLinear(rgbas->GetComponent(i, 0) / 255.0),
+        srgbToLinear(rgbas->GetComponent(i, 1) / 255.0), srgbToLinear(rgbas->GetComponent(i, 2) / 255.0));
     },
     1e-15);
 }
@@ -167,7 +172,8 @@ TEST(MaterialArrays, PerVertexShininessAndKsEqualUniformRunsVertexByVertex)
   }
   sphere->GetPointData()->AddArray(glossArray);
   const vtkSmartPointer<vtkPolyData> varying = shadeWithFilter(sphere,
-    sceneWithMaterial(R"({ "kd": 0.5, "ks": { "array": "gloss" }, "shininess": { "array": "eta" } })"), { "sun_specular" });
+    sceneWithMaterial(R"({ "kd": 0.5, "ks": { "array": "gloss" }, "shininess": { "array": "eta" } })"),
+    { "sun_specular" });
   vtkDataArray* specular = varying->GetPointData()->GetArray("sun_specular");
   ASSERT_NE(specular, nullptr);
   for (std::size_t e = 0; e < etas.size(); ++e)
@@ -203,7 +209,8 @@ TEST(MaterialArrays, AToleranceKeepsTheExactPowForAShininessPerVertex)
 TEST(MaterialArrays, AConstantFieldTakesTheColorMapsLowEnd)
 {
   const vtkSmartPointer<vtkPolyData> output = shadeWithFilter(sphereWithValues("T", { 7.0 }),
-    sceneWithMaterial(R"({ "kd": { "array": "T", "colormap": "cool to warm", "encoding": "linear" } })"), { "ambient" });
+    sceneWithMaterial(R"({ "kd": { "array": "T", "colormap": "cool to warm", "encoding": "linear" } })"),
+    { "ambient" });
   EXPECT_NEAR(output->GetPointData()->GetArray("ambient")->GetComponent(0, 2), 0.1 * 192 / 255.0, 1e-15);
 }
 
@@ -225,7 +232,8 @@ TEST(MaterialArrays, AFieldThroughAColorMapSpansItsOwnRangeByDefault)
   const std::vector<double> values{ -2.0, 0.5, 3.0 };
   vtkSmartPointer<vtkPolyData> sphere = sphereWithValues("T", values);
   const vtkSmartPointer<vtkPolyData> output = shadeWithFilter(sphere,
-    sceneWithMaterial(R"({ "kd": { "array": "T", "colormap": "grayscale", "encoding": "linear" }, "specular": "none" })"),
+    sceneWithMaterial(
+      R"({ "kd": { "array": "T", "colormap": "grayscale", "encoding": "linear" }, "specular": "none" })"),
     { "ambient" });
   // The grey ramp's ends at the field's ends: ambient = kd x 0.1, kd = the table's 8-bit grey.
   const vtkSmartPointer<vtkScalarsToColors> map = namedColorMap("grayscale", { -2.0, 3.0 });
@@ -252,8 +260,8 @@ TEST(MaterialArrays, CoolToWarmIsParaViewsPreset)
 TEST(MaterialArrays, ClampedValuesAreMarkedPerCoefficient)
 {
   vtkSmartPointer<vtkPolyData> sphere = sphereWithValues("gloss", { 0.5, 1.5, std::nan("") });
-  const vtkSmartPointer<vtkPolyData> output = shadeWithFilter(sphere,
-    sceneWithMaterial(R"({ "kd": { "array": "gloss", "clamp": true }, "specular": "none" })"), { "ambient" });
+  const vtkSmartPointer<vtkPolyData> output = shadeWithFilter(
+    sphere, sceneWithMaterial(R"({ "kd": { "array": "gloss", "clamp": true }, "specular": "none" })"), { "ambient" });
   vtkDataArray* clamped = output->GetPointData()->GetArray("material_clamped");
   vtkDataArray* ambient = output->GetPointData()->GetArray("ambient");
   ASSERT_TRUE(clamped && ambient);
@@ -282,7 +290,8 @@ TEST(MaterialArrays, TheArraysAreReadAgainOnlyWhenTheyChange)
   EXPECT_DOUBLE_EQ(ambientAtVertex0(), 0.05);
   // New lights on the same arrays: the values read last time.
   filter->SetScene(parseScene(R"({ "material": { "kd": { "array": "gloss" } },
-    "lights": [ { "type": "ambient", "intensity": 0.2 } ] })", "scene.json"));
+    "lights": [ { "type": "ambient", "intensity": 0.2 } ] })",
+    "scene.json"));
   EXPECT_DOUBLE_EQ(ambientAtVertex0(), 0.1);
   // The array's values changed (and it says so): read again.
   vtkDataArray* gloss = sphere->GetPointData()->GetArray("gloss");
@@ -342,8 +351,9 @@ TEST(MaterialArrays, ArraysThatCannotBeUsedAreRefusedByNameAndVertex)
     filter->SetColorByArray(true);
     filter->SetMaterialColorArray("Colors");
     filter->Update();
-    EXPECT_EQ(errors->message(), "the material's colour array (MaterialColorArray, --color-by): the mesh has no numeric "
-                                 "point-data array 'Colors' (its point arrays: 'Normals', 'gloss', 'few', 'counts')");
+    EXPECT_EQ(errors->message(),
+      "the material's colour array (MaterialColorArray, --color-by): the mesh has no numeric "
+      "point-data array 'Colors' (its point arrays: 'Normals', 'gloss', 'few', 'counts')");
   }
   vtkSmartPointer<vtkPolyData> flat = sphereWithValues("nothing", { std::nan("") });
   EXPECT_EQ(filterError(flat, sceneWithMaterial(R"({ "kd": { "array": "nothing", "colormap": "rainbow" } })")),

@@ -161,8 +161,9 @@ void expectSameMesh(vtkPolyData* a, vtkPolyData* b)
     EXPECT_EQ(a->GetPoint(i)[1], b->GetPoint(i)[1]);
   }
   EXPECT_EQ(a->GetPoints()->GetDataType(), b->GetPoints()->GetDataType());
-  for (const auto& [cellsA, cellsB] : { std::make_pair(a->GetVerts(), b->GetVerts()), std::make_pair(a->GetLines(), b->GetLines()),
-         std::make_pair(a->GetPolys(), b->GetPolys()), std::make_pair(a->GetStrips(), b->GetStrips()) })
+  for (const auto& [cellsA, cellsB] :
+    { std::make_pair(a->GetVerts(), b->GetVerts()), std::make_pair(a->GetLines(), b->GetLines()),
+      std::make_pair(a->GetPolys(), b->GetPolys()), std::make_pair(a->GetStrips(), b->GetStrips()) })
   {
     ASSERT_EQ(cellsA->GetNumberOfCells(), cellsB->GetNumberOfCells());
     ASSERT_EQ(cellsA->GetNumberOfConnectivityIds(), cellsB->GetNumberOfConnectivityIds());
@@ -200,7 +201,8 @@ TEST(MeshHandOver, EveryPartOfAMeshCrossesAsItWas)
   handOverMesh(mesh, file.string());
   vtkSmartPointer<vtkPolyData> throughXml = takeOverMesh(file.string());
   expectSameMesh(mesh, throughXml);
-  EXPECT_EQ(vtkStringArray::SafeDownCast(throughXml->GetFieldData()->GetAbstractArray("note"))->GetValue(0), "a string");
+  EXPECT_EQ(
+    vtkStringArray::SafeDownCast(throughXml->GetFieldData()->GetAbstractArray("note"))->GetValue(0), "a string");
   fs::remove(file);
 }
 
@@ -262,10 +264,12 @@ TEST(MeshFileChecks, PlyHeaderCountsAgainstTheFileSize)
   EXPECT_EQ(plyHeaderProblem(header, header.size() + 35),
     "the PLY header declares 3 vertices and 1 faces, which need at least 37 bytes, but the file has 35 after its "
     "header: it is cut short or its counts are wrong");
-  const std::string ascii = "ply\r\nformat ascii 1.0\r\ncomment made by hand\r\nelement vertex 1\r\nproperty double x\r\n"
-                            "property double y\r\nproperty double z\r\nend_header\r\n";
+  const std::string ascii =
+    "ply\r\nformat ascii 1.0\r\ncomment made by hand\r\nelement vertex 1\r\nproperty double x\r\n"
+    "property double y\r\nproperty double z\r\nend_header\r\n";
   EXPECT_EQ(plyHeaderProblem(ascii, ascii.size() + 5), ""); // "0 0 0": 2 bytes a value, the last without a separator
-  EXPECT_EQ(plyHeaderProblem("ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nend_header\n", 100),
+  EXPECT_EQ(
+    plyHeaderProblem("ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nend_header\n", 100),
     "the PLY header's vertex element has no x, y and z properties");
   EXPECT_EQ(plyHeaderProblem("ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float x\n", 100),
     "line 5 of the PLY header ('property float x') repeats the property 'x' of element 'vertex'");
@@ -312,9 +316,11 @@ TEST(WriteMesh, ArrayNamesAVtpCannotHoldAreRefused)
   }
   catch (const UserError& error)
   {
-    EXPECT_EQ(std::string(error.what()), vtp + ": the point array 'temperature \"K\"' has a name that a .vtp file "
-      "cannot hold (VTK 9.1 writes it unescaped, and no reader could open the file): rename it in the input, or "
-      "write legacy .vtk");
+    EXPECT_EQ(std::string(error.what()),
+      vtp +
+        ": the point array 'temperature \"K\"' has a name that a .vtp file "
+        "cannot hold (VTK 9.1 writes it unescaped, and no reader could open the file): rename it in the input, or "
+        "write legacy .vtk");
   }
   EXPECT_TRUE(fs::is_empty(folder));
   const std::string vtk = (folder / "out.vtk").string();

@@ -95,8 +95,7 @@ TEST(PointNormals, AreaWeightedAtASharedPoint)
   fan.points = { { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 2 }, { 0, 2, 0 } };
   fan.add(0, 1, 2); // area 1/2, normal +z
   fan.add(0, 3, 4); // area 2, in the plane x = 0, normal -x
-  const std::vector<glm::dvec3> unit =
-    fan.normals(nullptr, {}, 80.0);
+  const std::vector<glm::dvec3> unit = fan.normals(nullptr, {}, 80.0);
   expectNear(unit[0], glm::dvec3(-2.0, 0, 0.5) / std::sqrt(4.25), 1e-15);
   expectNear(unit[1], glm::dvec3(0, 0, 1), 0);
 }
@@ -106,8 +105,7 @@ TEST(PointNormals, CopiesAcrossASmoothSeamShareOneNormal)
   const Triangles roof = splitRoof(20.0 * M_PI / 180.0); // faces meet at 40 degrees
   const PolygonEdges edges(roof.list(), roofMergeMap);
   WeldSummary summary;
-  const std::vector<glm::dvec3> unit =
-    roof.normals(&edges, roofMergeMap, 80.0, &summary);
+  const std::vector<glm::dvec3> unit = roof.normals(&edges, roofMergeMap, 80.0, &summary);
   // Both faces have the same area, so the ridge's normal is straight up.
   for (std::size_t ridge : { 0, 1, 3, 4 })
   {
@@ -126,16 +124,14 @@ TEST(PointNormals, CopiesAtASharpEdgeKeepTheirOwn)
   const Triangles roof = splitRoof(slope);
   const PolygonEdges edges(roof.list(), roofMergeMap);
   WeldSummary summary;
-  const std::vector<glm::dvec3> unit =
-    roof.normals(&edges, roofMergeMap, 80.0, &summary);
+  const std::vector<glm::dvec3> unit = roof.normals(&edges, roofMergeMap, 80.0, &summary);
   const glm::dvec3 towardPlusY(0, std::sin(slope), std::cos(slope));
   const glm::dvec3 towardMinusY(0, -std::sin(slope), std::cos(slope));
   expectNear(unit[0], towardPlusY, 1e-15);
   expectNear(unit[3], towardMinusY, 1e-15);
   EXPECT_EQ(summary.pointsKeptApart, 4u);
   // A feature angle above the edge's 100 degrees welds them after all.
-  const std::vector<glm::dvec3> welded =
-    roof.normals(&edges, roofMergeMap, 101.0);
+  const std::vector<glm::dvec3> welded = roof.normals(&edges, roofMergeMap, 101.0);
   expectNear(welded[0], glm::dvec3(0, 0, 1), 1e-15);
 }
 
@@ -143,8 +139,7 @@ TEST(PointNormals, WithoutWeldingEachCopyHasItsFacesNormal)
 {
   const double slope = 20.0 * M_PI / 180.0;
   const Triangles roof = splitRoof(slope);
-  const std::vector<glm::dvec3> unit =
-    roof.normals(nullptr, {}, 80.0);
+  const std::vector<glm::dvec3> unit = roof.normals(nullptr, {}, 80.0);
   expectNear(unit[0], glm::dvec3(0, std::sin(slope), std::cos(slope)), 1e-15);
   expectNear(unit[3], glm::dvec3(0, -std::sin(slope), std::cos(slope)), 1e-15);
 }
@@ -155,8 +150,7 @@ TEST(PointNormals, PointsWithoutAreaHaveTheZeroNormal)
   mesh.points = { { 0, 0, 0 }, { 1, 0, 0 }, { 2, 0, 0 }, { 5, 5, 5 } }; // collinear, and an isolated point
   mesh.add(0, 1, 2);
   mesh.offsets.push_back(mesh.offsets.back()); // a polygon with no points at all
-  const std::vector<glm::dvec3> unit =
-    mesh.normals(nullptr, {}, 80.0);
+  const std::vector<glm::dvec3> unit = mesh.normals(nullptr, {}, 80.0);
   for (const glm::dvec3& n : unit)
   {
     EXPECT_EQ(n, glm::dvec3(0.0));
@@ -267,8 +261,8 @@ TEST(PointNormals, CoincidentPointsMapToTheLowestIdAtTheirPosition)
   auto at = [&points](PointId id) { return points[static_cast<std::size_t>(id)]; };
   // Point 7 is not a candidate, so it stays itself; -0 is the same position as +0; NaN
   // positions are nobody's.
-  EXPECT_EQ(coincidentPointMap({ 0, 1, 2, 3, 4, 5, 6 }, points.size(), at),
-    (std::vector<PointId>{ 0, 1, 0, 1, 1, 5, 6, 7 }));
+  EXPECT_EQ(
+    coincidentPointMap({ 0, 1, 2, 3, 4, 5, 6 }, points.size(), at), (std::vector<PointId>{ 0, 1, 0, 1, 1, 5, 6, 7 }));
   EXPECT_TRUE(coincidentPointMap({ 0, 1, 5, 6 }, points.size(), at).empty());
 }
 }

@@ -55,7 +55,7 @@ TEST(RadianceTransfer, TheUnshadowedTransferOfOrderTwoIsTheNineCoefficientsIrrad
 }
 
 /// Cosine-weighted stratified directions about n for a vertex, as a light's samples are drawn.
-template <typename Visible>
+template<typename Visible>
 TransferEstimate estimated(int order, const glm::dvec3& n, int samples, std::uint64_t vertex, Visible&& visible)
 {
   Sampling sampling;
@@ -214,7 +214,8 @@ TEST(RadianceTransfer, OrderTwoWithoutShadowsIsTheShEstimatorToRounding)
   // The same nine coefficients, one way dotted with A_l Y_lm(n) after turning them into the
   // world, the other R&H's polynomial composed with the turn: the same irradiance to rounding.
   const EnvironmentLightEstimator sh(transferLight(studioMap, EnvironmentEstimator::SphericalHarmonics, 2, 37), 0, {});
-  const EnvironmentLightEstimator prt(transferLight(studioMap, EnvironmentEstimator::PrecomputedTransfer, 2, 37), 0, {});
+  const EnvironmentLightEstimator prt(
+    transferLight(studioMap, EnvironmentEstimator::PrecomputedTransfer, 2, 37), 0, {});
   for (const glm::dvec3& n : randomNormals(200, 5))
   {
     const DistributedTerms a = sh.estimate(facing(n)), b = prt.estimate(facing(n));
@@ -243,9 +244,10 @@ TEST(RadianceTransfer, TurningTheMapTurnsItsCoefficients)
   {
     const EnvironmentLight turnedLight = transferLight(veniceMap, EnvironmentEstimator::PrecomputedTransfer, order, 70);
     const EnvironmentLightEstimator turned(turnedLight, 0, {});
-    const EnvironmentLightEstimator unturned(transferLight(veniceMap, EnvironmentEstimator::PrecomputedTransfer, order, 0), 0, {});
-    const double bound = largestComponent(turnedLight.color * turnedLight.intensity *
-      shIrradianceErrorBound(*turnedLight.map, order));
+    const EnvironmentLightEstimator unturned(
+      transferLight(veniceMap, EnvironmentEstimator::PrecomputedTransfer, order, 0), 0, {});
+    const double bound =
+      largestComponent(turnedLight.color * turnedLight.intensity * shIrradianceErrorBound(*turnedLight.map, order));
     for (const glm::dvec3& n : randomNormals(40, 11 + order))
     {
       const Rgb e = turned.estimate(facing(n)).irradiance;

@@ -5,11 +5,11 @@
 #include "MeshFiles.h"
 
 #include "DefaultLightKit.h"
-#include "SceneFile.h"
 #include "NormalOrientation.h"
+#include "SceneFile.h"
 #include "SceneFrame.h"
-#include "ShadingFlags.h"
 #include "ShadeLabMeshExtent.h"
+#include "ShadingFlags.h"
 
 #include "vtkCellArray.h"
 #include "vtkCellArrayIterator.h"
@@ -126,8 +126,8 @@ TEST_P(RealMesh, DefaultLightKitLightsItWell)
   EXPECT_GE(quantile(0.5), 0.35);
   EXPECT_LE(quantile(0.5), 0.65);
   EXPECT_GE(quantile(0.95) - quantile(0.05), 0.15);
-  std::cout << meshCase.file << ": " << seen.size() << " vertices seen, luminance from " << seen.front()
-            << ", median " << quantile(0.5) << ", 5-95% spread " << quantile(0.95) - quantile(0.05) << "\n";
+  std::cout << meshCase.file << ": " << seen.size() << " vertices seen, luminance from " << seen.front() << ", median "
+            << quantile(0.5) << ", 5-95% spread " << quantile(0.95) - quantile(0.05) << "\n";
 }
 
 /// Whether the segment from p, lifted along n above the corners of every triangle around it,
@@ -201,7 +201,8 @@ TEST_P(RealMesh, APointLightsShadowDarkensNoVertexByItsOwnTrianglesAlone)
   const MeshCase meshCase = GetParam();
   vtkSmartPointer<vtkPolyData> mesh = app::readMesh(std::string(SHADELAB_SOURCE_DIR "/data/meshes/") + meshCase.file);
   const Scene scene = parseScene(R"({ "frame": "mesh", "viewer": { "position": [0, 0, 5] }, "lights": [
-    { "name": "lamp", "type": "point", "position": [1.5, 2.5, 2], "shadows": true } ] })", "lamp.json");
+    { "name": "lamp", "type": "point", "position": [1.5, 2.5, 2], "shadows": true } ] })",
+    "lamp.json");
   vtkSmartPointer<vtkPolyData> output =
     shadelab::testing::shadeWithFilter(mesh, scene, { "all" }, vtkAlgorithm::SINGLE_PRECISION);
   const glm::dvec3 lamp = std::get<PointLight>(placedOnMesh(scene, meshExtentOf(output)).lights[0].source).position;
@@ -265,7 +266,8 @@ INSTANTIATE_TEST_SUITE_P(BundledMeshes, RealMesh,
   [](const ::testing::TestParamInfo<MeshCase>& info)
   {
     std::string name = info.param.file;
-    std::replace_if(name.begin(), name.end(), [](char c) { return !std::isalnum(static_cast<unsigned char>(c)); }, '_');
+    std::replace_if(
+      name.begin(), name.end(), [](char c) { return !std::isalnum(static_cast<unsigned char>(c)); }, '_');
     return name;
   });
 }

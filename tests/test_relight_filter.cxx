@@ -72,7 +72,8 @@ TEST(TransferRelight, TheDotProductOfTheTurnedMapWithEachVectorInTheTransfersPre
       EXPECT_EQ(irradiance->GetComponent(vtkIdType(i), c), expected[c]) << i << " " << c;
     }
   }
-  EXPECT_EQ(relight->GetReport(), "'relit_irradiance' from 'sky_sh_transfer' (order 3, 16 coefficients) under " + sunset);
+  EXPECT_EQ(
+    relight->GetReport(), "'relit_irradiance' from 'sky_sh_transfer' (order 3, 16 coefficients) under " + sunset);
 }
 
 TEST(TransferRelight, AnIntegerTransferGivesARealIrradianceAndBadPropertiesAreRefused)

@@ -1,11 +1,11 @@
 // Scene files: what a valid file means, and the exact message for each kind of bad input.
-#include "SceneFileErrors.h"
 #include "ArrayCatalog.h"
+#include "DefaultLightKit.h"
 #include "EnvironmentMap.h"
 #include "NearestName.h"
 #include "SceneFile.h"
+#include "SceneFileErrors.h"
 #include "SceneSource.h"
-#include "DefaultLightKit.h"
 
 #include <gtest/gtest.h>
 
@@ -36,7 +36,8 @@ TEST(SceneFile, ReadsEveryLightType)
         "cone": { "model": "gltf", "inner_angle": 5, "outer_angle": 25 } },
       { "type": "ambient", "intensity": 0.1 }
     ]
-  })", "scene.json");
+  })",
+    "scene.json");
   ASSERT_EQ(scene.lights.size(), 5u);
   EXPECT_EQ(scene.model, ShadingModel::Lecture);
   EXPECT_EQ(scene.material.kd, Rgb(0.5, 0.4, 0.3));
@@ -77,7 +78,8 @@ TEST(SceneFile, EveryBundledSceneIsValid)
 TEST(SceneFile, VtkModelUsesVtkPropertyDefaultsAndDetectsTheLoneHeadlight)
 {
   const Scene scene = parseScene(R"({ "model": "vtk", "viewer": { "position": [0, 0, 1], "focal_point": [0, 0, 0] },
-    "lights": [ { "type": "headlight" } ] })", "scene.json");
+    "lights": [ { "type": "headlight" } ] })",
+    "scene.json");
   EXPECT_EQ(scene.model, ShadingModel::VtkOpenGL2);
   EXPECT_TRUE(scene.vtkLoneHeadlight);
   EXPECT_EQ(scene.material.ka, Rgb(0.0));
@@ -86,7 +88,8 @@ TEST(SceneFile, VtkModelUsesVtkPropertyDefaultsAndDetectsTheLoneHeadlight)
   EXPECT_EQ(scene.material.shininess, 1.0);
 
   const Scene none = parseScene(R"({ "model": "vtk", "viewer": { "position": [0, 0, 1], "focal_point": [0, 0, 0] },
-    "lights": [] })", "scene.json");
+    "lights": [] })",
+    "scene.json");
   ASSERT_EQ(none.lights.size(), 1u); // VTK's automatic headlight
   EXPECT_TRUE(none.vtkLoneHeadlight);
 }
@@ -121,8 +124,7 @@ TEST(SceneFile, NegativeField)
 
 TEST(SceneFile, MissingField)
 {
-  EXPECT_EQ(errorOf(R"({ "lights": [ { "type": "distant" } ] })"),
-    "scene.json: /lights/0/direction: missing");
+  EXPECT_EQ(errorOf(R"({ "lights": [ { "type": "distant" } ] })"), "scene.json: /lights/0/direction: missing");
   EXPECT_EQ(errorOf(R"({ "material": {} })"), "scene.json: /lights: missing");
   EXPECT_EQ(errorOf(R"({ "lights": [ { "name": "x" } ] })"), "scene.json: /lights/0/type: missing");
 }
@@ -136,7 +138,7 @@ TEST(SceneFile, TheNearestNameIsOneWithinAThirdOfTheLettersAndUnique)
   EXPECT_EQ(nearestName("intesity", { "position", "intensity", "name" }), "intensity");
   EXPECT_EQ(nearestName("colour", { "color", "intensity" }), "color");
   EXPECT_EQ(nearestName("hue", { "color", "intensity" }), ""); // nothing within a third of its letters
-  EXPECT_EQ(nearestName("ks", { "ka", "kd" }), "");                  // as near to both
+  EXPECT_EQ(nearestName("ks", { "ka", "kd" }), "");            // as near to both
   EXPECT_EQ(nearestName("shinyness", { "shininess", "specular" }), "shininess");
 }
 
@@ -189,7 +191,8 @@ TEST(SceneFile, MaterialFromTheMeshsArrays)
   const Scene scene = parseScene(R"({
     "material": { "kd": { "array": "Colors" }, "ks": { "array": "gloss", "encoding": "linear", "scale": 0.5, "clamp": true },
                   "shininess": { "array": "eta", "scale": 200 } },
-    "lights": [ { "type": "distant", "direction": [0, 0, -1] } ] })", "scene.json");
+    "lights": [ { "type": "distant", "direction": [0, 0, -1] } ] })",
+    "scene.json");
   const MaterialArrays& arrays = scene.material.arrays;
   ASSERT_TRUE(arrays[MaterialCoefficient::Diffuse] && arrays[MaterialCoefficient::Ambient]);
   // docs/formulas.md section 7: ka follows kd, its array included.
@@ -203,8 +206,10 @@ TEST(SceneFile, MaterialFromTheMeshsArrays)
   EXPECT_EQ(scene.material.shininess, 200.0);
   EXPECT_TRUE(arrays.clamps());
 
-  const Scene field = parseScene(R"({ "material": { "kd": { "array": "T", "colormap": "cool to warm", "range": [250, 400] } },
-    "lights": [] })", "scene.json");
+  const Scene field =
+    parseScene(R"({ "material": { "kd": { "array": "T", "colormap": "cool to warm", "range": [250, 400] } },
+    "lights": [] })",
+      "scene.json");
   EXPECT_EQ(field.material.arrays[MaterialCoefficient::Diffuse]->colorMap, "cool to warm");
   EXPECT_EQ(*field.material.arrays[MaterialCoefficient::Diffuse]->range, (std::array<double, 2>{ 250, 400 }));
 }
@@ -217,7 +222,8 @@ TEST(SceneFile, MaterialArrayErrors)
     "scene.json: /material/kd/colormap: \"jet\" is not one of \"cool to warm\", \"rainbow\", \"grayscale\"");
   EXPECT_EQ(errorOf(R"({ "material": { "kd": { "array": "T", "range": [0, 1] } }, "lights": [] })"),
     "scene.json: /material/kd/range: a range is the colour map's: give \"colormap\" too, or leave the range out");
-  EXPECT_EQ(errorOf(R"({ "material": { "kd": { "array": "T", "colormap": "rainbow", "range": [1, 1] } }, "lights": [] })"),
+  EXPECT_EQ(
+    errorOf(R"({ "material": { "kd": { "array": "T", "colormap": "rainbow", "range": [1, 1] } }, "lights": [] })"),
     "scene.json: /material/kd/range: must be [low, high] with low < high, got [1,1]");
   EXPECT_EQ(errorOf(R"({ "material": { "kd": { "array": "T", "encoding": "gamma" } }, "lights": [] })"),
     "scene.json: /material/kd/encoding: \"gamma\" is not one of \"srgb\", \"linear\"");
@@ -277,7 +283,8 @@ TEST(SceneFile, SpectraAreTheirRgbInTheRgbModel)
     "lights": [
       { "name": "day", "type": "distant", "direction": [0, 0, -1], "spectrum": { "illuminant": "D65" } },
       { "name": "bulb", "type": "point", "position": [0, 0, 2], "spectrum": { "blackbody": 2700 }, "intensity": 2 },
-      { "name": "lamp", "type": "ambient", "spectrum": { "illuminant": "F11" } } ] })", "scene.json");
+      { "name": "lamp", "type": "ambient", "spectrum": { "illuminant": "F11" } } ] })",
+    "scene.json");
   // D65 is sRGB's white; its luminance is scaled to 1.
   const Rgb day = std::get<DistantLight>(scene.lights[0].source).color;
   EXPECT_NEAR(day.r, 1.0, 2e-3);
@@ -333,7 +340,8 @@ TEST(SceneFile, ReadsAreaLightsAndEnvironmentMaps)
       { "name": "sky", "type": "environment", "file": "../envmaps/venice_sunset_1k.hdr", "rotation": 90,
         "estimator": "monte_carlo", "directions": "cosine", "brute_force_width": 64 }
     ]
-  })", SHADELAB_SOURCE_DIR "/data/scenes/inline.json");
+  })",
+    SHADELAB_SOURCE_DIR "/data/scenes/inline.json");
   ASSERT_EQ(scene.lights.size(), 5u);
   const auto& panel = std::get<AreaLight>(scene.lights[0].source);
   const std::vector<glm::dvec3> corners = { { -1, 2, -0.5 }, { 1, 2, -0.5 }, { 1, 2, 0.5 }, { -1, 2, 0.5 } };
@@ -368,7 +376,8 @@ TEST(SceneFile, AreaLightAndEnvironmentMapErrors)
 {
   EXPECT_EQ(errorOf(R"({ "lights": [ { "type": "polygon", "vertices": [[0, 0, 0], [1, 0, 0]] } ] })"),
     "scene.json: /lights/0/vertices: a polygon needs at least 3 vertices");
-  EXPECT_EQ(errorOf(R"({ "lights": [ { "type": "polygon", "vertices": [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 1]] } ] })"),
+  EXPECT_EQ(
+    errorOf(R"({ "lights": [ { "type": "polygon", "vertices": [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 1]] } ] })"),
     "scene.json: /lights/0/vertices: the polygon's vertices must lie in one plane");
   EXPECT_EQ(errorOf(R"({ "lights": [ { "type": "polygon",
       "vertices": [[0, 0, 0], [2, 0, 0], [2, 2, 0], [1, 0.5, 0], [0, 2, 0]] } ] })"),
@@ -385,7 +394,8 @@ TEST(SceneFile, AreaLightAndEnvironmentMapErrors)
   EXPECT_EQ(errorOf(R"({ "lights": [ { "type": "sphere", "center": [0, 0, 0], "radius": 1, "estimator": "sh" } ] })"),
     "scene.json: /lights/0/estimator: \"sh\" is not one of \"exact\", \"monte_carlo\", \"point\"");
   EXPECT_EQ(errorOf(R"({ "lights": [ { "type": "sphere", "center": [0, 0, 0], "radius": 1, "two_sided": true } ] })"),
-    "scene.json: /lights/0/two_sided: unknown field; allowed here: name, type, color, spectrum, intensity, shadows, center, radius, "
+    "scene.json: /lights/0/two_sided: unknown field; allowed here: name, type, color, spectrum, intensity, shadows, "
+    "center, radius, "
     "estimator, samples, max_samples, stratified");
   EXPECT_EQ(errorOf(R"({ "model": "vtk", "viewer": { "position": [0, 0, 1] },
       "lights": [ { "type": "sphere", "center": [0, 0, 0], "radius": 1 } ] })"),
@@ -394,7 +404,8 @@ TEST(SceneFile, AreaLightAndEnvironmentMapErrors)
     "scene.json: /lights/0/file: no_such_map.hdr: no such file");
   EXPECT_EQ(errorOf(R"({ "lights": [ { "type": "environment" } ] })"), "scene.json: /lights/0/file: missing");
   const std::string map = SHADELAB_SOURCE_DIR "/data/envmaps/venice_sunset_1k.hdr";
-  EXPECT_EQ(errorOf(R"({ "lights": [ { "type": "environment", "file": ")" + map + R"(", "brute_force_width": 100 } ] })"),
+  EXPECT_EQ(
+    errorOf(R"({ "lights": [ { "type": "environment", "file": ")" + map + R"(", "brute_force_width": 100 } ] })"),
     "scene.json: /lights/0/brute_force_width: must be an even number that divides the map's width (1024), or at "
     "least that width");
 }
@@ -412,7 +423,8 @@ TEST(SceneFile, ShadowsAndAmbientOcclusion)
       { "name": "panel", "type": "rectangle", "center": [0, 0, 2], "edge_u": [1, 0, 0], "edge_v": [0, -1, 0] },
       { "type": "ambient", "intensity": 0.1 }
     ]
-  })", "scene.json");
+  })",
+    "scene.json");
   EXPECT_TRUE(scene.lights[0].shadows);
   EXPECT_FALSE(scene.lights[1].shadows);
   EXPECT_TRUE(scene.lights[2].shadows);
@@ -451,7 +463,8 @@ TEST(SceneFile, ShadowsAndAmbientOcclusion)
     "\"rays\": \"auto\" with it, or leave it out");
   EXPECT_EQ(errorOf(R"({ "lights": [], "ambient_occlusion": { "rays": "auto", "max_rays": 8 } })"),
     "scene.json: /ambient_occlusion/max_rays: must be a whole number from 16 to 1048576");
-  const Scene automatic = parseScene(R"({ "lights": [], "ambient_occlusion": { "rays": "auto", "max_rays": 1000 } })", "scene.json");
+  const Scene automatic =
+    parseScene(R"({ "lights": [], "ambient_occlusion": { "rays": "auto", "max_rays": 1000 } })", "scene.json");
   EXPECT_TRUE(automatic.ambientOcclusion->sampling.fromTolerance);
   EXPECT_EQ(automatic.ambientOcclusion->sampling.maximum, 1000);
   EXPECT_FALSE(automatic.ambientOcclusion->target) << "a tolerance's plan sets it";
@@ -472,8 +485,7 @@ TEST(SceneFile, MissingFile)
   }
   catch (const SceneFileError& error)
   {
-    EXPECT_STREQ(error.what(),
-      "no/such/scene.json: cannot open the scene file (does it exist, and is it readable?)");
+    EXPECT_STREQ(error.what(), "no/such/scene.json: cannot open the scene file (does it exist, and is it readable?)");
   }
 }
 
@@ -482,7 +494,8 @@ TEST(ArraySelection, SelectedNamesInOutputOrder)
 {
   const Scene scene = parseScene(R"({ "lights": [
       { "name": "sun", "type": "distant", "direction": [0, 0, -1] },
-      { "name": "bulb", "type": "point", "position": [0, 0, 1] } ] })", "scene.json");
+      { "name": "bulb", "type": "point", "position": [0, 0, 1] } ] })",
+    "scene.json");
   EXPECT_EQ(selectedArrayNames(scene, { "default" }),
     (std::vector<std::string>{ "ambient", "diffuse", "specular", "total", "shading_flags" }));
   EXPECT_EQ(selectedArrayNames(scene, { "*_distance", "total", "sun_diffuse" }),
@@ -496,7 +509,8 @@ TEST(ArraySelection, PatternsAndNames)
   const Scene scene = parseScene(R"({ "lights": [
       { "name": "sun", "type": "distant", "direction": [0, 0, -1] },
       { "name": "bulb", "type": "point", "position": [0, 0, 1] },
-      { "name": "sky", "type": "ambient" } ] })", "scene.json");
+      { "name": "sky", "type": "ambient" } ] })",
+    "scene.json");
   const ArrayRequest byDefault = selectArrays(scene, { "default" });
   EXPECT_TRUE(byDefault.flags);
   EXPECT_FALSE(byDefault.any(LightTerm::CosIncidence));
@@ -514,7 +528,7 @@ TEST(ArraySelection, PatternsAndNames)
   EXPECT_EQ(std::count(all.lights[0].begin(), all.lights[0].end(), true), 11); // no distance
   EXPECT_EQ(std::count(all.lights[1].begin(), all.lights[1].end(), true), 12);
   EXPECT_EQ(std::count(all.lights[2].begin(), all.lights[2].end(), true), 0); // ambient
-  EXPECT_EQ(availableArrays(scene).size(), 5u + 11u + 12u); // totals+flags, sun, bulb
+  EXPECT_EQ(availableArrays(scene).size(), 5u + 11u + 12u);                   // totals+flags, sun, bulb
 
   try
   {
@@ -549,8 +563,8 @@ TEST(ArraySelection, LightArrayNamesCannotCollide)
     {
       const std::string longer = termInfo(LightTerm(t)).name;
       const std::string suffix = std::string("_") + termInfo(LightTerm(u)).name;
-      EXPECT_FALSE(longer.size() > suffix.size() &&
-        longer.compare(longer.size() - suffix.size(), suffix.size(), suffix) == 0)
+      EXPECT_FALSE(
+        longer.size() > suffix.size() && longer.compare(longer.size() - suffix.size(), suffix.size(), suffix) == 0)
         << longer << " ends in " << suffix;
     }
   }

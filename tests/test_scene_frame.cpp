@@ -1,11 +1,11 @@
 // Scenes in the mesh frame: parsing "frame", placing a scene on a mesh (every light type's
 // geometry and fall-off), studio_mesh.json against studio.json on the bunny, and the default
 // light kit.
-#include "SceneFileErrors.h"
 #include "DefaultLightKit.h"
 #include "EnvironmentMap.h"
 #include "KernelHarness.h"
 #include "SceneFile.h"
+#include "SceneFileErrors.h"
 #include "SceneFrame.h"
 
 #include <gtest/gtest.h>
@@ -38,8 +38,8 @@ void expectNear(double actual, double expected, double rel, const std::string& w
 void expectNear(const glm::dvec3& actual, const glm::dvec3& expected, double rel, const std::string& what)
 {
   EXPECT_LE(vectorLength(actual - expected), rel * vectorLength(expected))
-    << what << ": (" << actual.x << ", " << actual.y << ", " << actual.z << ") vs (" << expected.x << ", "
-    << expected.y << ", " << expected.z << ")";
+    << what << ": (" << actual.x << ", " << actual.y << ", " << actual.z << ") vs (" << expected.x << ", " << expected.y
+    << ", " << expected.z << ")";
 }
 
 void expectSameAttenuation(const Attenuation& actual, const Attenuation& expected, double rel, const std::string& at)
@@ -193,7 +193,8 @@ Scene everyLightInTheMeshFrame()
       { "name": "ball", "type": "sphere", "center": [0, -2.5, 0], "radius": 0.3, "intensity": 1.5 },
       { "name": "room", "type": "ambient", "intensity": 0.05 }
     ]
-  })", "mesh_frame.json");
+  })",
+    "mesh_frame.json");
   // A constant map (made here rather than read, to keep the test small): E = pi L everywhere.
   auto map = std::make_shared<EnvironmentMap>();
   map->width = 4;
@@ -219,8 +220,8 @@ TEST(SceneFrame, ParsesTheFrame)
   EXPECT_EQ(parseScene(R"({ "frame": "mesh", "lights": [] })", "scene.json").frame, SceneFrame::Mesh);
   EXPECT_EQ(errorOf(R"({ "frame": "bunny", "lights": [] })"),
     "scene.json: /frame: \"bunny\" is not one of \"world\", \"mesh\"");
-  EXPECT_EQ(errorOf(R"({ "frame": "Mesh", "lights": [] })"),
-    "scene.json: /frame: \"Mesh\" is not one of \"world\", \"mesh\"");
+  EXPECT_EQ(
+    errorOf(R"({ "frame": "Mesh", "lights": [] })"), "scene.json: /frame: \"Mesh\" is not one of \"world\", \"mesh\"");
   EXPECT_EQ(errorOf(R"({ "frame": 1, "lights": [] })"), "scene.json: /frame: must be a string, got 1");
   EXPECT_EQ(errorOf(R"({ "frame": { "mesh": true }, "lights": [] })"),
     "scene.json: /frame: must be a string, got {\"mesh\":true}");
@@ -469,7 +470,7 @@ TEST(DefaultLightKit, IsVtkLightKitInTheMeshFrame)
   }
   const auto& keyLight = std::get<DistantLight>(kit.lights[0].source);
   const auto& fillLight = std::get<DistantLight>(kit.lights[1].source);
-  EXPECT_GT(keyLight.color.r, keyLight.color.b); // warm
+  EXPECT_GT(keyLight.color.r, keyLight.color.b);   // warm
   EXPECT_LT(fillLight.color.r, fillLight.color.b); // cool
   EXPECT_EQ(kit.lights[4].name, "ambient");
   EXPECT_NEAR(std::get<AmbientLight>(kit.lights[4].source).intensity, 0.1, 1e-12);

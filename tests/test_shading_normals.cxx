@@ -208,8 +208,8 @@ TEST(ShadingNormals, CopiesThatDifferInTheirLastDigitsWeldUnderATolerance)
 {
   // A ridge whose second triangle's copies of the ridge points sit 1e-9 away.
   vtkNew<vtkPoints> points;
-  for (const Position& p : std::vector<Position>{ { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, -0.3 }, { 1e-9, 0, 0 },
-         { 1 + 1e-9, 0, 0 }, { 0, -1, -0.3 } })
+  for (const Position& p : std::vector<Position>{
+         { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, -0.3 }, { 1e-9, 0, 0 }, { 1 + 1e-9, 0, 0 }, { 0, -1, -0.3 } })
   {
     points->InsertNextPoint(p.data());
   }

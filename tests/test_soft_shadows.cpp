@@ -24,8 +24,8 @@ constexpr double radiance = 3;
 std::vector<glm::dvec3> lightFrom(double xFrom)
 {
   const double x0 = std::max(-lightHalf, xFrom);
-  return { { x0, lightHalf, lightHeight }, { lightHalf, lightHalf, lightHeight }, { lightHalf, -lightHalf, lightHeight },
-    { x0, -lightHalf, lightHeight } };
+  return { { x0, lightHalf, lightHeight }, { lightHalf, lightHalf, lightHeight },
+    { lightHalf, -lightHalf, lightHeight }, { x0, -lightHalf, lightHeight } };
 }
 
 AreaLight squareLight(AreaEstimator estimator, int samples, bool stratified)
@@ -47,8 +47,8 @@ struct Plate
   std::vector<PointId> connectivity{ 0, 1, 2, 0, 2, 3 };
   OccluderMesh occluders() const
   {
-    return OccluderMesh(PackedPoints<double>{ &points[0].x }, points.size(),
-      PolygonList{ offsets.data(), connectivity.data(), 2 });
+    return OccluderMesh(
+      PackedPoints<double>{ &points[0].x }, points.size(), PolygonList{ offsets.data(), connectivity.data(), 2 });
   }
 };
 
@@ -150,7 +150,8 @@ double penumbraRmsError(AreaEstimator estimator, int samples, bool stratified)
   {
     if (std::abs(x) < lightHalf)
     {
-      const double error = shadowed(occluders, light, receiver(x, std::uint64_t(count))).irradiance.x - visibleIrradiance(x);
+      const double error =
+        shadowed(occluders, light, receiver(x, std::uint64_t(count))).irradiance.x - visibleIrradiance(x);
       squares += error * error;
       ++count;
     }

@@ -35,8 +35,10 @@ Scene spectralScene(const std::string& lightSpectrum, const std::string& materia
 {
   return parseScene(R"({ "viewer": { "position": [0, 0, 6] }, "spectral": { "band_nm": )" + std::to_string(bandNm) +
       R"( }, "material": )" + material + R"(, "lights": [
-      { "name": "lamp", "type": "distant", "direction": [0, 0, -1], "spectrum": )" + lightSpectrum + R"( },
-      { "name": "room", "type": "ambient", "intensity": 0.1, "spectrum": )" + lightSpectrum + " } ] }",
+      { "name": "lamp", "type": "distant", "direction": [0, 0, -1], "spectrum": )" +
+      lightSpectrum + R"( },
+      { "name": "room", "type": "ambient", "intensity": 0.1, "spectrum": )" +
+      lightSpectrum + " } ] }",
     "scene.json");
 }
 

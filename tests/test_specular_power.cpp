@@ -106,7 +106,7 @@ TEST(SpecularPower, WholeExponents)
 TEST(SpecularPower, SchlickAtKnownPoints)
 {
   EXPECT_DOUBLE_EQ(powSchlick(0.5, 10.0), 0.5 / 5.5); // x / (eta - eta x + x)
-  EXPECT_DOUBLE_EQ(powSchlick(0.3, 1.0), 0.3);         // exact for eta = 1
+  EXPECT_DOUBLE_EQ(powSchlick(0.3, 1.0), 0.3);        // exact for eta = 1
   EXPECT_EQ(powSchlick(1.0, 1000.0), 1.0);
   EXPECT_EQ(powSchlick(0.0, 1000.0), 0.0);
   EXPECT_EQ(powSchlick(0.0, 0.0), 1.0); // 0/0 taken as pow(0, 0) = 1

@@ -24,10 +24,7 @@ struct SpherePoint
 {
   double theta; // polar angle from +z
   double phi;   // azimuth from +x
-  glm::dvec3 n() const
-  {
-    return { std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta) };
-  }
+  glm::dvec3 n() const { return { std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta) }; }
 };
 
 using Expected = std::function<std::vector<double>(const SpherePoint&)>;
@@ -60,8 +57,8 @@ struct Tolerance
 
 /// Runs the filter with every array on and compares each with its closed form. Every array
 /// the scene can produce (but the flags) must have an expectation, so none goes unchecked.
-void expectClosedForms(const Scene& scene, const std::map<std::string, Expected>& expected,
-  int precision, const Tolerance& tolerance)
+void expectClosedForms(
+  const Scene& scene, const std::map<std::string, Expected>& expected, int precision, const Tolerance& tolerance)
 {
   vtkSmartPointer<vtkPolyData> sphere = shadelab::testing::exactSphere(150);
   vtkNew<vtkLocalReflectanceFilter> filter;
@@ -107,8 +104,8 @@ void expectClosedForms(const Scene& scene, const std::map<std::string, Expected>
 constexpr Tolerance float64Tolerance{ 1e-12, "float64" };
 constexpr Tolerance float32Tolerance{ 1e-5, "float32" };
 
-void expectInBothPrecisions(const Scene& scene, const std::map<std::string, Expected>& expected,
-  const Tolerance& float32 = float32Tolerance)
+void expectInBothPrecisions(
+  const Scene& scene, const std::map<std::string, Expected>& expected, const Tolerance& float32 = float32Tolerance)
 {
   expectClosedForms(scene, expected, vtkAlgorithm::DOUBLE_PRECISION, float64Tolerance);
   expectClosedForms(scene, expected, vtkAlgorithm::SINGLE_PRECISION, float32);
@@ -136,7 +133,10 @@ void distantLightOverhead(SpecularModel model, double eta, const Tolerance& floa
   auto diffuse = [](const SpherePoint& x) { return 0.6 * 1.5 * positive(std::cos(x.theta)); };
   auto specular = [=](const SpherePoint& x) { return 0.3 * 1.5 * lobe(x); };
   const std::map<std::string, Expected> expected = {
-    { "sun_to_light", [](const SpherePoint&) { return vector({ 0, 0, 1 }); } },
+    { "sun_to_light",
+      [](const SpherePoint&) {
+        return vector({ 0, 0, 1 });
+      } },
     { "sun_attenuation", [](const SpherePoint&) { return scalar(1); } },
     { "sun_spot_factor", [](const SpherePoint&) { return scalar(1); } },
     { "sun_cos_incidence", [](const SpherePoint& x) { return scalar(std::cos(x.theta)); } },
@@ -144,11 +144,14 @@ void distantLightOverhead(SpecularModel model, double eta, const Tolerance& floa
     { "sun_reflection",
       [](const SpherePoint& x)
       {
-        return vector({ std::sin(2 * x.theta) * std::cos(x.phi), std::sin(2 * x.theta) * std::sin(x.phi),
-          std::cos(2 * x.theta) });
+        return vector(
+          { std::sin(2 * x.theta) * std::cos(x.phi), std::sin(2 * x.theta) * std::sin(x.phi), std::cos(2 * x.theta) });
       } },
     { "sun_r_dot_v", [](const SpherePoint& x) { return scalar(std::cos(2 * x.theta)); } },
-    { "sun_half_vector", [](const SpherePoint&) { return vector({ 0, 0, 1 }); } },
+    { "sun_half_vector",
+      [](const SpherePoint&) {
+        return vector({ 0, 0, 1 });
+      } },
     { "sun_n_dot_h", [](const SpherePoint& x) { return scalar(std::cos(x.theta)); } },
     { "sun_diffuse", [=](const SpherePoint& x) { return grey(diffuse(x)); } },
     { "sun_specular", [=](const SpherePoint& x) { return grey(specular(x)); } },
@@ -202,10 +205,7 @@ struct AxisGeometry
   double e(const SpherePoint& x) const { return std::sqrt(1 + V * V - 2 * V * std::cos(x.theta)); }
   double ns(const SpherePoint& x) const { return (D * std::cos(x.theta) - 1) / d(x); }
   double nv(const SpherePoint& x) const { return (V * std::cos(x.theta) - 1) / e(x); }
-  double sv(const SpherePoint& x) const
-  {
-    return (D * V - (D + V) * std::cos(x.theta) + 1) / (d(x) * e(x));
-  }
+  double sv(const SpherePoint& x) const { return (D * V - (D + V) * std::cos(x.theta) + 1) / (d(x) * e(x)); }
   glm::dvec3 s(const SpherePoint& x) const { return (glm::dvec3(0, 0, D) - x.n()) / d(x); }
   glm::dvec3 v(const SpherePoint& x) const { return (glm::dvec3(0, 0, V) - x.n()) / e(x); }
   // The cosine between the spot axis (-z) and the direction from the light to the vertex.
@@ -283,7 +283,8 @@ TEST(SphereAnalytic, PointLightUnderEveryAttenuation)
     SCOPED_TRACE("attenuation model " + std::to_string(int(c.attenuation.model)));
     PointLight bulb{ { 0, 0, g.D }, Rgb(1.0), 2.0, c.attenuation };
     expectInBothPrecisions(axisScene(bulb, g.V, eta),
-      positionalLight("bulb", g, c.closedForm, [](double) { return 1.0; }, eta));
+      positionalLight(
+        "bulb", g, c.closedForm, [](double) { return 1.0; }, eta));
   }
 }
 
@@ -316,7 +317,8 @@ TEST(SphereAnalytic, SpotlightConesInsideAndOutside)
     SCOPED_TRACE(cone.model == ConeModel::Vtk ? "vtk cone" : "gltf cone");
     SpotLight spot{ { 0, 0, g.D }, { 0, 0, -1 }, Rgb(1.0), 2.0, inverseSquare, cone };
     expectInBothPrecisions(axisScene(spot, g.V, eta),
-      positionalLight("bulb", g, [](double d) { return 1 / (d * d); }, closedForm, eta));
+      positionalLight(
+        "bulb", g, [](double d) { return 1 / (d * d); }, closedForm, eta));
   }
 }
 

@@ -63,8 +63,8 @@ int expectPieceOfWhole(vtkPolyData* whole, vtkPolyData* piece)
   for (int a = 0; a < expected->GetNumberOfArrays(); ++a)
   {
     const std::string name = expected->GetArrayName(a);
-    shadelab::testing::expectSameBits(shadelab::tuplesAt(expected->GetArray(a), ids),
-      piece->GetPointData()->GetArray(name.c_str()), name);
+    shadelab::testing::expectSameBits(
+      shadelab::tuplesAt(expected->GetArray(a), ids), piece->GetPointData()->GetArray(name.c_str()), name);
   }
   return expected->GetNumberOfArrays();
 }
@@ -96,7 +96,8 @@ vtkSmartPointer<vtkPolyData> shaded(vtkPolyData* mesh, const std::string& scene,
 /// This process's piece of a mesh file, with a layer of ghost cells.
 vtkSmartPointer<vtkPolyData> myPiece(vtkPolyData* mesh, int ghostLevels = 1)
 {
-  return shadelab::testing::meshPiece(mesh, processes()->GetLocalProcessId(), processes()->GetNumberOfProcesses(), ghostLevels);
+  return shadelab::testing::meshPiece(
+    mesh, processes()->GetLocalProcessId(), processes()->GetNumberOfProcesses(), ghostLevels);
 }
 
 struct SplitMesh : ::testing::TestWithParam<const char*>
@@ -125,7 +126,8 @@ TEST_P(SplitMesh, PlacesTheSceneOnTheWholeMesh)
   const vtkSmartPointer<vtkPolyData> piece = shaded(myPiece(mesh), "studio_mesh.json", { "totals" }, processes(), 1e-3);
   EXPECT_GT(expectPieceOfWhole(whole, piece), 3);
   ASSERT_FALSE(shadelab::testing::methodsNote(whole).empty());
-  EXPECT_NE(shadelab::testing::methodsNote(whole)[0].find("measured on a sample of the points"), std::string::npos) << shadelab::testing::methodsNote(whole)[0];
+  EXPECT_NE(shadelab::testing::methodsNote(whole)[0].find("measured on a sample of the points"), std::string::npos)
+    << shadelab::testing::methodsNote(whole)[0];
   EXPECT_EQ(shadelab::testing::methodsNote(piece), shadelab::testing::methodsNote(whole));
 }
 
@@ -140,8 +142,8 @@ TEST_P(SplitMesh, DrawsSoftShadowsToATargetAsTheWholeMesh)
   EXPECT_GE(expectPieceOfWhole(whole, piece), 13);
   // The same plan; the whole mesh's has its cost forecast too (a split mesh is shaded without one).
   std::vector<std::string> plan = shadelab::testing::methodsNote(whole);
-  const auto forecast = std::find_if(plan.begin(), plan.end(),
-    [](const std::string& line) { return line.rfind("forecast from ", 0) == 0; });
+  const auto forecast = std::find_if(
+    plan.begin(), plan.end(), [](const std::string& line) { return line.rfind("forecast from ", 0) == 0; });
   ASSERT_TRUE(forecast != plan.end() && forecast + 1 != plan.end() && forecast[1].rfind("drew ", 0) == 0);
   plan.erase(forecast, forecast + 2);
   EXPECT_EQ(shadelab::testing::methodsNote(piece), plan);
@@ -157,7 +159,8 @@ TEST_P(SplitMesh, NormalsAreTheWholeMeshs)
   split->SetInputData(myPiece(mesh));
   split->Update();
   EXPECT_EQ(split->GetReport(), whole->GetReport());
-  EXPECT_EQ(expectPieceOfWhole(whole->GetOutput(), split->GetOutput()), whole->GetOutput()->GetPointData()->GetNumberOfArrays());
+  EXPECT_EQ(expectPieceOfWhole(whole->GetOutput(), split->GetOutput()),
+    whole->GetOutput()->GetPointData()->GetNumberOfArrays());
   EXPECT_NE(split->GetOutput()->GetPointData()->GetNormals(), nullptr);
 }
 
@@ -286,8 +289,8 @@ TEST(SplitMeshVisibility, AProcessWithAnEmptyPiece)
   const bool holdsNone = rank == count - 1;
   for (vtkPolyData* mesh : { plain.Get(), normals->GetOutput() })
   {
-    vtkSmartPointer<vtkPolyData> piece = holdsNone ? vtkSmartPointer<vtkPolyData>::New()
-                                                   : shadelab::testing::meshPiece(mesh, rank, count - 1, 1);
+    vtkSmartPointer<vtkPolyData> piece =
+      holdsNone ? vtkSmartPointer<vtkPolyData>::New() : shadelab::testing::meshPiece(mesh, rank, count - 1, 1);
     for (const auto& [scene, arrays] : { std::pair{ "shadows_occlusion.json", 10 }, std::pair{ "studio.json", 40 } })
     {
       const bool ownNormals = mesh->GetPointData()->GetNormals() != nullptr;
@@ -303,8 +306,9 @@ TEST(SplitMeshVisibility, AProcessWithAnEmptyPiece)
   }
   // Drawn to a target, the vertices short of it are counted over the pieces, the empty one too.
   const char* drawn = "soft_shadows_to_a_tolerance.json";
-  vtkSmartPointer<vtkPolyData> piece =
-    holdsNone ? vtkSmartPointer<vtkPolyData>::New() : shadelab::testing::meshPiece(normals->GetOutput(), rank, count - 1, 1);
+  vtkSmartPointer<vtkPolyData> piece = holdsNone
+    ? vtkSmartPointer<vtkPolyData>::New()
+    : shadelab::testing::meshPiece(normals->GetOutput(), rank, count - 1, 1);
   const vtkSmartPointer<vtkPolyData> shadedPiece = shaded(piece, drawn, { "totals" }, processes(), 0.02);
   if (!holdsNone)
   {
@@ -391,7 +395,8 @@ TEST(SplitMeshErrors, PiecesWithoutGlobalIds)
   EXPECT_EQ(whole.problem,
     "the mesh is in " + std::to_string(count) +
       " pieces but their points have no global ids (vtkGlobalIds), which say which points of different pieces "
-      "are one: give them global ids (VTK's vtkGenerateGlobalIds), or read pieces written by shadelab, which have them");
+      "are one: give them global ids (VTK's vtkGenerateGlobalIds), or read pieces written by shadelab, which have "
+      "them");
 }
 
 TEST(SplitMeshErrors, PiecesWithoutCellIds)
@@ -428,8 +433,8 @@ TEST(SplitMeshErrors, IdsOfAnotherNumbering)
     EXPECT_TRUE(whole.pieceIds.empty());
     return;
   }
-  EXPECT_EQ(whole.problem, "the pieces' global point ids run from 0 to " +
-      std::to_string(2 * (mesh->GetNumberOfPoints() - 1)) +
+  EXPECT_EQ(whole.problem,
+    "the pieces' global point ids run from 0 to " + std::to_string(2 * (mesh->GetNumberOfPoints() - 1)) +
       " but do not number the points 0 to n-1, each at least once: give the points global ids that do");
 }
 
@@ -480,8 +485,8 @@ TEST(SplitMeshErrors, CellOnTwoPieces)
     return;
   }
   EXPECT_EQ(whole.problem.rfind("the global cell id ", 0), 0u) << whole.problem;
-  EXPECT_NE(whole.problem.find(" is on two pieces' polygons: mark the copies as ghost cells (vtkGhostType)"),
-    std::string::npos)
+  EXPECT_NE(
+    whole.problem.find(" is on two pieces' polygons: mark the copies as ghost cells (vtkGhostType)"), std::string::npos)
     << whole.problem;
 }
 }

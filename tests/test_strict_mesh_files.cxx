@@ -144,7 +144,8 @@ bool objCorner(const std::string& word, char kind, const long long listed[3], Ob
       return false;
     }
     long long& index = corner.index[slot];
-    if (corner.has[slot] && (!strictInteger(parts[slot], index) || index == 0 || index > listed[slot] || -index > listed[slot]))
+    if (corner.has[slot] &&
+      (!strictInteger(parts[slot], index) || index == 0 || index > listed[slot] || -index > listed[slot]))
     {
       return false;
     }
@@ -182,7 +183,9 @@ Reading referenceObj(const std::string& text)
         }
       }
       const int slot = keyword == "v" ? 0 : keyword == "vt" ? 1 : 2;
-      const bool allowed = slot == 0 ? count == 3 || count == 4 || count == 6 : slot == 1 ? count == 2 || count == 3 : count == 3;
+      const bool allowed = slot == 0 ? count == 3 || count == 4 || count == 6
+        : slot == 1                  ? count == 2 || count == 3
+                                     : count == 3;
       if (!allowed)
       {
         return refusedAt(number);
@@ -311,8 +314,8 @@ PlyScalar plyScalar(const std::string& type)
     return { true, 0, 0, type == "float" || type == "float32" };
   }
   const int bits = type == "char" || type == "uchar" || type == "int8" || type == "uint8" ? 8
-    : type == "short" || type == "ushort" || type == "int16" || type == "uint16"           ? 16
-                                                                                           : 32;
+    : type == "short" || type == "ushort" || type == "int16" || type == "uint16"          ? 16
+                                                                                          : 32;
   const bool isSigned = type[0] != 'u';
   return { false, isSigned ? -std::ldexp(1.0, bits - 1) : 0.0,
     isSigned ? std::ldexp(1.0, bits - 1) - 1 : std::ldexp(1.0, bits) - 1, false };
@@ -394,8 +397,10 @@ Reading referencePly(const std::string& text)
       for (const PlyRefProperty& property : element.properties)
       {
         double value = 0;
-        const bool coordinate = element.name == "vertex" && property.name.size() == 1 && std::strchr("xyz", property.name[0]);
-        if (w >= words.size() || !plyValue(words[w++], property.list ? property.countType : property.type, coordinate, value))
+        const bool coordinate =
+          element.name == "vertex" && property.name.size() == 1 && std::strchr("xyz", property.name[0]);
+        if (w >= words.size() ||
+          !plyValue(words[w++], property.list ? property.countType : property.type, coordinate, value))
         {
           return refusedAt(number);
         }
@@ -517,7 +522,8 @@ Reading referenceStl(const std::string& text)
     {
       if (keyword == "vertex")
       {
-        corners.push_back({ static_cast<float>(numbers[0]), static_cast<float>(numbers[1]), static_cast<float>(numbers[2]) });
+        corners.push_back(
+          { static_cast<float>(numbers[0]), static_cast<float>(numbers[1]), static_cast<float>(numbers[2]) });
       }
       inFacet = (inFacet + 1) % facet.size();
     }
@@ -638,8 +644,8 @@ struct Mutant
 
 /// What replaces a word: junk, non-finite numbers, numbers beyond a float, numbers with junk
 /// after them, and numbers and indices a reader may or may not take.
-const char* const replacements[] = { "abc", "nan", "NaN", "inf", "-inf", "1e999", "1e39", "1.0abc", "0x10", "1,5",
-  "0", "-0", "-1", "99", "-99", "2.5", "+7", "1e-40", "3.", "" };
+const char* const replacements[] = { "abc", "nan", "NaN", "inf", "-inf", "1e999", "1e39", "1.0abc", "0x10", "1,5", "0",
+  "-0", "-1", "99", "-99", "2.5", "+7", "1e-40", "3.", "" };
 
 std::string joined(const std::vector<std::string>& lines, bool endsInNewline)
 {
@@ -863,11 +869,10 @@ const std::string stlSeed = "solid seed\n"
 
 TEST(StrictMeshFiles, TheSeedsReadAsTheReferenceReadsThem)
 {
-  for (const auto& [seed, extension, reference] :
-    { std::make_tuple(objMatchingSeed, ".obj", &referenceObj), std::make_tuple(objPlainSeed, ".obj", &referenceObj),
-      std::make_tuple(objCopiedSeed, ".obj", &referenceObj), std::make_tuple(objLinesSeed, ".obj", &referenceObj),
-      std::make_tuple(plySeed, ".ply", &referencePly),
-      std::make_tuple(plyDoubleSeed, ".ply", &referencePly), std::make_tuple(stlSeed, ".stl", &referenceStl) })
+  for (const auto& [seed, extension, reference] : { std::make_tuple(objMatchingSeed, ".obj", &referenceObj),
+         std::make_tuple(objPlainSeed, ".obj", &referenceObj), std::make_tuple(objCopiedSeed, ".obj", &referenceObj),
+         std::make_tuple(objLinesSeed, ".obj", &referenceObj), std::make_tuple(plySeed, ".ply", &referencePly),
+         std::make_tuple(plyDoubleSeed, ".ply", &referencePly), std::make_tuple(stlSeed, ".stl", &referenceStl) })
   {
     SCOPED_TRACE(seed);
     std::string message;
@@ -878,9 +883,9 @@ TEST(StrictMeshFiles, TheSeedsReadAsTheReferenceReadsThem)
     expectSameReading(production, expected, message);
   }
   // The conventions the reference follows, seen in VTK's own reading.
-  EXPECT_EQ(referenceObj(objCopiedSeed).points.size(), 9u);   // a copy per corner
-  EXPECT_EQ(referenceStl(stlSeed).points.size(), 5u);         // 9 corners, 4 of them repeated
-  EXPECT_EQ(referenceObj(objPlainSeed).polys[1].size(), 4u);  // continued on the next line
+  EXPECT_EQ(referenceObj(objCopiedSeed).points.size(), 9u);  // a copy per corner
+  EXPECT_EQ(referenceStl(stlSeed).points.size(), 5u);        // 9 corners, 4 of them repeated
+  EXPECT_EQ(referenceObj(objPlainSeed).polys[1].size(), 4u); // continued on the next line
 }
 
 TEST(StrictMeshFiles, ObjMutantsAreRefusedAtTheirLineOrReadExactly)
@@ -911,7 +916,8 @@ std::string refusal(const std::string& text, const std::string& extension)
 {
   std::string message;
   productionReading(text, extension, message);
-  const std::string name = (fs::temp_directory_path() / ("shadelab-strict-" + std::to_string(::getpid()) + extension)).string();
+  const std::string name =
+    (fs::temp_directory_path() / ("shadelab-strict-" + std::to_string(::getpid()) + extension)).string();
   EXPECT_EQ(message.rfind(name + ": ", 0), 0u) << message;
   return message.substr(std::min(message.size(), name.size() + 2));
 }
@@ -935,7 +941,8 @@ TEST(StrictMeshFiles, MessagesSayWhereAndWhat)
       "listed, -1 for the last)" },
     { "v 0 0 0\nv 1.0 abc 2.0\n", ".obj", "line 2: 'abc' is not a number (the vertex's y coordinate)" },
     { "v nan 1 2\n", ".obj", "line 1: 'nan' is not a finite number (the vertex's x coordinate)" },
-    { "v 1 2\n", ".obj", "line 1: a vertex is 'v x y z', optionally followed by w or by r g b, and this line has 2 values" },
+    { "v 1 2\n", ".obj",
+      "line 1: a vertex is 'v x y z', optionally followed by w or by r g b, and this line has 2 values" },
     { "v 1 2 1e39\n", ".obj",
       "line 1: '1e39' is beyond +-3.4e+38, the range of the float in which VTK's reader stores it (the vertex's z "
       "coordinate)" },
@@ -956,15 +963,18 @@ TEST(StrictMeshFiles, MessagesSayWhereAndWhat)
     { ply + "1 0 0\n0 1 0\n300 0 1 2\n", ".ply",
       "line 13: '300' is beyond 0 to 255, the range of type uchar (the count of the 'face' list 'vertex_indices', of "
       "type uchar)" },
-    { ply + "1 0\n0 1 0\n3 0 1 2\n", ".ply", "line 11: this 'vertex' line ends after 2 values, before its 'z' is complete" },
+    { ply + "1 0\n0 1 0\n3 0 1 2\n", ".ply",
+      "line 11: this 'vertex' line ends after 2 values, before its 'z' is complete" },
     { ply + "1 0 0\n0 1 0\n3 0 1 3\n", ".ply",
       "line 13: vertex index 3 refers to no vertex: the header declares 3, numbered from 0" },
     { ply + "1 0 0\n0 1 0\n3 0 1 2", ".ply",
       "line 13: the file's last line has no line break, and VTK's PLY reader stops before it: end the file with one" },
     { ply + "1 0 0\n0 1 0\n3 0 1 2\n7 7 7\n", ".ply",
-      "line 14: the header declares 3 'vertex' and 1 'face' lines, and this one comes after them all: a count is wrong" },
+      "line 14: the header declares 3 'vertex' and 1 'face' lines, and this one comes after them all: a count is "
+      "wrong" },
     { facet + "vertex 1 nan 0\n", ".stl", "line 5: 'nan' is not a finite number (the vertex's y)" },
-    { facet + "vertex 1 0 0 junk\n", ".stl", "line 5: a vertex is 'vertex x y z', and this line has 4 values after 'vertex'" },
+    { facet + "vertex 1 0 0 junk\n", ".stl",
+      "line 5: a vertex is 'vertex x y z', and this line has 4 values after 'vertex'" },
     { facet + "vertex 1 0 0\nvertex 0 1 0\nendfacet\nendsolid s\n", ".stl",
       "line 7: 'endloop' should be here, not 'endfacet'" },
     { facet + "vertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\n", ".stl",
@@ -978,7 +988,8 @@ TEST(StrictMeshFiles, MessagesSayWhereAndWhat)
 
 TEST(StrictMeshFiles, WhatTheReaderSkipsIsCounted)
 {
-  EXPECT_EQ(objFileCheck(objMatchingSeed).ignored, "1 'o', 1 's' statements (object names and smoothing groups are not read)");
+  EXPECT_EQ(
+    objFileCheck(objMatchingSeed).ignored, "1 'o', 1 's' statements (object names and smoothing groups are not read)");
   EXPECT_EQ(objFileCheck(objPlainSeed).ignored, "the r g b colours of 1 vertex (VTK 9.1 reads no vertex colours)");
   EXPECT_EQ(objFileCheck("v 0 0 0\nvp 0.5\ncstype bspline\ncurv 0 1 1\ns off\nsurf 0 1 0 1 1\ns 2\n").ignored,
     "1 'vp', 1 'cstype', 1 'curv', 2 's', 1 'surf' statements (free-form curves and surfaces and smoothing groups "

@@ -63,7 +63,6 @@ double largestError(vtkPolyData* a, vtkPolyData* b)
   return largest;
 }
 
-
 /// The bunny under every scene in data/scenes, and the same scenes with their point lights
 /// ten and a hundred times farther, where the distant approximation is taken.
 TEST(Tolerance, MeasuredErrorStaysUnderTheToleranceOnTheBunny)
@@ -141,8 +140,7 @@ TEST(Tolerance, TheChoiceFollowsTheTolerance)
   key.position *= 30.0;
   key.intensity *= 900.0;
   EXPECT_NE(line(1e-2, "key").find("key: as distant from"), std::string::npos) << line(1e-2, "key");
-  EXPECT_NE(line(1e-4, "key").find("key: exact (as distant it would err by"), std::string::npos)
-    << line(1e-4, "key");
+  EXPECT_NE(line(1e-4, "key").find("key: exact (as distant it would err by"), std::string::npos) << line(1e-4, "key");
 }
 
 /// float32's rounding, predicted from a sample of the points, against what it is on every
@@ -157,13 +155,15 @@ TEST(Tolerance, Float32sRoundingIsPredictedWithinThreeTimesOfWhatItIs)
     for (const char* name : { "studio", "studio_mesh", "sun", "spotlight", "three_lights", "vtk_headlight" })
     {
       const Scene scene = readSceneFile(data + "scenes/" + name + ".json");
-      const double measured = largestError(shade(mesh, scene, 0), shade(mesh, scene, 0, nullptr, vtkAlgorithm::SINGLE_PRECISION));
+      const double measured =
+        largestError(shade(mesh, scene, 0), shade(mesh, scene, 0, nullptr, vtkAlgorithm::SINGLE_PRECISION));
       std::optional<MethodPlan> plan;
       shade(mesh, scene, 1.0, &plan);
       ASSERT_TRUE(plan && plan->precision == Precision::Float32) << file << " under " << name;
       const double ratio = plan->arithmeticError / measured;
-      std::cout << file << " under " << name << ": float32 errs by " << measured << ", predicted " << plan->arithmeticError
-                << (plan->roundingSampled ? " (sampled)" : " (a priori)") << ", " << ratio << " times\n";
+      std::cout << file << " under " << name << ": float32 errs by " << measured << ", predicted "
+                << plan->arithmeticError << (plan->roundingSampled ? " (sampled)" : " (a priori)") << ", " << ratio
+                << " times\n";
       EXPECT_GE(ratio, 1.0) << file << " under " << name;
       EXPECT_LE(ratio, 3.0) << file << " under " << name;
       lowest = std::min(lowest, ratio);
@@ -239,7 +239,7 @@ TEST(Tolerance, ALightThatFloat32SwitchesOffAtTheHorizonIsMeasuredAndAvoided)
   scene.viewer.position = glm::dvec3(50, 0, 0.1);
   PointLight grazing;
   grazing.position = { -50, 0, double(0.1f) + 1e-9 }; // the plane's points are float32
-  grazing.intensity = 2500; // 1 at the plane, 50 away
+  grazing.intensity = 2500;                           // 1 at the plane, 50 away
   scene.lights = { { "grazing", grazing } };
   const double measured =
     largestError(shade(mesh, scene, 0), shade(mesh, scene, 0, nullptr, vtkAlgorithm::SINGLE_PRECISION));
@@ -272,7 +272,8 @@ TEST(Tolerance, AHighlightAtAPowMethodsWorstIsMeasuredWhereverItIs)
   const double fromH = std::acos(0.940066), h = std::atan2(1.0, 1.0); // angles from +x in the xz plane
   for (vtkIdType i = 0; i < normals->GetNumberOfTuples(); ++i)
   {
-    const glm::dvec3 n = i == 1 ? glm::dvec3(std::cos(h + fromH), 0, std::sin(h + fromH)) : glm::normalize(glm::dvec3(-0.9, 0, 0.3));
+    const glm::dvec3 n =
+      i == 1 ? glm::dvec3(std::cos(h + fromH), 0, std::sin(h + fromH)) : glm::normalize(glm::dvec3(-0.9, 0, 0.3));
     normals->SetTuple3(i, n.x, n.y, n.z);
   }
   Scene scene;
@@ -402,7 +403,8 @@ TEST(Tolerance, VerticesThatStopAtTheMaximumShortOfTheirTargetAreCountedAndSaid)
   EXPECT_GT(above, 0u) << line;
   EXPECT_GE(count, above) << line; // S may be short where E is not
   EXPECT_EQ(flags, count) << line;
-  EXPECT_EQ(line, "studio: " + std::to_string(count) +
+  EXPECT_EQ(line,
+    "studio: " + std::to_string(count) +
       " vertices stopped at \"max_samples\" short of their target (their _std_error arrays are above it): raise it");
   EXPECT_EQ(shadelab::testing::methodsNote(filter->GetOutput()).back(), line);
 }
@@ -456,15 +458,20 @@ TEST(Tolerance, AreaLightsAndMapsItCannotBoundAreRefusedWithTheRemedy)
   Scene fixed = studioMapToATolerance();
   std::get<EnvironmentLight>(fixed.lights[0].source).sampling.fromTolerance = false;
   EXPECT_EQ(shadelab::testing::filterError(sphere, fixed, 0.02),
-    atSamples + cannot + "'studio' of type \"environment\": its Monte Carlo estimates from 64 samples have no error bound before "
-             "they are drawn: give it \"samples\": \"auto\" (--envmap-samples auto), which draws each vertex's "
-             "samples until their standard error meets a share of the tolerance" + orNone);
+    atSamples + cannot +
+      "'studio' of type \"environment\": its Monte Carlo estimates from 64 samples have no error bound before "
+      "they are drawn: give it \"samples\": \"auto\" (--envmap-samples auto), which draws each vertex's "
+      "samples until their standard error meets a share of the tolerance" +
+      orNone);
 
   Scene harmonics = readSceneFile(data + "scenes/studio_envmap.json");
   auto& studio = std::get<EnvironmentLight>(harmonics.lights[0].source);
   studio.sampling.fromTolerance = true;
   const std::string shError = shadelab::testing::filterError(sphere, harmonics, 0.02);
-  EXPECT_EQ(shError.rfind(atEstimator + cannot + "'studio' of type \"environment\": its spherical-harmonic irradiance can err by ", 0), 0u)
+  EXPECT_EQ(
+    shError.rfind(
+      atEstimator + cannot + "'studio' of type \"environment\": its spherical-harmonic irradiance can err by ", 0),
+    0u)
     << shError;
   // With no specular term and a large enough tolerance, SH's bound fits the tolerance's tenth.
   harmonics.material.specular = SpecularModel::None;
@@ -477,8 +484,10 @@ TEST(Tolerance, AreaLightsAndMapsItCannotBoundAreRefusedWithTheRemedy)
 
   studio.estimator = EnvironmentEstimator::BruteForce;
   EXPECT_EQ(shadelab::testing::filterError(sphere, harmonics, 2.0),
-    atEstimator + cannot + "'studio' of type \"environment\": the \"brute_force\" sum of a downsampled map has no error bound: use "
-             "\"sh\" or \"monte_carlo\"" + orNone);
+    atEstimator + cannot +
+      "'studio' of type \"environment\": the \"brute_force\" sum of a downsampled map has no error bound: use "
+      "\"sh\" or \"monte_carlo\"" +
+      orNone);
 
   Scene shadowed = studioMapToATolerance();
   shadowed.lights[0].shadows = true;
@@ -580,7 +589,8 @@ TEST(Tolerance, ACostForecastIsMadeBeforeTheRunFromAPilotAndMeetsWhatTheRunDraws
     << before.counts.samples << " forecast, " << after.drawn->samples << " drawn";
   const std::vector<std::string> lines = run.filter->GetMethodPlan()->describe();
   EXPECT_EQ(lines[2].rfind("forecast from 127 of the 4034 vertices: about ", 0), 0u) << lines[2];
-  EXPECT_EQ(lines[3], "drew " + roughCount(after.drawn->samples) + " samples (" + roughCount(after.drawn->samples / 4034) +
+  EXPECT_EQ(lines[3],
+    "drew " + roughCount(after.drawn->samples) + " samples (" + roughCount(after.drawn->samples / 4034) +
       " per vertex)");
 
   // A mesh under 1024 points is shaded without one: its run is short.
@@ -609,7 +619,8 @@ TEST(Tolerance, ACostForecastCountsTheRaysThatShadowsAndOcclusionDraw)
   vtkDataArray* rays = run.filter->GetOutput()->GetPointData()->GetArray("ambient_occlusion_rays");
   ASSERT_NE(rays, nullptr);
   EXPECT_EQ(forecast.drawn->occlusionRays, sumOf(rays));
-  EXPECT_NEAR(forecast.counts.occlusionRays / sumOf(rays), 1.0, 0.1) << forecast.counts.occlusionRays << " forecast, " << sumOf(rays);
+  EXPECT_NEAR(forecast.counts.occlusionRays / sumOf(rays), 1.0, 0.1)
+    << forecast.counts.occlusionRays << " forecast, " << sumOf(rays);
 }
 
 TEST(Tolerance, AForecastSaysItsCountsInWords)
@@ -627,8 +638,9 @@ TEST(Tolerance, AForecastSaysItsCountsInWords)
   forecast.shareShortOfTarget = 0.643;
   forecast.seconds = 14.93;
   forecast.threads = 2;
-  EXPECT_EQ(forecast.describe(), "forecast from 256 of the 6002 vertices: about 25 million samples (4099 per vertex) and "
-                                 "720 thousand occlusion rays (120 per vertex), 64% of the vertices at a maximum short "
-                                 "of their target, about 15 s on 2 threads");
+  EXPECT_EQ(forecast.describe(),
+    "forecast from 256 of the 6002 vertices: about 25 million samples (4099 per vertex) and "
+    "720 thousand occlusion rays (120 per vertex), 64% of the vertices at a maximum short "
+    "of their target, about 15 s on 2 threads");
   EXPECT_EQ(SampleCounts{}.describe(10), "nothing sampled");
 }

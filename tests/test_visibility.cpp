@@ -517,7 +517,8 @@ TEST(Visibility, AnOpenBoxIsOccludedExactlyButForItsOpening)
         // A ray that escaped through a wall would err by many rays' weight. Six standard errors
         // leave room for the tail of a few pairs: with a point per face, 2 crease points of
         // 188 are beyond four (each within 1.2 of its standard error with 65,536 rays).
-        EXPECT_NEAR(ao.occlusion, exact, 6 * ao.standardError) << "crease point " << i << (pointsPerFace ? ", a point per face" : "");
+        EXPECT_NEAR(ao.occlusion, exact, 6 * ao.standardError)
+          << "crease point " << i << (pointsPerFace ? ", a point per face" : "");
       }
     }
     EXPECT_GT(creasePoints, 40u);
@@ -542,7 +543,8 @@ TEST(Visibility, StandardErrorsFallAsOneOverTheRootOfTheRays)
     double squares = 0;
     for (PointId id = 0; id < 200; ++id)
     {
-      const double error = ambientOcclusion(occluders, { floorCentre.position, floorCentre.normal, id }, settings).occlusion - exact;
+      const double error =
+        ambientOcclusion(occluders, { floorCentre.position, floorCentre.normal, id }, settings).occlusion - exact;
       squares += error * error;
     }
     return std::sqrt(squares / 200);
@@ -605,7 +607,8 @@ TEST(Visibility, RaysToATargetMeetItWhereverTheyStopShortOfTheMaximum)
     const OcclusionEstimate ao = ambientOcclusion(occluders, scene.vertex(i), settings);
     EXPECT_LE(ao.standardError, settings.target->standardError()) << "vertex " << i << ", " << ao.rays << " rays";
     EXPECT_GE(ao.rays, settings.target->minimum);
-    within += std::abs(ao.occlusion - exact) - SphereOverPlane::tessellationBias(exact) <= settings.target->error ? 1 : 0;
+    within +=
+      std::abs(ao.occlusion - exact) - SphereOverPlane::tessellationBias(exact) <= settings.target->error ? 1 : 0;
     fewest = std::min(fewest, ao.rays);
     most = std::max(most, ao.rays);
   }
@@ -626,7 +629,8 @@ TEST(Visibility, RaysToATargetMeetItWhereverTheyStopShortOfTheMaximum)
   OcclusionSettings oneRound;
   oneRound.target = SamplingTarget::forFraction(3.0 / 160, 160);
   const RayVertex vertex{ { 0.3, 0, 0 }, { 0, 0, 1 }, 7 };
-  EXPECT_EQ(ambientOcclusion(occluders, vertex, oneRound).occlusion, ambientOcclusion(occluders, vertex, fixed).occlusion);
+  EXPECT_EQ(
+    ambientOcclusion(occluders, vertex, oneRound).occlusion, ambientOcclusion(occluders, vertex, fixed).occlusion);
 }
 
 TEST(Visibility, ResultsAreTheSameWhereverTheMeshIsAndWhateverItsSize)
@@ -647,8 +651,8 @@ TEST(Visibility, ResultsAreTheSameWhereverTheMeshIsAndWhateverItsSize)
       reference.push_back(ambientOcclusion(occluders, box.vertex(i), settings).occlusion);
     }
   }
-  for (const auto& [offset, scale] : { std::pair{ 1e4, 1.0 }, std::pair{ 1e6, 1.0 }, std::pair{ 0.0, 1e-3 }, std::pair{ 0.0, 1e3 },
-         std::pair{ 1e6, 1e3 } })
+  for (const auto& [offset, scale] : { std::pair{ 1e4, 1.0 }, std::pair{ 1e6, 1.0 }, std::pair{ 0.0, 1e-3 },
+         std::pair{ 0.0, 1e3 }, std::pair{ 1e6, 1e3 } })
   {
     const Mesh moved = box.placed(glm::dvec3(offset, -offset, 0.5 * offset), scale);
     OcclusionSettings scaled = settings;
@@ -721,7 +725,8 @@ TEST(Visibility, ALightBehindAWallAtAConcaveCornerIsBlockedByTheCornersOwnTriang
     EXPECT_TRUE(v.blockedByOwnTriangle);
   }
   // Into the box, past the opposite rim: visible.
-  const LightVisibility open = visibilityOf(occluders, box.vertex(corner), glm::normalize(glm::dvec3(0.3, 0.3, 1.0)), INFINITY);
+  const LightVisibility open =
+    visibilityOf(occluders, box.vertex(corner), glm::normalize(glm::dvec3(0.3, 0.3, 1.0)), INFINITY);
   EXPECT_TRUE(open.visible);
 }
 
@@ -743,11 +748,13 @@ TEST(Visibility, ACopyOfThePointAtAHardEdgeCountsAsTheVertexsOwn)
   }
   ASSERT_EQ(copies, 3u); // the floor's and the two walls'
   ASSERT_LT(floorCorner, box.points.size());
-  const LightVisibility v = visibilityOf(occluders, box.vertex(floorCorner), glm::normalize(glm::dvec3(-0.2, 1.0, 1.0)), INFINITY);
+  const LightVisibility v =
+    visibilityOf(occluders, box.vertex(floorCorner), glm::normalize(glm::dvec3(-0.2, 1.0, 1.0)), INFINITY);
   EXPECT_FALSE(v.visible);
   EXPECT_TRUE(v.blockedByOwnTriangle);
   // A light hidden by the far wall x = 1, which does not reach the corner: not the vertex's own.
-  const LightVisibility far = visibilityOf(occluders, box.vertex(floorCorner), glm::normalize(glm::dvec3(1.0, 0.2, 0.3)), INFINITY);
+  const LightVisibility far =
+    visibilityOf(occluders, box.vertex(floorCorner), glm::normalize(glm::dvec3(1.0, 0.2, 0.3)), INFINITY);
   EXPECT_FALSE(far.visible);
   EXPECT_FALSE(far.blockedByOwnTriangle);
   // Lights seen through the opening are visible: the floor's copy lies in both walls' planes,
@@ -783,8 +790,10 @@ TEST(Visibility, TheSmoothSurfacesOwnFacetsDoNotHideALightItsNormalFaces)
   const double elevation = 10 * M_PI / 180;
   for (double azimuth = 0; azimuth < 2 * M_PI; azimuth += M_PI / 8)
   {
-    const glm::dvec3 toLight(std::cos(elevation) * std::cos(azimuth), std::cos(elevation) * std::sin(azimuth), std::sin(elevation));
-    const LightVisibility facets = visibilityOf(occluders, grid.vertex(centre), toLight, INFINITY, SelfShadowing::Facets);
+    const glm::dvec3 toLight(
+      std::cos(elevation) * std::cos(azimuth), std::cos(elevation) * std::sin(azimuth), std::sin(elevation));
+    const LightVisibility facets =
+      visibilityOf(occluders, grid.vertex(centre), toLight, INFINITY, SelfShadowing::Facets);
     EXPECT_FALSE(facets.visible) << azimuth;
     EXPECT_TRUE(facets.blockedByOwnTriangle) << azimuth;
     // The smooth surface: visible, and still flagged; and so for a point light as far as the
@@ -811,8 +820,9 @@ TEST(Visibility, TheSmoothSurfacesOwnFacetsDoNotHideALightItsNormalFaces)
   std::vector<ShadowRay> rays;
   for (double azimuth = 0; azimuth < 2 * M_PI; azimuth += M_PI / 8)
   {
-    rays.push_back({ { std::cos(elevation) * std::cos(azimuth), std::cos(elevation) * std::sin(azimuth), std::sin(elevation) },
-      std::numeric_limits<double>::infinity(), true });
+    rays.push_back(
+      { { std::cos(elevation) * std::cos(azimuth), std::cos(elevation) * std::sin(azimuth), std::sin(elevation) },
+        std::numeric_limits<double>::infinity(), true });
   }
   const SurfaceRay from{ grid.points[centre], grid.normals[centre], {}, 0.0, PointId(centre) };
   for (const SelfShadowing selfShadowing : { SelfShadowing::SmoothSurface, SelfShadowing::Facets })
@@ -912,7 +922,8 @@ TEST(Visibility, TheSearchForTheFirstHitEndingAtTheVertexsOwnTrianglesFindsWhatA
         }
         ++blocked;
         const bool wholeSearch = occluders.firstHitHasCorner(ray, mesh.points[i]);
-        EXPECT_EQ(occluders.firstHitHasCorner(ray, mesh.points[i], PointId(i)), wholeSearch) << "point " << i << ", direction " << k;
+        EXPECT_EQ(occluders.firstHitHasCorner(ray, mesh.points[i], PointId(i)), wholeSearch)
+          << "point " << i << ", direction " << k;
         own += wholeSearch ? 1 : 0;
       }
     }

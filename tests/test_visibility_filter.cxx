@@ -131,8 +131,10 @@ TEST(Visibility, OneAndTwoThreadsGiveTheSameBits)
   Scene scene = pointLightAbove(true);
   scene.ambientOcclusion = AmbientOcclusion{};
   vtkSmartPointer<vtkPolyData> one, two;
-  vtkSMPTools::LocalScope(vtkSMPTools::Config{ 1 }, [&] { one = shadelab::testing::shadeWithFilter(mesh, scene, { "all" }); });
-  vtkSMPTools::LocalScope(vtkSMPTools::Config{ 2 }, [&] { two = shadelab::testing::shadeWithFilter(mesh, scene, { "all" }); });
+  vtkSMPTools::LocalScope(
+    vtkSMPTools::Config{ 1 }, [&] { one = shadelab::testing::shadeWithFilter(mesh, scene, { "all" }); });
+  vtkSMPTools::LocalScope(
+    vtkSMPTools::Config{ 2 }, [&] { two = shadelab::testing::shadeWithFilter(mesh, scene, { "all" }); });
   shadelab::testing::expectSamePointArrays(one, two);
 }
 
@@ -192,8 +194,10 @@ TEST(SoftShadows, AnAreaLightsTermsComeFromThePartOfItThatEachVertexSees)
   const std::vector<std::string> arrays = { "default", "panel_irradiance", "panel_diffuse" };
   for (AreaEstimator estimator : { AreaEstimator::Exact, AreaEstimator::MonteCarlo })
   {
-    vtkSmartPointer<vtkPolyData> lit = shadelab::testing::shadeWithFilter(mesh, diskLightAbove(false, estimator), arrays);
-    vtkSmartPointer<vtkPolyData> shadowed = shadelab::testing::shadeWithFilter(mesh, diskLightAbove(true, estimator), arrays);
+    vtkSmartPointer<vtkPolyData> lit =
+      shadelab::testing::shadeWithFilter(mesh, diskLightAbove(false, estimator), arrays);
+    vtkSmartPointer<vtkPolyData> shadowed =
+      shadelab::testing::shadeWithFilter(mesh, diskLightAbove(true, estimator), arrays);
     ASSERT_NE(shadowed->GetPointData()->GetArray("panel_visibility_std_error"), nullptr);
     EXPECT_EQ(shadowed->GetPointData()->GetArray("panel_hidden_samples"), nullptr); // the rays' bits stay inside
     // In float64, as the filter computed them.
@@ -234,8 +238,10 @@ TEST(SoftShadows, OneAndTwoThreadsGiveTheSameBits)
   vtkSmartPointer<vtkPolyData> mesh = sphereOverPlane();
   const Scene scene = diskLightAbove(true, AreaEstimator::Exact);
   vtkSmartPointer<vtkPolyData> one, two;
-  vtkSMPTools::LocalScope(vtkSMPTools::Config{ 1 }, [&] { one = shadelab::testing::shadeWithFilter(mesh, scene, { "all" }); });
-  vtkSMPTools::LocalScope(vtkSMPTools::Config{ 2 }, [&] { two = shadelab::testing::shadeWithFilter(mesh, scene, { "all" }); });
+  vtkSMPTools::LocalScope(
+    vtkSMPTools::Config{ 1 }, [&] { one = shadelab::testing::shadeWithFilter(mesh, scene, { "all" }); });
+  vtkSMPTools::LocalScope(
+    vtkSMPTools::Config{ 2 }, [&] { two = shadelab::testing::shadeWithFilter(mesh, scene, { "all" }); });
   shadelab::testing::expectSamePointArrays(one, two);
 }
 
@@ -268,13 +274,17 @@ TEST(SoftShadows, ATolerancesShareDrawsEachVertexsShadowRaysUntilItsEstimateMeet
       bool near = true;
       for (int c = 0; c < 3; ++c)
       {
-        ASSERT_LE(valueOf(one.output, "panel_irradiance_std_error", i, c), static_cast<float>(target.standardError())) << i;
-        near = near && std::abs(valueOf(one.output, "panel_irradiance", i, c) - valueOf(reference, "panel_irradiance", i, c)) <= target.error;
+        ASSERT_LE(valueOf(one.output, "panel_irradiance_std_error", i, c), static_cast<float>(target.standardError()))
+          << i;
+        near = near &&
+          std::abs(valueOf(one.output, "panel_irradiance", i, c) - valueOf(reference, "panel_irradiance", i, c)) <=
+            target.error;
       }
       within += near ? 1 : 0;
     }
     EXPECT_GT(penumbra, 100);
-    EXPECT_GE(double(within), 0.95 * double(mesh->GetNumberOfPoints())) << within << " of " << mesh->GetNumberOfPoints();
+    EXPECT_GE(double(within), 0.95 * double(mesh->GetNumberOfPoints()))
+      << within << " of " << mesh->GetNumberOfPoints();
     EXPECT_NE(one.output->GetFieldData()->GetAbstractArray("shadelab_visibility"), nullptr);
   }
 }
@@ -298,7 +308,8 @@ TEST(SoftShadows, TheErrorAfterSamplingIsPredictedFromEachVertexsStandardErrors)
     double largest = 0;
     for (int c = 0; c < 3; ++c)
     {
-      largest = std::max(largest, std::max(1.0, scene.material.kd[c]) * valueOf(run.output, "panel_irradiance_std_error", i, c) +
+      largest = std::max(largest,
+        std::max(1.0, scene.material.kd[c]) * valueOf(run.output, "panel_irradiance_std_error", i, c) +
           valueOf(run.output, "panel_specular_std_error", i, c));
     }
     standardErrors.push_back(largest + valueOf(run.output, "ambient_occlusion_std_error", i));
@@ -310,8 +321,9 @@ TEST(SoftShadows, TheErrorAfterSamplingIsPredictedFromEachVertexsStandardErrors)
   EXPECT_GT(reached, 0.0);
   EXPECT_LT(reached, plan.samplingError / 2) << "most vertices stop well under their share";
   EXPECT_DOUBLE_EQ(plan.estimatedError(), plan.predictedError() - plan.samplingError + *plan.estimatedSamplingError);
-  EXPECT_EQ(plan.describe().back(), "after sampling: an error of about " + scientific(plan.estimatedError()) +
-      " at 95% of the vertices (" + scientific(*plan.estimatedSamplingError) +
+  EXPECT_EQ(plan.describe().back(),
+    "after sampling: an error of about " + scientific(plan.estimatedError()) + " at 95% of the vertices (" +
+      scientific(*plan.estimatedSamplingError) +
       " estimated from their standard errors, where the plan bounds sampling's part by " +
       scientific(plan.samplingError) + ")");
   EXPECT_NEAR(plan.samplingError, plan.predictedError() - plan.arithmeticError, 1e-12) << "no approximations here";
@@ -364,8 +376,8 @@ TEST(SoftShadows, AMapsTermsComeFromTheSkyEachVertexSees)
     const Scene open = constantSky(false, estimator, EnvironmentDirections::Mis);
     const Scene shadowedScene = constantSky(true, estimator, EnvironmentDirections::Mis);
     vtkSmartPointer<vtkPolyData> lit = shadelab::testing::shadeWithFilter(mesh, open, arrays);
-    vtkSmartPointer<vtkPolyData> shadowed =
-      shadelab::testing::shadeWithFilter(mesh, shadowedScene, { "default", "sky_irradiance", "sky_diffuse", "sky_specular_std_error" });
+    vtkSmartPointer<vtkPolyData> shadowed = shadelab::testing::shadeWithFilter(
+      mesh, shadowedScene, { "default", "sky_irradiance", "sky_diffuse", "sky_specular_std_error" });
     ASSERT_NE(shadowed->GetPointData()->GetArray("sky_visibility_std_error"), nullptr);
     ASSERT_NE(shadowed->GetPointData()->GetArray("sky_specular_std_error"), nullptr); // sampled, even by the sum
     EXPECT_EQ(shadowed->GetPointData()->GetArray("sky_hidden_samples"), nullptr);
@@ -400,8 +412,10 @@ TEST(SoftShadows, AMapsShadowsAreTheSameBitsOnOneAndTwoThreads)
   vtkSmartPointer<vtkPolyData> mesh = sphereOverPlane();
   const Scene scene = constantSky(true, EnvironmentEstimator::SphericalHarmonics, EnvironmentDirections::Mis);
   vtkSmartPointer<vtkPolyData> one, two;
-  vtkSMPTools::LocalScope(vtkSMPTools::Config{ 1 }, [&] { one = shadelab::testing::shadeWithFilter(mesh, scene, { "all" }); });
-  vtkSMPTools::LocalScope(vtkSMPTools::Config{ 2 }, [&] { two = shadelab::testing::shadeWithFilter(mesh, scene, { "all" }); });
+  vtkSMPTools::LocalScope(
+    vtkSMPTools::Config{ 1 }, [&] { one = shadelab::testing::shadeWithFilter(mesh, scene, { "all" }); });
+  vtkSMPTools::LocalScope(
+    vtkSMPTools::Config{ 2 }, [&] { two = shadelab::testing::shadeWithFilter(mesh, scene, { "all" }); });
   shadelab::testing::expectSamePointArrays(one, two);
 }
 
@@ -477,8 +491,10 @@ TEST(Visibility, TheBvhIsBuiltOnceWhileTheMeshIsUnchanged)
   filter->SetScene(pointLightAbove(true));
   filter->Update();
   EXPECT_NE(filter->GetVisibilityReport().find("BVH built in "), std::string::npos) << filter->GetVisibilityReport();
-  const std::vector<float> first(static_cast<float*>(filter->GetOutput()->GetPointData()->GetArray("bulb_visibility")->GetVoidPointer(0)),
-    static_cast<float*>(filter->GetOutput()->GetPointData()->GetArray("bulb_visibility")->GetVoidPointer(0)) + mesh->GetNumberOfPoints());
+  const std::vector<float> first(
+    static_cast<float*>(filter->GetOutput()->GetPointData()->GetArray("bulb_visibility")->GetVoidPointer(0)),
+    static_cast<float*>(filter->GetOutput()->GetPointData()->GetArray("bulb_visibility")->GetVoidPointer(0)) +
+      mesh->GetNumberOfPoints());
   // Another material: the same mesh, the same BVH, the same visibility.
   Scene shinier = pointLightAbove(true);
   shinier.material.shininess = 80;
@@ -599,9 +615,10 @@ TEST(Visibility, WhatIsRefusedAndWhy)
     EXPECT_EQ(aloneError(occluded), untargeted);
     Scene softAuto = diskLightAbove(true, AreaEstimator::Exact);
     std::get<AreaLight>(softAuto.lights[1].source).sampling.fromTolerance = true;
-    EXPECT_EQ(aloneError(softAuto), "scene /lights/1/samples: \"auto\" with shadows takes the count of light 'panel' "
-                                 "from a tolerance's plan: shade it with vtkLocalReflectanceFilter under a tolerance "
-                                 "(shadelab shade --tolerance), or give it a number of samples");
+    EXPECT_EQ(aloneError(softAuto),
+      "scene /lights/1/samples: \"auto\" with shadows takes the count of light 'panel' "
+      "from a tolerance's plan: shade it with vtkLocalReflectanceFilter under a tolerance "
+      "(shadelab shade --tolerance), or give it a number of samples");
   }
   Scene shadowedAmbient = pointLightAbove(false);
   shadowedAmbient.lights.push_back({ "sky", AmbientLight{}, true });
@@ -616,8 +633,9 @@ TEST(Visibility, WhatIsRefusedAndWhy)
   alone->SetInputData(mesh); // no point normals
   alone->SetScene(pointLightAbove(true));
   alone->Update();
-  EXPECT_EQ(errors->message(), "the mesh needs one 3-component point normal per point to cast rays from: run "
-                               "vtkShadingNormalsFilter first (vtkLocalReflectanceFilter does)");
+  EXPECT_EQ(errors->message(),
+    "the mesh needs one 3-component point normal per point to cast rays from: run "
+    "vtkShadingNormalsFilter first (vtkLocalReflectanceFilter does)");
 
   // A cell with a point id past the points, alone (the filter checks its cells by default).
   vtkNew<vtkShadingNormalsFilter> normals;

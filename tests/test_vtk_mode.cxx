@@ -80,9 +80,9 @@ public:
       }
       const dvec3 position = point(toGlm(light->GetTransformedPosition()));
       const dvec3 focal = point(toGlm(light->GetTransformedFocalPoint()));
-      lights_.push_back({ light->GetIntensity() * toGlm(light->GetDiffuseColor()),
-        glm::normalize(focal - position), position, toGlm(light->GetAttenuationValues()),
-        light->GetPositional() != 0, light->GetExponent(), light->GetConeAngle() });
+      lights_.push_back({ light->GetIntensity() * toGlm(light->GetDiffuseColor()), glm::normalize(focal - position),
+        position, toGlm(light->GetAttenuationValues()), light->GetPositional() != 0, light->GetExponent(),
+        light->GetConeAngle() });
     }
   }
 
@@ -113,22 +113,20 @@ public:
         const double distanceVC = glm::length(vertLightDirectionVC);
         vertLightDirectionVC = glm::normalize(vertLightDirectionVC);
         attenuation = 1.0 /
-          (light.attenuation.x + light.attenuation.y * distanceVC +
-            light.attenuation.z * distanceVC * distanceVC);
+          (light.attenuation.x + light.attenuation.y * distanceVC + light.attenuation.z * distanceVC * distanceVC);
         if (light.coneAngle < 90.0)
         {
           const double coneDot = glm::dot(vertLightDirectionVC, light.directionVC);
-          attenuation = coneDot >= std::cos(light.coneAngle * M_PI / 180.0)
-            ? attenuation * std::pow(coneDot, light.exponent)
-            : 0.0;
+          attenuation =
+            coneDot >= std::cos(light.coneAngle * M_PI / 180.0) ? attenuation * std::pow(coneDot, light.exponent) : 0.0;
         }
       }
       const double df = std::max(0.0, attenuation * glm::dot(normal, -vertLightDirectionVC));
       diffuse += df * light.color;
       const double sign = df > 0 ? 1.0 : 0.0;
       const double sf = sign * attenuation *
-        std::pow(std::max(0.0, glm::dot(glm::reflect(vertLightDirectionVC, normal), glm::normalize(-vertexVC))),
-          power_);
+        std::pow(
+          std::max(0.0, glm::dot(glm::reflect(vertLightDirectionVC, normal), glm::normalize(-vertexVC))), power_);
       specular += sf * light.color;
     }
     return ambient_ + diffuse * diffuse_ + specular * specular_;

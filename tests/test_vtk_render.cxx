@@ -10,8 +10,8 @@
 #include "ShadeLabMaterialArrays.h"
 
 #include "vtkActor.h"
-#include "vtkDoubleArray.h"
 #include "vtkCellArray.h"
+#include "vtkDoubleArray.h"
 #include "vtkImageData.h"
 #include "vtkMatrix4x4.h"
 #include "vtkPolyDataMapper.h"
@@ -113,8 +113,7 @@ protected:
       ++compared;
     }
     EXPECT_GT(compared, 2000);
-    std::cout << "compared " << compared << " vertices with their pixels; largest difference "
-              << worst << "/255\n";
+    std::cout << "compared " << compared << " vertices with their pixels; largest difference " << worst << "/255\n";
   }
 };
 

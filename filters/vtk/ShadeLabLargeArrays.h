@@ -8,7 +8,7 @@ namespace shadelab
 {
 /// Gives `array` room for `tuples` tuples (of its number of components) from allocateLarge.
 /// Returns false, leaving the array empty, when there is not enough memory.
-template <typename T>
+template<typename T>
 bool allocateTuples(vtkAOSDataArrayTemplate<T>* array, vtkIdType tuples)
 {
   const vtkIdType values = tuples * array->GetNumberOfComponents();

@@ -2,8 +2,8 @@
 
 #include "vtkArrayDispatch.h"
 #include "vtkCommunicator.h"
-#include "vtkDataArrayRange.h"
 #include "vtkDataArray.h"
+#include "vtkDataArrayRange.h"
 #include "vtkDiscretizableColorTransferFunction.h"
 #include "vtkLookupTable.h"
 #include "vtkMultiProcessController.h"
@@ -46,7 +46,7 @@ std::array<double, 2> wholeFiniteRange(vtkDataArray* array, vtkMultiProcessContr
 /// Decodes every vertex's channels of a coefficient from an array of any value type, in
 /// parallel, into values (width per vertex, stored as Stored: float or double); finds the first
 /// vertex whose value cannot be used.
-template <typename Stored>
+template<typename Stored>
 struct ChannelDecoding
 {
   MaterialCoefficient coefficient;
@@ -57,7 +57,7 @@ struct ChannelDecoding
   std::vector<std::uint8_t>& clamped;
   vtkIdType firstUnusable = -1;
 
-  template <typename Array>
+  template<typename Array>
   void operator()(Array* array)
   {
     using Value = vtk::GetAPIType<Array>;
@@ -167,8 +167,8 @@ std::string arrayProblem(vtkDataArray* array, vtkPolyData* piece, MaterialCoeffi
         names += (names.empty() ? "'" : ", '") + std::string(other->GetName() ? other->GetName() : "") + "'";
       }
     }
-    return at + "the mesh has no numeric point-data array '" + source.array + "' (its point arrays: " +
-      (names.empty() ? "none" : names) + ")";
+    return at + "the mesh has no numeric point-data array '" + source.array +
+      "' (its point arrays: " + (names.empty() ? "none" : names) + ")";
   }
   const std::string named = at + "array '" + source.array + "' ";
   if (array->GetNumberOfTuples() != piece->GetNumberOfPoints())
@@ -262,8 +262,8 @@ MaterialReading readVertexMaterial(vtkPolyData* piece, const Scene& scene, Preci
   reading.material.clamped.assign(arrays.clamps() ? std::size_t(count) : 0, 0);
   auto idOf = [&](vtkIdType i) { return vertexIds ? (*vertexIds)[i] : i; };
   // ka that reads kd's array the same way (the lecture model's default) shares kd's values.
-  reading.material.ambientIsDiffuse = arrays[MaterialCoefficient::Ambient] &&
-    arrays[MaterialCoefficient::Diffuse] && *arrays[MaterialCoefficient::Ambient] == *arrays[MaterialCoefficient::Diffuse];
+  reading.material.ambientIsDiffuse = arrays[MaterialCoefficient::Ambient] && arrays[MaterialCoefficient::Diffuse] &&
+    *arrays[MaterialCoefficient::Ambient] == *arrays[MaterialCoefficient::Diffuse];
   // In the scene file's order, so that a problem of kd's array is kd's where ka follows it.
   for (const MaterialCoefficient coefficient : { MaterialCoefficient::Diffuse, MaterialCoefficient::Ambient,
          MaterialCoefficient::Specular, MaterialCoefficient::Shininess })
@@ -295,7 +295,8 @@ MaterialReading readVertexMaterial(vtkPolyData* piece, const Scene& scene, Preci
     const bool mapped = reading.problem.empty() && mapsColors(*source, array);
     if (mapped && range[0] > range[1])
     {
-      reading.problem = at + "array '" + source->array + "' has no finite value to span the colour map: give its \"range\"";
+      reading.problem =
+        at + "array '" + source->array + "' has no finite value to span the colour map: give its \"range\"";
     }
     if (!reading.problem.empty())
     {
@@ -314,8 +315,10 @@ MaterialReading readVertexMaterial(vtkPolyData* piece, const Scene& scene, Preci
       channels = mappedColors(array, *source, coefficient, range, reading.material.clamped, firstNaN);
       if (firstNaN >= 0)
       {
-        reading.problem = at + vertexValueProblem(*source, idOf(firstNaN),
-          "it is NaN, which has no colour in the colour map (\"clamp\": true gives it the colour of the range's low end)");
+        reading.problem = at +
+          vertexValueProblem(*source, idOf(firstNaN),
+            "it is NaN, which has no colour in the colour map (\"clamp\": true gives it the colour of the range's low "
+            "end)");
         continue;
       }
     }
@@ -330,12 +333,12 @@ MaterialReading readVertexMaterial(vtkPolyData* piece, const Scene& scene, Preci
       }
       return decoding.firstUnusable;
     };
-    const vtkIdType firstUnusable = storage == Precision::Float32 ? decode(reading.material.floatValues[c])
-                                                                 : decode(reading.material.values[c]);
+    const vtkIdType firstUnusable =
+      storage == Precision::Float32 ? decode(reading.material.floatValues[c]) : decode(reading.material.values[c]);
     if (firstUnusable >= 0)
     {
-      reading.problem = at + vertexValueProblem(*source, idOf(firstUnusable),
-        unusableVertex(channels, firstUnusable, coefficient, width));
+      reading.problem = at +
+        vertexValueProblem(*source, idOf(firstUnusable), unusableVertex(channels, firstUnusable, coefficient, width));
     }
   }
   if (!reading.problem.empty())

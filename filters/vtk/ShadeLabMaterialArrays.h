@@ -35,8 +35,8 @@ struct MaterialReading
 /// value that cannot be used, naming the vertex by its id in vertexIds where given). A colour
 /// map without a range spans the array's finite values over every process (a collective call
 /// where processes has several; nullptr: this process alone).
-SHADELABFILTERS_EXPORT MaterialReading readVertexMaterial(vtkPolyData* piece, const Scene& scene,
-  Precision storage, vtkMultiProcessController* processes, const std::vector<vtkIdType>* vertexIds);
+SHADELABFILTERS_EXPORT MaterialReading readVertexMaterial(vtkPolyData* piece, const Scene& scene, Precision storage,
+  vtkMultiProcessController* processes, const std::vector<vtkIdType>* vertexIds);
 
 /// The colour map of colorMapNames() called name, as VTK builds it, its ends at range.
 SHADELABFILTERS_EXPORT vtkSmartPointer<vtkScalarsToColors> namedColorMap(

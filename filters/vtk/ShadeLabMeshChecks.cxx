@@ -14,7 +14,7 @@ namespace
 {
 /// Whether ok(i) holds for every i in [0, count): a vtkSMPTools loop, since a large mesh has
 /// tens of millions of ids; only where it fails is the first failure looked for, in order.
-template <typename Check>
+template<typename Check>
 bool allHold(vtkIdType count, Check ok)
 {
   std::atomic<bool> failed{ false };
@@ -35,7 +35,7 @@ bool allHold(vtkIdType count, Check ok)
 }
 
 /// The problem with one cell array whose offsets and ids are of type Id, or "".
-template <typename Id>
+template<typename Id>
 std::string cellArrayProblem(const Id* offsets, vtkIdType cellCount, const Id* ids, vtkIdType idCount,
   vtkIdType pointCount, const char* kind, vtkIdType leastPoints)
 {
@@ -103,9 +103,9 @@ std::string cellArrayProblem(vtkCellArray* cells, vtkIdType pointCount, const ch
 std::string cellProblem(vtkPolyData* mesh)
 {
   const vtkIdType points = mesh->GetNumberOfPoints();
-  for (const auto& [cells, kind, least] : { std::make_tuple(mesh->GetVerts(), "vertex", 1),
-         std::make_tuple(mesh->GetLines(), "line", 2), std::make_tuple(mesh->GetPolys(), "polygon", 3),
-         std::make_tuple(mesh->GetStrips(), "strip", 3) })
+  for (const auto& [cells, kind, least] :
+    { std::make_tuple(mesh->GetVerts(), "vertex", 1), std::make_tuple(mesh->GetLines(), "line", 2),
+      std::make_tuple(mesh->GetPolys(), "polygon", 3), std::make_tuple(mesh->GetStrips(), "strip", 3) })
   {
     const std::string problem = cellArrayProblem(cells, points, kind, least);
     if (!problem.empty())

@@ -36,7 +36,8 @@ MeshPolygons::MeshPolygons(vtkPolyData* mesh)
     {
       // A strip's triangles alternate in winding: every second one is turned back.
       const bool even = k % 2 == 0;
-      connectivity_.insert(connectivity_.end(), { even ? ids[k - 2] : ids[k - 1], even ? ids[k - 1] : ids[k - 2], ids[k] });
+      connectivity_.insert(
+        connectivity_.end(), { even ? ids[k - 2] : ids[k - 1], even ? ids[k - 1] : ids[k - 2], ids[k] });
       offsets_.push_back(static_cast<PointId>(connectivity_.size()));
     }
   }

@@ -36,11 +36,11 @@ private:
 };
 
 /// Hands a float or double array's memory to visit as PackedPoints (for vtkArrayDispatch).
-template <typename Visit>
+template<typename Visit>
 struct PackedPointsWorker
 {
   Visit& visit;
-  template <typename Real>
+  template<typename Real>
   void operator()(vtkAOSDataArrayTemplate<Real>* array)
   {
     visit(PackedPoints<Real>{ array->GetPointer(0) });
@@ -49,7 +49,7 @@ struct PackedPointsWorker
 
 /// Calls visit(PackedPoints<Real>) with the points' own memory where they are float or double
 /// (x, y, z after one another), and with a double copy otherwise (integer points, say).
-template <typename Visit>
+template<typename Visit>
 void visitPackedPoints(vtkDataArray* points, Visit&& visit)
 {
   using RealArrays = vtkTypeList::Create<vtkAOSDataArrayTemplate<float>, vtkAOSDataArrayTemplate<double>>;

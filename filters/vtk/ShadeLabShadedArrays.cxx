@@ -24,7 +24,8 @@ std::vector<vtkSmartPointer<vtkDataArray>> useVisibility(vtkPolyData* seen, cons
   auto hiddenSamplesOf = [&](const std::string& light) -> const std::uint64_t*
   {
     static_assert(sizeof(vtkTypeUInt64) == sizeof(std::uint64_t), "the hidden samples' words are 64 bits");
-    auto* words = vtkTypeUInt64Array::SafeDownCast(data->GetArray(shadelab::hiddenSamplesArrayName(prefix, light).c_str()));
+    auto* words =
+      vtkTypeUInt64Array::SafeDownCast(data->GetArray(shadelab::hiddenSamplesArrayName(prefix, light).c_str()));
     return words ? reinterpret_cast<const std::uint64_t*>(words->GetPointer(0)) : nullptr;
   };
   auto shadowedTermsOf = [&](const std::string& light) -> const double*
@@ -39,15 +40,17 @@ std::vector<vtkSmartPointer<vtkDataArray>> useVisibility(vtkPolyData* seen, cons
     // estimated it.
     const bool distributed = light.shadows && shadelab::isDistributed(light.source);
     const bool local = light.shadows && !distributed;
-    inputs.lightVisibility.push_back(
-      local ? floats(shadelab::lightArrayName(prefix, light.name, shadelab::LightTerm::Visibility))->GetPointer(0) : nullptr);
+    inputs.lightVisibility.push_back(local
+        ? floats(shadelab::lightArrayName(prefix, light.name, shadelab::LightTerm::Visibility))->GetPointer(0)
+        : nullptr);
     inputs.lightHiddenSamples.push_back(distributed ? hiddenSamplesOf(light.name) : nullptr);
     inputs.lightShadowedTerms.push_back(distributed ? shadowedTermsOf(light.name) : nullptr);
   }
   std::vector<vtkSmartPointer<vtkDataArray>> requested;
   if (scene.ambientOcclusion)
   {
-    inputs.ambientOcclusion = floats(shadelab::occlusionArrayName(prefix, shadelab::OcclusionTerm::AmbientOcclusion))->GetPointer(0);
+    inputs.ambientOcclusion =
+      floats(shadelab::occlusionArrayName(prefix, shadelab::OcclusionTerm::AmbientOcclusion))->GetPointer(0);
     inputs.ambientOcclusionStdError =
       floats(shadelab::occlusionArrayName(prefix, shadelab::OcclusionTerm::AmbientOcclusionStdError))->GetPointer(0);
   }
@@ -58,15 +61,16 @@ std::vector<vtkSmartPointer<vtkDataArray>> useVisibility(vtkPolyData* seen, cons
       requested.push_back(data->GetArray(shadelab::occlusionArrayName(prefix, shadelab::OcclusionTerm(t)).c_str()));
     }
   }
-  inputs.flags =
-    vtkUnsignedCharArray::SafeDownCast(data->GetArray(shadelab::visibilityFlagsArrayName(prefix).c_str()))->GetPointer(0);
+  inputs.flags = vtkUnsignedCharArray::SafeDownCast(data->GetArray(shadelab::visibilityFlagsArrayName(prefix).c_str()))
+                   ->GetPointer(0);
   return requested;
 }
 
 /// The spectral mode's arrays besides the kernel's linear sRGB (docs/formulas.md section 22):
 /// each RGB total's XYZ twin ("<total>_xyz", by the inverse of the sRGB matrix), and
 /// "total_rgb_difference", the spectral total less the RGB model's (rgbTotal).
-void addSpectralArrays(std::vector<vtkSmartPointer<vtkDataArray>>& arrays, vtkDataArray* rgbTotal, const std::string& prefix)
+void addSpectralArrays(
+  std::vector<vtkSmartPointer<vtkDataArray>>& arrays, vtkDataArray* rgbTotal, const std::string& prefix)
 {
   const glm::dmat3 toXyz = glm::inverse(shadelab::xyzToLinearSrgb());
   // An array of the total's type and length, 3 components, to fill.
@@ -89,7 +93,8 @@ void addSpectralArrays(std::vector<vtkSmartPointer<vtkDataArray>>& arrays, vtkDa
       {
         continue;
       }
-      const vtkSmartPointer<vtkDataArray> xyz = emptyLike(array, shadelab::totalXyzArrayName(prefix, shadelab::TotalTerm(t)));
+      const vtkSmartPointer<vtkDataArray> xyz =
+        emptyLike(array, shadelab::totalXyzArrayName(prefix, shadelab::TotalTerm(t)));
       for (vtkIdType i = 0; i < array->GetNumberOfTuples(); ++i)
       {
         double rgb[3];
@@ -133,7 +138,8 @@ double occlusionRayCount(const shadelab::Scene& scene, vtkPolyData* seen, const 
   {
     return 0;
   }
-  vtkDataArray* rays = seen->GetPointData()->GetArray(shadelab::occlusionArrayName(prefix, shadelab::OcclusionTerm::Rays).c_str());
+  vtkDataArray* rays =
+    seen->GetPointData()->GetArray(shadelab::occlusionArrayName(prefix, shadelab::OcclusionTerm::Rays).c_str());
   double sum = rays ? 0 : double(scene.ambientOcclusion->sampling.samples) * double(count);
   for (vtkIdType i = 0; rays && i < rays->GetNumberOfTuples(); ++i)
   {

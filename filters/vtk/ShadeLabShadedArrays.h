@@ -27,21 +27,19 @@ namespace shadelab::shading
 {
 /// Allocates the requested arrays of value type T on the output and points the kernel's
 /// outputs at their memory.
-template <typename T>
+template<typename T>
 class OutputArrays
 {
 public:
   using ArrayType = vtkAOSDataArrayTemplate<T>;
 
-  OutputArrays(const shadelab::Scene& scene, const shadelab::ArrayRequest& request,
-    const std::string& prefix, vtkIdType count)
+  OutputArrays(
+    const shadelab::Scene& scene, const shadelab::ArrayRequest& request, const std::string& prefix, vtkIdType count)
   {
     // In the order of shadelab::availableArrays: totals, flags, then each light's terms.
     for (int t = 0; t < shadelab::TotalTermCount; ++t)
     {
-      outputs.totals[t] = request.totals[t]
-        ? add(shadelab::totalArrayName(prefix, TotalTerm(t)), 3, count)
-        : nullptr;
+      outputs.totals[t] = request.totals[t] ? add(shadelab::totalArrayName(prefix, TotalTerm(t)), 3, count) : nullptr;
     }
     if (request.flags)
     {
@@ -82,7 +80,7 @@ private:
 
   /// Memory for `count` tuples, in huge pages when large (ShadeLabLargeArrays.h). Throws
   /// std::runtime_error, naming the array, when there is not enough.
-  template <typename Value>
+  template<typename Value>
   static void allocate(vtkAOSDataArrayTemplate<Value>* array, vtkIdType count)
   {
     if (!shadelab::allocateTuples(array, count))
@@ -102,13 +100,13 @@ using ProgressReport = std::function<void(double)>;
 
 /// Runs the kernel over all points in a vtkSMPTools loop, for any real point and normal
 /// array types (dispatched once, so the loop reads raw memory).
-template <typename T>
+template<typename T>
 struct ShadeAllPoints
 {
   const shadelab::ShadingKernel<T>& kernel;
   const ProgressReport* progress;
 
-  template <typename PointArray, typename NormalArray>
+  template<typename PointArray, typename NormalArray>
   void operator()(PointArray* points, NormalArray* normals) const
   {
     const auto pointRange = vtk::DataArrayTupleRange<3>(points);
@@ -117,8 +115,8 @@ struct ShadeAllPoints
     // Blocks of the SMP loop, so progress can be reported (and an abort heard) between them:
     // tenths of a large mesh, hundredths where area lights or environment maps make every
     // vertex slow (a few hundred vertices at least, a share of a second's work for two threads).
-    const vtkIdType block = kernel.hasDistributedLights() ? std::max<vtkIdType>(count / 100, 256)
-                                                          : std::max<vtkIdType>(count / 10, 100000);
+    const vtkIdType block =
+      kernel.hasDistributedLights() ? std::max<vtkIdType>(count / 100, 256) : std::max<vtkIdType>(count / 10, 100000);
     for (vtkIdType first = 0; first < count; first += block)
     {
       const vtkIdType last = std::min(count, first + block);
@@ -130,8 +128,7 @@ struct ShadeAllPoints
             {
               const auto p = pointRange[i];
               const auto n = normalRange[i];
-              block.set(k, shadelab::Vec3<T>(T(p[0]), T(p[1]), T(p[2])),
-                shadelab::Vec3<T>(T(n[0]), T(n[1]), T(n[2])));
+              block.set(k, shadelab::Vec3<T>(T(p[0]), T(p[1]), T(p[2])), shadelab::Vec3<T>(T(n[0]), T(n[1]), T(n[2])));
             });
         });
       if (progress)
@@ -150,11 +147,11 @@ using ShortOfTarget = std::vector<std::vector<std::uint8_t>>;
 /// shortOfTarget (or nullptr) receives the vertices that stopped short of their targets, and
 /// standardError and samplesDrawn (or nullptr), where they are sized for every point, each
 /// one's sampled standard error and count of samples (shadelab::ShadingOutputs').
-template <typename T>
-std::vector<vtkSmartPointer<vtkDataArray>> shade(const shadelab::Scene& scene,
-  const shadelab::ArrayRequest& request, const std::vector<shadelab::LightMethod>& methods,
-  const std::string& prefix, vtkDataArray* points, vtkDataArray* normals, const shadelab::ShadingInputs& inputs,
-  const ProgressReport* progress, ShortOfTarget* shortOfTarget = nullptr, std::vector<double>* standardError = nullptr,
+template<typename T>
+std::vector<vtkSmartPointer<vtkDataArray>> shade(const shadelab::Scene& scene, const shadelab::ArrayRequest& request,
+  const std::vector<shadelab::LightMethod>& methods, const std::string& prefix, vtkDataArray* points,
+  vtkDataArray* normals, const shadelab::ShadingInputs& inputs, const ProgressReport* progress,
+  ShortOfTarget* shortOfTarget = nullptr, std::vector<double>* standardError = nullptr,
   std::vector<std::uint32_t>* samplesDrawn = nullptr)
 {
   const auto count = static_cast<std::size_t>(points->GetNumberOfTuples());
@@ -192,7 +189,7 @@ std::vector<vtkSmartPointer<vtkDataArray>> shade(const shadelab::Scene& scene,
 }
 
 /// shade<T> in the plan's precision: float64's or float32's arithmetic and arrays.
-template <typename... Arguments>
+template<typename... Arguments>
 std::vector<vtkSmartPointer<vtkDataArray>> shadeIn(Precision precision, Arguments&&... arguments)
 {
   return precision == Precision::Float64 ? shade<double>(std::forward<Arguments>(arguments)...)
@@ -208,7 +205,8 @@ std::vector<vtkSmartPointer<vtkDataArray>> useVisibility(vtkPolyData* seen, cons
 /// The spectral mode's arrays besides the kernel's linear sRGB (docs/formulas.md section 22):
 /// each RGB total's XYZ twin ("<total>_xyz", by the inverse of the sRGB matrix), and
 /// "total_rgb_difference", the spectral total less the RGB model's (rgbTotal).
-void addSpectralArrays(std::vector<vtkSmartPointer<vtkDataArray>>& arrays, vtkDataArray* rgbTotal, const std::string& prefix);
+void addSpectralArrays(
+  std::vector<vtkSmartPointer<vtkDataArray>>& arrays, vtkDataArray* rgbTotal, const std::string& prefix);
 
 /// The material_clamped array: per vertex, bit c where coefficient c's value was clamped.
 vtkSmartPointer<vtkDataArray> clampedMaterialArray(const std::vector<std::uint8_t>& clamped, const std::string& prefix);

@@ -17,6 +17,6 @@ struct vtkLocalReflectanceFilter::ShadingPlan
   shadelab::ArrayRequest request;
   std::vector<shadelab::LightMethod> methods;
   shadelab::Precision precision = shadelab::Precision::Float32;
-  bool float32Fits = true; // the mesh's coordinates and the scene's values fit float32
+  bool float32Fits = true;             // the mesh's coordinates and the scene's values fit float32
   shadelab::MeshMeasurements measured; // under a tolerance, for its plan's bounds
 };

@@ -9,7 +9,7 @@ namespace shadelab
 {
 /// body() run with at most `threads` threads in vtkSMPTools' loops (0: as VTK is set); what
 /// it returns.
-template <typename Body>
+template<typename Body>
 int runWithThreads(int threads, Body&& body)
 {
   if (threads <= 0)

@@ -24,9 +24,9 @@
 #include <algorithm>
 #include <cstring>
 #include <limits>
-#include <stdexcept>
 #include <numeric>
 #include <sstream>
+#include <stdexcept>
 
 namespace shadelab
 {
@@ -50,7 +50,7 @@ bool receives(vtkMultiProcessController* controller, WholeMeshOn where)
 
 /// Every process's `mine`, one after another in process order, on every process or on the
 /// first only (the others get nothing); counts[p] is process p's size, on every process.
-template <typename T>
+template<typename T>
 std::vector<T> gathered(vtkMultiProcessController* controller, const std::vector<T>& mine, WholeMeshOn where,
   std::vector<vtkIdType>* counts = nullptr)
 {
@@ -103,9 +103,9 @@ std::vector<T> gathered(vtkMultiProcessController* controller, const std::vector
   return all;
 }
 
-template <typename T>
-std::vector<T> allGather(vtkMultiProcessController* controller, const std::vector<T>& mine,
-  std::vector<vtkIdType>* counts = nullptr)
+template<typename T>
+std::vector<T> allGather(
+  vtkMultiProcessController* controller, const std::vector<T>& mine, std::vector<vtkIdType>* counts = nullptr)
 {
   return gathered(controller, mine, WholeMeshOn::EveryProcess, counts);
 }
@@ -230,7 +230,8 @@ vtkSmartPointer<vtkCellArray> wholeCells(vtkMultiProcessController* controller, 
 /// An array rebuilt in whole-mesh order from every piece's tuples (gathered as bytes `where`:
 /// nullptr elsewhere), or a problem where two pieces give one point different values.
 vtkSmartPointer<vtkDataArray> wholeTuples(vtkMultiProcessController* controller, vtkDataArray* mine, WholeMeshOn where,
-  int dataType, const std::vector<vtkIdType>& allGlobalIds, vtkIdType wholeCount, const char* what, std::string& problem)
+  int dataType, const std::vector<vtkIdType>& allGlobalIds, vtkIdType wholeCount, const char* what,
+  std::string& problem)
 {
   const std::vector<char> bytes = gathered(controller, bytesOf(mine), where);
   if (!receives(controller, where))
@@ -369,7 +370,8 @@ void describeNotes(vtkFieldData* fields, vtkMultiProcessStream& described)
   described << static_cast<int>(notes.size());
   for (vtkStringArray* note : notes)
   {
-    described << std::string(note->GetName() ? note->GetName() : "") << static_cast<vtkTypeInt64>(note->GetNumberOfValues());
+    described << std::string(note->GetName() ? note->GetName() : "")
+              << static_cast<vtkTypeInt64>(note->GetNumberOfValues());
     for (vtkIdType i = 0; i < note->GetNumberOfValues(); ++i)
     {
       described << note->GetValue(i);
@@ -437,10 +439,11 @@ vtkSmartPointer<vtkDataArray> pieceTuples(vtkMultiProcessController* controller,
   const vtkIdType sentTuples = std::accumulate(pieceSizes.begin(), pieceSizes.end(), vtkIdType(0));
   if (sentTuples * tupleBytes > std::numeric_limits<int>::max()) // every process finds the same
   {
-    throw std::overflow_error("the mesh is too large to send its pieces their '" + sent.name + "': " +
-      std::to_string(sentTuples * tupleBytes) + " bytes in one exchange, more than MPI's 2^31 - 1");
+    throw std::overflow_error("the mesh is too large to send its pieces their '" + sent.name +
+      "': " + std::to_string(sentTuples * tupleBytes) + " bytes in one exchange, more than MPI's 2^31 - 1");
   }
-  const vtkSmartPointer<vtkDataArray> everyPiece = tuplesToSend(controller, sent, array, everyPieceIds, pointCount, mine);
+  const vtkSmartPointer<vtkDataArray> everyPiece =
+    tuplesToSend(controller, sent, array, everyPieceIds, pointCount, mine);
   if (processCount(controller) == 1)
   {
     return everyPiece;
@@ -502,7 +505,7 @@ void shareFromFirst(vtkMultiProcessController* controller, const WholeMesh& whol
 
 /// What `work` returns, or false where it throws (out of memory, say), reported through
 /// `filter`: a process that fails alone must still reach the outcome every process agrees on.
-template <typename Work>
+template<typename Work>
 bool guarded(vtkAlgorithm* filter, const Work& work)
 {
   try
@@ -545,9 +548,11 @@ std::string pointDataProblem(vtkPolyData* piece, bool withNormals, int piecesWit
   }
   else if (pointGlobalIds && pointGlobalIds->GetNumberOfTuples() != pointCount)
   {
-    problem << "a piece has " << pointGlobalIds->GetNumberOfTuples() << " global point ids for " << pointCount << " points";
+    problem << "a piece has " << pointGlobalIds->GetNumberOfTuples() << " global point ids for " << pointCount
+            << " points";
   }
-  else if (withNormals && normals && (normals->GetNumberOfTuples() != pointCount || normals->GetNumberOfComponents() != 3))
+  else if (withNormals && normals &&
+    (normals->GetNumberOfTuples() != pointCount || normals->GetNumberOfComponents() != 3))
   {
     problem << "the point normals '" << (normals->GetName() ? normals->GetName() : "") << "' of a piece have "
             << normals->GetNumberOfTuples() << " tuples of " << normals->GetNumberOfComponents()
@@ -558,13 +563,15 @@ std::string pointDataProblem(vtkPolyData* piece, bool withNormals, int piecesWit
 
 /// The type of the points and of the normals that every non-empty piece has, into layout (a
 /// collective call); a problem where they differ.
-std::string sharedTypesProblem(vtkMultiProcessController* controller, vtkPolyData* piece, bool withNormals, Layout& layout)
+std::string sharedTypesProblem(
+  vtkMultiProcessController* controller, vtkPolyData* piece, bool withNormals, Layout& layout)
 {
   const bool empty = piece->GetNumberOfPoints() == 0;
   vtkDataArray* points = empty ? nullptr : piece->GetPoints()->GetData();
   vtkDataArray* normals = piece->GetPointData()->GetNormals();
   layout.pointType = sharedValue(controller, empty, points ? points->GetDataType() : 0);
-  layout.normalsState = withNormals ? sharedValue(controller, empty, normals ? normals->GetDataType() : absent) : absent;
+  layout.normalsState =
+    withNormals ? sharedValue(controller, empty, normals ? normals->GetDataType() : absent) : absent;
   if (layout.pointType < 0)
   {
     return "the pieces store their points in different types: read them alike";
@@ -596,7 +603,8 @@ std::string cellIdsProblem(vtkMultiProcessController* controller, vtkPolyData* p
 std::string pieceCellsProblem(vtkPolyData* piece)
 {
   vtkCellData* cellData = piece->GetCellData();
-  for (vtkDataArray* cellArray : { cellData->GetGlobalIds(), cellData->GetArray(vtkDataSetAttributes::GhostArrayName()) })
+  for (vtkDataArray* cellArray :
+    { cellData->GetGlobalIds(), cellData->GetArray(vtkDataSetAttributes::GhostArrayName()) })
   {
     if (cellArray && cellArray->GetNumberOfTuples() != piece->GetNumberOfCells())
     {
@@ -711,8 +719,8 @@ WholeMesh gatherPieces(vtkMultiProcessController* controller, vtkPolyData* piece
   std::string found;
   vtkNew<vtkPolyData> mesh;
   vtkDataArray* points = piece->GetNumberOfPoints() > 0 ? piece->GetPoints()->GetData() : nullptr;
-  vtkSmartPointer<vtkDataArray> coordinates =
-    wholeTuples(controller, points, where, layout.pointType, layout.allGlobalIds, layout.wholeCount, "positions", found);
+  vtkSmartPointer<vtkDataArray> coordinates = wholeTuples(
+    controller, points, where, layout.pointType, layout.allGlobalIds, layout.wholeCount, "positions", found);
   if (coordinates)
   {
     vtkNew<vtkPoints> wholePoints;
@@ -735,11 +743,12 @@ WholeMesh gatherPieces(vtkMultiProcessController* controller, vtkPolyData* piece
   const vtkIdType keyBase = static_cast<vtkIdType>(controller ? controller->GetLocalProcessId() : 0) << 40;
   const vtkIdType firstPolygon = piece->GetNumberOfVerts() + piece->GetNumberOfLines();
   vtkDataArray* cellGlobalIds = piece->GetCellData()->GetGlobalIds();
-  auto* ghosts = vtkUnsignedCharArray::SafeDownCast(piece->GetCellData()->GetArray(vtkDataSetAttributes::GhostArrayName()));
+  auto* ghosts =
+    vtkUnsignedCharArray::SafeDownCast(piece->GetCellData()->GetArray(vtkDataSetAttributes::GhostArrayName()));
   const GatheredCells polygons =
     cellsOf(piece->GetPolys(), firstPolygon, cellGlobalIds, ghosts, keyBase, layout.pieceIds);
-  const GatheredCells strips =
-    cellsOf(piece->GetStrips(), firstPolygon + piece->GetNumberOfPolys(), cellGlobalIds, ghosts, keyBase, layout.pieceIds);
+  const GatheredCells strips = cellsOf(
+    piece->GetStrips(), firstPolygon + piece->GetNumberOfPolys(), cellGlobalIds, ghosts, keyBase, layout.pieceIds);
   // Every process makes both gathers, whatever it found, so that none waits for the others.
   std::string cellsFound;
   vtkSmartPointer<vtkCellArray> wholePolygons = wholeCells(controller, polygons, where, "polygons", cellsFound);
@@ -776,7 +785,8 @@ bool isPieceOfSplitMesh(vtkMultiProcessController* controller, vtkPolyData* piec
   return processCount(controller) > 1 || piece->GetPointData()->GetGlobalIds() != nullptr;
 }
 
-WholeMesh gatherWholeMesh(vtkMultiProcessController* controller, vtkPolyData* piece, bool withNormals, WholeMeshOn where)
+WholeMesh gatherWholeMesh(
+  vtkMultiProcessController* controller, vtkPolyData* piece, bool withNormals, WholeMeshOn where)
 {
   try
   {
@@ -804,8 +814,8 @@ PieceLayout pieceLayout(vtkMultiProcessController* controller, vtkPolyData* piec
   }
 }
 
-int computeOnPiece(vtkMultiProcessController* controller, vtkAlgorithm* filter, vtkPolyData* piece,
-  vtkPolyData* output, bool withNormals, WholeMeshOn where, const PieceComputation& compute)
+int computeOnPiece(vtkMultiProcessController* controller, vtkAlgorithm* filter, vtkPolyData* piece, vtkPolyData* output,
+  bool withNormals, WholeMeshOn where, const PieceComputation& compute)
 {
   const WholeMesh whole = gatherWholeMesh(controller, piece, withNormals, where);
   if (!whole.problem.empty())
@@ -877,8 +887,8 @@ std::vector<double> valuesByDistinctId(
 {
   if (ids.size() != values.size())
   {
-    throw std::invalid_argument("valuesByDistinctId: " + std::to_string(ids.size()) + " ids for " +
-      std::to_string(values.size()) + " values");
+    throw std::invalid_argument(
+      "valuesByDistinctId: " + std::to_string(ids.size()) + " ids for " + std::to_string(values.size()) + " values");
   }
   const std::vector<vtkIdType> allIds = allGather(controller, ids);
   const std::vector<double> allValues = allGather(controller, values);

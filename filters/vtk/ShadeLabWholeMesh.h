@@ -122,7 +122,8 @@ SHADELABFILTERS_EXPORT MeshExtent wholeMeshExtent(vtkMultiProcessController* con
 
 /// How many distinct ids the processes' lists hold together (a collective call): a count over
 /// the whole mesh of points that several pieces may hold.
-SHADELABFILTERS_EXPORT std::size_t distinctIdCount(vtkMultiProcessController* controller, const std::vector<vtkIdType>& ids);
+SHADELABFILTERS_EXPORT std::size_t distinctIdCount(
+  vtkMultiProcessController* controller, const std::vector<vtkIdType>& ids);
 
 /// The processes' values (one per id in their lists, which must be as long) with each id once,
 /// in the order of the ids (a collective call): where several pieces hold a point, its value
@@ -132,7 +133,8 @@ SHADELABFILTERS_EXPORT std::vector<double> valuesByDistinctId(
 
 /// How many points the whole mesh has: its largest global id plus 1, over every piece's ids (a
 /// collective call).
-SHADELABFILTERS_EXPORT vtkIdType wholePointCount(vtkMultiProcessController* controller, const std::vector<vtkIdType>& pieceIds);
+SHADELABFILTERS_EXPORT vtkIdType wholePointCount(
+  vtkMultiProcessController* controller, const std::vector<vtkIdType>& pieceIds);
 
 /// values' tuples at ids, in a new array of the same type and name.
 SHADELABFILTERS_EXPORT vtkSmartPointer<vtkDataArray> tuplesAt(vtkDataArray* values, const std::vector<vtkIdType>& ids);

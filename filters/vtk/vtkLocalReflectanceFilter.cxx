@@ -2,23 +2,23 @@
 
 #include "ArrayCatalog.h"
 #include "MethodChoice.h"
-#include "ShadeLabFieldNotes.h"
-#include "ShadeLabThreadCount.h"
-#include "ShadeLabWholeMesh.h"
-#include "ShadeLabMaterialArrays.h"
 #include "SceneFrame.h"
+#include "ShadeLabFieldNotes.h"
+#include "ShadeLabMaterialArrays.h"
 #include "ShadeLabMeshChecks.h"
 #include "ShadeLabMeshExtent.h"
 #include "ShadeLabMeshPolygons.h"
 #include "ShadeLabRunAborted.h"
 #include "ShadeLabShadedArrays.h"
 #include "ShadeLabShadingPlan.h"
+#include "ShadeLabThreadCount.h"
+#include "ShadeLabWholeMesh.h"
 #include "ShadingKernel.h"
 
-#include "vtkCommand.h"
 #include "vtkCellArray.h"
 #include "vtkCellArrayIterator.h"
 #include "vtkCellData.h"
+#include "vtkCommand.h"
 #include "vtkCommunicator.h"
 #include "vtkDataArrayRange.h"
 #include "vtkDemandDrivenPipeline.h"
@@ -34,7 +34,6 @@
 #include "vtkSMPTools.h"
 #include "vtkSmartPointer.h"
 #include "vtkUnsignedCharArray.h"
-
 
 #include <algorithm>
 #include <cmath>
@@ -61,25 +60,27 @@ std::vector<double> nearestPointDistances(
   vtkSMPThreadLocal<std::vector<double>> nearestSquared;
   if (points)
   {
-    shadelab::visitPackedPoints(points, [&](auto pointAt) {
-    vtkSMPTools::For(0, points->GetNumberOfTuples(),
-      [&](vtkIdType begin, vtkIdType end)
+    shadelab::visitPackedPoints(points,
+      [&](auto pointAt)
       {
-        std::vector<double>& least = nearestSquared.Local();
-        least.resize(lightCount, std::numeric_limits<double>::infinity());
-        for (std::size_t l = 0; l < lightCount; ++l)
-        {
-          if (const glm::dvec3* light = shadelab::positionOf(scene.lights[l].source))
+        vtkSMPTools::For(0, points->GetNumberOfTuples(),
+          [&](vtkIdType begin, vtkIdType end)
           {
-            for (vtkIdType i = begin; i < end; ++i)
+            std::vector<double>& least = nearestSquared.Local();
+            least.resize(lightCount, std::numeric_limits<double>::infinity());
+            for (std::size_t l = 0; l < lightCount; ++l)
             {
-              const glm::dvec3 offset = pointAt(i) - *light;
-              least[l] = std::min(least[l], glm::dot(offset, offset));
+              if (const glm::dvec3* light = shadelab::positionOf(scene.lights[l].source))
+              {
+                for (vtkIdType i = begin; i < end; ++i)
+                {
+                  const glm::dvec3 offset = pointAt(i) - *light;
+                  least[l] = std::min(least[l], glm::dot(offset, offset));
+                }
+              }
             }
-          }
-        }
+          });
       });
-    });
   }
   std::vector<double> nearest(lightCount, std::numeric_limits<double>::infinity());
   for (const std::vector<double>& least : nearestSquared)
@@ -92,7 +93,8 @@ std::vector<double> nearestPointDistances(
   if (processes && lightCount > 0)
   {
     std::vector<double> everywhere(lightCount);
-    processes->AllReduce(nearest.data(), everywhere.data(), static_cast<vtkIdType>(lightCount), vtkCommunicator::MIN_OP);
+    processes->AllReduce(
+      nearest.data(), everywhere.data(), static_cast<vtkIdType>(lightCount), vtkCommunicator::MIN_OP);
     nearest = everywhere;
   }
   return nearest;
@@ -106,7 +108,8 @@ vtkLocalReflectanceFilter::vtkLocalReflectanceFilter()
   // The steps run over this filter's processes only on a split mesh (ShadeMesh sets them).
   this->NormalsStep->SetController(nullptr);
   this->VisibilityStep->SetController(nullptr);
-  this->AvailableArrays->AddObserver(vtkCommand::ModifiedEvent, this, &vtkLocalReflectanceFilter::AvailableArraysChanged);
+  this->AvailableArrays->AddObserver(
+    vtkCommand::ModifiedEvent, this, &vtkLocalReflectanceFilter::AvailableArraysChanged);
   this->NormalsStep->AddObserver(vtkCommand::ProgressEvent, this, &vtkLocalReflectanceFilter::ForwardStepProgress);
   this->VisibilityStep->AddObserver(vtkCommand::ProgressEvent, this, &vtkLocalReflectanceFilter::ForwardStepProgress);
 }
@@ -187,7 +190,8 @@ int vtkLocalReflectanceFilter::RequestInformation(vtkInformation*, vtkInformatio
   {
     // Names from the list, of another scene's arrays, that this scene lacks.
     this->ArraySelection.erase(std::remove_if(this->ArraySelection.begin(), this->ArraySelection.end(),
-      [&](const std::string& name) { return !isAvailable(name); }), this->ArraySelection.end());
+                                 [&](const std::string& name) { return !isAvailable(name); }),
+      this->ArraySelection.end());
   }
   std::vector<std::string> selected;
   try
@@ -293,9 +297,6 @@ std::string takenName(vtkPolyData* input, const std::vector<std::string>& names)
   return "";
 }
 
-
-
-
 }
 
 int vtkLocalReflectanceFilter::RequestData(
@@ -360,9 +361,7 @@ double raysShareOf(const shadelab::Scene& scene)
   return manyRays ? 0.75 : 0.25;
 }
 
-
 }
-
 
 int vtkLocalReflectanceFilter::ShadeMesh(vtkPolyData* input, vtkPolyData* output, const shadelab::PieceLayout* split)
 {
@@ -402,7 +401,8 @@ int vtkLocalReflectanceFilter::ShadeMesh(vtkPolyData* input, vtkPolyData* output
   if (this->Tolerance > 0)
   {
     this->MeasureOnSample(
-      this->SamplePoints(input, shadingNormals, *plan, processes, split ? &split->pieceIds : nullptr), *plan, processes);
+      this->SamplePoints(input, shadingNormals, *plan, processes, split ? &split->pieceIds : nullptr), *plan,
+      processes);
   }
   if (this->Tolerance > 0 && !this->ChooseMethods(*plan, false))
   {
@@ -424,7 +424,8 @@ int vtkLocalReflectanceFilter::ShadeMesh(vtkPolyData* input, vtkPolyData* output
       this->StartStep(normalsShare, 0); // a forecast's pilot moves no progress bar
       this->MethodPlan->forecast =
         estimatesSampling ? this->ForecastCost(input, shadingNormals, *plan, split != nullptr) : std::nullopt;
-      sampling.samplesDrawn.resize(this->MethodPlan->forecast ? static_cast<std::size_t>(input->GetNumberOfPoints()) : 0);
+      sampling.samplesDrawn.resize(
+        this->MethodPlan->forecast ? static_cast<std::size_t>(input->GetNumberOfPoints()) : 0);
       this->InvokeEvent(MethodsChosenEvent);
     }
     this->StartStep(normalsShare, raysShare);
@@ -436,9 +437,9 @@ int vtkLocalReflectanceFilter::ShadeMesh(vtkPolyData* input, vtkPolyData* output
     }
     if (this->Tolerance > 0 && this->MethodPlan->forecast) // what the run drew, against it
     {
-      this->MethodPlan->forecast->drawn = shadelab::SampleCounts{
-        std::accumulate(sampling.samplesDrawn.begin(), sampling.samplesDrawn.end(), 0.0),
-        occlusionRayCount(plan->scene, seen, this->ArrayPrefix, sampling.samplesDrawn.size()) };
+      this->MethodPlan->forecast->drawn =
+        shadelab::SampleCounts{ std::accumulate(sampling.samplesDrawn.begin(), sampling.samplesDrawn.end(), 0.0),
+          occlusionRayCount(plan->scene, seen, this->ArrayPrefix, sampling.samplesDrawn.size()) };
     }
     // The rays' arrays have been used (those asked for are in `arrays`): not kept until the next run.
     this->VisibilityStep->GetOutput()->Initialize();
@@ -457,8 +458,8 @@ int vtkLocalReflectanceFilter::ShadeMesh(vtkPolyData* input, vtkPolyData* output
   {
     try // collective too: a failed piece takes part with no values
     {
-      this->MethodPlan->estimatedSamplingError =
-        this->EstimatedSamplingError(failure.empty() ? std::move(sampling.standardError) : std::vector<double>(), split);
+      this->MethodPlan->estimatedSamplingError = this->EstimatedSamplingError(
+        failure.empty() ? std::move(sampling.standardError) : std::vector<double>(), split);
     }
     catch (const std::exception& error) // no memory to gather the values
     {
@@ -497,7 +498,7 @@ std::optional<vtkLocalReflectanceFilter::ShadingPlan> vtkLocalReflectanceFilter:
   // Under a tolerance the precision is chosen with the methods, and float64 is checked first
   // as the precision that accepts the most scenes and meshes.
   plan.precision = this->OutputPrecision == DOUBLE_PRECISION || this->Tolerance > 0 ? shadelab::Precision::Float64
-                                                                                   : shadelab::Precision::Float32;
+                                                                                    : shadelab::Precision::Float32;
   if (!this->CheckMesh(input, processes, split, plan) || !this->PlaceScene(input, processes, split, plan) ||
     !this->CheckLightMethods(plan.scene) || !this->ChooseArraysAndMethods(plan) ||
     !this->CheckArrayNamesFree(input, plan.scene, processes, split))
@@ -571,8 +572,7 @@ bool vtkLocalReflectanceFilter::CheckTolerance()
 {
   if (!(this->Tolerance >= 0 && std::isfinite(this->Tolerance)))
   {
-    vtkErrorMacro("the tolerance is " << this->Tolerance
-                                      << ": it must be a finite number >= 0 (0: exact methods)");
+    vtkErrorMacro("the tolerance is " << this->Tolerance << ": it must be a finite number >= 0 (0: exact methods)");
     return false;
   }
   return true;
@@ -636,8 +636,8 @@ bool vtkLocalReflectanceFilter::PlaceScene(
   {
     if (!shadelab::isColorMapName(this->MaterialColorMap))
     {
-      vtkErrorMacro("MaterialColorMap \"" << this->MaterialColorMap << "\" is not one of "
-                                          << shadelab::colorMapNameList());
+      vtkErrorMacro(
+        "MaterialColorMap \"" << this->MaterialColorMap << "\" is not one of " << shadelab::colorMapNameList());
       return false;
     }
     shadelab::colorMaterialBy(plan.scene, this->MaterialColorArray, this->MaterialColorMap);
@@ -688,10 +688,8 @@ bool vtkLocalReflectanceFilter::ChooseArraysAndMethods(ShadingPlan& plan)
   return this->Tolerance > 0 || this->SceneIsValid(shadelab::untargetedSamplingProblems(plan.scene, false));
 }
 
-
-
-
-std::vector<std::string> vtkLocalReflectanceFilter::WritableArrayNames(vtkPolyData* input, const shadelab::Scene& scene) const
+std::vector<std::string> vtkLocalReflectanceFilter::WritableArrayNames(
+  vtkPolyData* input, const shadelab::Scene& scene) const
 {
   std::vector<std::string> names;
   for (const auto& array : shadelab::availableArrays(scene, this->ArrayPrefix))
@@ -715,7 +713,8 @@ bool vtkLocalReflectanceFilter::CheckArrayNamesFree(
   vtkPolyData* input, const shadelab::Scene& scene, vtkMultiProcessController* processes, bool split)
 {
   const std::string taken = takenName(input, this->WritableArrayNames(input, scene));
-  std::string problem = taken.empty() ? "" : "the input already has a point array named '" + taken +
+  std::string problem = taken.empty() ? ""
+                                      : "the input already has a point array named '" + taken +
       "', which this filter would write: set an array prefix (shadelab shade --prefix) to keep both";
   if (split)
   {
@@ -748,9 +747,9 @@ std::vector<vtkSmartPointer<vtkDataArray>> vtkLocalReflectanceFilter::ShadedArra
     inputs.material = &this->VertexMaterial;
   }
   // Besides the kernel's: the occlusion arrays asked for, and which material values were clamped.
-  std::vector<vtkSmartPointer<vtkDataArray>> besideShading =
-    seen ? useVisibility(seen, plan.scene, plan.request, this->ArrayPrefix, inputs)
-         : std::vector<vtkSmartPointer<vtkDataArray>>();
+  std::vector<vtkSmartPointer<vtkDataArray>> besideShading = seen
+    ? useVisibility(seen, plan.scene, plan.request, this->ArrayPrefix, inputs)
+    : std::vector<vtkSmartPointer<vtkDataArray>>();
   if (plan.scene.material.arrays.clamps())
   {
     besideShading.push_back(clampedMaterialArray(this->VertexMaterial.clamped, this->ArrayPrefix));
@@ -785,8 +784,6 @@ std::vector<vtkSmartPointer<vtkDataArray>> vtkLocalReflectanceFilter::ShadedArra
   arrays.insert(arrays.end(), besideShading.begin(), besideShading.end());
   return arrays;
 }
-
-
 
 void vtkLocalReflectanceFilter::AddFieldNotes(vtkPolyData* output) const
 {
@@ -891,14 +888,14 @@ vtkPolyData* vtkLocalReflectanceFilter::PrepareVisibility(vtkPolyData* input, vt
   step->Update();
   this->StopIfAborted(); // the step stopped (ForwardStepProgress asked it to)
   vtkPolyData* seen = step->GetOutput();
-  if (input->GetNumberOfPoints() > 0 && !seen->GetPointData()->GetArray(shadelab::visibilityFlagsArrayName(this->ArrayPrefix).c_str()))
+  if (input->GetNumberOfPoints() > 0 &&
+    !seen->GetPointData()->GetArray(shadelab::visibilityFlagsArrayName(this->ArrayPrefix).c_str()))
   {
     throw std::runtime_error("casting the rays for shadows and ambient occlusion failed (see the error above)");
   }
   this->VisibilityReport = step->GetReport();
   return seen;
 }
-
 
 void vtkLocalReflectanceFilter::PrintSelf(ostream& os, vtkIndent indent)
 {

@@ -30,11 +30,11 @@
 #define vtkLocalReflectanceFilter_h
 
 #include "ShadeLabFiltersModule.h"
-#include "vtkDataArraySelection.h" // the scene's arrays, a member
-#include "vtkCommand.h" // MethodsChosenEvent
+#include "vtkCommand.h"                // MethodsChosenEvent
+#include "vtkDataArraySelection.h"     // the scene's arrays, a member
+#include "vtkMeshVisibilityFilter.h"   // the visibility step, a member
 #include "vtkMultiProcessController.h" // the controller, a member
 #include "vtkNew.h"
-#include "vtkMeshVisibilityFilter.h" // the visibility step, a member
 #include "vtkShadeLabSceneFilter.h"
 #include "vtkShadingNormalsFilter.h" // the normals step, a member
 
@@ -289,8 +289,8 @@ private:
   /// than shading does), on every process alike.
   /// With a shininess read from an array, its largest over the whole mesh goes into
   /// plan.measured for the tolerance's bounds.
-  bool ReadMaterialArrays(vtkPolyData* input, vtkMultiProcessController* processes,
-    const shadelab::PieceLayout* split, ShadingPlan& plan);
+  bool ReadMaterialArrays(
+    vtkPolyData* input, vtkMultiProcessController* processes, const shadelab::PieceLayout* split, ShadingPlan& plan);
   /// ReadMaterialArrays' decoding, when what it reads has changed.
   struct MaterialSource;
   bool DecodeMaterialArrays(vtkPolyData* input, vtkMultiProcessController* processes,

@@ -3,9 +3,9 @@
 // pilot, and what sampling left after the run (docs/guide/accuracy.md).
 #include "vtkLocalReflectanceFilter.h"
 
+#include "ShadeLabMeshPolygons.h"
 #include "ShadeLabShadedArrays.h"
 #include "ShadeLabShadingPlan.h"
-#include "ShadeLabMeshPolygons.h"
 #include "ShadeLabWholeMesh.h"
 
 #include "vtkCommunicator.h"
@@ -75,9 +75,9 @@ std::vector<unsigned char> pointsToMeasure(const shadelab::Scene& scene, vtkData
   }
   const double eta = scene.material.shininess;
   // The lobe's cosine x: the lobe at eta 1.
-  const shadelab::LobeModel cosineOfLobe{ shadelab::hasSpecularTerm(scene) ? shadelab::evaluatedSpecularModel(scene)
-                                                                            : shadelab::SpecularModel::None,
-    1.0 };
+  const shadelab::LobeModel cosineOfLobe{
+    shadelab::hasSpecularTerm(scene) ? shadelab::evaluatedSpecularModel(scene) : shadelab::SpecularModel::None, 1.0
+  };
   const bool twoSided = shadelab::shadesBothSides(scene);
   const bool measuresPow = cosineOfLobe.wanted() && eta > 0;
   // Per method, its error on x^eta at x, its largest, and the least x where it reaches the
@@ -86,7 +86,8 @@ std::vector<unsigned char> pointsToMeasure(const shadelab::Scene& scene, vtkData
   auto powErrorAt = [eta](int m, double x)
   {
     double error = 0;
-    shadelab::withPowMethod(shadelab::approximatePowMethods[m], eta, [&](auto power) { error = std::abs(power(x) - std::pow(x, eta)); });
+    shadelab::withPowMethod(
+      shadelab::approximatePowMethods[m], eta, [&](auto power) { error = std::abs(power(x) - std::pow(x, eta)); });
     return error;
   };
   double largestPowError[2] = { 0, 0 }, leastX[2] = { 2, 2 };
@@ -106,46 +107,51 @@ std::vector<unsigned char> pointsToMeasure(const shadelab::Scene& scene, vtkData
   const vtkIdType count = points->GetNumberOfTuples();
   std::vector<unsigned char> measured(static_cast<std::size_t>(count), 0);
   // The coordinates and normals in their own memory (float or double), read without a call each.
-  shadelab::visitPackedPoints(points, [&](auto pointAt) { shadelab::visitPackedPoints(normals, [&](auto normalAt) {
-  vtkSMPTools::For(0, count,
-    [&](vtkIdType begin, vtkIdType end)
+  shadelab::visitPackedPoints(points,
+    [&](auto pointAt)
     {
-      for (vtkIdType i = begin; i < end; ++i)
-      {
-        const glm::dvec3 normal = normalAt(i);
-        if (!shadelab::isFinite(normal) || normal == glm::dvec3(0.0))
+      shadelab::visitPackedPoints(normals,
+        [&](auto normalAt)
         {
-          continue; // shaded with ambient light only
-        }
-        const glm::dvec3 position = pointAt(i);
-        const glm::dvec3 unit = shadelab::unitVector(normal);
-        const glm::dvec3 toViewer = scene.viewer.directionFrom(position);
-        for (const shadelab::LocalEvaluation& light : lights)
-        {
-          const glm::dvec3 s = shadelab::towardLight(light, position).toLight;
-          const double cosine = glm::dot(unit, s);
-          unsigned char measure = std::abs(cosine) < horizonBand ? AtAHorizon : 0;
-          // The lobe's cosine x on the side the kernel shades.
-          const glm::dvec3 shaded = twoSided && glm::dot(unit, toViewer) < 0 ? -unit : unit;
-          if (measuresPow && glm::dot(shaded, s) > 0)
-          {
-            const double x = cosineOfLobe(shaded, s, toViewer);
-            for (int m = 0; m < 2; ++m)
+          vtkSMPTools::For(0, count,
+            [&](vtkIdType begin, vtkIdType end)
             {
-              if (x >= leastX[m] && powErrorAt(m, x) >= powErrorBand * largestPowError[m])
+              for (vtkIdType i = begin; i < end; ++i)
               {
-                measure |= AtAPowMethodsWorst;
+                const glm::dvec3 normal = normalAt(i);
+                if (!shadelab::isFinite(normal) || normal == glm::dvec3(0.0))
+                {
+                  continue; // shaded with ambient light only
+                }
+                const glm::dvec3 position = pointAt(i);
+                const glm::dvec3 unit = shadelab::unitVector(normal);
+                const glm::dvec3 toViewer = scene.viewer.directionFrom(position);
+                for (const shadelab::LocalEvaluation& light : lights)
+                {
+                  const glm::dvec3 s = shadelab::towardLight(light, position).toLight;
+                  const double cosine = glm::dot(unit, s);
+                  unsigned char measure = std::abs(cosine) < horizonBand ? AtAHorizon : 0;
+                  // The lobe's cosine x on the side the kernel shades.
+                  const glm::dvec3 shaded = twoSided && glm::dot(unit, toViewer) < 0 ? -unit : unit;
+                  if (measuresPow && glm::dot(shaded, s) > 0)
+                  {
+                    const double x = cosineOfLobe(shaded, s, toViewer);
+                    for (int m = 0; m < 2; ++m)
+                    {
+                      if (x >= leastX[m] && powErrorAt(m, x) >= powErrorBand * largestPowError[m])
+                      {
+                        measure |= AtAPowMethodsWorst;
+                      }
+                    }
+                  }
+                  measured[static_cast<std::size_t>(i)] |= measure;
+                }
               }
-            }
-          }
-          measured[static_cast<std::size_t>(i)] |= measure;
-        }
-      }
+            });
+        });
     });
-  }); });
   return measured;
 }
-
 
 /// The largest difference between two shadings of the same arrays (float32's and float64's),
 /// over every component of the real-valued arrays (the flags are bits, not values).
@@ -161,7 +167,8 @@ double largestDifference(
       for (vtkIdType v = 0; v < a[k]->GetNumberOfValues(); ++v)
       {
         largest = std::max(largest,
-          std::abs(a[k]->GetComponent(v / components, int(v % components)) - b[k]->GetComponent(v / components, int(v % components))));
+          std::abs(a[k]->GetComponent(v / components, int(v % components)) -
+            b[k]->GetComponent(v / components, int(v % components))));
       }
     }
   }
@@ -174,10 +181,13 @@ constexpr vtkIdType pilotLeast = 128, pilotMost = 2048, pilotMeshLeast = 1024;
 
 /// How many of the pilot's vertices stopped at a maximum short of a target: a light's, or the
 /// ambient occlusion's (its array in `seen`, where there is one).
-std::size_t shortOfTargetCount(const ShortOfTarget& lights, vtkPolyData* seen, const std::string& prefix, std::size_t count)
+std::size_t shortOfTargetCount(
+  const ShortOfTarget& lights, vtkPolyData* seen, const std::string& prefix, std::size_t count)
 {
-  vtkDataArray* occlusion = seen ? seen->GetPointData()->GetArray(
-    shadelab::occlusionArrayName(prefix, shadelab::OcclusionTerm::ShortOfTarget).c_str()) : nullptr;
+  vtkDataArray* occlusion = seen
+    ? seen->GetPointData()->GetArray(
+        shadelab::occlusionArrayName(prefix, shadelab::OcclusionTerm::ShortOfTarget).c_str())
+    : nullptr;
   std::size_t stopped = 0;
   for (std::size_t i = 0; i < count; ++i)
   {
@@ -196,8 +206,8 @@ bool vtkLocalReflectanceFilter::ChooseMethods(ShadingPlan& plan, bool roundingMe
 {
   try
   {
-    this->MethodPlan = shadelab::chooseMethods(
-      plan.scene, plan.request, plan.extent, this->Tolerance, plan.float32Fits, plan.measured);
+    this->MethodPlan =
+      shadelab::chooseMethods(plan.scene, plan.request, plan.extent, this->Tolerance, plan.float32Fits, plan.measured);
   }
   catch (const shadelab::RoundingAboveTolerance& error)
   {
@@ -236,8 +246,9 @@ vtkLocalReflectanceFilter::PointSample vtkLocalReflectanceFilter::SamplePoints(v
   // Global ids number the whole mesh's points 0 to n-1.
   const vtkIdType wholeCount = processes ? shadelab::wholePointCount(processes, *pieceIds) : count;
   const vtkIdType stride = everyKth(wholeCount, roundingSampleSize);
-  const std::vector<unsigned char> banded =
-    count > 0 ? pointsToMeasure(plan.scene, input->GetPoints()->GetData(), shadingNormals) : std::vector<unsigned char>();
+  const std::vector<unsigned char> banded = count > 0
+    ? pointsToMeasure(plan.scene, input->GetPoints()->GetData(), shadingNormals)
+    : std::vector<unsigned char>();
   // Every point at a horizon; of those at a pow method's worst, all of a small band (a small
   // highlight, which the evenly spaced points may miss) and about roundingSampleSize of a
   // large one, evenly spaced by id (the error is smooth along it): counted over the whole mesh,
@@ -280,8 +291,8 @@ void vtkLocalReflectanceFilter::MeasureOnSample(
   shadelab::ShadingInputs open;
   open.sampleIds = sample.ids.data();
   const shadelab::Scene& scene = plan.scene;
-  auto shadeSample = [&](auto precision, const shadelab::ArrayRequest& request,
-                       const std::vector<shadelab::LightMethod>& methods)
+  auto shadeSample =
+    [&](auto precision, const shadelab::ArrayRequest& request, const std::vector<shadelab::LightMethod>& methods)
   {
     using T = decltype(precision);
     return shade<T>(scene, request, methods, "", sample.points, sample.normals, open, nullptr);
@@ -294,7 +305,8 @@ void vtkLocalReflectanceFilter::MeasureOnSample(
   {
     if (plan.float32Fits)
     {
-      largest[0] = largestDifference(shadeSample(float(), plan.request, exact), shadeSample(double(), plan.request, exact));
+      largest[0] =
+        largestDifference(shadeSample(float(), plan.request, exact), shadeSample(double(), plan.request, exact));
     }
     // The specular arrays of the lights a pow method applies to (point, spot, distant), which
     // the shading writes in the lights' order.
@@ -304,8 +316,7 @@ void vtkLocalReflectanceFilter::MeasureOnSample(
     for (std::size_t l = 0; l < scene.lights.size(); ++l)
     {
       const shadelab::LightSource& source = scene.lights[l].source;
-      if (shadelab::hasSpecularTerm(scene) && !shadelab::isAmbient(source) &&
-        !shadelab::isDistributed(source))
+      if (shadelab::hasSpecularTerm(scene) && !shadelab::isAmbient(source) && !shadelab::isDistributed(source))
       {
         speculars.lights[l][int(shadelab::LightTerm::Specular)] = true;
         specularLights.push_back(l);
@@ -331,7 +342,8 @@ void vtkLocalReflectanceFilter::MeasureOnSample(
   if (processes) // the largest over every piece, the same on every process
   {
     std::vector<double> everywhere(largest.size());
-    processes->AllReduce(largest.data(), everywhere.data(), static_cast<vtkIdType>(largest.size()), vtkCommunicator::MAX_OP);
+    processes->AllReduce(
+      largest.data(), everywhere.data(), static_cast<vtkIdType>(largest.size()), vtkCommunicator::MAX_OP);
     largest = everywhere;
   }
   if (plan.float32Fits)
@@ -348,9 +360,8 @@ void vtkLocalReflectanceFilter::MeasureOnSample(
   }
 }
 
-std::vector<std::string> vtkLocalReflectanceFilter::ShortOfTargetReport(
-  const ShadingPlan& plan, const std::vector<std::vector<std::uint8_t>>& shortOfTarget,
-  const shadelab::PieceLayout* split) const
+std::vector<std::string> vtkLocalReflectanceFilter::ShortOfTargetReport(const ShadingPlan& plan,
+  const std::vector<std::vector<std::uint8_t>>& shortOfTarget, const shadelab::PieceLayout* split) const
 {
   std::vector<std::string> report;
   for (std::size_t l = 0; l < plan.methods.size(); ++l)

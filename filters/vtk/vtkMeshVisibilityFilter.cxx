@@ -2,16 +2,16 @@
 
 #include "ArrayCatalog.h"
 #include "Overloaded.h"
+#include "SceneFrame.h"
 #include "ShadeLabFieldNotes.h"
-#include "ShadeLabThreadCount.h"
 #include "ShadeLabLargeArrays.h"
 #include "ShadeLabMeshChecks.h"
 #include "ShadeLabMeshExtent.h"
 #include "ShadeLabMeshPolygons.h"
 #include "ShadeLabRunAborted.h"
+#include "ShadeLabThreadCount.h"
 #include "ShadeLabWholeMesh.h"
 #include "ShadingFlags.h"
-#include "SceneFrame.h"
 #include "Visibility.h"
 
 #include "vtkDataArrayRange.h"
@@ -19,8 +19,8 @@
 #include "vtkDoubleArray.h"
 #include "vtkFloatArray.h"
 #include "vtkInformation.h"
-#include "vtkIntArray.h"
 #include "vtkInformationVector.h"
+#include "vtkIntArray.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
@@ -71,13 +71,12 @@ struct ShadowedLight
     }
     return evaluation.position;
   }
-
 };
 
 /// An array of count tuples in huge pages (float32 for the estimates, 64-bit words for a distributed
 /// light's hidden samples, float64 for the estimates of one drawn to a target); throws
 /// std::runtime_error naming it when there is not enough memory.
-template <typename Array>
+template<typename Array>
 vtkSmartPointer<Array> pointArray(const std::string& name, int components, vtkIdType count)
 {
   auto array = vtkSmartPointer<Array>::New();
@@ -114,10 +113,11 @@ std::vector<ShadowedLight> shadowedLights(
       ShadowedLight light;
       light.name = scene.lights[l].name;
       light.drawnToTarget = shadelab::isDistributed(scene.lights[l].source) && context.targets.any();
-      std::visit(shadelab::Overloaded{ [&](const shadelab::LocalEvaluation& local) { light.evaluation = local; },
-                   [&](const shadelab::DistributedEvaluation& distributed) { light.distributed = distributed.shadowed; },
-                   [](const shadelab::AmbientEvaluation&)
-                   { throw std::logic_error("an ambient light casts no shadows (sceneProblems refuses it)"); } },
+      std::visit(
+        shadelab::Overloaded{ [&](const shadelab::LocalEvaluation& local) { light.evaluation = local; },
+          [&](const shadelab::DistributedEvaluation& distributed) { light.distributed = distributed.shadowed; },
+          [](const shadelab::AmbientEvaluation&)
+          { throw std::logic_error("an ambient light casts no shadows (sceneProblems refuses it)"); } },
         shadelab::prepareEvaluation(scene.lights[l].source, context));
       lights.push_back(std::move(light));
     }
@@ -153,16 +153,18 @@ void addOcclusionArrays(RayArrays& arrays, const std::string& prefix, vtkIdType 
 {
   auto add = [&](shadelab::OcclusionTerm term, int components)
   {
-    vtkSmartPointer<vtkFloatArray> array = pointArray<vtkFloatArray>(shadelab::occlusionArrayName(prefix, term), components, count);
+    vtkSmartPointer<vtkFloatArray> array =
+      pointArray<vtkFloatArray>(shadelab::occlusionArrayName(prefix, term), components, count);
     arrays.written.push_back(array);
     return array;
   };
   if (arrays.settings.target)
   {
-    arrays.rays = pointArray<vtkIntArray>(shadelab::occlusionArrayName(prefix, shadelab::OcclusionTerm::Rays), 1, count);
+    arrays.rays =
+      pointArray<vtkIntArray>(shadelab::occlusionArrayName(prefix, shadelab::OcclusionTerm::Rays), 1, count);
     arrays.written.push_back(arrays.rays);
-    arrays.shortOfTarget = pointArray<vtkFloatArray>(
-      shadelab::occlusionArrayName(prefix, shadelab::OcclusionTerm::ShortOfTarget), 1, count);
+    arrays.shortOfTarget =
+      pointArray<vtkFloatArray>(shadelab::occlusionArrayName(prefix, shadelab::OcclusionTerm::ShortOfTarget), 1, count);
     arrays.written.push_back(arrays.shortOfTarget);
   }
   arrays.occlusion = add(shadelab::OcclusionTerm::AmbientOcclusion, 1);
@@ -188,7 +190,8 @@ RayArrays allocateRayArrays(std::vector<ShadowedLight>& lights, const shadelab::
   {
     if (light.distributed && light.drawnToTarget)
     {
-      light.terms = pointArray<vtkDoubleArray>(shadelab::shadowedTermsArrayName(prefix, light.name), shadelab::packedTermsSize, count);
+      light.terms = pointArray<vtkDoubleArray>(
+        shadelab::shadowedTermsArrayName(prefix, light.name), shadelab::packedTermsSize, count);
       arrays.written.push_back(light.terms);
     }
     else if (light.distributed)
@@ -199,7 +202,8 @@ RayArrays allocateRayArrays(std::vector<ShadowedLight>& lights, const shadelab::
     }
     else
     {
-      light.visibility = pointArray<vtkFloatArray>(shadelab::lightArrayName(prefix, light.name, shadelab::LightTerm::Visibility), 1, count);
+      light.visibility = pointArray<vtkFloatArray>(
+        shadelab::lightArrayName(prefix, light.name, shadelab::LightTerm::Visibility), 1, count);
       arrays.written.push_back(light.visibility);
     }
   }
@@ -253,7 +257,8 @@ public:
     vertex = { { p[0], p[1], p[2] }, { n[0], n[1], n[2] }, id };
     const double length2 = glm::dot(vertex.normal, vertex.normal);
     const glm::dvec3& q = vertex.position;
-    const bool usable = length2 > 1e-12 && std::isfinite(length2) && std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z);
+    const bool usable =
+      length2 > 1e-12 && std::isfinite(length2) && std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z);
     vertex.normal = usable ? vertex.normal / std::sqrt(length2) : glm::dvec3(0.0);
     toViewer = this->viewer.directionFrom(vertex.position);
     occlusionNormal = this->twoSided && glm::dot(vertex.normal, toViewer) < 0 ? -vertex.normal : vertex.normal;
@@ -342,7 +347,8 @@ void traceSoftShadows(const shadelab::OccluderMesh& occluders, const ShadowedLig
   {
     const shadelab::RayVertex& vertex = group.vertices[k];
     static_assert(sizeof(vtkTypeUInt64) == sizeof(std::uint64_t), "the hidden samples' words are 64 bits");
-    auto* bits = reinterpret_cast<std::uint64_t*>(light.hidden->GetPointer(std::size_t(words) * std::size_t(group.first + k)));
+    auto* bits =
+      reinterpret_cast<std::uint64_t*>(light.hidden->GetPointer(std::size_t(words) * std::size_t(group.first + k)));
     if (vertex.normal == glm::dvec3(0.0))
     {
       std::fill_n(bits, words, 0u); // no ray: the kernel gives the vertex no light
@@ -429,8 +435,8 @@ void traceOcclusion(const shadelab::OccluderMesh& occluders, const RayGroup& gro
 /// Every ray from the count ray points into the arrays, in a vtkSMPTools loop, with progress
 /// reported through `filter`. Throws where the tracing failed, and shadelab::RunAborted where
 /// `stoppable` and the filter was asked to abort (checked before each block).
-void castRays(const shadelab::OccluderMesh& occluders, const std::vector<ShadowedLight>& lights, const RayArrays& arrays,
-  const RayVertices& vertices, vtkIdType count, vtkAlgorithm* filter, bool stoppable)
+void castRays(const shadelab::OccluderMesh& occluders, const std::vector<ShadowedLight>& lights,
+  const RayArrays& arrays, const RayVertices& vertices, vtkIdType count, vtkAlgorithm* filter, bool stoppable)
 {
   // Vertices in fixed groups (not split by the threads' ranges), each light's rays from a group
   // sharing packets: the same packets on any thread count (and Embree's answer to a ray does
@@ -494,9 +500,10 @@ std::string occlusionRaysReport(const RayArrays& arrays, vtkIdType count)
     short_ += arrays.shortOfTarget->GetValue(i) == 1.0f ? 1 : 0;
   }
   std::ostringstream report;
-  report << "Ambient occlusion to within " << target.error << " at 95% (standard error at most " << target.standardError()
-         << "): " << total << " rays, " << double(total) / double(count) << " per vertex (" << fewest << " to " << most
-         << ")" << (arrays.settings.skyViewFactor ? ", and the sky view factor's own" : "") << ".";
+  report << "Ambient occlusion to within " << target.error << " at 95% (standard error at most "
+         << target.standardError() << "): " << total << " rays, " << double(total) / double(count) << " per vertex ("
+         << fewest << " to " << most << ")" << (arrays.settings.skyViewFactor ? ", and the sky view factor's own" : "")
+         << ".";
   if (short_ > 0)
   {
     report << " " << short_ << " vertices reached the maximum of " << target.maximum
@@ -507,8 +514,8 @@ std::string occlusionRaysReport(const RayArrays& arrays, vtkIdType count)
 }
 
 /// The report of a run that cast rays: how many, against how many triangles, and how long.
-std::string raysReport(const RayArrays& arrays, const std::vector<ShadowedLight>& lights, vtkIdType count, std::size_t triangles,
-  const RayTimes& times)
+std::string raysReport(const RayArrays& arrays, const std::vector<ShadowedLight>& lights, vtkIdType count,
+  std::size_t triangles, const RayTimes& times)
 {
   std::uint64_t lightRays = 0;
   for (const ShadowedLight& light : lights)
@@ -520,8 +527,9 @@ std::string raysReport(const RayArrays& arrays, const std::vector<ShadowedLight>
   }
   const bool fixedOcclusion = arrays.occlusion && !arrays.settings.target;
   const std::uint64_t raysPerVertex = lightRays +
-    (fixedOcclusion ? static_cast<std::uint64_t>(arrays.settings.sampling.samples) * (arrays.settings.skyViewFactor ? 2 : 1)
-                    : 0);
+    (fixedOcclusion
+        ? static_cast<std::uint64_t>(arrays.settings.sampling.samples) * (arrays.settings.skyViewFactor ? 2 : 1)
+        : 0);
   std::ostringstream report;
   report << "Cast ";
   if (raysPerVertex > 0)
@@ -577,8 +585,8 @@ vtkMTimeType geometryTime(vtkPolyData* mesh)
   for (vtkCellArray* cells : { mesh->GetPolys(), mesh->GetStrips() })
   {
     // VTK 9.1's vtkCellArray::GetMTime does not look at its arrays.
-    newest = std::max({ newest, cells->GetMTime(), cells->GetOffsetsArray()->GetMTime(),
-      cells->GetConnectivityArray()->GetMTime() });
+    newest = std::max(
+      { newest, cells->GetMTime(), cells->GetOffsetsArray()->GetMTime(), cells->GetConnectivityArray()->GetMTime() });
   }
   return newest;
 }
@@ -637,7 +645,8 @@ int vtkMeshVisibilityFilter::CastRays(vtkInformationVector** inputVector, vtkInf
     { return this->CastRaysFrom(mesh, result, pieceIds) == 1; });
 }
 
-int vtkMeshVisibilityFilter::CastRaysFrom(vtkPolyData* input, vtkPolyData* output, const std::vector<vtkIdType>* rayPoints)
+int vtkMeshVisibilityFilter::CastRaysFrom(
+  vtkPolyData* input, vtkPolyData* output, const std::vector<vtkIdType>* rayPoints)
 {
   const vtkIdType count = rayPoints ? static_cast<vtkIdType>(rayPoints->size()) : input->GetNumberOfPoints();
   if (count == 0)
@@ -673,7 +682,8 @@ int vtkMeshVisibilityFilter::CastRaysFrom(vtkPolyData* input, vtkPolyData* outpu
     occluders = &this->OccludersFor(input, times.reused);
     times.buildSeconds = secondsSince(buildStart);
     findEnclosedLights(*occluders, lights);
-    arrays = allocateRayArrays(lights, *scene, this->ArrayPrefix, this->ComputeBentNormal, this->ComputeSkyViewFactor, count);
+    arrays =
+      allocateRayArrays(lights, *scene, this->ArrayPrefix, this->ComputeBentNormal, this->ComputeSkyViewFactor, count);
     const auto raysStart = std::chrono::steady_clock::now();
     castRays(*occluders, lights, arrays, RayVertices(input, rayPoints, *scene), count, this, this->Stoppable);
     times.raySeconds = secondsSince(raysStart);
@@ -738,9 +748,10 @@ std::optional<shadelab::Scene> vtkMeshVisibilityFilter::PlacedScene(vtkPolyData*
       !(l < this->DrawnLights.size() && this->DrawnLights[l].targets.any()))
     {
       untargeted.push_back({ "/lights/" + std::to_string(l) + "/samples",
-        "\"auto\" with shadows takes the count of light '" + scene.lights[l].name + "' from a tolerance's plan: "
-        "shade it with vtkLocalReflectanceFilter under a tolerance (shadelab shade --tolerance), or give it a number "
-        "of samples" });
+        "\"auto\" with shadows takes the count of light '" + scene.lights[l].name +
+          "' from a tolerance's plan: "
+          "shade it with vtkLocalReflectanceFilter under a tolerance (shadelab shade --tolerance), or give it a number "
+          "of samples" });
     }
   }
   return this->SceneIsValid(untargeted) ? std::optional<shadelab::Scene>(scene) : std::nullopt;

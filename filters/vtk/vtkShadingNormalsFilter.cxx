@@ -24,8 +24,8 @@
 #include "vtkSMPTools.h"
 #include "vtkStaticPointLocator.h"
 
-#include <optional>
 #include <numeric>
+#include <optional>
 #include <sstream>
 #include <type_traits>
 
@@ -40,7 +40,7 @@ namespace
 /// those within the tolerance of it, in id order (vtkStaticPointLocator over the candidates;
 /// VTK 9.1's MergePoints with a tolerance is not used: run after run on spot.obj it left 1 to
 /// 10 positions split among several ids, differently each time).
-template <typename PointAt>
+template<typename PointAt>
 std::vector<shadelab::PointId> positionMergeMap(
   vtkPolyData* mesh, const std::vector<shadelab::PointId>& candidates, double relativeTolerance, PointAt pointAt)
 {
@@ -88,7 +88,8 @@ std::vector<shadelab::PointId> positionMergeMap(
 
 /// flipped[k] for every polygon that vtkPolyDataNormals' consistency pass turns round, on the
 /// welded mesh (so that seams join the pieces they separate).
-std::vector<bool> polygonsToTurn(vtkPolyData* mesh, const shadelab::MeshPolygons& polygons, const std::vector<shadelab::PointId>& mergeMap)
+std::vector<bool> polygonsToTurn(
+  vtkPolyData* mesh, const shadelab::MeshPolygons& polygons, const std::vector<shadelab::PointId>& mergeMap)
 {
   vtkNew<vtkPolyData> welded;
   welded->SetPoints(mesh->GetPoints());
@@ -132,7 +133,7 @@ std::size_t blockCount(std::size_t count)
 
 /// Calls visit(b, first, last) for each block b of count items (items first..last-1), in a
 /// vtkSMPTools loop.
-template <typename Visit>
+template<typename Visit>
 void forEachBlock(std::size_t count, Visit visit)
 {
   vtkSMPTools::For(0, static_cast<vtkIdType>(blockCount(count)),
@@ -146,7 +147,7 @@ void forEachBlock(std::size_t count, Visit visit)
 }
 
 /// What find(first, last) returns for each block of count items, joined in block order.
-template <typename T, typename Find>
+template<typename T, typename Find>
 std::vector<T> foundInBlocks(std::size_t count, Find find)
 {
   std::vector<std::vector<T>> found(blockCount(count));
@@ -170,7 +171,7 @@ struct OrientationWorker
   const shadelab::PolygonList& polygons;
   shadelab::NormalOrientation result;
 
-  template <typename PointArray, typename NormalArray>
+  template<typename PointArray, typename NormalArray>
   void operator()(PointArray* pointArray, NormalArray* normalArray)
   {
     const auto points = vtk::DataArrayTupleRange<3>(pointArray);
@@ -202,7 +203,8 @@ struct OrientationWorker
   }
 };
 
-shadelab::NormalOrientation assessOrientation(vtkPolyData* mesh, const shadelab::PolygonList& polygons, vtkDataArray* normals)
+shadelab::NormalOrientation assessOrientation(
+  vtkPolyData* mesh, const shadelab::PolygonList& polygons, vtkDataArray* normals)
 {
   OrientationWorker worker{ mesh, polygons, {} };
   vtkDataArray* points = mesh->GetPoints()->GetData();
@@ -227,7 +229,7 @@ struct ComputedNormals
 /// The polygons' sums at their corners (shadelab::sumAtCorners), in polygon order: one
 /// thread, because the pass is bound by memory (scattering to points), and two threads
 /// scattering into two sets of sums ran no faster here.
-template <typename Real>
+template<typename Real>
 shadelab::CornerSums sumAtCorners(const shadelab::PolygonList& list, const std::vector<bool>& flipped,
   std::size_t pointCount, const glm::dvec3& centre, shadelab::PackedPoints<Real> points)
 {
@@ -276,7 +278,7 @@ struct NormalsWorker
   bool orientOutward;
   ComputedNormals computed;
 
-  template <typename Real>
+  template<typename Real>
   void operator()(shadelab::PackedPoints<Real> pointAt)
   {
     const shadelab::PolygonList& list = polygons.list();
@@ -286,8 +288,8 @@ struct NormalsWorker
     shadelab::CornerSums sums = sumAtCorners(list, {}, pointCount, { centre[0], centre[1], centre[2] }, pointAt);
     // Only points whose edges do not pair up can be copies on a seam or on an inconsistent
     // edge: the rest of the mesh needs nothing more.
-    const std::vector<shadelab::PointId> candidates = foundInBlocks<shadelab::PointId>(
-      pointCount, [&](std::size_t first, std::size_t last) { return shadelab::unbalancedPoints(sums.points, first, last); });
+    const std::vector<shadelab::PointId> candidates = foundInBlocks<shadelab::PointId>(pointCount,
+      [&](std::size_t first, std::size_t last) { return shadelab::unbalancedPoints(sums.points, first, last); });
     const std::vector<shadelab::PointId> mergeMap =
       weld ? positionMergeMap(mesh, candidates, weldTolerance, pointAt) : std::vector<shadelab::PointId>{};
     const shadelab::PolygonSubset aroundCandidates(list, polygonsBetween(list, candidates, pointCount));
@@ -307,8 +309,9 @@ struct NormalsWorker
       {
         flippedAround.push_back(flipped[aroundCandidates.original(k)]);
       }
-      shadelab::weldCopies(sums.points, edges, shadelab::polygonAreaVectors(aroundCandidates.list(), flippedAround, pointAt),
-        mergeMap, featureAngle, &computed.weld);
+      shadelab::weldCopies(sums.points, edges,
+        shadelab::polygonAreaVectors(aroundCandidates.list(), flippedAround, pointAt), mergeMap, featureAngle,
+        &computed.weld);
     }
     computed.orientation = sums.winding.result();
     computed.turnedOutward = orientOutward && computed.orientation.pointsInward();
@@ -334,8 +337,8 @@ struct NormalsWorker
   }
 };
 
-ComputedNormals computeNormals(vtkPolyData* mesh, const shadelab::MeshPolygons& polygons, bool weld, double weldTolerance,
-  double featureAngle, bool orientOutward)
+ComputedNormals computeNormals(vtkPolyData* mesh, const shadelab::MeshPolygons& polygons, bool weld,
+  double weldTolerance, double featureAngle, bool orientOutward)
 {
   NormalsWorker worker{ mesh, polygons, weld, weldTolerance, featureAngle, orientOutward, {} };
   shadelab::visitPackedPoints(mesh->GetPoints()->GetData(), worker);
@@ -391,7 +394,8 @@ int vtkShadingNormalsFilter::RequestData(
   }
   // Computed once, on the first process, which sends each piece its points' normals.
   const int succeeded = shadelab::computeOnPiece(this->Controller, this, input, output, this->KeepInputNormals,
-    shadelab::WholeMeshOn::FirstProcess, [this](vtkPolyData* mesh, vtkPolyData* result, const std::vector<vtkIdType>*)
+    shadelab::WholeMeshOn::FirstProcess,
+    [this](vtkPolyData* mesh, vtkPolyData* result, const std::vector<vtkIdType>*)
     { return this->ComputeNormals(mesh, result) == 1; });
   auto* note = vtkStringArray::SafeDownCast(output->GetFieldData()->GetAbstractArray(shadelab::normalsNoteName));
   this->Report = succeeded && note && note->GetNumberOfValues() > 0 ? note->GetValue(0) : "";
@@ -412,7 +416,7 @@ int vtkShadingNormalsFilter::ComputeNormals(vtkPolyData* input, vtkPolyData* out
   }
   std::ostringstream report;
   std::optional<shadelab::NormalOrientation> orientation; // of computed normals, found with them
-  bool turnedOutward = false;                              // computed normals, written so
+  bool turnedOutward = false;                             // computed normals, written so
   vtkDataArray* inputNormals = input->GetPointData()->GetNormals();
   vtkSmartPointer<vtkDataArray> normals;
   if (this->KeepInputNormals && usableNormals(inputNormals, input->GetNumberOfPoints()))
@@ -440,8 +444,8 @@ int vtkShadingNormalsFilter::ComputeNormals(vtkPolyData* input, vtkPolyData* out
   else
   {
     output->ShallowCopy(input);
-    const ComputedNormals computed = computeNormals(
-      input, shadelab::MeshPolygons(input), this->WeldCoincidentPoints, this->WeldTolerance, this->FeatureAngle, this->OrientOutward);
+    const ComputedNormals computed = computeNormals(input, shadelab::MeshPolygons(input), this->WeldCoincidentPoints,
+      this->WeldTolerance, this->FeatureAngle, this->OrientOutward);
     computed.normals->SetName(this->NormalsName.c_str());
     const std::size_t inconsistent = computed.inconsistentEdges;
     const shadelab::WeldSummary& weld = computed.weld;

@@ -38,7 +38,7 @@ struct RelightWorker
 {
   const shadelab::ShCoefficients* radiance;
 
-  template <typename TransferArray, typename IrradianceArray>
+  template<typename TransferArray, typename IrradianceArray>
   void operator()(TransferArray* transfer, IrradianceArray* irradiance) const
   {
     const auto vectors = vtk::DataArrayTupleRange(transfer);
@@ -120,9 +120,10 @@ vtkDataArray* vtkTransferRelightFilter::FindTransfer(vtkPolyData* input)
   }
   if (orderOfComponents(transfer->GetNumberOfComponents()) < 0)
   {
-    vtkErrorMacro("point array '" << found.front() << "' is not a transfer vector: it must have 9, 16 or 25 "
-                                 "components (orders 2, 3, 4), not "
-                  << transfer->GetNumberOfComponents());
+    vtkErrorMacro("point array '" << found.front()
+                                  << "' is not a transfer vector: it must have 9, 16 or 25 "
+                                     "components (orders 2, 3, 4), not "
+                                  << transfer->GetNumberOfComponents());
     return nullptr;
   }
   if (found.front() == this->OutputArrayName)

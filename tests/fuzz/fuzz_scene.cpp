@@ -9,11 +9,12 @@
 
 namespace
 {
-template <typename T>
+template<typename T>
 void shadeAFewVertices(const shadelab::Scene& scene)
 {
   using shadelab::Vec3;
-  if (!shadelab::sceneProblems(scene, sizeof(T) == 4 ? shadelab::Precision::Float32 : shadelab::Precision::Float64).empty())
+  if (!shadelab::sceneProblems(scene, sizeof(T) == 4 ? shadelab::Precision::Float32 : shadelab::Precision::Float64)
+         .empty())
   {
     return; // the filter refuses it
   }

@@ -56,8 +56,8 @@ public:
     }
     for (const auto& item : value_.items())
     {
-      const bool known = std::any_of(allowed.begin(), allowed.end(),
-        [&](const char* key) { return item.key() == key; });
+      const bool known =
+        std::any_of(allowed.begin(), allowed.end(), [&](const char* key) { return item.key() == key; });
       if (!known)
       {
         std::string list;
@@ -67,7 +67,8 @@ public:
         }
         const std::string meant = nearestName(item.key(), std::vector<std::string>(allowed.begin(), allowed.end()));
         JsonNode(item.value(), path_ + "/" + item.key())
-          .fail("unknown field; " + (meant.empty() ? "" : "did you mean \"" + meant + "\"? ") + "allowed here: " + list);
+          .fail(
+            "unknown field; " + (meant.empty() ? "" : "did you mean \"" + meant + "\"? ") + "allowed here: " + list);
       }
     }
   }
@@ -126,7 +127,7 @@ public:
   }
 
   /// One of the listed strings; returns the value paired with it.
-  template <typename Value>
+  template<typename Value>
   Value choice(std::initializer_list<std::pair<const char*, Value>> options) const
   {
     return choiceAmong(options);
@@ -134,7 +135,7 @@ public:
 
   /// One of the names of options (a range of (name, value) pairs); returns the value paired
   /// with it.
-  template <typename Options>
+  template<typename Options>
   auto choiceAmong(const Options& options) const
   {
     const std::string given = text();
@@ -173,10 +174,7 @@ public:
   }
 
   /// An RGB colour: [r, g, b], or one number for grey.
-  Rgb rgb() const
-  {
-    return value_.is_number() ? Rgb(value_.get<double>()) : vector3("[r, g, b] or one number");
-  }
+  Rgb rgb() const { return value_.is_number() ? Rgb(value_.get<double>()) : vector3("[r, g, b] or one number"); }
 
   std::size_t size() const { return value_.size(); }
   bool isArray() const { return value_.is_array(); }

@@ -15,13 +15,13 @@ namespace shadelab
 void* allocateLarge(std::size_t bytes);
 
 /// A std::vector allocator that takes its memory from allocateLarge.
-template <typename T>
+template<typename T>
 struct LargeAllocator
 {
   using value_type = T;
 
   LargeAllocator() = default;
-  template <typename U>
+  template<typename U>
   LargeAllocator(const LargeAllocator<U>&) noexcept
   {
   }
@@ -37,12 +37,12 @@ struct LargeAllocator
   }
   void deallocate(T* memory, std::size_t) noexcept { std::free(memory); }
 
-  template <typename U>
+  template<typename U>
   bool operator==(const LargeAllocator<U>&) const noexcept
   {
     return true;
   }
-  template <typename U>
+  template<typename U>
   bool operator!=(const LargeAllocator<U>&) const noexcept
   {
     return false;

@@ -3,11 +3,11 @@
 // by the lambda that takes it, and an alternative no lambda takes fails to compile there.
 namespace shadelab
 {
-template <typename... Handlers>
+template<typename... Handlers>
 struct Overloaded : Handlers...
 {
   using Handlers::operator()...;
 };
-template <typename... Handlers>
+template<typename... Handlers>
 Overloaded(Handlers...) -> Overloaded<Handlers...>;
 }

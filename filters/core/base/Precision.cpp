@@ -14,8 +14,7 @@ const char* precisionName(Precision precision)
 
 double largestFinite(Precision precision)
 {
-  return precision == Precision::Float32 ? std::numeric_limits<float>::max()
-                                         : std::numeric_limits<double>::max();
+  return precision == Precision::Float32 ? std::numeric_limits<float>::max() : std::numeric_limits<double>::max();
 }
 
 double coordinateLimit(Precision precision)

@@ -9,13 +9,13 @@
 
 namespace shadelab
 {
-template <typename T>
+template<typename T>
 using Vec3 = glm::vec<3, T, glm::defaultp>;
 
 /// Linear RGB triple (light colours, material coefficients).
 using Rgb = glm::dvec3;
 
-template <typename T>
+template<typename T>
 bool isFinite(const Vec3<T>& v)
 {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);

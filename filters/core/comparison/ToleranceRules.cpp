@@ -42,7 +42,8 @@ ToleranceValue parseToleranceValue(const std::string& text)
   static const std::string rangeSuffix = "*range";
   ToleranceValue tolerance;
   std::string number = text;
-  if (number.size() > rangeSuffix.size() && number.compare(number.size() - rangeSuffix.size(), rangeSuffix.size(), rangeSuffix) == 0)
+  if (number.size() > rangeSuffix.size() &&
+    number.compare(number.size() - rangeSuffix.size(), rangeSuffix.size(), rangeSuffix) == 0)
   {
     tolerance.timesRange = true;
     number.resize(number.size() - rangeSuffix.size());
@@ -50,7 +51,8 @@ ToleranceValue parseToleranceValue(const std::string& text)
   const std::optional<double> value = wholeNumber(number);
   if (!value || *value < 0)
   {
-    throw std::invalid_argument("'" + text + "' is not a tolerance: write a number >= 0 (1e-6), or one times the array's range (1e-3*range)");
+    throw std::invalid_argument(
+      "'" + text + "' is not a tolerance: write a number >= 0 (1e-6), or one times the array's range (1e-3*range)");
   }
   tolerance.value = *value;
   return tolerance;

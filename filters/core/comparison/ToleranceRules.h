@@ -33,7 +33,7 @@ long long parseUlps(const std::string& text);
 bool wildcardMatches(const std::string& pattern, const std::string& name);
 
 /// Rules of one kind, in the order given.
-template <typename Value>
+template<typename Value>
 class PatternRules
 {
 public:

@@ -26,12 +26,9 @@ double defaultRelativeTolerance(ValueType type)
 {
   switch (type)
   {
-    case ValueType::Float32:
-      return 4.0 * std::numeric_limits<float>::epsilon();
-    case ValueType::Float64:
-      return 4.0 * std::numeric_limits<double>::epsilon();
-    case ValueType::Integer:
-      break;
+    case ValueType::Float32: return 4.0 * std::numeric_limits<float>::epsilon();
+    case ValueType::Float64: return 4.0 * std::numeric_limits<double>::epsilon();
+    case ValueType::Integer: break;
   }
   return 0.0;
 }

@@ -58,8 +58,7 @@ struct Poles
   double imaginaryPart;
 };
 
-Poles rimPoles(const glm::dvec3& offset, const glm::dvec3& e1, const glm::dvec3& e2, double radius,
-  double height)
+Poles rimPoles(const glm::dvec3& offset, const glm::dvec3& e1, const glm::dvec3& e2, double radius, double height)
 {
   const double along1 = -glm::dot(offset, e1);
   const double along2 = -glm::dot(offset, e2);

@@ -28,12 +28,10 @@ std::string shapeText(int width, int height)
 
 void requireValidShape(const EnvironmentMap& map, const char* user)
 {
-  if (map.width <= 0 || map.height <= 0 ||
-    map.radiance.size() != static_cast<std::size_t>(map.width) * map.height)
+  if (map.width <= 0 || map.height <= 0 || map.radiance.size() != static_cast<std::size_t>(map.width) * map.height)
   {
-    throw std::invalid_argument(std::string(user) + ": the map is " +
-      shapeText(map.width, map.height) + " but holds " + std::to_string(map.radiance.size()) +
-      " texels; it needs at least one texel and width x height of them");
+    throw std::invalid_argument(std::string(user) + ": the map is " + shapeText(map.width, map.height) + " but holds " +
+      std::to_string(map.radiance.size()) + " texels; it needs at least one texel and width x height of them");
   }
 }
 
@@ -106,18 +104,16 @@ EnvironmentMap readEnvironmentMap(const std::string& path)
   const OIIO::ImageSpec& spec = input->spec();
   if (spec.width <= 0 || spec.height <= 0)
   {
-    throw std::runtime_error(
-      path + ": the image is empty (" + shapeText(spec.width, spec.height) + ")");
+    throw std::runtime_error(path + ": the image is empty (" + shapeText(spec.width, spec.height) + ")");
   }
   if (spec.nchannels != 1 && spec.nchannels < 3)
   {
-    throw std::runtime_error(path + ": has " + std::to_string(spec.nchannels) +
-      " channels; expected 1 (grey) or 3 or more (RGB)");
+    throw std::runtime_error(
+      path + ": has " + std::to_string(spec.nchannels) + " channels; expected 1 (grey) or 3 or more (RGB)");
   }
   if (static_cast<long long>(spec.width) != 2LL * spec.height)
   {
-    throw std::runtime_error(
-      path + ": an equirectangular map must be twice as wide as it is high; this one is " +
+    throw std::runtime_error(path + ": an equirectangular map must be twice as wide as it is high; this one is " +
       shapeText(spec.width, spec.height));
   }
 
@@ -156,8 +152,7 @@ EnvironmentMap readEnvironmentMap(const std::string& path)
     {
       std::ostringstream message;
       message << path << ": texel (column " << i % map.width << ", row " << i / map.width
-              << ") is not a finite non-negative radiance (" << value.r << ", " << value.g
-              << ", " << value.b << ")";
+              << ") is not a finite non-negative radiance (" << value.r << ", " << value.g << ", " << value.b << ")";
       throw std::runtime_error(message.str());
     }
     map.radiance[i] = value;
@@ -170,14 +165,13 @@ EnvironmentMap downsampled(const EnvironmentMap& map, int width)
   requireValidShape(map, "downsampled");
   if (map.width != 2 * map.height)
   {
-    throw std::invalid_argument("downsampled: the map is " + shapeText(map.width, map.height) +
-      "; only a 2:1 map can be downsampled");
+    throw std::invalid_argument(
+      "downsampled: the map is " + shapeText(map.width, map.height) + "; only a 2:1 map can be downsampled");
   }
   if (width < 2 || width % 2 != 0 || map.width % width != 0)
   {
     throw std::invalid_argument("downsampled: width " + std::to_string(width) +
-      " must be an even divisor of the map's width " + std::to_string(map.width) +
-      " and at least 2");
+      " must be an even divisor of the map's width " + std::to_string(map.width) + " and at least 2");
   }
   // Each coarse texel covers factor x factor fine ones, as both maps are 2:1.
   const int factor = map.width / width;

@@ -12,8 +12,8 @@
 // Texel (column, row) covers u in [column, column + 1] / width and v in [row, row + 1] / height.
 #include "Vec3.h"
 
-#include <glm/vec2.hpp>
 #include <glm/ext/vector_int2.hpp>
+#include <glm/vec2.hpp>
 
 #include <cstddef>
 #include <string>
@@ -27,10 +27,7 @@ struct EnvironmentMap
   int height = 0;
   std::vector<Rgb> radiance; // row-major, row 0 at the top
 
-  const Rgb& texel(int column, int row) const
-  {
-    return radiance[static_cast<std::size_t>(row) * width + column];
-  }
+  const Rgb& texel(int column, int row) const { return radiance[static_cast<std::size_t>(row) * width + column]; }
 };
 
 /// Throws std::invalid_argument, naming `user`, unless the map has at least one texel and

@@ -97,7 +97,8 @@ BinSample sampleCdf(const double* cdf, const int* guide, int count, double u)
 SineCosine smallAngleSineCosine(double angle)
 {
   const double a2 = angle * angle;
-  return { angle * (1 - a2 / 6 * (1 - a2 / 20 * (1 - a2 / 42))), 1 - a2 / 2 * (1 - a2 / 12 * (1 - a2 / 30 * (1 - a2 / 56))) };
+  return { angle * (1 - a2 / 6 * (1 - a2 / 20 * (1 - a2 / 42))),
+    1 - a2 / 2 * (1 - a2 / 12 * (1 - a2 / 30 * (1 - a2 / 56))) };
 }
 
 /// The sine and cosine of the sum of two angles from theirs.
@@ -148,9 +149,8 @@ EnvironmentSampler::EnvironmentSampler(const EnvironmentMap& map)
       // texel with radiance can be sampled and the estimates are unbiased.
       if (!isRadiance(map.texel(column, row)))
       {
-        throw std::invalid_argument("EnvironmentSampler: texel (column " +
-          std::to_string(column) + ", row " + std::to_string(row) +
-          ") is not a finite non-negative radiance");
+        throw std::invalid_argument("EnvironmentSampler: texel (column " + std::to_string(column) + ", row " +
+          std::to_string(row) + ") is not a finite non-negative radiance");
       }
       texelWeights[column] = luminance(map.texel(column, row)) * rowCentreSinTheta_[row];
     }
@@ -179,8 +179,8 @@ EnvironmentSampler::DrawnRow EnvironmentSampler::drawRow(double u2) const
 EnvironmentSampler::Drawn EnvironmentSampler::drawInRow(const DrawnRow& row, double u1) const
 {
   const std::size_t rowIndex = static_cast<std::size_t>(row.row);
-  const BinSample column = sampleCdf(&columnCdfs_[rowIndex * (map_.width + 1)],
-    &columnGuides_[rowIndex * map_.width], map_.width, u1);
+  const BinSample column =
+    sampleCdf(&columnCdfs_[rowIndex * (map_.width + 1)], &columnGuides_[rowIndex * map_.width], map_.width, u1);
   return { column.bin, row.row, directionInTexel(column.bin, column.offset, row.row, row.offset) };
 }
 
@@ -197,7 +197,7 @@ glm::dvec3 EnvironmentSampler::directionInTexel(int column, double columnOffset,
   return { theta.sin * phi.sin, theta.cos, -theta.sin * phi.cos };
 }
 
-template <typename OnDrawn>
+template<typename OnDrawn>
 void EnvironmentSampler::drawBatches(int count, const double* u1, const double* u2, OnDrawn&& onDrawn) const
 {
   // Three passes over a batch, each fetching what the next reads: the rows (whose tables are
@@ -336,8 +336,7 @@ double EnvironmentSampler::pdfAt(int column, int row, const glm::dvec3& directio
   {
     return 0.0;
   }
-  const double uvDensity =
-    luminance(map_.texel(column, row)) * rowCentreSinTheta_[row] * uvDensityPerWeight_;
+  const double uvDensity = luminance(map_.texel(column, row)) * rowCentreSinTheta_[row] * uvDensityPerWeight_;
   return uvDensity / (2.0 * pi * pi * sinTheta);
 }
 }

@@ -22,7 +22,7 @@ struct SineCosine
 struct EnvironmentSample
 {
   glm::dvec3 direction;
-  double pdf; // per unit solid angle
+  double pdf;   // per unit solid angle
   Rgb radiance; // of the texel hit
 };
 
@@ -82,7 +82,7 @@ private:
   glm::dvec3 directionInTexel(int column, double columnOffset, int row, double rowOffset) const;
   /// onDrawn(k, draw(u1[k], u2[k])) for k < count, the rows drawn and the columns' tables
   /// fetched ahead a batch at a time. A map with light only.
-  template <typename OnDrawn>
+  template<typename OnDrawn>
   void drawBatches(int count, const double* u1, const double* u2, OnDrawn&& onDrawn) const;
   EnvironmentSample sampleOf(const Drawn& drawn) const;
   double pdfAt(int column, int row, const glm::dvec3& direction) const;
@@ -90,10 +90,10 @@ private:
   EnvironmentSample atTexel(const glm::dvec3& unitDirection, const glm::ivec2& texel) const;
 
   EnvironmentMap map_;
-  std::vector<double> rowCdf_; // height + 1 values from 0 to 1
+  std::vector<double> rowCdf_;     // height + 1 values from 0 to 1
   std::vector<double> columnCdfs_; // height rows of width + 1 values from 0 to 1
-  std::vector<int> rowGuide_; // the rows' cdf's guide table: height bins
-  std::vector<int> columnGuides_; // each row's: height rows of width bins
+  std::vector<int> rowGuide_;      // the rows' cdf's guide table: height bins
+  std::vector<int> columnGuides_;  // each row's: height rows of width bins
   std::vector<double> rowCentreSinTheta_;
   /// The angles of directionAt at each row's top edge (theta) and column's left edge (phi), for
   /// maps of at least 128 x 64 texels; empty for smaller ones, whose texels are wider.

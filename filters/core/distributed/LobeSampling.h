@@ -66,7 +66,8 @@ struct LobeAtDirection
 
 /// lobe(n, s, v) and lobeDensity(lobe, n, v, s), the same bits: Blinn-Phong's two share their
 /// half vector and, where n.h > 0, their power (the power is most of either's cost).
-inline LobeAtDirection lobeWithDensity(const LobeModel& lobe, const glm::dvec3& n, const glm::dvec3& v, const glm::dvec3& s)
+inline LobeAtDirection lobeWithDensity(
+  const LobeModel& lobe, const glm::dvec3& n, const glm::dvec3& v, const glm::dvec3& s)
 {
   glm::dvec3 h;
   if (lobe.model == SpecularModel::Phong || !halfVector(s, v, h))

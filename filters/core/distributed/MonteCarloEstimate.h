@@ -18,7 +18,7 @@ namespace shadelab
 /// 1977, section 5A.12): Var(mean) = sum over pairs (f_a - f_b)^2 / N^2. It errs on the high
 /// side by the spread of the paired cells' means, which is small for neighbouring cells. An
 /// odd last sample has no partner; the pairs' sum is scaled by N / (2 floor(N/2)) for it.
-template <typename Value>
+template<typename Value>
 class MonteCarloMean
 {
 public:

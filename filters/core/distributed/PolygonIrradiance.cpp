@@ -54,8 +54,8 @@ constexpr double inPlaneTolerance = 1e-12;
 /// G. W. Hodgman, "Reentrant Polygon Clipping", CACM 17(1), 1974). A non-convex polygon may
 /// come out as several pieces joined by edges along the plane, traversed once each way; their
 /// terms in Lambert's sum cancel. A vertex on the plane may come out twice.
-std::vector<glm::dvec3> clipAboveTangentPlane(const std::vector<glm::dvec3>& vertices, const glm::dvec3& point,
-  const glm::dvec3& unitNormal)
+std::vector<glm::dvec3> clipAboveTangentPlane(
+  const std::vector<glm::dvec3>& vertices, const glm::dvec3& point, const glm::dvec3& unitNormal)
 {
   std::vector<glm::dvec3> kept;
   kept.reserve(2 * vertices.size()); // each edge adds at most its start and one crossing
@@ -89,8 +89,8 @@ double polygonArea(const std::vector<glm::dvec3>& vertices)
   return 0.5 * vectorLength(newellVector(vertices));
 }
 
-double polygonProjectedSolidAngle(const std::vector<glm::dvec3>& vertices, const glm::dvec3& point,
-  const glm::dvec3& unitNormal)
+double polygonProjectedSolidAngle(
+  const std::vector<glm::dvec3>& vertices, const glm::dvec3& point, const glm::dvec3& unitNormal)
 {
   const glm::dvec3 newell = newellVector(vertices);
   const double extent = polygonExtent(vertices);

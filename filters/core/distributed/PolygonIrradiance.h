@@ -13,8 +13,8 @@ namespace shadelab
 /// vertices are those of a planar polygon, convex or not, in either winding (the value is the
 /// same: the caller decides which side emits). 0 for a degenerate polygon and for a point in
 /// the polygon's plane (within 1e-12 of the polygon's size), which sees it edge-on.
-double polygonProjectedSolidAngle(const std::vector<glm::dvec3>& vertices, const glm::dvec3& point,
-  const glm::dvec3& unitNormal);
+double polygonProjectedSolidAngle(
+  const std::vector<glm::dvec3>& vertices, const glm::dvec3& point, const glm::dvec3& unitNormal);
 
 /// The unit normal by Newell's method, oriented by the winding (counter-clockwise seen from
 /// where it points); the zero vector for a polygon with no area.

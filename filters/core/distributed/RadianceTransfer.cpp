@@ -52,7 +52,8 @@ Rgb bandLimitError(const EnvironmentMap& map, int order)
     const double solidAngle = texelSolidAngle(row, map.width, map.height);
     for (int column = 0; column < map.width; ++column)
     {
-      const Rgb limited = radianceFromCoefficients(coefficients, shBasis(order, texelCentreDirection(map, column, row)));
+      const Rgb limited =
+        radianceFromCoefficients(coefficients, shBasis(order, texelCentreDirection(map, column, row)));
       error += glm::abs(map.texel(column, row) - limited) * solidAngle;
     }
   }
@@ -93,7 +94,7 @@ void TransferEstimate::add(const glm::dvec3& direction, bool visible)
 namespace
 {
 /// The coefficients from their groups of three.
-template <typename OfGroup>
+template<typename OfGroup>
 TransferVector ungrouped(int count, int groups, OfGroup&& ofGroup)
 {
   TransferVector values{};

@@ -19,10 +19,14 @@ constexpr double samplePi = 3.14159265358979323846;
 inline glm::dvec2 cosSinOfSmallAngle(double a)
 {
   const double a2 = a * a;
-  const double cosine =
-    1 - a2 * (1.0 / 2) * (1 - a2 * (1.0 / 12) * (1 - a2 * (1.0 / 30) * (1 - a2 * (1.0 / 56) * (1 - a2 * (1.0 / 90) * (1 - a2 * (1.0 / 132))))));
-  const double sine =
-    a * (1 - a2 * (1.0 / 6) * (1 - a2 * (1.0 / 20) * (1 - a2 * (1.0 / 42) * (1 - a2 * (1.0 / 72) * (1 - a2 * (1.0 / 110))))));
+  const double cosine = 1 -
+    a2 * (1.0 / 2) *
+      (1 -
+        a2 * (1.0 / 12) *
+          (1 - a2 * (1.0 / 30) * (1 - a2 * (1.0 / 56) * (1 - a2 * (1.0 / 90) * (1 - a2 * (1.0 / 132))))));
+  const double sine = a *
+    (1 -
+      a2 * (1.0 / 6) * (1 - a2 * (1.0 / 20) * (1 - a2 * (1.0 / 42) * (1 - a2 * (1.0 / 72) * (1 - a2 * (1.0 / 110))))));
   return { cosine, sine };
 }
 
@@ -85,7 +89,7 @@ inline glm::dvec3 pointOnTriangle(const glm::dvec3& a, const glm::dvec3& b, cons
 /// Points first .. first + count - 1 of a sample sequence (anything with points(first, count,
 /// x, y), SampleSequence.h) warped by warp(u) onto a shape or directions, into x[], y[], z[]:
 /// arrays of coordinates, so that the loop vectorizes where the warp has no branches.
-template <typename Points, typename Warp>
+template<typename Points, typename Warp>
 void warpedPoints(const Points& points, int first, int count, Warp warp, double* x, double* y, double* z)
 {
   points.points(first, count, x, y);

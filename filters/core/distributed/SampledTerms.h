@@ -36,7 +36,7 @@ struct SampleShadowing
 
   /// The hidden samples of a round: the fixed bits (a fixed count is one round), or the round's
   /// rays, which raysOf(round, rays) names, traced.
-  template <typename RaysOf>
+  template<typename RaysOf>
   HiddenSamples of(const SampleSequence& round, RaysOf&& raysOf) const
   {
     if (fixed)
@@ -58,8 +58,8 @@ inline SampleTargets withVisibilityTarget(SampleTargets targets, const Rgb& unsh
   const double largest = largestComponent(unshadowed);
   if (targets.irradiance && largest > 0)
   {
-    targets.visibility = SamplingTarget{ targets.irradiance->error / largest, targets.irradiance->minimum,
-      targets.irradiance->maximum };
+    targets.visibility =
+      SamplingTarget{ targets.irradiance->error / largest, targets.irradiance->minimum, targets.irradiance->maximum };
   }
   return targets;
 }
@@ -68,7 +68,7 @@ inline SampleTargets withVisibilityTarget(SampleTargets targets, const Rgb& unsh
 constexpr int sampleBlock = 16;
 
 /// A samplesAt for sampledTerms from sampleAt(u), which turns one point into its RadianceSample.
-template <typename SampleAt>
+template<typename SampleAt>
 auto pointByPoint(SampleAt&& sampleAt)
 {
   return [&sampleAt](const SampleSequence& sequence, int first, int count, RadianceSample* samples)
@@ -88,7 +88,7 @@ auto pointByPoint(SampleAt&& sampleAt)
 /// sample counts only where its ray got through, as hiddenOf(round) says of the round's samples
 /// (the bits of the visibility step for the one round of a fixed count, or a round's rays traced
 /// as it is drawn), and the visible fraction of the irradiance is estimated from the same samples.
-template <typename HiddenOfRound, typename SamplesAt>
+template<typename HiddenOfRound, typename SamplesAt>
 DistributedTerms sampledTerms(std::uint64_t light, std::uint64_t vertex, const Sampling& sampling,
   const SampleTargets& targets, bool irradiance, const LobeModel& lobe, const glm::dvec3& n, const glm::dvec3& v,
   bool shadowed, HiddenOfRound&& hiddenOf, SamplesAt&& samplesAt)
@@ -139,7 +139,8 @@ DistributedTerms sampledTerms(std::uint64_t light, std::uint64_t vertex, const S
       return std::array<std::optional<double>, 3>{
         irradiance && targets.irradiance ? std::optional<double>(largestComponent(e.standardError())) : std::nullopt,
         lobe.wanted() && targets.specular ? std::optional<double>(largestComponent(s.standardError())) : std::nullopt,
-        shadowed && targets.visibility ? std::optional<double>(visible.standardError()) : std::nullopt };
+        shadowed && targets.visibility ? std::optional<double>(visible.standardError()) : std::nullopt
+      };
     };
     const std::optional<SamplingTarget>* each[] = { &targets.irradiance, &targets.specular, &targets.visibility };
     // The next round is the largest that any estimate's target asks for.

@@ -19,7 +19,8 @@ int wholeRounds(double n)
 SamplingTarget SamplingTarget::forFraction(double error, int maximum)
 {
   const double ruleOfThree = 3 / error;
-  return ruleOfThree >= maximum ? SamplingTarget{ error, maximum, maximum } : atLeast(error, static_cast<int>(std::ceil(ruleOfThree)), maximum);
+  return ruleOfThree >= maximum ? SamplingTarget{ error, maximum, maximum }
+                                : atLeast(error, static_cast<int>(std::ceil(ruleOfThree)), maximum);
 }
 
 SamplingTarget SamplingTarget::atLeast(double error, int samples, int maximum)
@@ -91,4 +92,3 @@ double estimatedErrorQuantile(std::vector<double> standardErrors, double fractio
   return above;
 }
 }
-

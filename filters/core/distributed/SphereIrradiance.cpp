@@ -5,8 +5,8 @@
 
 namespace shadelab
 {
-double sphereProjectedSolidAngle(const glm::dvec3& centre, double radius, const glm::dvec3& point,
-  const glm::dvec3& unitNormal)
+double sphereProjectedSolidAngle(
+  const glm::dvec3& centre, double radius, const glm::dvec3& point, const glm::dvec3& unitNormal)
 {
   constexpr double pi = 3.14159265358979323846;
   const glm::dvec3 toCentre = centre - point;

@@ -10,6 +10,6 @@ namespace shadelab
 /// plane, of max(0, n.w) dw: pi cos(beta) (r/d)^2 while the sphere is wholly above the horizon,
 /// 0 once it is wholly below, Snyder's formula in between. A point on or inside the sphere sees
 /// it in every direction of its upper hemisphere: pi.
-double sphereProjectedSolidAngle(const glm::dvec3& centre, double radius, const glm::dvec3& point,
-  const glm::dvec3& unitNormal);
+double sphereProjectedSolidAngle(
+  const glm::dvec3& centre, double radius, const glm::dvec3& point, const glm::dvec3& unitNormal);
 }

@@ -6,10 +6,10 @@
 
 #include <algorithm>
 #include <cassert>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
-#include <cmath>
 #include <vector>
 
 namespace shadelab
@@ -26,9 +26,9 @@ constexpr double sqrtPi = 1.77245385090551602730;
 constexpr double sqrt3 = 1.73205080756887729353;
 constexpr double sqrt5 = 2.23606797749978969641;
 constexpr double sqrt15 = 3.87298334620741688518;
-constexpr double y00 = 0.5 / sqrtPi; // 1 / sqrt(4 pi)
-constexpr double y1 = 0.5 * sqrt3 / sqrtPi; // sqrt(3 / (4 pi))
-constexpr double y20 = 0.25 * sqrt5 / sqrtPi; // sqrt(5 / (16 pi))
+constexpr double y00 = 0.5 / sqrtPi;           // 1 / sqrt(4 pi)
+constexpr double y1 = 0.5 * sqrt3 / sqrtPi;    // sqrt(3 / (4 pi))
+constexpr double y20 = 0.25 * sqrt5 / sqrtPi;  // sqrt(5 / (16 pi))
 constexpr double y22 = 0.25 * sqrt15 / sqrtPi; // sqrt(15 / (16 pi))
 
 // Eq. 13's c1..c5 (0.429043, 0.511664, 0.743125, 0.886227, 0.247708) are the clamped
@@ -73,8 +73,8 @@ void requireShOrder(int order, const char* who)
 {
   if (order < 0 || order > largestShOrder)
   {
-    throw std::invalid_argument(std::string(who) + ": order " + std::to_string(order) + " is not in 0 to " +
-      std::to_string(largestShOrder));
+    throw std::invalid_argument(
+      std::string(who) + ": order " + std::to_string(order) + " is not in 0 to " + std::to_string(largestShOrder));
   }
 }
 
@@ -89,8 +89,9 @@ namespace
 /// shBasis's first shCount(Order) values, at a fixed order and inlined so that the compiler
 /// unrolls the loops and keeps the values in registers: the projection of a map evaluates it at
 /// every texel.
-template <int Order>
-[[gnu::always_inline]] inline std::array<double, shCount(Order)> basisOfOrder(const glm::dvec3& unitDirection, const ShBasis& normalisation)
+template<int Order>
+[[gnu::always_inline]] inline std::array<double, shCount(Order)> basisOfOrder(
+  const glm::dvec3& unitDirection, const ShBasis& normalisation)
 {
   std::array<double, shCount(Order)> basis;
   const double x = unitDirection.x, y = unitDirection.y, z = unitDirection.z;
@@ -132,27 +133,22 @@ template <int Order>
 }
 
 /// Calls f with the order as a compile-time constant (std::integral_constant).
-template <typename F>
+template<typename F>
 decltype(auto) withOrder(int order, F&& f)
 {
   assert(order >= 0 && order <= largestShOrder);
   switch (order)
   {
-  case 0:
-    return f(std::integral_constant<int, 0>());
-  case 1:
-    return f(std::integral_constant<int, 1>());
-  case 2:
-    return f(std::integral_constant<int, 2>());
-  case 3:
-    return f(std::integral_constant<int, 3>());
-  default:
-    return f(std::integral_constant<int, largestShOrder>());
+    case 0: return f(std::integral_constant<int, 0>());
+    case 1: return f(std::integral_constant<int, 1>());
+    case 2: return f(std::integral_constant<int, 2>());
+    case 3: return f(std::integral_constant<int, 3>());
+    default: return f(std::integral_constant<int, largestShOrder>());
   }
 }
 
 /// projectRadiance at a fixed order: the sums in fixed-size arrays.
-template <int Order>
+template<int Order>
 ShCoefficients projectedToOrder(const EnvironmentMap& map)
 {
   constexpr int count = shCount(Order);
@@ -277,8 +273,8 @@ IrradiancePolynomial composedWith(const IrradiancePolynomial& p, const glm::dmat
   for (int channel = 0; channel < 3; ++channel)
   {
     const double xy = p.xy[channel] / 2, xz = p.xz[channel] / 2, yz = p.yz[channel] / 2;
-    const glm::dmat3 square(glm::dvec3(p.xx[channel], xy, xz), glm::dvec3(xy, p.yy[channel], yz),
-      glm::dvec3(xz, yz, p.zz[channel]));
+    const glm::dmat3 square(
+      glm::dvec3(p.xx[channel], xy, xz), glm::dvec3(xy, p.yy[channel], yz), glm::dvec3(xz, yz, p.zz[channel]));
     const glm::dmat3 turned = glm::transpose(a) * square * a;
     const glm::dvec3 linear = glm::transpose(a) * glm::dvec3(p.x[channel], p.y[channel], p.z[channel]);
     q.xx[channel] = turned[0][0];
@@ -303,8 +299,8 @@ double clampedCosineTruncationPeak(int order)
 {
   if (order < 2 || order > largestShOrder)
   {
-    throw std::invalid_argument("clampedCosineTruncationPeak: order " + std::to_string(order) + " is not 2 to " +
-      std::to_string(largestShOrder));
+    throw std::invalid_argument(
+      "clampedCosineTruncationPeak: order " + std::to_string(order) + " is not 2 to " + std::to_string(largestShOrder));
   }
   // The series at t = 0: sum of A_l (2l + 1) / (4 pi) P_l(0), P_l(0) = 0 for odd l and
   // (-1)^(l/2) (l - 1)!! / l!! for even l. Orders 2 to 4 err most there (a test scans [-1, 1]).

@@ -12,7 +12,7 @@ namespace shadelab
 {
 namespace
 {
-template <typename T>
+template<typename T>
 Vec3<T> toVec(const glm::dvec3& v)
 {
   return Vec3<T>(v);
@@ -20,14 +20,14 @@ Vec3<T> toVec(const glm::dvec3& v)
 
 // A normal shorter than this is treated as missing: it comes from degenerate geometry
 // (zero-area triangles, isolated points), not from a surface direction.
-template <typename T>
+template<typename T>
 constexpr T degenerateNormalLength2 = T(1e-12);
 
-template <typename T>
+template<typename T>
 using Lane = std::array<T, VertexBlock<T>::capacity>;
 
 /// Multiplies a term by a light's visibility, where it has shadows (visibility not null).
-template <typename T>
+template<typename T>
 void applyVisibility(const float* visibility, const VertexBlock<T>& b, Lane<T>& term)
 {
   for (std::size_t k = 0; visibility && k < b.count; ++k)
@@ -36,7 +36,7 @@ void applyVisibility(const float* visibility, const VertexBlock<T>& b, Lane<T>& 
   }
 }
 
-template <typename T>
+template<typename T>
 void store(T* out, std::size_t first, std::size_t count, const Lane<T>& values)
 {
   if (out)
@@ -45,7 +45,7 @@ void store(T* out, std::size_t first, std::size_t count, const Lane<T>& values)
   }
 }
 
-template <typename T>
+template<typename T>
 void store(T* out, std::size_t first, std::size_t count, const Lane<T>& x, const Lane<T>& y, const Lane<T>& z)
 {
   if (out)
@@ -60,7 +60,7 @@ void store(T* out, std::size_t first, std::size_t count, const Lane<T>& x, const
 }
 
 /// A light's term per channel, before its colour.
-template <typename T>
+template<typename T>
 struct RgbLanes
 {
   const Lane<T>& r;
@@ -69,23 +69,23 @@ struct RgbLanes
 };
 
 /// A term that is the same in every channel (a material whose coefficient is one number).
-template <typename T>
+template<typename T>
 RgbLanes<T> sameLanes(const Lane<T>& term)
 {
   return { term, term, term };
 }
 
 /// Three lanes as a term's channels.
-template <typename T>
+template<typename T>
 RgbLanes<T> lanesOf(const std::array<Lane<T>, 3>& channels)
 {
   return { channels[0], channels[1], channels[2] };
 }
 
 /// A term times the vertices' own coefficient (a material from arrays), channel by channel.
-template <typename T>
-RgbLanes<T> timesCoefficient(
-  const RgbLanes<T>& term, const std::array<Lane<T>, 3>& coefficient, std::size_t count, std::array<Lane<T>, 3>& product)
+template<typename T>
+RgbLanes<T> timesCoefficient(const RgbLanes<T>& term, const std::array<Lane<T>, 3>& coefficient, std::size_t count,
+  std::array<Lane<T>, 3>& product)
 {
   const Lane<T>* channels[3] = { &term.r, &term.g, &term.b };
   for (int channel = 0; channel < 3; ++channel)
@@ -99,14 +99,14 @@ RgbLanes<T> timesCoefficient(
 }
 
 /// Vertex k's own coefficient (lanes).
-template <typename T>
+template<typename T>
 Vec3<T> coefficientAt(const std::array<Lane<T>, 3>& lanes, std::size_t k)
 {
   return Vec3<T>(lanes[0][k], lanes[1][k], lanes[2][k]);
 }
 
 /// An RGB term that is colour x (r, g, b) at each vertex.
-template <typename T>
+template<typename T>
 void store(T* out, std::size_t first, std::size_t count, const Lane<T>& r, const Lane<T>& g, const Lane<T>& b,
   const Vec3<T>& color)
 {
@@ -124,7 +124,7 @@ void store(T* out, std::size_t first, std::size_t count, const Lane<T>& r, const
 
 /// Whether slot k's position and normal are finite. & rather than &&: no branches, so that a
 /// loop of it vectorises.
-template <typename T>
+template<typename T>
 bool isFiniteVertex(const VertexBlock<T>& b, std::size_t k)
 {
   return std::isfinite(b.px[k]) & std::isfinite(b.py[k]) & std::isfinite(b.pz[k]) & std::isfinite(b.nx[k]) &
@@ -135,9 +135,9 @@ bool isFiniteVertex(const VertexBlock<T>& b, std::size_t k)
 /// Returns how many vertices are closer than the smallest normal number, where the direction
 /// is undefined: they get (0, 0, 0) here. (A select against a fallback direction inside this
 /// loop would stop GCC vectorising it, so the rare fix-up is a separate pass.)
-template <typename T>
-std::size_t unitVectorsFrom(const Vec3<T>& target, const VertexBlock<T>& b, Lane<T>& x, Lane<T>& y, Lane<T>& z,
-  Lane<T>& distance)
+template<typename T>
+std::size_t unitVectorsFrom(
+  const Vec3<T>& target, const VertexBlock<T>& b, Lane<T>& x, Lane<T>& y, Lane<T>& z, Lane<T>& distance)
 {
   constexpr T smallest = std::numeric_limits<T>::min();
   const T tx = target.x, ty = target.y, tz = target.z; // copies: target could alias the lanes
@@ -159,20 +159,20 @@ std::size_t unitVectorsFrom(const Vec3<T>& target, const VertexBlock<T>& b, Lane
 }
 
 /// The per-vertex quantities of one block, one array ("lane") each.
-template <typename T>
+template<typename T>
 struct ShadingKernel<T>::Workspace
 {
-  Lane<T> nx, ny, nz;       // the unit normal, flipped to the viewer where two-sided
-  Lane<T> vx, vy, vz;       // to the viewer
-  Lane<T> sx, sy, sz;       // to the current light
+  Lane<T> nx, ny, nz; // the unit normal, flipped to the viewer where two-sided
+  Lane<T> vx, vy, vz; // to the viewer
+  Lane<T> sx, sy, sz; // to the current light
   Lane<T> distance, attenuation, spotFactor, cosIncidence;
   Lane<T> diffuse, specular; // the light's factors of Ld kd and Ls ks
   Lane<T> rx, ry, rz, rDotV;
   Lane<T> hx, hy, hz, nDotH;
   Lane<T> incidenceAngle;
   Lane<T> diffuseR, diffuseG, diffuseB, specularR, specularG, specularB; // sums over lights
-  Lane<T> irradianceR, irradianceG, irradianceB; // an area light's or map's E
-  Lane<T> integralR, integralG, integralB;       // and its S, before ks
+  Lane<T> irradianceR, irradianceG, irradianceB;                         // an area light's or map's E
+  Lane<T> integralR, integralG, integralB;                               // and its S, before ks
   std::array<Rgb, VertexBlock<T>::capacity> sampledError; // ShadingOutputs::sampledStandardError's, per channel
   std::array<ShadingFlags, VertexBlock<T>::capacity> flags;
   // A material from arrays: the vertices' own coefficients, and the current light's diffuse and
@@ -184,7 +184,7 @@ struct ShadingKernel<T>::Workspace
 };
 
 /// Where unitVectorsFrom found no direction, the normal stands in for it.
-template <typename T, typename Workspace>
+template<typename T, typename Workspace>
 void replaceZeroLengthByNormal(std::size_t undefined, std::size_t count, const Lane<T>& distance, Lane<T>& x,
   Lane<T>& y, Lane<T>& z, const Workspace& w)
 {
@@ -200,7 +200,7 @@ void replaceZeroLengthByNormal(std::size_t undefined, std::size_t count, const L
   }
 }
 
-template <typename T>
+template<typename T>
 typename ShadingKernel<T>::PreparedLight ShadingKernel<T>::prepareLocal(const LocalEvaluation& evaluation,
   const std::array<T*, LightTermCount>& out, const Material& m, bool needsSpecular, PowMethod pow) const
 {
@@ -225,7 +225,7 @@ typename ShadingKernel<T>::PreparedLight ShadingKernel<T>::prepareLocal(const Lo
   return light;
 }
 
-template <typename T>
+template<typename T>
 typename ShadingKernel<T>::DistributedLightSlot ShadingKernel<T>::prepareDistributed(
   const DistributedEvaluation& evaluation, const std::array<T*, LightTermCount>& out, const Material& m,
   bool needsSpecular, const std::uint64_t* hiddenSamples, const double* shadowedTerms) const
@@ -252,7 +252,7 @@ typename ShadingKernel<T>::DistributedLightSlot ShadingKernel<T>::prepareDistrib
   return light;
 }
 
-template <typename T>
+template<typename T>
 ShadingKernel<T>::ShadingKernel(
   const Scene& scene, ShadingOutputs<T> outputs, const std::vector<LightMethod>& methods, ShadingInputs inputs)
   : outputs_(std::move(outputs))
@@ -317,7 +317,8 @@ ShadingKernel<T>::ShadingKernel(
       if (method.targets.any() && l < inputs_.lightHiddenSamples.size() && inputs_.lightHiddenSamples[l])
       {
         // A fixed count's bits hold no rounds: the visibility step estimates such a light.
-        throw std::logic_error("light '" + scene.lights[l].name + "' is drawn to a target: give its shadowed terms, not hidden samples");
+        throw std::logic_error(
+          "light '" + scene.lights[l].name + "' is drawn to a target: give its shadowed terms, not hidden samples");
       }
       distributedLights_.push_back(prepareDistributed(*distributed, out, m, needsSpecular,
         l < inputs_.lightHiddenSamples.size() ? inputs_.lightHiddenSamples[l] : nullptr,
@@ -345,7 +346,7 @@ ShadingKernel<T>::ShadingKernel(
       [](const DistributedLightSlot& light) { return light.needsSpecular; });
 }
 
-template <typename T>
+template<typename T>
 void ShadingKernel<T>::prepareNormals(const VertexBlock<T>& b, Workspace& w) const
 {
   const std::size_t count = b.count;
@@ -386,7 +387,7 @@ void ShadingKernel<T>::prepareNormals(const VertexBlock<T>& b, Workspace& w) con
   }
 }
 
-template <typename T>
+template<typename T>
 void ShadingKernel<T>::loadMaterial(const VertexBlock<T>& b, Workspace& w) const
 {
   auto load = [&](MaterialCoefficient c, std::array<Lane<T>, 3>& lanes)
@@ -411,7 +412,7 @@ void ShadingKernel<T>::loadMaterial(const VertexBlock<T>& b, Workspace& w) const
   }
 }
 
-template <typename T>
+template<typename T>
 void ShadingKernel<T>::prepareViewer(const VertexBlock<T>& b, Workspace& w) const
 {
   const std::size_t count = b.count;
@@ -445,7 +446,7 @@ void ShadingKernel<T>::prepareViewer(const VertexBlock<T>& b, Workspace& w) cons
   }
 }
 
-template <typename T>
+template<typename T>
 void ShadingKernel<T>::sampleLight(const PreparedLight& light, const VertexBlock<T>& b, Workspace& w) const
 {
   const std::size_t count = b.count;
@@ -479,15 +480,9 @@ void ShadingKernel<T>::sampleLight(const PreparedLight& light, const VertexBlock
   };
   switch (a.model)
   {
-    case AttenuationModel::None:
-      std::fill_n(w.attenuation.begin(), count, T(1));
-      break;
-    case AttenuationModel::Inverse:
-      attenuate([](T d) { return inverseFalloff(d); });
-      break;
-    case AttenuationModel::InverseSquare:
-      attenuate([](T d) { return inverseSquareFalloff(d); });
-      break;
+    case AttenuationModel::None: std::fill_n(w.attenuation.begin(), count, T(1)); break;
+    case AttenuationModel::Inverse: attenuate([](T d) { return inverseFalloff(d); }); break;
+    case AttenuationModel::InverseSquare: attenuate([](T d) { return inverseSquareFalloff(d); }); break;
     case AttenuationModel::ConstantLinearQuadratic:
       attenuate([k0 = T(a.constant), k1 = T(a.linear), k2 = T(a.quadratic)](T d)
         { return constantLinearQuadraticFalloff(k0, k1, k2, d); });
@@ -510,7 +505,7 @@ void ShadingKernel<T>::sampleLight(const PreparedLight& light, const VertexBlock
   }
 }
 
-template <typename T>
+template<typename T>
 void ShadingKernel<T>::addLight(const PreparedLight& light, const VertexBlock<T>& b, Workspace& w) const
 {
   const std::size_t count = b.count;
@@ -523,8 +518,9 @@ void ShadingKernel<T>::addLight(const PreparedLight& light, const VertexBlock<T>
     w.diffuse[k] = lambertFactor(cosIncidence) * (w.attenuation[k] * w.spotFactor[k]);
   }
   applyVisibility(light.visibility, b, w.diffuse);
-  const auto& [diffuseR, diffuseG, diffuseB] =
-    perVertex(MaterialCoefficient::Diffuse) ? timesCoefficient(sameLanes(w.diffuse), w.kd, count, w.diffuseRgb) : sameLanes(w.diffuse);
+  const auto& [diffuseR, diffuseG, diffuseB] = perVertex(MaterialCoefficient::Diffuse)
+    ? timesCoefficient(sameLanes(w.diffuse), w.kd, count, w.diffuseRgb)
+    : sameLanes(w.diffuse);
   for (std::size_t k = 0; k < count; ++k)
   {
     w.diffuseR[k] += diffuseR[k] * light.diffuseColor.x;
@@ -539,7 +535,8 @@ void ShadingKernel<T>::addLight(const PreparedLight& light, const VertexBlock<T>
   {
     for (std::size_t k = 0; k < count; ++k)
     {
-      const Vec3<T> r = reflectAboutNormal(Vec3<T>(w.sx[k], w.sy[k], w.sz[k]), Vec3<T>(w.nx[k], w.ny[k], w.nz[k]), w.cosIncidence[k]);
+      const Vec3<T> r =
+        reflectAboutNormal(Vec3<T>(w.sx[k], w.sy[k], w.sz[k]), Vec3<T>(w.nx[k], w.ny[k], w.nz[k]), w.cosIncidence[k]);
       w.rx[k] = r.x;
       w.ry[k] = r.y;
       w.rz[k] = r.z;
@@ -580,13 +577,13 @@ void ShadingKernel<T>::addLight(const PreparedLight& light, const VertexBlock<T>
     // atan2 is the costliest term here: evaluated only when its array was asked for.
     for (std::size_t k = 0; k < count; ++k)
     {
-      w.incidenceAngle[k] = incidenceAngleDegrees(
-        Vec3<T>(w.nx[k], w.ny[k], w.nz[k]), Vec3<T>(w.sx[k], w.sy[k], w.sz[k]));
+      w.incidenceAngle[k] =
+        incidenceAngleDegrees(Vec3<T>(w.nx[k], w.ny[k], w.nz[k]), Vec3<T>(w.sx[k], w.sy[k], w.sz[k]));
     }
   }
 }
 
-template <typename T>
+template<typename T>
 void ShadingKernel<T>::specularLobes(const PreparedLight& light, std::size_t count, Workspace& w) const
 {
   // docs/formulas.md sections 4, 5 and 16.1: the lobe cos^eta, cos = r.v (Phong) or n.h
@@ -594,8 +591,7 @@ void ShadingKernel<T>::specularLobes(const PreparedLight& light, std::size_t cou
   // light's attenuation and spot factor.
   const bool phong = specularModel_ == SpecularModel::Phong;
   const Lane<T>& cosine = phong ? w.rDotV : w.nDotH;
-  auto litAt = [&](std::size_t k)
-  { return (w.cosIncidence[k] > T(0)) & (phong | (w.halfVectorDefined[k] > T(0))); };
+  auto litAt = [&](std::size_t k) { return (w.cosIncidence[k] > T(0)) & (phong | (w.halfVectorDefined[k] > T(0))); };
   // The approximations, and the exact power in float for a whole eta, are vectorised loops:
   // evaluated everywhere, then masked, each in its own loop (one loop doing all ran twice as
   // slow).
@@ -652,7 +648,7 @@ void ShadingKernel<T>::specularLobes(const PreparedLight& light, std::size_t cou
   }
 }
 
-template <typename T>
+template<typename T>
 void ShadingKernel<T>::storeLight(const PreparedLight& light, const VertexBlock<T>& b, const Workspace& w) const
 {
   const auto& out = light.out;
@@ -689,8 +685,9 @@ void ShadingKernel<T>::storeLight(const PreparedLight& light, const VertexBlock<
   }
 }
 
-template <typename T>
-void ShadingKernel<T>::estimateDistributedLight(const DistributedLightSlot& light, const VertexBlock<T>& b, Workspace& w) const
+template<typename T>
+void ShadingKernel<T>::estimateDistributedLight(
+  const DistributedLightSlot& light, const VertexBlock<T>& b, Workspace& w) const
 {
   const auto& out = light.out;
   auto storeRgb = [&](LightTerm term, std::size_t i, const Rgb& value)
@@ -708,8 +705,8 @@ void ShadingKernel<T>::estimateDistributedLight(const DistributedLightSlot& ligh
     if (T* array = out[int(term)])
     {
       const std::size_t components = std::size_t(light.transferComponents);
-      std::transform(values.begin(), values.begin() + components, array + components * i,
-        [](double value) { return T(value); });
+      std::transform(
+        values.begin(), values.begin() + components, array + components * i, [](double value) { return T(value); });
     }
   };
   for (std::size_t k = 0; k < b.count; ++k)
@@ -775,8 +772,9 @@ void ShadingKernel<T>::estimateDistributedLight(const DistributedLightSlot& ligh
   }
 }
 
-template <typename T>
-void ShadingKernel<T>::addDistributedLight(const DistributedLightSlot& light, const VertexBlock<T>& b, Workspace& w) const
+template<typename T>
+void ShadingKernel<T>::addDistributedLight(
+  const DistributedLightSlot& light, const VertexBlock<T>& b, Workspace& w) const
 {
   const std::size_t count = b.count;
   if (light.irradiance)
@@ -833,8 +831,8 @@ void ShadingKernel<T>::addDistributedLight(const DistributedLightSlot& light, co
   {
     // SH with no specular term to sample (no specular model, a black ks, or no array needs
     // it): nothing is sampled, so nothing is short of a target either.
-    for (const LightTerm term : { LightTerm::Specular, LightTerm::SpecularStdError, LightTerm::IrradianceStdError,
-           LightTerm::ShortOfTarget })
+    for (const LightTerm term :
+      { LightTerm::Specular, LightTerm::SpecularStdError, LightTerm::IrradianceStdError, LightTerm::ShortOfTarget })
     {
       if (T* array = out[int(term)])
       {
@@ -845,7 +843,7 @@ void ShadingKernel<T>::addDistributedLight(const DistributedLightSlot& light, co
   }
 }
 
-template <typename T>
+template<typename T>
 void ShadingKernel<T>::storeTotals(const VertexBlock<T>& b, Workspace& w) const
 {
   const auto& totals = outputs_.totals;
@@ -899,7 +897,7 @@ void ShadingKernel<T>::storeTotals(const VertexBlock<T>& b, Workspace& w) const
   }
 }
 
-template <typename T>
+template<typename T>
 void ShadingKernel<T>::shadeBlock(const VertexBlock<T>& b) const
 {
   Workspace w;

@@ -8,11 +8,11 @@
 // block with the light's branches taken outside it, so the compiler turns it into SIMD
 // instructions. A vertex-at-a-time version with the same formulas ran 3 to 5 times slower.
 #include "ArrayCatalog.h"
-#include "LightMethod.h"
 #include "LightEvaluation.h"
+#include "LightMethod.h"
 #include "Scene.h"
-#include "SpectralColors.h"
 #include "ShadingFlags.h"
+#include "SpectralColors.h"
 #include "SpecularPower.h"
 #include "SpotCone.h"
 
@@ -29,7 +29,7 @@ namespace shadelab
 {
 /// Where results go: one pointer per requested array, nullptr for the rest. 3-component
 /// arrays are interleaved per vertex (x y z, or r g b), as VTK stores them.
-template <typename T>
+template<typename T>
 struct ShadingOutputs
 {
   std::vector<std::array<T*, LightTermCount>> lights; // follows scene.lights
@@ -62,9 +62,9 @@ struct ShadingInputs
   /// visibility step's estimates (packTerms' rows, packedTermsSize per vertex), used as they
   /// are; nullptr: none.
   std::vector<const double*> lightShadowedTerms;
-  const float* ambientOcclusion = nullptr;   // nullptr: the open sky, 1
+  const float* ambientOcclusion = nullptr;         // nullptr: the open sky, 1
   const float* ambientOcclusionStdError = nullptr; // with ambientOcclusion
-  const ShadingFlags* flags = nullptr;       // flags the rays found (FlagHiddenByOwnTriangle)
+  const ShadingFlags* flags = nullptr;             // flags the rays found (FlagHiddenByOwnTriangle)
   /// Each vertex's id in the whole mesh, which seeds its samples, where the arrays hold some
   /// of its vertices (a piece of a mesh split over processes); nullptr: the vertex's index.
   const long long* sampleIds = nullptr;
@@ -79,7 +79,7 @@ struct ShadingInputs
 
 /// Up to `capacity` vertices in structure-of-arrays form; first is the index of the block's
 /// first vertex in the output arrays.
-template <typename T>
+template<typename T>
 struct VertexBlock
 {
   static constexpr std::size_t capacity = 128;
@@ -88,7 +88,7 @@ struct VertexBlock
   std::array<T, capacity> px, py, pz, nx, ny, nz;
 
   /// Puts a vertex in slot k, converted to T.
-  template <typename U>
+  template<typename U>
   void set(std::size_t k, const Vec3<U>& position, const Vec3<U>& normal)
   {
     px[k] = T(position.x);
@@ -104,7 +104,7 @@ struct VertexBlock
 /// array needs is skipped: no specular lobe without a specular output, no r without r, r.v
 /// or Phong, no h without h, n.h, Blinn-Phong or the flags, no v unless a term or the flags
 /// need it.
-template <typename T>
+template<typename T>
 class ShadingKernel
 {
 public:
@@ -162,12 +162,12 @@ private:
     std::optional<PreparedPolynomial> irradiance;
     std::shared_ptr<const ShadowedLightEstimator> shadowed; // with hiddenSamples: the light's shadows
     const std::uint64_t* hiddenSamples = nullptr;
-    int hiddenWords = 0; // per vertex
+    int hiddenWords = 0;                   // per vertex
     const double* shadowedTerms = nullptr; // packedTermsSize per vertex
     Rgb kd{ 0.0 }, ks{ 0.0 };
     bool needsSpecular = false;
     std::array<T*, LightTermCount> out{};
-    int transferComponents = 0; // precomputed transfer: its coefficients per vertex
+    int transferComponents = 0;            // precomputed transfer: its coefficients per vertex
     std::uint8_t* shortOfTarget = nullptr; // ShadingOutputs::shortOfTarget's
   };
 
@@ -211,7 +211,7 @@ private:
 
 /// Shades vertices [begin, end) block by block. vertex(i, block, k) copies vertex i's
 /// position and normal into slot k of the block.
-template <typename T, typename CopyVertex>
+template<typename T, typename CopyVertex>
 void shadeRange(const ShadingKernel<T>& kernel, std::size_t begin, std::size_t end, CopyVertex&& vertex)
 {
   VertexBlock<T> block;

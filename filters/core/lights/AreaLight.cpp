@@ -56,8 +56,11 @@ const std::vector<ShapeFileType>& shapeFileTypes()
 {
   static const std::vector<ShapeFileType> types = {
     { { "polygon", { "vertices", "two_sided", "estimator", "samples", "max_samples", "stratified" } }, &readPolygon },
-    { { "rectangle", { "center", "edge_u", "edge_v", "two_sided", "estimator", "samples", "max_samples", "stratified" } }, &readRectangle },
-    { { "disk", { "center", "normal", "radius", "two_sided", "estimator", "samples", "max_samples", "stratified" } }, &readDisk },
+    { { "rectangle",
+        { "center", "edge_u", "edge_v", "two_sided", "estimator", "samples", "max_samples", "stratified" } },
+      &readRectangle },
+    { { "disk", { "center", "normal", "radius", "two_sided", "estimator", "samples", "max_samples", "stratified" } },
+      &readDisk },
     { { "sphere", { "center", "radius", "estimator", "samples", "max_samples", "stratified" } }, &readSphere },
   };
   return types;
@@ -137,8 +140,9 @@ AreaLight AreaLight::read(const JsonNode& node, const SceneFileType& type, const
   }
   if (node.has("estimator"))
   {
-    light.estimator = node.at("estimator").choice<AreaEstimator>({ { "exact", AreaEstimator::Exact },
-      { "monte_carlo", AreaEstimator::MonteCarlo }, { "point", AreaEstimator::Point } });
+    light.estimator = node.at("estimator")
+                        .choice<AreaEstimator>({ { "exact", AreaEstimator::Exact },
+                          { "monte_carlo", AreaEstimator::MonteCarlo }, { "point", AreaEstimator::Point } });
   }
   light.sampling = readSampling(node);
   return light;
@@ -208,7 +212,8 @@ void AreaLight::placeOn(const MeshPlacement& placement)
 
 LightEvaluation AreaLight::prepare(const EvaluationContext& context) const
 {
-  const auto estimator = std::make_shared<const AreaLightEstimator>(*this, context.lightIndex, context.lobe, context.targets);
+  const auto estimator =
+    std::make_shared<const AreaLightEstimator>(*this, context.lightIndex, context.lobe, context.targets);
   return DistributedEvaluation{ estimator, std::nullopt, estimator };
 }
 }

@@ -3,8 +3,8 @@
 #include "DiskIrradiance.h"
 #include "Overloaded.h"
 #include "PolygonIrradiance.h"
-#include "SampledTerms.h"
 #include "SampleWarps.h"
+#include "SampledTerms.h"
 #include "SphereIrradiance.h"
 
 #include <algorithm>
@@ -138,8 +138,10 @@ bool AreaLightEstimator::risesAbovePlaneOf(const SurfacePoint& point) const
   // highest point is; a sphere where its centre is less than a radius below.
   auto height = [&](const glm::dvec3& p) { return glm::dot(point.normal, p - point.position); };
   return std::visit(Overloaded{ [&](const PolygonEmitter& polygon)
-                      { return std::any_of(polygon.vertices.begin(), polygon.vertices.end(),
-                          [&](const glm::dvec3& corner) { return height(corner) > 0; }); },
+                      {
+                        return std::any_of(polygon.vertices.begin(), polygon.vertices.end(),
+                          [&](const glm::dvec3& corner) { return height(corner) > 0; });
+                      },
                       [&](const DiskEmitter& disk)
                       {
                         const double tilt = glm::dot(point.normal, normal_);
@@ -149,7 +151,8 @@ bool AreaLightEstimator::risesAbovePlaneOf(const SurfacePoint& point) const
     light_.shape);
 }
 
-AreaLightEstimator::EmitterSample AreaLightEstimator::sampleEmitter(const glm::dvec2& u, const SurfacePoint& point) const
+AreaLightEstimator::EmitterSample AreaLightEstimator::sampleEmitter(
+  const glm::dvec2& u, const SurfacePoint& point) const
 {
   return std::visit(
     Overloaded{ [&](const PolygonEmitter& polygon) { return towardPoint(pointOnPolygon(polygon, u), point.position); },
@@ -180,7 +183,8 @@ glm::dvec3 AreaLightEstimator::pointOnDisk(const DiskEmitter& disk, const glm::d
   return disk.centre + q.x * tangent_ + q.y * bitangent_;
 }
 
-AreaLightEstimator::EmitterSample AreaLightEstimator::towardPoint(const glm::dvec3& onEmitter, const glm::dvec3& receiver) const
+AreaLightEstimator::EmitterSample AreaLightEstimator::towardPoint(
+  const glm::dvec3& onEmitter, const glm::dvec3& receiver) const
 {
   // Area sampling, pdf 1/A, in solid angle d^2 / (A cos_e) (pbrt-v4, section 4.2.3).
   const Reach reach = reachOf(onEmitter, receiver);
@@ -215,8 +219,8 @@ AreaLightEstimator::EmitterSample AreaLightEstimator::towardSphere(
 DistributedTerms AreaLightEstimator::monteCarlo(
   const SurfacePoint& point, bool irradiance, const SampleTargets& targets, const SampleShadowing& shadowing) const
 {
-  return sampledTerms(lightIndex_, point.index, light_.sampling, targets, irradiance, lobe_, point.normal, point.toViewer,
-    shadowing.on(),
+  return sampledTerms(
+    lightIndex_, point.index, light_.sampling, targets, irradiance, lobe_, point.normal, point.toViewer, shadowing.on(),
     [&](const SampleSequence& round)
     { return shadowing.of(round, [&](const SampleSequence& s, ShadowRay* rays) { shadowRaysOf(point, s, rays); }); },
     pointByPoint(
@@ -274,8 +278,8 @@ DistributedTerms AreaLightEstimator::estimateWith(const SurfacePoint& point, con
       {
         shadowRays(point, &ray);
       }
-      const bool hidden = shadowing.fixed ? shadowing.fixed->hidden(0)
-                                          : shadowing.rounds && shadowing.rounds->trace(&ray, 1).hidden(0);
+      const bool hidden =
+        shadowing.fixed ? shadowing.fixed->hidden(0) : shadowing.rounds && shadowing.rounds->trace(&ray, 1).hidden(0);
       if (hidden)
       {
         terms = {};
@@ -283,10 +287,8 @@ DistributedTerms AreaLightEstimator::estimateWith(const SurfacePoint& point, con
       }
       return terms;
     }
-    case AreaEstimator::MonteCarlo:
-      return monteCarlo(point, true, targets_, shadowing);
-    case AreaEstimator::Exact:
-      break;
+    case AreaEstimator::MonteCarlo: return monteCarlo(point, true, targets_, shadowing);
+    case AreaEstimator::Exact: break;
   }
   // Exact E; S has no closed form for a Phong lobe over a polygon, so it is sampled. With
   // shadows, the samples also give the visible fraction of E, drawn to E's target over the

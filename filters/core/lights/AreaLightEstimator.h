@@ -3,19 +3,22 @@
 // emitter, or a point light at its centre.
 #include "AreaLight.h"
 #include "DistributedLight.h"
+#include "SampleWarps.h"
 #include "SampledTerms.h"
 #include "SequentialSampling.h"
-#include "SampleWarps.h"
 
 #include <vector>
 
 namespace shadelab
 {
-class AreaLightEstimator final : public DistributedLightEstimator, public ShadowedLightEstimator
+class AreaLightEstimator final
+  : public DistributedLightEstimator
+  , public ShadowedLightEstimator
 {
 public:
   /// targets: where the light's samples are drawn to a tolerance's share.
-  AreaLightEstimator(const AreaLight& light, std::uint64_t lightIndex, const LobeModel& lobe, const SampleTargets& targets = {});
+  AreaLightEstimator(
+    const AreaLight& light, std::uint64_t lightIndex, const LobeModel& lobe, const SampleTargets& targets = {});
 
   DistributedTerms estimate(const SurfacePoint& point) const override;
 
@@ -77,10 +80,10 @@ private:
   LobeModel lobe_;
   SampleTargets targets_;
   glm::dvec3 centre_{ 0.0 };
-  glm::dvec3 normal_{ 0.0 }; // polygons and disks
+  glm::dvec3 normal_{ 0.0 };                     // polygons and disks
   glm::dvec3 tangent_{ 0.0 }, bitangent_{ 0.0 }; // disks: the plane's axes
   double area_ = 0;
-  double backFace_ = 0; // 1 for a two-sided emitter: its back emits as its front
+  double backFace_ = 0;                 // 1 for a two-sided emitter: its back emits as its front
   std::vector<double> fanAreaFraction_; // polygons: cumulative share of each fan triangle
 };
 }

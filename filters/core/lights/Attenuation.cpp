@@ -16,17 +16,16 @@ Attenuation readAttenuation(const JsonNode& light)
   const JsonNode node = light.at("attenuation");
   const auto modelOf = [](const JsonNode& name)
   {
-    return name.choice<AttenuationModel>({ { "none", AttenuationModel::None },
-      { "inverse", AttenuationModel::Inverse }, { "inverse_square", AttenuationModel::InverseSquare },
-      { "vtk", AttenuationModel::ConstantLinearQuadratic }, { "gltf_range", AttenuationModel::GltfRange } });
+    return name.choice<AttenuationModel>({ { "none", AttenuationModel::None }, { "inverse", AttenuationModel::Inverse },
+      { "inverse_square", AttenuationModel::InverseSquare }, { "vtk", AttenuationModel::ConstantLinearQuadratic },
+      { "gltf_range", AttenuationModel::GltfRange } });
   };
   if (node.isString())
   {
     a.model = modelOf(node);
     if (a.model == AttenuationModel::ConstantLinearQuadratic || a.model == AttenuationModel::GltfRange)
     {
-      node.fail("this model has parameters: write it as an object, e.g. {\"model\": \"" +
-        node.text() + "\", ...}");
+      node.fail("this model has parameters: write it as an object, e.g. {\"model\": \"" + node.text() + "\", ...}");
     }
     return a;
   }
@@ -45,16 +44,14 @@ Attenuation readAttenuation(const JsonNode& light)
       node.expectObject({ "model", "range" });
       a.range = node.at("range").number();
       break;
-    default:
-      node.expectObject({ "model" });
+    default: node.expectObject({ "model" });
   }
   return a;
 }
 
 void checkAttenuation(const Attenuation& a, LightChecks& checks)
 {
-  const bool vtkCanExpress =
-    a.model == AttenuationModel::None || a.model == AttenuationModel::ConstantLinearQuadratic;
+  const bool vtkCanExpress = a.model == AttenuationModel::None || a.model == AttenuationModel::ConstantLinearQuadratic;
   checks.require(checks.model != ShadingModel::VtkOpenGL2 || vtkCanExpress, "/attenuation",
     "the vtk model has only vtkLight's constant-linear-quadratic attenuation (or none)");
   checks.require(isNonNegative(a.minDistance), "/min_distance", "must be a number >= 0");
@@ -62,11 +59,10 @@ void checkAttenuation(const Attenuation& a, LightChecks& checks)
     "must be > 0: this attenuation is infinite at distance 0");
   if (a.model == AttenuationModel::ConstantLinearQuadratic)
   {
-    const bool allNonNegative =
-      isNonNegative(a.constant) && isNonNegative(a.linear) && isNonNegative(a.quadratic);
+    const bool allNonNegative = isNonNegative(a.constant) && isNonNegative(a.linear) && isNonNegative(a.quadratic);
     checks.require(allNonNegative, "/attenuation", "constant, linear and quadratic must be >= 0");
-    checks.require(a.constant + a.linear + a.quadratic > 0, "/attenuation",
-      "constant, linear and quadratic must not all be 0");
+    checks.require(
+      a.constant + a.linear + a.quadratic > 0, "/attenuation", "constant, linear and quadratic must not all be 0");
   }
   if (a.model == AttenuationModel::GltfRange)
   {
@@ -79,14 +75,9 @@ void placeFalloff(double& intensity, Attenuation& a, double R)
   a.minDistance *= R;
   switch (a.model)
   {
-    case AttenuationModel::None:
-      break;
-    case AttenuationModel::Inverse:
-      intensity *= R;
-      break;
-    case AttenuationModel::InverseSquare:
-      intensity *= R * R;
-      break;
+    case AttenuationModel::None: break;
+    case AttenuationModel::Inverse: intensity *= R; break;
+    case AttenuationModel::InverseSquare: intensity *= R * R; break;
     case AttenuationModel::ConstantLinearQuadratic:
       // 1/(k0 + k1 d + k2 d^2) is dimensionless: k1 and k2 carry 1/length and 1/length^2.
       a.linear /= R;

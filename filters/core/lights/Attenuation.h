@@ -28,28 +28,28 @@ struct Attenuation
 };
 
 // docs/formulas.md section 9.1: f = 1/d^2, the inverse-square law.
-template <typename T>
+template<typename T>
 T inverseSquareFalloff(T d)
 {
   return T(1) / (d * d);
 }
 
 // docs/formulas.md section 9.1: f = 1/d.
-template <typename T>
+template<typename T>
 T inverseFalloff(T d)
 {
   return T(1) / d;
 }
 
 // VTK 9.1 vtkOpenGLPolyDataMapper, positional lights: 1/(k0 + k1 d + k2 d^2).
-template <typename T>
+template<typename T>
 T constantLinearQuadraticFalloff(T k0, T k1, T k2, T d)
 {
   return T(1) / (k0 + k1 * d + k2 * d * d);
 }
 
 // KHR_lights_punctual, "Range Property": clamp(1 - (d/range)^4, 0, 1) / d^2.
-template <typename T>
+template<typename T>
 T gltfRangeFalloff(T range, T d)
 {
   const T ratio = d / range;
@@ -58,22 +58,18 @@ T gltfRangeFalloff(T range, T d)
   return window / (d * d);
 }
 
-template <typename T>
+template<typename T>
 T attenuationAt(const Attenuation& a, T distance)
 {
   const T d = std::max(distance, T(a.minDistance));
   switch (a.model)
   {
-    case AttenuationModel::None:
-      return T(1);
-    case AttenuationModel::Inverse:
-      return inverseFalloff(d);
-    case AttenuationModel::InverseSquare:
-      return inverseSquareFalloff(d);
+    case AttenuationModel::None: return T(1);
+    case AttenuationModel::Inverse: return inverseFalloff(d);
+    case AttenuationModel::InverseSquare: return inverseSquareFalloff(d);
     case AttenuationModel::ConstantLinearQuadratic:
       return constantLinearQuadraticFalloff(T(a.constant), T(a.linear), T(a.quadratic), d);
-    case AttenuationModel::GltfRange:
-      return gltfRangeFalloff(T(a.range), d);
+    case AttenuationModel::GltfRange: return gltfRangeFalloff(T(a.range), d);
   }
   return T(1);
 }
@@ -98,12 +94,9 @@ inline bool divergesAtZero(const Attenuation& a)
 {
   switch (a.model)
   {
-    case AttenuationModel::None:
-      return false;
-    case AttenuationModel::ConstantLinearQuadratic:
-      return a.constant <= 0.0;
-    default:
-      return true;
+    case AttenuationModel::None: return false;
+    case AttenuationModel::ConstantLinearQuadratic: return a.constant <= 0.0;
+    default: return true;
   }
 }
 }

@@ -42,9 +42,11 @@ EnvironmentLight EnvironmentLight::read(const JsonNode& node, const SceneFileTyp
   }
   if (node.has("estimator"))
   {
-    light.estimator = node.at("estimator").choice<EnvironmentEstimator>(
-      { { "sh", EnvironmentEstimator::SphericalHarmonics }, { "monte_carlo", EnvironmentEstimator::MonteCarlo },
-        { "brute_force", EnvironmentEstimator::BruteForce }, { "prt", EnvironmentEstimator::PrecomputedTransfer } });
+    light.estimator =
+      node.at("estimator")
+        .choice<EnvironmentEstimator>({ { "sh", EnvironmentEstimator::SphericalHarmonics },
+          { "monte_carlo", EnvironmentEstimator::MonteCarlo }, { "brute_force", EnvironmentEstimator::BruteForce },
+          { "prt", EnvironmentEstimator::PrecomputedTransfer } });
   }
   if (node.has("order"))
   {
@@ -56,13 +58,15 @@ EnvironmentLight EnvironmentLight::read(const JsonNode& node, const SceneFileTyp
   }
   if (node.has("directions"))
   {
-    light.directions = node.at("directions").choice<EnvironmentDirections>(
-      { { "luminance", EnvironmentDirections::Luminance }, { "cosine", EnvironmentDirections::Cosine },
-        { "mis", EnvironmentDirections::Mis } });
-    if (light.estimator == EnvironmentEstimator::PrecomputedTransfer && light.directions != EnvironmentDirections::Cosine)
+    light.directions = node.at("directions")
+                         .choice<EnvironmentDirections>({ { "luminance", EnvironmentDirections::Luminance },
+                           { "cosine", EnvironmentDirections::Cosine }, { "mis", EnvironmentDirections::Mis } });
+    if (light.estimator == EnvironmentEstimator::PrecomputedTransfer &&
+      light.directions != EnvironmentDirections::Cosine)
     {
-      node.at("directions").fail("\"prt\" draws its shadow rays by the cosine, the density its transfer vectors are "
-                                 "estimated for: remove \"directions\"");
+      node.at("directions")
+        .fail("\"prt\" draws its shadow rays by the cosine, the density its transfer vectors are "
+              "estimated for: remove \"directions\"");
     }
   }
   light.sampling = readSampling(node);
@@ -111,8 +115,7 @@ void EnvironmentLight::check(LightChecks& checks) const
     std::all_of(map->radiance.begin(), map->radiance.end(), [](const Rgb& t) { return isNonNegative(t); });
   checks.require(radiant, "/file", "every texel must be a finite non-negative radiance");
   const int width = bruteForceWidth;
-  checks.require(width >= map->width || (width >= 2 && width % 2 == 0 && map->width % width == 0),
-    "/brute_force_width",
+  checks.require(width >= map->width || (width >= 2 && width % 2 == 0 && map->width % width == 0), "/brute_force_width",
     "must be an even number that divides the map's width (" + std::to_string(map->width) + "), or at least that width");
 }
 
@@ -144,7 +147,8 @@ void EnvironmentLight::placeOn(const MeshPlacement&)
 
 LightEvaluation EnvironmentLight::prepare(const EvaluationContext& context) const
 {
-  auto estimator = std::make_shared<const EnvironmentLightEstimator>(*this, context.lightIndex, context.lobe, context.targets);
+  auto estimator =
+    std::make_shared<const EnvironmentLightEstimator>(*this, context.lightIndex, context.lobe, context.targets);
   if (estimator->irradiance())
   {
     // E is the estimator's polynomial of the normal; the estimator is still needed for S,

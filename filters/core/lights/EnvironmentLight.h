@@ -43,7 +43,7 @@ enum class EnvironmentDirections
 struct EnvironmentLight
 {
   std::shared_ptr<const EnvironmentMap> map;
-  std::string file; // where the map came from, for messages and reports
+  std::string file;           // where the map came from, for messages and reports
   double rotationDegrees = 0; // about +y, anticlockwise seen from above
   Rgb color{ 1, 1, 1 };
   double intensity = 1.0;

@@ -52,15 +52,15 @@ EnvironmentLightEstimator::EnvironmentLightEstimator(
   {
     case EnvironmentEstimator::BruteForce:
     {
-      const EnvironmentMap level =
-        map.width > light.bruteForceWidth ? downsampled(map, light.bruteForceWidth) : map;
+      const EnvironmentMap level = map.width > light.bruteForceWidth ? downsampled(map, light.bruteForceWidth) : map;
       texels_.reserve(std::size_t(level.width) * level.height);
       for (int row = 0; row < level.height; ++row)
       {
         const double solidAngle = texelSolidAngle(row, level.width, level.height);
         for (int column = 0; column < level.width; ++column)
         {
-          texels_.push_back({ texelCentreDirection(level, column, row), scale_ * level.texel(column, row) * solidAngle });
+          texels_.push_back(
+            { texelCentreDirection(level, column, row), scale_ * level.texel(column, row) * solidAngle });
         }
       }
       break;
@@ -78,8 +78,7 @@ EnvironmentLightEstimator::EnvironmentLightEstimator(
     case EnvironmentEstimator::PrecomputedTransfer:
       transferRadiance_ = worldRadianceCoefficients(light, light.shOrder);
       break;
-    case EnvironmentEstimator::MonteCarlo:
-      break;
+    case EnvironmentEstimator::MonteCarlo: break;
   }
   // Sampling by luminance draws the light's directions (every estimator's with shadows), and
   // the SH and transfer estimators' S.
@@ -182,22 +181,20 @@ void EnvironmentLightEstimator::mixtureDirections(
   }
 }
 
-glm::dvec3 EnvironmentLightEstimator::drawDirection(const glm::dvec3& n, const glm::dvec2& u, EnvironmentDirections directions) const
+glm::dvec3 EnvironmentLightEstimator::drawDirection(
+  const glm::dvec3& n, const glm::dvec2& u, EnvironmentDirections directions) const
 {
   switch (directions)
   {
-    case EnvironmentDirections::Luminance:
-      return sampler_->sampleDirection(u.x, u.y);
-    case EnvironmentDirections::Cosine:
-      return cosineWeightedDirection(n, u).direction;
-    case EnvironmentDirections::Mis:
-      break;
+    case EnvironmentDirections::Luminance: return sampler_->sampleDirection(u.x, u.y);
+    case EnvironmentDirections::Cosine: return cosineWeightedDirection(n, u).direction;
+    case EnvironmentDirections::Mis: break;
   }
   return mixtureDirection(n, u);
 }
 
-void EnvironmentLightEstimator::drawDirections(const glm::dvec3& n, const SampleSequence& sequence, int first, int count,
-  EnvironmentDirections directions, double* x, double* y, double* z) const
+void EnvironmentLightEstimator::drawDirections(const glm::dvec3& n, const SampleSequence& sequence, int first,
+  int count, EnvironmentDirections directions, double* x, double* y, double* z) const
 {
   switch (directions)
   {
@@ -216,27 +213,26 @@ void EnvironmentLightEstimator::drawDirections(const glm::dvec3& n, const Sample
       return;
     }
     case EnvironmentDirections::Cosine:
-      warpedPoints(sequence, first, count, [&](const glm::dvec2& u) { return cosineWeightedDirection(n, u).direction; }, x, y, z);
+      warpedPoints(
+        sequence, first, count, [&](const glm::dvec2& u) { return cosineWeightedDirection(n, u).direction; }, x, y, z);
       return;
-    case EnvironmentDirections::Mis:
-      break;
+    case EnvironmentDirections::Mis: break;
   }
   mixtureDirections(n, sequence, first, count, x, y, z);
 }
 
-RadianceSample EnvironmentLightEstimator::draw(const glm::dvec3& n, const glm::dvec2& u, EnvironmentDirections directions) const
+RadianceSample EnvironmentLightEstimator::draw(
+  const glm::dvec3& n, const glm::dvec2& u, EnvironmentDirections directions) const
 {
   switch (directions)
   {
-    case EnvironmentDirections::Luminance:
-      return weightedByDensity(sampler_->sample(u.x, u.y));
+    case EnvironmentDirections::Luminance: return weightedByDensity(sampler_->sample(u.x, u.y));
     case EnvironmentDirections::Cosine:
     {
       const WeightedDirection sample = cosineWeightedDirection(n, u);
       return { sample.direction, scale_ * radianceAt(sample.direction) * sample.weight, std::nullopt };
     }
-    case EnvironmentDirections::Mis:
-      break;
+    case EnvironmentDirections::Mis: break;
   }
   // The sample's density is the mixture's, the mean of the two (Veach 1997, section 9.2.4: the
   // balance heuristic in the one-sample model).
@@ -247,9 +243,11 @@ RadianceSample EnvironmentLightEstimator::draw(const glm::dvec3& n, const glm::d
 }
 
 DistributedTerms EnvironmentLightEstimator::monteCarlo(const glm::dvec3& n, const glm::dvec3& v, std::uint64_t vertex,
-  bool irradiance, EnvironmentDirections directions, const SampleTargets& targets, const SampleShadowing& shadowing) const
+  bool irradiance, EnvironmentDirections directions, const SampleTargets& targets,
+  const SampleShadowing& shadowing) const
 {
-  return sampledTerms(lightIndex_, vertex, light_.sampling, targets, irradiance, lobe_, n, v, shadowing.on(),
+  return sampledTerms(
+    lightIndex_, vertex, light_.sampling, targets, irradiance, lobe_, n, v, shadowing.on(),
     [&](const SampleSequence& round)
     { return shadowing.of(round, [&](const SampleSequence& s, ShadowRay* rays) { shadowRaysOf(n, s, rays); }); },
     [&](const SampleSequence& sequence, int first, int count, RadianceSample* samples)
@@ -316,13 +314,10 @@ DistributedTerms EnvironmentLightEstimator::estimate(const SurfacePoint& point) 
   const glm::dvec3 v = worldToMap_ * point.toViewer;
   switch (light_.estimator)
   {
-    case EnvironmentEstimator::BruteForce:
-      return bruteForce(n, v, lobe_.wanted());
-    case EnvironmentEstimator::MonteCarlo:
-      return monteCarlo(n, v, point.index, true, light_.directions, targets_, {});
+    case EnvironmentEstimator::BruteForce: return bruteForce(n, v, lobe_.wanted());
+    case EnvironmentEstimator::MonteCarlo: return monteCarlo(n, v, point.index, true, light_.directions, targets_, {});
     case EnvironmentEstimator::SphericalHarmonics:
-    case EnvironmentEstimator::PrecomputedTransfer:
-      break;
+    case EnvironmentEstimator::PrecomputedTransfer: break;
   }
   // A few bands cannot hold a lobe sharper than the cosine: S is sampled, by luminance and by the lobe.
   DistributedTerms terms = lobe_.wanted()
@@ -364,7 +359,8 @@ void EnvironmentLightEstimator::shadowRaysOf(const glm::dvec3& n, const SampleSe
     for (int j = 0; j < count; ++j)
     {
       const glm::dvec3 direction(x[j], y[j], z[j]);
-      rays[first + j] = { mapToWorld_ * direction, std::numeric_limits<double>::infinity(), glm::dot(n, direction) > 0 };
+      rays[first + j] = { mapToWorld_ * direction, std::numeric_limits<double>::infinity(),
+        glm::dot(n, direction) > 0 };
     }
   }
 }
@@ -379,7 +375,8 @@ DistributedTerms EnvironmentLightEstimator::estimate(const SurfacePoint& point, 
   return shadowedEstimate(point, { nullptr, &shadows });
 }
 
-DistributedTerms EnvironmentLightEstimator::shadowedEstimate(const SurfacePoint& point, const SampleShadowing& shadowing) const
+DistributedTerms EnvironmentLightEstimator::shadowedEstimate(
+  const SurfacePoint& point, const SampleShadowing& shadowing) const
 {
   const glm::dvec3 n = worldToMap_ * point.normal;
   const glm::dvec3 v = worldToMap_ * point.toViewer;
@@ -388,12 +385,8 @@ DistributedTerms EnvironmentLightEstimator::shadowedEstimate(const SurfacePoint&
   {
     case EnvironmentEstimator::MonteCarlo:
       return monteCarlo(n, v, point.index, true, light_.directions, targets_, shadowing);
-    case EnvironmentEstimator::BruteForce:
-      unshadowed = bruteForce(n, v, false).irradiance;
-      break;
-    case EnvironmentEstimator::SphericalHarmonics:
-      unshadowed = (*irradiance_)(point.normal);
-      break;
+    case EnvironmentEstimator::BruteForce: unshadowed = bruteForce(n, v, false).irradiance; break;
+    case EnvironmentEstimator::SphericalHarmonics: unshadowed = (*irradiance_)(point.normal); break;
     case EnvironmentEstimator::PrecomputedTransfer:
       if (!shadowing.fixed)
       {

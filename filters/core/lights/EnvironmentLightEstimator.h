@@ -4,12 +4,12 @@
 // transfer; with shadows, each of them with the rays of its samples (docs/formulas.md sections
 // 12.7 and 12.10).
 #include "DistributedLight.h"
-#include "SequentialSampling.h"
 #include "EnvironmentLight.h"
 #include "EnvironmentMap.h"
 #include "EnvironmentSampler.h"
 #include "RadianceTransfer.h"
 #include "SampledTerms.h"
+#include "SequentialSampling.h"
 #include "SphericalHarmonics.h"
 
 #include <glm/mat3x3.hpp>
@@ -25,11 +25,14 @@ namespace shadelab
 /// and when it relights (docs/formulas.md section 12.10).
 ShCoefficients worldRadianceCoefficients(const EnvironmentLight& light, int order);
 
-class EnvironmentLightEstimator final : public DistributedLightEstimator, public ShadowedLightEstimator
+class EnvironmentLightEstimator final
+  : public DistributedLightEstimator
+  , public ShadowedLightEstimator
 {
 public:
   /// targets: where the light's samples are drawn to a tolerance's share.
-  EnvironmentLightEstimator(const EnvironmentLight& light, std::uint64_t lightIndex, const LobeModel& lobe, const SampleTargets& targets = {});
+  EnvironmentLightEstimator(
+    const EnvironmentLight& light, std::uint64_t lightIndex, const LobeModel& lobe, const SampleTargets& targets = {});
 
   DistributedTerms estimate(const SurfacePoint& point) const override;
 
@@ -64,8 +67,8 @@ private:
   DistributedTerms shadowedEstimate(const SurfacePoint& point, const SampleShadowing& shadowing) const;
   /// Precomputed transfer with shadows: n and v in the map's frame, the point's samples hidden
   /// as `hidden` says (a fixed count).
-  DistributedTerms shadowedTransfer(const SurfacePoint& point, const glm::dvec3& n, const glm::dvec3& v,
-    const HiddenSamples& hidden) const;
+  DistributedTerms shadowedTransfer(
+    const SurfacePoint& point, const glm::dvec3& n, const glm::dvec3& v, const HiddenSamples& hidden) const;
   /// The rays of the sequence's samples, from a point of normal n (the map's frame).
   void shadowRaysOf(const glm::dvec3& n, const SampleSequence& sequence, ShadowRay* rays) const;
   /// The sample's direction with its radiance (times the light's colour) over its pdf.
@@ -81,13 +84,13 @@ private:
   void drawDirections(const glm::dvec3& n, const SampleSequence& sequence, int first, int count,
     EnvironmentDirections directions, double* x, double* y, double* z) const;
   /// drawDirections for the mixture (Mis).
-  void mixtureDirections(const glm::dvec3& n, const SampleSequence& sequence, int first, int count, double* x, double* y,
-    double* z) const;
+  void mixtureDirections(
+    const glm::dvec3& n, const SampleSequence& sequence, int first, int count, double* x, double* y, double* z) const;
   /// A direction (map frame) drawn from u as `directions` says, with L(w) / pdf(w).
   RadianceSample draw(const glm::dvec3& n, const glm::dvec2& u, EnvironmentDirections directions) const;
   /// One estimate of S from a sample drawn by luminance and the map at a direction drawn by the lobe.
-  Rgb specularByBothStrategies(
-    const glm::dvec3& n, const glm::dvec3& v, const EnvironmentSample& byLuminance, const EnvironmentSample& byLobe) const;
+  Rgb specularByBothStrategies(const glm::dvec3& n, const glm::dvec3& v, const EnvironmentSample& byLuminance,
+    const EnvironmentSample& byLobe) const;
   Rgb radianceAt(const glm::dvec3& mapDirection) const;
 
   EnvironmentLight light_;
@@ -97,9 +100,9 @@ private:
   SampleTargets targets_;
   glm::dmat3 worldToMap_{ 1.0 };
   glm::dmat3 mapToWorld_{ 1.0 };
-  std::vector<Texel> texels_;              // BruteForce
-  std::optional<EnvironmentSampler> sampler_; // sampling by luminance
+  std::vector<Texel> texels_;                      // BruteForce
+  std::optional<EnvironmentSampler> sampler_;      // sampling by luminance
   std::optional<IrradiancePolynomial> irradiance_; // SphericalHarmonics
-  ShCoefficients transferRadiance_; // PrecomputedTransfer: the map's coefficients in world axes, scaled
+  ShCoefficients transferRadiance_;                // PrecomputedTransfer: the map's coefficients in world axes, scaled
 };
 }

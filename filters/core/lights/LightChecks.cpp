@@ -4,8 +4,8 @@ namespace shadelab
 {
 std::string outOfRange(Precision precision)
 {
-  return std::string("must be a finite point with coordinates within +-") +
-    scientific(coordinateLimit(precision)) + " for " + precisionName(precision) + " arithmetic";
+  return std::string("must be a finite point with coordinates within +-") + scientific(coordinateLimit(precision)) +
+    " for " + precisionName(precision) + " arithmetic";
 }
 
 void LightChecks::strength(const Rgb& color, double intensity)

@@ -61,8 +61,8 @@ std::string outOfRange(Precision precision);
 class LightChecks
 {
 public:
-  LightChecks(std::string at, ShadingModel model, std::optional<glm::dvec3> lineOfSight, Precision precision,
-    ProblemList& list)
+  LightChecks(
+    std::string at, ShadingModel model, std::optional<glm::dvec3> lineOfSight, Precision precision, ProblemList& list)
     : model(model)
     , lineOfSight(lineOfSight)
     , precision(precision)

@@ -35,9 +35,9 @@ struct LocalEvaluation
     Spot,    // a point light times its cone's factor about the axis
   };
   Geometry geometry = Geometry::Distant;
-  glm::dvec3 toLight{ 0.0 }; // Distant: the constant unit s
-  double distance = 0;       // Distant: the constant d (0, or the approximated one)
-  double attenuation = 1;    // Distant: the constant attenuation
+  glm::dvec3 toLight{ 0.0 };  // Distant: the constant unit s
+  double distance = 0;        // Distant: the constant d (0, or the approximated one)
+  double attenuation = 1;     // Distant: the constant attenuation
   glm::dvec3 position{ 0.0 }; // Point, Spot
   glm::dvec3 axis{ 0.0 };     // Spot: the unit direction the cone points
   Attenuation falloff;        // Point, Spot

@@ -8,7 +8,7 @@
 namespace shadelab
 {
 /// "color" and "intensity", where given.
-template <typename Light>
+template<typename Light>
 void readStrength(const JsonNode& node, Light& light)
 {
   light.color = rgbOr(node, "color", light.color);
@@ -35,8 +35,9 @@ inline void readSampleCount(const JsonNode& node, const char* countKey, const ch
   {
     if (!sampling.fromTolerance)
     {
-      node.at(maximumKey).fail(std::string("is the most \"") + countKey + "\": \"auto\" may draw per vertex: give \"" +
-        countKey + "\": \"auto\" with it, or leave it out");
+      node.at(maximumKey)
+        .fail(std::string("is the most \"") + countKey + "\": \"auto\" may draw per vertex: give \"" + countKey +
+          "\": \"auto\" with it, or leave it out");
     }
     sampling.maximum = node.at(maximumKey).wholeNumber(16, maxSamplesPerVertex);
   }

@@ -77,20 +77,15 @@ bool lightHasTerm(const NamedLight& light, LightTerm term)
   const bool softShadows = light.shadows && isDistributed(light.source);
   switch (term)
   {
-    case LightTerm::Visibility:
-      return light.shadows;
-    case LightTerm::VisibilityStdError:
-      return softShadows;
-    case LightTerm::ShortOfTarget:
-      return samplingOf(light.source) && samplingOf(light.source)->fromTolerance;
-    case LightTerm::IrradianceStdError:
-      return softShadows || lightHasTerm(light.source, term);
+    case LightTerm::Visibility: return light.shadows;
+    case LightTerm::VisibilityStdError: return softShadows;
+    case LightTerm::ShortOfTarget: return samplingOf(light.source) && samplingOf(light.source)->fromTolerance;
+    case LightTerm::IrradianceStdError: return softShadows || lightHasTerm(light.source, term);
     case LightTerm::SpecularStdError:
-      return (softShadows && std::holds_alternative<EnvironmentLight>(light.source)) || lightHasTerm(light.source, term);
-    case LightTerm::ShTransferStdError:
-      return softShadows && lightHasTerm(light.source, LightTerm::ShTransfer);
-    default:
-      return lightHasTerm(light.source, term);
+      return (softShadows && std::holds_alternative<EnvironmentLight>(light.source)) ||
+        lightHasTerm(light.source, term);
+    case LightTerm::ShTransferStdError: return softShadows && lightHasTerm(light.source, LightTerm::ShTransfer);
+    default: return lightHasTerm(light.source, term);
   }
 }
 
@@ -124,13 +119,13 @@ struct FileTypeEntry
   LightSource (*read)(const JsonNode&, const SceneFileType&, const std::string&);
 };
 
-template <typename Light>
+template<typename Light>
 LightSource readAs(const JsonNode& node, const SceneFileType& type, const std::string& sceneFile)
 {
   return Light::read(node, type, sceneFile);
 }
 
-template <std::size_t... Index>
+template<std::size_t... Index>
 std::vector<FileTypeEntry> collectFileTypes(std::index_sequence<Index...>)
 {
   std::vector<FileTypeEntry> entries;
@@ -229,7 +224,8 @@ LightSource readLightSource(const JsonNode& node, const std::string& sceneFile)
 {
   // The fields of the light's type, so that a misspelt one is matched against those alone;
   // without a type, every field any light may have (the type is then reported missing).
-  node.expectObject(node.isObject() && node.has("type") ? fieldsOf(*fileTypeNamed(node.at("type")).type) : anyLightFields());
+  node.expectObject(
+    node.isObject() && node.has("type") ? fieldsOf(*fileTypeNamed(node.at("type")).type) : anyLightFields());
   const FileTypeEntry& entry = fileTypeNamed(node.at("type"));
   return entry.read(node, *entry.type, sceneFile);
 }

@@ -8,8 +8,8 @@
 #include "EnvironmentLight.h"
 #include "Headlight.h"
 #include "PointLight.h"
-#include "SpotLight.h"
 #include "Spectrum.h"
+#include "SpotLight.h"
 
 #include <optional>
 #include <string>

@@ -23,7 +23,7 @@ enum class LightTerm
   IrradianceStdError, // Monte Carlo standard error of E, RGB
   SpecularStdError,   // Monte Carlo standard error of the specular term, RGB
   // Lights that cast shadows (NamedLight::shadows):
-  Visibility,         // 1 where the mesh does not hide the light, 0 where it does; the visible fraction of E for area lights
+  Visibility, // 1 where the mesh does not hide the light, 0 where it does; the visible fraction of E for area lights
   VisibilityStdError, // area lights: the standard error of the sampled visible fraction
   // Area lights and maps drawn to a target ("samples": "auto" under a tolerance):
   ShortOfTarget, // 1 where the vertex stopped at the maximum with a standard error above its target
@@ -50,14 +50,10 @@ inline bool distributedLightHasTerm(LightTerm term, bool irradianceError, bool s
   {
     case LightTerm::Irradiance:
     case LightTerm::Diffuse:
-    case LightTerm::Specular:
-      return true;
-    case LightTerm::IrradianceStdError:
-      return irradianceError;
-    case LightTerm::SpecularStdError:
-      return specularError;
-    default:
-      return false;
+    case LightTerm::Specular: return true;
+    case LightTerm::IrradianceStdError: return irradianceError;
+    case LightTerm::SpecularStdError: return specularError;
+    default: return false;
   }
 }
 }

@@ -65,16 +65,16 @@ constexpr double distributedPeakFactor = 6.283185307179586;
 /// Declares the members listed at the top of this file in a light type's struct, as
 /// vtkTypeMacro declares a VTK class's (a macro, so that the struct stays an aggregate:
 /// DistantLight{ direction, color, intensity, false }).
-#define SHADELAB_LIGHT_TYPE(Type, lightRole, isPositional, hasShadows)                              \
-  static constexpr LightRole role = LightRole::lightRole;                                            \
-  static constexpr bool positional = isPositional;                                                   \
-  static constexpr bool castsShadows = hasShadows;                                                   \
-  static const std::vector<SceneFileType>& sceneFileTypes();                                         \
-  static Type read(const JsonNode& node, const SceneFileType& type, const std::string& sceneFile);   \
-  std::string typeName() const;                                                                      \
-  Rgb emitted() const;                                                                               \
-  void check(LightChecks& checks) const;                                                             \
-  double peakContribution(const Material& m) const;                                                  \
-  bool hasTerm(LightTerm term) const;                                                                \
-  void placeOn(const MeshPlacement& placement);                                                      \
+#define SHADELAB_LIGHT_TYPE(Type, lightRole, isPositional, hasShadows)                                                 \
+  static constexpr LightRole role = LightRole::lightRole;                                                              \
+  static constexpr bool positional = isPositional;                                                                     \
+  static constexpr bool castsShadows = hasShadows;                                                                     \
+  static const std::vector<SceneFileType>& sceneFileTypes();                                                           \
+  static Type read(const JsonNode& node, const SceneFileType& type, const std::string& sceneFile);                     \
+  std::string typeName() const;                                                                                        \
+  Rgb emitted() const;                                                                                                 \
+  void check(LightChecks& checks) const;                                                                               \
+  double peakContribution(const Material& m) const;                                                                    \
+  bool hasTerm(LightTerm term) const;                                                                                  \
+  void placeOn(const MeshPlacement& placement);                                                                        \
   LightEvaluation prepare(const EvaluationContext& context) const

@@ -8,7 +8,7 @@
 namespace shadelab
 {
 /// "color", "intensity", "position", "attenuation" and "min_distance".
-template <typename Light>
+template<typename Light>
 void readPositionalLight(const JsonNode& node, Light& light)
 {
   readStrength(node, light);
@@ -16,7 +16,7 @@ void readPositionalLight(const JsonNode& node, Light& light)
   light.attenuation = readAttenuation(node);
 }
 
-template <typename Light>
+template<typename Light>
 void checkPositionalLight(const Light& light, LightChecks& checks)
 {
   checks.strength(light.color, light.intensity);
@@ -25,14 +25,14 @@ void checkPositionalLight(const Light& light, LightChecks& checks)
 }
 
 /// At full attenuation: a vertex at the minimum distance (for a spot, on its axis).
-template <typename Light>
+template<typename Light>
 double positionalPeakContribution(const Light& light, const Material& m)
 {
   return largestComponent(light.emitted()) * attenuationAt(light.attenuation, 0.0) * largestReflectance(m);
 }
 
 /// The position moves with the mesh; the falloff scales so that the light a vertex gets stays.
-template <typename Light>
+template<typename Light>
 void placePositionalLight(Light& light, const MeshPlacement& placement)
 {
   light.position = placement.point(light.position);

@@ -34,17 +34,15 @@ void checkCone(const SpotCone& cone, LightChecks& checks)
 {
   if (cone.model == ConeModel::Vtk)
   {
-    checks.require(std::isfinite(cone.halfAngleDegrees) && cone.halfAngleDegrees >= 0 &&
-        cone.halfAngleDegrees <= 180,
+    checks.require(std::isfinite(cone.halfAngleDegrees) && cone.halfAngleDegrees >= 0 && cone.halfAngleDegrees <= 180,
       "/cone/angle", "must be a half-angle in degrees, in [0, 180]");
-    checks.require(std::isfinite(cone.exponent) && cone.exponent >= 0 && cone.exponent <= 128,
-      "/cone/exponent", "must be in [0, 128], the range vtkLight allows");
+    checks.require(std::isfinite(cone.exponent) && cone.exponent >= 0 && cone.exponent <= 128, "/cone/exponent",
+      "must be in [0, 128], the range vtkLight allows");
     return;
   }
-  checks.require(checks.model != ShadingModel::VtkOpenGL2, "/cone/model",
-    "the vtk model has only vtkLight's cone (model \"vtk\")");
-  checks.require(std::isfinite(cone.outerAngleDegrees) && cone.outerAngleDegrees > 0 &&
-      cone.outerAngleDegrees <= 90,
+  checks.require(
+    checks.model != ShadingModel::VtkOpenGL2, "/cone/model", "the vtk model has only vtkLight's cone (model \"vtk\")");
+  checks.require(std::isfinite(cone.outerAngleDegrees) && cone.outerAngleDegrees > 0 && cone.outerAngleDegrees <= 90,
     "/cone/outer_angle", "must be in (0, 90] degrees");
   checks.require(std::isfinite(cone.innerAngleDegrees) && cone.innerAngleDegrees >= 0 &&
       cone.innerAngleDegrees < cone.outerAngleDegrees,

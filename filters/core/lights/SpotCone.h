@@ -15,9 +15,9 @@ enum class ConeModel
 struct SpotCone
 {
   ConeModel model = ConeModel::Vtk;
-  double halfAngleDegrees = 30.0; // Vtk: vtkLight::ConeAngle (default 30); >= 90 means no cone
-  double exponent = 1.0;          // Vtk: vtkLight::Exponent (default 1, VTK clamps to [0, 128])
-  double innerAngleDegrees = 0.0; // Gltf: innerConeAngle (default 0)
+  double halfAngleDegrees = 30.0;  // Vtk: vtkLight::ConeAngle (default 30); >= 90 means no cone
+  double exponent = 1.0;           // Vtk: vtkLight::Exponent (default 1, VTK clamps to [0, 128])
+  double innerAngleDegrees = 0.0;  // Gltf: innerConeAngle (default 0)
   double outerAngleDegrees = 45.0; // Gltf: outerConeAngle (default pi/4)
 };
 
@@ -33,7 +33,7 @@ void checkCone(const SpotCone& cone, LightChecks& checks);
 // VTK 9.1 vtkOpenGLPolyDataMapper, positional lights with ConeAngle < 90:
 // inside (coneDot >= cos(angle)) the factor is coneDot^exponent, outside it is 0. A coneDot
 // that rounding puts above 1 is taken as 1, so that the factor never exceeds 1.
-template <typename T>
+template<typename T>
 T vtkConeFactor(T cosToAxis, T cosHalfAngle, T exponent)
 {
   return cosToAxis >= cosHalfAngle ? std::pow(std::min(cosToAxis, T(1)), exponent) : T(0);
@@ -42,7 +42,7 @@ T vtkConeFactor(T cosToAxis, T cosHalfAngle, T exponent)
 // KHR_lights_punctual, "Inner and Outer Cone Angles":
 // scale = 1/max(0.001, cos(inner) - cos(outer)), offset = -cos(outer) scale,
 // a = clamp(cosToAxis scale + offset, 0, 1), factor = a^2.
-template <typename T>
+template<typename T>
 T gltfConeFactor(T cosToAxis, T scale, T offset)
 {
   const T a = std::clamp(cosToAxis * scale + offset, T(0), T(1));
@@ -50,7 +50,7 @@ T gltfConeFactor(T cosToAxis, T scale, T offset)
 }
 
 /// Constants of a cone, computed once per light rather than once per vertex.
-template <typename T>
+template<typename T>
 struct PreparedCone
 {
   ConeModel model = ConeModel::Vtk;

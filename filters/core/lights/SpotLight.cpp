@@ -6,9 +6,8 @@ namespace shadelab
 {
 const std::vector<SceneFileType>& SpotLight::sceneFileTypes()
 {
-  static const std::vector<SceneFileType> types = {
-    { "spot", { "position", "direction", "attenuation", "min_distance", "cone" } }
-  };
+  static const std::vector<SceneFileType> types = { { "spot",
+    { "position", "direction", "attenuation", "min_distance", "cone" } } };
   return types;
 }
 

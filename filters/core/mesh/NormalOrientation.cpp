@@ -4,8 +4,8 @@
 
 namespace shadelab
 {
-void NormalOrientationAccumulator::addTriangle(const glm::dvec3& p0, const glm::dvec3& p1,
-  const glm::dvec3& p2, const glm::dvec3& n0, const glm::dvec3& n1, const glm::dvec3& n2)
+void NormalOrientationAccumulator::addTriangle(const glm::dvec3& p0, const glm::dvec3& p1, const glm::dvec3& p2,
+  const glm::dvec3& n0, const glm::dvec3& n1, const glm::dvec3& n2)
 {
   const double area = 0.5 * glm::length(glm::cross(p1 - p0, p2 - p0));
   const glm::dvec3 normalSum = n0 + n1 + n2;

@@ -33,8 +33,8 @@ public:
   }
 
   /// One triangle: its corners and the normals stored at them.
-  void addTriangle(const glm::dvec3& p0, const glm::dvec3& p1, const glm::dvec3& p2,
-    const glm::dvec3& n0, const glm::dvec3& n1, const glm::dvec3& n2);
+  void addTriangle(const glm::dvec3& p0, const glm::dvec3& p1, const glm::dvec3& p2, const glm::dvec3& n0,
+    const glm::dvec3& n1, const glm::dvec3& n2);
 
   /// One polygon: its vector area (A n), its area A, and its centroid.
   void add(const glm::dvec3& vectorArea, double area, const glm::dvec3& centroid)

@@ -74,8 +74,8 @@ std::size_t PolygonEdges::inconsistentCount() const
   for (std::size_t e = 1; e < entries_.size(); ++e)
   {
     // The same edge in the same direction twice, counted once however many repeat it.
-    const bool repeatsFirstTime = entries_[e].sameTraversal(entries_[e - 1]) &&
-      !(e >= 2 && entries_[e].sameTraversal(entries_[e - 2]));
+    const bool repeatsFirstTime =
+      entries_[e].sameTraversal(entries_[e - 1]) && !(e >= 2 && entries_[e].sameTraversal(entries_[e - 2]));
     inconsistent += repeatsFirstTime ? 1 : 0;
   }
   return inconsistent;
@@ -112,9 +112,8 @@ glm::dvec3 unitNormal(const glm::dvec3& sum)
   return isFinite(sum) && largestComponent(sum) > 0.0 ? unitVector(sum) : glm::dvec3(0.0);
 }
 
-void weldCopies(CornerSumArray& sums, const PolygonEdges& edges,
-  const std::vector<glm::dvec3>& edgePolygonAreas, const std::vector<PointId>& mergeMap,
-  double featureAngleDegrees, WeldSummary* summary)
+void weldCopies(CornerSumArray& sums, const PolygonEdges& edges, const std::vector<glm::dvec3>& edgePolygonAreas,
+  const std::vector<PointId>& mergeMap, double featureAngleDegrees, WeldSummary* summary)
 {
   // The points whose position other points share, in ascending order: the only ones that can
   // be joined.
@@ -181,7 +180,8 @@ void weldCopies(CornerSumArray& sums, const PolygonEdges& edges,
       positions.push_back(mergeMap[static_cast<std::size_t>(id)]);
     }
     std::sort(positions.begin(), positions.end());
-    summary->sharedPositions = static_cast<std::size_t>(std::unique(positions.begin(), positions.end()) - positions.begin());
+    summary->sharedPositions =
+      static_cast<std::size_t>(std::unique(positions.begin(), positions.end()) - positions.begin());
   }
 }
 }

@@ -58,7 +58,7 @@ struct PolygonList
 /// A polygon's vector area: the Newell normal, half the sum of a fan's cross products, exact
 /// for any planar polygon. pointAt(id) gives a point as a glm::dvec3. Polygons with fewer than
 /// 3 corners have none, (0, 0, 0).
-template <typename PointAt>
+template<typename PointAt>
 glm::dvec3 polygonAreaVector(const PointId* ids, std::size_t size, PointAt pointAt)
 {
   if (size < 3)
@@ -78,16 +78,18 @@ glm::dvec3 polygonAreaVector(const PointId* ids, std::size_t size, PointAt point
 }
 
 /// Polygon k's vector area, turned round where flipped[k] is set (flipped may be empty).
-template <typename PointAt>
-glm::dvec3 orientedAreaVector(const PolygonList& polygons, std::size_t k, const std::vector<bool>& flipped, PointAt pointAt)
+template<typename PointAt>
+glm::dvec3 orientedAreaVector(
+  const PolygonList& polygons, std::size_t k, const std::vector<bool>& flipped, PointAt pointAt)
 {
   const glm::dvec3 area = polygonAreaVector(polygons.ids(k), polygons.size(k), pointAt);
   return !flipped.empty() && flipped[k] ? -area : area;
 }
 
 /// Each polygon's vector area, turned round where flipped[k] is set (flipped may be empty).
-template <typename PointAt>
-std::vector<glm::dvec3> polygonAreaVectors(const PolygonList& polygons, const std::vector<bool>& flipped, PointAt pointAt)
+template<typename PointAt>
+std::vector<glm::dvec3> polygonAreaVectors(
+  const PolygonList& polygons, const std::vector<bool>& flipped, PointAt pointAt)
 {
   std::vector<glm::dvec3> areas(polygons.count);
   for (std::size_t k = 0; k < polygons.count; ++k)
@@ -109,7 +111,7 @@ inline std::uint64_t idSignature(PointId id)
 
 /// Points stored as x, y, z values one after another (VTK's array layout, and glm::dvec3's),
 /// read as glm::dvec3.
-template <typename Real>
+template<typename Real>
 struct PackedPoints
 {
   const Real* xyz;
@@ -163,7 +165,7 @@ struct CornerSums
 /// and reads a point, which seldom is either. So both are fetched some polygons ahead of their
 /// use (16: 2 to 16 were tried, on 2.2M vertices; 16 took 13% less time than 2), and nothing
 /// here divides (a division's latency showed as much as the misses).
-template <typename Real>
+template<typename Real>
 void sumAtCorners(const PolygonList& polygons, std::size_t first, std::size_t last, const std::vector<bool>& flipped,
   PackedPoints<Real> points, CornerSums& sums)
 {
@@ -249,7 +251,7 @@ private:
 /// lower one to the lowest such id (mergeMap[i] = i for every other point), or an empty map
 /// when no two of them share a position. pointAt(id) gives a point as a glm::dvec3; points
 /// with a non-finite coordinate share with none.
-template <typename PointAt>
+template<typename PointAt>
 std::vector<PointId> coincidentPointMap(const std::vector<PointId>& points, std::size_t pointCount, PointAt pointAt);
 
 /// Every edge of the polygons between welded ids (mergeMap[i] is the id of the point that
@@ -273,7 +275,7 @@ public:
   };
 
   /// Calls visit(a, b) for every two uses of one edge by different polygons.
-  template <typename Visit>
+  template<typename Visit>
   void forEachPairOfUses(Visit&& visit) const;
 
 private:
@@ -289,8 +291,8 @@ private:
     bool sameTraversal(const Entry& other) const { return low == other.low && key == other.key; }
     bool operator<(const Entry& other) const
     {
-      return low != other.low ? low < other.low
-        : key != other.key    ? key < other.key
+      return low != other.low      ? low < other.low
+        : key != other.key         ? key < other.key
         : polygon != other.polygon ? polygon < other.polygon
                                    : corner < other.corner;
     }
@@ -308,7 +310,7 @@ private:
   std::vector<Entry> entries_; // sorted, so that the entries of one edge are adjacent
 };
 
-template <typename Visit>
+template<typename Visit>
 void PolygonEdges::forEachPairOfUses(Visit&& visit) const
 {
   for (std::size_t a = 0; a < entries_.size(); ++a)
@@ -324,19 +326,18 @@ void PolygonEdges::forEachPairOfUses(Visit&& visit) const
 }
 
 /// Welding: each copy of a point (mergeMap[i] != i, or a point others map to) gets the sum
-/// of the area sums of the copies it is joined to, in place (edge balances are left as they are). Two copies are joined where two
-/// polygons around them meet at an edge (of `edges`, built with mergeMap; edgePolygonAreas
-/// are those polygons' area vectors) at less than featureAngleDegrees, and joins chain: a seam
-/// through a smooth surface disappears, and an edge the file split on purpose stays sharp.
-void weldCopies(CornerSumArray& sums, const PolygonEdges& edges,
-  const std::vector<glm::dvec3>& edgePolygonAreas, const std::vector<PointId>& mergeMap,
-  double featureAngleDegrees, WeldSummary* summary = nullptr);
+/// of the area sums of the copies it is joined to, in place (edge balances are left as they are). Two copies are joined
+/// where two polygons around them meet at an edge (of `edges`, built with mergeMap; edgePolygonAreas are those
+/// polygons' area vectors) at less than featureAngleDegrees, and joins chain: a seam through a smooth surface
+/// disappears, and an edge the file split on purpose stays sharp.
+void weldCopies(CornerSumArray& sums, const PolygonEdges& edges, const std::vector<glm::dvec3>& edgePolygonAreas,
+  const std::vector<PointId>& mergeMap, double featureAngleDegrees, WeldSummary* summary = nullptr);
 
 /// A point's unit normal from its area sum; (0, 0, 0) for a point without area (isolated, or
 /// only degenerate polygons), which shading flags.
 glm::dvec3 unitNormal(const glm::dvec3& areaSum);
 
-template <typename PointAt>
+template<typename PointAt>
 std::vector<PointId> coincidentPointMap(const std::vector<PointId>& points, std::size_t pointCount, PointAt pointAt)
 {
   struct Located
@@ -357,9 +358,12 @@ std::vector<PointId> coincidentPointMap(const std::vector<PointId>& points, std:
   // -0 and +0 compare equal, so they are one position, as they are one point.
   auto before = [](const Located& a, const Located& b)
   {
-    if (a.position.x != b.position.x) return a.position.x < b.position.x;
-    if (a.position.y != b.position.y) return a.position.y < b.position.y;
-    if (a.position.z != b.position.z) return a.position.z < b.position.z;
+    if (a.position.x != b.position.x)
+      return a.position.x < b.position.x;
+    if (a.position.y != b.position.y)
+      return a.position.y < b.position.y;
+    if (a.position.z != b.position.z)
+      return a.position.z < b.position.z;
     return a.id < b.id;
   };
   std::sort(located.begin(), located.end(), before);

@@ -37,7 +37,8 @@ const std::array<TermInfo, LightTermCount> lightTerms = { {
     "\"estimator\": \"prt\": the vertex's transfer vector, (order + 1)^2 spherical-harmonic coefficients (world axes, "
     "Y_lm at l (l + 1) + m) whose dot product with a map's is the irradiance under it; with shadows, from the mesh's "
     "shadow rays" },
-  { "sh_transfer_std_error", 0, "\"estimator\": \"prt\" with shadows: the standard error of each transfer coefficient" },
+  { "sh_transfer_std_error", 0,
+    "\"estimator\": \"prt\" with shadows: the standard error of each transfer coefficient" },
 } };
 
 const std::array<TermInfo, TotalTermCount> totalTerms = { {
@@ -48,7 +49,8 @@ const std::array<TermInfo, TotalTermCount> totalTerms = { {
 } };
 
 const std::array<TermInfo, OcclusionTermCount> occlusionTerms = { {
-  { "ambient_occlusion", 1, "the cosine-weighted fraction of the hemisphere from which the mesh does not hide the sky" },
+  { "ambient_occlusion", 1,
+    "the cosine-weighted fraction of the hemisphere from which the mesh does not hide the sky" },
   { "ambient_occlusion_std_error", 1, "Monte Carlo standard error of ambient_occlusion" },
   { "bent_normal", 3, "the mean direction from which the sky is seen (0 where it is not)" },
   { "sky_view_factor", 1, "the uniformly weighted fraction of the hemisphere from which the sky is seen" },
@@ -101,8 +103,8 @@ bool sceneHasTerm(const Scene& scene, OcclusionTerm term)
 
 bool ArrayRequest::any(LightTerm term) const
 {
-  return std::any_of(lights.begin(), lights.end(),
-    [term](const auto& perLight) { return perLight[static_cast<int>(term)]; });
+  return std::any_of(
+    lights.begin(), lights.end(), [term](const auto& perLight) { return perLight[static_cast<int>(term)]; });
 }
 
 std::string lightArrayName(const std::string& prefix, const std::string& light, LightTerm term)
@@ -267,8 +269,7 @@ bool requestByName(const Scene& scene, const std::string& name, ArrayRequest& re
   {
     for (int t = 0; t < LightTermCount; ++t)
     {
-      if (lightHasTerm(scene.lights[l], LightTerm(t)) &&
-        name == lightArrayName("", scene.lights[l].name, LightTerm(t)))
+      if (lightHasTerm(scene.lights[l], LightTerm(t)) && name == lightArrayName("", scene.lights[l].name, LightTerm(t)))
       {
         request.lights[l][t] = true;
         return true;
@@ -341,7 +342,8 @@ ArrayRequest selectArrays(const Scene& scene, const std::vector<std::string>& se
     {
       // Quoted short and printable: the entry may be anything a user or a script passed.
       std::string shown = entry.size() > 60 ? entry.substr(0, 60) + "..." : entry;
-      std::replace_if(shown.begin(), shown.end(), [](char c) { return c < 0x20 || c >= 0x7f; }, '?');
+      std::replace_if(
+        shown.begin(), shown.end(), [](char c) { return c < 0x20 || c >= 0x7f; }, '?');
       throw std::invalid_argument("unknown array '" + shown + "'; this scene has: " + knownSelections(scene));
     }
   }

@@ -30,7 +30,8 @@ double peakAttenuation(const Scene& scene, std::size_t light, const MeshExtent& 
 {
   const LightSource& source = scene.lights[light].source;
   const glm::dvec3* position = positionOf(source);
-  return position ? attenuationAt(*attenuationOf(source), nearestVertexDistance(*position, mesh, measured, light)) : 1.0;
+  return position ? attenuationAt(*attenuationOf(source), nearestVertexDistance(*position, mesh, measured, light))
+                  : 1.0;
 }
 
 double diffusePeak(const LightSource& source, const Material& m)
@@ -137,10 +138,13 @@ LightChoice distributedChoice(const NamedLight& light, std::size_t index, const 
     // Its bands' error under shadows is bounded only by the map less its bands, integrated
     // (docs/formulas.md section 12.10), and its rays are a fixed count.
     const Rgb bandLimit = bandLimitError(*map->map, map->shOrder);
-    const double error = largestComponent(map->color * map->intensity * bandLimit) * std::max(1.0, largestComponent(m.kd));
-    refuse("estimator", "its shadowed transfer vectors can err by up to " + scientific(error) +
-      " through their bands alone, and are estimated from a fixed \"samples\" count, which no target stops: use "
-      "\"estimator\": \"monte_carlo\" (--envmap-estimator monte_carlo) with " + bounds.autoSamples);
+    const double error =
+      largestComponent(map->color * map->intensity * bandLimit) * std::max(1.0, largestComponent(m.kd));
+    refuse("estimator",
+      "its shadowed transfer vectors can err by up to " + scientific(error) +
+        " through their bands alone, and are estimated from a fixed \"samples\" count, which no target stops: use "
+        "\"estimator\": \"monte_carlo\" (--envmap-estimator monte_carlo) with " +
+        bounds.autoSamples);
   }
   // Under shadows E is sampled whatever the estimator: an exact or SH E is the unshadowed one
   // times the samples' visible fraction.
@@ -148,17 +152,21 @@ LightChoice distributedChoice(const NamedLight& light, std::size_t index, const 
   choice.sampledSpecular = specular;
   if ((choice.sampledIrradiance || choice.sampledSpecular) && !samplingOf(light.source)->fromTolerance)
   {
-    refuse("samples", "its Monte Carlo estimates from " + std::to_string(samplingOf(light.source)->samples) +
-      " samples have no error bound before they are drawn: give it " + bounds.autoSamples +
-      ", which draws each vertex's samples until their standard error meets a share of the tolerance");
+    refuse("samples",
+      "its Monte Carlo estimates from " + std::to_string(samplingOf(light.source)->samples) +
+        " samples have no error bound before they are drawn: give it " + bounds.autoSamples +
+        ", which draws each vertex's samples until their standard error meets a share of the tolerance");
   }
   // E's error reaches its own array as it is, and the diffuse term times kd.
   choice.approximationError = bounds.irradianceError * std::max(1.0, largestComponent(m.kd));
   if (!(choice.approximationError <= left))
   {
-    refuse("estimator", "its spherical-harmonic irradiance can err by " + scientific(choice.approximationError) + ", more than the " +
-      scientific(left) + " of the tolerance left for it: use \"estimator\": \"monte_carlo\" (--envmap-estimator "
-      "monte_carlo) with " + bounds.autoSamples);
+    refuse("estimator",
+      "its spherical-harmonic irradiance can err by " + scientific(choice.approximationError) + ", more than the " +
+        scientific(left) +
+        " of the tolerance left for it: use \"estimator\": \"monte_carlo\" (--envmap-estimator "
+        "monte_carlo) with " +
+        bounds.autoSamples);
   }
   choice.predictedError = choice.approximationError;
   return choice;
@@ -170,7 +178,8 @@ LightChoice distributedChoice(const NamedLight& light, std::size_t index, const 
 void drawToShare(const Sampling& sampling, const Material& m, double share, LightChoice& choice)
 {
   const double part = share / ((choice.sampledIrradiance ? 1 : 0) + (choice.sampledSpecular ? 1 : 0));
-  auto target = [&](double k) { return SamplingTarget::atLeast(part / std::max(1.0, k), sampling.samples, sampling.maximum); };
+  auto target = [&](double k)
+  { return SamplingTarget::atLeast(part / std::max(1.0, k), sampling.samples, sampling.maximum); };
   if (choice.sampledIrradiance)
   {
     choice.method.targets.irradiance = target(largestComponent(m.kd));
@@ -203,10 +212,11 @@ OcclusionChoice chooseOcclusion(const Scene& scene, double share)
   choice.predictedError = fixedRaysError(occlusion.sampling.samples);
   if (!(choice.predictedError <= ownShare))
   {
-    throw UnboundedSceneField("/ambient_occlusion/rays", "ambient occlusion's " + std::to_string(occlusion.sampling.samples) +
-      " rays per vertex can err by up to " + scientific(choice.predictedError) + " (95%), more than the " +
-      scientific(ownShare) + " the tolerance leaves it: give \"rays\": \"auto\" (--ambient-occlusion auto) to draw "
-      "as many as the tolerance needs, or a larger tolerance");
+    throw UnboundedSceneField("/ambient_occlusion/rays",
+      "ambient occlusion's " + std::to_string(occlusion.sampling.samples) + " rays per vertex can err by up to " +
+        scientific(choice.predictedError) + " (95%), more than the " + scientific(ownShare) +
+        " the tolerance leaves it: give \"rays\": \"auto\" (--ambient-occlusion auto) to draw "
+        "as many as the tolerance needs, or a larger tolerance");
   }
   return choice;
 }
@@ -222,7 +232,8 @@ double fixedRaysError(int n)
   return 1 / std::sqrt(double(n));
 }
 
-double distantApproximationError(const PointLight& light, const Material& material, bool specular, const MeshExtent& mesh)
+double distantApproximationError(
+  const PointLight& light, const Material& material, bool specular, const MeshExtent& mesh)
 {
   const double D = vectorLength(light.position - mesh.centre);
   const double R = mesh.radius;
@@ -233,8 +244,8 @@ double distantApproximationError(const PointLight& light, const Material& materi
   // Every vertex is within R of the centre, so its distance d lies in [D - R, D + R] and its
   // direction s is within an angle asin(R/D) of the centre's s_c: |s - s_c| <= 2 sin(angle/2).
   const double atCentre = attenuationAt(light.attenuation, D);
-  const double attenuationChange = std::max(attenuationAt(light.attenuation, D - R) - atCentre,
-    atCentre - attenuationAt(light.attenuation, D + R));
+  const double attenuationChange =
+    std::max(attenuationAt(light.attenuation, D - R) - atCentre, atCentre - attenuationAt(light.attenuation, D + R));
   const double directionChange = 2 * std::sin(std::asin(R / D) / 2);
   // Diffuse: |a max(n.s, 0) - a_c max(n.s_c, 0)| <= |a - a_c| + a_c |s - s_c|, as max(., 0)
   // changes by no more than its argument and |n| = 1.
@@ -246,7 +257,8 @@ double distantApproximationError(const PointLight& light, const Material& materi
   return diffuse + specularTerm;
 }
 
-double nearestVertexDistance(const glm::dvec3& position, const MeshExtent& mesh, const MeshMeasurements& measured, std::size_t light)
+double nearestVertexDistance(
+  const glm::dvec3& position, const MeshExtent& mesh, const MeshMeasurements& measured, std::size_t light)
 {
   const double outsideTheSphere = std::max(vectorLength(position - mesh.centre) - mesh.radius, 0.0);
   return measured.nearestVertexDistance.empty() ? outsideTheSphere
@@ -256,11 +268,12 @@ double nearestVertexDistance(const glm::dvec3& position, const MeshExtent& mesh,
 double powApproximationError(
   double lobeError, const Scene& scene, std::size_t light, const MeshExtent& mesh, const MeshMeasurements& measured)
 {
-  return specularPeak(scene.lights[light].source, scene.material) * peakAttenuation(scene, light, mesh, measured) * lobeError;
+  return specularPeak(scene.lights[light].source, scene.material) * peakAttenuation(scene, light, mesh, measured) *
+    lobeError;
 }
 
-double arithmeticError(
-  Precision precision, const Scene& scene, const ArrayRequest& request, const MeshExtent& mesh, const MeshMeasurements& measured)
+double arithmeticError(Precision precision, const Scene& scene, const ArrayRequest& request, const MeshExtent& mesh,
+  const MeshMeasurements& measured)
 {
   const double u = unitRoundoff(precision);
   const Material& m = scene.material;
@@ -285,9 +298,8 @@ double arithmeticError(
     if (const glm::dvec3* position = positionOf(source))
     {
       const double nearest = nearestVertexDistance(*position, mesh, measured, l);
-      lightDirectionError = nearest >= attenuationOf(source)->minDistance
-        ? directionError(u, mesh.reach, *position, nearest)
-        : unbounded;
+      lightDirectionError =
+        nearest >= attenuationOf(source)->minDistance ? directionError(u, mesh.reach, *position, nearest) : unbounded;
     }
     // Normalising n, the dot products and the products each round a few times: 16 u of the
     // term's size covers them; a direction error adds itself to n.s.
@@ -331,8 +343,9 @@ namespace
 /// "within E at 95% (standard error at most E/2), N to M <unit> per vertex".
 std::string targetText(const SamplingTarget& target, const char* unit)
 {
-  return "within " + scientific(target.error) + " at 95% (standard error at most " + scientific(target.standardError()) +
-    "), " + std::to_string(target.minimum) + " to " + std::to_string(target.maximum) + " " + unit + " per vertex";
+  return "within " + scientific(target.error) + " at 95% (standard error at most " +
+    scientific(target.standardError()) + "), " + std::to_string(target.minimum) + " to " +
+    std::to_string(target.maximum) + " " + unit + " per vertex";
 }
 }
 
@@ -340,7 +353,8 @@ std::string SampleCounts::describe(std::size_t vertices) const
 {
   const double perVertex = vertices ? 1.0 / double(vertices) : 0.0;
   std::string text;
-  for (const auto& [count, noun] : { std::pair{ samples, " samples (" }, std::pair{ occlusionRays, " occlusion rays (" } })
+  for (const auto& [count, noun] :
+    { std::pair{ samples, " samples (" }, std::pair{ occlusionRays, " occlusion rays (" } })
   {
     if (count > 0)
     {
@@ -362,8 +376,8 @@ std::vector<std::string> MethodPlan::describe() const
 {
   std::vector<std::string> lines;
   // What was chosen, then why: the predicted errors of all of it fit the tolerance.
-  lines.push_back(std::string("arithmetic ") + (precision == Precision::Float32 ? "float32" : "float64") + " (rounding " +
-    scientific(arithmeticError) + (roundingSampled ? ", measured on a sample of the points" : "") +
+  lines.push_back(std::string("arithmetic ") + (precision == Precision::Float32 ? "float32" : "float64") +
+    " (rounding " + scientific(arithmeticError) + (roundingSampled ? ", measured on a sample of the points" : "") +
     ") and the methods below, chosen so that their predicted errors, " + scientific(predictedError()) +
     " in all, stay within the tolerance " + scientific(tolerance));
   for (const LightChoice& light : lights)
@@ -383,8 +397,8 @@ std::vector<std::string> MethodPlan::describe() const
     {
       parts.push_back("SH irradiance within " + scientific(light.approximationError));
     }
-    for (const auto& [integral, target] : { std::pair{ "E", light.method.targets.irradiance },
-           std::pair{ "S", light.method.targets.specular } })
+    for (const auto& [integral, target] :
+      { std::pair{ "E", light.method.targets.irradiance }, std::pair{ "S", light.method.targets.specular } })
     {
       if (target)
       {
@@ -408,8 +422,8 @@ std::vector<std::string> MethodPlan::describe() const
   }
   else if (occlusion)
   {
-    lines.push_back("ambient occlusion: a fixed count of rays, predicted error " + scientific(occlusion->predictedError) +
-      " (95%)");
+    lines.push_back(
+      "ambient occlusion: a fixed count of rays, predicted error " + scientific(occlusion->predictedError) + " (95%)");
   }
   if (forecast)
   {
@@ -422,8 +436,9 @@ std::vector<std::string> MethodPlan::describe() const
   if (estimatedSamplingError)
   {
     lines.push_back("after sampling: an error of about " + scientific(estimatedError()) + " at 95% of the vertices (" +
-      scientific(*estimatedSamplingError) + " estimated from their standard errors, where the plan bounds sampling's part by " +
-      scientific(samplingError) + ")");
+      scientific(*estimatedSamplingError) +
+      " estimated from their standard errors, where the plan bounds sampling's part by " + scientific(samplingError) +
+      ")");
   }
   return lines;
 }
@@ -457,8 +472,8 @@ MethodPlan chooseMethods(const Scene& scene, const ArrayRequest& request, const 
   if (!(plan.arithmeticError <= deterministic))
   {
     throw RoundingAboveTolerance("tolerance " + scientific(tolerance) +
-      " is below the predicted float64 rounding error of this scene on this mesh, " +
-      scientific(plan.arithmeticError) + (deterministic < tolerance ? ", which may take a tenth of it (the rays take the rest)" : "") +
+      " is below the predicted float64 rounding error of this scene on this mesh, " + scientific(plan.arithmeticError) +
+      (deterministic < tolerance ? ", which may take a tenth of it (the rays take the rest)" : "") +
       ": give a larger tolerance, or none for the exact methods");
   }
   double left = deterministic - plan.arithmeticError;
@@ -585,7 +600,8 @@ MethodPlan chooseMethods(const Scene& scene, const ArrayRequest& request, const 
       sampledLights.push_back(l);
     }
   }
-  const double share = (tolerance - plan.predictedError()) / double(sampledLights.size() + (scene.ambientOcclusion ? 1 : 0));
+  const double share =
+    (tolerance - plan.predictedError()) / double(sampledLights.size() + (scene.ambientOcclusion ? 1 : 0));
   for (const std::size_t l : sampledLights)
   {
     drawToShare(*samplingOf(scene.lights[l].source), scene.material, share, plan.lights[l]);

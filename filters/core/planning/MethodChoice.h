@@ -4,9 +4,9 @@
 // whose predicted errors fit in it together. The predictions are upper bounds derived below
 // in MethodChoice.cpp; tests check them against measured errors on the meshes in data/.
 #include "ArrayCatalog.h"
+#include "LightMethod.h"
 #include "MeshExtent.h"
 #include "Scene.h"
-#include "LightMethod.h"
 #include "SequentialSampling.h"
 
 #include <optional>
@@ -24,7 +24,7 @@ struct LightChoice
   /// Of the approximations chosen for this light, and of its samples' share where they are
   /// drawn to one (at 95% confidence).
   double predictedError = 0;
-  std::string why;           // why no cheaper method was taken, or "" when the cheapest was
+  std::string why; // why no cheaper method was taken, or "" when the cheapest was
   /// An area light or a map: its deterministic part's error (SH's band limit), and whether its
   /// estimates of E and S are sampled (and so drawn to a share of the tolerance).
   double approximationError = 0;
@@ -62,9 +62,9 @@ struct SampleCounts
 struct CostForecast
 {
   std::size_t pilotVertices = 0, meshVertices = 0;
-  SampleCounts counts; // the pilot's, scaled to the mesh
+  SampleCounts counts;           // the pilot's, scaled to the mesh
   double shareShortOfTarget = 0; // of the pilot's vertices, those stopped at a maximum short of a target
-  double seconds = 0; // casting the rays and shading, at the pilot's pace per vertex
+  double seconds = 0;            // casting the rays and shading, at the pilot's pace per vertex
   int threads = 1;
   /// After the run, what it drew (nullopt before it).
   std::optional<SampleCounts> drawn;
@@ -76,9 +76,9 @@ struct CostForecast
 struct MethodPlan
 {
   Precision precision = Precision::Float64;
-  double arithmeticError = 0; // predicted rounding error of the chosen precision
-  bool roundingSampled = false; // float32's from a sample of the mesh (errorFromSample), not a priori
-  std::vector<LightChoice> lights; // one per scene light (ambient lights have nothing to choose)
+  double arithmeticError = 0;               // predicted rounding error of the chosen precision
+  bool roundingSampled = false;             // float32's from a sample of the mesh (errorFromSample), not a priori
+  std::vector<LightChoice> lights;          // one per scene light (ambient lights have nothing to choose)
   std::optional<OcclusionChoice> occlusion; // where the scene has ambient occlusion
   double tolerance = 0;
   /// The part of predictedError() that sampling takes (at 95%): the shares of the estimates
@@ -140,12 +140,14 @@ struct MeshMeasurements
 
 /// The least distance from a light at `position` to any vertex: the measured one where there
 /// is one, else the bounding sphere's D - R (at least 0).
-double nearestVertexDistance(const glm::dvec3& position, const MeshExtent& mesh, const MeshMeasurements& measured, std::size_t light);
+double nearestVertexDistance(
+  const glm::dvec3& position, const MeshExtent& mesh, const MeshMeasurements& measured, std::size_t light);
 
 /// Predicted largest error of evaluating a point light as distant from mesh.centre, or
 /// +infinity where the approximation does not hold (the light inside the mesh's bounding
 /// sphere). specular: whether the light's specular term is computed.
-double distantApproximationError(const PointLight& light, const Material& material, bool specular, const MeshExtent& mesh);
+double distantApproximationError(
+  const PointLight& light, const Material& material, bool specular, const MeshExtent& mesh);
 
 /// Predicted largest error that a pow method adds to the specular term of the scene's light l,
 /// given the method's largest error on the lobe x^eta itself (largestPowError at the

@@ -12,14 +12,10 @@ const char* coefficientKey(MaterialCoefficient coefficient)
 {
   switch (coefficient)
   {
-    case MaterialCoefficient::Ambient:
-      return "ka";
-    case MaterialCoefficient::Diffuse:
-      return "kd";
-    case MaterialCoefficient::Specular:
-      return "ks";
-    case MaterialCoefficient::Shininess:
-      return "shininess";
+    case MaterialCoefficient::Ambient: return "ka";
+    case MaterialCoefficient::Diffuse: return "kd";
+    case MaterialCoefficient::Specular: return "ks";
+    case MaterialCoefficient::Shininess: return "shininess";
   }
   return "";
 }
@@ -100,7 +96,8 @@ std::string unusableValueReason(double raw, MaterialCoefficient coefficient)
   {
     return std::string("it is ") + (std::isnan(raw) ? "NaN" : "infinite");
   }
-  return "it is " + withDigits(raw, 6) + (coefficient == MaterialCoefficient::Shininess ? ", below 0" : ", outside [0, 1]");
+  return "it is " + withDigits(raw, 6) +
+    (coefficient == MaterialCoefficient::Shininess ? ", below 0" : ", outside [0, 1]");
 }
 
 double decodeReal(double raw, MaterialCoefficient coefficient, ArrayEncoding encoding, double scale)

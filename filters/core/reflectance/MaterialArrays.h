@@ -113,7 +113,7 @@ struct VertexMaterial
   /// Fills floatValues from values (rounded to float32) where only values holds them.
   void withFloat32();
   /// Coefficient c's values in the precision T, or nullptr where it has none of its own.
-  template <typename T>
+  template<typename T>
   const T* of(MaterialCoefficient c) const
   {
     const int i = int(c == MaterialCoefficient::Ambient && ambientIsDiffuse ? MaterialCoefficient::Diffuse : c);

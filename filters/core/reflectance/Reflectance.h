@@ -14,7 +14,7 @@ namespace shadelab
 // digits near 0 and 180 degrees, atan2 of the pair loses none (W. Kahan, "How Futile are
 // Mindless Assessments of Roundoff in Floating-Point Computation?", 2006, section 12). A zero
 // normal, whose n.s is 0, gets 90 degrees.
-template <typename T>
+template<typename T>
 T incidenceAngleDegrees(const Vec3<T>& n, const Vec3<T>& s)
 {
   constexpr T degreesPerRadian = T(180.0 / 3.14159265358979323846);
@@ -28,14 +28,14 @@ T incidenceAngleDegrees(const Vec3<T>& n, const Vec3<T>& s)
 }
 
 // docs/formulas.md section 3, Lambert: I = Ld kd max(0, n.s). This is the max(0, n.s) factor.
-template <typename T>
+template<typename T>
 T lambertFactor(T cosIncidence)
 {
   return std::max(cosIncidence, T(0));
 }
 
 // docs/formulas.md section 4 (Phong 1975): r = 2 (n.s) n - s, the mirror direction of s about n.
-template <typename T>
+template<typename T>
 Vec3<T> reflectAboutNormal(const Vec3<T>& s, const Vec3<T>& n, T cosIncidence)
 {
   return T(2) * cosIncidence * n - s;
@@ -43,13 +43,13 @@ Vec3<T> reflectAboutNormal(const Vec3<T>& s, const Vec3<T>& n, T cosIncidence)
 
 // docs/formulas.md sections 5 and 16.2: h = (s + v) / |s + v| is undefined when s = -v.
 // Below this |s + v|^2 is pure rounding noise of two opposite unit vectors.
-template <typename T>
+template<typename T>
 constexpr T halfVectorUndefinedBelow2 = T(1e-12);
 
 // docs/formulas.md section 5 (Blinn 1977): h = (s + v) / |s + v|, or (0, 0, 0) where it is
 // undefined, with `defined` saying which. Without a branch, so that the kernel's loops over
 // blocks of vertices vectorise it.
-template <typename T>
+template<typename T>
 Vec3<T> halfVectorOrZero(const Vec3<T>& s, const Vec3<T>& v, bool& defined)
 {
   const Vec3<T> sum = s + v;
@@ -60,7 +60,7 @@ Vec3<T> halfVectorOrZero(const Vec3<T>& s, const Vec3<T>& v, bool& defined)
 }
 
 // The same, returning false (and leaving h untouched) where h is undefined.
-template <typename T>
+template<typename T>
 bool halfVector(const Vec3<T>& s, const Vec3<T>& v, Vec3<T>& h)
 {
   bool defined = false;
@@ -75,7 +75,7 @@ bool halfVector(const Vec3<T>& s, const Vec3<T>& v, Vec3<T>& h)
 // Inf (and Inf / Inf to NaN where a sampler divides by the lobe's density). Only a lit vertex
 // (n.s > 0) has a lobe. eta = 0 follows C++'s pow(0, 0) = 1: the lobe is
 // the constant 1 on every lit vertex (section 16.3).
-template <typename T>
+template<typename T>
 T specularLobe(bool lit, T cosine, T eta)
 {
   return lit ? std::pow(std::clamp(cosine, T(0), T(1)), eta) : T(0);

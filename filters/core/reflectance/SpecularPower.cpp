@@ -13,12 +13,9 @@ std::string powMethodName(PowMethod method)
 {
   switch (method)
   {
-    case PowMethod::Exact:
-      return "std::pow";
-    case PowMethod::Series:
-      return "series pow";
-    case PowMethod::Schlick:
-      return "Schlick pow";
+    case PowMethod::Exact: return "std::pow";
+    case PowMethod::Series: return "series pow";
+    case PowMethod::Schlick: return "Schlick pow";
   }
   return "";
 }
@@ -28,7 +25,7 @@ namespace
 /// The largest |power(x) - pow(x, eta)| over x in [0, 1], x and eta as type T holds them.
 /// x^eta changes fastest just below 1 for a large eta, so the grid is uniform in x and also
 /// geometric in 1 - x down to 1e-9, then refined around the worst sample.
-template <typename T, typename Power>
+template<typename T, typename Power>
 double searchLargestError(double eta, Power&& power)
 {
   auto errorAt = [&](double x)
@@ -69,7 +66,7 @@ double searchLargestError(double eta, Power&& power)
   return largest;
 }
 
-template <typename T>
+template<typename T>
 double searchLargestPowError(PowMethod method, double eta)
 {
   return searchLargestError<T>(eta,
@@ -147,7 +144,7 @@ double largestWholePowerError(unsigned eta)
     });
 }
 
-template <typename T>
+template<typename T>
 double largestPowError(PowMethod method, double eta)
 {
   if (!std::isfinite(eta))

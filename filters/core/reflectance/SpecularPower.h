@@ -3,9 +3,9 @@
 // and eta >= 0: the exact std::pow and two cheaper approximations that a tolerance may
 // choose. The approximations are branch-free arithmetic on the float's bits, so that a loop
 // of them vectorises, which a loop of std::pow calls does not.
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <cmath>
 #include <cstring>
 #include <limits>
 #include <string>
@@ -15,8 +15,8 @@ namespace shadelab
 {
 enum class PowMethod
 {
-  Exact,  // std::pow (wholePowers in float for a whole eta): within an ulp or so
-  Series, // exp2(eta log2 x) from short series: relative error about 1e-7 eta
+  Exact,   // std::pow (wholePowers in float for a whole eta): within an ulp or so
+  Series,  // exp2(eta log2 x) from short series: relative error about 1e-7 eta
   Schlick, // Schlick's rational x / (eta - eta x + x): a division, errors up to about 0.1
 };
 
@@ -25,14 +25,14 @@ std::string powMethodName(PowMethod method);
 namespace detail
 {
 /// The integer type as wide as T, for working on its bits.
-template <typename T>
+template<typename T>
 using BitsOf = std::conditional_t<sizeof(T) == 4, std::uint32_t, std::uint64_t>;
 
 // always_inline: a call inside a loop stops it vectorising, and GCC's inliner judges the
 // series too large to inline on its own.
 #define SHADELAB_ALWAYS_INLINE [[gnu::always_inline]] inline
 
-template <typename To, typename From>
+template<typename To, typename From>
 SHADELAB_ALWAYS_INLINE To bitCast(From from)
 {
   static_assert(sizeof(To) == sizeof(From));
@@ -45,7 +45,7 @@ SHADELAB_ALWAYS_INLINE To bitCast(From from)
 // ln m = 2 atanh(u), u = (m - 1) / (m + 1), |u| <= 0.172, is the odd series
 // 2 (u + u^3/3 + u^5/5 + u^7/7 + ...) (Abramowitz and Stegun 4.1.27). Four terms leave a
 // truncation error below 2 |u|^9 / 9 / ln 2 = 4e-8.
-template <typename T>
+template<typename T>
 SHADELAB_ALWAYS_INLINE T log2Series(T x)
 {
   using Bits = BitsOf<T>;
@@ -69,7 +69,7 @@ SHADELAB_ALWAYS_INLINE T log2Series(T x)
 // 2^y for y <= 0: y = k + f with k = round(y) and |f| <= 1/2, 2^k built in the exponent bits
 // and 2^f = e^(f ln 2) from its Taylor series to degree 7 (truncation below
 // (ln 2 / 2)^8 / 8! = 5e-9). Below the smallest normal the result is 0.
-template <typename T>
+template<typename T>
 SHADELAB_ALWAYS_INLINE T exp2Series(T y)
 {
   using Bits = BitsOf<T>;
@@ -82,8 +82,11 @@ SHADELAB_ALWAYS_INLINE T exp2Series(T y)
   const T k = (clamped + roundingShift) - roundingShift;
   const T g = (clamped - k) * T(0.693147180559945309);
   const T power = T(1) +
-    g * (T(1) + g * (T(1.0 / 2) + g * (T(1.0 / 6) + g * (T(1.0 / 24) +
-      g * (T(1.0 / 120) + g * (T(1.0 / 720) + g * T(1.0 / 5040)))))));
+    g *
+      (T(1) +
+        g *
+          (T(1.0 / 2) +
+            g * (T(1.0 / 6) + g * (T(1.0 / 24) + g * (T(1.0 / 120) + g * (T(1.0 / 720) + g * T(1.0 / 5040)))))));
   using Signed = std::make_signed_t<Bits>;
   const Signed biased = static_cast<Signed>(k) + (std::numeric_limits<T>::max_exponent - 1);
   const T scale = bitCast<T>(static_cast<Bits>(biased) << mantissaBits);
@@ -93,7 +96,7 @@ SHADELAB_ALWAYS_INLINE T exp2Series(T y)
 
 // x^eta = 2^(eta log2 x) from the two series above. x is raised to the smallest normal first,
 // so x = 0 gives 0 for eta >= 1 and 1 for eta = 0 (C++'s pow(0, 0) = 1), and no log of 0.
-template <typename T>
+template<typename T>
 SHADELAB_ALWAYS_INLINE T powSeries(T x, T eta)
 {
   const T smallest = std::numeric_limits<T>::min();
@@ -105,7 +108,7 @@ SHADELAB_ALWAYS_INLINE T powSeries(T x, T eta)
 // Forum 13(3), 1994, section 5: x^eta ~ x / (eta - eta x + x) for x in [0, 1]. Exact at
 // x = 0 and x = 1 and for eta = 1; broader than the true lobe in between. At eta = 0 it gives 1
 // for x > 0 and 0/0 at x = 0, which is taken as 1 to agree with pow(0, 0).
-template <typename T>
+template<typename T>
 SHADELAB_ALWAYS_INLINE T powSchlick(T x, T eta)
 {
   const T denominator = eta - eta * x + x;
@@ -114,20 +117,14 @@ SHADELAB_ALWAYS_INLINE T powSchlick(T x, T eta)
 
 /// Calls use(power) with the method's x -> x^eta as a function object, so that a loop inside
 /// use() is compiled once per method with no branch on the method in it.
-template <typename T, typename Use>
+template<typename T, typename Use>
 void withPowMethod(PowMethod method, T eta, Use&& use)
 {
   switch (method)
   {
-    case PowMethod::Exact:
-      use([eta](T x) { return std::pow(x, eta); });
-      break;
-    case PowMethod::Series:
-      use([eta](T x) { return powSeries(x, eta); });
-      break;
-    case PowMethod::Schlick:
-      use([eta](T x) { return powSchlick(x, eta); });
-      break;
+    case PowMethod::Exact: use([eta](T x) { return std::pow(x, eta); }); break;
+    case PowMethod::Series: use([eta](T x) { return powSeries(x, eta); }); break;
+    case PowMethod::Schlick: use([eta](T x) { return powSchlick(x, eta); }); break;
   }
 }
 
@@ -155,7 +152,7 @@ void evaluatePowers(PowMethod method, const float* x, float* y, std::size_t coun
 /// type T (float or double), found on a dense grid refined around the worst point: the error
 /// a tolerance compares against. For Exact it is the rounding of std::pow itself.
 /// Remembered per method and finite eta.
-template <typename T>
+template<typename T>
 double largestPowError(PowMethod method, double eta);
 
 /// The same search for wholePowers (float): its largest |x^eta - pow(x, eta)| over [0, 1].

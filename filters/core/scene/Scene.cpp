@@ -51,8 +51,8 @@ std::string meshCoordinateProblem(double reach, Precision precision)
   {
     return "";
   }
-  return "the mesh's coordinates reach " + scientific(reach) + ", beyond +-" +
-    scientific(coordinateLimit(precision)) + " where squared distances overflow " + precisionName(precision) +
+  return "the mesh's coordinates reach " + scientific(reach) + ", beyond +-" + scientific(coordinateLimit(precision)) +
+    " where squared distances overflow " + precisionName(precision) +
     (precision == Precision::Float32 ? ": use double precision (shadelab shade --precision float64)" : "");
 }
 
@@ -97,8 +97,8 @@ bool isLightName(const std::string& name)
 {
   auto isAsciiLetter = [](char c) { return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z'); };
   return !name.empty() && isAsciiLetter(name[0]) &&
-    std::all_of(name.begin(), name.end(),
-      [&](char c) { return isAsciiLetter(c) || (c >= '0' && c <= '9') || c == '_'; });
+    std::all_of(
+      name.begin(), name.end(), [&](char c) { return isAsciiLetter(c) || (c >= '0' && c <= '9') || c == '_'; });
 }
 
 void checkLightName(const std::string& name, const std::string& at, ProblemList& list)
@@ -117,7 +117,8 @@ void checkLightName(const std::string& name, const std::string& at, ProblemList&
 
 bool Scene::needsVisibility() const
 {
-  return ambientOcclusion || std::any_of(lights.begin(), lights.end(), [](const NamedLight& light) { return light.shadows; });
+  return ambientOcclusion ||
+    std::any_of(lights.begin(), lights.end(), [](const NamedLight& light) { return light.shadows; });
 }
 
 std::vector<SceneProblem> sceneProblems(const Scene& scene, Precision precision)
@@ -160,16 +161,18 @@ std::vector<SceneProblem> sceneProblems(const Scene& scene, Precision precision)
     checkLightName(light.name, at, list);
     LightChecks checks(at, scene.model, viewer.lineOfSight(), precision, list);
     checkLightSource(light.source, checks);
-    list.check(lightNames.insert(light.name).second, at + "/name",
-      "another light is already named '" + light.name + "'");
+    list.check(
+      lightNames.insert(light.name).second, at + "/name", "another light is already named '" + light.name + "'");
     list.check(!light.shadows || castsShadows(light.source), at + "/shadows",
-      "only " + shadowCastingTypeNames() + " lights cast shadows (an ambient light has no direction; "
-      "the mesh's shadowing of it is ambient occlusion): remove \"shadows\" from this light");
+      "only " + shadowCastingTypeNames() +
+        " lights cast shadows (an ambient light has no direction; "
+        "the mesh's shadowing of it is ambient occlusion): remove \"shadows\" from this light");
   }
   if (scene.ambientOcclusion)
   {
     const double maxDistance = scene.ambientOcclusion->maxDistance;
-    list.check((maxDistance > 0 && maxDistance <= coordinateLimit(precision)) || maxDistance == std::numeric_limits<double>::infinity(),
+    list.check((maxDistance > 0 && maxDistance <= coordinateLimit(precision)) ||
+        maxDistance == std::numeric_limits<double>::infinity(),
       "/ambient_occlusion/max_distance", "must be a number > 0 (leave it out to count occluders at any distance)");
   }
 
@@ -182,7 +185,8 @@ std::vector<SceneProblem> sceneProblems(const Scene& scene, Precision precision)
     const double limit = largestFinite(precision) / 4;
     auto beyond = [&](double peak)
     {
-      const std::string reach = std::isfinite(peak) ? scientific(peak) : "more than " + scientific(largestFinite(Precision::Float64));
+      const std::string reach =
+        std::isfinite(peak) ? scientific(peak) : "more than " + scientific(largestFinite(Precision::Float64));
       return reach + " at a vertex (colour x intensity x k x attenuation at min_distance), beyond what " +
         precisionName(precision) + " holds: use " + (precision == Precision::Float32 ? "float64 or " : "");
     };
@@ -197,7 +201,8 @@ std::vector<SceneProblem> sceneProblems(const Scene& scene, Precision precision)
       const double unitPeak = peakContribution(unit, m);
       const bool nearness = unitPeak > 1 && unitPeak * unitPeak > peak;
       list.check(peak <= limit, "/lights/" + std::to_string(i) + (nearness ? "/min_distance" : "/intensity"),
-        "this light alone can reach " + beyond(peak) + (nearness ? "a larger min_distance" : "a smaller intensity or colour"));
+        "this light alone can reach " + beyond(peak) +
+          (nearness ? "a larger min_distance" : "a smaller intensity or colour"));
       sum += peak;
     }
     list.check(list.problems.size() > 0 || sum <= limit, "/lights",

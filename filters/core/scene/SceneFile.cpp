@@ -36,8 +36,7 @@ NamedLight readLight(const JsonNode& node, std::size_t index, const std::string&
     std::visit([&](auto& source) { source.color = rgb; }, light.source);
   }
   light.name = node.has("name") ? node.at("name").text() : lightTypeName(light.source) + std::to_string(index);
-  light.shadows = node.has("shadows") ? node.at("shadows").boolean()
-                                      : shadowsByDefault && castsShadows(light.source);
+  light.shadows = node.has("shadows") ? node.at("shadows").boolean() : shadowsByDefault && castsShadows(light.source);
   return light;
 }
 
@@ -71,8 +70,8 @@ ArrayCoefficient readArrayCoefficient(const JsonNode& node, MaterialCoefficient 
   }
   if (node.has("encoding"))
   {
-    c.encoding = node.at("encoding").choice<ArrayEncoding>(
-      { { "srgb", ArrayEncoding::Srgb }, { "linear", ArrayEncoding::Linear } });
+    c.encoding = node.at("encoding")
+                   .choice<ArrayEncoding>({ { "srgb", ArrayEncoding::Srgb }, { "linear", ArrayEncoding::Linear } });
   }
   c.scale = numberOr(node, "scale", c.scale);
   if (node.has("colormap"))
@@ -152,7 +151,8 @@ Material readMaterial(const JsonNode& node, ShadingModel model)
   readColorCoefficient(node, MaterialCoefficient::Specular, m, m.ks);
   if (node.has("shininess") && node.at("shininess").isObject())
   {
-    m.arrays[MaterialCoefficient::Shininess] = readArrayCoefficient(node.at("shininess"), MaterialCoefficient::Shininess);
+    m.arrays[MaterialCoefficient::Shininess] =
+      readArrayCoefficient(node.at("shininess"), MaterialCoefficient::Shininess);
     m.shininess = m.arrays[MaterialCoefficient::Shininess]->scale;
   }
   else
@@ -161,8 +161,9 @@ Material readMaterial(const JsonNode& node, ShadingModel model)
   }
   if (node.has("specular"))
   {
-    m.specular = node.at("specular").choice<SpecularModel>({ { "blinn-phong", SpecularModel::BlinnPhong },
-      { "phong", SpecularModel::Phong }, { "none", SpecularModel::None } });
+    m.specular = node.at("specular")
+                   .choice<SpecularModel>({ { "blinn-phong", SpecularModel::BlinnPhong },
+                     { "phong", SpecularModel::Phong }, { "none", SpecularModel::None } });
   }
   if (node.has("two_sided"))
   {
@@ -217,7 +218,8 @@ Scene readScene(const Json& document, const std::string& sceneFile)
   {
     scene.viewer = readViewer(root.at("viewer"));
   }
-  scene.material = readMaterial(root.has("material") ? root.at("material") : JsonNode(Json::object(), "/material"), scene.model);
+  scene.material =
+    readMaterial(root.has("material") ? root.at("material") : JsonNode(Json::object(), "/material"), scene.model);
   const JsonNode lights = root.at("lights");
   if (!lights.isArray())
   {
@@ -230,8 +232,9 @@ Scene readScene(const Json& document, const std::string& sceneFile)
   }
   if (root.has("self_shadowing"))
   {
-    scene.selfShadowing = root.at("self_shadowing").choice<SelfShadowing>(
-      { { "smooth", SelfShadowing::SmoothSurface }, { "facets", SelfShadowing::Facets } });
+    scene.selfShadowing =
+      root.at("self_shadowing")
+        .choice<SelfShadowing>({ { "smooth", SelfShadowing::SmoothSurface }, { "facets", SelfShadowing::Facets } });
   }
   if (root.has("ambient_occlusion"))
   {
@@ -250,8 +253,7 @@ Scene readScene(const Json& document, const std::string& sceneFile)
     {
       scene.lights.push_back({ "headlight", Headlight{} });
     }
-    scene.vtkLoneHeadlight =
-      scene.lights.size() == 1 && std::holds_alternative<Headlight>(scene.lights[0].source);
+    scene.vtkLoneHeadlight = scene.lights.size() == 1 && std::holds_alternative<Headlight>(scene.lights[0].source);
   }
   const std::vector<SceneProblem> problems = sceneProblems(scene);
   if (!problems.empty())
@@ -293,7 +295,8 @@ Scene parseScene(const std::string& text, const std::string& sourceName)
     const std::size_t end = message.find("] ");
     message = end == std::string::npos ? message : message.substr(end + 2);
     // The message quotes what it last read, which in a binary file is any byte.
-    std::replace_if(message.begin(), message.end(), [](char c) { return c < 0x20 || c >= 0x7f; }, '?');
+    std::replace_if(
+      message.begin(), message.end(), [](char c) { return c < 0x20 || c >= 0x7f; }, '?');
     throw SceneFileError(sourceName + ": not valid JSON: " + message);
   }
   try

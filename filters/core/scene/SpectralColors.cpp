@@ -72,8 +72,9 @@ LightColors spectralLightColors(const Scene& scene)
   const SpectralFunction kd = reflectanceOf(m, MaterialCoefficient::Diffuse, m.kd);
   const SpectralFunction ks = reflectanceOf(m, MaterialCoefficient::Specular, m.ks);
   // The emission times a reflectance, summed through the observer, as linear sRGB.
-  auto reflected = [&](const SpectralFunction& emission, const SpectralFunction& reflectance)
-  { return toRgb * tristimulus([&](double nm) { return emission(nm) * reflectance(nm); }, standardObserver(), bandNm); };
+  auto reflected = [&](const SpectralFunction& emission, const SpectralFunction& reflectance) {
+    return toRgb * tristimulus([&](double nm) { return emission(nm) * reflectance(nm); }, standardObserver(), bandNm);
+  };
   LightColors colors;
   for (const NamedLight& light : scene.lights)
   {

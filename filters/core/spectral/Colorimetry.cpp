@@ -92,8 +92,8 @@ ColorMatchingFunctions cie1931Observer(const std::string& folder)
 
 const std::vector<std::string>& cieIlluminantNames()
 {
-  static const std::vector<std::string> names{ "A", "B", "C", "D50", "D55", "D65", "D93", "E", "F1", "F2", "F3",
-    "F4", "F5", "F6", "F7", "F8", "F9", "F10", "F11", "F12" };
+  static const std::vector<std::string> names{ "A", "B", "C", "D50", "D55", "D65", "D93", "E", "F1", "F2", "F3", "F4",
+    "F5", "F6", "F7", "F8", "F9", "F10", "F11", "F12" };
   return names;
 }
 
@@ -107,8 +107,8 @@ SampledSpectrum cieIlluminant(const std::string& name, const std::string& folder
   return readColordSpectrum(folder + "/illuminant/CIE-" + name + ".sp");
 }
 
-glm::dvec3 tristimulus(const std::function<double(double)>& stimulus, const ColorMatchingFunctions& observer,
-  double bandNm)
+glm::dvec3 tristimulus(
+  const std::function<double(double)>& stimulus, const ColorMatchingFunctions& observer, double bandNm)
 {
   glm::dvec3 xyz(0.0);
   const auto bands = std::size_t(std::lround((observer.y.endNm() - observer.y.startNm) / bandNm)) + 1;

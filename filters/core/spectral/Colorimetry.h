@@ -37,8 +37,8 @@ SampledSpectrum cieIlluminant(const std::string& name, const std::string& folder
 /// The tristimulus values X, Y, Z of a stimulus (light reaching the eye, per nm), summed over
 /// bands of bandNm from the observer's first wavelength to its last, each band's stimulus and
 /// observer taken at its wavelength (CIE 015:2018's sums).
-glm::dvec3 tristimulus(const std::function<double(double)>& stimulus, const ColorMatchingFunctions& observer,
-  double bandNm);
+glm::dvec3 tristimulus(
+  const std::function<double(double)>& stimulus, const ColorMatchingFunctions& observer, double bandNm);
 
 /// The chromaticity (x, y) = (X, Y) / (X + Y + Z).
 glm::dvec2 chromaticity(const glm::dvec3& xyz);

@@ -29,8 +29,8 @@ SampledSpectrum sigmoidSpectrum(const glm::dvec3& c, const SampledSpectrum& grid
 }
 }
 
-glm::dvec3 reflectanceRgb(const SampledSpectrum& reflectance, const ColorMatchingFunctions& observer,
-  const SampledSpectrum& d65)
+glm::dvec3 reflectanceRgb(
+  const SampledSpectrum& reflectance, const ColorMatchingFunctions& observer, const SampledSpectrum& d65)
 {
   const double band = observer.y.stepNm;
   const glm::dvec3 white = tristimulus([&](double nm) { return d65.at(nm); }, observer, band);
@@ -40,17 +40,18 @@ glm::dvec3 reflectanceRgb(const SampledSpectrum& reflectance, const ColorMatchin
   return (toRgb * xyz) / (toRgb * white);
 }
 
-UpsampledReflectance upsampleReflectance(const glm::dvec3& rgb, const ColorMatchingFunctions& observer,
-  const SampledSpectrum& d65)
+UpsampledReflectance upsampleReflectance(
+  const glm::dvec3& rgb, const ColorMatchingFunctions& observer, const SampledSpectrum& d65)
 {
   UpsampledReflectance result;
   if (rgb.x == rgb.y && rgb.y == rgb.z)
   {
-    result.spectrum = SampledSpectrum{ observer.y.startNm, observer.y.stepNm,
-      std::vector<double>(observer.y.values.size(), rgb.x) };
+    result.spectrum =
+      SampledSpectrum{ observer.y.startNm, observer.y.stepNm, std::vector<double>(observer.y.values.size(), rgb.x) };
     return result;
   }
-  auto residual = [&](const glm::dvec3& c) { return reflectanceRgb(sigmoidSpectrum(c, observer.y), observer, d65) - rgb; };
+  auto residual = [&](const glm::dvec3& c)
+  { return reflectanceRgb(sigmoidSpectrum(c, observer.y), observer, d65) - rgb; };
   glm::dvec3 c(0.0);
   glm::dvec3 r = residual(c);
   double damping = 1e-3;

@@ -47,7 +47,8 @@ SampledSpectrum readSpectrum(const JsonNode& node)
     {
       node.at("blackbody").fail("must be a temperature in kelvin from 500 to 1e6");
     }
-    const SampledSpectrum& grid = withColorTables(node, [&]() -> const SampledSpectrum& { return standardObserver().y; });
+    const SampledSpectrum& grid =
+      withColorTables(node, [&]() -> const SampledSpectrum& { return standardObserver().y; });
     return blackbody(kelvin, grid.startNm, grid.endNm(), grid.stepNm);
   }
   SampledSpectrum table;

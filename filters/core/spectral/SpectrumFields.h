@@ -14,7 +14,7 @@ const ColorMatchingFunctions& standardObserver();
 const SampledSpectrum& d65Illuminant();
 
 /// compute(), or node's failure saying why where colord's tables are missing.
-template <typename Compute>
+template<typename Compute>
 auto withColorTables(const JsonNode& node, Compute&& compute)
 {
   try
@@ -39,6 +39,7 @@ SampledSpectrum readSpectrum(const JsonNode& node);
 glm::dvec3 emitterRgb(const SampledSpectrum& emission);
 
 /// A reflectance's linear sRGB under D65, a flat 1.0 being (1, 1, 1): what it is in the RGB
-/// model, negative channels (outside sRGB's gamut) set to 0. Throws std::runtime_error where colord's tables are missing.
+/// model, negative channels (outside sRGB's gamut) set to 0. Throws std::runtime_error where colord's tables are
+/// missing.
 glm::dvec3 reflectorRgb(const SampledSpectrum& reflectance);
 }

@@ -10,8 +10,8 @@
 #include <algorithm>
 #include <cstring>
 #include <stdexcept>
-#include <utility>
 #include <string>
+#include <utility>
 
 namespace shadelab
 {
@@ -257,8 +257,9 @@ OccluderMesh::OccluderMesh(UnitFrame frame, const PolygonList& polygons)
     const PointId* ids = polygons.ids(k);
     for (std::size_t i = 2; i < polygons.size(k); ++i)
     {
-      triangles_.insert(triangles_.end(), { static_cast<std::uint32_t>(ids[0]), static_cast<std::uint32_t>(ids[i - 1]),
-        static_cast<std::uint32_t>(ids[i]) });
+      triangles_.insert(triangles_.end(),
+        { static_cast<std::uint32_t>(ids[0]), static_cast<std::uint32_t>(ids[i - 1]),
+          static_cast<std::uint32_t>(ids[i]) });
     }
   }
   std::uint32_t groups = 0;
@@ -284,8 +285,8 @@ OccluderMesh::OccluderMesh(UnitFrame frame, const PolygonList& polygons)
   rtcSetSceneFlags(embree_->scene, RTC_SCENE_FLAG_ROBUST);
   RTCGeometry geometry = rtcNewGeometry(embree_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
   // Shared buffers: Embree reads ShadeLab's arrays, no copy.
-  rtcSetSharedGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, frame_.vertices.data(), 0,
-    3 * sizeof(float), pointCount);
+  rtcSetSharedGeometryBuffer(
+    geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, frame_.vertices.data(), 0, 3 * sizeof(float), pointCount);
   rtcSetSharedGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, triangles_.data(), 0,
     3 * sizeof(std::uint32_t), triangleCount());
   rtcCommitGeometry(geometry);
@@ -415,7 +416,8 @@ float OccluderMesh::ownTrianglesReach(const FrameRay& ray, const glm::vec3& unit
   // A triangle with a corner at the point lies within its reach of the point, so within
   // reach + |origin - point| of the ray's origin; the margin covers float's rounding of the
   // lengths and of the hit's distance.
-  const float reach = 1.001f * (ownReach_[static_cast<std::size_t>(vertex)] + glm::length(ray.origin - unitPoint)) + 1e-6f;
+  const float reach =
+    1.001f * (ownReach_[static_cast<std::size_t>(vertex)] + glm::length(ray.origin - unitPoint)) + 1e-6f;
   return std::min(ray.maxDistance, reach);
 }
 
@@ -442,7 +444,8 @@ bool OccluderMesh::leavesAllOwnPlanes(const FrameRay& ray, const glm::vec3& unit
   };
   const glm::dvec3 lift = glm::dvec3(ray.origin) - glm::dvec3(unitPoint), direction(ray.direction);
   const glm::dvec3 magnitude = glm::abs(glm::dvec3(unitPoint));
-  const double leastLift = 32 * 0x1p-24 * (std::max({ magnitude.x, magnitude.y, magnitude.z }) + ownReach_[point] + glm::length(lift));
+  const double leastLift =
+    32 * 0x1p-24 * (std::max({ magnitude.x, magnitude.y, magnitude.z }) + ownReach_[point] + glm::length(lift));
   auto movesAway = [&](double side)
   {
     const double liftCosine = leastCosine(lift, side);
@@ -496,7 +499,8 @@ bool OccluderMesh::firstHitHasCorner(const FrameRay& ray, const glm::dvec3& poin
   return hit >= 0 && hasCornerAt(std::size_t(hit), unitPoint);
 }
 
-bool OccluderMesh::aroundOnItsSurface(std::size_t t, PointId vertex, const glm::vec3& point, const glm::dvec3& side) const
+bool OccluderMesh::aroundOnItsSurface(
+  std::size_t t, PointId vertex, const glm::vec3& point, const glm::dvec3& side) const
 {
   for (int i = 0; i < 3; ++i)
   {
@@ -535,7 +539,8 @@ double OccluderMesh::ownFacetsRise(const glm::vec3& point, PointId vertex, const
   sphere.radius = 1.001f * ownReach_[static_cast<std::size_t>(vertex)] + 1e-6f;
   RTCPointQueryContext context;
   rtcInitPointQueryContext(&context);
-  rtcPointQuery(embree_->scene, &sphere, &context,
+  rtcPointQuery(
+    embree_->scene, &sphere, &context,
     [](RTCPointQueryFunctionArguments* args)
     {
       Query& q = *static_cast<Query*>(args->userPtr);

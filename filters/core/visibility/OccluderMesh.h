@@ -24,8 +24,8 @@ namespace shadelab
 /// to the end of the scene). In the mesh's own coordinates.
 struct SurfaceRay
 {
-  glm::dvec3 point{ 0.0 };  // the surface point it leaves
-  glm::dvec3 side{ 0.0 };   // the unit normal of the side it leaves from
+  glm::dvec3 point{ 0.0 }; // the surface point it leaves
+  glm::dvec3 side{ 0.0 };  // the unit normal of the side it leaves from
   glm::dvec3 direction{ 0.0 };
   double maxDistance = std::numeric_limits<double>::infinity();
   /// The point id of the vertex it leaves, or -1. Where the point has copies (a seam, or a hard
@@ -38,7 +38,7 @@ class OccluderMesh
 public:
   /// The polygons (split into fans of triangles) over pointCount points; pointAt(id) gives a
   /// point in the mesh's coordinates.
-  template <typename Real>
+  template<typename Real>
   OccluderMesh(PackedPoints<Real> points, std::size_t pointCount, const PolygonList& polygons)
     : OccluderMesh(UnitFrame::of(points, pointCount), polygons)
   {
@@ -124,7 +124,7 @@ private:
     std::vector<float> vertices; // x, y, z per point, then one padding float
 
     glm::dvec3 toUnit(const glm::dvec3& p) const { return (p - centre) / radius; }
-    template <typename Real>
+    template<typename Real>
     static UnitFrame of(PackedPoints<Real> points, std::size_t pointCount);
   };
   OccluderMesh(UnitFrame frame, const PolygonList& polygons);
@@ -170,7 +170,7 @@ private:
   std::unique_ptr<Embree> embree_;
 };
 
-template <typename Real>
+template<typename Real>
 OccluderMesh::UnitFrame OccluderMesh::UnitFrame::of(PackedPoints<Real> points, std::size_t pointCount)
 {
   // The bounding box's centre and the largest distance from it, over the finite points: a

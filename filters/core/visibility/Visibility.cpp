@@ -89,12 +89,13 @@ glm::dvec3 uniformHemisphereDirection(const glm::dvec3& n, const glm::dvec2& u)
 
 /// Casts a ray along direction(u) for each sample point u, in bundles, and calls
 /// seen(direction, hidden) for each in sample order. The rays share their start.
-template <typename Direction, typename Seen>
-void forEachRay(const OccluderMesh& occluders, const RayVertex& vertex, const RaySamples& samples,
-  double maxDistance, Direction direction, Seen seen)
+template<typename Direction, typename Seen>
+void forEachRay(const OccluderMesh& occluders, const RayVertex& vertex, const RaySamples& samples, double maxDistance,
+  Direction direction, Seen seen)
 {
   OccluderMesh::FrameRay rays[OccluderMesh::bundleSize];
-  std::fill(std::begin(rays), std::end(rays), occluders.inFrame({ vertex.position, vertex.normal, {}, maxDistance, vertex.id }));
+  std::fill(std::begin(rays), std::end(rays),
+    occluders.inFrame({ vertex.position, vertex.normal, {}, maxDistance, vertex.id }));
   for (int first = 0; first < samples.count(); first += OccluderMesh::bundleSize)
   {
     const int count = std::min(OccluderMesh::bundleSize, samples.count() - first);
@@ -128,13 +129,14 @@ double openFractionError(const MonteCarloMean<double>& open, int rays)
 /// seen(direction, hidden) for each in sample order: settings' fixed count in one round or,
 /// with a target, rounds until the open fraction in `open` meets it (SequentialSampling.h).
 /// Returns how many rays were cast.
-template <typename Direction, typename Seen>
-int drawRays(const OccluderMesh& occluders, const RayVertex& vertex, std::uint64_t seed, const OcclusionSettings& settings,
-  const MonteCarloMean<double>& open, Direction direction, Seen seen)
+template<typename Direction, typename Seen>
+int drawRays(const OccluderMesh& occluders, const RayVertex& vertex, std::uint64_t seed,
+  const OcclusionSettings& settings, const MonteCarloMean<double>& open, Direction direction, Seen seen)
 {
   if (!settings.target)
   {
-    forEachRay(occluders, vertex, RaySamples(seed, vertex.id, settings.sampling), settings.maxDistance, direction, seen);
+    forEachRay(
+      occluders, vertex, RaySamples(seed, vertex.id, settings.sampling), settings.maxDistance, direction, seen);
     return settings.sampling.samples;
   }
   int drawn = 0;
@@ -192,7 +194,8 @@ void lightVisibility(const OccluderMesh& occluders, const RayVertex* vertices, c
   trace();
 }
 
-int HiddenSampleTracer::add(const ShadowedLightEstimator& light, const SurfacePoint& point, PointId vertex, std::uint64_t* words)
+int HiddenSampleTracer::add(
+  const ShadowedLightEstimator& light, const SurfacePoint& point, PointId vertex, std::uint64_t* words)
 {
   const int count = light.shadowRayCount();
   rays_.resize(static_cast<std::size_t>(count));
@@ -288,7 +291,8 @@ bool enclosesPoint(const OccluderMesh& occluders, const glm::dvec3& point)
   return true;
 }
 
-OcclusionEstimate ambientOcclusion(const OccluderMesh& occluders, const RayVertex& vertex, const OcclusionSettings& settings)
+OcclusionEstimate ambientOcclusion(
+  const OccluderMesh& occluders, const RayVertex& vertex, const OcclusionSettings& settings)
 {
   OcclusionEstimate estimate;
   if (!hasNormal(vertex))
@@ -297,7 +301,8 @@ OcclusionEstimate ambientOcclusion(const OccluderMesh& occluders, const RayVerte
   }
   MonteCarloMean<double> open(settings.sampling.stratified);
   glm::dvec3 openDirections(0.0);
-  estimate.rays = drawRays(occluders, vertex, occlusionSeed, settings, open,
+  estimate.rays = drawRays(
+    occluders, vertex, occlusionSeed, settings, open,
     [&](const glm::dvec2& u) { return cosineWeightedDirection(vertex.normal, u).direction; },
     [&](const glm::dvec3& direction, bool hidden)
     {
@@ -313,7 +318,8 @@ OcclusionEstimate ambientOcclusion(const OccluderMesh& occluders, const RayVerte
   if (settings.skyViewFactor)
   {
     MonteCarloMean<double> unblocked(settings.sampling.stratified);
-    drawRays(occluders, vertex, skyViewSeed, settings, unblocked,
+    drawRays(
+      occluders, vertex, skyViewSeed, settings, unblocked,
       [&](const glm::dvec2& u) { return uniformHemisphereDirection(vertex.normal, u); },
       [&](const glm::dvec3&, bool hidden) { unblocked.add(hidden ? 0.0 : 1.0); });
     estimate.skyViewFactor = unblocked.mean();

@@ -89,7 +89,7 @@ private:
   std::vector<ShadowRay> rays_; // one point's rays, as the light names them
   OccluderMesh::FrameRay packet_[OccluderMesh::bundleSize];
   SurfaceRay surfaceRays_[OccluderMesh::bundleSize]; // the queued rays as they leave the surface
-  std::uint64_t* wordOf_[OccluderMesh::bundleSize]; // where each queued ray's answer goes
+  std::uint64_t* wordOf_[OccluderMesh::bundleSize];  // where each queued ray's answer goes
   int bitOf_[OccluderMesh::bundleSize];
   int queued_ = 0;
 };
@@ -142,11 +142,11 @@ struct OcclusionSettings
 
 struct OcclusionEstimate
 {
-  double occlusion = 1;     // the cosine-weighted unoccluded fraction: 1 under an open sky
-  double standardError = 0; // of occlusion
+  double occlusion = 1;         // the cosine-weighted unoccluded fraction: 1 under an open sky
+  double standardError = 0;     // of occlusion
   glm::dvec3 bentNormal{ 0.0 }; // unit; (0, 0, 0) where every ray is blocked or not asked for
-  double skyViewFactor = 1; // the uniformly weighted fraction, when asked for
-  int rays = 0;             // cast for occlusion (as many again for the sky view factor, or its own count with a target)
+  double skyViewFactor = 1;     // the uniformly weighted fraction, when asked for
+  int rays = 0; // cast for occlusion (as many again for the sky view factor, or its own count with a target)
 };
 
 /// Ambient occlusion at the vertex: settings.sampling.samples cosine-weighted directions about
@@ -154,5 +154,6 @@ struct OcclusionEstimate
 /// of its id and the sample), so that the estimate is the same bits on any number of threads.
 /// A vertex without a normal gets the open sky's values: 1, standard error 0, no bent normal,
 /// no rays.
-OcclusionEstimate ambientOcclusion(const OccluderMesh& occluders, const RayVertex& vertex, const OcclusionSettings& settings);
+OcclusionEstimate ambientOcclusion(
+  const OccluderMesh& occluders, const RayVertex& vertex, const OcclusionSettings& settings);
 }
