@@ -64,13 +64,10 @@ std::vector<unsigned char> pointsToMeasure(const shadelab::Scene& scene, vtkData
   context.lineOfSight = scene.viewer.lineOfSight();
   for (const shadelab::NamedLight& light : scene.lights)
   {
-    if (!shadelab::isDistributed(light.source)) // (a map's preparation would project it)
+    // Only local lights: a map's preparation would project it.
+    if (shadelab::roleOf(light.source) == shadelab::LightRole::Local)
     {
-      const shadelab::LightEvaluation evaluation = shadelab::prepareEvaluation(light.source, context);
-      if (const auto* local = std::get_if<shadelab::LocalEvaluation>(&evaluation))
-      {
-        lights.push_back(*local);
-      }
+      lights.push_back(std::get<shadelab::LocalEvaluation>(shadelab::prepareEvaluation(light.source, context)));
     }
   }
   const double eta = scene.material.shininess;

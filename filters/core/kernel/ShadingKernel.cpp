@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "Overloaded.h"
 #include "Reflectance.h"
 
 #include <algorithm>
@@ -308,34 +309,35 @@ ShadingKernel<T>::ShadingKernel(
     context.lightIndex = l;
     context.lobe = LobeModel{ needsSpecular ? specularModel_ : SpecularModel::None, m.shininess };
     const LightEvaluation evaluation = prepareEvaluation(scene.lights[l].source, context);
-    if (const auto* ambient = std::get_if<AmbientEvaluation>(&evaluation))
-    {
-      ambientLight += ambient->radiance;
-    }
-    else if (const auto* distributed = std::get_if<DistributedEvaluation>(&evaluation))
-    {
-      if (method.targets.any() && l < inputs_.lightHiddenSamples.size() && inputs_.lightHiddenSamples[l])
-      {
-        // A fixed count's bits hold no rounds: the visibility step estimates such a light.
-        throw std::logic_error(
-          "light '" + scene.lights[l].name + "' is drawn to a target: give its shadowed terms, not hidden samples");
-      }
-      distributedLights_.push_back(prepareDistributed(*distributed, out, m, needsSpecular,
-        l < inputs_.lightHiddenSamples.size() ? inputs_.lightHiddenSamples[l] : nullptr,
-        l < inputs_.lightShadowedTerms.size() ? inputs_.lightShadowedTerms[l] : nullptr));
-      distributedLights_.back().shortOfTarget = l < outputs_.shortOfTarget.size() ? outputs_.shortOfTarget[l] : nullptr;
-      distributedLights_.back().transferComponents = termComponents_.back()[int(LightTerm::ShTransfer)];
-    }
-    else
-    {
-      lights_.push_back(prepareLocal(std::get<LocalEvaluation>(evaluation), out, m, needsSpecular, method.pow));
-      lights_.back().visibility = l < inputs_.lightVisibility.size() ? inputs_.lightVisibility[l] : nullptr;
-      if (const LightColors* colors = inputs_.lightColors)
-      {
-        lights_.back().diffuseColor = toVec<T>(colors->diffuse.at(l));
-        lights_.back().specularColor = toVec<T>(colors->specular.at(l));
-      }
-    }
+    // Every form the kernel evaluates has its case here: a new one does not compile until it does.
+    std::visit(Overloaded{ [&](const AmbientEvaluation& ambient) { ambientLight += ambient.radiance; },
+                 [&](const DistributedEvaluation& distributed)
+                 {
+                   if (method.targets.any() && l < inputs_.lightHiddenSamples.size() && inputs_.lightHiddenSamples[l])
+                   {
+                     // A fixed count's bits hold no rounds: the visibility step estimates such a light.
+                     throw std::logic_error("light '" + scene.lights[l].name +
+                       "' is drawn to a target: give its shadowed terms, not hidden samples");
+                   }
+                   distributedLights_.push_back(prepareDistributed(distributed, out, m, needsSpecular,
+                     l < inputs_.lightHiddenSamples.size() ? inputs_.lightHiddenSamples[l] : nullptr,
+                     l < inputs_.lightShadowedTerms.size() ? inputs_.lightShadowedTerms[l] : nullptr));
+                   distributedLights_.back().shortOfTarget =
+                     l < outputs_.shortOfTarget.size() ? outputs_.shortOfTarget[l] : nullptr;
+                   distributedLights_.back().transferComponents = termComponents_.back()[int(LightTerm::ShTransfer)];
+                 },
+                 [&](const LocalEvaluation& local)
+                 {
+                   lights_.push_back(prepareLocal(local, out, m, needsSpecular, method.pow));
+                   lights_.back().visibility =
+                     l < inputs_.lightVisibility.size() ? inputs_.lightVisibility[l] : nullptr;
+                   if (const LightColors* colors = inputs_.lightColors)
+                   {
+                     lights_.back().diffuseColor = toVec<T>(colors->diffuse.at(l));
+                     lights_.back().specularColor = toVec<T>(colors->specular.at(l));
+                   }
+                 } },
+      evaluation);
   }
   ambient_ = toVec<T>(inputs_.lightColors ? inputs_.lightColors->ambient : m.ka * ambientLight);
   needsViewer_ = twoSided_ || outputs_.flags != nullptr ||

@@ -216,4 +216,16 @@ LightEvaluation AreaLight::prepare(const EvaluationContext& context) const
     std::make_shared<const AreaLightEstimator>(*this, context.lightIndex, context.lobe, context.targets);
   return DistributedEvaluation{ estimator, std::nullopt, estimator };
 }
+
+ToleranceBounds AreaLight::toleranceBounds(const Material&, bool) const
+{
+  ToleranceBounds bounds;
+  bounds.sampledIrradiance = estimator == AreaEstimator::MonteCarlo;
+  bounds.autoSamples = "\"samples\": \"auto\"";
+  if (estimator == AreaEstimator::Point)
+  {
+    bounds.unbounded = "its \"point\" estimator has no error bound: use \"exact\" or \"monte_carlo\"";
+  }
+  return bounds;
+}
 }

@@ -53,5 +53,6 @@ struct AreaLight
   Sampling sampling;
 
   SHADELAB_LIGHT_TYPE(AreaLight, Distributed, false, true);
+  ToleranceBounds toleranceBounds(const Material& m, bool shadowed) const;
 };
 }

@@ -3,6 +3,9 @@
 #include "EnvironmentLightEstimator.h"
 #include "EnvironmentMap.h"
 #include "LightFields.h"
+#include "NumberText.h"
+#include "RadianceTransfer.h"
+#include "SphericalHarmonics.h"
 
 #include <algorithm>
 #include <filesystem>
@@ -158,5 +161,34 @@ LightEvaluation EnvironmentLight::prepare(const EvaluationContext& context) cons
     return DistributedEvaluation{ context.lobe.wanted() ? estimator : nullptr, irradiance, estimator };
   }
   return DistributedEvaluation{ estimator, std::nullopt, estimator };
+}
+
+ToleranceBounds EnvironmentLight::toleranceBounds(const Material& m, bool shadowed) const
+{
+  ToleranceBounds bounds;
+  bounds.sampledIrradiance = estimator == EnvironmentEstimator::MonteCarlo;
+  bounds.autoSamples = "\"samples\": \"auto\" (--envmap-samples auto)";
+  const bool transfer = estimator == EnvironmentEstimator::PrecomputedTransfer;
+  if (estimator == EnvironmentEstimator::BruteForce)
+  {
+    bounds.unbounded = "the \"brute_force\" sum of a downsampled map has no error bound: use \"sh\" or \"monte_carlo\"";
+  }
+  else if (transfer && shadowed)
+  {
+    // Its bands' error under shadows is bounded only by the map less its bands, integrated
+    // (docs/formulas.md section 12.10), and its rays are a fixed count.
+    const double error =
+      largestComponent(color * intensity * bandLimitError(*map, shOrder)) * std::max(1.0, largestComponent(m.kd));
+    bounds.unbounded = "its shadowed transfer vectors can err by up to " + scientific(error) +
+      " through their bands alone, and are estimated from a fixed \"samples\" count, which no target stops: use "
+      "\"estimator\": \"monte_carlo\" (--envmap-estimator monte_carlo) with " +
+      bounds.autoSamples;
+  }
+  else if (transfer || estimator == EnvironmentEstimator::SphericalHarmonics)
+  {
+    // sh is nine coefficients, bands 0 to 2.
+    bounds.irradianceError = largestComponent(color * intensity * shIrradianceErrorBound(*map, transfer ? shOrder : 2));
+  }
+  return bounds;
 }
 }

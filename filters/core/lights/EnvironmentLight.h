@@ -61,5 +61,6 @@ struct EnvironmentLight
   }
 
   SHADELAB_LIGHT_TYPE(EnvironmentLight, Distributed, false, true);
+  ToleranceBounds toleranceBounds(const Material& m, bool shadowed) const;
 };
 }

@@ -21,6 +21,12 @@
 //   bool hasTerm(LightTerm term) const;   which per-light arrays it has
 //   void placeOn(const MeshPlacement&);   from the mesh's frame to the world (scene/SceneFrame.h)
 //   LightEvaluation prepare(const EvaluationContext&) const;  its form for the kernel
+//
+// A Distributed type also declares, beside the macro (planning/ asks it; a distributed type
+// without it does not compile):
+//
+//   ToleranceBounds toleranceBounds(const Material& m, bool shadowed) const;
+//                                         what a tolerance can bound of its estimator
 #include "LightChecks.h"
 #include "LightEvaluation.h"
 #include "LightTerms.h"
@@ -49,6 +55,21 @@ struct SceneFileType
 {
   const char* name;
   std::vector<const char*> fields;
+};
+
+/// What a tolerance can bound of a distributed light's estimator (planning/MethodChoice.cpp):
+/// whether its E is sampled, the largest error of an E that is not, or why it cannot be bounded.
+struct ToleranceBounds
+{
+  /// E is drawn to a target. (Under shadows it is, whatever the estimator: an exact E times
+  /// the samples' visible fraction.)
+  bool sampledIrradiance = false;
+  /// The largest error of an E that is not sampled (spherical harmonics' band limit).
+  double irradianceError = 0;
+  /// Why no tolerance can bound it, naming what to use instead; "" where one can.
+  std::string unbounded;
+  /// How the scene file (and the command line) asks for its samples to be drawn to a target.
+  std::string autoSamples;
 };
 
 /// The larger of kd and ks: the most of a light's colour a vertex can reflect.

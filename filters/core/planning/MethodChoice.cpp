@@ -1,16 +1,14 @@
 #include "MethodChoice.h"
 
 #include "NumberText.h"
-#include "Overloaded.h"
 #include "Precision.h"
-#include "RadianceTransfer.h"
-#include "SphericalHarmonics.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <map>
 #include <stdexcept>
+#include <type_traits>
 
 namespace shadelab
 {
@@ -71,46 +69,23 @@ bool samplesAnyLight(const Scene& scene)
     [](const NamedLight& light) { return samplingOf(light.source) && samplingOf(light.source)->fromTolerance; });
 }
 
-/// What a tolerance can bound of an area light's or a map's estimator: whether E is sampled,
-/// the largest error of an E that is not (SH's band limit, docs/formulas.md 12.5), or why it
-/// cannot be bounded at all ("" where it can).
-struct EstimatorBounds
+/// What a tolerance can bound of a distributed light's estimator: each type answers for its
+/// own (LightType.h), so that a distributed type that does not fails to compile here.
+ToleranceBounds toleranceBoundsOf(const NamedLight& light, const Material& m)
 {
-  bool sampledIrradiance = false;
-  double irradianceError = 0;
-  std::string unbounded;
-  std::string autoSamples; // how the scene file (and the command line) asks for "samples": "auto"
-};
-
-EstimatorBounds estimatorBoundsOf(const LightSource& source)
-{
-  EstimatorBounds bounds;
-  std::visit(Overloaded{ [&](const AreaLight& light)
-               {
-                 bounds.sampledIrradiance = light.estimator == AreaEstimator::MonteCarlo;
-                 bounds.autoSamples = "\"samples\": \"auto\"";
-                 bounds.unbounded = light.estimator == AreaEstimator::Point
-                   ? "its \"point\" estimator has no error bound: use \"exact\" or \"monte_carlo\""
-                   : "";
-               },
-               [&](const EnvironmentLight& light)
-               {
-                 bounds.sampledIrradiance = light.estimator == EnvironmentEstimator::MonteCarlo;
-                 bounds.autoSamples = "\"samples\": \"auto\" (--envmap-samples auto)";
-                 bounds.unbounded = light.estimator == EnvironmentEstimator::BruteForce
-                   ? "the \"brute_force\" sum of a downsampled map has no error bound: use \"sh\" or \"monte_carlo\""
-                   : "";
-                 // sh is nine coefficients, bands 0 to 2.
-                 const bool transfer = light.estimator == EnvironmentEstimator::PrecomputedTransfer;
-                 if (transfer || light.estimator == EnvironmentEstimator::SphericalHarmonics)
-                 {
-                   bounds.irradianceError = largestComponent(
-                     light.color * light.intensity * shIrradianceErrorBound(*light.map, transfer ? light.shOrder : 2));
-                 }
-               },
-               [](const auto&) {} },
-    source);
-  return bounds;
+  return std::visit(
+    [&](const auto& source) -> ToleranceBounds
+    {
+      if constexpr (std::decay_t<decltype(source)>::role == LightRole::Distributed)
+      {
+        return source.toleranceBounds(m, light.shadows);
+      }
+      else
+      {
+        throw std::logic_error("light '" + light.name + "' is not integrated over a solid angle: it has no estimator");
+      }
+    },
+    light.source);
 }
 
 /// An area light's or a map's choice: its deterministic error charged to what is `left`, and
@@ -120,7 +95,7 @@ LightChoice distributedChoice(const NamedLight& light, std::size_t index, const 
 {
   LightChoice choice;
   choice.name = light.name;
-  const EstimatorBounds bounds = estimatorBoundsOf(light.source);
+  const ToleranceBounds bounds = toleranceBoundsOf(light, m);
   // field: the light's field at fault, "estimator" or "samples".
   auto refuse = [&](const std::string& field, const std::string& why)
   {
@@ -131,20 +106,6 @@ LightChoice distributedChoice(const NamedLight& light, std::size_t index, const 
   if (!bounds.unbounded.empty())
   {
     refuse("estimator", bounds.unbounded);
-  }
-  const auto* map = std::get_if<EnvironmentLight>(&light.source);
-  if (map && map->estimator == EnvironmentEstimator::PrecomputedTransfer && light.shadows)
-  {
-    // Its bands' error under shadows is bounded only by the map less its bands, integrated
-    // (docs/formulas.md section 12.10), and its rays are a fixed count.
-    const Rgb bandLimit = bandLimitError(*map->map, map->shOrder);
-    const double error =
-      largestComponent(map->color * map->intensity * bandLimit) * std::max(1.0, largestComponent(m.kd));
-    refuse("estimator",
-      "its shadowed transfer vectors can err by up to " + scientific(error) +
-        " through their bands alone, and are estimated from a fixed \"samples\" count, which no target stops: use "
-        "\"estimator\": \"monte_carlo\" (--envmap-estimator monte_carlo) with " +
-        bounds.autoSamples);
   }
   // Under shadows E is sampled whatever the estimator: an exact or SH E is the unshadowed one
   // times the samples' visible fraction.
@@ -443,17 +404,17 @@ std::vector<std::string> MethodPlan::describe() const
   return lines;
 }
 
-MethodPlan chooseMethods(const Scene& scene, const ArrayRequest& request, const MeshExtent& mesh, double tolerance,
-  bool float32Allowed, const MeshMeasurements& measured)
+namespace
 {
-  MethodPlan plan;
-  plan.tolerance = tolerance;
-  const double deterministic = scene.ambientOcclusion || samplesAnyLight(scene) ? tolerance / 10 : tolerance;
-  // Each precision's rounding: a priori, or from the sample. float32's sample is taken over
-  // the a priori bound, which is usually far above it but does not cover a light switched on or
-  // off at a vertex's horizon (docs/formulas.md section 15), which the sample looks for; it is
-  // measured against float64, whose own (far smaller) error is added. float64's is the lesser
-  // of its bound and the sample's scaled by the unit roundoffs.
+/// The precision whose rounding fits `deterministic`, the tolerance's part that is not
+/// sampled, and that rounding: a priori, or from the sample. float32's sample is taken over
+/// the a priori bound, which is usually far above it but does not cover a light switched on or
+/// off at a vertex's horizon (docs/formulas.md section 15), which the sample looks for; it is
+/// measured against float64, whose own (far smaller) error is added. float64's is the lesser
+/// of its bound and the sample's scaled by the unit roundoffs.
+void choosePrecision(MethodPlan& plan, const Scene& scene, const ArrayRequest& request, const MeshExtent& mesh,
+  double deterministic, bool float32Allowed, const MeshMeasurements& measured)
+{
   double float32 = float32Allowed ? arithmeticError(Precision::Float32, scene, request, mesh, measured) : unbounded;
   double float64 = arithmeticError(Precision::Float64, scene, request, mesh, measured);
   bool float32Sampled = false, float64Sampled = false;
@@ -471,13 +432,98 @@ MethodPlan chooseMethods(const Scene& scene, const ArrayRequest& request, const 
   plan.roundingSampled = plan.precision == Precision::Float32 ? float32Sampled : float64Sampled;
   if (!(plan.arithmeticError <= deterministic))
   {
-    throw RoundingAboveTolerance("tolerance " + scientific(tolerance) +
+    throw RoundingAboveTolerance("tolerance " + scientific(plan.tolerance) +
       " is below the predicted float64 rounding error of this scene on this mesh, " + scientific(plan.arithmeticError) +
-      (deterministic < tolerance ? ", which may take a tenth of it (the rays take the rest)" : "") +
+      (deterministic < plan.tolerance ? ", which may take a tenth of it (the rays take the rest)" : "") +
       ": give a larger tolerance, or none for the exact methods");
   }
-  double left = deterministic - plan.arithmeticError;
+}
 
+/// What a local light's approximations would err by: the distant approximation (infinite
+/// where it does not apply, with why) and each pow method.
+struct LocalLightErrors
+{
+  double distant = unbounded;
+  std::string distantWhy;
+  std::map<PowMethod, double> pow;
+  bool oneShininess = true;
+};
+
+LocalLightErrors localLightErrors(const Scene& scene, std::size_t l, bool specular, const ArrayRequest& request,
+  const MeshExtent& mesh, const MeshMeasurements& measured, Precision precision)
+{
+  LocalLightErrors errors;
+  const auto* point = std::get_if<PointLight>(&scene.lights[l].source);
+  if (point && geometryRequested(request, l))
+  {
+    errors.distantWhy = "not as distant: its direction arrays were requested";
+  }
+  else if (point)
+  {
+    errors.distant = distantApproximationError(*point, scene.material, specular, mesh);
+    errors.distantWhy = std::isinf(errors.distant) ? "not as distant: the light is inside the mesh's bounding sphere"
+                                                   : "as distant it would err by " + scientific(errors.distant);
+  }
+  // A pow approximation's bound charges the lobe's largest error at the light's peak, which
+  // few meshes meet together (a highlight where the lobe errs most, on the vertex nearest the
+  // light): the sample's measure is taken where it is lower. The lobe's error depends only on
+  // the method, the precision and eta (largestPowError remembers it). A shininess per vertex
+  // (from an array) has no one lobe to approximate: exact pow.
+  errors.oneShininess = !scene.material.arrays[MaterialCoefficient::Shininess];
+  const double eta = scene.material.shininess;
+  for (const PowMethod method : approximatePowMethods)
+  {
+    double& error = errors.pow[method];
+    error = unbounded;
+    if (specular && errors.oneShininess)
+    {
+      const double lobe =
+        precision == Precision::Float32 ? largestPowError<float>(method, eta) : largestPowError<double>(method, eta);
+      error = powApproximationError(lobe, scene, l, mesh, measured);
+    }
+    if (specular && errors.oneShininess && !measured.sampledPowDifference.empty())
+    {
+      error = std::min(error, errorFromSample(measured.sampledPowDifference[l].of(method)));
+    }
+  }
+  errors.pow[PowMethod::Exact] = 0; // std::pow's own rounding is part of arithmeticError
+  return errors;
+}
+
+/// Why a local light was not given a cheaper method, for the plan's description.
+std::string whyNotCheaper(
+  const LightChoice& choice, const LocalLightErrors& errors, bool point, bool specular, double left)
+{
+  std::vector<std::string> reasons;
+  if (point && !choice.method.distantFrom)
+  {
+    reasons.push_back(errors.distantWhy);
+  }
+  if (specular && !errors.oneShininess)
+  {
+    reasons.push_back("exact pow: the shininess varies per vertex");
+  }
+  else if (specular && choice.method.pow != PowMethod::Schlick)
+  {
+    reasons.push_back("Schlick pow would err by " + scientific(errors.pow.at(PowMethod::Schlick)));
+  }
+  if (specular && errors.oneShininess && choice.method.pow == PowMethod::Exact)
+  {
+    reasons.push_back("series pow by " + scientific(errors.pow.at(PowMethod::Series)));
+  }
+  std::string why;
+  for (std::size_t r = 0; r < reasons.size(); ++r)
+  {
+    why += (r ? ", " : "") + reasons[r];
+  }
+  return reasons.empty() ? why : why + "; " + scientific(left) + " of the tolerance was left";
+}
+
+/// A point or spot light's (or a distant light's, a headlight's) methods: the cheapest of the
+/// distant and pow approximations whose error fits what is `left`.
+LightChoice localChoice(const Scene& scene, std::size_t l, bool specular, const ArrayRequest& request,
+  const MeshExtent& mesh, const MeshMeasurements& measured, Precision precision, double left)
+{
   struct Candidate
   {
     bool distant;
@@ -490,108 +536,32 @@ MethodPlan chooseMethods(const Scene& scene, const ArrayRequest& request, const 
   const Candidate candidates[] = { { true, PowMethod::Schlick }, { false, PowMethod::Schlick },
     { true, PowMethod::Series }, { false, PowMethod::Series }, { true, PowMethod::Exact },
     { false, PowMethod::Exact } };
-  // The lobe's error depends only on the method, the precision and eta (largestPowError
-  // remembers it), and is looked up only when a light needs it.
-  auto lobeError = [&](PowMethod method)
+  const LocalLightErrors errors = localLightErrors(scene, l, specular, request, mesh, measured, precision);
+  LightChoice choice;
+  choice.name = scene.lights[l].name;
+  for (const Candidate& candidate : candidates)
   {
-    const double eta = scene.material.shininess;
-    return plan.precision == Precision::Float32 ? largestPowError<float>(method, eta)
-                                                : largestPowError<double>(method, eta);
-  };
-  for (std::size_t l = 0; l < scene.lights.size(); ++l)
-  {
-    const NamedLight& named = scene.lights[l];
-    LightChoice choice;
-    choice.name = named.name;
-    if (isAmbient(named.source))
+    const double error = (candidate.distant ? errors.distant : 0) + errors.pow.at(candidate.pow);
+    if (!std::isinf(error) && error <= left)
     {
-      plan.lights.push_back(choice);
-      continue;
-    }
-    const bool specular = specularComputed(scene, request, l);
-    if (isDistributed(named.source))
-    {
-      choice = distributedChoice(named, l, scene.material, specular, left);
-      left -= choice.predictedError;
-      plan.lights.push_back(choice);
-      continue;
-    }
-    const auto* point = std::get_if<PointLight>(&named.source);
-    double distantError = unbounded;
-    std::string distantWhy;
-    if (point && geometryRequested(request, l))
-    {
-      distantWhy = "not as distant: its direction arrays were requested";
-    }
-    else if (point)
-    {
-      distantError = distantApproximationError(*point, scene.material, specular, mesh);
-      distantWhy = std::isinf(distantError) ? "not as distant: the light is inside the mesh's bounding sphere"
-                                            : "as distant it would err by " + scientific(distantError);
-    }
-    // A pow approximation's bound charges the lobe's largest error at the light's peak, which
-    // few meshes meet together (a highlight where the lobe errs most, on the vertex nearest the
-    // light): the sample's measure is taken where it is lower.
-    // A shininess per vertex (from an array) has no one lobe to approximate: exact pow.
-    const bool oneShininess = !scene.material.arrays[MaterialCoefficient::Shininess];
-    std::map<PowMethod, double> powError;
-    for (const PowMethod method : approximatePowMethods)
-    {
-      powError[method] =
-        specular && oneShininess ? powApproximationError(lobeError(method), scene, l, mesh, measured) : unbounded;
-      if (specular && oneShininess && !measured.sampledPowDifference.empty())
+      if (candidate.distant)
       {
-        powError[method] = std::min(powError[method], errorFromSample(measured.sampledPowDifference[l].of(method)));
+        choice.method.distantFrom = mesh.centre;
       }
+      choice.method.pow = candidate.pow;
+      choice.predictedError = error;
+      break;
     }
-    powError[PowMethod::Exact] = 0; // std::pow's own rounding is part of arithmeticError
-    for (const Candidate& candidate : candidates)
-    {
-      if ((candidate.distant && std::isinf(distantError)) || std::isinf(powError[candidate.pow]))
-      {
-        continue;
-      }
-      const double error = (candidate.distant ? distantError : 0) + powError[candidate.pow];
-      if (error <= left)
-      {
-        if (candidate.distant)
-        {
-          choice.method.distantFrom = mesh.centre;
-        }
-        choice.method.pow = candidate.pow;
-        choice.predictedError = error;
-        break;
-      }
-    }
-    std::vector<std::string> reasons;
-    if (point && !choice.method.distantFrom)
-    {
-      reasons.push_back(distantWhy);
-    }
-    if (specular && !oneShininess)
-    {
-      reasons.push_back("exact pow: the shininess varies per vertex");
-    }
-    else if (specular && choice.method.pow != PowMethod::Schlick)
-    {
-      reasons.push_back("Schlick pow would err by " + scientific(powError[PowMethod::Schlick]));
-    }
-    if (specular && oneShininess && choice.method.pow == PowMethod::Exact)
-    {
-      reasons.push_back("series pow by " + scientific(powError[PowMethod::Series]));
-    }
-    for (std::size_t r = 0; r < reasons.size(); ++r)
-    {
-      choice.why += (r ? ", " : "") + reasons[r];
-    }
-    if (!reasons.empty())
-    {
-      choice.why += "; " + scientific(left) + " of the tolerance was left";
-    }
-    left -= choice.predictedError;
-    plan.lights.push_back(choice);
   }
-  // The sampling's part, in equal shares to the occlusion and to each light that samples.
+  const bool point = std::holds_alternative<PointLight>(scene.lights[l].source);
+  choice.why = whyNotCheaper(choice, errors, point, specular, left);
+  return choice;
+}
+
+/// The sampling's part of the tolerance, what the plan's deterministic errors leave, in equal
+/// shares to the occlusion and to each light that samples.
+void shareSampling(MethodPlan& plan, const Scene& scene)
+{
   std::vector<std::size_t> sampledLights;
   for (std::size_t l = 0; l < plan.lights.size(); ++l)
   {
@@ -601,7 +571,7 @@ MethodPlan chooseMethods(const Scene& scene, const ArrayRequest& request, const 
     }
   }
   const double share =
-    (tolerance - plan.predictedError()) / double(sampledLights.size() + (scene.ambientOcclusion ? 1 : 0));
+    (plan.tolerance - plan.predictedError()) / double(sampledLights.size() + (scene.ambientOcclusion ? 1 : 0));
   for (const std::size_t l : sampledLights)
   {
     drawToShare(*samplingOf(scene.lights[l].source), scene.material, share, plan.lights[l]);
@@ -612,6 +582,36 @@ MethodPlan chooseMethods(const Scene& scene, const ArrayRequest& request, const 
   }
   plan.samplingError = (sampledLights.empty() ? 0 : share * double(sampledLights.size())) +
     (plan.occlusion ? plan.occlusion->errorInTotals() : 0);
+}
+}
+
+MethodPlan chooseMethods(const Scene& scene, const ArrayRequest& request, const MeshExtent& mesh, double tolerance,
+  bool float32Allowed, const MeshMeasurements& measured)
+{
+  MethodPlan plan;
+  plan.tolerance = tolerance;
+  // Where anything is sampled, the deterministic errors take a tenth and sampling the rest.
+  const double deterministic = scene.ambientOcclusion || samplesAnyLight(scene) ? tolerance / 10 : tolerance;
+  choosePrecision(plan, scene, request, mesh, deterministic, float32Allowed, measured);
+  double left = deterministic - plan.arithmeticError;
+  for (std::size_t l = 0; l < scene.lights.size(); ++l)
+  {
+    const NamedLight& light = scene.lights[l];
+    const bool specular = specularComputed(scene, request, l);
+    LightChoice choice;
+    choice.name = light.name;
+    switch (roleOf(light.source))
+    {
+      case LightRole::Ambient: break;
+      case LightRole::Distributed: choice = distributedChoice(light, l, scene.material, specular, left); break;
+      case LightRole::Local:
+        choice = localChoice(scene, l, specular, request, mesh, measured, plan.precision, left);
+        break;
+    }
+    left -= choice.predictedError;
+    plan.lights.push_back(choice);
+  }
+  shareSampling(plan, scene);
   return plan;
 }
 }
