@@ -8,6 +8,7 @@
 
 #include "SceneFile.h"
 #include "vtkLocalReflectanceFilter.h"
+#include "vtkShadingNormalsFilter.h"
 
 #include "vtkCellArray.h"
 #include "vtkCellArrayIterator.h"

@@ -138,6 +138,23 @@ SHADELABFILTERS_EXPORT vtkIdType wholePointCount(
 
 /// values' tuples at ids, in a new array of the same type and name.
 SHADELABFILTERS_EXPORT vtkSmartPointer<vtkDataArray> tuplesAt(vtkDataArray* values, const std::vector<vtkIdType>& ids);
+
+/// The pieces of a split mesh as a filter's steps take them: the processes that hold them and
+/// how this process's piece lies in the whole mesh; both nullptr for a whole mesh. A step given
+/// split pieces exchanges data with the other processes (a collective call).
+struct MeshPieces
+{
+  vtkMultiProcessController* processes = nullptr;
+  const PieceLayout* layout = nullptr;
+
+  bool split() const { return layout != nullptr; }
+  /// Each point of the piece's id in the whole mesh; nullptr for a whole mesh.
+  const std::vector<vtkIdType>* pointIds() const { return layout ? &layout->pieceIds : nullptr; }
+  /// Whether `mine` holds on every process (on a whole mesh, `mine`).
+  bool holdEverywhere(bool mine) const { return split() ? everyProcessHolds(processes, mine) : mine; }
+  /// The first process's text that is not empty (on a whole mesh, `text`).
+  std::string firstProblem(const std::string& text) const { return split() ? firstText(processes, text) : text; }
+};
 }
 
 #endif

@@ -10,30 +10,24 @@
 #include "ShadeLabMeshPolygons.h"
 #include "ShadeLabRunAborted.h"
 #include "ShadeLabShadedArrays.h"
-#include "ShadeLabShadingPlan.h"
 #include "ShadeLabThreadCount.h"
 #include "ShadeLabWholeMesh.h"
 #include "ShadingKernel.h"
+#include "vtkLocalReflectanceFilterInternals.h"
 
 #include "vtkCellArray.h"
-#include "vtkCellArrayIterator.h"
 #include "vtkCellData.h"
 #include "vtkCommand.h"
 #include "vtkCommunicator.h"
-#include "vtkDataArrayRange.h"
 #include "vtkDemandDrivenPipeline.h"
-#include "vtkDoubleArray.h"
-#include "vtkFloatArray.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
-#include "vtkSMPThreadLocal.h"
 #include "vtkSMPTools.h"
 #include "vtkSmartPointer.h"
-#include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
 #include <cmath>
@@ -46,81 +40,28 @@ vtkStandardNewMacro(vtkLocalReflectanceFilter);
 
 using namespace shadelab::shading;
 
-namespace
-{
-/// Per scene light, the least distance from it to any of the points, for the lights with a
-/// position (+infinity for the others, and where `points` is nullptr: a piece without any). On a split mesh
-/// (processes), the least over every piece: a collective call.
-std::vector<double> nearestPointDistances(
-  const shadelab::Scene& scene, vtkDataArray* points, vtkMultiProcessController* processes)
-{
-  const std::size_t lightCount = scene.lights.size();
-  // Each thread's least squared distances; a minimum is the same in any order, so on any
-  // thread count.
-  vtkSMPThreadLocal<std::vector<double>> nearestSquared;
-  if (points)
-  {
-    shadelab::visitPackedPoints(points,
-      [&](auto pointAt)
-      {
-        vtkSMPTools::For(0, points->GetNumberOfTuples(),
-          [&](vtkIdType begin, vtkIdType end)
-          {
-            std::vector<double>& least = nearestSquared.Local();
-            least.resize(lightCount, std::numeric_limits<double>::infinity());
-            for (std::size_t l = 0; l < lightCount; ++l)
-            {
-              if (const glm::dvec3* light = shadelab::positionOf(scene.lights[l].source))
-              {
-                for (vtkIdType i = begin; i < end; ++i)
-                {
-                  const glm::dvec3 offset = pointAt(i) - *light;
-                  least[l] = std::min(least[l], glm::dot(offset, offset));
-                }
-              }
-            }
-          });
-      });
-  }
-  std::vector<double> nearest(lightCount, std::numeric_limits<double>::infinity());
-  for (const std::vector<double>& least : nearestSquared)
-  {
-    for (std::size_t l = 0; l < least.size(); ++l)
-    {
-      nearest[l] = std::min(nearest[l], std::sqrt(least[l]));
-    }
-  }
-  if (processes && lightCount > 0)
-  {
-    std::vector<double> everywhere(lightCount);
-    processes->AllReduce(
-      nearest.data(), everywhere.data(), static_cast<vtkIdType>(lightCount), vtkCommunicator::MIN_OP);
-    nearest = everywhere;
-  }
-  return nearest;
-}
-
-}
-
 vtkLocalReflectanceFilter::vtkLocalReflectanceFilter()
   : Controller(vtkMultiProcessController::GetGlobalController())
+  , Internals(std::make_unique<vtkInternals>())
 {
   // The steps run over this filter's processes only on a split mesh (ShadeMesh sets them).
-  this->NormalsStep->SetController(nullptr);
-  this->VisibilityStep->SetController(nullptr);
+  this->Internals->NormalsStep->SetController(nullptr);
+  this->Internals->VisibilityStep->SetController(nullptr);
   this->AvailableArrays->AddObserver(
     vtkCommand::ModifiedEvent, this, &vtkLocalReflectanceFilter::AvailableArraysChanged);
-  this->NormalsStep->AddObserver(vtkCommand::ProgressEvent, this, &vtkLocalReflectanceFilter::ForwardStepProgress);
-  this->VisibilityStep->AddObserver(vtkCommand::ProgressEvent, this, &vtkLocalReflectanceFilter::ForwardStepProgress);
+  this->Internals->NormalsStep->AddObserver(
+    vtkCommand::ProgressEvent, this, &vtkLocalReflectanceFilter::ForwardStepProgress);
+  this->Internals->VisibilityStep->AddObserver(
+    vtkCommand::ProgressEvent, this, &vtkLocalReflectanceFilter::ForwardStepProgress);
 }
 
 void vtkLocalReflectanceFilter::ForwardStepProgress(vtkObject* step, unsigned long, void* done)
 {
-  if (this->Progress.span > 0)
+  if (this->Internals->ProgressSpan > 0)
   {
-    this->UpdateProgress(this->Progress.start + this->Progress.span * *static_cast<double*>(done));
+    this->UpdateProgress(this->Internals->ProgressStart + this->Internals->ProgressSpan * *static_cast<double*>(done));
   }
-  if (this->Stoppable && this->GetAbortExecute())
+  if (this->Internals->Stoppable && this->GetAbortExecute())
   {
     static_cast<vtkAlgorithm*>(step)->SetAbortExecute(1);
   }
@@ -128,13 +69,13 @@ void vtkLocalReflectanceFilter::ForwardStepProgress(vtkObject* step, unsigned lo
 
 void vtkLocalReflectanceFilter::ReportProgress(double done)
 {
-  this->UpdateProgress(this->Progress.start + this->Progress.span * done);
+  this->UpdateProgress(this->Internals->ProgressStart + this->Internals->ProgressSpan * done);
   this->StopIfAborted();
 }
 
 void vtkLocalReflectanceFilter::StopIfAborted()
 {
-  if (this->Stoppable && this->GetAbortExecute())
+  if (this->Internals->Stoppable && this->GetAbortExecute())
   {
     throw shadelab::RunAborted();
   }
@@ -142,116 +83,17 @@ void vtkLocalReflectanceFilter::StopIfAborted()
 
 void vtkLocalReflectanceFilter::StartStep(double start, double span)
 {
-  this->Progress = { start, span };
+  this->Internals->ProgressStart = start;
+  this->Internals->ProgressSpan = span;
   this->StopIfAborted();
 }
 
-void vtkLocalReflectanceFilter::AvailableArraysChanged()
-{
-  if (!this->FillingAvailableArrays)
-  {
-    this->Modified();
-  }
-}
-
-int vtkLocalReflectanceFilter::RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*)
-{
-  vtkDataArraySelection* list = this->AvailableArrays;
-  // An empty list changed is no choice: ParaView sets the list it has before the first fill.
-  const bool chosenInList = list->GetNumberOfArrays() > 0 && list->GetMTime() > this->AvailableArraysFilledAt;
-  // Read once for the update: RequestData shades with it, or reports why it could not be read.
-  this->SceneOfThisUpdate = this->ReadScene();
-  if (!this->SceneOfThisUpdate.scene)
-  {
-    return 1; // RequestData reports it
-  }
-  const shadelab::Scene& scene = *this->SceneOfThisUpdate.scene;
-  std::vector<std::string> available;
-  for (const auto& array : shadelab::availableArrays(scene))
-  {
-    available.push_back(array.name);
-  }
-  auto isAvailable = [&](const std::string& name)
-  { return std::find(available.begin(), available.end(), name) != available.end(); };
-  if (chosenInList)
-  {
-    // The names enabled in the list become the selection.
-    this->ArraySelection.clear();
-    for (int i = 0; i < list->GetNumberOfArrays(); ++i)
-    {
-      if (list->GetArraySetting(i))
-      {
-        this->ArraySelection.push_back(list->GetArrayName(i));
-      }
-    }
-    this->SelectionFromList = true;
-  }
-  if (this->SelectionFromList)
-  {
-    // Names from the list, of another scene's arrays, that this scene lacks.
-    this->ArraySelection.erase(std::remove_if(this->ArraySelection.begin(), this->ArraySelection.end(),
-                                 [&](const std::string& name) { return !isAvailable(name); }),
-      this->ArraySelection.end());
-  }
-  std::vector<std::string> selected;
-  try
-  {
-    selected = shadelab::selectedArrayNames(scene, this->ArraySelection);
-  }
-  catch (const std::invalid_argument&)
-  {
-    // RequestData reports it; the list shows nothing ticked.
-  }
-  this->FillingAvailableArrays = true;
-  list->RemoveAllArrays();
-  for (const std::string& name : available)
-  {
-    list->AddArray(name.c_str(), std::find(selected.begin(), selected.end(), name) != selected.end());
-  }
-  this->FillingAvailableArrays = false;
-  this->AvailableArraysFilledAt = list->GetMTime();
-  return 1;
-}
 vtkLocalReflectanceFilter::~vtkLocalReflectanceFilter() = default;
 
 void vtkLocalReflectanceFilter::SetLightMethods(const std::vector<shadelab::LightMethod>& methods)
 {
   this->LightMethods = methods;
   this->Modified();
-}
-
-void vtkLocalReflectanceFilter::SetArraySelection(const std::vector<std::string>& selection)
-{
-  this->ArraySelection = selection;
-  this->SelectionSetHere();
-}
-
-void vtkLocalReflectanceFilter::ClearArraySelection()
-{
-  if (!this->ArraySelection.empty())
-  {
-    this->ArraySelection.clear();
-    this->SelectionSetHere();
-  }
-}
-
-void vtkLocalReflectanceFilter::AddToArraySelection(const std::string& entry)
-{
-  this->ArraySelection.push_back(entry);
-  this->SelectionSetHere();
-}
-
-void vtkLocalReflectanceFilter::SelectionSetHere()
-{
-  // Set after any choice in AvailableArrays, so it is the one used.
-  this->AvailableArraysFilledAt = this->AvailableArrays->GetMTime();
-  this->SelectionFromList = false;
-  this->Modified();
-}
-
-std::string vtkLocalReflectanceFilter::GetArraySelectionEntry(int i) const
-{
-  return i >= 0 && i < this->GetNumberOfArraySelectionEntries() ? this->ArraySelection[i] : std::string();
 }
 
 namespace
@@ -283,20 +125,6 @@ std::string meshProblem(vtkPolyData* input)
   }
   return "";
 }
-
-/// The first of names that the input already has as a point array, or "".
-std::string takenName(vtkPolyData* input, const std::vector<std::string>& names)
-{
-  for (const std::string& name : names)
-  {
-    if (input->GetPointData()->HasArray(name.c_str()))
-    {
-      return name;
-    }
-  }
-  return "";
-}
-
 }
 
 int vtkLocalReflectanceFilter::RequestData(
@@ -313,12 +141,12 @@ int vtkLocalReflectanceFilter::Shade(vtkInformationVector** inputVector, vtkInfo
   this->NormalsReport.clear();
   this->VisibilityReport.clear();
   // A split mesh's processes must all take part in its exchanges: only a whole mesh stops.
-  this->Stoppable = !shadelab::isPieceOfSplitMesh(this->Controller, input);
-  if (this->Stoppable)
+  this->Internals->Stoppable = !shadelab::isPieceOfSplitMesh(this->Controller, input);
+  if (this->Internals->Stoppable)
   {
     try
     {
-      return this->ShadeMesh(input, output, nullptr);
+      return this->ShadeMesh(input, output, shadelab::MeshPieces{});
     }
     catch (const shadelab::RunAborted&) // an empty output, and no error
     {
@@ -326,8 +154,8 @@ int vtkLocalReflectanceFilter::Shade(vtkInformationVector** inputVector, vtkInfo
       this->SamplingReport.clear();
       // Not generated, so that the next update runs again, and the steps with it.
       outputVector->GetInformationObject(0)->Set(vtkDemandDrivenPipeline::DATA_NOT_GENERATED(), 1);
-      this->NormalsStep->Modified();
-      this->VisibilityStep->Modified();
+      this->Internals->NormalsStep->Modified();
+      this->Internals->VisibilityStep->Modified();
       return 1;
     }
   }
@@ -338,7 +166,9 @@ int vtkLocalReflectanceFilter::Shade(vtkInformationVector** inputVector, vtkInfo
     return 0;
   }
   // Pieces not put together: one process holds the whole mesh, and shades it alone.
-  const bool shaded = this->ShadeMesh(input, output, layout.putTogether ? &layout : nullptr) == 1;
+  const shadelab::MeshPieces pieces =
+    layout.putTogether ? shadelab::MeshPieces{ this->Controller, &layout } : shadelab::MeshPieces{};
+  const bool shaded = this->ShadeMesh(input, output, pieces) == 1;
   return shadelab::agreedOutcome(this->Controller, this, output, shaded);
 }
 
@@ -363,86 +193,49 @@ double raysShareOf(const shadelab::Scene& scene)
 
 }
 
-int vtkLocalReflectanceFilter::ShadeMesh(vtkPolyData* input, vtkPolyData* output, const shadelab::PieceLayout* split)
+int vtkLocalReflectanceFilter::ShadeMesh(vtkPolyData* input, vtkPolyData* output, const shadelab::MeshPieces& pieces)
 {
   // A piece without points still takes part in its steps' exchanges, and shades nothing.
   const bool empty = input->GetNumberOfPoints() == 0;
-  if (empty && !split)
+  if (empty && !pieces.split())
   {
     output->ShallowCopy(input); // nothing in, nothing out, and no error: VTK's convention
     return 1;
   }
-  vtkMultiProcessController* processes = split ? this->Controller.Get() : nullptr;
-  this->NormalsStep->SetController(processes);
-  this->VisibilityStep->SetController(processes);
-  std::optional<ShadingPlan> plan = this->PlanShading(input, processes, split != nullptr);
-  if (!plan || !this->ReadMaterialArrays(input, processes, split, *plan))
+  this->Internals->NormalsStep->SetController(pieces.processes);
+  this->Internals->VisibilityStep->SetController(pieces.processes);
+  std::optional<ShadingPlan> plan = this->PlanShading(input, pieces);
+  if (!plan || !this->ReadMaterialArrays(input, pieces, *plan))
   {
     return 0;
   }
 
   output->ShallowCopy(input);
-  // Progress: the normals, then the rays where there are any, then the shading.
-  const double raysShare = raysShareOf(plan->scene);
   this->StartStep(0, normalsShare);
-  vtkDataArray* shadingNormals = this->PrepareNormals(input, output, split != nullptr);
+  vtkDataArray* shadingNormals = this->PrepareNormals(input, output, pieces);
   // The step failed (on a split mesh, on every process, having said why). An empty piece has
   // none where the others kept their own.
-  const bool prepared = shadingNormals || empty;
-  if (split ? !shadelab::everyProcessHolds(processes, prepared) : !prepared)
+  if (!pieces.holdEverywhere(shadingNormals || empty))
   {
     output->Initialize();
     vtkErrorMacro("preparing the normals failed (see the error above)");
     return 0;
   }
-  // Under a tolerance, what float32 rounds and what the pow approximations err are measured on
-  // a sample of the points, with the normals they are shaded with, and the methods chosen
-  // again with them (the same outcome on every process, which all measure the same).
-  if (this->Tolerance > 0)
-  {
-    this->MeasureOnSample(
-      this->SamplePoints(input, shadingNormals, *plan, processes, split ? &split->pieceIds : nullptr), *plan,
-      processes);
-  }
-  if (this->Tolerance > 0 && !this->ChooseMethods(*plan, false))
+  if (this->Tolerance > 0 && !this->ChooseMethodsOnSample(input, shadingNormals, *plan, pieces))
   {
     output->Initialize();
     return 0;
   }
-
-  std::vector<vtkSmartPointer<vtkDataArray>> arrays;
   SamplingOutcome sampling;
-  // Where the plan samples (the same on every process), each vertex's standard error is kept
-  // for the estimate after sampling.
-  const bool estimatesSampling = this->Tolerance > 0 && this->MethodPlan->samplingError > 0;
+  std::vector<vtkSmartPointer<vtkDataArray>> arrays;
   std::string failure;
   try
   {
-    sampling.standardError.resize(estimatesSampling ? static_cast<std::size_t>(input->GetNumberOfPoints()) : 0);
     if (this->Tolerance > 0)
     {
-      this->StartStep(normalsShare, 0); // a forecast's pilot moves no progress bar
-      this->MethodPlan->forecast =
-        estimatesSampling ? this->ForecastCost(input, shadingNormals, *plan, split != nullptr) : std::nullopt;
-      sampling.samplesDrawn.resize(
-        this->MethodPlan->forecast ? static_cast<std::size_t>(input->GetNumberOfPoints()) : 0);
-      this->InvokeEvent(MethodsChosenEvent);
+      this->ForecastAndAnnounce(input, shadingNormals, *plan, pieces, sampling);
     }
-    this->StartStep(normalsShare, raysShare);
-    vtkPolyData* seen = this->PrepareVisibility(input, shadingNormals, *plan, split != nullptr);
-    this->StartStep(normalsShare + raysShare, 1 - normalsShare - raysShare);
-    if (!empty)
-    {
-      arrays = this->ShadedArrays(input, shadingNormals, seen, *plan, split, sampling);
-    }
-    if (this->Tolerance > 0 && this->MethodPlan->forecast) // what the run drew, against it
-    {
-      this->MethodPlan->forecast->drawn =
-        shadelab::SampleCounts{ std::accumulate(sampling.samplesDrawn.begin(), sampling.samplesDrawn.end(), 0.0),
-          occlusionRayCount(plan->scene, seen, this->ArrayPrefix, sampling.samplesDrawn.size()) };
-    }
-    // The rays' arrays have been used (those asked for are in `arrays`): not kept until the next run.
-    this->VisibilityStep->GetOutput()->Initialize();
+    arrays = this->RaysAndArrays(input, shadingNormals, *plan, pieces, sampling);
   }
   catch (const shadelab::RunAborted&)
   {
@@ -452,40 +245,95 @@ int vtkLocalReflectanceFilter::ShadeMesh(vtkPolyData* input, vtkPolyData* output
   {
     failure = error.what();
   }
-  // Counted over every piece (a collective call, which an empty or failed piece joins too).
-  this->SamplingReport = this->ShortOfTargetReport(*plan, sampling.shortOfTarget, split);
-  if (estimatesSampling)
-  {
-    try // collective too: a failed piece takes part with no values
-    {
-      this->MethodPlan->estimatedSamplingError = this->EstimatedSamplingError(
-        failure.empty() ? std::move(sampling.standardError) : std::vector<double>(), split);
-    }
-    catch (const std::exception& error) // no memory to gather the values
-    {
-      failure = failure.empty() ? error.what() : failure;
-    }
-  }
+  failure = this->ReportSampling(*plan, pieces, sampling, failure);
   if (!failure.empty())
   {
     output->Initialize();
     vtkErrorMacro(<< failure);
     return 0;
   }
-  if (empty)
-  {
-    return 1;
-  }
   for (const auto& array : arrays)
   {
     output->GetPointData()->AddArray(array);
   }
-  this->AddFieldNotes(output);
+  if (!empty)
+  {
+    this->AddFieldNotes(output);
+  }
   return 1;
 }
 
+bool vtkLocalReflectanceFilter::ChooseMethodsOnSample(
+  vtkPolyData* input, vtkDataArray* shadingNormals, ShadingPlan& plan, const shadelab::MeshPieces& pieces)
+{
+  // What float32 rounds and what the pow approximations err are measured on a sample of the
+  // points, with the normals they are shaded with, and the methods chosen again with them (the
+  // same outcome on every process, which all measure the same).
+  this->MeasureOnSample(this->SamplePoints(input, shadingNormals, plan, pieces), plan, pieces);
+  return this->ChooseMethods(plan, false);
+}
+
+void vtkLocalReflectanceFilter::ForecastAndAnnounce(vtkPolyData* input, vtkDataArray* shadingNormals,
+  const ShadingPlan& plan, const shadelab::MeshPieces& pieces, SamplingOutcome& sampling)
+{
+  // Where the plan samples (the same on every process), each vertex's standard error is kept
+  // for the estimate after sampling, and its samples counted against the forecast.
+  const std::size_t points = static_cast<std::size_t>(input->GetNumberOfPoints());
+  const bool samples = this->MethodPlan->samplingError > 0;
+  sampling.standardError.resize(samples ? points : 0);
+  this->StartStep(normalsShare, 0); // a forecast's pilot moves no progress bar
+  this->MethodPlan->forecast = samples ? this->ForecastCost(input, shadingNormals, plan, pieces) : std::nullopt;
+  sampling.samplesDrawn.resize(this->MethodPlan->forecast ? points : 0);
+  this->InvokeEvent(MethodsChosenEvent);
+}
+
+std::vector<vtkSmartPointer<vtkDataArray>> vtkLocalReflectanceFilter::RaysAndArrays(vtkPolyData* input,
+  vtkDataArray* shadingNormals, const ShadingPlan& plan, const shadelab::MeshPieces& pieces, SamplingOutcome& sampling)
+{
+  // Progress: the normals, then the rays where there are any, then the shading.
+  const double raysShare = raysShareOf(plan.scene);
+  this->StartStep(normalsShare, raysShare);
+  vtkPolyData* seen = this->PrepareVisibility(input, shadingNormals, plan, pieces);
+  this->StartStep(normalsShare + raysShare, 1 - normalsShare - raysShare);
+  std::vector<vtkSmartPointer<vtkDataArray>> arrays;
+  if (input->GetNumberOfPoints() > 0)
+  {
+    arrays = this->ShadedArrays(input, shadingNormals, seen, plan, pieces, sampling);
+  }
+  if (this->Tolerance > 0 && this->MethodPlan->forecast) // what the run drew, against it
+  {
+    this->MethodPlan->forecast->drawn =
+      shadelab::SampleCounts{ std::accumulate(sampling.samplesDrawn.begin(), sampling.samplesDrawn.end(), 0.0),
+        occlusionRayCount(plan.scene, seen, this->ArrayPrefix, sampling.samplesDrawn.size()) };
+  }
+  // The rays' arrays have been used (those asked for are in `arrays`): not kept until the next run.
+  this->Internals->VisibilityStep->GetOutput()->Initialize();
+  return arrays;
+}
+
+std::string vtkLocalReflectanceFilter::ReportSampling(
+  const ShadingPlan& plan, const shadelab::MeshPieces& pieces, SamplingOutcome& sampling, const std::string& failure)
+{
+  // Counted over every piece (a collective call, which an empty or failed piece joins too).
+  this->SamplingReport = this->ShortOfTargetReport(plan, sampling.shortOfTarget, pieces);
+  if (this->Tolerance == 0 || !(this->MethodPlan->samplingError > 0))
+  {
+    return failure;
+  }
+  try // collective too: a failed piece takes part with no values
+  {
+    this->MethodPlan->estimatedSamplingError =
+      this->EstimatedSamplingError(failure.empty() ? std::move(sampling.standardError) : std::vector<double>(), pieces);
+  }
+  catch (const std::exception& error) // no memory to gather the values
+  {
+    return failure.empty() ? error.what() : failure;
+  }
+  return failure;
+}
+
 std::optional<vtkLocalReflectanceFilter::ShadingPlan> vtkLocalReflectanceFilter::PlanShading(
-  vtkPolyData* input, vtkMultiProcessController* processes, bool split)
+  vtkPolyData* input, const shadelab::MeshPieces& pieces)
 {
   // Everything is checked before anything is written. Until the steps run, what differs
   // between pieces is agreed, so that every process stops alike; the rest (the settings, the
@@ -499,9 +347,9 @@ std::optional<vtkLocalReflectanceFilter::ShadingPlan> vtkLocalReflectanceFilter:
   // as the precision that accepts the most scenes and meshes.
   plan.precision = this->OutputPrecision == DOUBLE_PRECISION || this->Tolerance > 0 ? shadelab::Precision::Float64
                                                                                     : shadelab::Precision::Float32;
-  if (!this->CheckMesh(input, processes, split, plan) || !this->PlaceScene(input, processes, split, plan) ||
+  if (!this->CheckMesh(input, pieces, plan) || !this->PlaceScene(input, pieces, plan) ||
     !this->CheckLightMethods(plan.scene) || !this->ChooseArraysAndMethods(plan) ||
-    !this->CheckArrayNamesFree(input, plan.scene, processes, split))
+    !this->CheckArrayNamesFree(input, plan.scene, pieces))
   {
     return std::nullopt;
   }
@@ -515,7 +363,7 @@ bool vtkLocalReflectanceFilter::MaterialSource::operator==(const MaterialSource&
 }
 
 bool vtkLocalReflectanceFilter::ReadMaterialArrays(
-  vtkPolyData* input, vtkMultiProcessController* processes, const shadelab::PieceLayout* split, ShadingPlan& plan)
+  vtkPolyData* input, const shadelab::MeshPieces& pieces, ShadingPlan& plan)
 {
   if (!plan.scene.material.arrays.any())
   {
@@ -532,39 +380,38 @@ bool vtkLocalReflectanceFilter::ReadMaterialArrays(
     vtkDataArray* array = coefficient ? input->GetPointData()->GetArray(coefficient->array.c_str()) : nullptr;
     source.arrays.emplace_back(array, array ? array->GetMTime() : 0);
   }
-  const bool unchanged = this->VertexMaterialSource && *this->VertexMaterialSource == source;
-  if (!(split ? shadelab::everyProcessHolds(processes, unchanged) : unchanged) &&
-    !this->DecodeMaterialArrays(input, processes, split, plan, source))
+  const bool unchanged = this->Internals->VertexMaterialSource && *this->Internals->VertexMaterialSource == source;
+  if (!pieces.holdEverywhere(unchanged) && !this->DecodeMaterialArrays(input, pieces, plan, source))
   {
     return false;
   }
   if (plan.scene.material.arrays[shadelab::MaterialCoefficient::Shininess])
   {
-    const double mine = this->VertexMaterial.largest(shadelab::MaterialCoefficient::Shininess);
+    const double mine = this->Internals->VertexMaterial.largest(shadelab::MaterialCoefficient::Shininess);
     double everywhere = mine;
-    if (split)
+    if (pieces.split())
     {
-      processes->AllReduce(&mine, &everywhere, 1, vtkCommunicator::MAX_OP);
+      pieces.processes->AllReduce(&mine, &everywhere, 1, vtkCommunicator::MAX_OP);
     }
     plan.measured.largestShininess = everywhere;
   }
   return true;
 }
 
-bool vtkLocalReflectanceFilter::DecodeMaterialArrays(vtkPolyData* input, vtkMultiProcessController* processes,
-  const shadelab::PieceLayout* split, const ShadingPlan& plan, const MaterialSource& source)
+bool vtkLocalReflectanceFilter::DecodeMaterialArrays(
+  vtkPolyData* input, const shadelab::MeshPieces& pieces, const ShadingPlan& plan, const MaterialSource& source)
 {
-  this->VertexMaterialSource.reset();
+  this->Internals->VertexMaterialSource.reset();
   shadelab::MaterialReading reading =
-    shadelab::readVertexMaterial(input, plan.scene, source.storage, processes, split ? &split->pieceIds : nullptr);
-  this->VertexMaterial = std::move(reading.material);
-  const std::string problem = split ? shadelab::firstText(processes, reading.problem) : reading.problem;
+    shadelab::readVertexMaterial(input, plan.scene, source.storage, pieces.processes, pieces.pointIds());
+  this->Internals->VertexMaterial = std::move(reading.material);
+  const std::string problem = pieces.firstProblem(reading.problem);
   if (!problem.empty())
   {
     vtkErrorMacro(<< problem);
     return false;
   }
-  this->VertexMaterialSource = source;
+  this->Internals->VertexMaterialSource = source;
   return true;
 }
 
@@ -578,23 +425,18 @@ bool vtkLocalReflectanceFilter::CheckTolerance()
   return true;
 }
 
-bool vtkLocalReflectanceFilter::CheckMesh(
-  vtkPolyData* input, vtkMultiProcessController* processes, bool split, ShadingPlan& plan)
+bool vtkLocalReflectanceFilter::CheckMesh(vtkPolyData* input, const shadelab::MeshPieces& pieces, ShadingPlan& plan)
 {
   // A piece may lack polygons where others have them (a piece of lines, or of nothing).
   const bool polygons = input->GetNumberOfPolys() + input->GetNumberOfStrips() > 0;
-  std::string problem = !split || polygons ? meshProblem(input) : "";
-  if (split)
+  std::string problem = pieces.firstProblem(!pieces.split() || polygons ? meshProblem(input) : "");
+  if (pieces.split() && problem.empty() && pieces.holdEverywhere(!polygons))
   {
-    problem = shadelab::firstText(processes, problem);
-    if (problem.empty() && shadelab::everyProcessHolds(processes, !polygons))
-    {
-      problem = meshProblem(input); // no piece has a polygon
-    }
+    problem = meshProblem(input); // no piece has a polygon
   }
   if (problem.empty())
   {
-    plan.extent = split ? shadelab::wholeMeshExtent(processes, input) : shadelab::meshExtentOf(input);
+    plan.extent = pieces.split() ? shadelab::wholeMeshExtent(pieces.processes, input) : shadelab::meshExtentOf(input);
     problem = shadelab::meshCoordinateProblem(plan.extent.reach, plan.precision);
   }
   if (!problem.empty())
@@ -605,13 +447,12 @@ bool vtkLocalReflectanceFilter::CheckMesh(
   return true;
 }
 
-std::optional<shadelab::Scene> vtkLocalReflectanceFilter::SceneReadEverywhere(
-  vtkMultiProcessController* processes, bool split)
+std::optional<shadelab::Scene> vtkLocalReflectanceFilter::SceneReadEverywhere(const shadelab::MeshPieces& pieces)
 {
-  const std::optional<shadelab::Scene> given = this->ReportedScene(this->SceneOfThisUpdate);
+  const std::optional<shadelab::Scene> given = this->ReportedScene(this->Internals->SceneOfThisUpdate);
   // Each process reads the scene itself: one that could not (its file missing there, say)
   // stops them all.
-  if (split && !shadelab::everyProcessHolds(processes, given.has_value()))
+  if (!pieces.holdEverywhere(given.has_value()))
   {
     if (given)
     {
@@ -622,10 +463,9 @@ std::optional<shadelab::Scene> vtkLocalReflectanceFilter::SceneReadEverywhere(
   return given;
 }
 
-bool vtkLocalReflectanceFilter::PlaceScene(
-  vtkPolyData* input, vtkMultiProcessController* processes, bool split, ShadingPlan& plan)
+bool vtkLocalReflectanceFilter::PlaceScene(vtkPolyData* input, const shadelab::MeshPieces& pieces, ShadingPlan& plan)
 {
-  const std::optional<shadelab::Scene> given = this->SceneReadEverywhere(processes, split);
+  const std::optional<shadelab::Scene> given = this->SceneReadEverywhere(pieces);
   if (!given)
   {
     return false;
@@ -648,8 +488,8 @@ bool vtkLocalReflectanceFilter::PlaceScene(
   }
   if (this->Tolerance > 0) // one pass over the points, for bounds that are not the sphere's
   {
-    plan.measured.nearestVertexDistance = nearestPointDistances(
-      plan.scene, input->GetPoints() ? input->GetPoints()->GetData() : nullptr, split ? processes : nullptr);
+    plan.measured.nearestVertexDistance = shadelab::nearestPointDistances(
+      plan.scene, input->GetPoints() ? input->GetPoints()->GetData() : nullptr, pieces.processes);
   }
   return true;
 }
@@ -688,63 +528,23 @@ bool vtkLocalReflectanceFilter::ChooseArraysAndMethods(ShadingPlan& plan)
   return this->Tolerance > 0 || this->SceneIsValid(shadelab::untargetedSamplingProblems(plan.scene, false));
 }
 
-std::vector<std::string> vtkLocalReflectanceFilter::WritableArrayNames(
-  vtkPolyData* input, const shadelab::Scene& scene) const
-{
-  std::vector<std::string> names;
-  for (const auto& array : shadelab::availableArrays(scene, this->ArrayPrefix))
-  {
-    names.push_back(array.name);
-  }
-  if (!input->GetPointData()->GetNormals())
-  {
-    names.push_back(this->ComputedNormalsName());
-  }
-  if (scene.material.arrays.clamps())
-  {
-    names.push_back(shadelab::materialClampedArrayName(this->ArrayPrefix));
-  }
-  const std::vector<std::string> spectral = shadelab::spectralArrayNames(scene, this->ArrayPrefix);
-  names.insert(names.end(), spectral.begin(), spectral.end());
-  return names;
-}
-
-bool vtkLocalReflectanceFilter::CheckArrayNamesFree(
-  vtkPolyData* input, const shadelab::Scene& scene, vtkMultiProcessController* processes, bool split)
-{
-  const std::string taken = takenName(input, this->WritableArrayNames(input, scene));
-  std::string problem = taken.empty() ? ""
-                                      : "the input already has a point array named '" + taken +
-      "', which this filter would write: set an array prefix (shadelab shade --prefix) to keep both";
-  if (split)
-  {
-    problem = shadelab::firstText(processes, problem);
-  }
-  if (!problem.empty())
-  {
-    vtkErrorMacro(<< problem);
-    return false;
-  }
-  return true;
-}
-
 std::vector<vtkSmartPointer<vtkDataArray>> vtkLocalReflectanceFilter::ShadedArrays(vtkPolyData* input,
-  vtkDataArray* shadingNormals, vtkPolyData* seen, const ShadingPlan& plan, const shadelab::PieceLayout* split,
+  vtkDataArray* shadingNormals, vtkPolyData* seen, const ShadingPlan& plan, const shadelab::MeshPieces& pieces,
   SamplingOutcome& sampling)
 {
   shadelab::ShadingInputs inputs;
-  if (split) // each point's samples are seeded by its index in the whole mesh
+  if (pieces.split()) // each point's samples are seeded by its index in the whole mesh
   {
     static_assert(sizeof(vtkIdType) == sizeof(long long), "ids seed samples as 64-bit integers");
-    inputs.sampleIds = reinterpret_cast<const long long*>(split->pieceIds.data());
+    inputs.sampleIds = reinterpret_cast<const long long*>(pieces.pointIds()->data());
   }
   if (plan.scene.material.arrays.any())
   {
     if (plan.precision == shadelab::Precision::Float32)
     {
-      this->VertexMaterial.withFloat32(); // under a tolerance that chose float32: from float64
+      this->Internals->VertexMaterial.withFloat32(); // under a tolerance that chose float32: from float64
     }
-    inputs.material = &this->VertexMaterial;
+    inputs.material = &this->Internals->VertexMaterial;
   }
   // Besides the kernel's: the occlusion arrays asked for, and which material values were clamped.
   std::vector<vtkSmartPointer<vtkDataArray>> besideShading = seen
@@ -752,7 +552,7 @@ std::vector<vtkSmartPointer<vtkDataArray>> vtkLocalReflectanceFilter::ShadedArra
     : std::vector<vtkSmartPointer<vtkDataArray>>();
   if (plan.scene.material.arrays.clamps())
   {
-    besideShading.push_back(clampedMaterialArray(this->VertexMaterial.clamped, this->ArrayPrefix));
+    besideShading.push_back(clampedMaterialArray(this->Internals->VertexMaterial.clamped, this->ArrayPrefix));
   }
   vtkDataArray* points = input->GetPoints()->GetData();
   // The spectral mode always has its total, in XYZ too, and its difference from the RGB model.
@@ -800,9 +600,10 @@ void vtkLocalReflectanceFilter::AddFieldNotes(vtkPolyData* output) const
   }
 }
 
-vtkDataArray* vtkLocalReflectanceFilter::PrepareNormals(vtkPolyData* input, vtkPolyData* output, bool split)
+vtkDataArray* vtkLocalReflectanceFilter::PrepareNormals(
+  vtkPolyData* input, vtkPolyData* output, const shadelab::MeshPieces& pieces)
 {
-  vtkShadingNormalsFilter* step = this->NormalsStep;
+  vtkShadingNormalsFilter* step = this->Internals->NormalsStep;
   step->SetInputData(input);
   step->SetNormalsName(this->ComputedNormalsName());
   step->SetOrientOutward(this->OrientNormalsOutward);
@@ -814,7 +615,7 @@ vtkDataArray* vtkLocalReflectanceFilter::PrepareNormals(vtkPolyData* input, vtkP
   // modified) is not trusted.
   vtkDataArray* previous = step->GetOutput()->GetPointData()->GetNormals();
   // On a split mesh the step exchanges data, so every process runs it, whatever it has kept.
-  if (split || (previous && previous->GetMTime() > step->GetOutput()->GetUpdateTime()))
+  if (pieces.split() || (previous && previous->GetMTime() > step->GetOutput()->GetUpdateTime()))
   {
     step->Modified();
   }
@@ -836,7 +637,7 @@ vtkDataArray* vtkLocalReflectanceFilter::PrepareNormals(vtkPolyData* input, vtkP
 }
 
 vtkPolyData* vtkLocalReflectanceFilter::PrepareVisibility(vtkPolyData* input, vtkDataArray* shadingNormals,
-  const ShadingPlan& plan, bool split, const std::vector<vtkIdType>& rayPoints)
+  const ShadingPlan& plan, const shadelab::MeshPieces& pieces, const std::vector<vtkIdType>& rayPoints)
 {
   const shadelab::Scene& scene = plan.scene;
   const shadelab::ArrayRequest& request = plan.request;
@@ -850,7 +651,7 @@ vtkPolyData* vtkLocalReflectanceFilter::PrepareVisibility(vtkPolyData* input, vt
   surface->SetPolys(input->GetPolys());
   surface->SetStrips(input->GetStrips());
   surface->GetPointData()->SetNormals(shadingNormals);
-  if (split) // what puts the pieces together, for the surface's cells (after the vertices and lines)
+  if (pieces.split()) // what puts the pieces together, for the surface's cells (after the vertices and lines)
   {
     surface->GetPointData()->SetGlobalIds(input->GetPointData()->GetGlobalIds());
     const vtkIdType firstPolygon = input->GetNumberOfVerts() + input->GetNumberOfLines();
@@ -866,7 +667,7 @@ vtkPolyData* vtkLocalReflectanceFilter::PrepareVisibility(vtkPolyData* input, vt
       surface->GetCellData()->AddArray(shadelab::tuplesAt(ghosts, surfaceCells));
     }
   }
-  vtkMeshVisibilityFilter* step = this->VisibilityStep;
+  vtkMeshVisibilityFilter* step = this->Internals->VisibilityStep;
   step->CheckCellsOff(); // meshProblem checked them
   step->SetInputData(surface);
   step->SetScene(scene);

@@ -32,22 +32,21 @@
 #include "ShadeLabFiltersModule.h"
 #include "vtkCommand.h"                // MethodsChosenEvent
 #include "vtkDataArraySelection.h"     // the scene's arrays, a member
-#include "vtkMeshVisibilityFilter.h"   // the visibility step, a member
 #include "vtkMultiProcessController.h" // the controller, a member
 #include "vtkNew.h"
 #include "vtkShadeLabSceneFilter.h"
-#include "vtkShadingNormalsFilter.h" // the normals step, a member
 
 #include "MethodChoice.h"
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 namespace shadelab
 {
-struct PieceLayout;
+struct MeshPieces;
 }
 
 class SHADELABFILTERS_EXPORT vtkLocalReflectanceFilter : public vtkShadeLabSceneFilter
@@ -168,31 +167,19 @@ protected:
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   /// RequestData within the filter's thread count.
   int Shade(vtkInformationVector** inputVector, vtkInformationVector* outputVector);
-  /// Shades input into output: the whole mesh (split nullptr), or a piece of a split mesh laid
-  /// out as `split` says, shaded as its points are in the whole mesh (a collective call; the
-  /// steps then run over the controller's processes).
-  int ShadeMesh(vtkPolyData* input, vtkPolyData* output, const shadelab::PieceLayout* split);
+  /// Shades input into output: the whole mesh (`pieces` empty), or a piece of a split mesh
+  /// shaded as its points are in the whole mesh (a collective call; the steps then run over
+  /// the pieces' processes).
+  int ShadeMesh(vtkPolyData* input, vtkPolyData* output, const shadelab::MeshPieces& pieces);
 
 private:
   vtkLocalReflectanceFilter(const vtkLocalReflectanceFilter&) = delete;
   void operator=(const vtkLocalReflectanceFilter&) = delete;
 
+  // The settings, and what the last run did.
   std::vector<std::string> ArraySelection{ "default" };
   int NumberOfThreads = 0;
   vtkNew<vtkDataArraySelection> AvailableArrays;
-  /// AvailableArrays' modification time when RequestInformation last filled it: a later one
-  /// is a user's choice.
-  vtkMTimeType AvailableArraysFilledAt = 0;
-  bool FillingAvailableArrays = false;
-  /// The scene as RequestInformation read it, for RequestData: a scene file (and its
-  /// environment maps) is read once per update.
-  shadelab::SceneReading SceneOfThisUpdate;
-  /// Whether ArraySelection holds names ticked in AvailableArrays (rather than set by its setters).
-  bool SelectionFromList = false;
-  /// AvailableArrays changed: the filter is modified, unless it is filling the list itself.
-  void AvailableArraysChanged();
-  /// The selection was set by its own setters: it wins over earlier choices in AvailableArrays.
-  void SelectionSetHere();
   std::string ArrayPrefix;
   bool ColorByArray = false;
   std::string MaterialColorArray;
@@ -203,50 +190,32 @@ private:
   double FeatureAngle = 80.0;
   double WeldTolerance = 0.0;
   double Tolerance = 0;
+  std::vector<shadelab::LightMethod> LightMethods;
+  vtkSmartPointer<vtkMultiProcessController> Controller;
   std::string NormalsReport;
   std::string VisibilityReport;
   std::optional<shadelab::MethodPlan> MethodPlan;
   std::vector<std::string> SamplingReport;
-  std::vector<shadelab::LightMethod> LightMethods;
-  vtkSmartPointer<vtkMultiProcessController> Controller;
 
-  /// The step that prepares the normals to shade with (the input's own, checked, or computed),
-  /// run as a pipeline of its own: it runs again only when the input or its settings have
-  /// changed since it last ran (their modification times), since preparing normals costs more
-  /// than shading does.
-  vtkNew<vtkShadingNormalsFilter> NormalsStep;
-  /// The normals to shade with, prepared by NormalsStep for this input (a collective call on a
-  /// split mesh); fills NormalsReport.
-  vtkDataArray* PrepareNormals(vtkPolyData* input, vtkPolyData* output, bool split);
-  /// The step that casts rays for the scene's shadows and ambient occlusion, on the input with
-  /// the normals to shade with.
-  vtkNew<vtkMeshVisibilityFilter> VisibilityStep;
-  /// What the checks before shading settle (PlanShading), for the steps that write.
+  /// The rest of the filter's state (its steps, the scene of this update, the material last
+  /// read, progress) and the types its steps pass each other: vtkLocalReflectanceFilterInternals.h.
+  struct vtkInternals;
+  std::unique_ptr<vtkInternals> Internals;
   struct ShadingPlan;
-  /// What a run's sampling to targets leaves besides its arrays (for its report and plan).
-  struct SamplingOutcome
-  {
-    /// Per scene light drawn to a target (empty for the others), 1 at each vertex that stopped
-    /// at the maximum short of it.
-    std::vector<std::vector<std::uint8_t>> shortOfTarget;
-    /// Where the plan samples, sized for every point: each one's sampled standard error
-    /// (shadelab::ShadingOutputs::sampledStandardError); empty elsewhere.
-    std::vector<double> standardError;
-    /// Where a forecast was made, sized for every point: each one's count of samples, to set
-    /// against the forecast; empty elsewhere.
-    std::vector<std::uint32_t> samplesDrawn;
-  };
+  struct SamplingOutcome;
+  struct MaterialSource;
+  struct PointSample;
+
+  /// AvailableArrays changed: the filter is modified, unless it is filling the list itself.
+  void AvailableArraysChanged();
+  /// The selection was set by its own setters: it wins over earlier choices in AvailableArrays.
+  void SelectionSetHere();
+
   /// Progress and abort. The steps' progress is forwarded as this filter's, within the share
-  /// of the run that Progress says (span 0: not forwarded, as for a forecast's pilot), and an
+  /// of the run the current step has (span 0: not forwarded, as for a forecast's pilot), and an
   /// abort asked of this filter is passed on to them; the shading reports between its blocks.
-  /// Where Stoppable (a whole mesh: a split mesh's processes must all take part in its
-  /// exchanges), an abort throws shadelab::RunAborted, which Shade turns into an empty output.
-  struct ProgressShare
-  {
-    double start = 0, span = 0;
-  };
-  ProgressShare Progress;
-  bool Stoppable = true;
+  /// On a whole mesh (a split mesh's processes must all take part in its exchanges), an abort
+  /// throws shadelab::RunAborted, which Shade turns into an empty output.
   void ForwardStepProgress(vtkObject* step, unsigned long, void* done);
   /// This filter's progress, `done` (0 to 1) of the current share, then StopIfAborted.
   void ReportProgress(double done);
@@ -254,59 +223,29 @@ private:
   /// The next step's share of the progress, after StopIfAborted.
   void StartStep(double start, double span);
 
-  /// Runs VisibilityStep when the plan's scene needs it (a collective call where the input is a
-  /// piece of a split mesh), with the plan's targets for the shadowed lights drawn to one, from
-  /// the points rayPoints lists (empty: every point; not on a split mesh); returns its output
-  /// (nullptr: not needed), or throws std::runtime_error when it failed.
-  vtkPolyData* PrepareVisibility(vtkPolyData* input, vtkDataArray* shadingNormals, const ShadingPlan& plan, bool split,
-    const std::vector<vtkIdType>& rayPoints = {});
-  /// Where the tolerance's plan samples, on a whole mesh large enough for a pilot to be a small
-  /// part of the run: the pilot's vertices (every k-th by id) given their rays and shaded with
-  /// the plan, and what they cost scaled to the mesh. nullopt on a split mesh or a small one.
-  /// Throws std::runtime_error where the rays failed.
-  std::optional<shadelab::CostForecast> ForecastCost(
-    vtkPolyData* input, vtkDataArray* shadingNormals, const ShadingPlan& plan, bool split);
-  /// The name of the normals the filter computes when the input has none.
-  std::string ComputedNormalsName() const { return this->ArrayPrefix + "Normals"; }
-
   /// ShadeMesh's steps. Those that check say why they fail as the filter's error; on a split
-  /// mesh (processes: the controller, or nullptr for this process alone) those that exchange
-  /// data are collective calls, and fail on every process alike.
+  /// mesh (`pieces`, ShadeLabWholeMesh.h) those that exchange data are collective calls, and
+  /// fail on every process alike.
   /// The checks before anything is written (the tolerance, the mesh, the scene, the methods,
   /// the arrays and their names), and what they settle; nothing where one failed.
-  std::optional<ShadingPlan> PlanShading(vtkPolyData* input, vtkMultiProcessController* processes, bool split);
+  std::optional<ShadingPlan> PlanShading(vtkPolyData* input, const shadelab::MeshPieces& pieces);
   bool CheckTolerance();
   /// The mesh's structure, and its coordinates in the plan's precision; sets the plan's extent.
-  bool CheckMesh(vtkPolyData* input, vtkMultiProcessController* processes, bool split, ShadingPlan& plan);
+  bool CheckMesh(vtkPolyData* input, const shadelab::MeshPieces& pieces, ShadingPlan& plan);
   /// The scene read for this update, where every process could read it.
-  std::optional<shadelab::Scene> SceneReadEverywhere(vtkMultiProcessController* processes, bool split);
+  std::optional<shadelab::Scene> SceneReadEverywhere(const shadelab::MeshPieces& pieces);
   /// That scene, placed on the plan's extent and checked where it lands; under a tolerance,
   /// each light's nearest point measured for the plan's bounds.
-  bool PlaceScene(vtkPolyData* input, vtkMultiProcessController* processes, bool split, ShadingPlan& plan);
-  /// The material's arrays read from the input (shadelab::readVertexMaterial) into
-  /// VertexMaterial, where the scene has any: read again only when the arrays, their points or
-  /// what the scene reads from them have changed since the last run (decoding them costs more
-  /// than shading does), on every process alike.
-  /// With a shininess read from an array, its largest over the whole mesh goes into
-  /// plan.measured for the tolerance's bounds.
-  bool ReadMaterialArrays(
-    vtkPolyData* input, vtkMultiProcessController* processes, const shadelab::PieceLayout* split, ShadingPlan& plan);
+  bool PlaceScene(vtkPolyData* input, const shadelab::MeshPieces& pieces, ShadingPlan& plan);
+  /// The material's arrays read from the input (shadelab::readVertexMaterial), where the scene
+  /// has any: read again only when the arrays, their points or what the scene reads from them
+  /// have changed since the last run (decoding them costs more than shading does), on every
+  /// process alike. With a shininess read from an array, its largest over the whole mesh goes
+  /// into plan.measured for the tolerance's bounds.
+  bool ReadMaterialArrays(vtkPolyData* input, const shadelab::MeshPieces& pieces, ShadingPlan& plan);
   /// ReadMaterialArrays' decoding, when what it reads has changed.
-  struct MaterialSource;
-  bool DecodeMaterialArrays(vtkPolyData* input, vtkMultiProcessController* processes,
-    const shadelab::PieceLayout* split, const ShadingPlan& plan, const MaterialSource& source);
-  /// The last material read, and what it was read from.
-  shadelab::VertexMaterial VertexMaterial;
-  struct MaterialSource
-  {
-    shadelab::MaterialArrays sources;
-    shadelab::ShadingModel model = shadelab::ShadingModel::Lecture;
-    shadelab::Precision storage = shadelab::Precision::Float64; // float32: what the float32 kernel alone reads
-    vtkIdType points = 0;
-    std::vector<std::pair<vtkDataArray*, vtkMTimeType>> arrays; // each array read, and its time then
-    bool operator==(const MaterialSource& other) const;
-  };
-  std::optional<MaterialSource> VertexMaterialSource;
+  bool DecodeMaterialArrays(
+    vtkPolyData* input, const shadelab::MeshPieces& pieces, const ShadingPlan& plan, const MaterialSource& source);
   /// Whether the tolerance or the explicit LightMethods fit the scene; forgets the last plan.
   bool CheckLightMethods(const shadelab::Scene& scene);
   /// The arrays the selection asks for, and the methods and precision: the explicit ones, or
@@ -318,40 +257,68 @@ private:
   /// of rounding above the tolerance is not yet an error (the sample may show less).
   bool ChooseMethods(ShadingPlan& plan, bool roundingMeasuredLater);
   /// The points on which the plan's bounds are measured, with their normals and their ids in
-  /// the whole mesh (pieceIds on a split mesh): about 16384 evenly spaced by those ids, and
-  /// every point where a light grazes the surface. On a split mesh, a collective call whose
-  /// pieces' samples make up the whole mesh's, whatever the pieces.
-  struct PointSample
-  {
-    vtkSmartPointer<vtkDataArray> points, normals; // nullptr where the piece has none
-    std::vector<long long> ids;
-  };
-  PointSample SamplePoints(vtkPolyData* input, vtkDataArray* shadingNormals, const ShadingPlan& plan,
-    vtkMultiProcessController* processes, const std::vector<vtkIdType>* pieceIds);
+  /// the whole mesh: about 16384 evenly spaced by those ids, and every point where a light
+  /// grazes the surface. On a split mesh, a collective call whose pieces' samples make up the
+  /// whole mesh's, whatever the pieces.
+  PointSample SamplePoints(
+    vtkPolyData* input, vtkDataArray* shadingNormals, const ShadingPlan& plan, const shadelab::MeshPieces& pieces);
   /// Measures on the sample, into plan.measured: the largest difference between float32 and
   /// float64 shading (exact methods, every light visible, the open sky) where float32 fits, and
   /// each light's largest specular difference under each pow approximation. On a split mesh,
   /// the largest over every piece (a collective call).
-  void MeasureOnSample(const PointSample& sample, ShadingPlan& plan, vtkMultiProcessController* processes);
+  void MeasureOnSample(const PointSample& sample, ShadingPlan& plan, const shadelab::MeshPieces& pieces);
   /// Every point array the filter could write for the scene on this input.
   std::vector<std::string> WritableArrayNames(vtkPolyData* input, const shadelab::Scene& scene) const;
   /// Whether the input lacks all of them.
-  bool CheckArrayNamesFree(
-    vtkPolyData* input, const shadelab::Scene& scene, vtkMultiProcessController* processes, bool split);
-  /// The arrays to output: those the kernel computes with the normals and the rays' arrays in
-  /// `seen` (nullptr: no rays), then the occlusion arrays asked for and material_clamped; into
-  /// `sampling`, what the sampling to targets left. Throws std::runtime_error where an array
-  /// cannot be allocated.
+  bool CheckArrayNamesFree(vtkPolyData* input, const shadelab::Scene& scene, const shadelab::MeshPieces& pieces);
+
+  /// The normals to shade with, prepared by the normals step for this input (a collective call
+  /// on a split mesh); fills NormalsReport.
+  vtkDataArray* PrepareNormals(vtkPolyData* input, vtkPolyData* output, const shadelab::MeshPieces& pieces);
+  /// Under a tolerance, the methods chosen again with what a sample of the points measures.
+  bool ChooseMethodsOnSample(
+    vtkPolyData* input, vtkDataArray* shadingNormals, ShadingPlan& plan, const shadelab::MeshPieces& pieces);
+  /// Under a tolerance, where the plan samples, the cost forecast and room for what sampling
+  /// leaves; then MethodsChosenEvent. Throws std::runtime_error where the pilot's rays failed.
+  void ForecastAndAnnounce(vtkPolyData* input, vtkDataArray* shadingNormals, const ShadingPlan& plan,
+    const shadelab::MeshPieces& pieces, SamplingOutcome& sampling);
+  /// Runs the visibility step when the plan's scene needs it (a collective call on a split
+  /// mesh), with the plan's targets for the shadowed lights drawn to one, from the points
+  /// rayPoints lists (empty: every point; not on a split mesh); returns its output (nullptr:
+  /// not needed), or throws std::runtime_error when it failed.
+  vtkPolyData* PrepareVisibility(vtkPolyData* input, vtkDataArray* shadingNormals, const ShadingPlan& plan,
+    const shadelab::MeshPieces& pieces, const std::vector<vtkIdType>& rayPoints = {});
+  /// Where the tolerance's plan samples, on a whole mesh large enough for a pilot to be a small
+  /// part of the run: the pilot's vertices (every k-th by id) given their rays and shaded with
+  /// the plan, and what they cost scaled to the mesh. nullopt on a split mesh or a small one.
+  /// Throws std::runtime_error where the rays failed.
+  std::optional<shadelab::CostForecast> ForecastCost(
+    vtkPolyData* input, vtkDataArray* shadingNormals, const ShadingPlan& plan, const shadelab::MeshPieces& pieces);
+  /// The rays, then the arrays to output: those the kernel computes with the normals and the
+  /// rays' arrays, then the occlusion arrays asked for and material_clamped; into `sampling`,
+  /// what the sampling to targets left. Throws std::runtime_error where an array cannot be
+  /// allocated or the rays failed.
+  std::vector<vtkSmartPointer<vtkDataArray>> RaysAndArrays(vtkPolyData* input, vtkDataArray* shadingNormals,
+    const ShadingPlan& plan, const shadelab::MeshPieces& pieces, SamplingOutcome& sampling);
+  /// The arrays the kernel computes with the normals and the rays' arrays in `seen` (nullptr:
+  /// no rays), then the occlusion arrays asked for and material_clamped.
   std::vector<vtkSmartPointer<vtkDataArray>> ShadedArrays(vtkPolyData* input, vtkDataArray* shadingNormals,
-    vtkPolyData* seen, const ShadingPlan& plan, const shadelab::PieceLayout* split, SamplingOutcome& sampling);
+    vtkPolyData* seen, const ShadingPlan& plan, const shadelab::MeshPieces& pieces, SamplingOutcome& sampling);
+  /// What sampling left, over every piece (a collective call, which a failed piece joins with
+  /// no values): the report of vertices short of their targets, and the estimated error.
+  /// Returns `failure`, or why the estimate failed.
+  std::string ReportSampling(
+    const ShadingPlan& plan, const shadelab::MeshPieces& pieces, SamplingOutcome& sampling, const std::string& failure);
   /// The error 95% of the whole mesh's vertices are estimated to be within from their sampled
   /// standard errors (shadelab::estimatedErrorQuantile), over every k-th vertex by id on a large
   /// mesh. On a split mesh, a collective call, which a failed piece joins with no values.
-  double EstimatedSamplingError(std::vector<double> standardErrors, const shadelab::PieceLayout* split) const;
+  double EstimatedSamplingError(std::vector<double> standardErrors, const shadelab::MeshPieces& pieces) const;
   /// GetSamplingReport's lines: per light drawn to a target, how many vertices of the whole
   /// mesh stopped short of it (on a split mesh, a collective call, each vertex counted once).
   std::vector<std::string> ShortOfTargetReport(const ShadingPlan& plan,
-    const std::vector<std::vector<std::uint8_t>>& shortOfTarget, const shadelab::PieceLayout* split) const;
+    const std::vector<std::vector<std::uint8_t>>& shortOfTarget, const shadelab::MeshPieces& pieces) const;
+  /// The name of the normals the filter computes when the input has none.
+  std::string ComputedNormalsName() const { return this->ArrayPrefix + "Normals"; }
   /// What the run did about normals, rays and methods, as the output's field data.
   void AddFieldNotes(vtkPolyData* output) const;
 };

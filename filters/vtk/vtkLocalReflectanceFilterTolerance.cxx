@@ -5,18 +5,20 @@
 
 #include "ShadeLabMeshPolygons.h"
 #include "ShadeLabShadedArrays.h"
-#include "ShadeLabShadingPlan.h"
 #include "ShadeLabWholeMesh.h"
+#include "vtkLocalReflectanceFilterInternals.h"
 
 #include "vtkCommunicator.h"
 #include "vtkDataArrayRange.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
+#include "vtkSMPThreadLocal.h"
 #include "vtkSMPTools.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 using namespace shadelab::shading;
@@ -199,6 +201,55 @@ std::size_t shortOfTargetCount(
 }
 }
 
+std::vector<double> shadelab::nearestPointDistances(
+  const shadelab::Scene& scene, vtkDataArray* points, vtkMultiProcessController* processes)
+{
+  const std::size_t lightCount = scene.lights.size();
+  // Each thread's least squared distances; a minimum is the same in any order, so on any
+  // thread count.
+  vtkSMPThreadLocal<std::vector<double>> nearestSquared;
+  if (points)
+  {
+    shadelab::visitPackedPoints(points,
+      [&](auto pointAt)
+      {
+        vtkSMPTools::For(0, points->GetNumberOfTuples(),
+          [&](vtkIdType begin, vtkIdType end)
+          {
+            std::vector<double>& least = nearestSquared.Local();
+            least.resize(lightCount, std::numeric_limits<double>::infinity());
+            for (std::size_t l = 0; l < lightCount; ++l)
+            {
+              if (const glm::dvec3* light = shadelab::positionOf(scene.lights[l].source))
+              {
+                for (vtkIdType i = begin; i < end; ++i)
+                {
+                  const glm::dvec3 offset = pointAt(i) - *light;
+                  least[l] = std::min(least[l], glm::dot(offset, offset));
+                }
+              }
+            }
+          });
+      });
+  }
+  std::vector<double> nearest(lightCount, std::numeric_limits<double>::infinity());
+  for (const std::vector<double>& least : nearestSquared)
+  {
+    for (std::size_t l = 0; l < least.size(); ++l)
+    {
+      nearest[l] = std::min(nearest[l], std::sqrt(least[l]));
+    }
+  }
+  if (processes && lightCount > 0)
+  {
+    std::vector<double> everywhere(lightCount);
+    processes->AllReduce(
+      nearest.data(), everywhere.data(), static_cast<vtkIdType>(lightCount), vtkCommunicator::MIN_OP);
+    nearest = everywhere;
+  }
+  return nearest;
+}
+
 bool vtkLocalReflectanceFilter::ChooseMethods(ShadingPlan& plan, bool roundingMeasuredLater)
 {
   try
@@ -232,16 +283,16 @@ bool vtkLocalReflectanceFilter::ChooseMethods(ShadingPlan& plan, bool roundingMe
   return true;
 }
 
-vtkLocalReflectanceFilter::PointSample vtkLocalReflectanceFilter::SamplePoints(vtkPolyData* input,
-  vtkDataArray* shadingNormals, const ShadingPlan& plan, vtkMultiProcessController* processes,
-  const std::vector<vtkIdType>* pieceIds)
+vtkLocalReflectanceFilter::PointSample vtkLocalReflectanceFilter::SamplePoints(
+  vtkPolyData* input, vtkDataArray* shadingNormals, const ShadingPlan& plan, const shadelab::MeshPieces& pieces)
 {
   // Points evenly spaced by their id in the whole mesh, and those where a light grazes the
   // surface: on a split mesh, the pieces' samples make up the whole mesh's, whatever the pieces.
   const vtkIdType count = input->GetNumberOfPoints();
+  const std::vector<vtkIdType>* pieceIds = pieces.pointIds();
   auto idOf = [&](vtkIdType i) { return pieceIds ? (*pieceIds)[static_cast<std::size_t>(i)] : i; };
   // Global ids number the whole mesh's points 0 to n-1.
-  const vtkIdType wholeCount = processes ? shadelab::wholePointCount(processes, *pieceIds) : count;
+  const vtkIdType wholeCount = pieces.split() ? shadelab::wholePointCount(pieces.processes, *pieceIds) : count;
   const vtkIdType stride = everyKth(wholeCount, roundingSampleSize);
   const std::vector<unsigned char> banded = count > 0
     ? pointsToMeasure(plan.scene, input->GetPoints()->GetData(), shadingNormals)
@@ -258,7 +309,8 @@ vtkLocalReflectanceFilter::PointSample vtkLocalReflectanceFilter::SamplePoints(v
       worstIds.push_back(idOf(i));
     }
   }
-  const std::size_t worstCount = processes ? shadelab::distinctIdCount(processes, worstIds) : worstIds.size();
+  const std::size_t worstCount =
+    pieces.split() ? shadelab::distinctIdCount(pieces.processes, worstIds) : worstIds.size();
   const vtkIdType worstStride = everyKth(static_cast<vtkIdType>(worstCount), roundingSampleSize);
   std::vector<vtkIdType> sample;
   PointSample taken;
@@ -280,7 +332,7 @@ vtkLocalReflectanceFilter::PointSample vtkLocalReflectanceFilter::SamplePoints(v
 }
 
 void vtkLocalReflectanceFilter::MeasureOnSample(
-  const PointSample& sample, ShadingPlan& plan, vtkMultiProcessController* processes)
+  const PointSample& sample, ShadingPlan& plan, const shadelab::MeshPieces& pieces)
 {
   // Every light visible and the open sky: every term that the scene can make nonzero is, and
   // rounds as it would in the shading. Each point's samples (an area light's or a map's) are
@@ -336,10 +388,10 @@ void vtkLocalReflectanceFilter::MeasureOnSample(
       }
     }
   }
-  if (processes) // the largest over every piece, the same on every process
+  if (pieces.split()) // the largest over every piece, the same on every process
   {
     std::vector<double> everywhere(largest.size());
-    processes->AllReduce(
+    pieces.processes->AllReduce(
       largest.data(), everywhere.data(), static_cast<vtkIdType>(largest.size()), vtkCommunicator::MAX_OP);
     largest = everywhere;
   }
@@ -358,7 +410,7 @@ void vtkLocalReflectanceFilter::MeasureOnSample(
 }
 
 std::vector<std::string> vtkLocalReflectanceFilter::ShortOfTargetReport(const ShadingPlan& plan,
-  const std::vector<std::vector<std::uint8_t>>& shortOfTarget, const shadelab::PieceLayout* split) const
+  const std::vector<std::vector<std::uint8_t>>& shortOfTarget, const shadelab::MeshPieces& pieces) const
 {
   std::vector<std::string> report;
   for (std::size_t l = 0; l < plan.methods.size(); ++l)
@@ -375,10 +427,10 @@ std::vector<std::string> vtkLocalReflectanceFilter::ShortOfTargetReport(const Sh
     {
       if (marks[i])
       {
-        ids.push_back(split ? split->pieceIds[i] : static_cast<vtkIdType>(i));
+        ids.push_back(pieces.split() ? (*pieces.pointIds())[i] : static_cast<vtkIdType>(i));
       }
     }
-    const std::size_t vertices = split ? shadelab::distinctIdCount(this->Controller, ids) : ids.size();
+    const std::size_t vertices = pieces.split() ? shadelab::distinctIdCount(pieces.processes, ids) : ids.size();
     if (vertices > 0)
     {
       report.push_back(plan.scene.lights[l].name + ": " + std::to_string(vertices) +
@@ -389,7 +441,7 @@ std::vector<std::string> vtkLocalReflectanceFilter::ShortOfTargetReport(const Sh
 }
 
 double vtkLocalReflectanceFilter::EstimatedSamplingError(
-  std::vector<double> standardErrors, const shadelab::PieceLayout* split) const
+  std::vector<double> standardErrors, const shadelab::MeshPieces& pieces) const
 {
   // A quantile of a few tens of thousands of values is that of the whole mesh to within a
   // fraction of a percent of its share (the rank of the 95th percentile among n has a
@@ -397,13 +449,14 @@ double vtkLocalReflectanceFilter::EstimatedSamplingError(
   // k-th vertex by its id, 32,768 to 65,536 of them, the same on any number of processes.
   constexpr vtkIdType enough = 65536;
   std::vector<vtkIdType> ids;
-  const vtkIdType count = static_cast<vtkIdType>(split ? split->pieceIds.size() : standardErrors.size());
-  const vtkIdType wholeMesh = split ? shadelab::wholePointCount(this->Controller, split->pieceIds) : count;
+  const std::vector<vtkIdType>* pieceIds = pieces.pointIds();
+  const vtkIdType count = static_cast<vtkIdType>(pieceIds ? pieceIds->size() : standardErrors.size());
+  const vtkIdType wholeMesh = pieceIds ? shadelab::wholePointCount(pieces.processes, *pieceIds) : count;
   const vtkIdType stride = everyKth(wholeMesh, enough);
   std::vector<double> taken;
   for (vtkIdType i = 0; i < static_cast<vtkIdType>(standardErrors.size()) && i < count; ++i)
   {
-    const vtkIdType id = split ? split->pieceIds[i] : i;
+    const vtkIdType id = pieceIds ? (*pieceIds)[static_cast<std::size_t>(i)] : i;
     if (id % stride == 0)
     {
       ids.push_back(id);
@@ -411,14 +464,15 @@ double vtkLocalReflectanceFilter::EstimatedSamplingError(
     }
   }
   return shadelab::estimatedErrorQuantile(
-    split ? shadelab::valuesByDistinctId(this->Controller, ids, taken) : std::move(taken), shadelab::targetConfidence);
+    pieceIds ? shadelab::valuesByDistinctId(pieces.processes, ids, taken) : std::move(taken),
+    shadelab::targetConfidence);
 }
 
 std::optional<shadelab::CostForecast> vtkLocalReflectanceFilter::ForecastCost(
-  vtkPolyData* input, vtkDataArray* shadingNormals, const ShadingPlan& plan, bool split)
+  vtkPolyData* input, vtkDataArray* shadingNormals, const ShadingPlan& plan, const shadelab::MeshPieces& pieces)
 {
   const vtkIdType count = input->GetNumberOfPoints();
-  if (split || count < pilotMeshLeast)
+  if (pieces.split() || count < pilotMeshLeast)
   {
     return std::nullopt;
   }
@@ -430,8 +484,8 @@ std::optional<shadelab::CostForecast> vtkLocalReflectanceFilter::ForecastCost(
   }
   // Its rays from the pilot's points only (the BVH built here is kept for the run), seeded by
   // their ids, as in the run; the time is the rays' (the BVH's build not included) and the shading's.
-  vtkPolyData* seen = this->PrepareVisibility(input, shadingNormals, plan, false, pilot);
-  const double raySeconds = seen ? this->VisibilityStep->GetRaySeconds() : 0.0;
+  vtkPolyData* seen = this->PrepareVisibility(input, shadingNormals, plan, shadelab::MeshPieces{}, pilot);
+  const double raySeconds = seen ? this->Internals->VisibilityStep->GetRaySeconds() : 0.0;
   const auto shadingStart = std::chrono::steady_clock::now();
   shadelab::ShadingInputs inputs; // the scene's own material: per-vertex values are read for the whole mesh
   const std::vector<long long> ids(pilot.begin(), pilot.end());
