@@ -14,11 +14,12 @@ namespace shadelab
 {
 namespace
 {
-/// A path in a scene file is relative to the scene file's folder.
+/// A path in a scene file is relative to the scene file's folder; one read without a scene file
+/// (shadelab shade's --envmap light), to the working folder, and kept as given.
 std::string resolvePath(const std::string& path, const std::string& sceneFile)
 {
   const std::filesystem::path given(path);
-  if (given.is_absolute())
+  if (given.is_absolute() || sceneFile.empty())
   {
     return path;
   }
@@ -45,11 +46,7 @@ EnvironmentLight EnvironmentLight::read(const JsonNode& node, const SceneFileTyp
   }
   if (node.has("estimator"))
   {
-    light.estimator =
-      node.at("estimator")
-        .choice<EnvironmentEstimator>({ { "sh", EnvironmentEstimator::SphericalHarmonics },
-          { "monte_carlo", EnvironmentEstimator::MonteCarlo }, { "brute_force", EnvironmentEstimator::BruteForce },
-          { "prt", EnvironmentEstimator::PrecomputedTransfer } });
+    light.estimator = node.at("estimator").choiceAmong(environmentEstimatorNames);
   }
   if (node.has("order"))
   {
@@ -61,9 +58,7 @@ EnvironmentLight EnvironmentLight::read(const JsonNode& node, const SceneFileTyp
   }
   if (node.has("directions"))
   {
-    light.directions = node.at("directions")
-                         .choice<EnvironmentDirections>({ { "luminance", EnvironmentDirections::Luminance },
-                           { "cosine", EnvironmentDirections::Cosine }, { "mis", EnvironmentDirections::Mis } });
+    light.directions = node.at("directions").choiceAmong(environmentDirectionNames);
     if (light.estimator == EnvironmentEstimator::PrecomputedTransfer &&
       light.directions != EnvironmentDirections::Cosine)
     {

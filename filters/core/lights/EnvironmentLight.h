@@ -5,8 +5,10 @@
 #include "LightType.h"
 #include "SampleSequence.h"
 
+#include <array>
 #include <memory>
 #include <string>
+#include <utility>
 
 namespace shadelab
 {
@@ -29,6 +31,15 @@ enum class EnvironmentEstimator
   PrecomputedTransfer,
 };
 
+/// The estimators' names in a scene file's "estimator" (and shadelab shade's --envmap-estimator),
+/// in the order messages list them.
+inline constexpr std::array<std::pair<const char*, EnvironmentEstimator>, 4> environmentEstimatorNames{ {
+  { "sh", EnvironmentEstimator::SphericalHarmonics },
+  { "monte_carlo", EnvironmentEstimator::MonteCarlo },
+  { "brute_force", EnvironmentEstimator::BruteForce },
+  { "prt", EnvironmentEstimator::PrecomputedTransfer },
+} };
+
 /// Where Monte Carlo directions for an environment map come from.
 enum class EnvironmentDirections
 {
@@ -39,6 +50,14 @@ enum class EnvironmentDirections
              // densities' mean (Veach's balance heuristic, one-sample model): robust where a
              // shadow hides the bright part of the map or a dim sky is what gets through
 };
+
+/// The directions' names in a scene file's "directions" (and --envmap-directions), in the order
+/// messages list them.
+inline constexpr std::array<std::pair<const char*, EnvironmentDirections>, 3> environmentDirectionNames{ {
+  { "luminance", EnvironmentDirections::Luminance },
+  { "cosine", EnvironmentDirections::Cosine },
+  { "mis", EnvironmentDirections::Mis },
+} };
 
 struct EnvironmentLight
 {

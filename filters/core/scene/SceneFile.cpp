@@ -232,9 +232,7 @@ Scene readScene(const Json& document, const std::string& sceneFile)
   }
   if (root.has("self_shadowing"))
   {
-    scene.selfShadowing =
-      root.at("self_shadowing")
-        .choice<SelfShadowing>({ { "smooth", SelfShadowing::SmoothSurface }, { "facets", SelfShadowing::Facets } });
+    scene.selfShadowing = root.at("self_shadowing").choiceAmong(selfShadowingNames);
   }
   if (root.has("ambient_occlusion"))
   {

@@ -1,5 +1,7 @@
 #pragma once
 // Which triangles hide a light from a vertex on its own surface (docs/formulas.md section 20).
+#include <array>
+#include <utility>
 
 namespace shadelab
 {
@@ -14,4 +16,10 @@ enum class SelfShadowing
   /// The facets as given: every triangle hides what it blocks.
   Facets,
 };
+
+/// The names of a scene file's "self_shadowing" (and shadelab shade's --self-shadowing).
+inline constexpr std::array<std::pair<const char*, SelfShadowing>, 2> selfShadowingNames{ {
+  { "smooth", SelfShadowing::SmoothSurface },
+  { "facets", SelfShadowing::Facets },
+} };
 }
