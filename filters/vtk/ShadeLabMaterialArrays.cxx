@@ -253,6 +253,32 @@ std::string materialClampedArrayName(const std::string& prefix)
   return prefix + "material_clamped";
 }
 
+namespace
+{
+/// The values a coefficient's colour map spans: its source's range, or the field's finite range
+/// over the whole mesh (a collective call on a split mesh). A constant field spans one unit from
+/// its value (a colour map's ends must differ).
+std::array<double, 2> colorMapRange(
+  const ArrayCoefficient& source, vtkDataArray* array, vtkMultiProcessController* processes)
+{
+  std::array<double, 2> range = source.range ? *source.range : wholeFiniteRange(array, processes);
+  range[1] = range[0] == range[1] ? range[0] + 1 : range[1];
+  return range;
+}
+
+/// How a coefficient's channels are decoded: a shininess as it is; a colour as its source says,
+/// or else as defaultEncoding reads its kind (8-bit values and colours from a colour map are
+/// 8-bit).
+ArrayEncoding encodingOf(
+  MaterialCoefficient coefficient, const ArrayCoefficient& source, vtkDataArray* array, bool mapped, ShadingModel model)
+{
+  const bool eightBit = array->GetDataType() == VTK_UNSIGNED_CHAR || mapped;
+  return coefficient == MaterialCoefficient::Shininess
+    ? ArrayEncoding::Linear
+    : source.encoding.value_or(defaultEncoding(eightBit, model == ShadingModel::VtkOpenGL2));
+}
+}
+
 MaterialReading readVertexMaterial(vtkPolyData* piece, const Scene& scene, Precision storage,
   vtkMultiProcessController* processes, const std::vector<vtkIdType>* vertexIds)
 {
@@ -280,13 +306,8 @@ MaterialReading readVertexMaterial(vtkPolyData* piece, const Scene& scene, Preci
       : std::string("scene /material/") + coefficientKey(coefficient) + ": ";
     vtkDataArray* array = piece->GetPointData()->GetArray(source->array.c_str());
     // Collective, so before anything that may stop this process.
-    std::array<double, 2> range{};
-    if (!source->colorMap.empty())
-    {
-      range = source->range ? *source->range : wholeFiniteRange(array, processes);
-      // A constant field spans one unit from its value (a colour map's ends must differ).
-      range[1] = range[0] == range[1] ? range[0] + 1 : range[1];
-    }
+    const std::array<double, 2> range =
+      source->colorMap.empty() ? std::array<double, 2>{} : colorMapRange(*source, array, processes);
     if (!reading.problem.empty() || count == 0) // an empty piece of a split mesh may have no arrays
     {
       continue;
@@ -302,10 +323,7 @@ MaterialReading readVertexMaterial(vtkPolyData* piece, const Scene& scene, Preci
     {
       continue;
     }
-    const bool eightBit = array->GetDataType() == VTK_UNSIGNED_CHAR || mapped;
-    const ArrayEncoding encoding = coefficient == MaterialCoefficient::Shininess
-      ? ArrayEncoding::Linear
-      : source->encoding.value_or(defaultEncoding(eightBit, scene.model == ShadingModel::VtkOpenGL2));
+    const ArrayEncoding encoding = encodingOf(coefficient, *source, array, mapped, scene.model);
     const int width = coefficient == MaterialCoefficient::Shininess ? 1 : 3;
     const std::size_t size = std::size_t(width) * count;
     vtkSmartPointer<vtkDataArray> channels = array;

@@ -85,6 +85,55 @@ long long ulpDistance(double a, double b, ValueType type)
   return std::abs(x - y);
 }
 
+namespace
+{
+/// Counts, per bit, where two integers differ.
+void countDifferingBits(std::int64_t x, std::int64_t y, ArrayDifference& difference)
+{
+  const std::uint64_t bits = static_cast<std::uint64_t>(x) ^ static_cast<std::uint64_t>(y);
+  for (std::size_t bit = 0; bit < 64; ++bit)
+  {
+    difference.bitCounts[bit] += (bits >> bit) & 1u;
+  }
+}
+
+/// A value of each file, with their standard errors.
+struct ValuePair
+{
+  double a, b, errorA, errorB;
+};
+
+enum class NoiseJudgement
+{
+  NotJudged, // no finite standard error above 0: judged by the rule alone
+  Within,
+  Outside, // outside the rule's count of standard errors
+};
+
+/// Where the pair's combined standard error is finite and above 0, the difference counted
+/// against it (within 1, 2 and 3 of them, and into its component's tally): a value within the
+/// rule agrees (the rounding of a float under a tiny standard error is no noise), so it is not
+/// outside and its difference counts as 0.
+NoiseJudgement judgeByStandardErrors(const ValuePair& pair, double gap, bool passesRule, const ValueRule& rule,
+  NoiseTally& tally, ArrayDifference& difference)
+{
+  const double combined = std::sqrt(pair.errorA * pair.errorA + pair.errorB * pair.errorB);
+  if (!(combined > 0 && std::isfinite(combined) && std::isfinite(gap)))
+  {
+    difference.exactValues += combined == 0 ? 1 : 0;
+    return NoiseJudgement::NotJudged;
+  }
+  ++difference.withStandardError;
+  for (int k = 0; k < 3; ++k)
+  {
+    difference.withinStandardErrors[static_cast<std::size_t>(k)] += gap <= (k + 1) * combined ? 1 : 0;
+  }
+  const bool outside = !passesRule && gap > *rule.standardErrors * combined;
+  tally.add(passesRule ? 0.0 : pair.b - pair.a, combined * combined, outside);
+  return outside ? NoiseJudgement::Outside : NoiseJudgement::Within;
+}
+}
+
 ArrayDifference compareArrays(const ArrayValues& a, const ArrayValues& b, const ValueRule& rule,
   const ArrayValues* errorsA, const ArrayValues* errorsB)
 {
@@ -121,11 +170,7 @@ ArrayDifference compareArrays(const ArrayValues& a, const ArrayValues& b, const 
       const std::int64_t x = a.integers[i], y = b.integers[i];
       passes = x == y;
       gap = std::abs(static_cast<double>(x) - static_cast<double>(y));
-      const std::uint64_t bits = static_cast<std::uint64_t>(x) ^ static_cast<std::uint64_t>(y);
-      for (std::size_t bit = 0; bit < 64; ++bit)
-      {
-        difference.bitCounts[bit] += (bits >> bit) & 1u;
-      }
+      countDifferingBits(x, y, difference);
     }
     else
     {
@@ -149,30 +194,16 @@ ArrayDifference compareArrays(const ArrayValues& a, const ArrayValues& b, const 
         (std::isfinite(gap) &&
           (rule.ulps ? ulpDistance(x, y, a.type) <= *rule.ulps
                      : gap <= std::max(rule.relative * std::max(std::abs(x), std::abs(y)), rule.absolute)));
-      if (statistical)
+      const NoiseJudgement judgement = statistical
+        ? judgeByStandardErrors(
+            { x, y, errorsA->reals[i], errorsB->reals[i] }, gap, passes, rule, tallies[i % components], difference)
+        : NoiseJudgement::NotJudged;
+      if (judgement != NoiseJudgement::NotJudged)
       {
-        const double ex = errorsA->reals[i], ey = errorsB->reals[i];
-        const double combined = std::sqrt(ex * ex + ey * ey);
-        if (combined > 0 && std::isfinite(combined) && std::isfinite(gap))
+        passes = true; // judged by the count of values outside, not one by one
+        if (judgement == NoiseJudgement::Outside)
         {
-          ++difference.withStandardError;
-          for (int k = 0; k < 3; ++k)
-          {
-            difference.withinStandardErrors[static_cast<std::size_t>(k)] += gap <= (k + 1) * combined ? 1 : 0;
-          }
-          // A value within the rule agrees (the rounding of a float under a tiny standard
-          // error is no noise): it is not outside, and its difference counts as 0.
-          const bool outside = !passes && gap > *rule.standardErrors * combined;
-          tallies[i % components].add(passes ? 0.0 : y - x, combined * combined, outside);
-          if (outside)
-          {
-            difference.tuplePasses[i / components] = 0;
-          }
-          passes = true; // judged by the count of values outside, not one by one
-        }
-        else if (combined == 0)
-        {
-          ++difference.exactValues;
+          difference.tuplePasses[i / components] = 0;
         }
       }
     }
