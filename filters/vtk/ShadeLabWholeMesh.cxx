@@ -1,5 +1,7 @@
 #include "ShadeLabWholeMesh.h"
 
+#include "ShadeLabPieceExchange.h"
+
 #include "ShadeLabFieldNotes.h"
 #include "ShadeLabMeshChecks.h"
 #include "ShadeLabMeshExtent.h"
@@ -32,84 +34,6 @@ namespace shadelab
 {
 namespace
 {
-int processCount(vtkMultiProcessController* controller)
-{
-  return controller ? controller->GetNumberOfProcesses() : 1;
-}
-
-bool isFirstProcess(vtkMultiProcessController* controller)
-{
-  return !controller || controller->GetLocalProcessId() == 0;
-}
-
-/// Whether this process receives what is gathered `where`.
-bool receives(vtkMultiProcessController* controller, WholeMeshOn where)
-{
-  return where == WholeMeshOn::EveryProcess || isFirstProcess(controller);
-}
-
-/// Every process's `mine`, one after another in process order, on every process or on the
-/// first only (the others get nothing); counts[p] is process p's size, on every process.
-template<typename T>
-std::vector<T> gathered(vtkMultiProcessController* controller, const std::vector<T>& mine, WholeMeshOn where,
-  std::vector<vtkIdType>* counts = nullptr)
-{
-  const int processes = processCount(controller);
-  std::vector<vtkIdType> lengths(processes, static_cast<vtkIdType>(mine.size()));
-  if (processes == 1)
-  {
-    if (counts)
-    {
-      *counts = lengths;
-    }
-    return mine;
-  }
-  const vtkIdType length = static_cast<vtkIdType>(mine.size());
-  controller->AllGather(&length, lengths.data(), 1);
-  std::vector<vtkIdType> offsets(processes, 0);
-  std::partial_sum(lengths.begin(), lengths.end() - 1, offsets.begin() + 1);
-  const vtkIdType total = offsets.back() + lengths.back();
-  // MPI counts are ints: every process finds the same total, and stops alike.
-  if (total > std::numeric_limits<int>::max())
-  {
-    throw std::overflow_error("the mesh is too large to gather: " + std::to_string(total) +
-      " values in one exchange, more than MPI's 2^31 - 1");
-  }
-  if (counts)
-  {
-    *counts = lengths;
-  }
-  std::vector<T> all;
-  bool allocated = true;
-  try
-  {
-    all.resize(receives(controller, where) ? static_cast<std::size_t>(total) : 0);
-  }
-  catch (const std::bad_alloc&)
-  {
-    allocated = false;
-  }
-  if (!everyProcessHolds(controller, allocated)) // so that every process stops alike
-  {
-    throw std::runtime_error("out of memory gathering the mesh's pieces (" + std::to_string(total) + " values)");
-  }
-  const int exchanged = where == WholeMeshOn::EveryProcess
-    ? controller->AllGatherV(mine.data(), all.data(), length, lengths.data(), offsets.data())
-    : controller->GatherV(mine.data(), all.data(), length, lengths.data(), offsets.data(), 0);
-  if (exchanged == 0)
-  {
-    throw std::runtime_error("gathering the mesh's pieces failed (MPI's gather)");
-  }
-  return all;
-}
-
-template<typename T>
-std::vector<T> allGather(
-  vtkMultiProcessController* controller, const std::vector<T>& mine, std::vector<vtkIdType>* counts = nullptr)
-{
-  return gathered(controller, mine, WholeMeshOn::EveryProcess, counts);
-}
-
 /// The raw bytes of an array's tuples (its components interleaved, as VTK stores them).
 std::vector<char> bytesOf(vtkDataArray* values)
 {
@@ -861,58 +785,6 @@ int computeOnPiece(vtkMultiProcessController* controller, vtkAlgorithm* filter, 
   return agreedOutcome(controller, filter, output, succeeded);
 }
 
-MeshExtent wholeMeshExtent(vtkMultiProcessController* controller, vtkPolyData* piece)
-{
-  // An empty piece's box is VTK's empty range, which the others' replace.
-  PointBox box = piece->GetNumberOfPoints() > 0 ? finitePointBox(piece)
-                                                : PointBox{ glm::dvec3(VTK_DOUBLE_MAX), glm::dvec3(VTK_DOUBLE_MIN) };
-  if (processCount(controller) > 1)
-  {
-    const PointBox mine = box;
-    controller->AllReduce(&mine.low[0], &box.low[0], 3, vtkCommunicator::MIN_OP);
-    controller->AllReduce(&mine.high[0], &box.high[0], 3, vtkCommunicator::MAX_OP);
-  }
-  return extentOfBox(box);
-}
-
-std::size_t distinctIdCount(vtkMultiProcessController* controller, const std::vector<vtkIdType>& ids)
-{
-  std::vector<vtkIdType> all = allGather(controller, ids);
-  std::sort(all.begin(), all.end());
-  return static_cast<std::size_t>(std::unique(all.begin(), all.end()) - all.begin());
-}
-
-std::vector<double> valuesByDistinctId(
-  vtkMultiProcessController* controller, const std::vector<vtkIdType>& ids, const std::vector<double>& values)
-{
-  if (ids.size() != values.size())
-  {
-    throw std::invalid_argument(
-      "valuesByDistinctId: " + std::to_string(ids.size()) + " ids for " + std::to_string(values.size()) + " values");
-  }
-  const std::vector<vtkIdType> allIds = allGather(controller, ids);
-  const std::vector<double> allValues = allGather(controller, values);
-  std::vector<std::size_t> order(allIds.size());
-  std::iota(order.begin(), order.end(), std::size_t(0));
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return allIds[a] < allIds[b]; });
-  std::vector<double> distinct;
-  for (std::size_t k = 0; k < order.size(); ++k)
-  {
-    if (k == 0 || allIds[order[k]] != allIds[order[k - 1]])
-    {
-      distinct.push_back(allValues[order[k]]);
-    }
-  }
-  return distinct;
-}
-
-vtkIdType wholePointCount(vtkMultiProcessController* controller, const std::vector<vtkIdType>& pieceIds)
-{
-  const vtkIdType largest = pieceIds.empty() ? -1 : *std::max_element(pieceIds.begin(), pieceIds.end());
-  const std::vector<vtkIdType> all = allGather(controller, std::vector<vtkIdType>{ largest });
-  return *std::max_element(all.begin(), all.end()) + 1;
-}
-
 vtkSmartPointer<vtkDataArray> tuplesAt(vtkDataArray* values, const std::vector<vtkIdType>& ids)
 {
   vtkNew<vtkIdList> list;
@@ -924,44 +796,5 @@ vtkSmartPointer<vtkDataArray> tuplesAt(vtkDataArray* values, const std::vector<v
   taken->SetNumberOfTuples(list->GetNumberOfIds());
   values->GetTuples(list, taken);
   return taken;
-}
-
-std::string firstText(vtkMultiProcessController* controller, const std::string& text)
-{
-  std::vector<vtkIdType> lengths;
-  const std::vector<char> all = allGather(controller, std::vector<char>(text.begin(), text.end()), &lengths);
-  const auto first = std::find_if(lengths.begin(), lengths.end(), [](vtkIdType length) { return length > 0; });
-  if (first == lengths.end())
-  {
-    return "";
-  }
-  const vtkIdType start = std::accumulate(lengths.begin(), first, vtkIdType(0));
-  return std::string(all.begin() + start, all.begin() + start + *first);
-}
-
-int agreedOutcome(vtkMultiProcessController* controller, vtkAlgorithm* filter, vtkPolyData* output, bool succeeded)
-{
-  const std::vector<int> all = allGather(controller, std::vector<int>{ succeeded ? 1 : 0 });
-  if (std::find(all.begin(), all.end(), 0) == all.end())
-  {
-    return 1;
-  }
-  if (succeeded)
-  {
-    output->Initialize();
-    vtkErrorWithObjectMacro(filter, "another process failed on its piece (see its error), so this one stops too");
-  }
-  return 0;
-}
-
-bool everyProcessHolds(vtkMultiProcessController* controller, bool mine)
-{
-  int held = mine ? 1 : 0;
-  if (processCount(controller) > 1)
-  {
-    const int local = held;
-    controller->AllReduce(&local, &held, 1, vtkCommunicator::MIN_OP);
-  }
-  return held == 1;
 }
 }

@@ -1,0 +1,107 @@
+#include "ShadeLabMeshPieces.h"
+
+#include "ShadeLabMeshExtent.h"
+#include "ShadeLabPieceExchange.h"
+
+#include "vtkAlgorithm.h"
+#include "vtkCommunicator.h"
+#include "vtkMultiProcessController.h"
+#include "vtkPolyData.h"
+
+#include <algorithm>
+#include <numeric>
+#include <stdexcept>
+
+namespace shadelab
+{
+MeshExtent wholeMeshExtent(vtkMultiProcessController* controller, vtkPolyData* piece)
+{
+  // An empty piece's box is VTK's empty range, which the others' replace.
+  PointBox box = piece->GetNumberOfPoints() > 0 ? finitePointBox(piece)
+                                                : PointBox{ glm::dvec3(VTK_DOUBLE_MAX), glm::dvec3(VTK_DOUBLE_MIN) };
+  if (processCount(controller) > 1)
+  {
+    const PointBox mine = box;
+    controller->AllReduce(&mine.low[0], &box.low[0], 3, vtkCommunicator::MIN_OP);
+    controller->AllReduce(&mine.high[0], &box.high[0], 3, vtkCommunicator::MAX_OP);
+  }
+  return extentOfBox(box);
+}
+
+std::size_t distinctIdCount(vtkMultiProcessController* controller, const std::vector<vtkIdType>& ids)
+{
+  std::vector<vtkIdType> all = allGather(controller, ids);
+  std::sort(all.begin(), all.end());
+  return static_cast<std::size_t>(std::unique(all.begin(), all.end()) - all.begin());
+}
+
+std::vector<double> valuesByDistinctId(
+  vtkMultiProcessController* controller, const std::vector<vtkIdType>& ids, const std::vector<double>& values)
+{
+  if (ids.size() != values.size())
+  {
+    throw std::invalid_argument(
+      "valuesByDistinctId: " + std::to_string(ids.size()) + " ids for " + std::to_string(values.size()) + " values");
+  }
+  const std::vector<vtkIdType> allIds = allGather(controller, ids);
+  const std::vector<double> allValues = allGather(controller, values);
+  std::vector<std::size_t> order(allIds.size());
+  std::iota(order.begin(), order.end(), std::size_t(0));
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return allIds[a] < allIds[b]; });
+  std::vector<double> distinct;
+  for (std::size_t k = 0; k < order.size(); ++k)
+  {
+    if (k == 0 || allIds[order[k]] != allIds[order[k - 1]])
+    {
+      distinct.push_back(allValues[order[k]]);
+    }
+  }
+  return distinct;
+}
+
+vtkIdType wholePointCount(vtkMultiProcessController* controller, const std::vector<vtkIdType>& pieceIds)
+{
+  const vtkIdType largest = pieceIds.empty() ? -1 : *std::max_element(pieceIds.begin(), pieceIds.end());
+  const std::vector<vtkIdType> all = allGather(controller, std::vector<vtkIdType>{ largest });
+  return *std::max_element(all.begin(), all.end()) + 1;
+}
+
+std::string firstText(vtkMultiProcessController* controller, const std::string& text)
+{
+  std::vector<vtkIdType> lengths;
+  const std::vector<char> all = allGather(controller, std::vector<char>(text.begin(), text.end()), &lengths);
+  const auto first = std::find_if(lengths.begin(), lengths.end(), [](vtkIdType length) { return length > 0; });
+  if (first == lengths.end())
+  {
+    return "";
+  }
+  const vtkIdType start = std::accumulate(lengths.begin(), first, vtkIdType(0));
+  return std::string(all.begin() + start, all.begin() + start + *first);
+}
+
+int agreedOutcome(vtkMultiProcessController* controller, vtkAlgorithm* filter, vtkPolyData* output, bool succeeded)
+{
+  const std::vector<int> all = allGather(controller, std::vector<int>{ succeeded ? 1 : 0 });
+  if (std::find(all.begin(), all.end(), 0) == all.end())
+  {
+    return 1;
+  }
+  if (succeeded)
+  {
+    output->Initialize();
+    vtkErrorWithObjectMacro(filter, "another process failed on its piece (see its error), so this one stops too");
+  }
+  return 0;
+}
+
+bool everyProcessHolds(vtkMultiProcessController* controller, bool mine)
+{
+  int held = mine ? 1 : 0;
+  if (processCount(controller) > 1)
+  {
+    const int local = held;
+    controller->AllReduce(&local, &held, 1, vtkCommunicator::MIN_OP);
+  }
+  return held == 1;
+}
+}
