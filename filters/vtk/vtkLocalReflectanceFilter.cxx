@@ -191,6 +191,14 @@ double raysShareOf(const shadelab::Scene& scene)
   return manyRays ? 0.75 : 0.25;
 }
 
+/// Whether the tolerance's plan samples to targets (none without a tolerance: CheckLightMethods
+/// forgets the last plan): each vertex's standard error is then kept for the estimate after
+/// sampling, and the cost forecast.
+bool planSamples(const std::optional<shadelab::MethodPlan>& plan)
+{
+  return plan && plan->samplingError > 0;
+}
+
 }
 
 int vtkLocalReflectanceFilter::ShadeMesh(vtkPolyData* input, vtkPolyData* output, const shadelab::MeshPieces& pieces)
@@ -279,7 +287,7 @@ void vtkLocalReflectanceFilter::ForecastAndAnnounce(vtkPolyData* input, vtkDataA
   // Where the plan samples (the same on every process), each vertex's standard error is kept
   // for the estimate after sampling, and its samples counted against the forecast.
   const std::size_t points = static_cast<std::size_t>(input->GetNumberOfPoints());
-  const bool samples = this->MethodPlan->samplingError > 0;
+  const bool samples = planSamples(this->MethodPlan);
   sampling.standardError.resize(samples ? points : 0);
   this->StartStep(normalsShare, 0); // a forecast's pilot moves no progress bar
   this->MethodPlan->forecast = samples ? this->ForecastCost(input, shadingNormals, plan, pieces) : std::nullopt;
@@ -316,7 +324,7 @@ std::string vtkLocalReflectanceFilter::ReportSampling(
 {
   // Counted over every piece (a collective call, which an empty or failed piece joins too).
   this->SamplingReport = this->ShortOfTargetReport(plan, sampling.shortOfTarget, pieces);
-  if (this->Tolerance == 0 || !(this->MethodPlan->samplingError > 0))
+  if (!planSamples(this->MethodPlan))
   {
     return failure;
   }
