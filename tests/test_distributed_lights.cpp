@@ -597,6 +597,46 @@ TEST(LobeSampling, LobeWithDensityIsTheLobeAndTheDensity)
   EXPECT_GT(bothPositive, 3000);
 }
 
+// A lobe's draw knows the lobe and its density at the direction it drew (u.x / cos for cos^eta):
+// the values lobeWithDensity computes there, to rounding, for both lobes, from eta 0 to 1e6, on
+// every side of the normal and the viewer (Blinn-Phong's v.h < 0, where the lobe is 0 but the
+// density is not).
+TEST(LobeSampling, ADrawKnowsTheLobeAndItsDensityWhereItDrew)
+{
+  std::mt19937_64 random(34);
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0), unit(0.0, 1.0);
+  auto direction = [&] { return glm::normalize(glm::dvec3(uniform(random), uniform(random), uniform(random))); };
+  int compared = 0, bothPositive = 0, densityOnly = 0;
+  for (const SpecularModel model : { SpecularModel::Phong, SpecularModel::BlinnPhong })
+  {
+    for (const double eta : { 0.0, 1.0, 40.0, 1e6 })
+    {
+      const LobeModel lobe{ model, eta };
+      for (int i = 0; i < 2000; ++i)
+      {
+        const glm::dvec3 n = direction(), v = direction();
+        const LobeSample drawn = LobeDirections(lobe, n, v)({ unit(random), unit(random) });
+        EXPECT_NEAR(glm::length(drawn.direction), 1.0, 1e-14);
+        const LobeAtDirection there = lobeWithDensity(lobe, n, v, drawn.direction);
+        // The cosine lobeWithDensity finds again from the direction errs by a few ulps, which
+        // the power raises eta-fold; Blinn-Phong's h, found again from s + v of length 2 |v.h|,
+        // loses digits as |v.h| falls, and its 1 / |v.h| loses as many again.
+        const double grazing =
+          model == SpecularModel::Phong ? 1.0 : std::abs(glm::dot(v, glm::normalize(drawn.direction + v)));
+        const double relative = (1 + eta) * 1e-14 / (grazing * grazing);
+        EXPECT_NEAR(drawn.lobe.value, there.value, relative * there.value) << eta;
+        EXPECT_NEAR(drawn.lobe.density, there.density, relative * there.density) << eta;
+        bothPositive += drawn.lobe.value > 0 && drawn.lobe.density > 0 ? 1 : 0;
+        densityOnly += drawn.lobe.value == 0 && drawn.lobe.density > 0 ? 1 : 0;
+        ++compared;
+      }
+    }
+  }
+  EXPECT_EQ(compared, 16000);
+  EXPECT_GT(bothPositive, 3000);
+  EXPECT_GT(densityOnly, 1000);
+}
+
 // S by luminance and lobe together against the brute-force sum over every texel of a smooth
 // map, for a sharp lobe (eta 300) that luminance sampling alone would mostly miss.
 TEST(EnvironmentEstimators, SpecularByBothStrategiesAgainstBruteForce)

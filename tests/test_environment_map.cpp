@@ -153,6 +153,52 @@ TEST(EnvironmentMap, UvOfDirectionInvertsDirectionAt)
   EXPECT_EQ(uvOfDirection({ 0, 0, 1 }).x, 0.0); // u = 1 wraps to 0
 }
 
+// texelToward finds most texels from a quick atan2 and the rest, within its error of a
+// texel's edge, from the library's: the texel of uvOfDirection's (u, v) always, for random
+// directions, for directions on the edges themselves and a rounding either side of them, at the
+// poles and the seam, and for maps of every shape.
+TEST(EnvironmentMap, TexelTowardIsTheTexelOfUvOfDirection)
+{
+  auto texelOfUv = [](const EnvironmentMap& map, const glm::dvec3& d)
+  {
+    const glm::dvec2 uv = uvOfDirection(d);
+    return glm::ivec2(std::min(int(uv.x * map.width), map.width - 1), std::min(int(uv.y * map.height), map.height - 1));
+  };
+  std::mt19937_64 random(44);
+  std::uniform_real_distribution<double> uniform;
+  int compared = 0;
+  for (const auto& [width, height] : { std::pair{ 1024, 512 }, std::pair{ 7, 3 }, std::pair{ 1, 1 } })
+  {
+    EnvironmentMap map;
+    map.width = width;
+    map.height = height;
+    std::vector<glm::dvec3> directions = { { 0, 1, 0 }, { 0, -1, 0 }, { 0, 0, 1 }, { 0, 0, -1 }, { 1e-300, 1, 0 } };
+    for (int i = 0; i < 200000; ++i)
+    {
+      directions.push_back(randomDirection(random));
+    }
+    for (int column = 0; column <= width; ++column)
+    {
+      for (int row = 0; row <= height; row += std::max(1, height / 8))
+      {
+        const glm::dvec3 edge = directionAt(double(column) / width, (row + uniform(random)) / height);
+        directions.push_back(edge);
+        for (const double nudge : { -1e-15, 1e-15 })
+        {
+          directions.push_back(glm::normalize(edge + nudge * glm::dvec3(edge.z, 0, -edge.x)));
+        }
+      }
+    }
+    for (const glm::dvec3& d : directions)
+    {
+      ASSERT_EQ(texelToward(map, d), texelOfUv(map, d))
+        << width << "x" << height << " at " << d.x << " " << d.y << " " << d.z;
+      ++compared;
+    }
+  }
+  EXPECT_GT(compared, 600000);
+}
+
 TEST(EnvironmentMap, LuminanceOfPrimariesAndWhite)
 {
   EXPECT_DOUBLE_EQ(luminance({ 1, 0, 0 }), 0.2126);

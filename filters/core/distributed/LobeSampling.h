@@ -14,18 +14,8 @@ namespace shadelab
 {
 namespace detail
 {
-/// A direction about unit axis with density (eta + 1) / (2 pi) cos^eta: cos = u.x^(1/(eta+1)).
-inline glm::dvec3 cosinePowerDirection(const glm::dvec3& axis, double eta, const glm::dvec2& u)
-{
-  glm::dvec3 t, b;
-  orthonormalBasis(axis, t, b);
-  const double cosTheta = std::pow(u.x, 1 / (eta + 1));
-  const double sinTheta = std::sqrt(std::max(0.0, 1 - cosTheta * cosTheta));
-  const double phi = 2 * samplePi * u.y;
-  return sinTheta * std::cos(phi) * t + sinTheta * std::sin(phi) * b + cosTheta * axis;
-}
-
-/// The density of cosinePowerDirection at a cosine to the axis (above 1 by rounding: 1).
+/// The density of a direction drawn about an axis in proportion to cos^eta, at a cosine to the
+/// axis (above 1 by rounding: 1).
 inline double cosinePowerDensity(double cosine, double eta)
 {
   return cosine > 0 ? (eta + 1) / (2 * samplePi) * std::pow(std::min(cosine, 1.0), eta) : 0.0;
@@ -85,14 +75,55 @@ inline LobeAtDirection lobeWithDensity(
   return { lit ? power : 0.0, vDotH > 0 ? (lobe.eta + 1) / (2 * samplePi) * power / (4 * vDotH) : 0.0 };
 }
 
-/// A direction drawn in proportion to the lobe (lobe.wanted()), from u in [0, 1)^2.
-inline glm::dvec3 lobeDirection(const LobeModel& lobe, const glm::dvec3& n, const glm::dvec3& v, const glm::dvec2& u)
+/// A direction drawn in proportion to the lobe, with the lobe and its density there.
+struct LobeSample
 {
-  if (lobe.model == SpecularModel::Phong)
+  glm::dvec3 direction;
+  LobeAtDirection lobe;
+};
+
+/// Draws directions in proportion to a vertex's lobe (lobe.wanted()) from points u of [0, 1)^2:
+/// about the lobe's axis (Phong: the mirror of the viewer; Blinn-Phong: the normal, for h) with
+/// cos = u.x^(1/(eta+1)) and the azimuth 2 pi u.y. The axis's frame is made once per vertex, and
+/// a draw knows its lobe and density without a second power: u.x = cos^(eta+1), so cos^eta is
+/// u.x / cos (as lobeWithDensity, to rounding).
+class LobeDirections
+{
+public:
+  LobeDirections(const LobeModel& lobe, const glm::dvec3& n, const glm::dvec3& v)
+    : lobe_(lobe)
+    , n_(n)
+    , v_(v)
+    , axis_(lobe.model == SpecularModel::Phong ? detail::mirrorOfViewer(n, v) : n)
+    , cosineExponent_(1 / (lobe.eta + 1))
   {
-    return detail::cosinePowerDirection(detail::mirrorOfViewer(n, v), lobe.eta, u);
+    orthonormalBasis(axis_, t_, b_);
   }
-  const glm::dvec3 h = detail::cosinePowerDirection(n, lobe.eta, u);
-  return 2 * glm::dot(v, h) * h - v;
-}
+
+  LobeSample operator()(const glm::dvec2& u) const
+  {
+    const double cosTheta = std::pow(u.x, cosineExponent_);
+    const double sinTheta = std::sqrt(std::max(0.0, 1 - cosTheta * cosTheta));
+    const double phi = 2 * samplePi * u.y;
+    const glm::dvec3 aboutAxis = sinTheta * std::cos(phi) * t_ + sinTheta * std::sin(phi) * b_ + cosTheta * axis_;
+    const double power = cosTheta > 0 ? std::min(u.x / cosTheta, 1.0) : specularLobe(true, 0.0, lobe_.eta);
+    const double density = (lobe_.eta + 1) / (2 * samplePi) * power;
+    if (lobe_.model == SpecularModel::Phong)
+    {
+      return { aboutAxis, { glm::dot(n_, aboutAxis) > 0 ? power : 0.0, cosTheta > 0 ? density : 0.0 } };
+    }
+    // Blinn-Phong: s is v reflected about h. Where v.h < 0 the half vector of s and v is -h,
+    // below the surface: the lobe is its power of 0 there, but the density counts h.
+    const double vDotH = glm::dot(v_, aboutAxis);
+    const glm::dvec3 s = 2 * vDotH * aboutAxis - v_;
+    const bool lit = vDotH != 0 && glm::dot(n_, s) > 0;
+    const double lobe = vDotH > 0 ? power : specularLobe(true, 0.0, lobe_.eta);
+    return { s, { lit ? lobe : 0.0, cosTheta > 0 && vDotH != 0 ? density / (4 * std::abs(vDotH)) : 0.0 } };
+  }
+
+private:
+  const LobeModel& lobe_;
+  glm::dvec3 n_, v_, axis_, t_, b_;
+  double cosineExponent_;
+};
 }

@@ -1,6 +1,5 @@
 #include "EnvironmentLightEstimator.h"
 
-#include "LobeSampling.h"
 #include "SampleWarps.h"
 #include "ShRotation.h"
 
@@ -264,29 +263,32 @@ DistributedTerms EnvironmentLightEstimator::monteCarlo(const glm::dvec3& n, cons
       EnvironmentSample drawn[sampleBlock], byLobe[sampleBlock];
       sequence.points(first, count, u, w);
       sampler_->samples(count, u, w, drawn);
+      LobeSample lobeDrawn[sampleBlock];
       if (bothStrategies)
       {
         // The lobe's directions and their texels, found together (EnvironmentSampler::at).
-        glm::dvec3 lobeDirections[sampleBlock];
+        const LobeDirections lobeDirections(lobe_, n, v);
+        glm::dvec3 directions[sampleBlock];
         for (int k = 0; k < count; ++k)
         {
-          lobeDirections[k] = lobeDirection(lobe_, n, v, { u[k], w[k] });
+          lobeDrawn[k] = lobeDirections({ u[k], w[k] });
+          directions[k] = lobeDrawn[k].direction;
         }
-        sampler_->at(count, lobeDirections, byLobe);
+        sampler_->at(count, directions, byLobe);
       }
       for (int k = 0; k < count; ++k)
       {
         samples[k] = weightedByDensity(drawn[k]);
         if (bothStrategies)
         {
-          samples[k].specular = specularByBothStrategies(n, v, drawn[k], byLobe[k]);
+          samples[k].specular = specularByBothStrategies(n, v, drawn[k], { byLobe[k], lobeDrawn[k].lobe });
         }
       }
     });
 }
 
 Rgb EnvironmentLightEstimator::specularByBothStrategies(
-  const glm::dvec3& n, const glm::dvec3& v, const EnvironmentSample& byLuminance, const EnvironmentSample& byLobe) const
+  const glm::dvec3& n, const glm::dvec3& v, const EnvironmentSample& byLuminance, const ByLobe& byLobe) const
 {
   // Veach's balance heuristic with one sample of each strategy (E. Veach, "Robust Monte Carlo
   // Methods for Light Transport Simulation", 1997, section 9.2): f(x) / (p_L(x) + p_B(x)) +
@@ -299,10 +301,9 @@ Rgb EnvironmentLightEstimator::specularByBothStrategies(
     const LobeAtDirection lobe = lobeWithDensity(lobe_, n, v, byLuminance.direction);
     estimate += scale_ * byLuminance.radiance * lobe.value / (byLuminance.pdf + lobe.density);
   }
-  const LobeAtDirection lobe = lobeWithDensity(lobe_, n, v, byLobe.direction);
-  if (lobe.density > 0)
+  if (byLobe.lobe.density > 0)
   {
-    estimate += scale_ * byLobe.radiance * lobe.value / (byLobe.pdf + lobe.density);
+    estimate += scale_ * byLobe.map.radiance * byLobe.lobe.value / (byLobe.map.pdf + byLobe.lobe.density);
   }
   return estimate;
 }

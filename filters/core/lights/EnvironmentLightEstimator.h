@@ -7,6 +7,7 @@
 #include "EnvironmentLight.h"
 #include "EnvironmentMap.h"
 #include "EnvironmentSampler.h"
+#include "LobeSampling.h"
 #include "RadianceTransfer.h"
 #include "SampledTerms.h"
 #include "SequentialSampling.h"
@@ -88,9 +89,15 @@ private:
     const glm::dvec3& n, const SampleSequence& sequence, int first, int count, double* x, double* y, double* z) const;
   /// A direction (map frame) drawn from u as `directions` says, with L(w) / pdf(w).
   RadianceSample draw(const glm::dvec3& n, const glm::dvec2& u, EnvironmentDirections directions) const;
-  /// One estimate of S from a sample drawn by luminance and the map at a direction drawn by the lobe.
-  Rgb specularByBothStrategies(const glm::dvec3& n, const glm::dvec3& v, const EnvironmentSample& byLuminance,
-    const EnvironmentSample& byLobe) const;
+  /// A direction drawn by the lobe: the map there, and the lobe and its density.
+  struct ByLobe
+  {
+    EnvironmentSample map;
+    LobeAtDirection lobe;
+  };
+  /// One estimate of S from a sample drawn by luminance and one drawn by the lobe.
+  Rgb specularByBothStrategies(
+    const glm::dvec3& n, const glm::dvec3& v, const EnvironmentSample& byLuminance, const ByLobe& byLobe) const;
   Rgb radianceAt(const glm::dvec3& mapDirection) const;
 
   EnvironmentLight light_;
