@@ -29,6 +29,7 @@
 #include <cmath>
 #include <iomanip>
 #include <iostream>
+#include <optional>
 #include <sstream>
 #include <utility>
 #include <vector>
@@ -150,6 +151,13 @@ void addVisibilityOptions(CLI::App* command, SceneOverrides& overrides)
       "rounds until its standard error is within its share of the tolerance, at most the scene's max_rays "
       "(4096), and ambient_occlusion_rays says how many it drew")
     ->check(CLI::Range(2, maxSamplesPerVertex) | CLI::IsMember({ "auto" }));
+  command
+    ->add_option("--bounces", overrides.bounces,
+      "K: add the light the mesh reflects onto itself, diffusely, over K bounces (the scene's \"interreflection\", "
+      "its other settings kept: 64 gather rays per vertex by default); arrays indirect_irradiance with its "
+      "_std_error, and indirect (kd times it), which diffuse and total include; indirect_bounce_<n> and "
+      "ambient_minus_indirect on request (-a all). 0 turns it off")
+    ->check(CLI::Range(0, Interreflection::maxBounces));
 }
 
 /// --envmap and its settings: an environment light added to the scene. Their defaults shown are
@@ -336,6 +344,13 @@ void checkRun(const ShadingPipeline& pipeline, const ShadeOptions& options)
   {
     throw UserError("--ambient-occlusion " + ambientOcclusion + ": " + sceneProblem.substr(occlusionRays.size()));
   }
+  // And interreflection's, when --bounces set it.
+  const std::string interreflection = "/interreflection: ";
+  const std::string& bounces = options.overrides.bounces;
+  if (!bounces.empty() && sceneProblem.rfind(interreflection, 0) == 0)
+  {
+    throw UserError("--bounces " + bounces + ": " + sceneProblem.substr(interreflection.size()));
+  }
   if (!sceneProblem.empty())
   {
     const std::string& environmentMap = options.overrides.environment.file;
@@ -504,6 +519,43 @@ void printFlagCounts(vtkPointData* pointData, const Scene& scene, const std::str
   std::cout << "\n";
 }
 
+/// The interreflection step's report, and the ambient term it stands against: the mean of the
+/// indirect diffuse term over the vertices, the constant ambient term nearest it (least
+/// squares), beside the scene's mean ambient term.
+void printInterreflection(const ShadingPipeline& pipeline, vtkPointData* pointData, const std::string& prefix)
+{
+  const std::string& report = pipeline.filter->GetInterreflectionReport();
+  if (report.empty())
+  {
+    return;
+  }
+  std::cout << "  interreflection: " << report << "\n";
+  auto meanOf = [&](const std::string& name) -> std::optional<Rgb>
+  {
+    vtkDataArray* array = pointData->GetArray(name.c_str());
+    if (!array || array->GetNumberOfTuples() == 0)
+    {
+      return std::nullopt;
+    }
+    Rgb sum(0.0);
+    for (vtkIdType i = 0; i < array->GetNumberOfTuples(); ++i)
+    {
+      sum += Rgb(array->GetComponent(i, 0), array->GetComponent(i, 1), array->GetComponent(i, 2));
+    }
+    return sum / double(array->GetNumberOfTuples());
+  };
+  auto rgbText = [](const Rgb& c)
+  { return "(" + withDigits(c.r, 3) + ", " + withDigits(c.g, 3) + ", " + withDigits(c.b, 3) + ")"; };
+  const std::optional<Rgb> indirect = meanOf(interreflectionArrayName(prefix, InterreflectionTerm::Indirect));
+  const std::optional<Rgb> ambient = meanOf(totalArrayName(prefix, TotalTerm::Ambient));
+  if (indirect)
+  {
+    std::cout << "    the constant ambient term nearest the indirect light (least squares over the vertices): "
+              << rgbText(*indirect) << (ambient ? "; the scene's ambient term, on average: " + rgbText(*ambient) : "")
+              << "\n";
+  }
+}
+
 /// What a person wants to see after a run: what was shaded and how, the arrays and their
 /// ranges, the flags, the time.
 void printReport(const ShadingPipeline& pipeline, const Scene& scene, const std::string& ignored,
@@ -512,6 +564,7 @@ void printReport(const ShadingPipeline& pipeline, const Scene& scene, const std:
   printRunHeading(pipeline, scene, ignored, options);
   printVisibilityAndMethods(pipeline);
   vtkPointData* pointData = pipeline.filter->GetOutput()->GetPointData();
+  printInterreflection(pipeline, pointData, options.prefix);
   printArrayRanges(pointData, scene, options.prefix);
   printFlagCounts(pointData, scene, options.prefix);
   const int threads = vtkSMPTools::GetEstimatedNumberOfThreads();

@@ -1,10 +1,13 @@
 #pragma once
 // Meshes with known geometry for the filter tests.
+#include "vtkAppendPolyData.h"
 #include "vtkDoubleArray.h"
+#include "vtkPlaneSource.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
 #include "vtkSphereSource.h"
+#include "vtkTriangleFilter.h"
 
 #include <glm/vec3.hpp>
 
@@ -40,5 +43,26 @@ inline vtkSmartPointer<vtkPolyData> exactSphere(
   }
   sphere->GetPointData()->SetNormals(normals);
   return sphere;
+}
+
+/// An exactSphere over the square [-2, 2]^2 at z = 0 (facing +z, planeResolution cells a side),
+/// all triangles.
+inline vtkSmartPointer<vtkPolyData> sphereOverSquare(
+  int planeResolution, int sphereResolution, const glm::dvec3& centre, double radius)
+{
+  vtkNew<vtkPlaneSource> plane;
+  plane->SetOrigin(-2, -2, 0);
+  plane->SetPoint1(2, -2, 0);
+  plane->SetPoint2(-2, 2, 0);
+  plane->SetResolution(planeResolution, planeResolution);
+  vtkNew<vtkTriangleFilter> triangles;
+  triangles->SetInputConnection(plane->GetOutputPort());
+  vtkNew<vtkAppendPolyData> both;
+  both->AddInputConnection(triangles->GetOutputPort());
+  both->AddInputData(exactSphere(sphereResolution, centre, radius));
+  both->Update();
+  auto mesh = vtkSmartPointer<vtkPolyData>::New();
+  mesh->ShallowCopy(both->GetOutput());
+  return mesh;
 }
 }

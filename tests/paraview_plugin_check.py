@@ -129,6 +129,19 @@ relit.Rotation = 45
 relit.Intensity = 0.5
 same_arrays("Transfer Relight", arrays_of(OpenDataFile(relit_file)), arrays_of(relit), ["relit_irradiance"])
 
+# Interreflection: the scene's through Local Reflectance, and the filter alone gathering from a
+# shaded mesh's diffuse term (one bounce: the albedo does not enter it), as the command line does.
+bounces_scene = os.path.join(data, "scenes", "interreflection.json")
+bounced = LocalReflectance(Input=bunny)
+bounced.SceneFileName = bounces_scene
+same_arrays("Local Reflectance with interreflection", command_line("bounces", "-s", bounces_scene),
+            arrays_of(bounced), ["indirect_irradiance", "indirect", "diffuse", "total"])
+direct = LocalReflectance(Input=bunny)
+direct.SceneFileName = studio
+gathered = Interreflection(Input=direct)
+same_arrays("Interreflection", command_line("one_bounce", "-s", studio, "--bounces", "1", "-a", "indirect_irradiance"),
+            arrays_of(gathered), ["indirect_irradiance"])
+
 # The head scan coloured by its own RGB array, chosen in the panel, as the command line shades
 # it with a scene that names the array.
 head_file = os.path.join(data, "meshes", "head_scan.ply")

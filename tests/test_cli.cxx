@@ -255,6 +255,33 @@ TEST_F(Cli, ShadowsAndAmbientOcclusion)
   EXPECT_NE(rays.err.find("--ambient-occlusion"), std::string::npos) << rays.err;
 }
 
+TEST_F(Cli, BouncesAddTheLightTheMeshReflectsOntoItself)
+{
+  // --bounces adds interreflection: its arrays in the default selection, the step's report and
+  // the ambient term set against it; diffuse and total include it.
+  const std::string out = (folder / "bounces.vtp").string();
+  const Result result = shadelab("shade " + goodMesh() + " -o " + out + " --bounces 2");
+  EXPECT_EQ(result.exitCode, 0) << result.err;
+  for (const char* line : { "  interreflection: 2 bounces from 'diffuse', 64 gather rays per vertex; ",
+         "    the constant ambient term nearest the indirect light (least squares over the vertices): (",
+         "; the scene's ambient term, on average: (", "    indirect_irradiance            3             0 ",
+         "    indirect_irradiance_std_error  3             0 ", "    indirect                       3             0 " })
+  {
+    EXPECT_NE(result.out.find(line), std::string::npos) << line << "\n" << result.out;
+  }
+  const Result plain = shadelab("shade " + goodMesh() + " -o " + out + " --bounces 0");
+  EXPECT_EQ(plain.exitCode, 0) << plain.err;
+  EXPECT_EQ(plain.out.find("indirect"), std::string::npos) << plain.out;
+  const Result tolerance = shadelab("shade " + goodMesh() + " -o " + out + " --bounces 1 --tolerance 0.05");
+  EXPECT_EQ(tolerance.exitCode, 1);
+  EXPECT_EQ(tolerance.err,
+    "shadelab: --bounces 1: a tolerance does not bound interreflection yet: its bounces and samples are the "
+    "scene's; shade without a tolerance, or without \"interreflection\"\n");
+  const Result tooMany = shadelab("shade " + goodMesh() + " -o " + out + " --bounces 65");
+  EXPECT_EQ(tooMany.exitCode, 2);
+  EXPECT_NE(tooMany.err.find("--bounces: Value 65 not in range 0 to 64"), std::string::npos) << tooMany.err;
+}
+
 TEST_F(Cli, SelfShadowingFollowsTheSmoothSurfaceUnlessToldFacets)
 {
   // The dragon under the sun with shadows: the vertices whose shadow ray meets one of their

@@ -1,5 +1,6 @@
-// docs/guide/arrays.md documents the arrays in three tables, totals, per-light terms and ambient
-// occlusion; each must list exactly the arrays the code writes, with their number of components.
+// docs/guide/arrays.md documents the arrays in four tables, totals, per-light terms, ambient
+// occlusion and interreflection; each must list exactly the arrays the code writes, with their
+// number of components.
 #include "ArrayCatalog.h"
 #include "ShBands.h"
 
@@ -75,5 +76,12 @@ TEST(Guide, ArrayTablesListExactlyTheArraysWritten)
   EXPECT_EQ(tableAfter(text, "Totals (RGB"), totals);
   EXPECT_EQ(tableAfter(text, "Per light, named"), perLight);
   EXPECT_EQ(tableAfter(text, "Ambient occlusion, with the scene's"), occlusion);
+  Rows interreflection;
+  for (int t = 0; t < InterreflectionTermCount; ++t)
+  {
+    interreflection[termInfo(InterreflectionTerm(t)).name] = termInfo(InterreflectionTerm(t)).components;
+  }
+  interreflection[indirectBounceArrayName("", 1).substr(0, indirectBounceArrayName("", 1).size() - 1) + "<n>"] = 3;
+  EXPECT_EQ(tableAfter(text, "Interreflection, with the scene's"), interreflection);
 }
 }

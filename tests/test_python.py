@@ -405,5 +405,29 @@ class Relighting(unittest.TestCase):
                          "\"estimator\": \"prt\" (shadelab shade --envmap-estimator prt) first")
 
 
+
+class Interreflection(unittest.TestCase):
+    def test_bounces_are_the_command_lines_and_the_filter_alone_says_why_it_cannot(self):
+        scene = os.path.join(DATA, "scenes", "interreflection.json")
+        expected = command_line("interreflection", "-s", scene, "-a", "all")
+        shading = shadelab.vtkLocalReflectanceFilter()
+        shading.SetInputData(read_bunny())
+        shading.SetSceneFileName(scene)
+        shading.SetArraySelection(["all"])
+        shading.Update()
+        actual = arrays_of(shading.GetOutput())
+        for name in ("indirect_irradiance", "indirect", "indirect_bounce_3", "diffuse", "total"):
+            self.assertTrue(np.array_equal(expected[name], actual[name]), name)
+        self.assertTrue(shading.GetInterreflectionReport().startswith("3 bounces from 'diffuse', 256 gather rays"))
+        gather = shadelab.vtkInterreflectionFilter()
+        gather.SetInputData(read_bunny())
+        with ErrorText() as printed:
+            with self.assertRaises(shadelab.ShadeLabError) as refused:
+                gather.Update()
+        self.assertEqual(printed.text(), "")
+        self.assertEqual(str(refused.exception), "the input has no point normals: the gather rays leave about them "
+                         "(vtkShadingNormalsFilter makes them)")
+
+
 if __name__ == "__main__":
     unittest.main(verbosity=2)

@@ -151,10 +151,10 @@ TEST(SceneFile, WrongTypesAndUnknownFields)
     "position, attenuation, min_distance");
   EXPECT_EQ(errorOf(R"({ "lights": [], "materail": {} })"),
     "scene.json: /materail: unknown field; did you mean \"material\"? allowed here: model, frame, viewer, material, "
-    "lights, shadows, self_shadowing, ambient_occlusion, spectral");
+    "lights, shadows, self_shadowing, ambient_occlusion, interreflection, spectral");
   EXPECT_EQ(errorOf(R"({ "lights": [], "colour": {} })"),
     "scene.json: /colour: unknown field; allowed here: model, frame, viewer, material, lights, shadows, "
-    "self_shadowing, ambient_occlusion, spectral");
+    "self_shadowing, ambient_occlusion, interreflection, spectral");
   // Fields of another model are errors too, not silently ignored.
   EXPECT_EQ(errorOf(R"({ "lights": [ { "type": "point", "position": [0, 0, 1],
       "attenuation": { "model": "inverse", "range": 2 } } ] })"),
@@ -408,6 +408,46 @@ TEST(SceneFile, AreaLightAndEnvironmentMapErrors)
     errorOf(R"({ "lights": [ { "type": "environment", "file": ")" + map + R"(", "brute_force_width": 100 } ] })"),
     "scene.json: /lights/0/brute_force_width: must be an even number that divides the map's width (1024), or at "
     "least that width");
+}
+
+TEST(SceneFile, Interreflection)
+{
+  // "interreflection": its bounces and gather rays, its arrays in the default selection; 0
+  // bounces leave it out; "auto" is not read yet (a tolerance does not plan it).
+  const Scene scene = parseScene(
+    R"({ "lights": [], "interreflection": { "bounces": 3, "samples": 32, "stratified": false } })", "scene.json");
+  ASSERT_TRUE(scene.interreflection);
+  EXPECT_EQ(scene.interreflection->bounces, 3);
+  EXPECT_EQ(scene.interreflection->sampling.samples, 32);
+  EXPECT_FALSE(scene.interreflection->sampling.stratified);
+  const ArrayRequest defaults = selectArrays(scene, { "default" });
+  EXPECT_TRUE(defaults.interreflection[int(InterreflectionTerm::IndirectIrradiance)]);
+  EXPECT_TRUE(defaults.interreflection[int(InterreflectionTerm::Indirect)]);
+  EXPECT_FALSE(defaults.interreflection[int(InterreflectionTerm::AmbientMinusIndirect)]);
+  EXPECT_EQ(defaults.bounces, std::vector<bool>(3, false));
+  EXPECT_EQ(selectArrays(scene, { "indirect_bounce_2" }).bounces, std::vector<bool>({ false, true, false }));
+  EXPECT_EQ(selectArrays(scene, { "all" }).bounces, std::vector<bool>(3, true));
+  EXPECT_EQ(selectedArrayNames(scene, { "indirect_bounce_3", "indirect" }),
+    std::vector<std::string>({ "indirect", "indirect_bounce_3" }));
+  EXPECT_FALSE(parseScene(R"({ "lights": [], "interreflection": { "bounces": 0 } })", "scene.json").interreflection);
+  EXPECT_EQ(parseScene(R"({ "lights": [], "interreflection": {} })", "scene.json").interreflection->bounces, 1);
+
+  EXPECT_EQ(errorOf(R"({ "lights": [], "interreflection": { "bounces": "auto" } })"),
+    "scene.json: /interreflection/bounces: must be a whole number: a tolerance does not choose interreflection's "
+    "yet");
+  EXPECT_EQ(errorOf(R"({ "lights": [], "interreflection": { "bounces": 65 } })"),
+    "scene.json: /interreflection/bounces: must be a whole number from 0 to 64");
+  EXPECT_EQ(errorOf(R"({ "lights": [], "interreflection": { "samples": 1 } })"),
+    "scene.json: /interreflection/samples: must be a whole number from 2 to 1048576");
+  EXPECT_EQ(errorOf(R"({ "lights": [], "interreflection": { "bounce": 2 } })"),
+    "scene.json: /interreflection/bounce: unknown field; did you mean \"bounces\"? allowed here: bounces, samples, "
+    "stratified");
+  EXPECT_EQ(errorOf(R"({ "lights": [], "material": { "kd": 1.5 }, "interreflection": {} })"),
+    "scene.json: /material/kd: is the albedo each bounce of \"interreflection\" reflects, and above 1 it reflects "
+    "more light than arrives: give components <= 1");
+  EXPECT_EQ(errorOf(R"({ "lights": [], "interreflection": {}, "spectral": {} })"),
+    "scene.json: /interreflection: is computed in RGB (each bounce multiplies by the material's RGB kd), which "
+    "\"spectral\" replaces by spectra: remove one of them");
 }
 
 TEST(SceneFile, ShadowsAndAmbientOcclusion)

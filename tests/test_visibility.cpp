@@ -5,6 +5,7 @@
 // formula). Ray origins are scale-invariant: the same results wherever the mesh is and
 // whatever its size.
 #include "AreaLightEstimator.h"
+#include "CoreTestMeshes.h"
 #include "PolygonIrradiance.h"
 #include "SampleWarps.h"
 #include "Visibility.h"
@@ -22,88 +23,7 @@
 namespace
 {
 using namespace shadelab;
-
-/// A polygon mesh with a unit normal per point.
-struct Mesh
-{
-  std::vector<glm::dvec3> points, normals;
-  std::vector<PointId> offsets{ 0 };
-  std::vector<PointId> connectivity;
-
-  PointId addPoint(const glm::dvec3& p, const glm::dvec3& n)
-  {
-    points.push_back(p);
-    normals.push_back(glm::normalize(n));
-    return static_cast<PointId>(points.size() - 1);
-  }
-  void addTriangle(PointId a, PointId b, PointId c)
-  {
-    connectivity.insert(connectivity.end(), { a, b, c });
-    offsets.push_back(static_cast<PointId>(connectivity.size()));
-  }
-  PolygonList list() const { return { offsets.data(), connectivity.data(), offsets.size() - 1 }; }
-  OccluderMesh occluders() const { return OccluderMesh(PackedPoints<double>{ &points[0].x }, points.size(), list()); }
-  RayVertex vertex(std::size_t i) const { return { points[i], normals[i], static_cast<PointId>(i) }; }
-  /// The same mesh at world = offset + scale * p.
-  Mesh placed(const glm::dvec3& offset, double scale) const
-  {
-    Mesh moved = *this;
-    for (glm::dvec3& p : moved.points)
-    {
-      p = offset + scale * p;
-    }
-    return moved;
-  }
-};
-
-/// A UV sphere with its points on the sphere and radial normals: rows x columns quads, split
-/// into triangles, wound outward.
-void addSphere(Mesh& mesh, const glm::dvec3& centre, double radius, int rows, int columns)
-{
-  const PointId first = static_cast<PointId>(mesh.points.size());
-  for (int i = 0; i <= rows; ++i)
-  {
-    const double theta = M_PI * i / rows;
-    for (int j = 0; j < columns; ++j)
-    {
-      const double phi = 2 * M_PI * j / columns;
-      const glm::dvec3 n(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
-      mesh.addPoint(centre + radius * n, n);
-    }
-  }
-  auto id = [&](int i, int j) { return first + static_cast<PointId>(i * columns + (j % columns)); };
-  for (int i = 0; i < rows; ++i)
-  {
-    for (int j = 0; j < columns; ++j)
-    {
-      // Rows at the poles collapse to degenerate triangles, which hit nothing.
-      mesh.addTriangle(id(i, j), id(i + 1, j), id(i + 1, j + 1));
-      mesh.addTriangle(id(i, j), id(i + 1, j + 1), id(i, j + 1));
-    }
-  }
-}
-
-/// The square [-half, half]^2 at z = 0, facing +z, in cells x cells quads.
-void addPlane(Mesh& mesh, double half, int cells)
-{
-  const PointId first = static_cast<PointId>(mesh.points.size());
-  for (int i = 0; i <= cells; ++i)
-  {
-    for (int j = 0; j <= cells; ++j)
-    {
-      mesh.addPoint({ -half + 2 * half * i / cells, -half + 2 * half * j / cells, 0 }, { 0, 0, 1 });
-    }
-  }
-  auto id = [&](int i, int j) { return first + static_cast<PointId>(i * (cells + 1) + j); };
-  for (int i = 0; i < cells; ++i)
-  {
-    for (int j = 0; j < cells; ++j)
-    {
-      mesh.addTriangle(id(i, j), id(i + 1, j), id(i + 1, j + 1));
-      mesh.addTriangle(id(i, j), id(i + 1, j + 1), id(i, j + 1));
-    }
-  }
-}
+using namespace shadelab::testing;
 
 /// The unit cube [0, 1]^3 without its top face, its faces facing inward, each in cells x cells
 /// quads. Every point is stored once, its normal the mean of its faces' normals; or, with

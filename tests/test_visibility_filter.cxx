@@ -11,13 +11,10 @@
 #include "vtkMeshVisibilityFilter.h"
 #include "vtkShadingNormalsFilter.h"
 
-#include "vtkAppendPolyData.h"
 #include "vtkCellArray.h"
 #include "vtkFloatArray.h"
-#include "vtkPlaneSource.h"
 #include "vtkPointData.h"
 #include "vtkSMPTools.h"
-#include "vtkTriangleFilter.h"
 #include "vtkUnsignedCharArray.h"
 
 #include <gtest/gtest.h>
@@ -28,24 +25,10 @@ namespace
 {
 using namespace shadelab;
 
-/// A sphere of radius 0.5 at height 1 over the square [-2, 2]^2 at z = 0, all triangles, with
-/// exact normals on the sphere and +z on the plane.
+/// A sphere of radius 0.5 at height 1 over the square [-2, 2]^2 at z = 0 (TestMeshes.h).
 vtkSmartPointer<vtkPolyData> sphereOverPlane(int planeResolution = 60)
 {
-  vtkNew<vtkPlaneSource> plane;
-  plane->SetOrigin(-2, -2, 0);
-  plane->SetPoint1(2, -2, 0);
-  plane->SetPoint2(-2, 2, 0);
-  plane->SetResolution(planeResolution, planeResolution);
-  vtkNew<vtkTriangleFilter> triangles;
-  triangles->SetInputConnection(plane->GetOutputPort());
-  vtkNew<vtkAppendPolyData> both;
-  both->AddInputConnection(triangles->GetOutputPort());
-  both->AddInputData(shadelab::testing::exactSphere(60, { 0, 0, 1 }, 0.5));
-  both->Update();
-  auto mesh = vtkSmartPointer<vtkPolyData>::New();
-  mesh->ShallowCopy(both->GetOutput());
-  return mesh;
+  return shadelab::testing::sphereOverSquare(planeResolution, 60, { 0, 0, 1 }, 0.5);
 }
 
 Scene pointLightAbove(bool shadows)

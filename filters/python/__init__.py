@@ -18,7 +18,7 @@ from vtkmodules.vtkCommonCore import vtkOutputWindow
 from . import ShadeLabFilters
 
 __all__ = ["vtkLocalReflectanceFilter", "vtkMeshVisibilityFilter", "vtkShadingNormalsFilter",
-           "vtkTransferRelightFilter", "relight", "ShadeLabError"]
+           "vtkTransferRelightFilter", "vtkInterreflectionFilter", "relight", "ShadeLabError"]
 
 
 class ShadeLabError(RuntimeError):
@@ -111,6 +111,7 @@ vtkLocalReflectanceFilter = _filter_raising_errors(ShadeLabFilters.vtkLocalRefle
 vtkMeshVisibilityFilter = _filter_raising_errors(ShadeLabFilters.vtkMeshVisibilityFilter)
 vtkShadingNormalsFilter = _filter_raising_errors(ShadeLabFilters.vtkShadingNormalsFilter)
 vtkTransferRelightFilter = _filter_raising_errors(ShadeLabFilters.vtkTransferRelightFilter)
+vtkInterreflectionFilter = _filter_raising_errors(ShadeLabFilters.vtkInterreflectionFilter)
 
 
 def relight(mesh, environment_map, rotation=0.0, intensity=1.0, color=(1.0, 1.0, 1.0), transfer_array="",

@@ -13,6 +13,7 @@ namespace shadelab
 {
 constexpr const char* normalsNoteName = "shadelab_normals";
 constexpr const char* visibilityNoteName = "shadelab_visibility";
+constexpr const char* interreflectionNoteName = "shadelab_interreflection";
 constexpr const char* methodsNoteName = "shadelab_methods";
 
 /// Adds the lines as the field-data string array `name`, in place of one of that name.

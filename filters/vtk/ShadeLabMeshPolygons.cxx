@@ -65,4 +65,17 @@ vtkSmartPointer<vtkCellArray> MeshPolygons::welded(const std::vector<PointId>& m
   cells->SetData(offsets, connectivity);
   return cells;
 }
+
+std::unique_ptr<OccluderMesh> occludersOf(vtkPolyData* mesh)
+{
+  const MeshPolygons polygons(mesh);
+  std::unique_ptr<OccluderMesh> occluders;
+  visitPackedPoints(mesh->GetPoints()->GetData(),
+    [&](auto points)
+    {
+      occluders =
+        std::make_unique<OccluderMesh>(points, static_cast<std::size_t>(mesh->GetNumberOfPoints()), polygons.list());
+    });
+  return occluders;
+}
 }

@@ -2,6 +2,7 @@
 #define ShadeLabMeshPolygons_h
 // A VTK mesh's polygons as the core reads them (shadelab::PolygonList), and its points as
 // packed numbers (shadelab::PackedPoints): what the normals and the ray casting walk.
+#include "OccluderMesh.h"
 #include "PointNormals.h"
 
 #include "vtkAOSDataArrayTemplate.h"
@@ -11,6 +12,7 @@
 #include "vtkNew.h"
 #include "vtkSmartPointer.h"
 
+#include <memory>
 #include <vector>
 
 class vtkPolyData;
@@ -61,6 +63,9 @@ void visitPackedPoints(vtkDataArray* points, Visit&& visit)
     worker(asDoubles.Get());
   }
 }
+
+/// The mesh's polygons and strips as an Embree BVH over its points (in their own precision).
+std::unique_ptr<OccluderMesh> occludersOf(vtkPolyData* mesh);
 }
 
 #endif

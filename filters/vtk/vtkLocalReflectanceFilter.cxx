@@ -4,6 +4,7 @@
 #include "MethodChoice.h"
 #include "SceneFrame.h"
 #include "ShadeLabFieldNotes.h"
+#include "ShadeLabIndirectLight.h"
 #include "ShadeLabMaterialArrays.h"
 #include "ShadeLabMeshChecks.h"
 #include "ShadeLabMeshExtent.h"
@@ -52,6 +53,8 @@ vtkLocalReflectanceFilter::vtkLocalReflectanceFilter()
   this->Internals->NormalsStep->AddObserver(
     vtkCommand::ProgressEvent, this, &vtkLocalReflectanceFilter::ForwardStepProgress);
   this->Internals->VisibilityStep->AddObserver(
+    vtkCommand::ProgressEvent, this, &vtkLocalReflectanceFilter::ForwardStepProgress);
+  this->Internals->InterreflectionStep->AddObserver(
     vtkCommand::ProgressEvent, this, &vtkLocalReflectanceFilter::ForwardStepProgress);
 }
 
@@ -299,14 +302,27 @@ std::vector<vtkSmartPointer<vtkDataArray>> vtkLocalReflectanceFilter::RaysAndArr
   vtkDataArray* shadingNormals, const ShadingPlan& plan, const shadelab::MeshPieces& pieces, SamplingOutcome& sampling)
 {
   // Progress: the normals, then the rays where there are any, then the shading.
+  // Progress: the normals, then the rays where there are any, then the shading, and the
+  // interreflection's rays and bounces where the scene has them.
   const double raysShare = raysShareOf(plan.scene);
+  const bool indirect = shadelab::needsInterreflection(plan.scene, plan.request) && input->GetNumberOfPoints() > 0;
+  const double shadingShare = (1 - normalsShare - raysShare) * (indirect ? 0.3 : 1);
   this->StartStep(normalsShare, raysShare);
   vtkPolyData* seen = this->PrepareVisibility(input, shadingNormals, plan, pieces);
-  this->StartStep(normalsShare + raysShare, 1 - normalsShare - raysShare);
+  this->StartStep(normalsShare + raysShare, shadingShare);
   std::vector<vtkSmartPointer<vtkDataArray>> arrays;
   if (input->GetNumberOfPoints() > 0)
   {
     arrays = this->ShadedArrays(input, shadingNormals, seen, plan, pieces, sampling);
+  }
+  this->InterreflectionReport.clear();
+  if (indirect)
+  {
+    this->StartStep(normalsShare + raysShare + shadingShare, 1 - normalsShare - raysShare - shadingShare);
+    this->InterreflectionReport =
+      shadelab::addIndirectLight(this->Internals->InterreflectionStep, input, shadingNormals, plan.scene, plan.request,
+        plan.scene.material.arrays.any() ? &this->Internals->VertexMaterial : nullptr, this->ArrayPrefix, arrays);
+    this->StopIfAborted(); // the step stopped (ForwardStepProgress asked it to)
   }
   if (this->Tolerance > 0 && this->MethodPlan->forecast) // what the run drew, against it
   {
@@ -357,7 +373,7 @@ std::optional<vtkLocalReflectanceFilter::ShadingPlan> vtkLocalReflectanceFilter:
                                                                                     : shadelab::Precision::Float32;
   if (!this->CheckMesh(input, pieces, plan) || !this->PlaceScene(input, pieces, plan) ||
     !this->CheckLightMethods(plan.scene) || !this->ChooseArraysAndMethods(plan) ||
-    !this->CheckArrayNamesFree(input, plan.scene, pieces))
+    !this->CheckInterreflection(plan, pieces) || !this->CheckArrayNamesFree(input, plan.scene, pieces))
   {
     return std::nullopt;
   }
@@ -514,6 +530,20 @@ bool vtkLocalReflectanceFilter::CheckLightMethods(const shadelab::Scene& scene)
   return true;
 }
 
+bool vtkLocalReflectanceFilter::CheckInterreflection(const ShadingPlan& plan, const shadelab::MeshPieces& pieces)
+{
+  if (!plan.scene.interreflection)
+  {
+    return true;
+  }
+  const char* problem = this->Tolerance > 0
+    ? "a tolerance does not bound interreflection yet: its bounces and samples are the scene's; shade without a "
+      "tolerance, or without \"interreflection\""
+    : "is not computed on a mesh split over processes yet (a gather ray meets every piece's triangles): shade the "
+      "mesh whole, on one process";
+  return (this->Tolerance == 0 && !pieces.split()) || this->SceneIsValid({ { "/interreflection", problem } });
+}
+
 bool vtkLocalReflectanceFilter::ChooseArraysAndMethods(ShadingPlan& plan)
 {
   plan.methods = this->LightMethods;
@@ -564,7 +594,7 @@ std::vector<vtkSmartPointer<vtkDataArray>> vtkLocalReflectanceFilter::ShadedArra
   }
   vtkDataArray* points = input->GetPoints()->GetData();
   // The spectral mode always has its total, in XYZ too, and its difference from the RGB model.
-  shadelab::ArrayRequest request = plan.request;
+  shadelab::ArrayRequest request = shadelab::withInterreflectionSources(plan.scene, plan.request);
   std::optional<shadelab::LightColors> spectralColors;
   if (plan.scene.spectral)
   {
@@ -599,6 +629,10 @@ void vtkLocalReflectanceFilter::AddFieldNotes(vtkPolyData* output) const
   if (!this->VisibilityReport.empty())
   {
     shadelab::addFieldNote(output, shadelab::visibilityNoteName, { this->VisibilityReport });
+  }
+  if (!this->InterreflectionReport.empty())
+  {
+    shadelab::addFieldNote(output, shadelab::interreflectionNoteName, { this->InterreflectionReport });
   }
   if (this->Tolerance > 0)
   {

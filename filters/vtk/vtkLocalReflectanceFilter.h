@@ -152,6 +152,9 @@ public:
   /// What the last run's rays did (vtkMeshVisibilityFilter), or "" without shadows and occlusion.
   const std::string& GetVisibilityReport() const { return this->VisibilityReport; }
 
+  /// What the last run's interreflection did (vtkInterreflectionFilter), or "" without it.
+  const std::string& GetInterreflectionReport() const { return this->InterreflectionReport; }
+
   /// The processes over which the mesh may be split (default: the global controller, MPI's
   /// under pvbatch or mpirun; nullptr: this process alone). Where there are several, or the
   /// input's points have global ids, the input is taken as a piece of a mesh whose points are
@@ -194,6 +197,7 @@ private:
   vtkSmartPointer<vtkMultiProcessController> Controller;
   std::string NormalsReport;
   std::string VisibilityReport;
+  std::string InterreflectionReport;
   std::optional<shadelab::MethodPlan> MethodPlan;
   std::vector<std::string> SamplingReport;
 
@@ -271,6 +275,9 @@ private:
   std::vector<std::string> WritableArrayNames(vtkPolyData* input, const shadelab::Scene& scene) const;
   /// Whether the input lacks all of them.
   bool CheckArrayNamesFree(vtkPolyData* input, const shadelab::Scene& scene, const shadelab::MeshPieces& pieces);
+  /// Whether the plan's interreflection can be computed: not yet under a tolerance or on a split
+  /// mesh.
+  bool CheckInterreflection(const ShadingPlan& plan, const shadelab::MeshPieces& pieces);
 
   /// The normals to shade with, prepared by the normals step for this input (a collective call
   /// on a split mesh); fills NormalsReport.

@@ -10,6 +10,7 @@
 #include "SceneSource.h"
 
 #include "vtkDataArray.h"
+#include "vtkInterreflectionFilter.h"
 #include "vtkMeshVisibilityFilter.h"
 #include "vtkNew.h"
 #include "vtkShadingNormalsFilter.h"
@@ -85,6 +86,9 @@ struct vtkLocalReflectanceFilter::vtkInternals
   /// The step that casts rays for the scene's shadows and ambient occlusion, on the input with
   /// the normals to shade with.
   vtkNew<vtkMeshVisibilityFilter> VisibilityStep;
+  /// The step that gathers the light the mesh reflects onto itself, from the shaded direct
+  /// diffuse term, for the scene's interreflection.
+  vtkNew<vtkInterreflectionFilter> InterreflectionStep;
 
   /// AvailableArrays' modification time when RequestInformation last filled it: a later one
   /// is a user's choice.

@@ -600,13 +600,7 @@ const shadelab::OccluderMesh& vtkMeshVisibilityFilter::OccludersFor(vtkPolyData*
   if (!reused)
   {
     built = {};
-    const shadelab::MeshPolygons polygons(mesh);
-    shadelab::visitPackedPoints(mesh->GetPoints()->GetData(),
-      [&](auto points)
-      {
-        built.occluders = std::make_unique<shadelab::OccluderMesh>(
-          points, static_cast<std::size_t>(mesh->GetNumberOfPoints()), polygons.list());
-      });
+    built.occluders = shadelab::occludersOf(mesh);
     built.points = mesh->GetPoints();
     built.polys = mesh->GetPolys();
     built.strips = mesh->GetStrips();

@@ -61,6 +61,21 @@ const std::array<TermInfo, OcclusionTermCount> occlusionTerms = { {
     "with \"rays\": \"auto\", 1 where the vertex stopped at \"max_rays\" with a standard error above its share, "
     "else 0" },
 } };
+
+const std::array<TermInfo, InterreflectionTermCount> interreflectionTerms = { {
+  { "indirect_irradiance", 3,
+    "E_ind: the irradiance from the light the mesh reflects onto itself (diffusely, over the scene's bounces), "
+    "RGB; its diffuse term kd E_ind is in diffuse and total" },
+  { "indirect_irradiance_std_error", 3, "Monte Carlo standard error of indirect_irradiance, RGB" },
+  { "indirect", 3, "kd E_ind, the diffuse term of the indirect light (included in diffuse and total), RGB" },
+  { "ambient_minus_indirect", 3,
+    "the ambient term ka La less the indirect diffuse term it stands in for: how far the ambient term is from "
+    "the light it imitates, RGB" },
+} };
+
+/// What bounce n adds: "indirect_bounce_<n>".
+const char* const indirectBouncePrefix = "indirect_bounce_";
+const char* const indirectBounceDescription = "the irradiance that bounce n alone adds to indirect_irradiance, RGB";
 }
 
 const TermInfo flagsInfo = { "shading_flags", 1,
@@ -82,6 +97,11 @@ const TermInfo& termInfo(TotalTerm term)
 const TermInfo& termInfo(OcclusionTerm term)
 {
   return occlusionTerms[static_cast<int>(term)];
+}
+
+const TermInfo& termInfo(InterreflectionTerm term)
+{
+  return interreflectionTerms[static_cast<int>(term)];
 }
 
 int lightTermComponents(const NamedLight& light, LightTerm term)
@@ -173,6 +193,25 @@ std::string occlusionArrayName(const std::string& prefix, OcclusionTerm term)
   return prefix + termInfo(term).name;
 }
 
+std::string interreflectionArrayName(const std::string& prefix, InterreflectionTerm term)
+{
+  return prefix + termInfo(term).name;
+}
+
+std::string indirectBounceArrayName(const std::string& prefix, int bounce)
+{
+  return prefix + indirectBouncePrefix + std::to_string(bounce);
+}
+
+bool needsInterreflection(const Scene& scene, const ArrayRequest& request)
+{
+  const bool own =
+    std::any_of(request.interreflection.begin(), request.interreflection.end(), [](bool b) { return b; }) ||
+    std::any_of(request.bounces.begin(), request.bounces.end(), [](bool b) { return b; });
+  return scene.interreflection &&
+    (own || request.totals[int(TotalTerm::Diffuse)] || request.totals[int(TotalTerm::Total)]);
+}
+
 std::vector<ArrayDescription> availableArrays(const Scene& scene, const std::string& prefix)
 {
   std::vector<ArrayDescription> arrays;
@@ -189,6 +228,15 @@ std::vector<ArrayDescription> availableArrays(const Scene& scene, const std::str
     {
       arrays.push_back({ occlusionArrayName(prefix, OcclusionTerm(t)), info.components, info.description });
     }
+  }
+  for (int t = 0; t < InterreflectionTermCount && scene.interreflection; ++t)
+  {
+    const TermInfo& info = interreflectionTerms[t];
+    arrays.push_back({ interreflectionArrayName(prefix, InterreflectionTerm(t)), info.components, info.description });
+  }
+  for (int n = 1; scene.interreflection && n <= scene.interreflection->bounces; ++n)
+  {
+    arrays.push_back({ indirectBounceArrayName(prefix, n), 3, indirectBounceDescription });
   }
   for (const NamedLight& light : scene.lights)
   {
@@ -215,6 +263,8 @@ void requestAll(const Scene& scene, ArrayRequest& request)
   {
     request.occlusion[t] = sceneHasTerm(scene, OcclusionTerm(t));
   }
+  request.interreflection.fill(scene.interreflection.has_value());
+  request.bounces.assign(request.bounces.size(), true);
   for (std::size_t l = 0; l < scene.lights.size(); ++l)
   {
     for (int t = 0; t < LightTermCount; ++t)
@@ -265,6 +315,22 @@ bool requestByName(const Scene& scene, const std::string& name, ArrayRequest& re
       return true;
     }
   }
+  for (int t = 0; t < InterreflectionTermCount && scene.interreflection; ++t)
+  {
+    if (name == interreflectionTerms[t].name)
+    {
+      request.interreflection[t] = true;
+      return true;
+    }
+  }
+  for (std::size_t n = 1; n <= request.bounces.size(); ++n)
+  {
+    if (name == indirectBounceArrayName("", int(n)))
+    {
+      request.bounces[n - 1] = true;
+      return true;
+    }
+  }
   for (std::size_t l = 0; l < scene.lights.size(); ++l)
   {
     for (int t = 0; t < LightTermCount; ++t)
@@ -302,6 +368,7 @@ ArrayRequest selectArrays(const Scene& scene, const std::vector<std::string>& se
   }
   ArrayRequest request;
   request.lights.resize(scene.lights.size());
+  request.bounces.resize(scene.interreflection ? std::size_t(scene.interreflection->bounces) : 0);
   for (const std::string& entry : selection)
   {
     bool known = true;
@@ -326,6 +393,11 @@ ArrayRequest selectArrays(const Scene& scene, const std::vector<std::string>& se
       requestTermOnEveryLight(scene, termInfo(LightTerm::Visibility).name, request);
       requestTermOnEveryLight(scene, termInfo(LightTerm::VisibilityStdError).name, request);
       requestTermOnEveryLight(scene, termInfo(LightTerm::ShortOfTarget).name, request);
+      for (const InterreflectionTerm term : { InterreflectionTerm::IndirectIrradiance,
+             InterreflectionTerm::IndirectIrradianceStdError, InterreflectionTerm::Indirect })
+      {
+        request.interreflection[int(term)] |= scene.interreflection.has_value();
+      }
       // Transfer vectors are what a "prt" map is chosen for.
       requestTermOnEveryLight(scene, termInfo(LightTerm::ShTransfer).name, request);
       requestTermOnEveryLight(scene, termInfo(LightTerm::ShTransferStdError).name, request);
@@ -373,7 +445,8 @@ bool covers(const ArrayRequest& outer, const ArrayRequest& inner)
       return false;
     }
   }
-  return all(outer.totals, inner.totals) && (outer.flags || !inner.flags) && all(outer.occlusion, inner.occlusion);
+  return all(outer.totals, inner.totals) && (outer.flags || !inner.flags) && all(outer.occlusion, inner.occlusion) &&
+    all(outer.interreflection, inner.interreflection) && all(outer.bounces, inner.bounces);
 }
 }
 

@@ -34,6 +34,19 @@ enum class OcclusionTerm
 constexpr int OcclusionTermCount = 6;
 static_assert(static_cast<int>(OcclusionTerm::ShortOfTarget) + 1 == OcclusionTermCount, "OcclusionTermCount is stale");
 
+/// Quantities of diffuse interreflection (Scene::interreflection), besides each bounce's own
+/// irradiance (indirectBounceArrayName).
+enum class InterreflectionTerm
+{
+  IndirectIrradiance,
+  IndirectIrradianceStdError,
+  Indirect,             // kd times the indirect irradiance: in the diffuse and total arrays too
+  AmbientMinusIndirect, // the ambient term less what it stands in for
+};
+constexpr int InterreflectionTermCount = 4;
+static_assert(static_cast<int>(InterreflectionTerm::AmbientMinusIndirect) + 1 == InterreflectionTermCount,
+  "InterreflectionTermCount is stale");
+
 struct TermInfo
 {
   const char* name;
@@ -44,6 +57,7 @@ struct TermInfo
 const TermInfo& termInfo(LightTerm term);
 const TermInfo& termInfo(TotalTerm term);
 const TermInfo& termInfo(OcclusionTerm term);
+const TermInfo& termInfo(InterreflectionTerm term);
 /// How many components the light's array of the term has: the term's own count, or for a
 /// transfer vector its light's coefficients.
 int lightTermComponents(const NamedLight& light, LightTerm term);
@@ -59,6 +73,9 @@ struct ArrayRequest
   std::array<bool, TotalTermCount> totals{};
   bool flags = false;
   std::array<bool, OcclusionTermCount> occlusion{};
+  std::array<bool, InterreflectionTermCount> interreflection{};
+  /// bounces[n - 1]: the irradiance bounce n adds (indirectBounceArrayName), one per bounce.
+  std::vector<bool> bounces;
 
   bool any(LightTerm term) const;
 };
@@ -102,11 +119,18 @@ std::string shadowedTermsArrayName(const std::string& prefix, const std::string&
 bool specularComputed(const Scene& scene, const ArrayRequest& request, std::size_t light);
 /// The array name of an occlusion quantity: <prefix><name>.
 std::string occlusionArrayName(const std::string& prefix, OcclusionTerm term);
+/// The array name of an interreflection quantity: <prefix><name>.
+std::string interreflectionArrayName(const std::string& prefix, InterreflectionTerm term);
+/// The array of what bounce n (from 1) adds to the indirect irradiance: <prefix>indirect_bounce_<n>.
+std::string indirectBounceArrayName(const std::string& prefix, int bounce);
+/// Whether the request asks for anything that interreflection computes: its own arrays, or the
+/// diffuse and total arrays that include it.
+bool needsInterreflection(const Scene& scene, const ArrayRequest& request);
 
 /// The selection the command line documents:
 ///   "default"  the totals and shading_flags, and where the scene has them, ambient_occlusion
-///              with its standard error, each shadowed light's visibility and each "prt" map's
-///              transfer vectors
+///              with its standard error, each shadowed light's visibility, each "prt" map's
+///              transfer vectors, and indirect_irradiance with its standard error and indirect
 ///   "totals"   ambient, diffuse, specular, total
 ///   "all"      every array the scene has
 ///   "*_TERM"   TERM for every light that has it, e.g. "*_cos_incidence"

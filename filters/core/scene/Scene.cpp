@@ -101,6 +101,26 @@ bool isLightName(const std::string& name)
       name.begin(), name.end(), [&](char c) { return isAsciiLetter(c) || (c >= '0' && c <= '9') || c == '_'; });
 }
 
+/// What interreflection needs of the rest of the scene.
+void checkInterreflection(const Scene& scene, ProblemList& list)
+{
+  if (scene.interreflection)
+  {
+    const int bounces = scene.interreflection->bounces, samples = scene.interreflection->sampling.samples;
+    list.check(bounces >= 1 && bounces <= Interreflection::maxBounces, "/interreflection/bounces",
+      "must be a whole number from 1 to " + std::to_string(Interreflection::maxBounces) +
+        " (leave \"interreflection\" out for none)");
+    list.check(samples >= 2 && samples <= maxSamplesPerVertex, "/interreflection/samples",
+      "must be a whole number from 2 to " + std::to_string(maxSamplesPerVertex));
+  }
+  list.check(!scene.interreflection || largestComponent(scene.material.kd) <= 1, "/material/kd",
+    "is the albedo each bounce of \"interreflection\" reflects, and above 1 it reflects more light than arrives: "
+    "give components <= 1");
+  list.check(!(scene.interreflection && scene.spectral), "/interreflection",
+    "is computed in RGB (each bounce multiplies by the material's RGB kd), which \"spectral\" replaces by spectra: "
+    "remove one of them");
+}
+
 void checkLightName(const std::string& name, const std::string& at, ProblemList& list)
 {
   if (name.size() > maxLightNameLength)
@@ -176,6 +196,8 @@ std::vector<SceneProblem> sceneProblems(const Scene& scene, Precision precision)
       "/ambient_occlusion/max_distance", "must be a number > 0 (leave it out to count occluders at any distance)");
   }
 
+  checkInterreflection(scene, list);
+
   // Only a scene that is otherwise valid has meaningful peaks.
   if (list.problems.empty())
   {
@@ -207,6 +229,11 @@ std::vector<SceneProblem> sceneProblems(const Scene& scene, Precision precision)
     }
     list.check(list.problems.size() > 0 || sum <= limit, "/lights",
       "together the lights can reach " + beyond(sum) + "smaller intensities");
+    // Each bounce adds at most the last one's light (kd <= 1, checked above).
+    const int bounces = scene.interreflection ? scene.interreflection->bounces : 0;
+    list.check(list.problems.size() > 0 || sum * (1 + bounces) <= limit, "/interreflection/bounces",
+      "the lights and their " + std::to_string(bounces) + " bounces can reach " + beyond(sum * (1 + bounces)) +
+        "fewer bounces or smaller intensities");
   }
   return list.problems;
 }

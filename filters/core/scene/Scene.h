@@ -56,6 +56,19 @@ struct AmbientOcclusion
   double maxDistance = std::numeric_limits<double>::infinity();
 };
 
+/// "interreflection": the light the mesh reflects onto itself (docs/formulas.md section 23),
+/// diffusely, over `bounces` reflections, gathered at each vertex along `sampling.samples`
+/// cosine-weighted rays; the albedo is the material's kd.
+struct Interreflection
+{
+  /// The most bounces a scene may ask for: past it, even a white closed mesh's next bounce
+  /// changes little that more rays would not change more.
+  static constexpr int maxBounces = 64;
+  /// 1 .. maxBounces (a scene file's "bounces": 0 leaves interreflection out).
+  int bounces = 1;
+  Sampling sampling{ 64, true };
+};
+
 /// "spectral": colour evaluated wavelength by wavelength (docs/formulas.md section 22): each
 /// light's emission times the material's reflectance, summed over bands of bandNm nanometres
 /// through the CIE observer, instead of the product of their RGB values.
@@ -76,6 +89,7 @@ struct Scene
   /// headlight.
   bool vtkLoneHeadlight = false;
   std::optional<AmbientOcclusion> ambientOcclusion;
+  std::optional<Interreflection> interreflection;
   std::optional<SpectralMode> spectral;
   /// Which triangles hide a shadowed light: "self_shadowing" in a scene file.
   SelfShadowing selfShadowing = SelfShadowing::SmoothSurface;

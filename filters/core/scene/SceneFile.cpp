@@ -56,6 +56,32 @@ AmbientOcclusion readAmbientOcclusion(const JsonNode& node)
   return occlusion;
 }
 
+Interreflection readInterreflection(const JsonNode& node)
+{
+  node.expectObject({ "bounces", "samples", "stratified" });
+  Interreflection interreflection;
+  for (const char* count : { "bounces", "samples" })
+  {
+    if (node.has(count) && node.at(count).isString())
+    {
+      node.at(count).fail("must be a whole number: a tolerance does not choose interreflection's yet");
+    }
+  }
+  if (node.has("bounces"))
+  {
+    interreflection.bounces = node.at("bounces").wholeNumber(0, Interreflection::maxBounces);
+  }
+  if (node.has("samples"))
+  {
+    interreflection.sampling.samples = node.at("samples").wholeNumber(2, maxSamplesPerVertex);
+  }
+  if (node.has("stratified"))
+  {
+    interreflection.sampling.stratified = node.at("stratified").boolean();
+  }
+  return interreflection;
+}
+
 /// A coefficient read from a point-data array: {"array": "Colors", ...}.
 ArrayCoefficient readArrayCoefficient(const JsonNode& node, MaterialCoefficient coefficient)
 {
@@ -202,8 +228,8 @@ Viewer readViewer(const JsonNode& node)
 Scene readScene(const Json& document, const std::string& sceneFile)
 {
   const JsonNode root(document, "");
-  root.expectObject(
-    { "model", "frame", "viewer", "material", "lights", "shadows", "self_shadowing", "ambient_occlusion", "spectral" });
+  root.expectObject({ "model", "frame", "viewer", "material", "lights", "shadows", "self_shadowing",
+    "ambient_occlusion", "interreflection", "spectral" });
   Scene scene;
   if (root.has("model"))
   {
@@ -237,6 +263,11 @@ Scene readScene(const Json& document, const std::string& sceneFile)
   if (root.has("ambient_occlusion"))
   {
     scene.ambientOcclusion = readAmbientOcclusion(root.at("ambient_occlusion"));
+  }
+  if (root.has("interreflection"))
+  {
+    const Interreflection interreflection = readInterreflection(root.at("interreflection"));
+    scene.interreflection = interreflection.bounces > 0 ? std::optional(interreflection) : std::nullopt;
   }
   if (root.has("spectral"))
   {

@@ -58,6 +58,10 @@ std::string optionProblem(const JsonError& error, const SceneOverrides& override
   {
     return "--ambient-occlusion " + overrides.ambientOcclusion + ": " + error.message;
   }
+  if (error.path.rfind("/interreflection", 0) == 0)
+  {
+    return "--bounces " + overrides.bounces + ": " + error.message;
+  }
   // The map's file says its own problem; any other field is named by its JSON pointer.
   return "--envmap: " + (error.path == "/file" ? "" : error.path + ": ") + error.message;
 }
@@ -95,7 +99,18 @@ void overrideOcclusionRays(Scene& scene, const std::string& rays)
   scene.ambientOcclusion = occlusion;
 }
 
-/// --shadows, --self-shadowing and --ambient-occlusion.
+/// --bounces in place of the scene's "bounces", read as a scene file's are; the scene's other
+/// interreflection settings stay.
+void overrideBounces(Scene& scene, const std::string& bounces)
+{
+  Interreflection interreflection = scene.interreflection.value_or(Interreflection{});
+  const Json given = { { "bounces", sampleCountJson(bounces) } };
+  interreflection.bounces =
+    JsonNode(given, "/interreflection").at("bounces").wholeNumber(0, Interreflection::maxBounces);
+  scene.interreflection = interreflection.bounces > 0 ? std::optional(interreflection) : std::nullopt;
+}
+
+/// --shadows, --self-shadowing, --ambient-occlusion and --bounces.
 void overrideVisibility(Scene& scene, const SceneOverrides& overrides)
 {
   for (NamedLight& light : scene.lights)
@@ -109,6 +124,10 @@ void overrideVisibility(Scene& scene, const SceneOverrides& overrides)
   if (!overrides.ambientOcclusion.empty())
   {
     overrideOcclusionRays(scene, overrides.ambientOcclusion);
+  }
+  if (!overrides.bounces.empty())
+  {
+    overrideBounces(scene, overrides.bounces);
   }
 }
 }

@@ -1,6 +1,6 @@
 #pragma once
 // The scene as shadelab shade's options change it: the --envmap light added, --shadows,
-// --self-shadowing and --ambient-occlusion, in one step. Each setting is read by the scene
+// --self-shadowing, --ambient-occlusion and --bounces, in one step. Each setting is read by the scene
 // file's own code (the --envmap light as a scene file's light object), so that the names and
 // rules exist once; a problem is said in the options' words.
 #include "Scene.h"
@@ -31,6 +31,7 @@ struct SceneOverrides
   bool shadows = false;         // every light that can cast shadows casts them
   std::string selfShadowing;    // a name of selfShadowingNames; "": as the scene says
   std::string ambientOcclusion; // rays per vertex, or "auto"; "": as the scene says
+  std::string bounces;          // interreflection's bounces; "": as the scene says
 };
 
 /// A setting that cannot be applied; what() is one line that starts with the option's name
@@ -43,6 +44,7 @@ public:
 
 /// The scene with the overrides applied: the --envmap light added (read and checked as a scene
 /// file's, its name free in the scene, which sceneName names in messages), then the shadows,
-/// self-shadowing and ambient occlusion's rays. Throws SceneOverrideError.
+/// self-shadowing, ambient occlusion's rays and interreflection's bounces (the scene's other
+/// interreflection settings, or their defaults). Throws SceneOverrideError.
 Scene withOverrides(Scene scene, const SceneOverrides& overrides, const std::string& sceneName);
 }

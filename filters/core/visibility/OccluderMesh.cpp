@@ -366,6 +366,31 @@ void setRay(RTCRay& ray, const glm::vec3& origin, const glm::vec3& direction, fl
 }
 }
 
+namespace
+{
+/// frameRays[0..count-1] (count <= 16) into a packet, valid[j] set for those in use.
+void packRays(const OccluderMesh::FrameRay* frameRays, int count, int* valid, RTCRay16& rays)
+{
+  for (int j = 0; j < 16; ++j)
+  {
+    valid[j] = j < count ? -1 : 0;
+    const OccluderMesh::FrameRay& local = frameRays[j < count ? j : 0];
+    rays.org_x[j] = local.origin.x;
+    rays.org_y[j] = local.origin.y;
+    rays.org_z[j] = local.origin.z;
+    rays.tnear[j] = 0.0f;
+    rays.dir_x[j] = local.direction.x;
+    rays.dir_y[j] = local.direction.y;
+    rays.dir_z[j] = local.direction.z;
+    rays.time[j] = 0.0f;
+    rays.tfar[j] = local.maxDistance;
+    rays.mask[j] = 0xFFFFFFFFu;
+    rays.id[j] = static_cast<unsigned>(j);
+    rays.flags[j] = 0;
+  }
+}
+}
+
 unsigned OccluderMesh::occluded(const FrameRay* frameRays, int count) const
 {
   static_assert(bundleSize == 16, "the bundle is an RTCRay16");
@@ -381,23 +406,7 @@ unsigned OccluderMesh::occluded(const FrameRay* frameRays, int count) const
   }
   alignas(64) int valid[16];
   RTCRay16 rays;
-  for (int j = 0; j < 16; ++j)
-  {
-    valid[j] = j < count ? -1 : 0;
-    const FrameRay& local = frameRays[j < count ? j : 0];
-    rays.org_x[j] = local.origin.x;
-    rays.org_y[j] = local.origin.y;
-    rays.org_z[j] = local.origin.z;
-    rays.tnear[j] = 0.0f;
-    rays.dir_x[j] = local.direction.x;
-    rays.dir_y[j] = local.direction.y;
-    rays.dir_z[j] = local.direction.z;
-    rays.time[j] = 0.0f;
-    rays.tfar[j] = local.maxDistance;
-    rays.mask[j] = 0xFFFFFFFFu;
-    rays.id[j] = static_cast<unsigned>(j);
-    rays.flags[j] = 0;
-  }
+  packRays(frameRays, count, valid, rays);
   rtcOccluded16(valid, embree_->scene, &context, &rays);
   unsigned blocked = 0;
   for (int j = 0; j < count; ++j)
@@ -405,6 +414,32 @@ unsigned OccluderMesh::occluded(const FrameRay* frameRays, int count) const
     blocked |= rays.tfar[j] < 0 ? 1u << j : 0u;
   }
   return blocked;
+}
+
+glm::dvec3 OccluderMesh::areaVector(std::size_t triangle) const
+{
+  return areaVectorOf(frame_.vertices, &triangles_[3 * triangle]);
+}
+
+void OccluderMesh::firstHits(const FrameRay* frameRays, int count, RayHit* hits) const
+{
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  alignas(64) int valid[16];
+  RTCRayHit16 rayHits;
+  packRays(frameRays, count, valid, rayHits.ray);
+  for (int j = 0; j < 16; ++j)
+  {
+    rayHits.hit.geomID[j] = RTC_INVALID_GEOMETRY_ID;
+    rayHits.hit.instID[0][j] = RTC_INVALID_GEOMETRY_ID;
+  }
+  rtcIntersect16(valid, embree_->scene, &context, &rayHits);
+  for (int j = 0; j < count; ++j)
+  {
+    hits[j] = rayHits.hit.geomID[j] == RTC_INVALID_GEOMETRY_ID
+      ? RayHit{}
+      : RayHit{ rayHits.hit.primID[j], rayHits.hit.u[j], rayHits.hit.v[j] };
+  }
 }
 
 float OccluderMesh::ownTrianglesReach(const FrameRay& ray, const glm::vec3& unitPoint, PointId vertex) const

@@ -70,6 +70,28 @@ public:
   /// Which of rays[0..count-1] (count <= bundleSize) triangles block: bit j for rays[j].
   unsigned occluded(const FrameRay* rays, int count) const;
 
+  /// Where a ray first meets a triangle: the triangle's index and the hit's barycentric
+  /// coordinates (u, v) there, the point (1 - u - v) a + u b + v c of its corners (a, b, c), as
+  /// corners() gives them. A ray that meets none has the triangle noTriangle.
+  struct RayHit
+  {
+    static constexpr std::uint32_t noTriangle = 0xFFFFFFFFu;
+    std::uint32_t triangle = noTriangle;
+    float u = 0, v = 0;
+  };
+  /// The first hits of rays[0..count-1] (count <= bundleSize), traced as one packet.
+  void firstHits(const FrameRay* rays, int count, RayHit* hits) const;
+  /// The point ids of a triangle's corners (a polygon's fan of triangles: its first point, then
+  /// each pair of neighbours), in the polygon's order.
+  std::array<std::uint32_t, 3> corners(std::size_t triangle) const
+  {
+    return { triangles_[3 * triangle], triangles_[3 * triangle + 1], triangles_[3 * triangle + 2] };
+  }
+
+  /// A triangle's area vector (twice its area, along its normal by the corners' order), in the
+  /// BVH's frame, which only moves and scales: its direction is the mesh's.
+  glm::dvec3 areaVector(std::size_t triangle) const;
+
   /// Whether the first triangle the ray meets has a corner at `point` (in the mesh's
   /// coordinates), the point of id vertex (or -1) that the ray leaves: the vertex itself, or a
   /// copy of it where the mesh is split at a seam or a hard edge, which has another point id

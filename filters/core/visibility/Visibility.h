@@ -156,4 +156,16 @@ struct OcclusionEstimate
 /// no rays.
 OcclusionEstimate ambientOcclusion(
   const OccluderMesh& occluders, const RayVertex& vertex, const OcclusionSettings& settings);
+
+/// Interreflection's gather at a vertex (docs/formulas.md section 23): sampling.samples
+/// cosine-weighted rays about its normal, stratified in pairs as ambient occlusion's are but
+/// from a pattern of their own (seeded by the vertex's id, so the same on any thread or
+/// process), and each ray's first hit into hits[0..samples-1] in sample order. A ray that
+/// meets the back of a triangle, the side its shading normals (normals, per point) point away
+/// from, reads as a miss: it left into the solid or sees the inside of an open mesh, where no
+/// radiosity is computed. Returns how many did. A vertex without a normal casts no ray: every
+/// hit a miss.
+template<typename Real>
+int gatherHits(const OccluderMesh& occluders, const RayVertex& vertex, const Sampling& sampling,
+  PackedPoints<Real> normals, OccluderMesh::RayHit* hits);
 }

@@ -1,0 +1,202 @@
+#include "ShadeLabIndirectLight.h"
+
+#include "vtkInterreflectionFilter.h"
+
+#include "vtkCellArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace shadelab
+{
+namespace
+{
+/// The array of that name among `arrays`, or nullptr.
+vtkDataArray* named(const std::vector<vtkSmartPointer<vtkDataArray>>& arrays, const std::string& name)
+{
+  const auto found = std::find_if(arrays.begin(), arrays.end(),
+    [&](const vtkSmartPointer<vtkDataArray>& array) { return array->GetName() && name == array->GetName(); });
+  return found == arrays.end() ? nullptr : found->Get();
+}
+
+/// kd per vertex from the material's arrays, r, g, b after one another; empty where the scene's
+/// kd is every vertex's.
+vtkSmartPointer<vtkDoubleArray> albedoArray(const VertexMaterial* material, vtkIdType points)
+{
+  if (!material ||
+    (!material->of<double>(MaterialCoefficient::Diffuse) && !material->of<float>(MaterialCoefficient::Diffuse)))
+  {
+    return nullptr;
+  }
+  auto albedo = vtkSmartPointer<vtkDoubleArray>::New();
+  albedo->SetName("albedo");
+  albedo->SetNumberOfComponents(3);
+  albedo->SetNumberOfTuples(points);
+  const double* wide = material->of<double>(MaterialCoefficient::Diffuse);
+  const float* narrow = material->of<float>(MaterialCoefficient::Diffuse);
+  for (vtkIdType i = 0; i < 3 * points; ++i)
+  {
+    albedo->SetValue(i, wide ? wide[i] : double(narrow[i]));
+  }
+  return albedo;
+}
+
+/// into += scale x added, RGB tuple by tuple.
+void addScaled(vtkDataArray* into, vtkDataArray* added, double scale)
+{
+  for (vtkIdType i = 0; i < into->GetNumberOfTuples(); ++i)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      into->SetComponent(i, c, into->GetComponent(i, c) + scale * added->GetComponent(i, c));
+    }
+  }
+}
+}
+
+ArrayRequest withInterreflectionSources(const Scene& scene, const ArrayRequest& asked)
+{
+  ArrayRequest request = asked;
+  if (needsInterreflection(scene, asked))
+  {
+    request.totals[int(TotalTerm::Diffuse)] = true;
+    request.totals[int(TotalTerm::Ambient)] |= asked.interreflection[int(InterreflectionTerm::AmbientMinusIndirect)];
+  }
+  return request;
+}
+
+namespace
+{
+/// The step run on the input's surface (its points and cells, the shading normals, the direct
+/// radiosity and the albedo, and nothing else, so that no name can clash); returns its output's
+/// arrays. Throws std::runtime_error where it failed.
+vtkPointData* gatherBounces(vtkInterreflectionFilter* step, vtkPolyData* input, vtkDataArray* shadingNormals,
+  vtkDataArray* diffuse, vtkDoubleArray* albedo, const Scene& scene, const ArrayRequest& asked)
+{
+  vtkNew<vtkPolyData> surface;
+  surface->SetPoints(input->GetPoints());
+  surface->SetPolys(input->GetPolys());
+  surface->SetStrips(input->GetStrips());
+  surface->GetPointData()->SetNormals(shadingNormals);
+  vtkSmartPointer<vtkDataArray> radiosity = vtk::TakeSmartPointer(diffuse->NewInstance());
+  radiosity->ShallowCopy(diffuse);
+  radiosity->SetName("diffuse");
+  surface->GetPointData()->AddArray(radiosity);
+  if (albedo)
+  {
+    surface->GetPointData()->AddArray(albedo);
+  }
+  const Interreflection& settings = *scene.interreflection;
+  step->SetInputData(surface);
+  step->SetRadiosityArrayName("diffuse");
+  step->SetAlbedoArrayName(albedo ? "albedo" : "");
+  step->SetAlbedo(scene.material.kd.r, scene.material.kd.g, scene.material.kd.b);
+  step->SetBounces(settings.bounces);
+  step->SetSamples(settings.sampling.samples);
+  step->SetStratified(settings.sampling.stratified);
+  step->SetKeepBounces(std::any_of(asked.bounces.begin(), asked.bounces.end(), [](bool b) { return b; }));
+  step->SetArrayPrefix("");
+  step->Update();
+  vtkPointData* gathered = step->GetOutput()->GetPointData();
+  if (!gathered->GetArray("indirect_irradiance"))
+  {
+    throw std::runtime_error("interreflection failed (see the error above)");
+  }
+  return gathered;
+}
+
+/// kd E_ind, in the precision of `like` (the shaded diffuse term).
+vtkSmartPointer<vtkDataArray> indirectDiffuseTerm(
+  vtkDataArray* irradiance, vtkDoubleArray* albedo, const Scene& scene, vtkDataArray* like, const std::string& name)
+{
+  vtkSmartPointer<vtkDataArray> indirect = vtk::TakeSmartPointer(like->NewInstance());
+  indirect->SetName(name.c_str());
+  indirect->SetNumberOfComponents(3);
+  indirect->SetNumberOfTuples(irradiance->GetNumberOfTuples());
+  for (vtkIdType i = 0; i < irradiance->GetNumberOfTuples(); ++i)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      const double kd = albedo ? albedo->GetComponent(i, c) : scene.material.kd[c];
+      indirect->SetComponent(i, c, kd * irradiance->GetComponent(i, c));
+    }
+  }
+  return indirect;
+}
+
+/// The totals shaded only as the bounces' sources, out of `arrays`.
+void dropSourcesNotAsked(
+  const ArrayRequest& asked, const std::string& prefix, std::vector<vtkSmartPointer<vtkDataArray>>& arrays)
+{
+  for (const TotalTerm term : { TotalTerm::Diffuse, TotalTerm::Ambient })
+  {
+    if (!asked.totals[int(term)])
+    {
+      const std::string name = totalArrayName(prefix, term);
+      arrays.erase(
+        std::remove_if(arrays.begin(), arrays.end(),
+          [&](const vtkSmartPointer<vtkDataArray>& array) { return array->GetName() && name == array->GetName(); }),
+        arrays.end());
+    }
+  }
+}
+}
+
+std::string addIndirectLight(vtkInterreflectionFilter* step, vtkPolyData* input, vtkDataArray* shadingNormals,
+  const Scene& scene, const ArrayRequest& asked, const VertexMaterial* material, const std::string& prefix,
+  std::vector<vtkSmartPointer<vtkDataArray>>& arrays)
+{
+  vtkDataArray* diffuse = named(arrays, totalArrayName(prefix, TotalTerm::Diffuse));
+  const vtkSmartPointer<vtkDoubleArray> albedo = albedoArray(material, input->GetNumberOfPoints());
+  vtkPointData* gathered = gatherBounces(step, input, shadingNormals, diffuse, albedo, scene, asked);
+  vtkDataArray* irradiance = gathered->GetArray("indirect_irradiance");
+  const vtkSmartPointer<vtkDataArray> indirect = indirectDiffuseTerm(
+    irradiance, albedo, scene, diffuse, interreflectionArrayName(prefix, InterreflectionTerm::Indirect));
+  std::vector<vtkSmartPointer<vtkDataArray>> added;
+  auto keep = [&](bool wanted, vtkDataArray* array, const std::string& name)
+  {
+    if (wanted)
+    {
+      array->SetName(name.c_str());
+      added.push_back(array);
+    }
+  };
+  const auto& wanted = asked.interreflection;
+  if (wanted[int(InterreflectionTerm::AmbientMinusIndirect)])
+  {
+    vtkSmartPointer<vtkDataArray> difference = vtk::TakeSmartPointer(indirect->NewInstance());
+    difference->DeepCopy(named(arrays, totalArrayName(prefix, TotalTerm::Ambient)));
+    addScaled(difference, indirect, -1);
+    keep(true, difference, interreflectionArrayName(prefix, InterreflectionTerm::AmbientMinusIndirect));
+  }
+  for (const TotalTerm term : { TotalTerm::Diffuse, TotalTerm::Total })
+  {
+    if (vtkDataArray* total = named(arrays, totalArrayName(prefix, term)))
+    {
+      addScaled(total, indirect, 1);
+    }
+  }
+  keep(wanted[int(InterreflectionTerm::IndirectIrradiance)], irradiance,
+    interreflectionArrayName(prefix, InterreflectionTerm::IndirectIrradiance));
+  keep(wanted[int(InterreflectionTerm::IndirectIrradianceStdError)],
+    gathered->GetArray("indirect_irradiance_std_error"),
+    interreflectionArrayName(prefix, InterreflectionTerm::IndirectIrradianceStdError));
+  keep(wanted[int(InterreflectionTerm::Indirect)], indirect,
+    interreflectionArrayName(prefix, InterreflectionTerm::Indirect));
+  for (std::size_t n = 1; n <= asked.bounces.size(); ++n)
+  {
+    keep(asked.bounces[n - 1], gathered->GetArray(("indirect_bounce_" + std::to_string(n)).c_str()),
+      indirectBounceArrayName(prefix, int(n)));
+  }
+  dropSourcesNotAsked(asked, prefix, arrays);
+  arrays.insert(arrays.end(), added.begin(), added.end());
+  // What the step holds is not kept until the next run (the arrays asked for are in `arrays`).
+  step->GetOutput()->Initialize();
+  step->SetInputData(nullptr);
+  return step->GetReport();
+}
+}

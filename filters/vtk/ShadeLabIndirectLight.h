@@ -1,0 +1,33 @@
+#pragma once
+// The scene's interreflection added to vtkLocalReflectanceFilter's shaded arrays
+// (docs/formulas.md section 23): the direct diffuse term is the radiosity the first bounce
+// reflects, vtkInterreflectionFilter gathers the bounces, and kd times their irradiance joins
+// the diffuse and total terms.
+#include "ArrayCatalog.h"
+#include "MaterialArrays.h"
+#include "Scene.h"
+
+#include "vtkDataArray.h"
+#include "vtkSmartPointer.h"
+
+#include <string>
+#include <vector>
+
+class vtkInterreflectionFilter;
+class vtkPolyData;
+
+namespace shadelab
+{
+/// The request the kernel shades for interreflection: `asked`, with the diffuse total (the
+/// first bounce's radiosity) and, for ambient_minus_indirect, the ambient total.
+ArrayRequest withInterreflectionSources(const Scene& scene, const ArrayRequest& asked);
+
+/// Runs `step` on the input's surface with the shading normals, from the diffuse total in
+/// `arrays` and the material's kd (per vertex where `material` has it); adds kd E_ind to the
+/// diffuse and total arrays and appends the interreflection arrays `asked` names, then drops the
+/// totals shaded only for it. Returns the step's report. Throws std::runtime_error where the
+/// step failed.
+std::string addIndirectLight(vtkInterreflectionFilter* step, vtkPolyData* input, vtkDataArray* shadingNormals,
+  const Scene& scene, const ArrayRequest& asked, const VertexMaterial* material, const std::string& prefix,
+  std::vector<vtkSmartPointer<vtkDataArray>>& arrays);
+}

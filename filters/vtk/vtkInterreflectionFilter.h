@@ -1,0 +1,108 @@
+/**
+ * @class vtkInterreflectionFilter
+ * @brief The light a mesh reflects onto itself: from each vertex's direct diffuse term, the
+ * irradiance that reaches it after 1 .. Bounces diffuse reflections on the mesh's own surfaces.
+ *
+ * Each vertex gathers along Samples cosine-weighted rays about its point normal; a ray's value
+ * is the radiosity (RadiosityArrayName, the direct diffuse term kd E, RGB) interpolated at its
+ * first hit, and each further bounce gathers kd times what the last one gathered, on the same
+ * hits (docs/formulas.md section 23). kd, the albedo, is Albedo or, per vertex, the RGB array
+ * AlbedoArrayName (values in [0, 1]). Writes <ArrayPrefix>indirect_irradiance and its standard
+ * error, and with KeepBounces each bounce's own irradiance, <ArrayPrefix>indirect_bounce_<n>;
+ * float64 for a float64 radiosity, float32 otherwise. Every input array passes through. The
+ * results are the same bits on any number of threads.
+ *
+ * vtkLocalReflectanceFilter runs it for a scene's "interreflection", and adds kd times the
+ * indirect irradiance to its diffuse and total terms.
+ */
+#ifndef vtkInterreflectionFilter_h
+#define vtkInterreflectionFilter_h
+
+#include "ShadeLabFiltersModule.h"
+#include "vtkPolyDataAlgorithm.h"
+
+#include <string>
+
+class vtkDataArray;
+
+class SHADELABFILTERS_EXPORT vtkInterreflectionFilter : public vtkPolyDataAlgorithm
+{
+public:
+  static vtkInterreflectionFilter* New();
+  vtkTypeMacro(vtkInterreflectionFilter, vtkPolyDataAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /// The point array of the direct radiosity B0, RGB: the direct diffuse term (default
+  /// "diffuse").
+  vtkSetMacro(RadiosityArrayName, std::string);
+  vtkGetMacro(RadiosityArrayName, std::string);
+
+  /// The albedo kd of every vertex, RGB in [0, 1] (default 0.8 0.8 0.8), where AlbedoArrayName
+  /// is empty.
+  vtkSetVector3Macro(Albedo, double);
+  vtkGetVector3Macro(Albedo, double);
+
+  /// A point array of each vertex's albedo, RGB in [0, 1] (default "": Albedo everywhere).
+  vtkSetMacro(AlbedoArrayName, std::string);
+  vtkGetMacro(AlbedoArrayName, std::string);
+
+  /// How many reflections the light makes (default 1; 0 writes zeros).
+  vtkSetClampMacro(Bounces, int, 0, 64);
+  vtkGetMacro(Bounces, int);
+
+  /// Gather rays per vertex (default 64).
+  vtkSetClampMacro(Samples, int, 2, 1 << 20);
+  vtkGetMacro(Samples, int);
+
+  /// Stratified gather rays (default on).
+  vtkSetMacro(Stratified, bool);
+  vtkGetMacro(Stratified, bool);
+  vtkBooleanMacro(Stratified, bool);
+
+  /// Also each bounce's own irradiance (default off).
+  vtkSetMacro(KeepBounces, bool);
+  vtkGetMacro(KeepBounces, bool);
+  vtkBooleanMacro(KeepBounces, bool);
+
+  /// Prepended to the names of the arrays it writes (default "").
+  vtkSetMacro(ArrayPrefix, std::string);
+  vtkGetMacro(ArrayPrefix, std::string);
+
+  /// Threads for the rays and the sweeps (default 0: as vtkSMPTools is set).
+  vtkSetClampMacro(NumberOfThreads, int, 0, VTK_INT_MAX);
+  vtkGetMacro(NumberOfThreads, int);
+
+  /// What the last run did: the rays, how many met a triangle's back, the bounces.
+  const std::string& GetReport() const { return this->Report; }
+  /// Of the last run's gather rays, how many met the back of a triangle (and carried nothing).
+  long long GetBackHits() const { return this->BackHits; }
+
+protected:
+  vtkInterreflectionFilter() = default;
+  ~vtkInterreflectionFilter() override = default;
+
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+private:
+  vtkInterreflectionFilter(const vtkInterreflectionFilter&) = delete;
+  void operator=(const vtkInterreflectionFilter&) = delete;
+
+  int Interreflect(vtkPolyData* input, vtkPolyData* output);
+  /// The input's array of that name if it is numeric with 3 components; nullptr after
+  /// reporting why not.
+  vtkDataArray* RgbArray(vtkPolyData* input, const std::string& name, const char* role);
+
+  std::string RadiosityArrayName = "diffuse";
+  double Albedo[3] = { 0.8, 0.8, 0.8 };
+  std::string AlbedoArrayName;
+  int Bounces = 1;
+  int Samples = 64;
+  bool Stratified = true;
+  bool KeepBounces = false;
+  std::string ArrayPrefix;
+  int NumberOfThreads = 0;
+  std::string Report;
+  long long BackHits = 0;
+};
+
+#endif

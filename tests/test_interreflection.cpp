@@ -1,0 +1,262 @@
+// Diffuse interreflection (interreflection/Interreflection.h) against the closed forms of
+// docs/formulas.md section 23: inside a closed sphere every wall element sees the wall with
+// the same form factor, so k bounces of a uniform radiosity add rho + ... + rho^k of it; a
+// spherical bowl of fraction f of the sphere sees itself with the fraction f; a convex mesh
+// sees nothing of itself.
+#include "CoreTestMeshes.h"
+#include "Interreflection.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+namespace
+{
+using namespace shadelab;
+using namespace shadelab::testing;
+
+/// Every vertex's gather on the mesh, `rays` each, and how many met a triangle's back.
+struct Gathered
+{
+  std::vector<OccluderMesh::RayHit> hits;
+  long backHits = 0;
+  GatherTable table;
+};
+
+Gathered gatherAll(const Mesh& mesh, const OccluderMesh& occluders, int rays)
+{
+  Gathered gathered;
+  gathered.hits.resize(mesh.points.size() * std::size_t(rays));
+  for (std::size_t i = 0; i < mesh.points.size(); ++i)
+  {
+    gathered.backHits += gatherHits(occluders, mesh.vertex(i), { rays, true },
+      PackedPoints<double>{ &mesh.normals[0].x }, &gathered.hits[i * std::size_t(rays)]);
+  }
+  gathered.table = { &occluders, mesh.points.size(), rays, gathered.hits.data(), true };
+  return gathered;
+}
+
+double sumOfPowers(double x, int from, int to)
+{
+  double sum = 0;
+  for (int n = from; n <= to; ++n)
+  {
+    sum += std::pow(x, n);
+  }
+  return sum;
+}
+
+// A point light of intensity I at the centre of a closed sphere of radius R lights every wall
+// vertex with E0 = I / R^2, a uniform radiosity rho E0 that every gather ray meets, whatever
+// triangle it hits: k bounces add (I / R^2)(rho + ... + rho^k), to rounding, with no spread.
+TEST(Interreflection, AClosedSphereLitFromItsCentreGainsRhoToTheKOfItsLightPerBounce)
+{
+  Mesh sphere;
+  const double radius = 2.0, intensity = 3.0, rho = 0.6;
+  addSphere(sphere, glm::dvec3(0.5, -1, 2), radius, 16, 32, true);
+  const OccluderMesh occluders = sphere.occluders();
+  const Gathered gathered = gatherAll(sphere, occluders, 32);
+  EXPECT_EQ(gathered.backHits, 0);
+  const double direct = intensity / (radius * radius);
+  const std::vector<Rgb> radiosity(sphere.points.size(), Rgb(rho * direct));
+  for (int bounces = 1; bounces <= 4; ++bounces)
+  {
+    const IndirectIrradiance indirect = interreflect(gathered.table, radiosity, { Rgb(rho), nullptr }, bounces, true);
+    const double expected = direct * sumOfPowers(rho, 1, bounces);
+    ASSERT_EQ(indirect.bounces.size(), std::size_t(bounces));
+    for (std::size_t i = 0; i < sphere.points.size(); ++i)
+    {
+      ASSERT_NEAR(indirect.irradiance[i].g, expected, 1e-12 * expected) << "vertex " << i << ", " << bounces;
+      ASSERT_LT(indirect.standardError[i].g, 1e-12 * expected);
+      ASSERT_NEAR(indirect.bounces.back()[i].g, direct * std::pow(rho, bounces), 1e-12 * expected);
+    }
+  }
+}
+
+// The light off the centre: the direct radiosity varies as cos / d^2, but after one bounce
+// the wall has gathered the whole flux 4 pi I, spread evenly: rho I / R^2 at every vertex,
+// within three standard errors and the tessellation's error.
+TEST(Interreflection, AClosedSphereLitOffCentreIsLitEvenlyByItsFirstBounce)
+{
+  Mesh sphere;
+  const double radius = 1.0, intensity = 1.0, rho = 0.5;
+  const glm::dvec3 light(0.3, 0.2, -0.4);
+  addSphere(sphere, glm::dvec3(0.0), radius, 48, 96, true);
+  const OccluderMesh occluders = sphere.occluders();
+  // The radiosity peaks where the light is near the wall: at 64 rays a vertex's mean is still
+  // skewed (2% of the vertices beyond three standard errors, 0.7% at 256, 0.4% at 1024).
+  const Gathered gathered = gatherAll(sphere, occluders, 256);
+  std::vector<Rgb> radiosity(sphere.points.size());
+  for (std::size_t i = 0; i < sphere.points.size(); ++i)
+  {
+    const glm::dvec3 toLight = light - sphere.points[i];
+    const double d = glm::length(toLight);
+    radiosity[i] = Rgb(rho * intensity * glm::dot(sphere.normals[i], toLight / d) / (d * d));
+  }
+  const IndirectIrradiance indirect = interreflect(gathered.table, radiosity, { Rgb(rho), nullptr }, 1, false);
+  const double expected = rho * intensity / (radius * radius);
+  int within = 0;
+  double mean = 0;
+  for (std::size_t i = 0; i < sphere.points.size(); ++i)
+  {
+    within += std::abs(indirect.irradiance[i].r - expected) <= 3 * indirect.standardError[i].r + 0.01 * expected;
+    mean += indirect.irradiance[i].r / double(sphere.points.size());
+  }
+  EXPECT_GE(within, 0.99 * double(sphere.points.size()));
+  EXPECT_NEAR(mean, expected, 0.005 * expected);
+}
+
+// A spherical bowl, the zone below polar angle theta0 (a fraction f = (1 + cos theta0) / 2 of the
+// sphere), under a constant sky: each point of its inside sees the sky with the cosine-weighted
+// fraction 1 - f and itself with f (Goebel 1967), so a uniform direct radiosity B0 gains
+// B0 (f rho + ... + (f rho)^k) / rho of irradiance in k bounces.
+TEST(Interreflection, ABowlSeesItselfWithTheFractionOfTheSphereItCovers)
+{
+  Mesh bowl;
+  const double theta0 = 1.2, rho = 0.8, sky = 1.0;
+  const double f = (1 + std::cos(theta0)) / 2;
+  addSphereZone(bowl, glm::dvec3(0.0), 1.0, 48, 96, theta0, true);
+  const OccluderMesh occluders = bowl.occluders();
+  const Gathered gathered = gatherAll(bowl, occluders, 256);
+  EXPECT_EQ(gathered.backHits, 0);
+  const double direct = M_PI * sky * (1 - f);
+  const std::vector<Rgb> radiosity(bowl.points.size(), Rgb(rho * direct));
+  for (int bounces : { 1, 3 })
+  {
+    const IndirectIrradiance indirect = interreflect(gathered.table, radiosity, { Rgb(rho), nullptr }, bounces, false);
+    const double expected = direct * sumOfPowers(f * rho, 1, bounces); // E_n = B0 f^n rho^(n-1), B0 = rho direct
+    int within = 0;
+    double mean = 0;
+    for (std::size_t i = 0; i < bowl.points.size(); ++i)
+    {
+      within += std::abs(indirect.irradiance[i].b - expected) <= 3 * indirect.standardError[i].b + 0.01 * expected;
+      mean += indirect.irradiance[i].b / double(bowl.points.size());
+    }
+    EXPECT_GE(within, 0.99 * double(bowl.points.size())) << bounces;
+    EXPECT_NEAR(mean, expected, 0.01 * expected) << bounces;
+  }
+}
+
+// The white furnace: with rho = 1 the bowl's total irradiance, direct and every bounce, tends to
+// that of the open sky, pi L, whatever its shape.
+TEST(Interreflection, AWhiteBowlUnderAConstantSkyTendsToTheOpenSky)
+{
+  Mesh bowl;
+  const double theta0 = 0.6, sky = 1.0;
+  const double f = (1 + std::cos(theta0)) / 2;
+  addSphereZone(bowl, glm::dvec3(0.0), 1.0, 32, 64, theta0, true);
+  const OccluderMesh occluders = bowl.occluders();
+  const Gathered gathered = gatherAll(bowl, occluders, 64);
+  const double direct = M_PI * sky * (1 - f);
+  const std::vector<Rgb> radiosity(bowl.points.size(), Rgb(direct));
+  const IndirectIrradiance indirect = interreflect(gathered.table, radiosity, { Rgb(1.0), nullptr }, 60, false);
+  double mean = 0;
+  for (std::size_t i = 0; i < bowl.points.size(); ++i)
+  {
+    mean += (direct + indirect.irradiance[i].r) / double(bowl.points.size());
+  }
+  EXPECT_NEAR(mean, M_PI * sky, 0.02 * M_PI * sky);
+  EXPECT_GT(f, 0.9); // a deep bowl: the direct light alone is under a tenth of the sky's
+}
+
+// Seen from outside, a convex mesh meets nothing of itself: no indirect light at all, and no
+// ray meets a back. Zero bounces: nothing either.
+TEST(Interreflection, AConvexMeshSeenFromOutsideGetsNoIndirectLight)
+{
+  Mesh sphere;
+  addSphere(sphere, glm::dvec3(0.0), 1.0, 16, 32);
+  const OccluderMesh occluders = sphere.occluders();
+  const Gathered gathered = gatherAll(sphere, occluders, 32);
+  EXPECT_EQ(gathered.backHits, 0);
+  const std::vector<Rgb> radiosity(sphere.points.size(), Rgb(1.0));
+  for (int bounces : { 0, 3 })
+  {
+    const IndirectIrradiance indirect = interreflect(gathered.table, radiosity, { Rgb(0.9), nullptr }, bounces, false);
+    for (std::size_t i = 0; i < sphere.points.size(); ++i)
+    {
+      ASSERT_EQ(indirect.irradiance[i], Rgb(0.0));
+      ASSERT_EQ(indirect.standardError[i], Rgb(0.0));
+    }
+  }
+}
+
+// A surface sends out no negative light: a direct term below 0 (an SH estimate's ringing)
+// reflects nothing, channel by channel.
+TEST(Interreflection, ANegativeDirectTermReflectsNothing)
+{
+  Mesh sphere;
+  addSphere(sphere, glm::dvec3(0.0), 1.0, 12, 24, true);
+  const OccluderMesh occluders = sphere.occluders();
+  const Gathered gathered = gatherAll(sphere, occluders, 16);
+  const std::vector<Rgb> radiosity(sphere.points.size(), Rgb(-0.5, 0.25, -1e-3));
+  const IndirectIrradiance indirect = interreflect(gathered.table, radiosity, { Rgb(0.5), nullptr }, 2, false);
+  for (std::size_t i = 0; i < sphere.points.size(); ++i)
+  {
+    ASSERT_EQ(indirect.irradiance[i].r, 0.0);
+    ASSERT_NEAR(indirect.irradiance[i].g, 0.25 * (1 + 0.5), 1e-14);
+    ASSERT_EQ(indirect.irradiance[i].b, 0.0);
+  }
+}
+
+// A closed sphere with its normals pointing out, gathered from its inside surface's points:
+// every ray leaves into the solid and meets the wall's back, which carries nothing.
+TEST(Interreflection, RaysThatMeetATrianglesBackCarryNothingAndAreCounted)
+{
+  Mesh inside;
+  addSphere(inside, glm::dvec3(0.0), 1.0, 16, 32);
+  for (glm::dvec3& n : inside.normals)
+  {
+    n = -n; // gather inward, toward the surface whose normals face out
+  }
+  Mesh outward;
+  addSphere(outward, glm::dvec3(0.0), 1.0, 16, 32);
+  const OccluderMesh occluders = outward.occluders();
+  Gathered gathered;
+  gathered.hits.resize(inside.points.size() * 16);
+  for (std::size_t i = 0; i < inside.points.size(); ++i)
+  {
+    gathered.backHits += gatherHits(
+      occluders, inside.vertex(i), { 16, true }, PackedPoints<double>{ &outward.normals[0].x }, &gathered.hits[i * 16]);
+  }
+  EXPECT_GT(gathered.backHits, long(0.95 * 16 * double(inside.points.size())));
+}
+
+// Each vertex depends only on the previous sweep: split into ranges in any order, the results
+// are the same bits. Per-channel albedo colours the bounces channel by channel.
+TEST(Interreflection, TheSameBitsHoweverTheSweepsAreSplitAndChannelsApart)
+{
+  Mesh bowl;
+  addSphereZone(bowl, glm::dvec3(0.0), 1.0, 24, 48, 1.0, true);
+  const OccluderMesh occluders = bowl.occluders();
+  const Gathered gathered = gatherAll(bowl, occluders, 32);
+  std::vector<Rgb> radiosity(bowl.points.size()), albedo(bowl.points.size());
+  for (std::size_t i = 0; i < bowl.points.size(); ++i)
+  {
+    radiosity[i] = Rgb(1.0 + bowl.points[i].x, 0.5, 0.0);
+    albedo[i] = Rgb(0.9, 0.5 * (1 + bowl.points[i].y), 0.2);
+  }
+  const Albedo varying{ Rgb(0.0), &albedo[0].x };
+  const IndirectIrradiance serial = interreflect(gathered.table, radiosity, varying, 3, true);
+  const RangeLoop backwardsInPieces = [](std::size_t count, const std::function<void(std::size_t, std::size_t)>& body)
+  {
+    for (std::size_t last = count; last > 0;)
+    {
+      const std::size_t first = last > 37 ? last - 37 : 0;
+      body(first, last);
+      last = first;
+    }
+  };
+  const IndirectIrradiance split = interreflect(gathered.table, radiosity, varying, 3, true, backwardsInPieces);
+  EXPECT_EQ(split.irradiance, serial.irradiance);
+  EXPECT_EQ(split.standardError, serial.standardError);
+  EXPECT_EQ(split.bounces, serial.bounces);
+  for (std::size_t i = 0; i < bowl.points.size(); ++i)
+  {
+    const Rgb sum = serial.bounces[0][i] + serial.bounces[1][i] + serial.bounces[2][i];
+    ASSERT_NEAR(serial.irradiance[i].r, sum.r, 1e-12 * (1 + sum.r));
+    ASSERT_NEAR(serial.irradiance[i].g, sum.g, 1e-12 * (1 + sum.g));
+    ASSERT_EQ(serial.irradiance[i].b, 0.0); // no blue to reflect
+  }
+}
+}

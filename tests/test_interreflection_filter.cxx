@@ -1,0 +1,199 @@
+// Interreflection through the filters (docs/formulas.md section 23): vtkLocalReflectanceFilter
+// with a scene's "interreflection" against the closed sphere's closed form, adding kd times the
+// indirect irradiance to diffuse and total and nothing where the mesh sees nothing of itself;
+// vtkInterreflectionFilter alone; the same bits on any thread count; the scenes refused.
+#include "ArrayComparison.h"
+#include "FilterRun.h"
+#include "TestMeshes.h"
+
+#include "vtkInterreflectionFilter.h"
+
+#include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkPointData.h"
+#include "vtkSMPTools.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace
+{
+using namespace shadelab;
+using shadelab::testing::shadeWithFilter;
+
+/// The exact sphere with its normals turned inward: its inside is the surface to shade.
+vtkSmartPointer<vtkPolyData> insideOfSphere(int resolution, double radius)
+{
+  vtkSmartPointer<vtkPolyData> sphere = shadelab::testing::exactSphere(resolution, glm::dvec3(0.0), radius);
+  vtkDataArray* normals = sphere->GetPointData()->GetNormals();
+  for (vtkIdType i = 0; i < normals->GetNumberOfTuples(); ++i)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      normals->SetComponent(i, c, -normals->GetComponent(i, c));
+    }
+  }
+  return sphere;
+}
+
+/// A lamp of intensity `intensity` at the origin, kd = rho, no ambient or specular light.
+Scene lampInside(double intensity, double rho, int bounces)
+{
+  Scene scene;
+  scene.material.ka = Rgb(0.0);
+  scene.material.kd = Rgb(rho);
+  scene.material.ks = Rgb(0.0);
+  scene.viewer.position = glm::dvec3(0.0);
+  PointLight lamp;
+  lamp.position = glm::dvec3(0.0);
+  lamp.intensity = intensity;
+  scene.lights = { { "lamp", lamp } };
+  scene.interreflection = Interreflection{ bounces, { 64, true } };
+  return scene;
+}
+
+Rgb tupleOf(vtkPolyData* mesh, const char* name, vtkIdType i)
+{
+  vtkDataArray* array = mesh->GetPointData()->GetArray(name);
+  return array ? Rgb(array->GetComponent(i, 0), array->GetComponent(i, 1), array->GetComponent(i, 2)) : Rgb(NAN);
+}
+
+// The lecture's "a closed sphere with a lamp inside": each wall vertex is lit directly with
+// I / R^2, and every gather ray meets the wall, whose radiosity is uniform, so three bounces add
+// (I / R^2)(rho + rho^2 + rho^3) at every vertex; diffuse is the direct term plus kd times it.
+TEST(Interreflection, ALampInsideAClosedSphereLightsItsWallsByTheirBounces)
+{
+  const double radius = 2.0, intensity = 4.0, rho = 0.5;
+  vtkSmartPointer<vtkPolyData> sphere = insideOfSphere(40, radius);
+  vtkSmartPointer<vtkPolyData> shaded =
+    shadeWithFilter(sphere, lampInside(intensity, rho, 3), { "all" }, vtkAlgorithm::DOUBLE_PRECISION, false);
+  const double direct = intensity / (radius * radius);
+  const double indirect = direct * (rho + rho * rho + rho * rho * rho);
+  ASSERT_GT(sphere->GetNumberOfPoints(), 1000);
+  for (vtkIdType i = 0; i < sphere->GetNumberOfPoints(); ++i)
+  {
+    ASSERT_NEAR(tupleOf(shaded, "indirect_irradiance", i).g, indirect, 1e-9 * indirect) << i;
+    ASSERT_NEAR(tupleOf(shaded, "indirect_bounce_2", i).r, direct * rho * rho, 1e-9 * indirect) << i;
+    ASSERT_NEAR(tupleOf(shaded, "indirect", i).b, rho * indirect, 1e-9 * indirect) << i;
+    ASSERT_NEAR(tupleOf(shaded, "diffuse", i).r, rho * (direct + indirect), 1e-9 * indirect) << i;
+    ASSERT_NEAR(tupleOf(shaded, "total", i).g, rho * (direct + indirect), 1e-9 * indirect) << i;
+    ASSERT_NEAR(tupleOf(shaded, "ambient_minus_indirect", i).g, -rho * indirect, 1e-9 * indirect) << i;
+    ASSERT_LT(tupleOf(shaded, "indirect_irradiance_std_error", i).g, 1e-9 * indirect) << i;
+  }
+}
+
+// Seen from outside, the sphere meets nothing of itself: indirect 0, and diffuse and total the
+// bits of a run without interreflection.
+TEST(Interreflection, AConvexMeshSeenFromOutsideKeepsItsBits)
+{
+  vtkSmartPointer<vtkPolyData> sphere = shadelab::testing::exactSphere(30);
+  Scene scene = lampInside(1.0, 0.7, 2);
+  scene.lights[0].source = PointLight{};
+  std::get<PointLight>(scene.lights[0].source).position = glm::dvec3(3, 2, 1);
+  scene.viewer.position = glm::dvec3(0, 0, 5);
+  vtkSmartPointer<vtkPolyData> with = shadeWithFilter(sphere, scene, { "default" });
+  scene.interreflection.reset();
+  vtkSmartPointer<vtkPolyData> without = shadeWithFilter(sphere, scene, { "default" });
+  for (const char* name : { "diffuse", "total", "ambient", "specular" })
+  {
+    shadelab::testing::expectSameBits(
+      without->GetPointData()->GetArray(name), with->GetPointData()->GetArray(name), name);
+  }
+  for (vtkIdType i = 0; i < sphere->GetNumberOfPoints(); ++i)
+  {
+    ASSERT_EQ(tupleOf(with, "indirect_irradiance", i), Rgb(0.0));
+  }
+  EXPECT_EQ(without->GetPointData()->GetArray("indirect_irradiance"), nullptr);
+}
+
+/// A sphere of radius 0.5 at height 0.6 over a square floor: the floor lights the sphere's
+/// underside and the sphere the floor around its shadow.
+vtkSmartPointer<vtkPolyData> sphereOverFloor()
+{
+  return shadelab::testing::sphereOverSquare(40, 40, { 0, 0, 0.6 }, 0.5);
+}
+
+// The gather's rays and the sweeps run on the threads in any split: the same bits on one and
+// two threads, every array.
+TEST(Interreflection, TheSameBitsOnOneAndTwoThreads)
+{
+  vtkSmartPointer<vtkPolyData> mesh = sphereOverFloor();
+  Scene scene = lampInside(3.0, 0.8, 2);
+  std::get<PointLight>(scene.lights[0].source).position = glm::dvec3(0.5, 0.3, 2.5);
+  scene.lights[0].shadows = true;
+  scene.viewer.position = glm::dvec3(0, -4, 3);
+  vtkSmartPointer<vtkPolyData> one, two;
+  vtkSMPTools::LocalScope(vtkSMPTools::Config{ 1 }, [&] { one = shadeWithFilter(mesh, scene, { "all" }); });
+  vtkSMPTools::LocalScope(vtkSMPTools::Config{ 2 }, [&] { two = shadeWithFilter(mesh, scene, { "all" }); });
+  shadelab::testing::expectSamePointArrays(one, two);
+  // The floor beside the sphere gains light from it; the sphere's underside from the floor.
+  double gained = 0;
+  for (vtkIdType i = 0; i < mesh->GetNumberOfPoints(); ++i)
+  {
+    gained += tupleOf(one, "indirect", i).r;
+  }
+  EXPECT_GT(gained, 1.0);
+}
+
+// vtkInterreflectionFilter alone, on any mesh with a radiosity array: the closed sphere's
+// closed form with a per-vertex albedo that is red alone (no green or blue to reflect).
+TEST(Interreflection, TheFilterAloneGathersFromAnyRadiosityArray)
+{
+  vtkSmartPointer<vtkPolyData> sphere = insideOfSphere(30, 1.0);
+  const vtkIdType points = sphere->GetNumberOfPoints();
+  vtkNew<vtkDoubleArray> radiosity, albedo;
+  radiosity->SetName("glow");
+  radiosity->SetNumberOfComponents(3);
+  radiosity->SetNumberOfTuples(points);
+  albedo->SetName("paint");
+  albedo->SetNumberOfComponents(3);
+  albedo->SetNumberOfTuples(points);
+  for (vtkIdType i = 0; i < points; ++i)
+  {
+    radiosity->SetTuple3(i, 2.0, 2.0, 2.0);
+    albedo->SetTuple3(i, 0.5, 0.0, 0.0);
+  }
+  sphere->GetPointData()->AddArray(radiosity);
+  sphere->GetPointData()->AddArray(albedo);
+  vtkNew<vtkInterreflectionFilter> filter;
+  filter->SetInputData(sphere);
+  filter->SetRadiosityArrayName("glow");
+  filter->SetAlbedoArrayName("paint");
+  filter->SetBounces(2);
+  filter->SetArrayPrefix("ir_");
+  filter->Update();
+  vtkPolyData* output = filter->GetOutput();
+  ASSERT_NE(output->GetPointData()->GetArray("glow"), nullptr); // passed through
+  for (vtkIdType i = 0; i < points; ++i)
+  {
+    // E_1 = 2 everywhere; B_1 = (1, 0, 0); E_2 = (1, 0, 0).
+    const Rgb e = tupleOf(output, "ir_indirect_irradiance", i);
+    ASSERT_NEAR(e.r, 3.0, 1e-12) << i;
+    ASSERT_NEAR(e.g, 2.0, 1e-12) << i;
+    ASSERT_NEAR(e.b, 2.0, 1e-12) << i;
+  }
+  EXPECT_EQ(filter->GetBackHits(), 0);
+  EXPECT_NE(filter->GetReport().find("2 bounces from 'glow', 64 gather rays per vertex; 0 of"), std::string::npos)
+    << filter->GetReport();
+}
+
+// What interreflection cannot be given is refused at its field: a tolerance, which does not
+// bound it yet, an albedo above 1, and the spectral mode.
+TEST(Interreflection, ScenesItCannotShadeAreRefusedAtTheirField)
+{
+  vtkSmartPointer<vtkPolyData> sphere = shadelab::testing::exactSphere(12);
+  Scene scene = lampInside(1.0, 0.5, 1);
+  EXPECT_EQ(shadelab::testing::filterError(sphere, scene, 0.05),
+    "scene /interreflection: a tolerance does not bound interreflection yet: its bounces and samples are the scene's; "
+    "shade without a tolerance, or without \"interreflection\"");
+  scene.material.kd = Rgb(1.2, 0.5, 0.5);
+  EXPECT_EQ(shadelab::testing::filterError(sphere, scene),
+    "scene /material/kd: is the albedo each bounce of \"interreflection\" reflects, and above 1 it reflects more light "
+    "than arrives: give components <= 1");
+  scene.material.kd = Rgb(0.5);
+  scene.interreflection->bounces = 0;
+  EXPECT_EQ(shadelab::testing::filterError(sphere, scene),
+    "scene /interreflection/bounces: must be a whole number from 1 to 64 (leave \"interreflection\" out for none)");
+}
+}
