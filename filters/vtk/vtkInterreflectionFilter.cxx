@@ -44,14 +44,13 @@ bool isAlbedo(const shadelab::Rgb& kd)
   return inUnit(kd.r) && inUnit(kd.g) && inUnit(kd.b);
 }
 
-/// Every vertex's gather rays' first hits (gatherHits), in hundredths of the mesh, so that
-/// progress is reported and an abort heard between them. Returns how many met a back.
+/// Every vertex's gather rays traced (gatherHits) and handed to `gather`, in hundredths of the
+/// mesh, so that progress is reported and an abort heard between them. Returns how many met a
+/// back.
 long long gatherEveryVertex(const shadelab::OccluderMesh& occluders, vtkPolyData* mesh, vtkDataArray* normals,
-  const shadelab::Sampling& sampling, std::vector<shadelab::OccluderMesh::RayHit>& hits, vtkAlgorithm* filter)
+  const shadelab::Sampling& sampling, shadelab::BounceGather& gather, vtkAlgorithm* filter)
 {
   const vtkIdType count = mesh->GetNumberOfPoints();
-  const std::size_t rays = static_cast<std::size_t>(sampling.samples);
-  hits.resize(static_cast<std::size_t>(count) * rays);
   std::atomic<long long> backHits{ 0 };
   const vtkIdType block = std::max<vtkIdType>(count / 100, 256);
   shadelab::visitPackedPoints(normals,
@@ -66,12 +65,14 @@ long long gatherEveryVertex(const shadelab::OccluderMesh& occluders, vtkPolyData
         vtkSMPTools::For(first, std::min(count, first + block),
           [&](vtkIdType begin, vtkIdType end)
           {
+            std::vector<shadelab::OccluderMesh::RayHit> hits(static_cast<std::size_t>(sampling.samples));
             long long back = 0;
             for (vtkIdType i = begin; i < end; ++i)
             {
               shadelab::RayVertex vertex{ {}, packedNormals(i), i };
               mesh->GetPoint(i, &vertex.position.x);
-              back += shadelab::gatherHits(occluders, vertex, sampling, packedNormals, &hits[std::size_t(i) * rays]);
+              back += shadelab::gatherHits(occluders, vertex, sampling, packedNormals, hits.data());
+              gather.addVertex(static_cast<std::size_t>(i), hits.data());
             }
             backHits += back;
           });
@@ -177,18 +178,20 @@ int vtkInterreflectionFilter::Interreflect(vtkPolyData* input, vtkPolyData* outp
              : std::string("Albedo")));
     return 0;
   }
-  const std::vector<shadelab::Rgb> radiosity = rgbValues(radiosityArray);
-  shadelab::IndirectIrradiance indirect;
-  std::vector<shadelab::OccluderMesh::RayHit> hits;
+  const std::size_t points = static_cast<std::size_t>(input->GetNumberOfPoints());
+  int laterRays = 0;
+  shadelab::IndirectIrradiance indirect{ std::vector<shadelab::Rgb>(points), std::vector<shadelab::Rgb>(points), {} };
   try
   {
-    const std::unique_ptr<shadelab::OccluderMesh> occluders = shadelab::occludersOf(input);
-    const shadelab::Sampling sampling{ this->Samples, this->Stratified };
-    this->BackHits = gatherEveryVertex(*occluders, input, normals, sampling, hits, this);
-    const shadelab::GatherTable gather{ occluders.get(), radiosity.size(), this->Samples, hits.data(),
-      this->Stratified };
-    indirect = shadelab::interreflect(gather, radiosity, { uniformAlbedo, albedo.empty() ? nullptr : &albedo[0].x },
-      this->Bounces, this->KeepBounces, smpLoop);
+    if (this->Bounces > 0)
+    {
+      const std::unique_ptr<shadelab::OccluderMesh> occluders = shadelab::occludersOf(input);
+      shadelab::BounceGather gather(*occluders, rgbValues(radiosityArray), { this->Samples, this->Stratified });
+      laterRays = gather.laterRays();
+      this->BackHits = gatherEveryVertex(*occluders, input, normals, { this->Samples, this->Stratified }, gather, this);
+      indirect = gather.bounce(
+        { uniformAlbedo, albedo.empty() ? nullptr : &albedo[0].x }, this->Bounces, this->KeepBounces, smpLoop);
+    }
   }
   catch (const shadelab::RunAborted&) // an empty output, and no error
   {
@@ -211,10 +214,13 @@ int vtkInterreflectionFilter::Interreflect(vtkPolyData* input, vtkPolyData* outp
     out->AddArray(
       rgbArray(this->ArrayPrefix + "indirect_bounce_" + std::to_string(n + 1), indirect.bounces[n], float64));
   }
+  const std::size_t rays = this->Bounces > 0 ? points * std::size_t(this->Samples) : 0;
   this->Report = shadelab::countOf(std::size_t(this->Bounces), "bounce") + " from '" + this->RadiosityArrayName +
-    "', " + std::to_string(this->Samples) + " gather rays per vertex; " + std::to_string(this->BackHits) + " of " +
-    shadelab::countOf(hits.size(), "ray") + " (" +
-    shadelab::withDigits(hits.empty() ? 0.0 : 100.0 * double(this->BackHits) / double(hits.size()), 2) +
+    "', " + std::to_string(this->Samples) + " gather rays per vertex" +
+    (this->Bounces > 1 && laterRays < this->Samples ? " (" + std::to_string(laterRays) + " for the later bounces)"
+                                                    : "") +
+    "; " + std::to_string(this->BackHits) + " of " + shadelab::countOf(rays, "ray") + " (" +
+    shadelab::withDigits(rays == 0 ? 0.0 : 100.0 * double(this->BackHits) / double(rays), 2) +
     "%) met the back of a triangle and carried nothing";
   this->UpdateProgress(1.0);
   return 1;

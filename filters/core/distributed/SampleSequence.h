@@ -58,18 +58,25 @@ public:
     , firstHash_(firstSample + 1)
     , sampling_(sampling)
   {
-    columns_ = static_cast<int>(std::sqrt(static_cast<double>(sampling.samples)));
-    while (columns_ > 1 && sampling.samples % columns_ != 0)
-    {
-      --columns_;
-    }
-    columns_ = std::max(columns_, 1);
+    columns_ = gridColumns(sampling.samples);
     // Reciprocals, so that a point costs multiplications rather than divisions.
     columnWidth_ = 1.0 / columns_;
     rowHeight_ = 1.0 / (sampling.samples / columns_);
   }
 
   int count() const { return sampling_.samples; }
+
+  /// The columns of the stratified grid of `samples` cells: the largest divisor of samples not
+  /// above its square root (cells are taken row by row).
+  static int gridColumns(int samples)
+  {
+    int columns = static_cast<int>(std::sqrt(static_cast<double>(samples)));
+    while (columns > 1 && samples % columns != 0)
+    {
+      --columns;
+    }
+    return std::max(columns, 1);
+  }
 
   glm::dvec2 point(int j) const
   {

@@ -6,12 +6,18 @@
 // irradiance from surfaces of outgoing radiance B / pi is the mean of B over the rays' hits,
 // B interpolated from the hit triangle's corners with the hit's barycentric coordinates. B is
 // the radiosity: at bounce 0 the direct diffuse term kd E, and after each bounce kd times the
-// irradiance it gathered, so each sweep over the vertices (Jacobi's) adds one bounce, on the
-// same hits.
+// irradiance it gathered. The first bounce is gathered from every ray as the rays are traced;
+// the later ones, which carry kd^k less light, from a quarter of them spread over the
+// hemisphere (quarterOfGatherRays), whose hits are kept: each sweep over the vertices
+// (Jacobi's) adds one bounce on the same hits.
 #include "OccluderMesh.h"
+#include "SampleSequence.h"
 #include "Vec3.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <vector>
 
@@ -27,18 +33,6 @@ struct Albedo
   {
     return perVertex ? Rgb(perVertex[3 * vertex], perVertex[3 * vertex + 1], perVertex[3 * vertex + 2]) : uniform;
   }
-};
-
-/// Every vertex's gather: raysPerVertex first hits each (gatherHits), vertex after vertex, on
-/// the triangles of occluders; stratified as the rays were drawn (the standard error pairs
-/// consecutive rays, MonteCarloEstimate.h).
-struct GatherTable
-{
-  const OccluderMesh* occluders = nullptr;
-  std::size_t vertexCount = 0;
-  int raysPerVertex = 0;
-  const OccluderMesh::RayHit* hits = nullptr;
-  bool stratified = true;
 };
 
 /// What reaches each vertex from the mesh: the irradiance over bounces 1 .. K with its standard
@@ -58,17 +52,72 @@ using RangeLoop = std::function<void(std::size_t count, const std::function<void
 /// The range loop of one thread.
 void serialLoop(std::size_t count, const std::function<void(std::size_t, std::size_t)>& body);
 
-/// Irradiance at each vertex of [first, last) gathered from `radiosity` (per vertex, B): the
-/// mean over its rays of B interpolated at each hit (0 for a ray that meets nothing, or the
-/// back of a triangle), and, where standardError is not null, that mean's standard error.
-void gatherIrradiance(const GatherTable& gather, const Rgb* radiosity, std::size_t first, std::size_t last,
-  Rgb* irradiance, Rgb* standardError = nullptr);
+/// A mean over rays and its standard error, per channel.
+struct GatherEstimate
+{
+  Rgb mean{ 0.0 };
+  Rgb standardError{ 0.0 };
+};
 
-/// K = bounces sweeps from the direct radiosity B_0 (per vertex, the direct diffuse term kd E,
-/// each channel at least 0):
-/// E_n = gather(B_{n-1}), B_n = kd E_n. The irradiance E_1 + ... + E_K is gathered once more
-/// from B_0 + ... + B_{K-1} (the gather is linear in B), so that its standard error is that of
-/// one mean over the rays. keepBounces: also each E_n.
-IndirectIrradiance interreflect(const GatherTable& gather, const std::vector<Rgb>& directRadiosity,
-  const Albedo& albedo, int bounces, bool keepBounces, const RangeLoop& loop = serialLoop);
+/// The irradiance gathered along hits[0 .. count-1] from `radiosity` (per vertex, B): the mean
+/// of B interpolated at each hit (0 for a miss, which gatherHits also makes of a triangle's
+/// back), and its standard error (stratified: consecutive rays paired, MonteCarloEstimate.h).
+GatherEstimate gatherAlong(
+  const OccluderMesh& occluders, const OccluderMesh::RayHit* hits, int count, const Rgb* radiosity, bool stratified);
+
+/// Interreflection over the vertices of a mesh: addVertex for each vertex's traced rays, then
+/// bounce().
+class BounceGather
+{
+public:
+  /// sampling.samples rays per vertex (gatherHits), from the direct radiosity B_0 (per vertex,
+  /// the direct diffuse term kd E). A surface sends out no negative light: a channel of B_0
+  /// below 0 (the ringing of a map's spherical-harmonic irradiance) reflects nothing.
+  BounceGather(const OccluderMesh& occluders, std::vector<Rgb> directRadiosity, const Sampling& sampling);
+
+  /// How many of a vertex's rays the later bounces gather on (quarterOfGatherRays): their hits,
+  /// 8 bytes each, are most of what interreflection holds in memory.
+  int laterRays() const { return int(kept_.size()); }
+
+  /// The first bounce at `vertex` from all its rays' hits (sampling.samples of them),
+  /// and the hits the later bounces use kept. Calls for different vertices may run at once.
+  void addVertex(std::size_t vertex, const OccluderMesh::RayHit* hits);
+
+  /// After addVertex for every vertex, once (it hands over the first bounce's values and frees
+  /// the direct radiosity): E_1 + ... + E_K. E_n = gather(B_{n-1}) and B_n = kd E_n;
+  /// E_2 + ... + E_K is gathered once more from B_1 + ... + B_{K-1} (the gather is linear in
+  /// B), so that its standard error is that of one mean over the rays; the total's is the first
+  /// bounce's plus the rest's (added as if they erred together: they share rays). keepBounces:
+  /// also each E_n.
+  IndirectIrradiance bounce(const Albedo& albedo, int bounces, bool keepBounces, const RangeLoop& loop = serialLoop);
+
+private:
+  /// E = gather(radiosity) on the kept hits at vertices [first, last), with the standard error
+  /// where standardError is not null.
+  void gatherLater(
+    const Rgb* radiosity, std::size_t first, std::size_t last, Rgb* irradiance, Rgb* standardError = nullptr) const;
+
+  /// A kept hit in 8 bytes: its triangle, and its barycentric coordinates in steps of 1/65535
+  /// (an interpolation error below 1e-5 of the radiosity's spread over the triangle, far below
+  /// the gather's noise), which make the later bounces' hits two thirds of what they were.
+  struct KeptHit
+  {
+    std::uint32_t triangle;
+    std::uint16_t u, v;
+
+    static KeptHit of(const OccluderMesh::RayHit& hit)
+    {
+      auto step = [](float x) { return std::uint16_t(std::lround(std::clamp(double(x), 0.0, 1.0) * 65535)); };
+      return { hit.triangle, step(hit.u), step(hit.v) };
+    }
+    OccluderMesh::RayHit unpacked() const { return { triangle, float(u / 65535.0), float(v / 65535.0) }; }
+  };
+
+  const OccluderMesh& occluders_;
+  std::vector<Rgb> direct_; // B_0, at least 0
+  Sampling sampling_;
+  std::vector<int> kept_; // which of a vertex's rays the later bounces use
+  std::vector<Rgb> firstBounce_, firstBounceError_;
+  std::vector<KeptHit> keptHits_; // kept_.size() per vertex
+};
 }

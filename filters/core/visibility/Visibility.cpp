@@ -394,4 +394,21 @@ template int gatherHits(
   const OccluderMesh&, const RayVertex&, const Sampling&, PackedPoints<float>, OccluderMesh::RayHit*);
 template int gatherHits(
   const OccluderMesh&, const RayVertex&, const Sampling&, PackedPoints<double>, OccluderMesh::RayHit*);
+
+std::vector<int> quarterOfGatherRays(const Sampling& sampling)
+{
+  std::vector<int> kept;
+  const int pairs = sampling.samples / 2; // RaySamples: pair m's two rays share cell m
+  const int columns = SampleSequence::gridColumns(std::max(1, pairs));
+  for (int j = 0; j < sampling.samples; ++j)
+  {
+    const int cell = j / 2;
+    const bool checkerboard = j % 2 == 0 && cell < pairs && (cell / columns + cell % columns) % 2 == 0;
+    if (sampling.samples < 32 || (sampling.stratified ? checkerboard : j % 4 == 0))
+    {
+      kept.push_back(j);
+    }
+  }
+  return kept;
+}
 }

@@ -168,4 +168,11 @@ OcclusionEstimate ambientOcclusion(
 template<typename Real>
 int gatherHits(const OccluderMesh& occluders, const RayVertex& vertex, const Sampling& sampling,
   PackedPoints<Real> normals, OccluderMesh::RayHit* hits);
+
+/// About a quarter of a vertex's gather rays (gatherHits with `sampling`), spread as evenly as
+/// all of them: stratified, the first ray of the pairs whose cells make a checkerboard of the
+/// pairs' grid, so that every row and column of strata keeps rays (every fourth ray would keep
+/// only alternate columns, a biased part of the hemisphere); independent, every fourth. All of
+/// them below 32 rays. Their indices, ascending.
+std::vector<int> quarterOfGatherRays(const Sampling& sampling);
 }
