@@ -623,7 +623,7 @@ TEST(LobeSampling, ADrawKnowsTheLobeAndItsDensityWhereItDrew)
         // loses digits as |v.h| falls, and its 1 / |v.h| loses as many again.
         const double grazing =
           model == SpecularModel::Phong ? 1.0 : std::abs(glm::dot(v, glm::normalize(drawn.direction + v)));
-        const double relative = (1 + eta) * 1e-14 / (grazing * grazing);
+        const double relative = (1 + eta) * 1e-13 / (grazing * grazing);
         EXPECT_NEAR(drawn.lobe.value, there.value, relative * there.value) << eta;
         EXPECT_NEAR(drawn.lobe.density, there.density, relative * there.density) << eta;
         bothPositive += drawn.lobe.value > 0 && drawn.lobe.density > 0 ? 1 : 0;

@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -44,18 +45,21 @@ const std::array<double, 9>& atanOfEighths()
 /// atan2(y, x) within 1e-11 for finite (y, x) not both 0 (otherwise NaN): the library's atan2 took
 /// a tenth of a map's samples drawn by the lobe. The smaller magnitude over the larger, a in
 /// [0, 1], has atan(a) = atan(c) + atan(t) with t = (a - c) / (1 + a c) for the c = k / 8 nearest
-/// a, so |t| < 0.07, and atan(t) is its series to t^7 (what is left is below t^9 / 9 < 5e-12).
-/// The float quotient only picks k; t is found from y and x in double.
+/// a, so |t| <= 1/16, and atan(t) is its series to t^7 (what is left is below t^9 / 9 < 5e-12).
 double quickAtan2(double y, double x)
 {
   const double ay = std::abs(y), ax = std::abs(x);
   const double larger = std::max(ay, ax), smaller = std::min(ay, ax);
-  const int k = static_cast<int>(8.0f * (static_cast<float>(smaller) / static_cast<float>(larger)) + 0.5f);
-  const double c = (k & 15) / 8.0; // & 15: k is garbage for a NaN quotient, whose result is NaN anyway
-  const double t = (smaller - c * larger) / (larger + c * smaller);
+  if (!(larger > 0 && larger <= std::numeric_limits<double>::max() && smaller <= larger))
+  {
+    return std::numeric_limits<double>::quiet_NaN(); // both 0, or not finite: the library's atan2 answers
+  }
+  const double a = smaller / larger;
+  const int k = static_cast<int>(8 * a + 0.5);
+  const double c = k / 8.0;
+  const double t = (a - c) / (1 + a * c);
   const double t2 = t * t;
-  const double reduced =
-    atanOfEighths()[std::size_t(std::min(k & 15, 8))] + t * (1 - t2 * (1.0 / 3 - t2 * (1.0 / 5 - t2 / 7)));
+  const double reduced = atanOfEighths()[std::size_t(k)] + t * (1 - t2 * (1.0 / 3 - t2 * (1.0 / 5 - t2 / 7)));
   const double firstOctant = ay > ax ? pi / 2 - reduced : reduced;
   const double halfPlane = x < 0 ? pi - firstOctant : firstOctant;
   return y < 0 ? -halfPlane : halfPlane;
