@@ -10,6 +10,7 @@
 
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
+#include "vtkFloatArray.h"
 #include "vtkPointData.h"
 #include "vtkSMPTools.h"
 
@@ -178,6 +179,23 @@ TEST(Interreflection, TheFilterAloneGathersFromAnyRadiosityArray)
     filter->GetReport().find("2 bounces from 'glow', 64 gather rays per vertex (16 for the later bounces); 0 of"),
     std::string::npos)
     << filter->GetReport();
+
+  // The albedo in float32 (converted, where float64 is used as it is): the same bits.
+  vtkSmartPointer<vtkDataArray> inFloat64 = output->GetPointData()->GetArray("ir_indirect_irradiance");
+  vtkNew<vtkFloatArray> paint;
+  paint->DeepCopy(albedo);
+  sphere->GetPointData()->AddArray(paint);
+  filter->Update();
+  for (vtkIdType i = 0; i < points; ++i)
+  {
+    const double* before = inFloat64->GetTuple3(i);
+    ASSERT_EQ(tupleOf(filter->GetOutput(), "ir_indirect_irradiance", i), Rgb(before[0], before[1], before[2])) << i;
+  }
+
+  filter->SetBounces(0);
+  filter->Update();
+  EXPECT_EQ(tupleOf(filter->GetOutput(), "ir_indirect_irradiance", 0), Rgb(0.0));
+  EXPECT_EQ(filter->GetReport(), "0 bounces: no indirect light");
 }
 
 // What interreflection cannot be given is refused at its field: a tolerance, which does not

@@ -853,3 +853,23 @@ TEST(Visibility, TheSearchForTheFirstHitEndingAtTheVertexsOwnTrianglesFindsWhatA
   }
 }
 }
+
+// Once its BVH is released, a mesh still answers its corners and area vectors (what
+// interreflection's sweeps need), and a ray traced refuses rather than reads as unblocked.
+TEST(Visibility, AMeshWhoseTracingIsReleasedKeepsItsCornersAndRefusesRays)
+{
+  const Mesh box = openBox(2);
+  OccluderMesh occluders = box.occluders();
+  const std::array<std::uint32_t, 3> corners = occluders.corners(3);
+  const glm::dvec3 area = occluders.areaVector(3);
+  const OccluderMesh::FrameRay up = occluders.inFrame({ { 0.5, 0.5, 0.1 }, { 0, 0, 1 }, { 0, 0, 1 } });
+  OccluderMesh::RayHit hit;
+  occluders.firstHits(&up, 1, &hit);
+  EXPECT_EQ(hit.triangle, OccluderMesh::RayHit::noTriangle); // the box's top is open
+
+  occluders.releaseTracing();
+  EXPECT_EQ(occluders.corners(3), corners);
+  EXPECT_EQ(occluders.areaVector(3), area);
+  EXPECT_THROW(occluders.firstHits(&up, 1, &hit), std::logic_error);
+  EXPECT_THROW(occluders.occluded(&up, 1), std::logic_error);
+}

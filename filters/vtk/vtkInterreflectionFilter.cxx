@@ -38,6 +38,19 @@ std::vector<shadelab::Rgb> rgbValues(vtkDataArray* array)
   return values;
 }
 
+/// The albedo array's tuple at a point.
+shadelab::Rgb rgbAt(vtkDoubleArray* array, vtkIdType point)
+{
+  const double* rgb = array->GetPointer(3 * point);
+  return { rgb[0], rgb[1], rgb[2] };
+}
+
+/// Zero bounces: no light from the mesh, with no error.
+shadelab::IndirectIrradiance noIndirectLight(std::size_t points)
+{
+  return { std::vector<shadelab::Rgb>(points), std::vector<shadelab::Rgb>(points), {} };
+}
+
 bool isAlbedo(const shadelab::Rgb& kd)
 {
   auto inUnit = [](double c) { return c >= 0 && c <= 1; }; // false for NaN
@@ -155,43 +168,17 @@ int vtkInterreflectionFilter::Interreflect(vtkPolyData* input, vtkPolyData* outp
                   "makes them)");
     return 0;
   }
-  vtkDataArray* radiosityArray = this->RgbArray(input, this->RadiosityArrayName, "the direct radiosity");
-  if (!radiosityArray)
+  vtkDataArray* radiosity = this->RgbArray(input, this->RadiosityArrayName, "the direct radiosity");
+  vtkSmartPointer<vtkDoubleArray> albedo;
+  if (!radiosity || !this->AlbedoOf(input, albedo))
   {
     return 0;
   }
-  vtkDataArray* albedoArray =
-    this->AlbedoArrayName.empty() ? nullptr : this->RgbArray(input, this->AlbedoArrayName, "the albedo");
-  if (!this->AlbedoArrayName.empty() && !albedoArray)
-  {
-    return 0;
-  }
-  const shadelab::Rgb uniformAlbedo(this->Albedo[0], this->Albedo[1], this->Albedo[2]);
-  const std::vector<shadelab::Rgb> albedo = albedoArray ? rgbValues(albedoArray) : std::vector<shadelab::Rgb>();
-  const auto badAlbedo =
-    std::find_if(albedo.begin(), albedo.end(), [](const shadelab::Rgb& kd) { return !isAlbedo(kd); });
-  if (!isAlbedo(uniformAlbedo) || badAlbedo != albedo.end())
-  {
-    vtkErrorMacro("an albedo must be RGB in [0, 1] (above 1 a bounce reflects more light than arrives): "
-      << (badAlbedo != albedo.end()
-             ? "'" + this->AlbedoArrayName + "' at point " + std::to_string(badAlbedo - albedo.begin())
-             : std::string("Albedo")));
-    return 0;
-  }
-  const std::size_t points = static_cast<std::size_t>(input->GetNumberOfPoints());
-  int laterRays = 0;
-  shadelab::IndirectIrradiance indirect{ std::vector<shadelab::Rgb>(points), std::vector<shadelab::Rgb>(points), {} };
+  shadelab::IndirectIrradiance indirect;
   try
   {
-    if (this->Bounces > 0)
-    {
-      const std::unique_ptr<shadelab::OccluderMesh> occluders = shadelab::occludersOf(input);
-      shadelab::BounceGather gather(*occluders, rgbValues(radiosityArray), { this->Samples, this->Stratified });
-      laterRays = gather.laterRays();
-      this->BackHits = gatherEveryVertex(*occluders, input, normals, { this->Samples, this->Stratified }, gather, this);
-      indirect = gather.bounce(
-        { uniformAlbedo, albedo.empty() ? nullptr : &albedo[0].x }, this->Bounces, this->KeepBounces, smpLoop);
-    }
+    indirect = this->Bounces > 0 ? this->GatherBounces(input, normals, radiosity, albedo)
+                                 : noIndirectLight(static_cast<std::size_t>(input->GetNumberOfPoints()));
   }
   catch (const shadelab::RunAborted&) // an empty output, and no error
   {
@@ -205,7 +192,57 @@ int vtkInterreflectionFilter::Interreflect(vtkPolyData* input, vtkPolyData* outp
     vtkErrorMacro(<< error.what());
     return 0;
   }
-  const bool float64 = radiosityArray->GetDataType() == VTK_DOUBLE;
+  this->AddIndirectArrays(output, indirect, radiosity->GetDataType() == VTK_DOUBLE);
+  this->UpdateProgress(1.0);
+  return 1;
+}
+
+bool vtkInterreflectionFilter::AlbedoOf(vtkPolyData* input, vtkSmartPointer<vtkDoubleArray>& perVertex)
+{
+  vtkDataArray* array =
+    this->AlbedoArrayName.empty() ? nullptr : this->RgbArray(input, this->AlbedoArrayName, "the albedo");
+  if (!this->AlbedoArrayName.empty() && !array)
+  {
+    return false;
+  }
+  perVertex = vtkDoubleArray::SafeDownCast(array); // float64 values are used where they are
+  if (array && !perVertex)
+  {
+    perVertex = vtkSmartPointer<vtkDoubleArray>::New();
+    perVertex->DeepCopy(array);
+  }
+  const vtkIdType points = perVertex ? perVertex->GetNumberOfTuples() : 0;
+  vtkIdType bad = 0;
+  while (bad < points && isAlbedo(rgbAt(perVertex, bad)))
+  {
+    ++bad;
+  }
+  if (!isAlbedo(shadelab::Rgb(this->Albedo[0], this->Albedo[1], this->Albedo[2])) || bad < points)
+  {
+    vtkErrorMacro("an albedo must be RGB in [0, 1] (above 1 a bounce reflects more light than arrives): "
+      << (bad < points ? "'" + this->AlbedoArrayName + "' at point " + std::to_string(bad) : std::string("Albedo")));
+    return false;
+  }
+  return true;
+}
+
+shadelab::IndirectIrradiance vtkInterreflectionFilter::GatherBounces(
+  vtkPolyData* input, vtkDataArray* normals, vtkDataArray* radiosity, vtkDoubleArray* albedo)
+{
+  const shadelab::Sampling sampling{ this->Samples, this->Stratified };
+  const std::unique_ptr<shadelab::OccluderMesh> occluders = shadelab::occludersOf(input);
+  shadelab::BounceGather gather(*occluders, rgbValues(radiosity), sampling);
+  this->BackHits = gatherEveryVertex(*occluders, input, normals, sampling, gather, this);
+  occluders->releaseTracing(); // the sweeps' peak memory without the BVH
+  this->Report = this->ReportOf(input->GetNumberOfPoints(), gather.laterRays());
+  const shadelab::Albedo kd{ { this->Albedo[0], this->Albedo[1], this->Albedo[2] },
+    albedo ? albedo->GetPointer(0) : nullptr };
+  return gather.bounce(kd, this->Bounces, this->KeepBounces, smpLoop);
+}
+
+void vtkInterreflectionFilter::AddIndirectArrays(
+  vtkPolyData* output, const shadelab::IndirectIrradiance& indirect, bool float64)
+{
   vtkPointData* out = output->GetPointData();
   out->AddArray(rgbArray(this->ArrayPrefix + "indirect_irradiance", indirect.irradiance, float64));
   out->AddArray(rgbArray(this->ArrayPrefix + "indirect_irradiance_std_error", indirect.standardError, float64));
@@ -214,14 +251,20 @@ int vtkInterreflectionFilter::Interreflect(vtkPolyData* input, vtkPolyData* outp
     out->AddArray(
       rgbArray(this->ArrayPrefix + "indirect_bounce_" + std::to_string(n + 1), indirect.bounces[n], float64));
   }
-  const std::size_t rays = this->Bounces > 0 ? points * std::size_t(this->Samples) : 0;
-  this->Report = shadelab::countOf(std::size_t(this->Bounces), "bounce") + " from '" + this->RadiosityArrayName +
-    "', " + std::to_string(this->Samples) + " gather rays per vertex" +
+  if (this->Bounces == 0)
+  {
+    this->Report = "0 bounces: no indirect light";
+  }
+}
+
+std::string vtkInterreflectionFilter::ReportOf(vtkIdType points, int laterRays) const
+{
+  const std::size_t rays = std::size_t(points) * std::size_t(this->Samples);
+  return shadelab::countOf(std::size_t(this->Bounces), "bounce") + " from '" + this->RadiosityArrayName + "', " +
+    std::to_string(this->Samples) + " gather rays per vertex" +
     (this->Bounces > 1 && laterRays < this->Samples ? " (" + std::to_string(laterRays) + " for the later bounces)"
                                                     : "") +
     "; " + std::to_string(this->BackHits) + " of " + shadelab::countOf(rays, "ray") + " (" +
-    shadelab::withDigits(rays == 0 ? 0.0 : 100.0 * double(this->BackHits) / double(rays), 2) +
+    shadelab::withDigits(100.0 * double(this->BackHits) / double(rays), 2) +
     "%) met the back of a triangle and carried nothing";
-  this->UpdateProgress(1.0);
-  return 1;
 }

@@ -20,10 +20,16 @@
 
 #include "ShadeLabFiltersModule.h"
 #include "vtkPolyDataAlgorithm.h"
+#include "vtkSmartPointer.h"
 
 #include <string>
 
 class vtkDataArray;
+class vtkDoubleArray;
+namespace shadelab
+{
+struct IndirectIrradiance;
+}
 
 class SHADELABFILTERS_EXPORT vtkInterreflectionFilter : public vtkPolyDataAlgorithm
 {
@@ -91,6 +97,15 @@ private:
   /// The input's array of that name if it is numeric with 3 components; nullptr after
   /// reporting why not.
   vtkDataArray* RgbArray(vtkPolyData* input, const std::string& name, const char* role);
+  /// Checks the albedo, and sets perVertex to the albedo array's values in float64 (nullptr
+  /// where the uniform Albedo is every vertex's); false after reporting what is wrong.
+  bool AlbedoOf(vtkPolyData* input, vtkSmartPointer<vtkDoubleArray>& perVertex);
+  /// Traces every vertex's gather rays, then bounces the light (the core's BounceGather).
+  shadelab::IndirectIrradiance GatherBounces(
+    vtkPolyData* input, vtkDataArray* normals, vtkDataArray* radiosity, vtkDoubleArray* albedo);
+  void AddIndirectArrays(vtkPolyData* output, const shadelab::IndirectIrradiance& indirect, bool float64);
+  /// The run's report: its bounces, rays, and the rays that met a triangle's back.
+  std::string ReportOf(vtkIdType points, int laterRays) const;
 
   std::string RadiosityArrayName = "diffuse";
   double Albedo[3] = { 0.8, 0.8, 0.8 };

@@ -48,12 +48,12 @@ const std::array<double, 9>& atanOfEighths()
 /// a, so |t| <= 1/16, and atan(t) is its series to t^7 (what is left is below t^9 / 9 < 5e-12).
 double quickAtan2(double y, double x)
 {
+  if (!std::isfinite(x) || !std::isfinite(y) || (x == 0 && y == 0))
+  {
+    return std::numeric_limits<double>::quiet_NaN(); // the library's atan2 answers
+  }
   const double ay = std::abs(y), ax = std::abs(x);
   const double larger = std::max(ay, ax), smaller = std::min(ay, ax);
-  if (!(larger > 0 && larger <= std::numeric_limits<double>::max() && smaller <= larger))
-  {
-    return std::numeric_limits<double>::quiet_NaN(); // both 0, or not finite: the library's atan2 answers
-  }
   const double a = smaller / larger;
   const int k = static_cast<int>(8 * a + 0.5);
   const double c = k / 8.0;

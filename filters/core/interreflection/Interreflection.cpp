@@ -11,6 +11,13 @@ namespace shadelab
 {
 namespace
 {
+/// A mean over rays and its standard error, per channel.
+struct GatherEstimate
+{
+  Rgb mean{ 0.0 };
+  Rgb standardError{ 0.0 };
+};
+
 /// B at a hit: its triangle's corners' values weighted by the hit's barycentric coordinates.
 Rgb radiosityAt(const OccluderMesh& occluders, const Rgb* radiosity, const OccluderMesh::RayHit& hit)
 {
@@ -19,7 +26,10 @@ Rgb radiosityAt(const OccluderMesh& occluders, const Rgb* radiosity, const Occlu
   return (1.0 - u - v) * radiosity[corners[0]] + u * radiosity[corners[1]] + v * radiosity[corners[2]];
 }
 
-/// The mean of B over `count` hits, hitAt(j) the j-th (gatherAlong).
+/// The irradiance gathered along `count` hits, hitAt(j) the j-th, from `radiosity` (per vertex,
+/// B): the mean of B interpolated at each hit (0 for a miss, which gatherHits also makes of a
+/// triangle's back), and its standard error (stratified: consecutive rays paired,
+/// MonteCarloEstimate.h).
 template<typename HitAt>
 GatherEstimate meanOverHits(
   const OccluderMesh& occluders, std::size_t count, const Rgb* radiosity, bool stratified, HitAt hitAt)
@@ -37,12 +47,6 @@ GatherEstimate meanOverHits(
 void serialLoop(std::size_t count, const std::function<void(std::size_t, std::size_t)>& body)
 {
   body(0, count);
-}
-
-GatherEstimate gatherAlong(
-  const OccluderMesh& occluders, const OccluderMesh::RayHit* hits, int count, const Rgb* radiosity, bool stratified)
-{
-  return meanOverHits(occluders, std::size_t(count), radiosity, stratified, [&](std::size_t j) { return hits[j]; });
 }
 
 BounceGather::BounceGather(const OccluderMesh& occluders, std::vector<Rgb> directRadiosity, const Sampling& sampling)
@@ -66,7 +70,8 @@ BounceGather::BounceGather(const OccluderMesh& occluders, std::vector<Rgb> direc
 
 void BounceGather::addVertex(std::size_t vertex, const OccluderMesh::RayHit* hits)
 {
-  const GatherEstimate first = gatherAlong(occluders_, hits, sampling_.samples, direct_.data(), sampling_.stratified);
+  const GatherEstimate first = meanOverHits(occluders_, std::size_t(sampling_.samples), direct_.data(),
+    sampling_.stratified, [&](std::size_t j) { return hits[j]; });
   firstBounce_[vertex] = first.mean;
   firstBounceError_[vertex] = first.standardError;
   for (std::size_t k = 0; k < kept_.size(); ++k)

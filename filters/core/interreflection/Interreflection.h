@@ -52,19 +52,6 @@ using RangeLoop = std::function<void(std::size_t count, const std::function<void
 /// The range loop of one thread.
 void serialLoop(std::size_t count, const std::function<void(std::size_t, std::size_t)>& body);
 
-/// A mean over rays and its standard error, per channel.
-struct GatherEstimate
-{
-  Rgb mean{ 0.0 };
-  Rgb standardError{ 0.0 };
-};
-
-/// The irradiance gathered along hits[0 .. count-1] from `radiosity` (per vertex, B): the mean
-/// of B interpolated at each hit (0 for a miss, which gatherHits also makes of a triangle's
-/// back), and its standard error (stratified: consecutive rays paired, MonteCarloEstimate.h).
-GatherEstimate gatherAlong(
-  const OccluderMesh& occluders, const OccluderMesh::RayHit* hits, int count, const Rgb* radiosity, bool stratified);
-
 /// Interreflection over the vertices of a mesh: addVertex for each vertex's traced rays, then
 /// bounce().
 class BounceGather

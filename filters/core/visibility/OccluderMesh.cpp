@@ -233,6 +233,16 @@ struct OccluderMesh::Embree
     }
   }
 
+  /// The scene to trace; throws once releaseTracing() has freed it.
+  RTCScene traced() const
+  {
+    if (!scene)
+    {
+      throw std::logic_error("OccluderMesh: a ray traced after releaseTracing()");
+    }
+    return scene;
+  }
+
   /// Throws what Embree reports as its last error, if anything.
   void check(const char* step) const
   {
@@ -328,6 +338,15 @@ void OccluderMesh::checkTracing() const
   embree_->check("trace the rays");
 }
 
+void OccluderMesh::releaseTracing()
+{
+  if (embree_->scene)
+  {
+    rtcReleaseScene(embree_->scene);
+    embree_->scene = nullptr;
+  }
+}
+
 glm::vec3 OccluderMesh::leavingSide(const SurfaceRay& ray) const
 {
   glm::vec3 side(ray.side);
@@ -401,13 +420,13 @@ unsigned OccluderMesh::occluded(const FrameRay* frameRays, int count) const
     const FrameRay& local = frameRays[0];
     RTCRay ray;
     setRay(ray, local.origin, local.direction, local.maxDistance);
-    rtcOccluded1(embree_->scene, &context, &ray);
+    rtcOccluded1(embree_->traced(), &context, &ray);
     return ray.tfar < 0 ? 1u : 0u; // Embree sets it to -inf on a hit
   }
   alignas(64) int valid[16];
   RTCRay16 rays;
   packRays(frameRays, count, valid, rays);
-  rtcOccluded16(valid, embree_->scene, &context, &rays);
+  rtcOccluded16(valid, embree_->traced(), &context, &rays);
   unsigned blocked = 0;
   for (int j = 0; j < count; ++j)
   {
@@ -433,7 +452,7 @@ void OccluderMesh::firstHits(const FrameRay* frameRays, int count, RayHit* hits)
     rayHits.hit.geomID[j] = RTC_INVALID_GEOMETRY_ID;
     rayHits.hit.instID[0][j] = RTC_INVALID_GEOMETRY_ID;
   }
-  rtcIntersect16(valid, embree_->scene, &context, &rayHits);
+  rtcIntersect16(valid, embree_->traced(), &context, &rayHits);
   for (int j = 0; j < count; ++j)
   {
     hits[j] = rayHits.hit.geomID[j] == RTC_INVALID_GEOMETRY_ID
@@ -497,7 +516,7 @@ std::int64_t OccluderMesh::firstHit(const FrameRay& ray) const
   setRay(rayHit.ray, ray.origin, ray.direction, ray.maxDistance);
   rayHit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rayHit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-  rtcIntersect1(embree_->scene, &context, &rayHit);
+  rtcIntersect1(embree_->traced(), &context, &rayHit);
   return rayHit.hit.geomID == RTC_INVALID_GEOMETRY_ID ? -1 : std::int64_t(rayHit.hit.primID);
 }
 
@@ -575,7 +594,7 @@ double OccluderMesh::ownFacetsRise(const glm::vec3& point, PointId vertex, const
   RTCPointQueryContext context;
   rtcInitPointQueryContext(&context);
   rtcPointQuery(
-    embree_->scene, &sphere, &context,
+    embree_->traced(), &sphere, &context,
     [](RTCPointQueryFunctionArguments* args)
     {
       Query& q = *static_cast<Query*>(args->userPtr);

@@ -137,6 +137,11 @@ public:
   /// could not trace reads as unblocked, so a run checks this after casting).
   void checkTracing() const;
 
+  /// Frees the BVH (most of what the mesh holds) once every ray is traced: corners() and
+  /// areaVector() still answer, and a ray traced after it throws std::logic_error.
+  /// Interreflection's sweeps need the corners alone.
+  void releaseTracing();
+
 private:
   /// The points in the frame where the mesh's bounding sphere is the unit sphere.
   struct UnitFrame
