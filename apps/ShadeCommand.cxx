@@ -156,8 +156,10 @@ void addVisibilityOptions(CLI::App* command, SceneOverrides& overrides)
       "K: add the light the mesh reflects onto itself, diffusely, over K bounces (the scene's \"interreflection\", "
       "its other settings kept: 64 gather rays per vertex by default); arrays indirect_irradiance with its "
       "_std_error, and indirect (kd times it), which diffuse and total include; indirect_bounce_<n> and "
-      "ambient_minus_indirect on request (-a all). 0 turns it off")
-    ->check(CLI::Range(0, Interreflection::maxBounces));
+      "ambient_minus_indirect on request (-a all). 0 turns it off. auto (with --tolerance): the fewest bounces "
+      "whose rest fits the tolerance's share, and as many gather rays as the standard errors of a first run of 64 "
+      "say the share needs (at most the scene's max_samples, 4096); the choice is printed with the methods")
+    ->check(CLI::Range(0, Interreflection::maxBounces) | CLI::IsMember({ "auto" }));
 }
 
 /// --envmap and its settings: an environment light added to the scene. Their defaults shown are
@@ -345,11 +347,10 @@ void checkRun(const ShadingPipeline& pipeline, const ShadeOptions& options)
     throw UserError("--ambient-occlusion " + ambientOcclusion + ": " + sceneProblem.substr(occlusionRays.size()));
   }
   // And interreflection's, when --bounces set it.
-  const std::string interreflection = "/interreflection: ";
   const std::string& bounces = options.overrides.bounces;
-  if (!bounces.empty() && sceneProblem.rfind(interreflection, 0) == 0)
+  if (!bounces.empty() && sceneProblem.rfind("/interreflection", 0) == 0)
   {
-    throw UserError("--bounces " + bounces + ": " + sceneProblem.substr(interreflection.size()));
+    throw UserError("--bounces " + bounces + ": " + sceneProblem.substr(sceneProblem.find(": ") + 2));
   }
   if (!sceneProblem.empty())
   {

@@ -276,11 +276,28 @@ TEST_F(Cli, BouncesAddTheLightTheMeshReflectsOntoItself)
   const Result tolerance = shadelab("shade " + goodMesh() + " -o " + out + " --bounces 1 --tolerance 0.05");
   EXPECT_EQ(tolerance.exitCode, 1);
   EXPECT_EQ(tolerance.err,
-    "shadelab: --bounces 1: a tolerance does not bound interreflection yet: its bounces and samples are the "
-    "scene's; shade without a tolerance, or without \"interreflection\"\n");
+    "shadelab: --bounces 1: a tolerance cannot bound what the bounces past a fixed 1 leave out: give \"bounces\": "
+    "\"auto\" (--bounces auto), which takes as many as the tolerance needs; or shade without a tolerance\n");
+  const Result untargeted = shadelab("shade " + goodMesh() + " -o " + out + " --bounces auto");
+  EXPECT_EQ(untargeted.exitCode, 1);
+  EXPECT_EQ(untargeted.err,
+    "shadelab: --bounces auto: \"auto\" takes interreflection's count of bounces from a tolerance: give one "
+    "(shadelab shade --tolerance, the filter's Tolerance), or a number of bounces\n");
+  // --bounces auto under a tolerance: half of it for interreflection, the bounces and the gather's
+  // rays chosen in the run and printed with the methods.
+  const Result automatic = shadelab("shade " + goodMesh() + " -o " + out + " --bounces auto --tolerance 0.05");
+  EXPECT_EQ(automatic.exitCode, 0) << automatic.err;
+  for (const char* line :
+    { "    interreflection: a share of 0.025 (0.0025 for the bounces left out, 0.023 for the gather at 95%); kd up to "
+      "0.8, so the direct terms' errors count 5 times\n",
+      "\n    interreflection chose ", "\n    after the bounces: an error of about " })
+  {
+    EXPECT_NE(automatic.out.find(line), std::string::npos) << line << "\n" << automatic.out;
+  }
   const Result tooMany = shadelab("shade " + goodMesh() + " -o " + out + " --bounces 65");
   EXPECT_EQ(tooMany.exitCode, 2);
-  EXPECT_NE(tooMany.err.find("--bounces: Value 65 not in range 0 to 64"), std::string::npos) << tooMany.err;
+  EXPECT_NE(tooMany.err.find("--bounces: (Value 65 not in range 0 to 64) OR (65 not in {auto})"), std::string::npos)
+    << tooMany.err;
 }
 
 TEST_F(Cli, SelfShadowingFollowsTheSmoothSurfaceUnlessToldFacets)

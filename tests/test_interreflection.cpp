@@ -5,6 +5,7 @@
 // sees nothing of itself.
 #include "CoreTestMeshes.h"
 #include "Interreflection.h"
+#include "MethodChoice.h"
 
 #include <gtest/gtest.h>
 
@@ -50,17 +51,37 @@ double sumOfPowers(double x, int from, int to)
   return sum;
 }
 
+/// A closed sphere of radius 2, normals inward, lit from its centre by a point light of
+/// intensity 3: E0 = I / R^2 at every vertex, and the radiosity rho E0.
+struct LitClosedSphere
+{
+  explicit LitClosedSphere(double rho)
+    : radiosity(sphere.points.size(), Rgb(rho * direct))
+  {
+  }
+  static Mesh inside()
+  {
+    Mesh sphere;
+    addSphere(sphere, glm::dvec3(0.5, -1, 2), 2.0, 16, 32, true);
+    return sphere;
+  }
+  Mesh sphere = inside();
+  OccluderMesh occluders = sphere.occluders();
+  double direct = 3.0 / (2.0 * 2.0);
+  std::vector<Rgb> radiosity;
+};
+
 // A point light of intensity I at the centre of a closed sphere of radius R lights every wall
 // vertex with E0 = I / R^2, a uniform radiosity rho E0 that every gather ray meets, whatever
 // triangle it hits: k bounces add (I / R^2)(rho + ... + rho^k), to rounding, with no spread.
 TEST(Interreflection, AClosedSphereLitFromItsCentreGainsRhoToTheKOfItsLightPerBounce)
 {
-  Mesh sphere;
-  const double radius = 2.0, intensity = 3.0, rho = 0.6;
-  addSphere(sphere, glm::dvec3(0.5, -1, 2), radius, 16, 32, true);
-  const OccluderMesh occluders = sphere.occluders();
-  const double direct = intensity / (radius * radius);
-  const std::vector<Rgb> radiosity(sphere.points.size(), Rgb(rho * direct));
+  const double rho = 0.6;
+  const LitClosedSphere lit(rho);
+  const Mesh& sphere = lit.sphere;
+  const OccluderMesh& occluders = lit.occluders;
+  const double direct = lit.direct;
+  const std::vector<Rgb>& radiosity = lit.radiosity;
   for (int bounces = 1; bounces <= 4; ++bounces)
   {
     const Gathered gathered = gatherAll(sphere, occluders, 32, radiosity);
@@ -75,6 +96,59 @@ TEST(Interreflection, AClosedSphereLitFromItsCentreGainsRhoToTheKOfItsLightPerBo
       ASSERT_NEAR(indirect.bounces.back()[i].g, direct * std::pow(rho, bounces), 1e-12 * expected);
     }
   }
+}
+
+// With a share for what the bounces past K may add, bounce() stops at the fewest K whose bound
+// max(B_K) rho / (1 - rho) fits it: in the closed sphere B_K = rho^(K+1) E0 everywhere, so the
+// bound is exactly what is left out, and K is known in closed form. The result is the fixed-K
+// run's bits. An albedo of 1 has no such K and is refused; a fixed count still runs, unbounded.
+TEST(Interreflection, BouncesStopAtTheFewestWhoseRestFitsTheShare)
+{
+  const double rho = 0.6;
+  const LitClosedSphere lit(rho);
+  auto traced = [&] { return gatherAll(lit.sphere, lit.occluders, 32, lit.radiosity); }; // bounce() runs once
+  for (const double share : { 0.1, 1e-3, 1e-6 })
+  {
+    int expected = 1;
+    while (std::pow(rho, expected + 1) * lit.direct * rho / (1 - rho) > share)
+    {
+      ++expected;
+    }
+    const IndirectIrradiance adaptive = traced().gather->bounce({ Rgb(rho), nullptr }, { 64, share }, false);
+    const IndirectIrradiance fixed = traced().gather->bounce({ Rgb(rho), nullptr }, expected, false);
+    EXPECT_EQ(adaptive.bounceCount, expected) << share;
+    EXPECT_LE(adaptive.restBound, share);
+    EXPECT_NEAR(adaptive.restBound, lit.direct * sumOfPowers(rho, expected + 2, 2000), 1e-12 * lit.direct) << share;
+    EXPECT_EQ(adaptive.irradiance, fixed.irradiance) << share;
+    EXPECT_EQ(fixed.restBound, adaptive.restBound);
+  }
+  EXPECT_EQ(traced().gather->bounce({ Rgb(rho), nullptr }, { 3, 1e-9 }, false).bounceCount,
+    3); // at most `most`
+  std::vector<double> albedo(3 * lit.sphere.points.size(), rho);
+  albedo[7] = 1.0;
+  try
+  {
+    traced().gather->bounce({ Rgb(rho), albedo.data() }, { 64, 1e-3 }, false);
+    ADD_FAILURE() << "an albedo of 1 was given a bound";
+  }
+  catch (const std::invalid_argument& error)
+  {
+    EXPECT_STREQ(error.what(),
+      "an albedo up to 1 reflects all the light it receives: no number of bounces bounds what the rest add");
+  }
+  const IndirectIrradiance unbounded = traced().gather->bounce({ Rgb(rho), albedo.data() }, 2, false);
+  EXPECT_TRUE(std::isinf(unbounded.restBound));
+}
+
+// Under a tolerance the gather's rays double from the first run's count while the error, taken
+// to fall as 1 / sqrt(N), is above the share, up to the maximum.
+TEST(Interreflection, GatherRaysDoubleUntilTheirErrorFitsTheShare)
+{
+  EXPECT_EQ(gatherRaysWithin(0.1, 64, 0.1, 1024), 64);
+  EXPECT_EQ(gatherRaysWithin(0.1, 64, 0.071, 1024), 128); // 0.1 / sqrt(2) = 0.0707
+  EXPECT_EQ(gatherRaysWithin(0.1, 64, 0.049, 1024), 512); // 0.05 at 256, 0.035 at 512
+  EXPECT_EQ(gatherRaysWithin(1.0, 64, 1e-6, 1024), 1024); // at most the maximum
+  EXPECT_EQ(gatherRaysWithin(1.0, 64, 1e-6, 32), 64);     // the first run's are kept
 }
 
 // The light off the centre: the direct radiosity varies as cos / d^2, but after one bounce

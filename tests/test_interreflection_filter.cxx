@@ -198,15 +198,72 @@ TEST(Interreflection, TheFilterAloneGathersFromAnyRadiosityArray)
   EXPECT_EQ(filter->GetReport(), "0 bounces: no indirect light");
 }
 
-// What interreflection cannot be given is refused at its field: a tolerance, which does not
-// bound it yet, an albedo above 1, and the spectral mode.
+// Under a tolerance, "auto" bounces stop where what the rest can add, max(B_K) rho / (1 - rho),
+// fits a tenth of interreflection's half of it. Inside the closed sphere that bound is exact:
+// B_K = rho^K B_0 everywhere, B_0 = rho I / R^2 = 0.5, so K = 10 (0.5^11 <= 5e-4 < 0.5^10) and
+// the indirect term is the infinite series' rho^2 / (1 - rho) I / R^2 less that rest. Every ray
+// meets the same radiosity: no standard error, and the first run's 64 rays are kept.
+TEST(Interreflection, AutoBouncesStopWhereTheRestFitsTheTolerance)
+{
+  const double radius = 2.0, intensity = 4.0, rho = 0.5, tolerance = 0.01;
+  vtkSmartPointer<vtkPolyData> sphere = insideOfSphere(40, radius);
+  Scene scene = lampInside(intensity, rho, 1);
+  scene.interreflection->bouncesFromTolerance = true;
+  scene.interreflection->sampling.fromTolerance = true;
+  vtkNew<vtkLocalReflectanceFilter> filter;
+  filter->SetInputData(sphere);
+  filter->SetScene(scene);
+  filter->SetArraySelection({ "all" });
+  filter->SetOrientNormalsOutward(false);
+  filter->SetTolerance(tolerance);
+  filter->Update();
+  const double direct = intensity / (radius * radius);
+  const double rest = std::pow(rho, 11) * direct * rho / (1 - rho);
+  const double indirect = rho * rho / (1 - rho) * direct - rest;
+  vtkPolyData* shaded = filter->GetOutput();
+  for (vtkIdType i = 0; i < sphere->GetNumberOfPoints(); ++i)
+  {
+    ASSERT_NEAR(tupleOf(shaded, "indirect", i).g, indirect, 1e-6) << i; // float32, which the tolerance chose
+  }
+  const InterreflectionChoice& chosen = *filter->GetMethodPlan()->interreflection;
+  EXPECT_EQ(chosen.bounces, 10);
+  EXPECT_NEAR(chosen.bouncesLeftOut, rest, 1e-6 * rest);
+  EXPECT_LE(chosen.bouncesLeftOut, chosen.truncationShare());
+  EXPECT_EQ(chosen.samples, 64);
+  EXPECT_EQ(chosen.share, tolerance / 2);
+  EXPECT_EQ(chosen.directGrowth(), 2.0);
+  EXPECT_LE(filter->GetMethodPlan()->predictedError(), tolerance);
+  EXPECT_LT(*chosen.estimatedSamplingError, 1e-7); // the float32 direct term's rounding
+  EXPECT_EQ(chosen.describeRun().substr(0, 94),
+    "interreflection chose 10 bounces (the rest add at most 0.00049) and 64 gather rays per vertex;");
+}
+
+// What interreflection cannot be given is refused at its field: under a tolerance, fixed counts
+// of bounces or rays and an albedo of 1; "auto" without one; an albedo above 1; the spectral mode.
 TEST(Interreflection, ScenesItCannotShadeAreRefusedAtTheirField)
 {
   vtkSmartPointer<vtkPolyData> sphere = shadelab::testing::exactSphere(12);
   Scene scene = lampInside(1.0, 0.5, 1);
   EXPECT_EQ(shadelab::testing::filterError(sphere, scene, 0.05),
-    "scene /interreflection: a tolerance does not bound interreflection yet: its bounces and samples are the scene's; "
-    "shade without a tolerance, or without \"interreflection\"");
+    "scene /interreflection/bounces: a tolerance cannot bound what the bounces past a fixed 1 leave out: give "
+    "\"bounces\": \"auto\" (--bounces auto), which takes as many as the tolerance needs; or shade without a "
+    "tolerance");
+  scene.interreflection->bouncesFromTolerance = true;
+  EXPECT_EQ(shadelab::testing::filterError(sphere, scene, 0.05),
+    "scene /interreflection/samples: interreflection's gather from a fixed 64 rays per vertex has no error bound "
+    "before they are traced: give \"samples\": \"auto\", which chooses the count from the standard errors of a "
+    "first run; or shade without a tolerance");
+  EXPECT_EQ(shadelab::testing::filterError(sphere, scene),
+    "scene /interreflection/bounces: \"auto\" takes interreflection's count of bounces from a tolerance: give one "
+    "(shadelab shade --tolerance, the filter's Tolerance), or a number of bounces");
+  scene.interreflection->sampling.fromTolerance = true;
+  scene.material.kd = Rgb(0.5, 1.0, 0.5);
+  EXPECT_EQ(shadelab::testing::filterError(sphere, scene, 0.05),
+    "scene /material/kd: kd up to 1: a surface that reflects all the light it receives lets no bounce fade (in a "
+    "closed mesh their sum diverges), so a tolerance cannot bound how many are needed: give kd below 1; or shade "
+    "without a tolerance and a number of bounces");
+  scene.interreflection->bouncesFromTolerance = false;
+  scene.interreflection->sampling.fromTolerance = false;
   scene.material.kd = Rgb(1.2, 0.5, 0.5);
   EXPECT_EQ(shadelab::testing::filterError(sphere, scene),
     "scene /material/kd: is the albedo each bounce of \"interreflection\" reflects, and above 1 it reflects more light "

@@ -413,7 +413,7 @@ TEST(SceneFile, AreaLightAndEnvironmentMapErrors)
 TEST(SceneFile, Interreflection)
 {
   // "interreflection": its bounces and gather rays, its arrays in the default selection; 0
-  // bounces leave it out; "auto" is not read yet (a tolerance does not plan it).
+  // bounces leave it out; "auto" bounces and samples (with max_samples) are a tolerance's.
   const Scene scene = parseScene(
     R"({ "lights": [], "interreflection": { "bounces": 3, "samples": 32, "stratified": false } })", "scene.json");
   ASSERT_TRUE(scene.interreflection);
@@ -432,16 +432,27 @@ TEST(SceneFile, Interreflection)
   EXPECT_FALSE(parseScene(R"({ "lights": [], "interreflection": { "bounces": 0 } })", "scene.json").interreflection);
   EXPECT_EQ(parseScene(R"({ "lights": [], "interreflection": {} })", "scene.json").interreflection->bounces, 1);
 
-  EXPECT_EQ(errorOf(R"({ "lights": [], "interreflection": { "bounces": "auto" } })"),
-    "scene.json: /interreflection/bounces: must be a whole number: a tolerance does not choose interreflection's "
-    "yet");
+  const Scene automatic =
+    parseScene(R"({ "lights": [], "interreflection": { "bounces": "auto", "samples": "auto", "max_samples": 256 } })",
+      "scene.json");
+  EXPECT_TRUE(automatic.interreflection->bouncesFromTolerance);
+  EXPECT_TRUE(automatic.interreflection->sampling.fromTolerance);
+  EXPECT_EQ(automatic.interreflection->sampling.maximum, 256);
+  EXPECT_EQ(
+    parseScene(R"({ "lights": [], "interreflection": {} })", "scene.json").interreflection->sampling.maximum, 1024);
+  EXPECT_EQ(errorOf(R"({ "lights": [], "interreflection": { "bounces": "many" } })"),
+    "scene.json: /interreflection/bounces: must be a whole number of bounces, or \"auto\" (as many as a tolerance "
+    "needs)");
+  EXPECT_EQ(errorOf(R"({ "lights": [], "interreflection": { "max_samples": 256 } })"),
+    "scene.json: /interreflection/max_samples: is the most \"samples\": \"auto\" may draw per vertex: give "
+    "\"samples\": \"auto\" with it, or leave it out");
   EXPECT_EQ(errorOf(R"({ "lights": [], "interreflection": { "bounces": 65 } })"),
     "scene.json: /interreflection/bounces: must be a whole number from 0 to 64");
   EXPECT_EQ(errorOf(R"({ "lights": [], "interreflection": { "samples": 1 } })"),
     "scene.json: /interreflection/samples: must be a whole number from 2 to 1048576");
   EXPECT_EQ(errorOf(R"({ "lights": [], "interreflection": { "bounce": 2 } })"),
     "scene.json: /interreflection/bounce: unknown field; did you mean \"bounces\"? allowed here: bounces, samples, "
-    "stratified");
+    "max_samples, stratified");
   EXPECT_EQ(errorOf(R"({ "lights": [], "material": { "kd": 1.5 }, "interreflection": {} })"),
     "scene.json: /material/kd: is the albedo each bounce of \"interreflection\" reflects, and above 1 it reflects "
     "more light than arrives: give components <= 1");

@@ -77,6 +77,25 @@ TEST(SceneOverrides, VisibilityOptionsReplaceTheScenes)
   EXPECT_TRUE(same.ambientOcclusion->sampling.fromTolerance);
 }
 
+// --bounces auto: the bounces and, as the command has no option for them, the gather's rays
+// from the tolerance; the scene's other interreflection settings stay. A number replaces "auto".
+TEST(SceneOverrides, AutoBouncesTakeTheGathersRaysFromTheToleranceToo)
+{
+  const Scene scene =
+    parseScene(R"({ "lights": [], "interreflection": { "bounces": 2, "samples": 32, "stratified": false } })", "");
+  SceneOverrides overrides;
+  overrides.bounces = "auto";
+  const Scene automatic = withOverrides(scene, overrides, "");
+  EXPECT_TRUE(automatic.interreflection->bouncesFromTolerance);
+  EXPECT_TRUE(automatic.interreflection->sampling.fromTolerance);
+  EXPECT_EQ(automatic.interreflection->sampling.samples, 32); // the first run's
+  EXPECT_FALSE(automatic.interreflection->sampling.stratified);
+  overrides.bounces = "3";
+  const Scene fixed = withOverrides(automatic, overrides, "");
+  EXPECT_FALSE(fixed.interreflection->bouncesFromTolerance);
+  EXPECT_EQ(fixed.interreflection->bounces, 3);
+}
+
 TEST(SceneOverrides, ProblemsAreSaidInTheOptionsWords)
 {
   SceneOverrides order;

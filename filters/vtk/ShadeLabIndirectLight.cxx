@@ -71,11 +71,64 @@ ArrayRequest withInterreflectionSources(const Scene& scene, const ArrayRequest& 
 
 namespace
 {
+/// The gather's error in the diffuse term at 95% of the vertices (estimatedErrorQuantile): each
+/// vertex's kd times its standard error, in its largest channel.
+double gatherError(vtkPointData* gathered, vtkDoubleArray* albedo, const Scene& scene)
+{
+  vtkDataArray* standardError = gathered->GetArray("indirect_irradiance_std_error");
+  std::vector<double> errors(static_cast<std::size_t>(standardError->GetNumberOfTuples()));
+  for (vtkIdType i = 0; i < standardError->GetNumberOfTuples(); ++i)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      const double kd = albedo ? albedo->GetComponent(i, c) : scene.material.kd[c];
+      errors[std::size_t(i)] = std::max(errors[std::size_t(i)], kd * standardError->GetComponent(i, c));
+    }
+  }
+  return estimatedErrorQuantile(std::move(errors), targetConfidence);
+}
+
+/// The step run, and under a tolerance run once more with more rays where the first run's
+/// standard errors say its share needs them.
+vtkPointData* runStep(
+  vtkInterreflectionFilter* step, vtkDoubleArray* albedo, const Scene& scene, InterreflectionChoice* choice)
+{
+  auto run = [&]
+  {
+    step->Update();
+    vtkPointData* gathered = step->GetOutput()->GetPointData();
+    if (!gathered->GetArray("indirect_irradiance"))
+    {
+      throw std::runtime_error("interreflection failed (see the error above)");
+    }
+    return gathered;
+  };
+  vtkPointData* gathered = run();
+  if (choice)
+  {
+    const Sampling& sampling = scene.interreflection->sampling;
+    choice->firstSamples = sampling.samples;
+    choice->samples = gatherRaysWithin(
+      gatherError(gathered, albedo, scene), sampling.samples, choice->samplingShare(), sampling.maximum);
+    if (choice->samples > sampling.samples)
+    {
+      step->SetSamples(choice->samples);
+      gathered = run();
+    }
+    choice->estimatedSamplingError = gatherError(gathered, albedo, scene);
+    choice->bounces = step->GetBounceCount();
+    choice->bouncesLeftOut = step->GetRestBound();
+  }
+  return gathered;
+}
+
 /// The step run on the input's surface (its points and cells, the shading normals, the direct
 /// radiosity and the albedo, and nothing else, so that no name can clash); returns its output's
-/// arrays. Throws std::runtime_error where it failed.
+/// arrays. Under a tolerance, the bounces are the fewest whose rest fits the choice's share.
+/// Throws std::runtime_error where it failed.
 vtkPointData* gatherBounces(vtkInterreflectionFilter* step, vtkPolyData* input, vtkDataArray* shadingNormals,
-  vtkDataArray* diffuse, vtkDoubleArray* albedo, const Scene& scene, const ArrayRequest& asked)
+  vtkDataArray* diffuse, vtkDoubleArray* albedo, const Scene& scene, const ArrayRequest& asked,
+  InterreflectionChoice* choice)
 {
   vtkNew<vtkPolyData> surface;
   surface->SetPoints(input->GetPoints());
@@ -95,18 +148,13 @@ vtkPointData* gatherBounces(vtkInterreflectionFilter* step, vtkPolyData* input, 
   step->SetRadiosityArrayName("diffuse");
   step->SetAlbedoArrayName(albedo ? "albedo" : "");
   step->SetAlbedo(scene.material.kd.r, scene.material.kd.g, scene.material.kd.b);
-  step->SetBounces(settings.bounces);
+  step->SetBounces(choice ? Interreflection::maxBounces : settings.bounces);
+  step->SetBounceTolerance(choice ? choice->truncationShare() : 0);
   step->SetSamples(settings.sampling.samples);
   step->SetStratified(settings.sampling.stratified);
   step->SetKeepBounces(std::any_of(asked.bounces.begin(), asked.bounces.end(), [](bool b) { return b; }));
   step->SetArrayPrefix("");
-  step->Update();
-  vtkPointData* gathered = step->GetOutput()->GetPointData();
-  if (!gathered->GetArray("indirect_irradiance"))
-  {
-    throw std::runtime_error("interreflection failed (see the error above)");
-  }
-  return gathered;
+  return runStep(step, albedo, scene, choice);
 }
 
 /// kd E_ind, in the precision of `like` (the shaded diffuse term).
@@ -148,11 +196,11 @@ void dropSourcesNotAsked(
 
 std::string addIndirectLight(vtkInterreflectionFilter* step, vtkPolyData* input, vtkDataArray* shadingNormals,
   const Scene& scene, const ArrayRequest& asked, const VertexMaterial* material, const std::string& prefix,
-  std::vector<vtkSmartPointer<vtkDataArray>>& arrays)
+  std::vector<vtkSmartPointer<vtkDataArray>>& arrays, InterreflectionChoice* choice)
 {
   vtkDataArray* diffuse = named(arrays, totalArrayName(prefix, TotalTerm::Diffuse));
   const vtkSmartPointer<vtkDoubleArray> albedo = albedoArray(material, input->GetNumberOfPoints());
-  vtkPointData* gathered = gatherBounces(step, input, shadingNormals, diffuse, albedo, scene, asked);
+  vtkPointData* gathered = gatherBounces(step, input, shadingNormals, diffuse, albedo, scene, asked, choice);
   vtkDataArray* irradiance = gathered->GetArray("indirect_irradiance");
   const vtkSmartPointer<vtkDataArray> indirect = indirectDiffuseTerm(
     irradiance, albedo, scene, diffuse, interreflectionArrayName(prefix, InterreflectionTerm::Indirect));

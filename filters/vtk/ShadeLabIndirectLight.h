@@ -5,6 +5,7 @@
 // the diffuse and total terms.
 #include "ArrayCatalog.h"
 #include "MaterialArrays.h"
+#include "MethodChoice.h"
 #include "Scene.h"
 
 #include "vtkDataArray.h"
@@ -25,9 +26,10 @@ ArrayRequest withInterreflectionSources(const Scene& scene, const ArrayRequest& 
 /// Runs `step` on the input's surface with the shading normals, from the diffuse total in
 /// `arrays` and the material's kd (per vertex where `material` has it); adds kd E_ind to the
 /// diffuse and total arrays and appends the interreflection arrays `asked` names, then drops the
-/// totals shaded only for it. Returns the step's report. Throws std::runtime_error where the
-/// step failed.
+/// totals shaded only for it. Under a tolerance (`choice`, the plan's), the bounces and the
+/// gather rays are chosen for its shares and written into it. Returns the step's report.
+/// Throws std::runtime_error where the step failed.
 std::string addIndirectLight(vtkInterreflectionFilter* step, vtkPolyData* input, vtkDataArray* shadingNormals,
   const Scene& scene, const ArrayRequest& asked, const VertexMaterial* material, const std::string& prefix,
-  std::vector<vtkSmartPointer<vtkDataArray>>& arrays);
+  std::vector<vtkSmartPointer<vtkDataArray>>& arrays, InterreflectionChoice* choice = nullptr);
 }

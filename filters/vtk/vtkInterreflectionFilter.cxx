@@ -2,6 +2,7 @@
 
 #include "Interreflection.h"
 #include "NumberText.h"
+#include "Precision.h"
 #include "ShadeLabMeshPolygons.h"
 #include "ShadeLabRunAborted.h"
 #include "ShadeLabThreadCount.h"
@@ -126,6 +127,7 @@ void vtkInterreflectionFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Albedo: " << this->Albedo[0] << " " << this->Albedo[1] << " " << this->Albedo[2] << "\n";
   os << indent << "AlbedoArrayName: " << this->AlbedoArrayName << "\n";
   os << indent << "Bounces: " << this->Bounces << "\n";
+  os << indent << "BounceTolerance: " << this->BounceTolerance << "\n";
   os << indent << "Samples: " << this->Samples << "\n";
   os << indent << "Stratified: " << this->Stratified << "\n";
   os << indent << "KeepBounces: " << this->KeepBounces << "\n";
@@ -151,6 +153,8 @@ int vtkInterreflectionFilter::RequestData(
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   this->Report.clear();
   this->BackHits = 0;
+  this->BounceCount = 0;
+  this->RestBound = 0;
   return shadelab::runWithThreads(this->NumberOfThreads, [&] { return this->Interreflect(input, output); });
 }
 
@@ -234,10 +238,14 @@ shadelab::IndirectIrradiance vtkInterreflectionFilter::GatherBounces(
   shadelab::BounceGather gather(*occluders, rgbValues(radiosity), sampling);
   this->BackHits = gatherEveryVertex(*occluders, input, normals, sampling, gather, this);
   occluders->releaseTracing(); // the sweeps' peak memory without the BVH
-  this->Report = this->ReportOf(input->GetNumberOfPoints(), gather.laterRays());
   const shadelab::Albedo kd{ { this->Albedo[0], this->Albedo[1], this->Albedo[2] },
     albedo ? albedo->GetPointer(0) : nullptr };
-  return gather.bounce(kd, this->Bounces, this->KeepBounces, smpLoop);
+  shadelab::IndirectIrradiance indirect =
+    gather.bounce(kd, { this->Bounces, this->BounceTolerance }, this->KeepBounces, smpLoop);
+  this->BounceCount = indirect.bounceCount;
+  this->RestBound = indirect.restBound;
+  this->Report = this->ReportOf(input->GetNumberOfPoints(), gather.laterRays());
+  return indirect;
 }
 
 void vtkInterreflectionFilter::AddIndirectArrays(
@@ -260,11 +268,14 @@ void vtkInterreflectionFilter::AddIndirectArrays(
 std::string vtkInterreflectionFilter::ReportOf(vtkIdType points, int laterRays) const
 {
   const std::size_t rays = std::size_t(points) * std::size_t(this->Samples);
-  return shadelab::countOf(std::size_t(this->Bounces), "bounce") + " from '" + this->RadiosityArrayName + "', " +
+  return shadelab::countOf(std::size_t(this->BounceCount), "bounce") + " from '" + this->RadiosityArrayName + "', " +
     std::to_string(this->Samples) + " gather rays per vertex" +
-    (this->Bounces > 1 && laterRays < this->Samples ? " (" + std::to_string(laterRays) + " for the later bounces)"
-                                                    : "") +
+    (this->BounceCount > 1 && laterRays < this->Samples ? " (" + std::to_string(laterRays) + " for the later bounces)"
+                                                        : "") +
     "; " + std::to_string(this->BackHits) + " of " + shadelab::countOf(rays, "ray") + " (" +
     shadelab::withDigits(100.0 * double(this->BackHits) / double(rays), 2) +
-    "%) met the back of a triangle and carried nothing";
+    "%) met the back of a triangle and carried nothing; " +
+    (std::isfinite(this->RestBound)
+        ? "the bounces past them add at most " + shadelab::scientific(this->RestBound) + " to a diffuse term"
+        : std::string("with an albedo of 1 the bounces past them have no bound"));
 }

@@ -65,6 +65,12 @@ public:
   vtkGetMacro(Stratified, bool);
   vtkBooleanMacro(Stratified, bool);
 
+  /// With a value above 0, the fewest bounces, at most Bounces, after which what the rest can add
+  /// to a diffuse term is within it (docs/formulas.md section 23.5; the albedo must be below 1).
+  /// Default 0: Bounces bounces.
+  vtkSetClampMacro(BounceTolerance, double, 0, VTK_DOUBLE_MAX);
+  vtkGetMacro(BounceTolerance, double);
+
   /// Also each bounce's own irradiance (default off).
   vtkSetMacro(KeepBounces, bool);
   vtkGetMacro(KeepBounces, bool);
@@ -82,6 +88,10 @@ public:
   const std::string& GetReport() const { return this->Report; }
   /// Of the last run's gather rays, how many met the back of a triangle (and carried nothing).
   long long GetBackHits() const { return this->BackHits; }
+  /// The last run's bounces, and the most that the bounces past them add to a diffuse term
+  /// (infinite where the albedo reaches 1).
+  int GetBounceCount() const { return this->BounceCount; }
+  double GetRestBound() const { return this->RestBound; }
 
 protected:
   vtkInterreflectionFilter() = default;
@@ -104,13 +114,15 @@ private:
   shadelab::IndirectIrradiance GatherBounces(
     vtkPolyData* input, vtkDataArray* normals, vtkDataArray* radiosity, vtkDoubleArray* albedo);
   void AddIndirectArrays(vtkPolyData* output, const shadelab::IndirectIrradiance& indirect, bool float64);
-  /// The run's report: its bounces, rays, and the rays that met a triangle's back.
+  /// The run's report: its bounces, rays, the rays that met a triangle's back, and the bound on
+  /// the bounces left out.
   std::string ReportOf(vtkIdType points, int laterRays) const;
 
   std::string RadiosityArrayName = "diffuse";
   double Albedo[3] = { 0.8, 0.8, 0.8 };
   std::string AlbedoArrayName;
   int Bounces = 1;
+  double BounceTolerance = 0;
   int Samples = 64;
   bool Stratified = true;
   bool KeepBounces = false;
@@ -118,6 +130,8 @@ private:
   int NumberOfThreads = 0;
   std::string Report;
   long long BackHits = 0;
+  int BounceCount = 0;
+  double RestBound = 0;
 };
 
 #endif

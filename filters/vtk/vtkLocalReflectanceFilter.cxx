@@ -321,7 +321,8 @@ std::vector<vtkSmartPointer<vtkDataArray>> vtkLocalReflectanceFilter::RaysAndArr
     this->StartStep(normalsShare + raysShare + shadingShare, 1 - normalsShare - raysShare - shadingShare);
     this->InterreflectionReport =
       shadelab::addIndirectLight(this->Internals->InterreflectionStep, input, shadingNormals, plan.scene, plan.request,
-        plan.scene.material.arrays.any() ? &this->Internals->VertexMaterial : nullptr, this->ArrayPrefix, arrays);
+        plan.scene.material.arrays.any() ? &this->Internals->VertexMaterial : nullptr, this->ArrayPrefix, arrays,
+        this->Tolerance > 0 ? &*this->MethodPlan->interreflection : nullptr);
     this->StopIfAborted(); // the step stopped (ForwardStepProgress asked it to)
   }
   if (this->Tolerance > 0 && this->MethodPlan->forecast) // what the run drew, against it
@@ -418,6 +419,10 @@ bool vtkLocalReflectanceFilter::ReadMaterialArrays(
       pieces.processes->AllReduce(&mine, &everywhere, 1, vtkCommunicator::MAX_OP);
     }
     plan.measured.largestShininess = everywhere;
+  }
+  if (plan.scene.material.arrays[shadelab::MaterialCoefficient::Diffuse])
+  {
+    plan.measured.largestAlbedo = this->Internals->VertexMaterial.largest(shadelab::MaterialCoefficient::Diffuse);
   }
   return true;
 }
@@ -536,12 +541,10 @@ bool vtkLocalReflectanceFilter::CheckInterreflection(const ShadingPlan& plan, co
   {
     return true;
   }
-  const char* problem = this->Tolerance > 0
-    ? "a tolerance does not bound interreflection yet: its bounces and samples are the scene's; shade without a "
-      "tolerance, or without \"interreflection\""
-    : "is not computed on a mesh split over processes yet (a gather ray meets every piece's triangles): shade the "
-      "mesh whole, on one process";
-  return (this->Tolerance == 0 && !pieces.split()) || this->SceneIsValid({ { "/interreflection", problem } });
+  return !pieces.split() ||
+    this->SceneIsValid({ { "/interreflection",
+      "is not computed on a mesh split over processes yet (a gather ray meets every piece's triangles): shade the "
+      "mesh whole, on one process" } });
 }
 
 bool vtkLocalReflectanceFilter::ChooseArraysAndMethods(ShadingPlan& plan)

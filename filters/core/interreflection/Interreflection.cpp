@@ -3,8 +3,12 @@
 #include "MonteCarloEstimate.h"
 #include "Visibility.h"
 
+#include "NumberText.h"
+
 #include <algorithm>
 #include <array>
+#include <limits>
+#include <mutex>
 #include <stdexcept>
 
 namespace shadelab
@@ -17,6 +21,17 @@ struct GatherEstimate
   Rgb mean{ 0.0 };
   Rgb standardError{ 0.0 };
 };
+
+/// The largest albedo over the channels and the vertices.
+double largestAlbedo(const Albedo& albedo, std::size_t vertices)
+{
+  double largest = largestComponent(albedo.uniform);
+  for (std::size_t i = 0; albedo.perVertex && i < 3 * vertices; ++i)
+  {
+    largest = i == 0 ? albedo.perVertex[0] : std::max(largest, albedo.perVertex[i]);
+  }
+  return largest;
+}
 
 /// B at a hit: its triangle's corners' values weighted by the hit's barycentric coordinates.
 Rgb radiosityAt(const OccluderMesh& occluders, const Rgb* radiosity, const OccluderMesh::RayHit& hit)
@@ -96,65 +111,88 @@ void BounceGather::gatherLater(
   }
 }
 
-IndirectIrradiance BounceGather::bounce(const Albedo& albedo, int bounces, bool keepBounces, const RangeLoop& loop)
+IndirectIrradiance BounceGather::bounce(
+  const Albedo& albedo, const BounceLimit& limit, bool keepBounces, const RangeLoop& loop)
 {
-  if (bounces < 1 || firstBounce_.empty())
+  if (limit.most < 1 || firstBounce_.empty())
   {
     throw std::invalid_argument("BounceGather::bounce: at least 1 bounce, once");
   }
   const std::size_t n = firstBounce_.size();
+  const double rho = largestAlbedo(albedo, n);
+  if (limit.restShare > 0 && !(rho < 1))
+  {
+    throw std::invalid_argument("an albedo up to " + withDigits(rho, 3) +
+      " reflects all the light it receives: no number of bounces bounds what the rest add");
+  }
   std::vector<Rgb>().swap(direct_); // the first bounce is gathered: its room is free
   IndirectIrradiance result{ std::move(firstBounce_), std::move(firstBounceError_), {} };
   if (keepBounces)
   {
     result.bounces.push_back(result.irradiance);
   }
-  if (bounces == 1)
-  {
-    return result;
-  }
-  // B_{k-1}, B_1 + ... + B_{k-1}, E_{k-1} (E_1 is result.irradiance, until the rest is added).
+  // B_k, B_1 + ... + B_{k-1}, E_k (E_1 is result.irradiance, until the rest is added).
   std::vector<Rgb> radiosity(n), sum(n), gathered(n);
+  // B_k = kd E_k; returns the bound on what the bounces past k add.
   auto reflect = [&](const std::vector<Rgb>& irradiance)
   {
-    return [&](std::size_t first, std::size_t last)
-    {
-      for (std::size_t vertex = first; vertex < last; ++vertex)
+    std::mutex largestLock;
+    double largest = 0;
+    loop(n,
+      [&](std::size_t first, std::size_t last)
       {
-        radiosity[vertex] = albedo.at(vertex) * irradiance[vertex];
-        sum[vertex] += radiosity[vertex];
-      }
-    };
+        double mine = 0;
+        for (std::size_t vertex = first; vertex < last; ++vertex)
+        {
+          radiosity[vertex] = albedo.at(vertex) * irradiance[vertex];
+          mine = std::max(mine, largestComponent(radiosity[vertex]));
+        }
+        const std::lock_guard<std::mutex> lock(largestLock);
+        largest = std::max(largest, mine);
+      });
+    return rho < 1 ? largest * rho / (1 - rho) : std::numeric_limits<double>::infinity();
   };
-  loop(n, reflect(result.irradiance)); // B_1
-  // Sweep k gathers E_k from B_{k-1} and makes B_k for the sweeps after it. The total needs
-  // B_1 .. B_{K-1} only: sweep K is made only to keep E_K apart.
-  const int lastSweep = keepBounces ? bounces : bounces - 1;
-  for (int bounce = 2; bounce <= lastSweep; ++bounce)
+  int bounce = 1;
+  result.restBound = reflect(result.irradiance);
+  // Sweep k gathers E_k from B_{k-1} and makes B_k, whose largest value bounds the rest.
+  while (bounce < limit.most && !(limit.restShare > 0 && result.restBound <= limit.restShare))
   {
-    loop(n, [&](std::size_t first, std::size_t last) { gatherLater(radiosity.data(), first, last, gathered.data()); });
+    loop(n,
+      [&](std::size_t first, std::size_t last)
+      {
+        for (std::size_t vertex = first; vertex < last; ++vertex)
+        {
+          sum[vertex] += radiosity[vertex];
+        }
+        gatherLater(radiosity.data(), first, last, gathered.data());
+      });
+    ++bounce;
     if (keepBounces)
     {
       result.bounces.push_back(gathered);
     }
-    if (bounce < bounces)
-    {
-      loop(n, reflect(gathered));
-    }
+    result.restBound = reflect(gathered);
   }
-  std::vector<Rgb>& rest = gathered;
-  std::vector<Rgb>& restError = radiosity; // no longer needed: its room reused
-  loop(n,
-    [&](std::size_t first, std::size_t last) { gatherLater(sum.data(), first, last, rest.data(), restError.data()); });
-  loop(n,
+  result.bounceCount = bounce;
+  if (bounce > 1)
+  {
+    addLaterBounces(sum, radiosity, gathered, result, loop);
+  }
+  return result;
+}
+
+void BounceGather::addLaterBounces(const std::vector<Rgb>& sum, std::vector<Rgb>& rest, std::vector<Rgb>& restError,
+  IndirectIrradiance& result, const RangeLoop& loop) const
+{
+  loop(rest.size(),
     [&](std::size_t first, std::size_t last)
     {
+      gatherLater(sum.data(), first, last, rest.data(), restError.data());
       for (std::size_t vertex = first; vertex < last; ++vertex)
       {
         result.irradiance[vertex] += rest[vertex];
         result.standardError[vertex] += restError[vertex];
       }
     });
-  return result;
 }
 }

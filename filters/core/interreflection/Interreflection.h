@@ -42,6 +42,25 @@ struct IndirectIrradiance
   std::vector<Rgb> irradiance;
   std::vector<Rgb> standardError;
   std::vector<std::vector<Rgb>> bounces; // bounces[n - 1]: what bounce n adds, E_n
+  int bounceCount = 0;                   // K
+  /// The most that the bounces past K add to a diffuse term (BounceLimit); infinite where the
+  /// albedo reaches 1.
+  double restBound = 0;
+};
+
+/// How many bounces BounceGather::bounce computes: `most`, or with a restShare above 0 the
+/// fewest (at most `most`) after which what the rest can add to a diffuse term is within it.
+/// That is at most max(B_K) rho / (1 - rho): each bounce's radiosity is at most rho times the
+/// largest of the one before it, rho the largest albedo (docs/formulas.md section 23.5).
+struct BounceLimit
+{
+  BounceLimit(int most, double restShare = 0)
+    : most(most)
+    , restShare(restShare)
+  {
+  }
+  int most;
+  double restShare;
 };
 
 /// Runs body(first, last) over [0, count) in ranges, in any order and on any threads: every
@@ -71,14 +90,21 @@ public:
   void addVertex(std::size_t vertex, const OccluderMesh::RayHit* hits);
 
   /// After addVertex for every vertex, once (it hands over the first bounce's values and frees
-  /// the direct radiosity): E_1 + ... + E_K. E_n = gather(B_{n-1}) and B_n = kd E_n;
-  /// E_2 + ... + E_K is gathered once more from B_1 + ... + B_{K-1} (the gather is linear in
-  /// B), so that its standard error is that of one mean over the rays; the total's is the first
-  /// bounce's plus the rest's (added as if they erred together: they share rays). keepBounces:
-  /// also each E_n.
-  IndirectIrradiance bounce(const Albedo& albedo, int bounces, bool keepBounces, const RangeLoop& loop = serialLoop);
+  /// the direct radiosity): E_1 + ... + E_K, K as `limit` says. E_n = gather(B_{n-1}) and
+  /// B_n = kd E_n; E_2 + ... + E_K is gathered once more from B_1 + ... + B_{K-1} (the gather
+  /// is linear in B), so that its standard error is that of one mean over the rays; the total's
+  /// is the first bounce's plus the rest's (added as if they erred together: they share rays).
+  /// keepBounces: also each E_n. Throws std::invalid_argument for a restShare with an albedo
+  /// that reaches 1, where no number of bounces has a bound.
+  IndirectIrradiance bounce(
+    const Albedo& albedo, const BounceLimit& limit, bool keepBounces, const RangeLoop& loop = serialLoop);
 
 private:
+  /// E_2 + ... + E_K gathered from sum = B_1 + ... + B_{K-1} into `rest`, its standard error
+  /// into `restError`, and both added to the result's.
+  void addLaterBounces(const std::vector<Rgb>& sum, std::vector<Rgb>& rest, std::vector<Rgb>& restError,
+    IndirectIrradiance& result, const RangeLoop& loop) const;
+
   /// E = gather(radiosity) on the kept hits at vertices [first, last), with the standard error
   /// where standardError is not null.
   void gatherLater(

@@ -289,14 +289,70 @@ std::vector<LightMethod> MethodPlan::methods() const
   return methods;
 }
 
-double MethodPlan::predictedError() const
+namespace
 {
-  double sum = arithmeticError;
-  for (const LightChoice& light : lights)
+/// The direct terms' predicted error: the rounding, each light's, and the occlusion's.
+double directError(const MethodPlan& plan)
+{
+  double sum = plan.arithmeticError;
+  for (const LightChoice& light : plan.lights)
   {
     sum += light.predictedError;
   }
-  return sum + (occlusion ? occlusion->errorInTotals() : 0);
+  return sum + (plan.occlusion ? plan.occlusion->errorInTotals() : 0);
+}
+}
+
+double MethodPlan::predictedError() const
+{
+  const double direct = directError(*this);
+  return interreflection ? direct * interreflection->directGrowth() + interreflection->share : direct;
+}
+
+double MethodPlan::estimatedError() const
+{
+  const double direct = directError(*this) - samplingError + estimatedSamplingError.value_or(samplingError);
+  if (!interreflection)
+  {
+    return direct;
+  }
+  const InterreflectionChoice& indirect = *interreflection;
+  return direct * indirect.directGrowth() +
+    (indirect.bounces > 0 ? indirect.bouncesLeftOut : indirect.truncationShare()) +
+    indirect.estimatedSamplingError.value_or(indirect.samplingShare());
+}
+
+std::string InterreflectionChoice::describe() const
+{
+  return "interreflection: a share of " + scientific(share) + " (" + scientific(truncationShare()) +
+    " for the bounces left out, " + scientific(samplingShare()) + " for the gather at 95%); kd up to " +
+    withDigits(largestAlbedo, 3) + ", so the direct terms' errors count " + withDigits(directGrowth(), 3) + " times";
+}
+
+std::string InterreflectionChoice::describeRun() const
+{
+  std::string line = "interreflection chose " + countOf(std::size_t(bounces), "bounce") + " (the rest add at most " +
+    scientific(bouncesLeftOut) + ") and " + std::to_string(samples) + " gather rays per vertex";
+  line += samples > firstSamples ? " (after a first run of " + std::to_string(firstSamples) + ")" : "";
+  if (estimatedSamplingError)
+  {
+    line += "; the gather errs by about " + scientific(*estimatedSamplingError) + " at 95% of the vertices" +
+      (*estimatedSamplingError > samplingShare()
+          ? ", above its share: " + std::to_string(samples) + " rays is the most \"max_samples\" allows"
+          : "");
+  }
+  return line;
+}
+
+int gatherRaysWithin(double firstError, int firstRays, double share, int maximum)
+{
+  int rays = firstRays;
+  // The error at 2N rays is the error at N over sqrt(2).
+  for (double error = firstError; error > share && 2 * rays <= maximum; error /= std::sqrt(2.0))
+  {
+    rays *= 2;
+  }
+  return rays;
 }
 
 namespace
@@ -386,6 +442,10 @@ std::vector<std::string> MethodPlan::describe() const
     lines.push_back(
       "ambient occlusion: a fixed count of rays, predicted error " + scientific(occlusion->predictedError) + " (95%)");
   }
+  if (interreflection)
+  {
+    lines.push_back(interreflection->describe());
+  }
   if (forecast)
   {
     lines.push_back(forecast->describe());
@@ -400,6 +460,11 @@ std::vector<std::string> MethodPlan::describe() const
       scientific(*estimatedSamplingError) +
       " estimated from their standard errors, where the plan bounds sampling's part by " + scientific(samplingError) +
       ")");
+  }
+  if (interreflection && interreflection->bounces > 0)
+  {
+    lines.push_back(interreflection->describeRun());
+    lines.push_back("after the bounces: an error of about " + scientific(estimatedError()) + " at 95% of the vertices");
   }
   return lines;
 }
@@ -585,9 +650,63 @@ void shareSampling(MethodPlan& plan, const Scene& scene)
 }
 }
 
+namespace
+{
+/// Interreflection's largest albedo, what a tolerance needs of its settings, and its share
+/// (set by the caller). Throws UnboundedSceneField where a tolerance cannot bound it.
+InterreflectionChoice chooseInterreflection(const Scene& scene, const MeshMeasurements& measured)
+{
+  const Interreflection& settings = *scene.interreflection;
+  const std::string orShade = "; or shade without a tolerance";
+  if (!settings.bouncesFromTolerance)
+  {
+    throw UnboundedSceneField("/interreflection/bounces",
+      "a tolerance cannot bound what the bounces past a fixed " + std::to_string(settings.bounces) +
+        " leave out: give \"bounces\": \"auto\" (--bounces auto), which takes as many as the tolerance needs" +
+        orShade);
+  }
+  if (!settings.sampling.fromTolerance)
+  {
+    throw UnboundedSceneField("/interreflection/samples",
+      "interreflection's gather from a fixed " + std::to_string(settings.sampling.samples) +
+        " rays per vertex has no error bound before they are traced: give \"samples\": \"auto\", which chooses "
+        "the count from the standard errors of a first run" +
+        orShade);
+  }
+  const ArrayCoefficient* kdArray = scene.material.arrays[MaterialCoefficient::Diffuse]
+    ? &*scene.material.arrays[MaterialCoefficient::Diffuse]
+    : nullptr;
+  InterreflectionChoice choice;
+  choice.largestAlbedo = kdArray ? measured.largestAlbedo.value_or(1.0) : largestComponent(scene.material.kd);
+  if (!(choice.largestAlbedo < 1))
+  {
+    throw UnboundedSceneField("/material/kd",
+      (kdArray ? "the array '" + kdArray->array + "' gives kd" : std::string("kd")) + " up to " +
+        withDigits(choice.largestAlbedo, 3) +
+        ": a surface that reflects all the light it receives lets no bounce fade (in a closed mesh their sum "
+        "diverges), so a tolerance cannot bound how many are needed: give kd below 1" +
+        orShade + " and a number of bounces");
+  }
+  return choice;
+}
+}
+
 MethodPlan chooseMethods(const Scene& scene, const ArrayRequest& request, const MeshExtent& mesh, double tolerance,
   bool float32Allowed, const MeshMeasurements& measured)
 {
+  if (scene.interreflection)
+  {
+    // Half for interreflection; the other half reaches the totals through the bounces too.
+    InterreflectionChoice indirect = chooseInterreflection(scene, measured);
+    indirect.share = tolerance / 2;
+    Scene direct = scene;
+    direct.interreflection.reset();
+    MethodPlan plan = chooseMethods(
+      direct, request, mesh, (tolerance - indirect.share) / indirect.directGrowth(), float32Allowed, measured);
+    plan.tolerance = tolerance;
+    plan.interreflection = indirect;
+    return plan;
+  }
   MethodPlan plan;
   plan.tolerance = tolerance;
   // Where anything is sampled, the deterministic errors take a tenth and sampling the rest.

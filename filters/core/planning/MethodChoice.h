@@ -46,6 +46,43 @@ struct OcclusionChoice
   double errorInTotals() const { return predictedError * weightInTotals; }
 };
 
+/// How interreflection meets its share of the tolerance (docs/formulas.md section 23.5): the
+/// plan gives it half of the tolerance and the direct terms the rest divided by how far their
+/// errors reach through the bounces; its bounces and gather rays are chosen in the run, once
+/// the direct light is known.
+struct InterreflectionChoice
+{
+  /// rho, the largest albedo over the channels and the vertices, below 1: a bounce carries at
+  /// most rho times the light of the one before it.
+  double largestAlbedo = 0;
+  /// Its share in the totals' units: a tenth for what the bounces left out add, the rest for
+  /// the gather's sampling (at 95%).
+  double share = 0;
+  /// Chosen in the run: the bounces, and the bound on what those past them add.
+  int bounces = 0;
+  double bouncesLeftOut = 0;
+  /// Chosen in the run: the first run's gather rays per vertex, then the count kept.
+  int firstSamples = 0, samples = 0;
+  /// The sampling's error after the run, from the vertices' standard errors
+  /// (estimatedErrorQuantile at 95%): an estimate.
+  std::optional<double> estimatedSamplingError;
+
+  double truncationShare() const { return share / 10; }
+  double samplingShare() const { return share - truncationShare(); }
+  /// An error e of the direct diffuse term reaches the totals as e + rho e + rho^2 e + ...
+  double directGrowth() const { return 1 / (1 - largestAlbedo); }
+  /// Its line of the plan: the shares.
+  std::string describe() const;
+  /// After the run: what was chosen, and the gather's error.
+  std::string describeRun() const;
+};
+
+/// The gather rays per vertex that meet `share`, from a first run of firstRays whose error was
+/// estimated at firstError: the error taken to fall as 1 / sqrt(N) (stratified rays fall at least
+/// as fast), the count a power of two times firstRays, at most `maximum` (and at least
+/// firstRays: the first run's rays are kept where they meet the share).
+int gatherRaysWithin(double firstError, int firstRays, double share, int maximum);
+
 /// The samples that area lights and maps draw, and the rays of ambient occlusion, over a mesh.
 struct SampleCounts
 {
@@ -80,6 +117,7 @@ struct MethodPlan
   bool roundingSampled = false;             // float32's from a sample of the mesh (errorFromSample), not a priori
   std::vector<LightChoice> lights;          // one per scene light (ambient lights have nothing to choose)
   std::optional<OcclusionChoice> occlusion; // where the scene has ambient occlusion
+  std::optional<InterreflectionChoice> interreflection;
   double tolerance = 0;
   /// The part of predictedError() that sampling takes (at 95%): the shares of the estimates
   /// drawn to a target, and a fixed count of occlusion rays' bound; 0 where nothing is sampled.
@@ -94,13 +132,12 @@ struct MethodPlan
 
   std::vector<LightMethod> methods() const;
   /// arithmeticError, every light's predictedError and the sampled estimates' errors as they
-  /// reach the arrays: at most tolerance (the sampled part at 95% confidence).
+  /// reach the arrays, grown through interreflection's bounces, and interreflection's share: at
+  /// most tolerance (the sampled part at 95% confidence).
   double predictedError() const;
-  /// predictedError() with sampling's part as estimated after the run, once it is.
-  double estimatedError() const
-  {
-    return estimatedSamplingError ? predictedError() - samplingError + *estimatedSamplingError : predictedError();
-  }
+  /// predictedError() with sampling's part as estimated after the run, and interreflection's
+  /// as its chosen bounces and its gather's standard errors put it, once they are.
+  double estimatedError() const;
   /// One line for the precision, then one per light, for the console and the field data, the
   /// forecast's where there is one, and after the run the samples drawn against it and
   /// sampling's part of the error as estimated.
@@ -136,6 +173,9 @@ struct MeshMeasurements
   /// The largest shininess over the whole mesh where the material reads it from an array;
   /// nullopt: not measured (the lobe's rounding is then bounded by its full size).
   std::optional<double> largestShininess;
+  /// The largest kd component over the whole mesh where the material reads kd from an array;
+  /// nullopt: not measured (interreflection's bounces are then not bounded).
+  std::optional<double> largestAlbedo;
 };
 
 /// The least distance from a light at `position` to any vertex: the measured one where there
@@ -205,8 +245,9 @@ double fixedRaysError(int n);
 /// float64 with exact methods is predicted to exceed the tolerance (RoundingAboveTolerance),
 /// a fixed count of rays to exceed the share left for it, or an area light or map cannot be
 /// bounded (its estimator has no bound, its samples are a fixed count, or its SH irradiance
-/// errs by more than is left): UnboundedSceneField, naming the field. measured: what the filter measured on the points
-/// (nothing: the bounding sphere's bounds and float32's a priori).
+/// errs by more than is left): UnboundedSceneField, naming the field. With interreflection,
+/// its "bounces" and "samples" must be "auto" and kd below 1 (InterreflectionChoice). measured: what the filter
+/// measured on the points (nothing: the bounding sphere's bounds and float32's a priori).
 MethodPlan chooseMethods(const Scene& scene, const ArrayRequest& request, const MeshExtent& mesh, double tolerance,
   bool float32Allowed = true, const MeshMeasurements& measured = {});
 }

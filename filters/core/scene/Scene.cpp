@@ -229,8 +229,11 @@ std::vector<SceneProblem> sceneProblems(const Scene& scene, Precision precision)
     }
     list.check(list.problems.size() > 0 || sum <= limit, "/lights",
       "together the lights can reach " + beyond(sum) + "smaller intensities");
-    // Each bounce adds at most the last one's light (kd <= 1, checked above).
-    const int bounces = scene.interreflection ? scene.interreflection->bounces : 0;
+    // Each bounce adds at most the last one's light (kd <= 1, checked above); "auto" may take
+    // up to the most bounces.
+    const int bounces = !scene.interreflection      ? 0
+      : scene.interreflection->bouncesFromTolerance ? Interreflection::maxBounces
+                                                    : scene.interreflection->bounces;
     list.check(list.problems.size() > 0 || sum * (1 + bounces) <= limit, "/interreflection/bounces",
       "the lights and their " + std::to_string(bounces) + " bounces can reach " + beyond(sum * (1 + bounces)) +
         "fewer bounces or smaller intensities");
@@ -249,6 +252,15 @@ std::vector<SceneProblem> untargetedSamplingProblems(const Scene& scene, bool li
   if (scene.ambientOcclusion && scene.ambientOcclusion->sampling.fromTolerance && !scene.ambientOcclusion->target)
   {
     return { { "/ambient_occlusion/rays", "\"auto\" takes its count of rays from a tolerance: " + remedy + "rays" } };
+  }
+  const std::optional<Interreflection>& interreflection = scene.interreflection;
+  if (interreflection && (interreflection->bouncesFromTolerance || interreflection->sampling.fromTolerance) &&
+    !lightsPlanned)
+  {
+    const bool bounces = interreflection->bouncesFromTolerance;
+    return { { std::string("/interreflection/") + (bounces ? "bounces" : "samples"),
+      std::string("\"auto\" takes interreflection's count of ") + (bounces ? "bounces" : "gather rays") +
+        " from a tolerance: " + remedy + (bounces ? "bounces" : "samples") } };
   }
   for (std::size_t i = 0; i < scene.lights.size(); ++i)
   {

@@ -66,7 +66,13 @@ struct Interreflection
   static constexpr int maxBounces = 64;
   /// 1 .. maxBounces (a scene file's "bounces": 0 leaves interreflection out).
   int bounces = 1;
-  Sampling sampling{ 64, true };
+  /// "samples": "auto": the gather's rays per vertex from a tolerance's share; `samples` is then
+  /// the first run's count, whose standard errors choose the count (at most `maximum`, 1024 by
+  /// default: the later bounces keep a quarter of the rays' hits, 8 bytes each, so 2 KB a vertex).
+  Sampling sampling{ 64, true, false, 1024 };
+  /// "bounces": "auto": as many as a tolerance's share needs (MethodChoice.h), chosen once the
+  /// direct light is known; at most maxBounces.
+  bool bouncesFromTolerance = false;
 };
 
 /// "spectral": colour evaluated wavelength by wavelength (docs/formulas.md section 22): each
@@ -130,6 +136,7 @@ bool shadesBothSides(const Scene& scene);
 /// Why the scene's samples cannot be drawn as it stands, at the field that says so (none
 /// where they can): ambient occlusion with "rays": "auto" that no tolerance has given a target
 /// (MethodChoice.h), and unless lightsPlanned (a tolerance's plan gives each light its
-/// targets), any light with "samples": "auto".
+/// targets, and interreflection its share), any light with "samples": "auto" and
+/// interreflection with "bounces" or "samples" "auto".
 std::vector<SceneProblem> untargetedSamplingProblems(const Scene& scene, bool lightsPlanned);
 }

@@ -56,25 +56,29 @@ AmbientOcclusion readAmbientOcclusion(const JsonNode& node)
   return occlusion;
 }
 
+}
+
+void readBounces(const JsonNode& node, Interreflection& interreflection)
+{
+  interreflection.bouncesFromTolerance = node.isString();
+  if (node.isString() && node.text() != "auto")
+  {
+    node.fail("must be a whole number of bounces, or \"auto\" (as many as a tolerance needs)");
+  }
+  interreflection.bounces = node.isString() ? 1 : node.wholeNumber(0, Interreflection::maxBounces);
+}
+
+namespace
+{
 Interreflection readInterreflection(const JsonNode& node)
 {
-  node.expectObject({ "bounces", "samples", "stratified" });
+  node.expectObject({ "bounces", "samples", "max_samples", "stratified" });
   Interreflection interreflection;
-  for (const char* count : { "bounces", "samples" })
-  {
-    if (node.has(count) && node.at(count).isString())
-    {
-      node.at(count).fail("must be a whole number: a tolerance does not choose interreflection's yet");
-    }
-  }
   if (node.has("bounces"))
   {
-    interreflection.bounces = node.at("bounces").wholeNumber(0, Interreflection::maxBounces);
+    readBounces(node.at("bounces"), interreflection);
   }
-  if (node.has("samples"))
-  {
-    interreflection.sampling.samples = node.at("samples").wholeNumber(2, maxSamplesPerVertex);
-  }
+  readSampleCount(node, "samples", "max_samples", interreflection.sampling);
   if (node.has("stratified"))
   {
     interreflection.sampling.stratified = node.at("stratified").boolean();

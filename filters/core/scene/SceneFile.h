@@ -20,4 +20,9 @@ Scene readSceneFile(const std::string& fileName);
 
 /// The same from text; sourceName stands for the file in messages.
 Scene parseScene(const std::string& text, const std::string& sourceName);
+
+class JsonNode;
+/// Interreflection's "bounces": a whole number from 0 to Interreflection::maxBounces, or "auto"
+/// (as many as a tolerance needs).
+void readBounces(const JsonNode& node, Interreflection& interreflection);
 }

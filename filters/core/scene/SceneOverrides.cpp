@@ -2,6 +2,7 @@
 
 #include "JsonNode.h"
 #include "LightFields.h"
+#include "SceneFile.h"
 
 #include <vector>
 
@@ -105,8 +106,10 @@ void overrideBounces(Scene& scene, const std::string& bounces)
 {
   Interreflection interreflection = scene.interreflection.value_or(Interreflection{});
   const Json given = { { "bounces", sampleCountJson(bounces) } };
-  interreflection.bounces =
-    JsonNode(given, "/interreflection").at("bounces").wholeNumber(0, Interreflection::maxBounces);
+  readBounces(JsonNode(given, "/interreflection").at("bounces"), interreflection);
+  // The command has no option for the gather's rays: "auto" bounces take them from the tolerance too.
+  interreflection.sampling.fromTolerance =
+    interreflection.sampling.fromTolerance || interreflection.bouncesFromTolerance;
   scene.interreflection = interreflection.bounces > 0 ? std::optional(interreflection) : std::nullopt;
 }
 
