@@ -3,10 +3,12 @@
 //   shadelab-bench --end-to-end MESH       what shadelab shade spends on one mesh, stage by stage
 //   shadelab-bench --charts DIR            the accuracy studies, as CSV and PNG charts
 //   shadelab-bench --visibility DIR        what casting rays costs, and ambient occlusion's error
+//   shadelab-bench --interreflection MESH  interreflection's time and memory against occlusion's
 #include "AccuracyStudies.h"
 #include "Benchmark.h"
 #include "CommandLineParse.h"
 #include "EndToEnd.h"
+#include "InterreflectionBenchmark.h"
 #include "MeshFiles.h"
 #include "OffScreenImage.h"
 #include "RayBenchmark.h"
@@ -55,6 +57,7 @@ struct BenchCommand
   int threads = 0;
   shadelab::app::BenchmarkOptions options;
   shadelab::app::EndToEndOptions endToEnd;
+  shadelab::app::InterreflectionBenchmarkOptions interreflection;
 };
 
 int run(BenchCommand& command)
@@ -62,6 +65,18 @@ int run(BenchCommand& command)
   if (command.threads > 0)
   {
     vtkSMPTools::Initialize(command.threads);
+  }
+  if (!command.endToEnd.scene.empty() && command.endToEnd.mesh.empty() && command.interreflection.mesh.empty())
+  {
+    throw UserError("--scene is the scene of --end-to-end or --interreflection: give one of them");
+  }
+  if (!command.interreflection.mesh.empty())
+  {
+    command.interreflection.repeats = command.options.maxRepeats;
+    command.interreflection.scene =
+      command.endToEnd.scene.empty() ? command.interreflection.scene : command.endToEnd.scene;
+    shadelab::app::runInterreflectionBenchmark(command.interreflection);
+    return 0;
   }
   if (!command.endToEnd.mesh.empty())
   {
@@ -138,15 +153,24 @@ int main(int argc, char** argv)
     "instead, time what `shadelab shade MESH` spends, stage by stage (read, normals, orientation, shading, "
     "write; --repeats rounds, medians), against reading with VTK's reader alone and writing with VTK's writer "
     "alone, and print its peak memory against the bytes of the mesh and of the arrays written");
-  cli.add_option("--scene,-s", command.endToEnd.scene, "the scene for --end-to-end (default: the default light kit)")
-    ->needs(endToEnd);
+  CLI::Option* interreflection =
+    cli
+      .add_option("--interreflection", command.interreflection.mesh,
+        "instead, shade MESH with 3 bounces of interreflection (64 gather rays per vertex) and with ambient occlusion "
+        "at 64 rays per vertex in turn, in this process, and print their times, their peak memory and the ratios "
+        "(--repeats rounds, medians; the 2.2M-vertex bunny of docs/dev/benchmarks.md is issue 46's mesh)")
+      ->excludes(endToEnd);
+  cli.add_option("--scene,-s", command.endToEnd.scene,
+    "the scene for --end-to-end (default: the default light kit) or --interreflection (default: "
+    "data/scenes/studio.json)");
   cli
     .add_option("--charts", command.chartsFolder,
       "instead, run the accuracy studies (float32, pow methods, a point light as distant, Phong against "
       "Blinn-Phong, tessellation, each at its failure point; the estimators of an area light and of two "
       "environment maps, and the SH estimator's speed) and write accuracy.csv and one PNG chart per study into "
       "this folder; reads data/scenes/area_lights.json and data/envmaps/; needs an X display (xvfb-run -a)")
-    ->excludes(endToEnd);
+    ->excludes(endToEnd)
+    ->excludes(interreflection);
   cli
     .add_option("--study", command.studyFilters,
       "with --charts: only the studies whose names contain this text (repeatable), such as --study 8b; "
@@ -160,7 +184,8 @@ int main(int argc, char** argv)
       "and Embree alone, ambient occlusion's error against its time (4 to 1024 rays against 4096) and a penumbra "
       "against its closed form; writes visibility.csv, 9_ambient_occlusion.png and 10_penumbra.png into this "
       "folder; needs an X display (xvfb-run -a); about a minute")
-    ->excludes(endToEnd);
+    ->excludes(endToEnd)
+    ->excludes(interreflection);
   cli.add_option("--threads,-j", command.threads, "threads (0: all cores)")
     ->check(CLI::Range(0, 256))
     ->capture_default_str();

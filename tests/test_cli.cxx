@@ -20,6 +20,7 @@
 #include <iterator>
 #include <limits>
 #include <map>
+#include <regex>
 #include <set>
 
 namespace
@@ -838,6 +839,38 @@ TEST_F(Cli, RenderKeepsItsLegendInsideThePicture)
     }
     EXPECT_EQ(notBackground, 0) << size;
   }
+}
+
+TEST_F(Cli, BenchmarkSetsInterreflectionAgainstAmbientOcclusion)
+{
+  // Both runs in one process, and their ratios, the quotients of the rows printed (to the
+  // rows' two decimals); the scene option names what it belongs to.
+  const std::string studio = SHADELAB_SOURCE_DIR "/data/scenes/studio.json";
+  const Result result =
+    run(SHADELAB_BENCH_EXECUTABLE, "--interreflection " + goodMesh() + " -s " + studio + " --repeats 1");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  const std::regex row("  (ambient occlusion, 64 rays per vertex|interreflection, 3 bounces of 64 gather rays) +"
+                       "([0-9.]+) s +([0-9.]+) GB peak\n");
+  std::vector<double> seconds, peaks;
+  for (auto match = std::sregex_iterator(result.out.begin(), result.out.end(), row); match != std::sregex_iterator();
+       ++match)
+  {
+    seconds.push_back(std::stod((*match)[2]));
+    peaks.push_back(std::stod((*match)[3]));
+  }
+  ASSERT_EQ(seconds.size(), 2u) << result.out;
+  std::smatch ratios;
+  ASSERT_TRUE(std::regex_search(result.out, ratios,
+    std::regex("time ([0-9.]+) \\(target at most 2\\), peak memory ([0-9.]+) \\(target at most 1.5\\)")))
+    << result.out;
+  const double half = 0.005; // the rows' rounding
+  EXPECT_GE(std::stod(ratios[1]) + half, (seconds[1] - half) / (seconds[0] + half)) << result.out;
+  EXPECT_LE(std::stod(ratios[1]) - half, (seconds[1] + half) / (seconds[0] - half)) << result.out;
+  EXPECT_GE(std::stod(ratios[2]) + half, (peaks[1] - half) / (peaks[0] + half)) << result.out;
+  EXPECT_LE(std::stod(ratios[2]) - half, (peaks[1] + half) / (peaks[0] - half)) << result.out;
+  const Result alone = run(SHADELAB_BENCH_EXECUTABLE, "-s " + studio);
+  EXPECT_EQ(alone.exitCode, 1);
+  EXPECT_EQ(alone.err, "shadelab-bench: --scene is the scene of --end-to-end or --interreflection: give one of them\n");
 }
 
 TEST_F(Cli, BenchmarkTableAgreesWithItsBaseline)
