@@ -614,4 +614,18 @@ void runBenchmark(const BenchmarkOptions& options)
     std::cout << "wrote " << options.csvFile << "\n";
   }
 }
+vtkSmartPointer<vtkPolyData> shaded(vtkPolyData* mesh, const Scene& scene)
+{
+  vtkNew<vtkLocalReflectanceFilter> filter;
+  filter->SetInputData(mesh);
+  filter->SetScene(scene);
+  filter->Update();
+  if (filter->GetOutput()->GetNumberOfPoints() != mesh->GetNumberOfPoints())
+  {
+    throw UserError("the mesh could not be shaded (run shadelab shade on it to see why)");
+  }
+  auto output = vtkSmartPointer<vtkPolyData>::New();
+  output->ShallowCopy(filter->GetOutput());
+  return output;
+}
 }

@@ -11,8 +11,17 @@
 #include <string>
 #include <vector>
 
+namespace shadelab
+{
+struct Scene;
+}
+
 namespace shadelab::app
 {
+/// vtkLocalReflectanceFilter's output on the mesh under the scene. Throws UserError where the
+/// mesh could not be shaded.
+vtkSmartPointer<vtkPolyData> shaded(vtkPolyData* mesh, const Scene& scene);
+
 struct Mesh
 {
   std::string name;

@@ -63,21 +63,6 @@ vtkSmartPointer<vtkPolyData> readAlone(const std::string& file)
   return mesh;
 }
 
-vtkSmartPointer<vtkPolyData> shaded(vtkPolyData* mesh, const Scene& scene)
-{
-  vtkNew<vtkLocalReflectanceFilter> filter;
-  filter->SetInputData(mesh);
-  filter->SetScene(scene);
-  filter->Update();
-  if (filter->GetOutput()->GetNumberOfPoints() != mesh->GetNumberOfPoints())
-  {
-    throw UserError("the mesh could not be shaded (run shadelab shade on it to see why)");
-  }
-  auto output = vtkSmartPointer<vtkPolyData>::New();
-  output->ShallowCopy(filter->GetOutput());
-  return output;
-}
-
 /// The mesh with the normals the filter computes, or only checks (with the mesh's own).
 vtkSmartPointer<vtkPolyData> withNormals(vtkPolyData* mesh)
 {

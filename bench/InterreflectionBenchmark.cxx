@@ -5,9 +5,7 @@
 #include "MeshFiles.h"
 
 #include "SceneFile.h"
-#include "vtkLocalReflectanceFilter.h"
 
-#include "vtkNew.h"
 #include "vtkPolyData.h"
 
 #include <algorithm>
@@ -39,16 +37,7 @@ RunCost shadeOnce(vtkPolyData* mesh, const Scene& scene)
     throw UserError("this kernel does not let the peak memory be reset (/proc/self/clear_refs): no peak to measure");
   }
   const auto start = std::chrono::steady_clock::now();
-  {
-    vtkNew<vtkLocalReflectanceFilter> filter;
-    filter->SetInputData(mesh);
-    filter->SetScene(scene);
-    filter->Update();
-    if (filter->GetOutput()->GetNumberOfPoints() != mesh->GetNumberOfPoints())
-    {
-      throw UserError("the mesh could not be shaded (run shadelab shade on it to see why)");
-    }
-  }
+  shaded(mesh, scene); // dropped at once
   const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - start;
   return { elapsed.count(), double(statusBytes("VmHWM").value_or(0)) };
 }
