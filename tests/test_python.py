@@ -419,6 +419,17 @@ class Interreflection(unittest.TestCase):
         for name in ("indirect_irradiance", "indirect", "indirect_bounce_3", "diffuse", "total"):
             self.assertTrue(np.array_equal(expected[name], actual[name]), name)
         self.assertTrue(shading.GetInterreflectionReport().startswith("3 bounces from 'diffuse', 256 gather rays"))
+        # The filter alone on the shaded bunny: the fewest bounces whose rest is within 1e-3.
+        again = shadelab.vtkInterreflectionFilter()
+        again.SetInputData(shading.GetOutput())
+        again.SetAlbedo(0.8, 0.8, 0.8)
+        again.SetBounces(64)
+        again.SetBounceTolerance(1e-3)
+        again.SetArrayPrefix("again_")
+        again.Update()
+        self.assertTrue(1 < again.GetBounceCount() < 64, again.GetBounceCount())
+        self.assertLessEqual(again.GetRestBound(), 1e-3)
+        self.assertIn(" bounces from 'diffuse', 64 gather rays per vertex", again.GetReport())
         gather = shadelab.vtkInterreflectionFilter()
         gather.SetInputData(read_bunny())
         with ErrorText() as printed:
