@@ -39,6 +39,14 @@ std::vector<shadelab::Rgb> rgbValues(vtkDataArray* array)
   return values;
 }
 
+/// The normal made unit: the gather's rays are cosine-weighted about it, and a normal of another
+/// length (a mesh's own) would tilt them. A zero normal stays zero.
+glm::dvec3 unitOrZero(const glm::dvec3& normal)
+{
+  const double length = glm::length(normal);
+  return length > 0 ? normal / length : normal;
+}
+
 /// The albedo array's tuple at a point.
 shadelab::Rgb rgbAt(vtkDoubleArray* array, vtkIdType point)
 {
@@ -83,7 +91,7 @@ long long gatherEveryVertex(const shadelab::OccluderMesh& occluders, vtkPolyData
             long long back = 0;
             for (vtkIdType i = begin; i < end; ++i)
             {
-              shadelab::RayVertex vertex{ {}, packedNormals(i), i };
+              shadelab::RayVertex vertex{ {}, unitOrZero(packedNormals(i)), i };
               mesh->GetPoint(i, &vertex.position.x);
               back += shadelab::gatherHits(occluders, vertex, sampling, packedNormals, hits.data());
               gather.addVertex(static_cast<std::size_t>(i), hits.data());
