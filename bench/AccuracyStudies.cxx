@@ -5,6 +5,7 @@
 #include "Chart.h"
 #include "CsvText.h"
 #include "DistributedStudies.h"
+#include "InterreflectionStudies.h"
 #include "MeshFiles.h"
 #include "SceneFile.h"
 #include "SpectralStudies.h"
@@ -678,6 +679,10 @@ void runAccuracyStudies(const AccuracyOptions& options)
   study("11_predicted_against_measured", [&](ChartSpec& chart) { return predictionStudy(chart); });
   study("12_spectral_rgb_error", [&](ChartSpec& chart) { return spectralRgbErrorStudy(plainBunny, chart); });
   study("13_spectral_bands", [&](ChartSpec& chart) { return spectralBandStudy(plainBunny, chart); });
+  study("14_interreflection_bounces",
+    [&](ChartSpec& chart) { return interreflectionBouncesStudy(options.maxRepeats, chart); });
+  study(
+    "14b_interreflection_rays", [&](ChartSpec& chart) { return interreflectionRaysStudy(options.maxRepeats, chart); });
   const std::vector<AccuracyRow> grazing = grazingRows();
   rows.insert(rows.end(), grazing.begin(), grazing.end());
   for (const AccuracyRow& r : grazing)
