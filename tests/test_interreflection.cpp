@@ -51,6 +51,12 @@ double sumOfPowers(double x, int from, int to)
   return sum;
 }
 
+/// A gather's mean and standard error at one vertex, in one channel.
+struct GatherEstimateForTest
+{
+  double mean = 0, standardError = 0;
+};
+
 /// A closed sphere of radius 2, normals inward, lit from its centre by a point light of
 /// intensity 3: E0 = I / R^2 at every vertex, and the radiosity rho E0.
 struct LitClosedSphere
@@ -138,6 +144,63 @@ TEST(Interreflection, BouncesStopAtTheFewestWhoseRestFitsTheShare)
   }
   const IndirectIrradiance unbounded = traced().gather->bounce({ Rgb(rho), albedo.data() }, 2, false);
   EXPECT_TRUE(std::isinf(unbounded.restBound));
+}
+
+/// The form factor from a point at height h, facing down, to an a x b rectangle in the plane
+/// below whose corner is under it: (X / sqrt(1 + X^2)) atan(Y / sqrt(1 + X^2)) + (X <-> Y), over
+/// 2 pi, X = a / h, Y = b / h (J. R. Howell, "A Catalog of Radiation Heat Transfer Configuration
+/// Factors", differential area to a parallel rectangle).
+double cornerFormFactor(double a, double b, double h)
+{
+  const double x = a / h, y = b / h, pi = 3.14159265358979323846;
+  const double sx = std::sqrt(1 + x * x), sy = std::sqrt(1 + y * y);
+  return (x / sx * std::atan(y / sx) + y / sy * std::atan(x / sy)) / (2 * pi);
+}
+
+/// What a point at (-0.5, 0, 0.25), facing down, gathers with `rays` rays from the square
+/// [-1, 1]^2 below it in cells x cells quads, whose radiosity at each corner is radiosity(x).
+GatherEstimateForTest gatherAbovePlate(int cells, int rays, double (*radiosity)(double x))
+{
+  Mesh scene;
+  addPlane(scene, 1.0, cells);
+  const PointId receiver = scene.addPoint({ -0.5, 0, 0.25 }, { 0, 0, -1 });
+  scene.addTriangle(receiver, scene.addPoint({ -0.5 + 1e-3, 0, 0.25 }, { 0, 0, -1 }),
+    scene.addPoint({ -0.5, 1e-3, 0.25 }, { 0, 0, -1 }));
+  std::vector<Rgb> values;
+  for (const glm::dvec3& p : scene.points)
+  {
+    values.emplace_back(p.z == 0 ? radiosity(p.x) : 0.0);
+  }
+  const OccluderMesh occluders = scene.occluders();
+  BounceGather gather(occluders, values, Sampling{ rays, true });
+  std::vector<OccluderMesh::RayHit> hits(static_cast<std::size_t>(rays));
+  gatherHits(occluders, scene.vertex(std::size_t(receiver)), { rays, true },
+    PackedPoints<double>{ &scene.normals[0].x }, hits.data());
+  gather.addVertex(std::size_t(receiver), hits.data());
+  const IndirectIrradiance indirect = gather.bounce({ Rgb(1.0), nullptr }, 1, false);
+  return { indirect.irradiance[std::size_t(receiver)].r, indirect.standardError[std::size_t(receiver)].r };
+}
+
+// Where interpolation fails: a sharp shadow edge across large triangles. The plate below the
+// point is lit (radiosity 1) for x < 0 and dark beyond. Finely meshed, the gather meets the
+// step's closed form, the form factor of the lit half (4 corner rectangles of 0.5 x 1 at height
+// 0.25). Meshed as two triangles, the corners' values (1 at x = -1, 0 at x = 1) interpolate to
+// the ramp (1 - x) / 2, and the gather meets the ramp's value, which a fine mesh of the ramp
+// gives: it errs by the interpolation's error, far beyond its standard error, which more rays
+// do not remove (at 4096 rays: 0.677 +- 0.0015 against the step's 0.883, and 0.886 +- 0.0019
+// finely meshed).
+TEST(Interreflection, ASharpShadowEdgeAcrossLargeTrianglesIsInterpolatedAway)
+{
+  auto step = [](double x) { return x < 0 ? 1.0 : x == 0 ? 0.5 : 0.0; };
+  auto ramp = [](double x) { return (1 - x) / 2; };
+  const double exact = 4 * cornerFormFactor(0.5, 1.0, 0.25);
+  const GatherEstimateForTest fine = gatherAbovePlate(128, 4096, step);
+  EXPECT_NEAR(fine.mean, exact, 3 * fine.standardError + 1e-3 * exact);
+  const GatherEstimateForTest coarse = gatherAbovePlate(1, 4096, step);
+  const GatherEstimateForTest fineRamp = gatherAbovePlate(128, 4096, ramp);
+  EXPECT_NEAR(coarse.mean, fineRamp.mean, 3 * (coarse.standardError + fineRamp.standardError));
+  EXPECT_GT(exact - coarse.mean, 0.1);
+  EXPECT_GT(exact - coarse.mean, 50 * coarse.standardError);
 }
 
 // Under a tolerance the gather's rays double from the first run's count while the error, taken
