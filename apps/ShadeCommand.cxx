@@ -158,7 +158,7 @@ void addVisibilityOptions(CLI::App* command, SceneOverrides& overrides)
       "_std_error, and indirect (kd times it), which diffuse and total include; indirect_bounce_<n> and "
       "ambient_minus_indirect on request (-a all). 0 turns it off. auto (with --tolerance): the fewest bounces "
       "whose rest fits the tolerance's share, and as many gather rays as the standard errors of a first run of 64 "
-      "say the share needs (at most the scene's max_samples, 4096); the choice is printed with the methods")
+      "say the share needs (at most the scene's max_samples, 1024); the choice is printed with the methods")
     ->check(CLI::Range(0, Interreflection::maxBounces) | CLI::IsMember({ "auto" }));
 }
 

@@ -8,8 +8,6 @@
 #include "vtkPointData.h"
 #include "vtkSphereSource.h"
 
-#include <algorithm>
-#include <chrono>
 #include <cmath>
 
 namespace shadelab::app
@@ -25,6 +23,7 @@ constexpr double pi = 3.14159265358979323846;
 vtkSmartPointer<vtkPolyData> bowl(double halfAngle, double f)
 {
   vtkNew<vtkSphereSource> sphere;
+  sphere->SetRadius(1);
   sphere->SetThetaResolution(128);
   sphere->SetPhiResolution(64);
   sphere->SetEndPhi(halfAngle * 180 / pi);
@@ -65,16 +64,13 @@ BowlRun gatherOnBowl(vtkPolyData* mesh, double f, int bounces, int rays, int max
   filter->SetBounces(bounces);
   filter->SetSamples(rays);
   BowlRun run;
-  std::vector<double> times;
-  for (int r = 0; r < maxRepeats; ++r)
-  {
-    filter->Modified();
-    const auto start = std::chrono::steady_clock::now();
-    filter->Update();
-    times.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
-  }
-  std::sort(times.begin(), times.end());
-  run.milliseconds = times[times.size() / 2];
+  run.milliseconds = medianMilliseconds(
+    [&]
+    {
+      filter->Modified();
+      filter->Update();
+    },
+    maxRepeats, maxRepeats);
   const double expected = (1 - f) * rho * f / (1 - rho * f);
   vtkDataArray* indirect = filter->GetOutput()->GetPointData()->GetArray("indirect_irradiance");
   DifferenceSum sum;

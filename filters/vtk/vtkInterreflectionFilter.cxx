@@ -43,8 +43,7 @@ std::vector<shadelab::Rgb> rgbValues(vtkDataArray* array)
 /// length (a mesh's own) would tilt them. A zero normal stays zero.
 glm::dvec3 unitOrZero(const glm::dvec3& normal)
 {
-  const double length = glm::length(normal);
-  return length > 0 ? normal / length : normal;
+  return shadelab::largestComponent(normal) > 0 ? shadelab::unitVector(normal) : normal;
 }
 
 /// The albedo array's tuple at a point.
@@ -189,8 +188,15 @@ int vtkInterreflectionFilter::Interreflect(vtkPolyData* input, vtkPolyData* outp
   shadelab::IndirectIrradiance indirect;
   try
   {
-    indirect = this->Bounces > 0 ? this->GatherBounces(input, normals, radiosity, albedo)
-                                 : noIndirectLight(static_cast<std::size_t>(input->GetNumberOfPoints()));
+    if (this->Bounces > 0)
+    {
+      indirect = this->GatherBounces(input, normals, radiosity, albedo); // and its report
+    }
+    else
+    {
+      indirect = noIndirectLight(static_cast<std::size_t>(input->GetNumberOfPoints()));
+      this->Report = "0 bounces: no indirect light";
+    }
   }
   catch (const shadelab::RunAborted&) // an empty output, and no error
   {
@@ -266,10 +272,6 @@ void vtkInterreflectionFilter::AddIndirectArrays(
   {
     out->AddArray(
       rgbArray(this->ArrayPrefix + "indirect_bounce_" + std::to_string(n + 1), indirect.bounces[n], float64));
-  }
-  if (this->Bounces == 0)
-  {
-    this->Report = "0 bounces: no indirect light";
   }
 }
 

@@ -25,12 +25,8 @@ struct GatherEstimate
 /// The largest albedo over the channels and the vertices.
 double largestAlbedo(const Albedo& albedo, std::size_t vertices)
 {
-  double largest = largestComponent(albedo.uniform);
-  for (std::size_t i = 0; albedo.perVertex && i < 3 * vertices; ++i)
-  {
-    largest = i == 0 ? albedo.perVertex[0] : std::max(largest, albedo.perVertex[i]);
-  }
-  return largest;
+  return albedo.perVertex ? *std::max_element(albedo.perVertex, albedo.perVertex + 3 * vertices)
+                          : largestComponent(albedo.uniform);
 }
 
 /// B at a hit: its triangle's corners' values weighted by the hit's barycentric coordinates.
