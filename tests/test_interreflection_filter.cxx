@@ -287,6 +287,30 @@ TEST(Interreflection, NormalsOfAnyLengthGatherAlike)
   }
 }
 
+// A white-ish closed sphere (kd 0.99) keeps almost all of its light: after the most bounces a
+// scene may ask for, 64, the rest can still add 0.99^66 / 0.01 of I / R^2 = 51.5, far above the
+// share, and the plan says so rather than pass it off as met.
+TEST(Interreflection, AutoBouncesThatCannotMeetTheShareSaySo)
+{
+  vtkSmartPointer<vtkPolyData> sphere = insideOfSphere(20, 1.0);
+  Scene scene = lampInside(1.0, 0.99, 1);
+  scene.interreflection->bouncesFromTolerance = true;
+  scene.interreflection->sampling.fromTolerance = true;
+  vtkNew<vtkLocalReflectanceFilter> filter;
+  filter->SetInputData(sphere);
+  filter->SetScene(scene);
+  filter->SetOrientNormalsOutward(false);
+  filter->SetTolerance(0.01);
+  filter->Update();
+  const InterreflectionChoice& chosen = *filter->GetMethodPlan()->interreflection;
+  EXPECT_EQ(chosen.bounces, 64);
+  EXPECT_NEAR(chosen.bouncesLeftOut, std::pow(0.99, 66) / 0.01, 1e-4);
+  EXPECT_EQ(chosen.describeRun().substr(0, 126),
+    "interreflection chose 64 bounces (the rest add at most 52, above its "
+    "share: 64 bounces is the most a scene may ask for) and 64");
+  EXPECT_GT(filter->GetMethodPlan()->estimatedError(), 50.0);
+}
+
 // What interreflection cannot be given is refused at its field: under a tolerance, fixed counts
 // of bounces or rays and an albedo of 1; "auto" without one; an albedo above 1; the spectral mode.
 TEST(Interreflection, ScenesItCannotShadeAreRefusedAtTheirField)

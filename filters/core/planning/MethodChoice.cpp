@@ -332,7 +332,11 @@ std::string InterreflectionChoice::describe() const
 std::string InterreflectionChoice::describeRun() const
 {
   std::string line = "interreflection chose " + countOf(std::size_t(bounces), "bounce") + " (the rest add at most " +
-    scientific(bouncesLeftOut) + ") and " + std::to_string(samples) + " gather rays per vertex";
+    scientific(bouncesLeftOut) +
+    (bouncesLeftOut > truncationShare()
+        ? ", above its share: " + std::to_string(bounces) + " bounces is the most a scene may ask for"
+        : "") +
+    ") and " + std::to_string(samples) + " gather rays per vertex";
   line += samples > firstSamples ? " (after a first run of " + std::to_string(firstSamples) + ")" : "";
   if (estimatedSamplingError)
   {
