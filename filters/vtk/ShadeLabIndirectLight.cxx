@@ -107,10 +107,10 @@ vtkPointData* runStep(
   if (choice)
   {
     const Sampling& sampling = scene.interreflection->sampling;
-    choice->firstSamples = sampling.samples;
+    choice->firstSamples = step->GetSamples();
     choice->samples = gatherRaysWithin(
-      gatherError(gathered, albedo, scene), sampling.samples, choice->samplingShare(), sampling.maximum);
-    if (choice->samples > sampling.samples)
+      gatherError(gathered, albedo, scene), choice->firstSamples, choice->samplingShare(), sampling.maximum);
+    if (choice->samples > choice->firstSamples)
     {
       step->SetSamples(choice->samples);
       gathered = run();
@@ -150,7 +150,8 @@ vtkPointData* gatherBounces(vtkInterreflectionFilter* step, vtkPolyData* input, 
   step->SetAlbedo(scene.material.kd.r, scene.material.kd.g, scene.material.kd.b);
   step->SetBounces(choice ? Interreflection::maxBounces : settings.bounces);
   step->SetBounceTolerance(choice ? choice->truncationShare() : 0);
-  step->SetSamples(settings.sampling.samples);
+  // "max_samples" bounds the first run too.
+  step->SetSamples(choice ? std::min(settings.sampling.samples, settings.sampling.maximum) : settings.sampling.samples);
   step->SetStratified(settings.sampling.stratified);
   step->SetKeepBounces(std::any_of(asked.bounces.begin(), asked.bounces.end(), [](bool b) { return b; }));
   step->SetArrayPrefix("");
