@@ -23,7 +23,9 @@ CLI::App* addRelightCommand(CLI::App& cli, RelightOptions& options)
     "Light a mesh shaded with --envmap-estimator prt (\"estimator\": \"prt\") under another map, turned any\n"
     "way, from the transfer vectors it stores, without tracing a ray: each vertex's irradiance is the\n"
     "dot product of the map's spherical-harmonic coefficients with its transfer vector, written as an\n"
-    "RGB array (docs/guide/relighting.md).");
+    "RGB array (docs/guide/relighting.md). A mesh shaded with interreflection also stores what the\n"
+    "bounces add to each transfer vector (<transfer>_indirect): the irradiance then includes the light\n"
+    "the mesh reflects onto itself under the new map, and <name>_indirect holds that part alone.");
   command->add_option("mesh", options.mesh, "the shaded mesh (.vtp, .vtk) with a transfer array")->required();
   command->add_option("--envmap", options.environmentMap, "the equirectangular map (.hdr, .exr) to light it with")
     ->required();
@@ -42,6 +44,8 @@ CLI::App* addRelightCommand(CLI::App& cli, RelightOptions& options)
     ->add_option("--name", options.outputArray,
       "the name of the irradiance array it writes (an input array of that name is replaced, and the run says so)")
     ->capture_default_str();
+  command->add_flag("--direct-only", options.directOnly,
+    "leave out the interreflection that <transfer>_indirect carries, where the mesh has it");
   addCompressionOption(command, options.compression, ".vtp compression, as shade's");
   return command;
 }
@@ -62,6 +66,7 @@ int runRelight(const RelightOptions& options)
   relighting->SetIntensity(options.intensity);
   relighting->SetTransferArrayName(options.transferArray);
   relighting->SetOutputArrayName(options.outputArray);
+  relighting->SetUseIndirectTransfer(!options.directOnly);
   vtkNew<VtkErrorCapture> errors;
   errors->watch(relighting);
   const Clock::time_point relightStart = Clock::now();
@@ -79,17 +84,20 @@ int runRelight(const RelightOptions& options)
   const double writeSeconds = secondsSince(writeStart);
 
   warnings.show();
-  vtkDataArray* irradiance = output->GetPointData()->GetArray(options.outputArray.c_str());
   std::cout << "shadelab relight: " << options.mesh << " -> " << options.output << "\n"
             << "  map: " << options.environmentMap << ", turned " << options.rotation << " degrees, intensity "
             << options.intensity << "\n"
             << "  " << output->GetNumberOfPoints() << " vertices: " << relighting->GetReport() << "\n";
-  for (int c = 0; c < 3; ++c)
+  for (const std::string& name : { options.outputArray, options.outputArray + "_indirect" })
   {
-    double range[2];
-    irradiance->GetRange(range, c);
-    std::cout << "    "
-              << "RGB"[c] << " from " << std::setprecision(6) << range[0] << " to " << range[1] << "\n";
+    vtkDataArray* irradiance = output->GetPointData()->GetArray(name.c_str());
+    for (int c = 0; irradiance && c < 3; ++c)
+    {
+      double range[2];
+      irradiance->GetRange(range, c);
+      std::cout << "    " << name << " "
+                << "RGB"[c] << " from " << std::setprecision(6) << range[0] << " to " << range[1] << "\n";
+    }
   }
   const int threads = vtkSMPTools::GetEstimatedNumberOfThreads();
   std::cout << std::setprecision(3) << "  time: read " << readSeconds << " s, relight " << relightSeconds << " s ("

@@ -16,6 +16,7 @@ struct RelightOptions
   double intensity = 1;
   std::string transferArray; // "": the one array ending in sh_transfer
   std::string outputArray = "relit_irradiance";
+  bool directOnly = false; // leave out the transfer's indirect part where the mesh has it
   std::string compression = "lz4";
 };
 

@@ -82,6 +82,7 @@ TEST(Guide, ArrayTablesListExactlyTheArraysWritten)
     interreflection[termInfo(InterreflectionTerm(t)).name] = termInfo(InterreflectionTerm(t)).components;
   }
   interreflection[indirectBounceArrayName("", 1).substr(0, indirectBounceArrayName("", 1).size() - 1) + "<n>"] = 3;
+  interreflection[indirectTransferArrayName("", "<light>")] = 3 * shCount(2); // "27, 48 or 75", as above
   EXPECT_EQ(tableAfter(text, "Interreflection, with the scene's"), interreflection);
 }
 }

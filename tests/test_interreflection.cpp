@@ -26,10 +26,10 @@ struct Gathered
   long backHits = 0;
 };
 
-Gathered gatherAll(
-  const Mesh& mesh, const OccluderMesh& occluders, int rays, const std::vector<Rgb>& radiosity, bool reverse = false)
+Gathered gatherAll(const Mesh& mesh, const OccluderMesh& occluders, int rays, const std::vector<Rgb>& radiosity,
+  bool reverse = false, const std::vector<Rgb>& carried = {})
 {
-  Gathered gathered{ std::make_unique<BounceGather>(occluders, radiosity, Sampling{ rays, true }) };
+  Gathered gathered{ std::make_unique<BounceGather>(occluders, radiosity, Sampling{ rays, true }, carried) };
   std::vector<OccluderMesh::RayHit> hits(static_cast<std::size_t>(rays));
   for (std::size_t k = 0; k < mesh.points.size(); ++k)
   {
@@ -434,5 +434,43 @@ TEST(Interreflection, TheLaterBouncesGatherOnAQuarterOfTheRaysSpreadOverTheHemis
     meanCoarse += coarse.bounces[1][i].r / n;
   }
   EXPECT_NEAR(meanFine, meanCoarse, 0.01 * meanFine);
+}
+
+// Fields carried through the bounces (a transfer vector's coefficients) take the same sweeps as
+// the light: a field equal to the radiosity gets the light's irradiance bit for bit, its
+// negative the negative bit for bit (a coefficient is signed, and not clamped as a light is),
+// however many bounces the light's bound chooses; and the light's own arrays are the bits of a
+// gather that carries nothing.
+TEST(Interreflection, CarriedFieldsTakeTheLightsBouncesAndKeepTheirSign)
+{
+  Mesh bowl;
+  addSphereZone(bowl, glm::dvec3(0.0), 1.0, 24, 48, 1.0, true);
+  const OccluderMesh occluders = bowl.occluders();
+  std::vector<Rgb> radiosity(bowl.points.size()), albedo(bowl.points.size()), carried;
+  for (std::size_t i = 0; i < bowl.points.size(); ++i)
+  {
+    radiosity[i] = Rgb(1.0 + bowl.points[i].x, 0.5, 2.0 * bowl.points[i].z * bowl.points[i].z);
+    albedo[i] = Rgb(0.9, 0.5 * (1 + bowl.points[i].y), 0.2);
+    carried.push_back(radiosity[i]);
+    carried.push_back(-radiosity[i]);
+  }
+  const Albedo varying{ Rgb(0.0), &albedo[0].x };
+  const BounceLimit limit(64, 1e-3);
+  const IndirectIrradiance alone = gatherAll(bowl, occluders, 32, radiosity).gather->bounce(varying, limit, true);
+  const IndirectIrradiance carrying =
+    gatherAll(bowl, occluders, 32, radiosity, false, carried).gather->bounce(varying, limit, true);
+  ASSERT_GT(alone.bounceCount, 3);
+  EXPECT_EQ(carrying.bounceCount, alone.bounceCount);
+  EXPECT_EQ(carrying.irradiance, alone.irradiance);
+  EXPECT_EQ(carrying.standardError, alone.standardError);
+  EXPECT_EQ(carrying.bounces, alone.bounces);
+  EXPECT_TRUE(alone.transfer.empty());
+  ASSERT_EQ(carrying.transfer.size(), 2 * bowl.points.size());
+  for (std::size_t i = 0; i < bowl.points.size(); ++i)
+  {
+    ASSERT_EQ(carrying.transfer[2 * i], alone.irradiance[i]) << i;
+    ASSERT_EQ(carrying.transfer[2 * i + 1], -alone.irradiance[i]) << i;
+  }
+  EXPECT_THROW(BounceGather(occluders, radiosity, Sampling{ 32, true }, std::vector<Rgb>(3)), std::invalid_argument);
 }
 }

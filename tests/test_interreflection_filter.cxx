@@ -6,7 +6,10 @@
 #include "FilterRun.h"
 #include "TestMeshes.h"
 
+#include "EnvironmentMap.h"
+#include "VtkErrorCapture.h"
 #include "vtkInterreflectionFilter.h"
+#include "vtkTransferRelightFilter.h"
 
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
@@ -15,6 +18,7 @@
 #include "vtkSMPTools.h"
 #include "vtkSphereSource.h"
 
+#include <OpenImageIO/imageio.h>
 #include <glm/gtc/type_ptr.hpp>
 #include <gtest/gtest.h>
 
@@ -347,5 +351,159 @@ TEST(Interreflection, ScenesItCannotShadeAreRefusedAtTheirField)
   scene.interreflection->bounces = 0;
   EXPECT_EQ(shadelab::testing::filterError(sphere, scene),
     "scene /interreflection/bounces: must be a whole number from 1 to 64 (leave \"interreflection\" out for none)");
+}
+
+/// An equirectangular .hdr map of 64 x 32 texels, written to the tests' temporary directory,
+/// texel (column, row) of radiance radiance(polar angle, azimuth) at its centre; its path.
+template<typename Radiance>
+std::string mapFile(const std::string& name, Radiance radiance)
+{
+  const std::string path = ::testing::TempDir() + name + ".hdr";
+  const int width = 64, height = 32;
+  std::vector<float> pixels;
+  for (int row = 0; row < height; ++row)
+  {
+    for (int column = 0; column < width; ++column)
+    {
+      const double pi = 3.14159265358979323846;
+      const Rgb texel = radiance(pi * (row + 0.5) / height, 2 * pi * (column + 0.5) / width);
+      pixels.insert(pixels.end(), { float(texel.r), float(texel.g), float(texel.b) });
+    }
+  }
+  const auto output = OIIO::ImageOutput::create(path);
+  EXPECT_TRUE(output && output->open(path, OIIO::ImageSpec(width, height, 3, OIIO::TypeDesc::FLOAT)) &&
+    output->write_image(OIIO::TypeDesc::FLOAT, pixels.data()) && output->close())
+    << path;
+  return path;
+}
+
+std::string constantMapFile(const std::string& name, double radiance)
+{
+  return mapFile(name, [&](double, double) { return Rgb(radiance); });
+}
+
+/// A map with "estimator": "prt" of order 2.
+NamedLight transferMap(const std::string& file, bool shadows)
+{
+  EnvironmentLight map;
+  map.file = file;
+  map.map = std::make_shared<const EnvironmentMap>(readEnvironmentMap(file));
+  map.estimator = EnvironmentEstimator::PrecomputedTransfer;
+  map.shOrder = 2;
+  map.sampling = Sampling{ 32, true };
+  NamedLight light{ "sky", map };
+  light.shadows = shadows;
+  return light;
+}
+
+/// The mesh relit under a map file, with or without the indirect transfer.
+vtkSmartPointer<vtkPolyData> relit(vtkPolyData* shaded, const std::string& file, double rotation, bool indirect)
+{
+  vtkNew<vtkTransferRelightFilter> relight;
+  relight->SetInputData(shaded);
+  relight->SetEnvironmentMapFileName(file);
+  relight->SetRotation(rotation);
+  relight->SetUseIndirectTransfer(indirect);
+  relight->Update();
+  auto output = vtkSmartPointer<vtkPolyData>::New();
+  output->ShallowCopy(relight->GetOutput());
+  return output;
+}
+
+// Interreflected transfer (Sloan, Kautz and Snyder 2002): inside the closed sphere under a map
+// of radiance 1, without shadows, each wall vertex's transfer is lit by the map with pi L, and
+// its bounces add rho + rho^2 + rho^3 of it. Relit under a map of radiance 2 without a ray, the
+// mesh gets twice each, 2 pi (1 + rho + rho^2 + rho^3), the indirect part alone 2 pi (rho +
+// rho^2 + rho^3), and without its indirect transfer 2 pi, the direct light alone.
+TEST(Interreflection, TheTransferCarriedThroughTheBouncesRelightsTheClosedSphere)
+{
+  const double rho = 0.5;
+  vtkSmartPointer<vtkPolyData> sphere = insideOfSphere(30, 2.0);
+  Scene scene = lampInside(1.0, rho, 3);
+  scene.lights = { transferMap(constantMapFile("radiance_1", 1.0f), false) };
+  vtkSmartPointer<vtkPolyData> shaded =
+    shadeWithFilter(sphere, scene, { "default", "sky_irradiance" }, vtkAlgorithm::DOUBLE_PRECISION, false);
+  ASSERT_EQ(shaded->GetPointData()->GetArray("sky_sh_transfer_indirect")->GetNumberOfComponents(), 27);
+  const std::string twice = constantMapFile("radiance_2", 2.0f);
+  vtkSmartPointer<vtkPolyData> bounced = relit(shaded, twice, 0, true);
+  vtkSmartPointer<vtkPolyData> direct = relit(shaded, twice, 0, false);
+  // pi L to the map's quadrature (within 1e-3 of it on 64 x 32 texels); twice the light, twice
+  // every term, to rounding.
+  const double bounces = rho + rho * rho + rho * rho * rho, pi = 3.14159265358979323846;
+  for (vtkIdType i = 0; i < sphere->GetNumberOfPoints(); ++i)
+  {
+    const Rgb lit = tupleOf(shaded, "sky_irradiance", i), indirect = tupleOf(shaded, "indirect_irradiance", i);
+    ASSERT_NEAR(lit.r, pi, 1e-3 * pi) << i;
+    ASSERT_NEAR(indirect.g, pi * bounces, 1e-3 * pi) << i;
+    ASSERT_NEAR(tupleOf(bounced, "relit_irradiance", i).r, 2 * (lit.r + indirect.r), 1e-9) << i;
+    ASSERT_NEAR(tupleOf(bounced, "relit_irradiance_indirect", i).b, 2 * indirect.b, 1e-9) << i;
+    ASSERT_NEAR(tupleOf(direct, "relit_irradiance", i).g, 2 * lit.g, 1e-9) << i;
+  }
+  EXPECT_EQ(direct->GetPointData()->GetArray("relit_irradiance_indirect"), nullptr);
+
+  // An indirect part of the wrong size is refused with what to do.
+  vtkNew<vtkDoubleArray> wrong;
+  wrong->SetName("sky_sh_transfer_indirect");
+  wrong->SetNumberOfComponents(9);
+  wrong->SetNumberOfTuples(sphere->GetNumberOfPoints());
+  wrong->Fill(0);
+  shaded->GetPointData()->AddArray(wrong);
+  vtkNew<vtkTransferRelightFilter> relight;
+  relight->SetInputData(shaded);
+  relight->SetEnvironmentMapFileName(twice);
+  vtkNew<shadelab::app::VtkErrorCapture> errors;
+  errors->watch(relight);
+  relight->Update();
+  EXPECT_EQ(errors->message(),
+    "point array 'sky_sh_transfer_indirect' is not the indirect part of 'sky_sh_transfer': it must have 3 components "
+    "per coefficient, 27, not 9 (or turn UseIndirectTransfer off to relight without it)");
+}
+
+// Relighting needs no ray because the bounces are linear in the light: a sphere over a floor,
+// shaded with its shadows under one sky and relit under another, gets to rounding the indirect
+// irradiance that shading it under the other sky gives (the same rays: "prt" draws them by the
+// cosine alone, whatever the map). Both skies are positive and smooth, so that their bands do
+// not ring below 0 anywhere: a radiosity below 0 reflects nothing in shading, but all its sign
+// in the transfer (a bundled map's bands do ring).
+TEST(Interreflection, RelightingUnderAnotherMapGivesItsShadedInterreflection)
+{
+  const std::string zenith = mapFile("zenith_sky",
+    [](double theta, double phi)
+    { return Rgb(1 + 0.8 * std::cos(theta), 1 + 0.5 * std::sin(theta) * std::cos(phi), 1 - 0.3 * std::cos(theta)); });
+  const std::string side = mapFile("side_sky",
+    [](double theta, double phi)
+    { return Rgb(0.5 + 0.4 * std::sin(theta) * std::sin(phi), 2 - std::cos(theta), 0.7 + 0.2 * std::cos(2 * theta)); });
+  vtkSmartPointer<vtkPolyData> mesh = shadelab::testing::sphereOverSquare(24, 24, { 0, 0, 0.6 }, 0.5);
+  Scene scene = lampInside(1.0, 0.8, 2);
+  scene.material.kd = Rgb(0.8, 0.6, 0.3);
+  scene.viewer.position = glm::dvec3(0, -4, 3);
+  scene.lights = { transferMap(side, true) };
+  vtkSmartPointer<vtkPolyData> underSide = shadeWithFilter(mesh, scene, { "all" });
+  scene.lights = { transferMap(zenith, true) };
+  vtkSmartPointer<vtkPolyData> underZenith = shadeWithFilter(mesh, scene, { "all" });
+  for (vtkPolyData* run : { underSide.Get(), underZenith.Get() })
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      double range[2];
+      run->GetPointData()->GetArray("sky_irradiance")->GetRange(range, c);
+      ASSERT_GE(range[0], 0.0) << "the sky's bands ring below 0: this check needs one that does not";
+    }
+  }
+  vtkSmartPointer<vtkPolyData> relitSide = relit(underZenith, side, 0, true);
+  double largest = 0;
+  for (vtkIdType i = 0; i < mesh->GetNumberOfPoints(); ++i)
+  {
+    const Rgb expected = tupleOf(underSide, "indirect_irradiance", i);
+    const Rgb got = tupleOf(relitSide, "relit_irradiance_indirect", i);
+    const Rgb total = tupleOf(relitSide, "relit_irradiance", i);
+    for (int c = 0; c < 3; ++c)
+    {
+      ASSERT_NEAR(got[c], expected[c], 1e-9 * (1 + expected[c])) << i;
+      ASSERT_NEAR(total[c], expected[c] + tupleOf(underSide, "sky_irradiance", i)[c], 1e-9 * (1 + total[c])) << i;
+    }
+    largest = std::max(largest, largestComponent(expected));
+  }
+  EXPECT_GT(largest, 0.05); // the floor and the sphere light each other
 }
 }

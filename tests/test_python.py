@@ -405,6 +405,27 @@ class Relighting(unittest.TestCase):
                          "\"estimator\": \"prt\" (shadelab shade --envmap-estimator prt) first")
 
 
+    def test_relight_adds_the_interreflection_the_transfer_carries_unless_direct_only(self):
+        studio_map = os.path.join(DATA, "envmaps", "studio_small_03_1k.hdr")
+        sunset = os.path.join(DATA, "envmaps", "venice_sunset_1k.hdr")
+        transfer = os.path.join(WORK, "transfer_bounces.vtp")
+        subprocess.run([SHADELAB, "shade", BUNNY, "-o", transfer, "--envmap", studio_map, "--envmap-estimator", "prt",
+                        "--bounces", "2", "-a", "envmap_sh_transfer,envmap_sh_transfer_indirect"],
+                       check=True, capture_output=True)
+        reader = vtkXMLPolyDataReader()
+        reader.SetFileName(transfer)
+        reader.Update()
+        self.assertEqual(reader.GetOutput().GetPointData().GetArray("envmap_sh_transfer_indirect")
+                         .GetNumberOfComponents(), 27)
+        both = arrays_of(shadelab.relight(reader.GetOutput(), sunset, rotation=30))
+        direct = arrays_of(shadelab.relight(reader.GetOutput(), sunset, rotation=30, direct_only=True))
+        self.assertNotIn("relit_irradiance_indirect", direct)
+        indirect = both["relit_irradiance_indirect"]
+        self.assertGreater(indirect.max(), 0.01)
+        # The total is the direct part and the indirect part, to float32's rounding.
+        np.testing.assert_allclose(both["relit_irradiance"], direct["relit_irradiance"] + indirect, rtol=0, atol=1e-6)
+
+
 
 class Interreflection(unittest.TestCase):
     def test_bounces_are_the_command_lines_and_the_filter_alone_says_why_it_cannot(self):

@@ -25,6 +25,7 @@
 
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <functional>
 #include <string>
 #include <utility>
@@ -78,7 +79,7 @@ vtkSmartPointer<vtkPolyData> shaded(vtkPolyData* mesh, const std::string& scene,
   vtkNew<vtkLocalReflectanceFilter> filter;
   filter->SetController(controller);
   filter->SetInputData(mesh);
-  filter->SetSceneFileName(dataPath("scenes/" + scene));
+  filter->SetSceneFileName(scene.front() == '/' ? scene : dataPath("scenes/" + scene)); // or a path of its own
   filter->SetArraySelection(arrays);
   filter->SetOutputPrecision(vtkAlgorithm::DOUBLE_PRECISION);
   filter->SetTolerance(tolerance);
@@ -436,6 +437,69 @@ TEST(SplitMeshErrors, IdsOfAnotherNumbering)
   EXPECT_EQ(whole.problem,
     "the pieces' global point ids run from 0 to " + std::to_string(2 * (mesh->GetNumberOfPoints() - 1)) +
       " but do not number the points 0 to n-1, each at least once: give the points global ids that do");
+}
+
+/// A scene file of this process's own (each process writes its copy), in the temporary
+/// directory; its path.
+std::string sceneFile(const std::string& name, const std::string& json)
+{
+  const std::filesystem::path path = std::filesystem::temp_directory_path() /
+    ("shadelab_" + name + "_" + std::to_string(processes()->GetLocalProcessId()) + ".json");
+  std::ofstream(path) << json;
+  return path.string();
+}
+
+// Interreflection: each process gathers at its own points against the whole mesh's triangles,
+// and the processes share every bounce's values, so that each piece gets the whole mesh's
+// bounces bit for bit: under a map with its shadows (interreflection.json, 3 bounces of 256
+// rays), with a "prt" map's transfer carried through the bounces, and under a tolerance, whose
+// bounces and gather rays are chosen from every piece's vertices alike.
+TEST(SplitMeshInterreflection, GathersAgainstTheWholeMeshAndSharesEachBounce)
+{
+  const vtkSmartPointer<vtkPolyData> mesh = bunny();
+  EXPECT_GT(expectPieceOfWhole(shaded(mesh, "interreflection.json", { "all" }, nullptr),
+              shaded(myPiece(mesh), "interreflection.json", { "all" }, processes())),
+    10);
+  const std::string transfer = sceneFile("transfer_bounces",
+    R"({ "material": { "kd": [0.8, 0.62, 0.45], "ks": [0, 0, 0] },
+         "interreflection": { "bounces": 2, "samples": 32 },
+         "lights": [ { "name": "studio", "type": "environment", "file": ")" +
+      dataPath("envmaps/studio_small_03_1k.hdr") +
+      R"(", "estimator": "prt", "order": 3, "samples": 32, "intensity": 0.04, "shadows": true } ] })");
+  const vtkSmartPointer<vtkPolyData> whole = shaded(mesh, transfer, { "all" }, nullptr);
+  ASSERT_NE(whole->GetPointData()->GetArray("studio_sh_transfer_indirect"), nullptr);
+  EXPECT_GT(expectPieceOfWhole(whole, shaded(myPiece(mesh), transfer, { "all" }, processes())), 10);
+  const std::string automatic = sceneFile("auto_bounces",
+    R"({ "material": { "kd": [0.8, 0.62, 0.45], "ks": [0, 0, 0] },
+         "interreflection": { "bounces": "auto", "samples": "auto", "max_samples": 128 },
+         "lights": [ { "name": "key", "type": "point", "position": [0.25, 0.35, 0.35], "intensity": 0.22,
+                       "shadows": true } ] })");
+  EXPECT_GT(expectPieceOfWhole(shaded(mesh, automatic, { "all" }, nullptr, 0.05),
+              shaded(myPiece(mesh), automatic, { "all" }, processes(), 0.05)),
+    8);
+}
+
+// More processes than pieces: the process with an empty piece takes part in every bounce's
+// exchange, and the others' pieces get the whole mesh's bounces.
+TEST(SplitMeshInterreflection, AProcessWithAnEmptyPiece)
+{
+  const int count = processes()->GetNumberOfProcesses();
+  if (count == 1)
+  {
+    GTEST_SKIP() << "one process holds the only piece";
+  }
+  const vtkSmartPointer<vtkPolyData> mesh = bunny();
+  const int rank = processes()->GetLocalProcessId();
+  const bool holdsNone = rank == count - 1;
+  vtkSmartPointer<vtkPolyData> piece =
+    holdsNone ? vtkSmartPointer<vtkPolyData>::New() : shadelab::testing::meshPiece(mesh, rank, count - 1, 1);
+  const vtkSmartPointer<vtkPolyData> shadedPiece = shaded(piece, "interreflection.json", { "all" }, processes());
+  if (holdsNone)
+  {
+    EXPECT_EQ(shadedPiece->GetNumberOfPoints(), 0);
+    return;
+  }
+  EXPECT_GT(expectPieceOfWhole(shaded(mesh, "interreflection.json", { "all" }, nullptr), shadedPiece), 10);
 }
 
 // One process's piece cannot be shaded (it has an array of a name the filter writes): every

@@ -115,13 +115,16 @@ vtkInterreflectionFilter = _filter_raising_errors(ShadeLabFilters.vtkInterreflec
 
 
 def relight(mesh, environment_map, rotation=0.0, intensity=1.0, color=(1.0, 1.0, 1.0), transfer_array="",
-            output_array="relit_irradiance"):
+            output_array="relit_irradiance", direct_only=False):
     """The mesh (a vtkPolyData shaded with "estimator": "prt") with the irradiance under another map.
 
     Each vertex's transfer vector (transfer_array, by default the one array ending in
     "_sh_transfer") is dotted with environment_map's coefficients, the map turned by rotation
     degrees about +y and scaled by color x intensity, with no ray traced; the result is the RGB
-    point array output_array. Raises ShadeLabError with the filter's message when it cannot.
+    point array output_array. A mesh shaded with interreflection also has the transfer's
+    indirect part (<transfer>_indirect): unless direct_only, output_array includes the light the
+    mesh reflects onto itself, and output_array + "_indirect" holds that part alone. Raises
+    ShadeLabError with the filter's message when it cannot.
     """
     relighting = vtkTransferRelightFilter()
     relighting.SetInputData(mesh)
@@ -131,5 +134,6 @@ def relight(mesh, environment_map, rotation=0.0, intensity=1.0, color=(1.0, 1.0,
     relighting.SetColor(*color)
     relighting.SetTransferArrayName(transfer_array)
     relighting.SetOutputArrayName(output_array)
+    relighting.SetUseIndirectTransfer(not direct_only)
     relighting.Update()
     return relighting.GetOutput()

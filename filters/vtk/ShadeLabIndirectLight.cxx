@@ -3,6 +3,7 @@
 #include "vtkInterreflectionFilter.h"
 
 #include "vtkCellArray.h"
+#include "vtkCellData.h"
 #include "vtkDoubleArray.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
@@ -23,12 +24,11 @@ vtkDataArray* named(const std::vector<vtkSmartPointer<vtkDataArray>>& arrays, co
   return found == arrays.end() ? nullptr : found->Get();
 }
 
-/// kd per vertex from the material's arrays, r, g, b after one another; empty where the scene's
-/// kd is every vertex's.
-vtkSmartPointer<vtkDoubleArray> albedoArray(const VertexMaterial* material, vtkIdType points)
+/// kd per vertex from the material's arrays, r, g, b after one another (none on an empty
+/// piece); nullptr where the scene's kd is every vertex's.
+vtkSmartPointer<vtkDoubleArray> albedoArray(const Scene& scene, const VertexMaterial* material, vtkIdType points)
 {
-  if (!material ||
-    (!material->of<double>(MaterialCoefficient::Diffuse) && !material->of<float>(MaterialCoefficient::Diffuse)))
+  if (!material || !scene.material.arrays[MaterialCoefficient::Diffuse])
   {
     return nullptr;
   }
@@ -43,6 +43,21 @@ vtkSmartPointer<vtkDoubleArray> albedoArray(const VertexMaterial* material, vtkI
     albedo->SetValue(i, wide ? wide[i] : double(narrow[i]));
   }
   return albedo;
+}
+
+/// The array of that name among `arrays` or, on an empty piece, which shaded none, an empty one
+/// of that name and size (added to them), so that its process takes part in the bounces.
+vtkDataArray* namedOrEmpty(std::vector<vtkSmartPointer<vtkDataArray>>& arrays, const std::string& name, int components)
+{
+  if (vtkDataArray* array = named(arrays, name))
+  {
+    return array;
+  }
+  auto empty = vtkSmartPointer<vtkDoubleArray>::New();
+  empty->SetName(name.c_str());
+  empty->SetNumberOfComponents(components);
+  arrays.push_back(empty);
+  return empty;
 }
 
 /// into += scale x added, RGB tuple by tuple.
@@ -65,6 +80,11 @@ ArrayRequest withInterreflectionSources(const Scene& scene, const ArrayRequest& 
   {
     request.totals[int(TotalTerm::Diffuse)] = true;
     request.totals[int(TotalTerm::Ambient)] |= asked.interreflection[int(InterreflectionTerm::AmbientMinusIndirect)];
+    for (std::size_t l = 0; l < asked.indirectTransfer.size(); ++l)
+    {
+      request.lights[l][int(LightTerm::ShTransfer)] =
+        request.lights[l][int(LightTerm::ShTransfer)] || asked.indirectTransfer[l];
+    }
   }
   return request;
 }
@@ -72,8 +92,9 @@ ArrayRequest withInterreflectionSources(const Scene& scene, const ArrayRequest& 
 namespace
 {
 /// The gather's error in the diffuse term at 95% of the vertices (estimatedErrorQuantile): each
-/// vertex's kd times its standard error, in its largest channel.
-double gatherError(vtkPointData* gathered, vtkDoubleArray* albedo, const Scene& scene)
+/// vertex's kd times its standard error, in its largest channel, over every piece's vertices
+/// (each once) on a split mesh.
+double gatherError(vtkPointData* gathered, vtkDoubleArray* albedo, const Scene& scene, const MeshPieces& pieces)
 {
   vtkDataArray* standardError = gathered->GetArray("indirect_irradiance_std_error");
   std::vector<double> errors(static_cast<std::size_t>(standardError->GetNumberOfTuples()));
@@ -85,13 +106,17 @@ double gatherError(vtkPointData* gathered, vtkDoubleArray* albedo, const Scene& 
       errors[std::size_t(i)] = std::max(errors[std::size_t(i)], kd * standardError->GetComponent(i, c));
     }
   }
+  if (pieces.split())
+  {
+    errors = valuesByDistinctId(pieces.processes, *pieces.pointIds(), errors);
+  }
   return estimatedErrorQuantile(std::move(errors), targetConfidence);
 }
 
 /// The step run, and under a tolerance run once more with more rays where the first run's
 /// standard errors say its share needs them.
-vtkPointData* runStep(
-  vtkInterreflectionFilter* step, vtkDoubleArray* albedo, const Scene& scene, InterreflectionChoice* choice)
+vtkPointData* runStep(vtkInterreflectionFilter* step, vtkDoubleArray* albedo, const Scene& scene,
+  const MeshPieces& pieces, InterreflectionChoice* choice)
 {
   auto run = [&]
   {
@@ -109,32 +134,71 @@ vtkPointData* runStep(
     const Sampling& sampling = scene.interreflection->sampling;
     choice->firstSamples = step->GetSamples();
     choice->samples = gatherRaysWithin(
-      gatherError(gathered, albedo, scene), choice->firstSamples, choice->samplingShare(), sampling.maximum);
+      gatherError(gathered, albedo, scene, pieces), choice->firstSamples, choice->samplingShare(), sampling.maximum);
     if (choice->samples > choice->firstSamples)
     {
       step->SetSamples(choice->samples);
       gathered = run();
     }
-    choice->estimatedSamplingError = gatherError(gathered, albedo, scene);
+    choice->estimatedSamplingError = gatherError(gathered, albedo, scene, pieces);
     choice->bounces = step->GetBounceCount();
     choice->bouncesLeftOut = step->GetRestBound();
   }
   return gathered;
 }
 
+/// The transfer arrays (among `arrays`) of the lights whose indirect transfer is asked for.
+std::vector<vtkDataArray*> transfersToCarry(const Scene& scene, const ArrayRequest& asked, const std::string& prefix,
+  std::vector<vtkSmartPointer<vtkDataArray>>& arrays)
+{
+  std::vector<vtkDataArray*> transfers;
+  for (std::size_t l = 0; l < asked.indirectTransfer.size(); ++l)
+  {
+    if (asked.indirectTransfer[l])
+    {
+      transfers.push_back(namedOrEmpty(arrays, lightArrayName(prefix, scene.lights[l].name, LightTerm::ShTransfer),
+        lightTermComponents(scene.lights[l], LightTerm::ShTransfer)));
+    }
+  }
+  return transfers;
+}
+
+/// The piece's global ids and ghost cells, which say where it lies in the whole mesh, onto the
+/// surface the step is given.
+void markAsPiece(vtkPolyData* piece, vtkPolyData* surface)
+{
+  surface->GetPointData()->SetGlobalIds(piece->GetPointData()->GetGlobalIds());
+  surface->GetCellData()->SetGlobalIds(piece->GetCellData()->GetGlobalIds());
+  for (vtkDataSetAttributes* data : { static_cast<vtkDataSetAttributes*>(piece->GetPointData()),
+         static_cast<vtkDataSetAttributes*>(piece->GetCellData()) })
+  {
+    if (vtkDataArray* ghosts = data->GetArray(vtkDataSetAttributes::GhostArrayName()))
+    {
+      (data == piece->GetPointData() ? static_cast<vtkDataSetAttributes*>(surface->GetPointData())
+                                     : static_cast<vtkDataSetAttributes*>(surface->GetCellData()))
+        ->AddArray(ghosts);
+    }
+  }
+}
+
 /// The step run on the input's surface (its points and cells, the shading normals, the direct
-/// radiosity and the albedo, and nothing else, so that no name can clash); returns its output's
-/// arrays. Under a tolerance, the bounces are the fewest whose rest fits the choice's share.
-/// Throws std::runtime_error where it failed.
+/// radiosity, the albedo and the transfer vectors to carry, and nothing else, so that no name
+/// can clash); returns its output's arrays. Under a tolerance, the bounces are the fewest whose
+/// rest fits the choice's share. Throws std::runtime_error where it failed.
 vtkPointData* gatherBounces(vtkInterreflectionFilter* step, vtkPolyData* input, vtkDataArray* shadingNormals,
-  vtkDataArray* diffuse, vtkDoubleArray* albedo, const Scene& scene, const ArrayRequest& asked,
-  InterreflectionChoice* choice)
+  vtkDataArray* diffuse, vtkDoubleArray* albedo, const std::vector<vtkDataArray*>& transfers, const Scene& scene,
+  const ArrayRequest& asked, const MeshPieces& pieces, InterreflectionChoice* choice)
 {
   vtkNew<vtkPolyData> surface;
   surface->SetPoints(input->GetPoints());
   surface->SetPolys(input->GetPolys());
   surface->SetStrips(input->GetStrips());
   surface->GetPointData()->SetNormals(shadingNormals);
+  step->SetController(pieces.processes);
+  if (pieces.split())
+  {
+    markAsPiece(input, surface);
+  }
   vtkSmartPointer<vtkDataArray> radiosity = vtk::TakeSmartPointer(diffuse->NewInstance());
   radiosity->ShallowCopy(diffuse);
   radiosity->SetName("diffuse");
@@ -142,6 +206,12 @@ vtkPointData* gatherBounces(vtkInterreflectionFilter* step, vtkPolyData* input, 
   if (albedo)
   {
     surface->GetPointData()->AddArray(albedo);
+  }
+  step->RemoveAllTransferArrayNames();
+  for (vtkDataArray* transfer : transfers)
+  {
+    surface->GetPointData()->AddArray(transfer);
+    step->AddTransferArrayName(transfer->GetName());
   }
   const Interreflection& settings = *scene.interreflection;
   step->SetInputData(surface);
@@ -155,7 +225,7 @@ vtkPointData* gatherBounces(vtkInterreflectionFilter* step, vtkPolyData* input, 
   step->SetStratified(settings.sampling.stratified);
   step->SetKeepBounces(std::any_of(asked.bounces.begin(), asked.bounces.end(), [](bool b) { return b; }));
   step->SetArrayPrefix("");
-  return runStep(step, albedo, scene, choice);
+  return runStep(step, albedo, scene, pieces, choice);
 }
 
 /// kd E_ind, in the precision of `like` (the shaded diffuse term).
@@ -177,31 +247,41 @@ vtkSmartPointer<vtkDataArray> indirectDiffuseTerm(
   return indirect;
 }
 
-/// The totals shaded only as the bounces' sources, out of `arrays`.
-void dropSourcesNotAsked(
-  const ArrayRequest& asked, const std::string& prefix, std::vector<vtkSmartPointer<vtkDataArray>>& arrays)
+/// The totals and transfer vectors shaded only as the bounces' sources, out of `arrays`.
+void dropSourcesNotAsked(const Scene& scene, const ArrayRequest& asked, const std::string& prefix,
+  std::vector<vtkSmartPointer<vtkDataArray>>& arrays)
 {
+  std::vector<std::string> sources;
   for (const TotalTerm term : { TotalTerm::Diffuse, TotalTerm::Ambient })
   {
     if (!asked.totals[int(term)])
     {
-      const std::string name = totalArrayName(prefix, term);
-      arrays.erase(
-        std::remove_if(arrays.begin(), arrays.end(),
-          [&](const vtkSmartPointer<vtkDataArray>& array) { return array->GetName() && name == array->GetName(); }),
-        arrays.end());
+      sources.push_back(totalArrayName(prefix, term));
     }
   }
+  for (std::size_t l = 0; l < asked.indirectTransfer.size(); ++l)
+  {
+    if (!asked.lights[l][int(LightTerm::ShTransfer)])
+    {
+      sources.push_back(lightArrayName(prefix, scene.lights[l].name, LightTerm::ShTransfer));
+    }
+  }
+  arrays.erase(std::remove_if(arrays.begin(), arrays.end(),
+                 [&](const vtkSmartPointer<vtkDataArray>& array)
+                 { return array->GetName() && std::count(sources.begin(), sources.end(), array->GetName()) > 0; }),
+    arrays.end());
 }
 }
 
 std::string addIndirectLight(vtkInterreflectionFilter* step, vtkPolyData* input, vtkDataArray* shadingNormals,
   const Scene& scene, const ArrayRequest& asked, const VertexMaterial* material, const std::string& prefix,
-  std::vector<vtkSmartPointer<vtkDataArray>>& arrays, InterreflectionChoice* choice)
+  std::vector<vtkSmartPointer<vtkDataArray>>& arrays, const MeshPieces& pieces, InterreflectionChoice* choice)
 {
-  vtkDataArray* diffuse = named(arrays, totalArrayName(prefix, TotalTerm::Diffuse));
-  const vtkSmartPointer<vtkDoubleArray> albedo = albedoArray(material, input->GetNumberOfPoints());
-  vtkPointData* gathered = gatherBounces(step, input, shadingNormals, diffuse, albedo, scene, asked, choice);
+  vtkDataArray* diffuse = namedOrEmpty(arrays, totalArrayName(prefix, TotalTerm::Diffuse), 3);
+  const vtkSmartPointer<vtkDoubleArray> albedo = albedoArray(scene, material, input->GetNumberOfPoints());
+  const std::vector<vtkDataArray*> transfers = transfersToCarry(scene, asked, prefix, arrays);
+  vtkPointData* gathered =
+    gatherBounces(step, input, shadingNormals, diffuse, albedo, transfers, scene, asked, pieces, choice);
   vtkDataArray* irradiance = gathered->GetArray("indirect_irradiance");
   const vtkSmartPointer<vtkDataArray> indirect = indirectDiffuseTerm(
     irradiance, albedo, scene, diffuse, interreflectionArrayName(prefix, InterreflectionTerm::Indirect));
@@ -241,7 +321,11 @@ std::string addIndirectLight(vtkInterreflectionFilter* step, vtkPolyData* input,
     keep(asked.bounces[n - 1], gathered->GetArray(("indirect_bounce_" + std::to_string(n)).c_str()),
       indirectBounceArrayName(prefix, int(n)));
   }
-  dropSourcesNotAsked(asked, prefix, arrays);
+  for (vtkDataArray* transfer : transfers) // the step named it <transfer>_indirect
+  {
+    added.push_back(gathered->GetArray((std::string(transfer->GetName()) + "_indirect").c_str()));
+  }
+  dropSourcesNotAsked(scene, asked, prefix, arrays);
   arrays.insert(arrays.end(), added.begin(), added.end());
   // What the step holds is not kept until the next run (the arrays asked for are in `arrays`).
   step->GetOutput()->Initialize();

@@ -59,6 +59,25 @@ std::vector<double> valuesByDistinctId(
   return distinct;
 }
 
+std::vector<double> valuesAtEveryPoint(vtkMultiProcessController* controller, const std::vector<vtkIdType>& ids,
+  const std::vector<double>& values, int components, vtkIdType points)
+{
+  const std::size_t width = static_cast<std::size_t>(components);
+  if (values.size() != ids.size() * width)
+  {
+    throw std::invalid_argument("valuesAtEveryPoint: " + std::to_string(ids.size()) + " ids for " +
+      std::to_string(values.size()) + " values of " + std::to_string(components));
+  }
+  const std::vector<vtkIdType> allIds = allGather(controller, ids);
+  const std::vector<double> allValues = allGather(controller, values);
+  std::vector<double> everyPoint(static_cast<std::size_t>(points) * width);
+  for (std::size_t k = 0; k < allIds.size(); ++k)
+  {
+    std::copy_n(&allValues[k * width], width, &everyPoint[static_cast<std::size_t>(allIds[k]) * width]);
+  }
+  return everyPoint;
+}
+
 vtkIdType wholePointCount(vtkMultiProcessController* controller, const std::vector<vtkIdType>& pieceIds)
 {
   const vtkIdType largest = pieceIds.empty() ? -1 : *std::max_element(pieceIds.begin(), pieceIds.end());

@@ -59,6 +59,12 @@ SHADELABFILTERS_EXPORT std::size_t distinctIdCount(
 SHADELABFILTERS_EXPORT std::vector<double> valuesByDistinctId(
   vtkMultiProcessController* controller, const std::vector<vtkIdType>& ids, const std::vector<double>& values);
 
+/// Every point's values of the whole mesh (`components` per point, `points` points, in the
+/// order of their global ids) from each process's values at its ids, `components` per id (a
+/// collective call): where several pieces hold a point, any one's, since they hold the same.
+/// A point no piece holds keeps 0.
+SHADELABFILTERS_EXPORT std::vector<double> valuesAtEveryPoint(vtkMultiProcessController* controller,
+  const std::vector<vtkIdType>& ids, const std::vector<double>& values, int components, vtkIdType points);
 /// How many points the whole mesh has: its largest global id plus 1, over every piece's ids (a
 /// collective call).
 SHADELABFILTERS_EXPORT vtkIdType wholePointCount(

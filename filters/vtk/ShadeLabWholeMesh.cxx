@@ -770,7 +770,7 @@ int computeOnPiece(vtkMultiProcessController* controller, vtkAlgorithm* filter, 
   const bool succeeded = guarded(filter,
     [&]
     {
-      if (!whole.mesh || whole.pieceIds.empty()) // an empty piece, or the whole mesh
+      if (!whole.mesh || !whole.putTogether) // the whole mesh, or an empty piece beside it
       {
         return compute(piece, output, nullptr);
       }

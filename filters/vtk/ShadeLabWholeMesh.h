@@ -75,8 +75,9 @@ SHADELABFILTERS_EXPORT WholeMesh gatherWholeMesh(vtkMultiProcessController* cont
   bool withNormals, WholeMeshOn where = WholeMeshOn::EveryProcess);
 
 /// A filter's work on a mesh taken whole: into result, at the points pieceIds lists (nullptr:
-/// every point); arrays it adds have a value per listed point, except computed normals, which
-/// have one per point (on the first process alone, every array has one per point). Returns
+/// every point of a mesh no other process shares; an empty list for an empty piece of a split
+/// mesh, whose process takes part in the work's exchanges); arrays it adds have a value per listed point, except
+/// computed normals, which have one per point (on the first process alone, every array has one per point). Returns
 /// whether it succeeded (having reported why not).
 using PieceComputation =
   std::function<bool(vtkPolyData* mesh, vtkPolyData* result, const std::vector<vtkIdType>* pieceIds)>;

@@ -3,15 +3,20 @@
 #include "Interreflection.h"
 #include "NumberText.h"
 #include "Precision.h"
+#include "ShBands.h"
+#include "ShadeLabMeshPieces.h"
 #include "ShadeLabMeshPolygons.h"
 #include "ShadeLabRunAborted.h"
 #include "ShadeLabThreadCount.h"
+#include "ShadeLabWholeMesh.h"
 #include "Visibility.h"
 
+#include "vtkCommunicator.h"
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
 #include "vtkFloatArray.h"
 #include "vtkInformation.h"
+#include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
@@ -25,6 +30,11 @@
 #include <vector>
 
 vtkStandardNewMacro(vtkInterreflectionFilter);
+
+vtkInterreflectionFilter::vtkInterreflectionFilter()
+  : Controller(vtkMultiProcessController::GetGlobalController())
+{
+}
 
 namespace
 {
@@ -53,10 +63,51 @@ shadelab::Rgb rgbAt(vtkDoubleArray* array, vtkIdType point)
   return { rgb[0], rgb[1], rgb[2] };
 }
 
-/// Zero bounces: no light from the mesh, with no error.
-shadelab::IndirectIrradiance noIndirectLight(std::size_t points)
+/// Zero bounces: no light from the mesh, with no error, and nothing added to the transfer.
+shadelab::IndirectIrradiance noIndirectLight(std::size_t points, std::size_t transferCoefficients)
 {
-  return { std::vector<shadelab::Rgb>(points), std::vector<shadelab::Rgb>(points), {} };
+  shadelab::IndirectIrradiance none;
+  none.irradiance.resize(points);
+  none.standardError.resize(points);
+  none.transfer.resize(points * transferCoefficients);
+  return none;
+}
+
+/// How many coefficients the transfer arrays have together.
+std::size_t coefficientsOf(const std::vector<vtkDataArray*>& transfers)
+{
+  std::size_t count = 0;
+  for (vtkDataArray* transfer : transfers)
+  {
+    count += static_cast<std::size_t>(transfer->GetNumberOfComponents());
+  }
+  return count;
+}
+
+/// What the first bounce reflects of each transfer coefficient: kd T_k per channel, each
+/// vertex's coefficients after one another, the arrays in turn.
+std::vector<shadelab::Rgb> reflectedTransfer(
+  const std::vector<vtkDataArray*>& transfers, const shadelab::Albedo& albedo, vtkIdType points)
+{
+  const std::size_t coefficients = coefficientsOf(transfers);
+  std::vector<shadelab::Rgb> reflected(static_cast<std::size_t>(points) * coefficients);
+  vtkSMPTools::For(0, points,
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      for (vtkIdType i = begin; i < end; ++i)
+      {
+        const shadelab::Rgb kd = albedo.at(static_cast<std::size_t>(i));
+        shadelab::Rgb* out = &reflected[static_cast<std::size_t>(i) * coefficients];
+        for (vtkDataArray* transfer : transfers)
+        {
+          for (int k = 0; k < transfer->GetNumberOfComponents(); ++k)
+          {
+            *out++ = kd * transfer->GetComponent(i, k);
+          }
+        }
+      }
+    });
+  return reflected;
 }
 
 bool isAlbedo(const shadelab::Rgb& kd)
@@ -65,13 +116,16 @@ bool isAlbedo(const shadelab::Rgb& kd)
   return inUnit(kd.r) && inUnit(kd.g) && inUnit(kd.b);
 }
 
-/// Every vertex's gather rays traced (gatherHits) and handed to `gather`, in hundredths of the
-/// mesh, so that progress is reported and an abort heard between them. Returns how many met a
-/// back.
+/// Every vertex's gather rays traced (gatherHits) and handed to `gather`, or on a mesh split
+/// over processes the vertices `split` owns, in hundredths of them, so that progress is
+/// reported and an abort heard between them (only where the filter may stop alone, a whole
+/// mesh). Returns how many met a back.
 long long gatherEveryVertex(const shadelab::OccluderMesh& occluders, vtkPolyData* mesh, vtkDataArray* normals,
-  const shadelab::Sampling& sampling, shadelab::BounceGather& gather, vtkAlgorithm* filter)
+  const shadelab::Sampling& sampling, shadelab::BounceGather& gather, vtkAlgorithm* filter,
+  const shadelab::SplitVertices* split)
 {
-  const vtkIdType count = mesh->GetNumberOfPoints();
+  const vtkIdType count = split ? static_cast<vtkIdType>(split->own.size()) : mesh->GetNumberOfPoints();
+  auto vertexAt = [&](vtkIdType k) { return split ? static_cast<vtkIdType>(split->own[std::size_t(k)]) : k; };
   std::atomic<long long> backHits{ 0 };
   const vtkIdType block = std::max<vtkIdType>(count / 100, 256);
   shadelab::visitPackedPoints(normals,
@@ -79,7 +133,7 @@ long long gatherEveryVertex(const shadelab::OccluderMesh& occluders, vtkPolyData
     {
       for (vtkIdType first = 0; first < count; first += block)
       {
-        if (filter->GetAbortExecute())
+        if (!split && filter->GetAbortExecute())
         {
           throw shadelab::RunAborted();
         }
@@ -88,8 +142,9 @@ long long gatherEveryVertex(const shadelab::OccluderMesh& occluders, vtkPolyData
           {
             std::vector<shadelab::OccluderMesh::RayHit> hits(static_cast<std::size_t>(sampling.samples));
             long long back = 0;
-            for (vtkIdType i = begin; i < end; ++i)
+            for (vtkIdType k = begin; k < end; ++k)
             {
+              const vtkIdType i = vertexAt(k);
               shadelab::RayVertex vertex{ {}, unitOrZero(packedNormals(i)), i };
               mesh->GetPoint(i, &vertex.position.x);
               back += shadelab::gatherHits(occluders, vertex, sampling, packedNormals, hits.data());
@@ -97,7 +152,8 @@ long long gatherEveryVertex(const shadelab::OccluderMesh& occluders, vtkPolyData
             }
             backHits += back;
           });
-        filter->UpdateProgress(0.9 * static_cast<double>(std::min(count, first + block)) / count);
+        filter->UpdateProgress(
+          0.9 * static_cast<double>(std::min(count, first + block)) / std::max<vtkIdType>(count, 1));
       }
     });
   occluders.checkTracing();
@@ -125,6 +181,76 @@ vtkSmartPointer<vtkDataArray> rgbArray(const std::string& name, const std::vecto
   }
   return array;
 }
+
+/// One transfer array's part of every vertex's carried coefficients (`coefficients` of them per
+/// vertex, this array's `count` from `first`), as a point array of 3 x count components:
+/// coefficient k's channel c at 3 k + c.
+vtkSmartPointer<vtkDataArray> indirectTransferArray(const std::string& name, const std::vector<shadelab::Rgb>& carried,
+  std::size_t first, std::size_t coefficients, int count, bool float64)
+{
+  vtkSmartPointer<vtkDataArray> array = float64 ? vtkSmartPointer<vtkDataArray>(vtkSmartPointer<vtkDoubleArray>::New())
+                                                : vtkSmartPointer<vtkDataArray>(vtkSmartPointer<vtkFloatArray>::New());
+  array->SetName(name.c_str());
+  array->SetNumberOfComponents(3 * count);
+  const vtkIdType points = static_cast<vtkIdType>(carried.size() / coefficients);
+  array->SetNumberOfTuples(points);
+  for (vtkIdType i = 0; i < points; ++i)
+  {
+    const shadelab::Rgb* vertex = &carried[static_cast<std::size_t>(i) * coefficients + first];
+    for (int k = 0; k < count; ++k)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        array->SetComponent(i, 3 * k + c, vertex[k][c]);
+      }
+    }
+  }
+  return array;
+}
+/// Every point's values of a piece's array, in its type and the whole mesh's order (a
+/// collective call).
+vtkSmartPointer<vtkDataArray> atEveryPoint(
+  vtkMultiProcessController* controller, vtkDataArray* array, const std::vector<vtkIdType>& pieceIds, vtkIdType points)
+{
+  const int components = array->GetNumberOfComponents();
+  std::vector<double> mine(static_cast<std::size_t>(array->GetNumberOfTuples() * components));
+  for (vtkIdType i = 0; i < array->GetNumberOfTuples(); ++i)
+  {
+    array->GetTuple(i, &mine[static_cast<std::size_t>(i * components)]);
+  }
+  const std::vector<double> every = shadelab::valuesAtEveryPoint(controller, pieceIds, mine, components, points);
+  vtkSmartPointer<vtkDataArray> whole = vtk::TakeSmartPointer(array->NewInstance());
+  whole->SetName(array->GetName());
+  whole->SetNumberOfComponents(components);
+  whole->SetNumberOfTuples(points);
+  for (vtkIdType i = 0; i < points; ++i)
+  {
+    whole->SetTuple(i, &every[static_cast<std::size_t>(i * components)]);
+  }
+  return whole;
+}
+
+/// Every vertex's values, from each process's at its piece's points (SplitVertices::share).
+void shareValues(vtkMultiProcessController* controller, std::vector<shadelab::Rgb>& values, std::size_t perVertex,
+  const std::vector<vtkIdType>& pieceIds, vtkIdType points)
+{
+  std::vector<double> mine;
+  mine.reserve(pieceIds.size() * perVertex * 3);
+  for (const vtkIdType id : pieceIds)
+  {
+    const shadelab::Rgb* own = &values[static_cast<std::size_t>(id) * perVertex];
+    for (std::size_t field = 0; field < perVertex; ++field)
+    {
+      mine.insert(mine.end(), { own[field].r, own[field].g, own[field].b });
+    }
+  }
+  const std::vector<double> every =
+    shadelab::valuesAtEveryPoint(controller, pieceIds, mine, static_cast<int>(3 * perVertex), points);
+  for (std::size_t i = 0; i < values.size(); ++i)
+  {
+    values[i] = shadelab::Rgb(every[3 * i], every[3 * i + 1], every[3 * i + 2]);
+  }
+}
 }
 
 void vtkInterreflectionFilter::PrintSelf(ostream& os, vtkIndent indent)
@@ -138,8 +264,44 @@ void vtkInterreflectionFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Samples: " << this->Samples << "\n";
   os << indent << "Stratified: " << this->Stratified << "\n";
   os << indent << "KeepBounces: " << this->KeepBounces << "\n";
+  for (const std::string& name : this->TransferArrayNames)
+  {
+    os << indent << "TransferArrayName: " << name << "\n";
+  }
   os << indent << "ArrayPrefix: " << this->ArrayPrefix << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
+}
+
+void vtkInterreflectionFilter::AddTransferArrayName(const std::string& name)
+{
+  this->TransferArrayNames.push_back(name);
+  this->Modified();
+}
+
+void vtkInterreflectionFilter::RemoveAllTransferArrayNames()
+{
+  if (!this->TransferArrayNames.empty())
+  {
+    this->TransferArrayNames.clear();
+    this->Modified();
+  }
+}
+
+bool vtkInterreflectionFilter::TransferArrays(vtkPolyData* input, std::vector<vtkDataArray*>& arrays)
+{
+  for (const std::string& name : this->TransferArrayNames)
+  {
+    vtkDataArray* transfer = input->GetPointData()->GetArray(name.c_str());
+    if (!transfer || shadelab::shOrderOfCount(transfer->GetNumberOfComponents()) < 0)
+    {
+      vtkErrorMacro("the input has no numeric point array '"
+        << name
+        << "' of transfer vectors (9, 16 or 25 components: \"estimator\": \"prt\") to carry through the bounces");
+      return false;
+    }
+    arrays.push_back(transfer);
+  }
+  return true;
 }
 
 vtkDataArray* vtkInterreflectionFilter::RgbArray(vtkPolyData* input, const std::string& name, const char* role)
@@ -162,10 +324,79 @@ int vtkInterreflectionFilter::RequestData(
   this->BackHits = 0;
   this->BounceCount = 0;
   this->RestBound = 0;
-  return shadelab::runWithThreads(this->NumberOfThreads, [&] { return this->Interreflect(input, output); });
+  return shadelab::runWithThreads(this->NumberOfThreads, [&] { return this->InterreflectPiece(input, output); });
 }
 
-int vtkInterreflectionFilter::Interreflect(vtkPolyData* input, vtkPolyData* output)
+int vtkInterreflectionFilter::InterreflectPiece(vtkPolyData* input, vtkPolyData* output)
+{
+  if (!shadelab::isPieceOfSplitMesh(this->Controller, input))
+  {
+    return this->Interreflect(input, output, nullptr);
+  }
+  // Every process holds every triangle, which its own points' rays may meet, and the sweeps
+  // share each bounce's values between the processes.
+  return shadelab::computeOnPiece(this->Controller, this, input, output, true, shadelab::WholeMeshOn::EveryProcess,
+    [&](vtkPolyData* mesh, vtkPolyData* result, const std::vector<vtkIdType>* pieceIds)
+    {
+      return (pieceIds ? this->InterreflectWhole(mesh, result, *pieceIds, input)
+                       : this->Interreflect(mesh, result, nullptr)) == 1;
+    });
+}
+
+int vtkInterreflectionFilter::InterreflectWhole(
+  vtkPolyData* whole, vtkPolyData* result, const std::vector<vtkIdType>& pieceIds, vtkPolyData* piece)
+{
+  // The piece's arrays, checked on every process alike before any value is exchanged.
+  vtkSmartPointer<vtkDoubleArray> albedo;
+  std::vector<vtkDataArray*> transfers;
+  vtkDataArray* radiosity = this->RgbArray(piece, this->RadiosityArrayName, "the direct radiosity");
+  const bool usable = radiosity && this->AlbedoOf(piece, albedo) && this->TransferArrays(piece, transfers);
+  if (!shadelab::everyProcessHolds(this->Controller, usable))
+  {
+    return 0;
+  }
+  vtkNew<vtkPolyData> mesh; // the whole mesh with every point's radiosity, albedo and transfers
+  mesh->ShallowCopy(whole);
+  std::vector<vtkDataArray*> inputs = transfers;
+  inputs.push_back(radiosity);
+  if (albedo)
+  {
+    inputs.push_back(piece->GetPointData()->GetArray(this->AlbedoArrayName.c_str()));
+  }
+  for (vtkDataArray* array : inputs)
+  {
+    mesh->GetPointData()->AddArray(atEveryPoint(this->Controller, array, pieceIds, whole->GetNumberOfPoints()));
+  }
+  shadelab::SplitVertices split{ std::vector<std::size_t>(pieceIds.begin(), pieceIds.end()),
+    [&](std::vector<shadelab::Rgb>& values, std::size_t perVertex)
+    { shareValues(this->Controller, values, perVertex, pieceIds, whole->GetNumberOfPoints()); } };
+  vtkNew<vtkPolyData> computed;
+  if (this->Interreflect(mesh, computed, &split) != 1)
+  {
+    return 0;
+  }
+  if (this->BounceCount > 0) // the rays of every process (a point several pieces hold casts them on each)
+  {
+    const long long mine[2] = { this->BackHits, this->GatherRays };
+    long long all[2] = { 0, 0 };
+    this->Controller->AllReduce(mine, all, 2, vtkCommunicator::SUM_OP);
+    this->BackHits = all[0];
+    this->GatherRays = all[1];
+    this->Report = this->ReportOf(transfers);
+  }
+  for (int a = 0; a < computed->GetPointData()->GetNumberOfArrays(); ++a)
+  {
+    vtkDataArray* array = computed->GetPointData()->GetArray(a);
+    if (!mesh->GetPointData()->HasArray(array->GetName()))
+    {
+      result->GetPointData()->AddArray(shadelab::tuplesAt(array, pieceIds));
+    }
+  }
+  return 1;
+}
+
+int vtkInterreflectionFilter::Interreflect(
+  vtkPolyData* input, vtkPolyData* output, const shadelab::SplitVertices* split)
 {
   output->ShallowCopy(input); // every input array passes through
   if (input->GetNumberOfPoints() == 0)
@@ -181,7 +412,8 @@ int vtkInterreflectionFilter::Interreflect(vtkPolyData* input, vtkPolyData* outp
   }
   vtkDataArray* radiosity = this->RgbArray(input, this->RadiosityArrayName, "the direct radiosity");
   vtkSmartPointer<vtkDoubleArray> albedo;
-  if (!radiosity || !this->AlbedoOf(input, albedo))
+  std::vector<vtkDataArray*> transfers;
+  if (!radiosity || !this->AlbedoOf(input, albedo) || !this->TransferArrays(input, transfers))
   {
     return 0;
   }
@@ -190,11 +422,11 @@ int vtkInterreflectionFilter::Interreflect(vtkPolyData* input, vtkPolyData* outp
   {
     if (this->Bounces > 0)
     {
-      indirect = this->GatherBounces(input, normals, radiosity, albedo); // and its report
+      indirect = this->GatherBounces(input, normals, radiosity, albedo, transfers, split); // and its report
     }
     else
     {
-      indirect = noIndirectLight(static_cast<std::size_t>(input->GetNumberOfPoints()));
+      indirect = noIndirectLight(static_cast<std::size_t>(input->GetNumberOfPoints()), coefficientsOf(transfers));
       this->Report = "0 bounces: no indirect light";
     }
   }
@@ -210,7 +442,7 @@ int vtkInterreflectionFilter::Interreflect(vtkPolyData* input, vtkPolyData* outp
     vtkErrorMacro(<< error.what());
     return 0;
   }
-  this->AddIndirectArrays(output, indirect, radiosity->GetDataType() == VTK_DOUBLE);
+  this->AddIndirectArrays(output, indirect, radiosity->GetDataType() == VTK_DOUBLE, transfers);
   this->UpdateProgress(1.0);
   return 1;
 }
@@ -244,26 +476,31 @@ bool vtkInterreflectionFilter::AlbedoOf(vtkPolyData* input, vtkSmartPointer<vtkD
   return true;
 }
 
-shadelab::IndirectIrradiance vtkInterreflectionFilter::GatherBounces(
-  vtkPolyData* input, vtkDataArray* normals, vtkDataArray* radiosity, vtkDoubleArray* albedo)
+shadelab::IndirectIrradiance vtkInterreflectionFilter::GatherBounces(vtkPolyData* input, vtkDataArray* normals,
+  vtkDataArray* radiosity, vtkDoubleArray* albedo, const std::vector<vtkDataArray*>& transfers,
+  const shadelab::SplitVertices* split)
 {
   const shadelab::Sampling sampling{ this->Samples, this->Stratified };
-  const std::unique_ptr<shadelab::OccluderMesh> occluders = shadelab::occludersOf(input);
-  shadelab::BounceGather gather(*occluders, rgbValues(radiosity), sampling);
-  this->BackHits = gatherEveryVertex(*occluders, input, normals, sampling, gather, this);
-  occluders->releaseTracing(); // the sweeps' peak memory without the BVH
   const shadelab::Albedo kd{ { this->Albedo[0], this->Albedo[1], this->Albedo[2] },
     albedo ? albedo->GetPointer(0) : nullptr };
+  const std::unique_ptr<shadelab::OccluderMesh> occluders = shadelab::occludersOf(input);
+  shadelab::BounceGather gather(*occluders, rgbValues(radiosity), sampling,
+    transfers.empty() ? std::vector<shadelab::Rgb>() : reflectedTransfer(transfers, kd, input->GetNumberOfPoints()));
+  this->BackHits = gatherEveryVertex(*occluders, input, normals, sampling, gather, this, split);
+  occluders->releaseTracing(); // the sweeps' peak memory without the BVH
   shadelab::IndirectIrradiance indirect =
-    gather.bounce(kd, { this->Bounces, this->BounceTolerance }, this->KeepBounces, smpLoop);
+    gather.bounce(kd, { this->Bounces, this->BounceTolerance }, this->KeepBounces, smpLoop, split);
   this->BounceCount = indirect.bounceCount;
   this->RestBound = indirect.restBound;
-  this->Report = this->ReportOf(input->GetNumberOfPoints(), gather.laterRays());
+  this->GatherRays =
+    static_cast<long long>(split ? split->own.size() : std::size_t(input->GetNumberOfPoints())) * this->Samples;
+  this->LaterRays = gather.laterRays();
+  this->Report = this->ReportOf(transfers);
   return indirect;
 }
 
-void vtkInterreflectionFilter::AddIndirectArrays(
-  vtkPolyData* output, const shadelab::IndirectIrradiance& indirect, bool float64)
+void vtkInterreflectionFilter::AddIndirectArrays(vtkPolyData* output, const shadelab::IndirectIrradiance& indirect,
+  bool float64, const std::vector<vtkDataArray*>& transfers)
 {
   vtkPointData* out = output->GetPointData();
   out->AddArray(rgbArray(this->ArrayPrefix + "indirect_irradiance", indirect.irradiance, float64));
@@ -273,19 +510,33 @@ void vtkInterreflectionFilter::AddIndirectArrays(
     out->AddArray(
       rgbArray(this->ArrayPrefix + "indirect_bounce_" + std::to_string(n + 1), indirect.bounces[n], float64));
   }
+  const std::size_t coefficients = coefficientsOf(transfers);
+  std::size_t first = 0; // the array's first coefficient among every vertex's
+  for (vtkDataArray* transfer : transfers)
+  {
+    out->AddArray(indirectTransferArray(this->ArrayPrefix + transfer->GetName() + "_indirect", indirect.transfer, first,
+      coefficients, transfer->GetNumberOfComponents(), transfer->GetDataType() == VTK_DOUBLE));
+    first += static_cast<std::size_t>(transfer->GetNumberOfComponents());
+  }
 }
 
-std::string vtkInterreflectionFilter::ReportOf(vtkIdType points, int laterRays) const
+std::string vtkInterreflectionFilter::ReportOf(const std::vector<vtkDataArray*>& transfers) const
 {
-  const std::size_t rays = std::size_t(points) * std::size_t(this->Samples);
-  return shadelab::countOf(std::size_t(this->BounceCount), "bounce") + " from '" + this->RadiosityArrayName + "', " +
-    std::to_string(this->Samples) + " gather rays per vertex" +
-    (this->BounceCount > 1 && laterRays < this->Samples ? " (" + std::to_string(laterRays) + " for the later bounces)"
-                                                        : "") +
+  const std::size_t rays = std::size_t(this->GatherRays);
+  std::string report = shadelab::countOf(std::size_t(this->BounceCount), "bounce") + " from '" +
+    this->RadiosityArrayName + "', " + std::to_string(this->Samples) + " gather rays per vertex" +
+    (this->BounceCount > 1 && this->LaterRays < this->Samples
+        ? " (" + std::to_string(this->LaterRays) + " for the later bounces)"
+        : "") +
     "; " + std::to_string(this->BackHits) + " of " + shadelab::countOf(rays, "ray") + " (" +
     shadelab::withDigits(100.0 * double(this->BackHits) / double(rays), 2) +
     "%) met the back of a triangle and carried nothing; " +
     (std::isfinite(this->RestBound)
         ? "the bounces past them add at most " + shadelab::scientific(this->RestBound) + " to a diffuse term"
         : std::string("with an albedo of 1 the bounces past them have no bound"));
+  for (vtkDataArray* transfer : transfers)
+  {
+    report += "; the transfer '" + std::string(transfer->GetName()) + "' carried through them";
+  }
+  return report;
 }

@@ -9,8 +9,9 @@
  * hits (docs/formulas.md section 23). kd, the albedo, is Albedo or, per vertex, the RGB array
  * AlbedoArrayName (values in [0, 1]). Writes <ArrayPrefix>indirect_irradiance and its standard
  * error, and with KeepBounces each bounce's own irradiance, <ArrayPrefix>indirect_bounce_<n>;
- * float64 for a float64 radiosity, float32 otherwise. Every input array passes through. The
- * results are the same bits on any number of threads.
+ * float64 for a float64 radiosity, float32 otherwise. Transfer vectors named with
+ * AddTransferArrayName are carried through the same bounces (interreflected transfer). Every
+ * input array passes through. The results are the same bits on any number of threads.
  *
  * vtkLocalReflectanceFilter runs it for a scene's "interreflection", and adds kd times the
  * indirect irradiance to its diffuse and total terms.
@@ -19,16 +20,19 @@
 #define vtkInterreflectionFilter_h
 
 #include "ShadeLabFiltersModule.h"
+#include "vtkMultiProcessController.h" // the controller, a member
 #include "vtkPolyDataAlgorithm.h"
 #include "vtkSmartPointer.h"
 
 #include <string>
+#include <vector>
 
 class vtkDataArray;
 class vtkDoubleArray;
 namespace shadelab
 {
 struct IndirectIrradiance;
+struct SplitVertices;
 }
 
 class SHADELABFILTERS_EXPORT vtkInterreflectionFilter : public vtkPolyDataAlgorithm
@@ -76,9 +80,27 @@ public:
   vtkGetMacro(KeepBounces, bool);
   vtkBooleanMacro(KeepBounces, bool);
 
+  /// A point array of transfer vectors ("estimator": "prt": 9, 16 or 25 spherical-harmonic
+  /// coefficients) to carry through the same bounces (Sloan, Kautz and Snyder 2002, section 5:
+  /// interreflected transfer). For each, it writes <ArrayPrefix><name>_indirect, 3 times as many
+  /// components, what the bounces add to the vector per channel (component 3 k + c: coefficient
+  /// k, channel c; float64 for a float64 transfer, float32 otherwise): its dot product with a
+  /// map's coefficients, channel by channel, is the indirect irradiance under that map. Default
+  /// none.
+  void AddTransferArrayName(const std::string& name);
+  void RemoveAllTransferArrayNames();
+  int GetNumberOfTransferArrayNames() const { return static_cast<int>(this->TransferArrayNames.size()); }
+
   /// Prepended to the names of the arrays it writes (default "").
   vtkSetMacro(ArrayPrefix, std::string);
   vtkGetMacro(ArrayPrefix, std::string);
+
+  /// The processes a split mesh's pieces are on (default: the global controller). A piece of a
+  /// mesh split over them (its points and cells with global ids, as for the other filters)
+  /// gathers at its own points against the whole mesh's triangles, and the processes share
+  /// each bounce's values: every piece gets its points' values of the whole mesh, bit for bit.
+  vtkSetSmartPointerMacro(Controller, vtkMultiProcessController);
+  vtkGetSmartPointerMacro(Controller, vtkMultiProcessController);
 
   /// Threads for the rays and the sweeps (default 0: as vtkSMPTools is set).
   vtkSetClampMacro(NumberOfThreads, int, 0, VTK_INT_MAX);
@@ -94,7 +116,7 @@ public:
   double GetRestBound() const { return this->RestBound; }
 
 protected:
-  vtkInterreflectionFilter() = default;
+  vtkInterreflectionFilter();
   ~vtkInterreflectionFilter() override = default;
 
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
@@ -103,20 +125,32 @@ private:
   vtkInterreflectionFilter(const vtkInterreflectionFilter&) = delete;
   void operator=(const vtkInterreflectionFilter&) = delete;
 
-  int Interreflect(vtkPolyData* input, vtkPolyData* output);
+  /// The input gathered at, whole or as a piece of a split mesh.
+  int InterreflectPiece(vtkPolyData* input, vtkPolyData* output);
+  /// On the whole mesh gathered from the pieces: the piece's arrays made whole, its points
+  /// gathered at, and their values (at pieceIds) into result.
+  int InterreflectWhole(
+    vtkPolyData* whole, vtkPolyData* result, const std::vector<vtkIdType>& pieceIds, vtkPolyData* piece);
+  /// The mesh gathered at, every point or split's own.
+  int Interreflect(vtkPolyData* input, vtkPolyData* output, const shadelab::SplitVertices* split);
   /// The input's array of that name if it is numeric with 3 components; nullptr after
   /// reporting why not.
   vtkDataArray* RgbArray(vtkPolyData* input, const std::string& name, const char* role);
   /// Checks the albedo, and sets perVertex to the albedo array's values in float64 (nullptr
   /// where the uniform Albedo is every vertex's); false after reporting what is wrong.
   bool AlbedoOf(vtkPolyData* input, vtkSmartPointer<vtkDoubleArray>& perVertex);
-  /// Traces every vertex's gather rays, then bounces the light (the core's BounceGather).
-  shadelab::IndirectIrradiance GatherBounces(
-    vtkPolyData* input, vtkDataArray* normals, vtkDataArray* radiosity, vtkDoubleArray* albedo);
-  void AddIndirectArrays(vtkPolyData* output, const shadelab::IndirectIrradiance& indirect, bool float64);
-  /// The run's report: its bounces, rays, the rays that met a triangle's back, and the bound on
-  /// the bounces left out.
-  std::string ReportOf(vtkIdType points, int laterRays) const;
+  /// The transfer arrays TransferArrayNames names, into `arrays`; false after reporting the
+  /// first that is missing or has a count of components no order has.
+  bool TransferArrays(vtkPolyData* input, std::vector<vtkDataArray*>& arrays);
+  /// Traces every vertex's gather rays, then bounces the light and the transfer vectors (the
+  /// core's BounceGather).
+  shadelab::IndirectIrradiance GatherBounces(vtkPolyData* input, vtkDataArray* normals, vtkDataArray* radiosity,
+    vtkDoubleArray* albedo, const std::vector<vtkDataArray*>& transfers, const shadelab::SplitVertices* split);
+  void AddIndirectArrays(vtkPolyData* output, const shadelab::IndirectIrradiance& indirect, bool float64,
+    const std::vector<vtkDataArray*>& transfers);
+  /// The run's report: its bounces, rays, the rays that met a triangle's back, the bound on the
+  /// bounces left out, and the transfers carried.
+  std::string ReportOf(const std::vector<vtkDataArray*>& transfers) const;
 
   std::string RadiosityArrayName = "diffuse";
   double Albedo[3] = { 0.8, 0.8, 0.8 };
@@ -126,10 +160,14 @@ private:
   int Samples = 64;
   bool Stratified = true;
   bool KeepBounces = false;
+  std::vector<std::string> TransferArrayNames;
   std::string ArrayPrefix;
   int NumberOfThreads = 0;
+  vtkSmartPointer<vtkMultiProcessController> Controller;
   std::string Report;
   long long BackHits = 0;
+  long long GatherRays = 0; // the last run's, every process's
+  int LaterRays = 0;
   int BounceCount = 0;
   double RestBound = 0;
 };

@@ -305,7 +305,9 @@ std::vector<vtkSmartPointer<vtkDataArray>> vtkLocalReflectanceFilter::RaysAndArr
   // Progress: the normals, then the rays where there are any, then the shading, and the
   // interreflection's rays and bounces where the scene has them.
   const double raysShare = raysShareOf(plan.scene);
-  const bool indirect = shadelab::needsInterreflection(plan.scene, plan.request) && input->GetNumberOfPoints() > 0;
+  // An empty piece of a split mesh takes part in the bounces' exchanges.
+  const bool indirect =
+    shadelab::needsInterreflection(plan.scene, plan.request) && (input->GetNumberOfPoints() > 0 || pieces.split());
   const double shadingShare = (1 - normalsShare - raysShare) * (indirect ? 0.3 : 1);
   this->StartStep(normalsShare, raysShare);
   vtkPolyData* seen = this->PrepareVisibility(input, shadingNormals, plan, pieces);
@@ -322,7 +324,7 @@ std::vector<vtkSmartPointer<vtkDataArray>> vtkLocalReflectanceFilter::RaysAndArr
     this->InterreflectionReport =
       shadelab::addIndirectLight(this->Internals->InterreflectionStep, input, shadingNormals, plan.scene, plan.request,
         plan.scene.material.arrays.any() ? &this->Internals->VertexMaterial : nullptr, this->ArrayPrefix, arrays,
-        this->Tolerance > 0 ? &*this->MethodPlan->interreflection : nullptr);
+        pieces, this->Tolerance > 0 ? &*this->MethodPlan->interreflection : nullptr);
     this->StopIfAborted(); // the step stopped (ForwardStepProgress asked it to)
   }
   if (this->Tolerance > 0 && this->MethodPlan->forecast) // what the run drew, against it
@@ -374,7 +376,7 @@ std::optional<vtkLocalReflectanceFilter::ShadingPlan> vtkLocalReflectanceFilter:
                                                                                     : shadelab::Precision::Float32;
   if (!this->CheckMesh(input, pieces, plan) || !this->PlaceScene(input, pieces, plan) ||
     !this->CheckLightMethods(plan.scene) || !this->ChooseArraysAndMethods(plan) ||
-    !this->CheckInterreflection(plan, pieces) || !this->CheckArrayNamesFree(input, plan.scene, pieces))
+    !this->CheckArrayNamesFree(input, plan.scene, pieces))
   {
     return std::nullopt;
   }
@@ -533,18 +535,6 @@ bool vtkLocalReflectanceFilter::CheckLightMethods(const shadelab::Scene& scene)
     return false;
   }
   return true;
-}
-
-bool vtkLocalReflectanceFilter::CheckInterreflection(const ShadingPlan& plan, const shadelab::MeshPieces& pieces)
-{
-  if (!plan.scene.interreflection)
-  {
-    return true;
-  }
-  return !pieces.split() ||
-    this->SceneIsValid({ { "/interreflection",
-      "is not computed on a mesh split over processes yet (a gather ray meets every piece's triangles): shade the "
-      "mesh whole, on one process" } });
 }
 
 bool vtkLocalReflectanceFilter::ChooseArraysAndMethods(ShadingPlan& plan)

@@ -275,8 +275,6 @@ private:
   std::vector<std::string> WritableArrayNames(vtkPolyData* input, const shadelab::Scene& scene) const;
   /// Whether the input lacks all of them.
   bool CheckArrayNamesFree(vtkPolyData* input, const shadelab::Scene& scene, const shadelab::MeshPieces& pieces);
-  /// Whether the plan's interreflection can be computed: not yet on a split mesh.
-  bool CheckInterreflection(const ShadingPlan& plan, const shadelab::MeshPieces& pieces);
 
   /// The normals to shade with, prepared by the normals step for this input (a collective call
   /// on a split mesh); fills NormalsReport.

@@ -33,7 +33,22 @@ int orderOfComponents(int components)
   return order >= 2 ? order : -1;
 }
 
-/// Each vertex's irradiance, the dot product of the radiance's coefficients with its transfer.
+/// A transfer's values in the order of its array's components.
+double* valuesOf(shadelab::TransferVector& vector)
+{
+  return vector.data();
+}
+double* valuesOf(shadelab::ChannelTransfer& vector)
+{
+  static_assert(sizeof(shadelab::ChannelTransfer) == 3 * sizeof(double) * std::tuple_size<shadelab::ChannelTransfer>(),
+    "an RGB value is three doubles, packed");
+  return &vector[0].x;
+}
+
+/// Each vertex's irradiance, the dot product of the radiance's coefficients with its transfer:
+/// Vector, one number per coefficient (TransferVector), or an RGB value per coefficient
+/// (ChannelTransfer, component 3 k + c).
+template<typename Vector>
 struct RelightWorker
 {
   const shadelab::ShCoefficients* radiance;
@@ -49,9 +64,9 @@ struct RelightWorker
       {
         for (vtkIdType i = begin; i < end; ++i)
         {
-          shadelab::TransferVector vector{};
+          Vector vector{};
           const auto tuple = vectors[i];
-          std::copy(tuple.begin(), tuple.begin() + components, vector.begin());
+          std::copy(tuple.begin(), tuple.begin() + components, valuesOf(vector));
           const shadelab::Rgb e = shadelab::irradianceFromTransfer(*radiance, vector);
           out[i][0] = e.x;
           out[i][1] = e.y;
@@ -60,6 +75,27 @@ struct RelightWorker
       });
   }
 };
+
+/// An RGB array, float64 for a float64 transfer and float32 otherwise, of each vertex's dot
+/// product of the radiance with the transfer (Vector as RelightWorker's).
+template<typename Vector>
+vtkSmartPointer<vtkDataArray> relit(
+  vtkDataArray* transfer, const shadelab::ShCoefficients& radiance, const std::string& name)
+{
+  vtkSmartPointer<vtkDataArray> irradiance = transfer->GetDataType() == VTK_DOUBLE
+    ? vtkSmartPointer<vtkDataArray>(vtkSmartPointer<vtkDoubleArray>::New())
+    : vtkSmartPointer<vtkDataArray>(vtkSmartPointer<vtkFloatArray>::New());
+  irradiance->SetName(name.c_str());
+  irradiance->SetNumberOfComponents(3);
+  irradiance->SetNumberOfTuples(transfer->GetNumberOfTuples());
+  using Reals = vtkArrayDispatch::Reals;
+  RelightWorker<Vector> worker{ &radiance };
+  if (!vtkArrayDispatch::Dispatch2ByValueType<Reals, Reals>::Execute(transfer, irradiance.Get(), worker))
+  {
+    worker(transfer, irradiance.Get()); // a transfer array of another type, through vtkDataArray's API
+  }
+  return irradiance;
+}
 }
 
 void vtkTransferRelightFilter::PrintSelf(ostream& os, vtkIndent indent)
@@ -70,6 +106,7 @@ void vtkTransferRelightFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Intensity: " << this->Intensity << "\n";
   os << indent << "Color: " << this->Color[0] << " " << this->Color[1] << " " << this->Color[2] << "\n";
   os << indent << "TransferArrayName: " << this->TransferArrayName << "\n";
+  os << indent << "UseIndirectTransfer: " << this->UseIndirectTransfer << "\n";
   os << indent << "OutputArrayName: " << this->OutputArrayName << "\n";
 }
 
@@ -135,6 +172,22 @@ vtkDataArray* vtkTransferRelightFilter::FindTransfer(vtkPolyData* input)
   return transfer;
 }
 
+bool vtkTransferRelightFilter::FindIndirectTransfer(vtkPolyData* input, vtkDataArray* transfer, vtkDataArray*& indirect)
+{
+  const std::string name = std::string(transfer->GetName()) + "_indirect";
+  indirect = this->UseIndirectTransfer ? input->GetPointData()->GetArray(name.c_str()) : nullptr;
+  if (indirect && indirect->GetNumberOfComponents() != 3 * transfer->GetNumberOfComponents())
+  {
+    vtkErrorMacro("point array '" << name << "' is not the indirect part of '" << transfer->GetName()
+                                  << "': it must have 3 components per coefficient, "
+                                  << 3 * transfer->GetNumberOfComponents() << ", not "
+                                  << indirect->GetNumberOfComponents()
+                                  << " (or turn UseIndirectTransfer off to relight without it)");
+    return false;
+  }
+  return true;
+}
+
 int vtkTransferRelightFilter::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
@@ -143,7 +196,8 @@ int vtkTransferRelightFilter::RequestData(
   output->ShallowCopy(input);
   this->Report.clear();
   vtkDataArray* transfer = this->FindTransfer(input);
-  if (!transfer)
+  vtkDataArray* indirect = nullptr;
+  if (!transfer || !this->FindIndirectTransfer(input, transfer, indirect))
   {
     return 0;
   }
@@ -173,23 +227,27 @@ int vtkTransferRelightFilter::RequestData(
   }
   const int order = orderOfComponents(transfer->GetNumberOfComponents());
   const shadelab::ShCoefficients radiance = shadelab::worldRadianceCoefficients(light, order);
-  // Real whatever the transfer's type: float64 for a float64 transfer, float32 otherwise.
-  vtkSmartPointer<vtkDataArray> irradiance = transfer->GetDataType() == VTK_DOUBLE
-    ? vtkSmartPointer<vtkDataArray>(vtkSmartPointer<vtkDoubleArray>::New())
-    : vtkSmartPointer<vtkDataArray>(vtkSmartPointer<vtkFloatArray>::New());
-  irradiance->SetName(this->OutputArrayName.c_str());
-  irradiance->SetNumberOfComponents(3);
-  irradiance->SetNumberOfTuples(transfer->GetNumberOfTuples());
-  using Reals = vtkArrayDispatch::Reals;
-  RelightWorker worker{ &radiance };
-  if (!vtkArrayDispatch::Dispatch2ByValueType<Reals, Reals>::Execute(transfer, irradiance.Get(), worker))
-  {
-    worker(transfer, irradiance.Get()); // a transfer array of another type, through vtkDataArray's API
-  }
+  const vtkSmartPointer<vtkDataArray> irradiance =
+    relit<shadelab::TransferVector>(transfer, radiance, this->OutputArrayName);
   const bool replaces = output->GetPointData()->HasArray(this->OutputArrayName.c_str());
-  output->GetPointData()->AddArray(irradiance);
   this->Report = std::string("'") + this->OutputArrayName + "' from '" + transfer->GetName() + "' (order " +
-    std::to_string(order) + ", " + std::to_string(shadelab::shCount(order)) + " coefficients) under " + light.file +
-    (replaces ? "; it replaces the input's array of that name" : "");
+    std::to_string(order) + ", " + std::to_string(shadelab::shCount(order)) + " coefficients) under " + light.file;
+  if (indirect)
+  {
+    const std::string indirectName = this->OutputArrayName + "_indirect";
+    const vtkSmartPointer<vtkDataArray> bounced = relit<shadelab::ChannelTransfer>(indirect, radiance, indirectName);
+    for (vtkIdType i = 0; i < irradiance->GetNumberOfTuples(); ++i)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        irradiance->SetComponent(i, c, irradiance->GetComponent(i, c) + bounced->GetComponent(i, c));
+      }
+    }
+    output->GetPointData()->AddArray(bounced);
+    this->Report += ", with the light the mesh reflects onto itself from '" + std::string(indirect->GetName()) +
+      "' (alone in '" + indirectName + "')";
+  }
+  output->GetPointData()->AddArray(irradiance);
+  this->Report += replaces ? "; it replaces the input's array of that name" : "";
   return 1;
 }

@@ -9,6 +9,11 @@
  * scene's "rotation" turns it, and dotted with every vertex's transfer vector
  * (docs/formulas.md section 12.10). The result is an RGB point array named OutputArrayName,
  * float64 for a float64 transfer and float32 otherwise; every other input array passes through.
+ *
+ * A mesh shaded with interreflection also holds the transfer's indirect part per channel,
+ * <transfer>_indirect (vtkInterreflectionFilter): with UseIndirectTransfer, the result includes
+ * the light the mesh reflects onto itself under the new map, and <OutputArrayName>_indirect
+ * holds that part alone.
  */
 #ifndef vtkTransferRelightFilter_h
 #define vtkTransferRelightFilter_h
@@ -48,6 +53,12 @@ public:
   vtkSetMacro(TransferArrayName, std::string);
   vtkGetMacro(TransferArrayName, std::string);
 
+  /// Where the input has the transfer's indirect part (<transfer>_indirect), add the
+  /// interreflection it carries (default on).
+  vtkSetMacro(UseIndirectTransfer, bool);
+  vtkGetMacro(UseIndirectTransfer, bool);
+  vtkBooleanMacro(UseIndirectTransfer, bool);
+
   /// The name of the irradiance it writes (default "relit_irradiance"); an input array of that
   /// name is replaced (the report says so), but not the transfer array.
   vtkSetMacro(OutputArrayName, std::string);
@@ -69,12 +80,16 @@ private:
   /// The input's transfer array as TransferArrayName names it or, without a name, the one whose
   /// name ends in "_sh_transfer"; nullptr after reporting the error.
   vtkDataArray* FindTransfer(vtkPolyData* input);
+  /// The transfer's indirect part, <transfer>_indirect, where UseIndirectTransfer asks for it and
+  /// the input has it; false after reporting one of another size than 3 x the transfer's.
+  bool FindIndirectTransfer(vtkPolyData* input, vtkDataArray* transfer, vtkDataArray*& indirect);
 
   std::string EnvironmentMapFileName;
   double Rotation = 0.0;
   double Intensity = 1.0;
   double Color[3] = { 1.0, 1.0, 1.0 };
   std::string TransferArrayName;
+  bool UseIndirectTransfer = true;
   std::string OutputArrayName = "relit_irradiance";
   std::string Report;
 };

@@ -23,7 +23,11 @@ TransferVector unshadowedTransfer(int order, const glm::dvec3& unitNormal)
   return transfer;
 }
 
-Rgb irradianceFromTransfer(const ShCoefficients& radiance, const TransferVector& transfer)
+namespace
+{
+/// sum of L_k T_k, T_k a number or an RGB value.
+template<typename Transfer>
+Rgb dotProduct(const ShCoefficients& radiance, const Transfer& transfer)
 {
   if (radiance.size() > transfer.size())
   {
@@ -36,6 +40,17 @@ Rgb irradianceFromTransfer(const ShCoefficients& radiance, const TransferVector&
     sum += radiance[k] * transfer[k];
   }
   return sum;
+}
+}
+
+Rgb irradianceFromTransfer(const ShCoefficients& radiance, const TransferVector& transfer)
+{
+  return dotProduct(radiance, transfer);
+}
+
+Rgb irradianceFromTransfer(const ShCoefficients& radiance, const ChannelTransfer& transfer)
+{
+  return dotProduct(radiance, transfer);
 }
 
 Rgb radianceFromCoefficients(const ShCoefficients& radiance, const ShBasis& basis)

@@ -21,8 +21,14 @@ using TransferVector = ShBasis;
 /// others throw std::invalid_argument, as TransferEstimate's constructor does).
 TransferVector unshadowedTransfer(int order, const glm::dvec3& unitNormal);
 
-/// The irradiance sum of L_k T_k over the coefficients given (at most a transfer vector's).
+/// A transfer vector per channel, T_k as an RGB value: what interreflection makes of a transfer
+/// vector, since each channel's bounces reflect by that channel's albedo.
+using ChannelTransfer = std::array<Rgb, shCount(largestShOrder)>;
+
+/// The irradiance sum of L_k T_k over the coefficients given (at most a transfer vector's),
+/// channel by channel for a ChannelTransfer.
 Rgb irradianceFromTransfer(const ShCoefficients& radiance, const TransferVector& transfer);
+Rgb irradianceFromTransfer(const ShCoefficients& radiance, const ChannelTransfer& transfer);
 
 /// The band-limited radiance sum of L_k Y_k(w), from the basis at w (shBasis).
 Rgb radianceFromCoefficients(const ShCoefficients& radiance, const ShBasis& basis);

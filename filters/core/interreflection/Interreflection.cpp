@@ -15,13 +15,6 @@ namespace shadelab
 {
 namespace
 {
-/// A mean over rays and its standard error, per channel.
-struct GatherEstimate
-{
-  Rgb mean{ 0.0 };
-  Rgb standardError{ 0.0 };
-};
-
 /// The largest albedo over the channels and the vertices.
 double largestAlbedo(const Albedo& albedo, std::size_t vertices)
 {
@@ -29,29 +22,74 @@ double largestAlbedo(const Albedo& albedo, std::size_t vertices)
                           : largestComponent(albedo.uniform);
 }
 
-/// B at a hit: its triangle's corners' values weighted by the hit's barycentric coordinates.
-Rgb radiosityAt(const OccluderMesh& occluders, const Rgb* radiosity, const OccluderMesh::RayHit& hit)
-{
-  const std::array<std::uint32_t, 3> corners = occluders.corners(hit.triangle);
-  const double u = hit.u, v = hit.v;
-  return (1.0 - u - v) * radiosity[corners[0]] + u * radiosity[corners[1]] + v * radiosity[corners[2]];
-}
-
-/// The irradiance gathered along `count` hits, hitAt(j) the j-th, from `radiosity` (per vertex,
-/// B): the mean of B interpolated at each hit (0 for a miss, which gatherHits also makes of a
-/// triangle's back), and its standard error (stratified: consecutive rays paired,
-/// MonteCarloEstimate.h).
+/// The irradiance gathered along `count` hits, hitAt(j) the j-th, from `radiosity` (B, `fields`
+/// per vertex), into mean[0 .. fields - 1]: the mean of each field's B interpolated at each hit
+/// from the hit triangle's corners with its barycentric coordinates (0 for a miss, which
+/// gatherHits also makes of a triangle's back), and the light's (field 0's) standard error
+/// (stratified: consecutive rays paired, MonteCarloEstimate.h) where standardError is not null.
 template<typename HitAt>
-GatherEstimate meanOverHits(
-  const OccluderMesh& occluders, std::size_t count, const Rgb* radiosity, bool stratified, HitAt hitAt)
+void meanOverHits(const OccluderMesh& occluders, std::size_t count, const Rgb* radiosity, std::size_t fields,
+  bool stratified, HitAt hitAt, Rgb* mean, Rgb* standardError)
 {
-  MonteCarloEstimate mean(stratified);
+  MonteCarloEstimate light(stratified);
+  std::fill(mean + 1, mean + fields, Rgb(0.0));
   for (std::size_t j = 0; j < count; ++j)
   {
     const OccluderMesh::RayHit hit = hitAt(j);
-    mean.add(hit.triangle == OccluderMesh::RayHit::noTriangle ? Rgb(0.0) : radiosityAt(occluders, radiosity, hit));
+    if (hit.triangle == OccluderMesh::RayHit::noTriangle)
+    {
+      light.add(Rgb(0.0));
+      continue;
+    }
+    const std::array<std::uint32_t, 3> corners = occluders.corners(hit.triangle);
+    const double u = hit.u, v = hit.v;
+    auto at = [&](std::size_t field)
+    {
+      return (1.0 - u - v) * radiosity[corners[0] * fields + field] + u * radiosity[corners[1] * fields + field] +
+        v * radiosity[corners[2] * fields + field];
+    };
+    light.add(at(0));
+    for (std::size_t field = 1; field < fields; ++field)
+    {
+      mean[field] += at(field);
+    }
   }
-  return { mean.mean(), count > 1 ? mean.standardError() : Rgb(0.0) };
+  mean[0] = light.mean();
+  for (std::size_t field = 1; field < fields; ++field)
+  {
+    mean[field] /= double(count);
+  }
+  if (standardError)
+  {
+    *standardError = count > 1 ? light.standardError() : Rgb(0.0);
+  }
+}
+
+/// B_0 of every field, each vertex's light (at least 0: a surface sends out no negative light)
+/// followed by its carried fields.
+std::vector<Rgb> directOfEveryField(std::vector<Rgb> light, const std::vector<Rgb>& carried)
+{
+  for (Rgb& b : light)
+  {
+    b = glm::max(b, Rgb(0.0));
+  }
+  if (carried.empty())
+  {
+    return light;
+  }
+  if (light.empty() || carried.size() % light.size() != 0)
+  {
+    throw std::invalid_argument("BounceGather: the carried fields must be as many for every vertex");
+  }
+  const std::size_t carriedPerVertex = carried.size() / light.size();
+  std::vector<Rgb> fields(light.size() + carried.size());
+  for (std::size_t vertex = 0; vertex < light.size(); ++vertex)
+  {
+    Rgb* own = &fields[vertex * (1 + carriedPerVertex)];
+    own[0] = light[vertex];
+    std::copy_n(&carried[vertex * carriedPerVertex], carriedPerVertex, own + 1);
+  }
+  return fields;
 }
 }
 
@@ -60,61 +98,66 @@ void serialLoop(std::size_t count, const std::function<void(std::size_t, std::si
   body(0, count);
 }
 
-BounceGather::BounceGather(const OccluderMesh& occluders, std::vector<Rgb> directRadiosity, const Sampling& sampling)
+BounceGather::BounceGather(const OccluderMesh& occluders, std::vector<Rgb> directRadiosity, const Sampling& sampling,
+  const std::vector<Rgb>& transferRadiosity)
   : occluders_(occluders)
-  , direct_(std::move(directRadiosity))
+  , fields_(1 + (directRadiosity.empty() ? 0 : transferRadiosity.size() / directRadiosity.size()))
+  , direct_(directOfEveryField(std::move(directRadiosity), transferRadiosity))
   , sampling_(sampling)
   , kept_(quarterOfGatherRays(sampling))
   , firstBounce_(direct_.size())
-  , firstBounceError_(direct_.size())
-  , keptHits_(direct_.size() * kept_.size())
+  , firstBounceError_(direct_.size() / fields_)
+  , keptHits_(firstBounceError_.size() * kept_.size())
 {
   if (sampling.samples < 2)
   {
     throw std::invalid_argument("BounceGather: a vertex needs at least 2 rays");
   }
-  for (Rgb& b : direct_)
-  {
-    b = glm::max(b, Rgb(0.0));
-  }
 }
 
 void BounceGather::addVertex(std::size_t vertex, const OccluderMesh::RayHit* hits)
 {
-  const GatherEstimate first = meanOverHits(occluders_, std::size_t(sampling_.samples), direct_.data(),
-    sampling_.stratified, [&](std::size_t j) { return hits[j]; });
-  firstBounce_[vertex] = first.mean;
-  firstBounceError_[vertex] = first.standardError;
+  meanOverHits(
+    occluders_, std::size_t(sampling_.samples), direct_.data(), fields_, sampling_.stratified,
+    [&](std::size_t j) { return hits[j]; }, &firstBounce_[vertex * fields_], &firstBounceError_[vertex]);
   for (std::size_t k = 0; k < kept_.size(); ++k)
   {
     keptHits_[vertex * kept_.size() + k] = KeptHit::of(hits[kept_[k]]);
   }
 }
 
-void BounceGather::gatherLater(
-  const Rgb* radiosity, std::size_t first, std::size_t last, Rgb* irradiance, Rgb* standardError) const
+void BounceGather::gatherLater(const Rgb* radiosity, std::size_t first, std::size_t last, const Gathering& at,
+  Rgb* irradiance, Rgb* standardError) const
 {
-  for (std::size_t vertex = first; vertex < last; ++vertex)
+  for (std::size_t i = first; i < last; ++i)
   {
+    const std::size_t vertex = at.vertex(i);
     const KeptHit* hits = &keptHits_[vertex * kept_.size()];
-    const GatherEstimate estimate = meanOverHits(
-      occluders_, kept_.size(), radiosity, sampling_.stratified, [&](std::size_t k) { return hits[k].unpacked(); });
-    irradiance[vertex] = estimate.mean;
-    if (standardError)
-    {
-      standardError[vertex] = estimate.standardError;
-    }
+    meanOverHits(
+      occluders_, kept_.size(), radiosity, fields_, sampling_.stratified,
+      [&](std::size_t k) { return hits[k].unpacked(); }, &irradiance[vertex * fields_],
+      standardError ? &standardError[vertex] : nullptr);
   }
 }
 
+std::vector<Rgb> BounceGather::lightField(const std::vector<Rgb>& values) const
+{
+  std::vector<Rgb> light(values.size() / fields_);
+  for (std::size_t vertex = 0; vertex < light.size(); ++vertex)
+  {
+    light[vertex] = values[vertex * fields_];
+  }
+  return light;
+}
+
 IndirectIrradiance BounceGather::bounce(
-  const Albedo& albedo, const BounceLimit& limit, bool keepBounces, const RangeLoop& loop)
+  const Albedo& albedo, const BounceLimit& limit, bool keepBounces, const RangeLoop& loop, const SplitVertices* split)
 {
   if (limit.most < 1 || firstBounce_.empty())
   {
     throw std::invalid_argument("BounceGather::bounce: at least 1 bounce, once");
   }
-  const std::size_t n = firstBounce_.size();
+  const std::size_t n = firstBounceError_.size();
   const double rho = largestAlbedo(albedo, n);
   if (limit.restShare > 0 && !(rho < 1))
   {
@@ -122,15 +165,28 @@ IndirectIrradiance BounceGather::bounce(
       " reflects all the light it receives: no number of bounces bounds what the rest add");
   }
   std::vector<Rgb>().swap(direct_); // the first bounce is gathered: its room is free
-  IndirectIrradiance result{ std::move(firstBounce_), std::move(firstBounceError_), {} };
+  const Gathering at{ split, n };
+  // Every vertex's values, where each process has its own vertices'.
+  auto share = [&](std::vector<Rgb>& values)
+  {
+    if (split)
+    {
+      split->share(values, fields_);
+    }
+  };
+  // Every field's E_1 + ... + E_k, and the light's standard error.
+  std::vector<Rgb> irradiance = std::move(firstBounce_);
+  share(irradiance);
+  IndirectIrradiance result;
+  result.standardError = std::move(firstBounceError_);
   if (keepBounces)
   {
-    result.bounces.push_back(result.irradiance);
+    result.bounces.push_back(lightField(irradiance));
   }
-  // B_k, B_1 + ... + B_{k-1}, E_k (E_1 is result.irradiance, until the rest is added).
-  std::vector<Rgb> radiosity(n), sum(n), gathered(n);
-  // B_k = kd E_k; returns the bound on what the bounces past k add.
-  auto reflect = [&](const std::vector<Rgb>& irradiance)
+  // B_k, B_1 + ... + B_{k-1}, E_k, every field's (E_1 is in irradiance, until the rest is added).
+  std::vector<Rgb> radiosity(n * fields_), sum(n * fields_), gathered(n * fields_);
+  // B_k = kd E_k; returns the bound on what the bounces past k add to the light.
+  auto reflect = [&](const std::vector<Rgb>& reflected)
   {
     std::mutex largestLock;
     double largest = 0;
@@ -140,8 +196,12 @@ IndirectIrradiance BounceGather::bounce(
         double mine = 0;
         for (std::size_t vertex = first; vertex < last; ++vertex)
         {
-          radiosity[vertex] = albedo.at(vertex) * irradiance[vertex];
-          mine = std::max(mine, largestComponent(radiosity[vertex]));
+          const Rgb kd = albedo.at(vertex);
+          for (std::size_t i = vertex * fields_; i < (vertex + 1) * fields_; ++i)
+          {
+            radiosity[i] = kd * reflected[i];
+          }
+          mine = std::max(mine, largestComponent(radiosity[vertex * fields_]));
         }
         const std::lock_guard<std::mutex> lock(largestLock);
         largest = std::max(largest, mine);
@@ -149,46 +209,70 @@ IndirectIrradiance BounceGather::bounce(
     return rho < 1 ? largest * rho / (1 - rho) : std::numeric_limits<double>::infinity();
   };
   int bounce = 1;
-  result.restBound = reflect(result.irradiance);
+  result.restBound = reflect(irradiance);
   // Sweep k gathers E_k from B_{k-1} and makes B_k, whose largest value bounds the rest.
   while (bounce < limit.most && !(limit.restShare > 0 && result.restBound <= limit.restShare))
   {
     loop(n,
       [&](std::size_t first, std::size_t last)
       {
-        for (std::size_t vertex = first; vertex < last; ++vertex)
+        for (std::size_t i = first * fields_; i < last * fields_; ++i)
         {
-          sum[vertex] += radiosity[vertex];
+          sum[i] += radiosity[i];
         }
-        gatherLater(radiosity.data(), first, last, gathered.data());
       });
+    loop(at.count(),
+      [&](std::size_t first, std::size_t last) { gatherLater(radiosity.data(), first, last, at, gathered.data()); });
+    share(gathered);
     ++bounce;
     if (keepBounces)
     {
-      result.bounces.push_back(gathered);
+      result.bounces.push_back(lightField(gathered));
     }
     result.restBound = reflect(gathered);
   }
   result.bounceCount = bounce;
   if (bounce > 1)
   {
-    addLaterBounces(sum, radiosity, gathered, result, loop);
+    addLaterBounces(sum, radiosity, gathered, irradiance, result.standardError, loop, at);
   }
+  std::vector<Rgb>().swap(radiosity), std::vector<Rgb>().swap(sum), std::vector<Rgb>().swap(gathered);
+  splitFields(std::move(irradiance), result);
   return result;
 }
 
 void BounceGather::addLaterBounces(const std::vector<Rgb>& sum, std::vector<Rgb>& rest, std::vector<Rgb>& restError,
-  IndirectIrradiance& result, const RangeLoop& loop) const
+  std::vector<Rgb>& irradiance, std::vector<Rgb>& standardError, const RangeLoop& loop, const Gathering& at) const
 {
-  loop(rest.size(),
+  loop(at.count(),
     [&](std::size_t first, std::size_t last)
     {
-      gatherLater(sum.data(), first, last, rest.data(), restError.data());
-      for (std::size_t vertex = first; vertex < last; ++vertex)
+      gatherLater(sum.data(), first, last, at, rest.data(), restError.data());
+      for (std::size_t i = first; i < last; ++i)
       {
-        result.irradiance[vertex] += rest[vertex];
-        result.standardError[vertex] += restError[vertex];
+        const std::size_t vertex = at.vertex(i);
+        for (std::size_t field = vertex * fields_; field < (vertex + 1) * fields_; ++field)
+        {
+          irradiance[field] += rest[field];
+        }
+        standardError[vertex] += restError[vertex];
       }
     });
+}
+
+void BounceGather::splitFields(std::vector<Rgb> irradiance, IndirectIrradiance& result) const
+{
+  if (fields_ == 1)
+  {
+    result.irradiance = std::move(irradiance);
+    return;
+  }
+  result.irradiance = lightField(irradiance);
+  const std::size_t carried = fields_ - 1;
+  result.transfer.resize(result.irradiance.size() * carried);
+  for (std::size_t vertex = 0; vertex < result.irradiance.size(); ++vertex)
+  {
+    std::copy_n(&irradiance[vertex * fields_ + 1], carried, &result.transfer[vertex * carried]);
+  }
 }
 }

@@ -10,6 +10,11 @@
 // the later ones, which carry kd^k less light, from a quarter of them spread over the
 // hemisphere (quarterOfGatherRays), whose hits are kept: each sweep over the vertices
 // (Jacobi's) adds one bounce on the same hits.
+//
+// Transfer vectors may be carried through the same bounces (Sloan, Kautz and Snyder 2002,
+// section 5, "interreflected transfer"): the gather is linear in B, so gathering each
+// coefficient's radiosity kd T_k as a field of its own gives the indirect part of the transfer,
+// whose dot product with any map's coefficients is the indirect irradiance under that map.
 #include "OccluderMesh.h"
 #include "SampleSequence.h"
 #include "Vec3.h"
@@ -42,7 +47,10 @@ struct IndirectIrradiance
   std::vector<Rgb> irradiance;
   std::vector<Rgb> standardError;
   std::vector<std::vector<Rgb>> bounces; // bounces[n - 1]: what bounce n adds, E_n
-  int bounceCount = 0;                   // K
+  /// The carried fields' E_1 + ... + E_K, each vertex's after one another (BounceGather's
+  /// transferRadiosity); empty where none was carried.
+  std::vector<Rgb> transfer;
+  int bounceCount = 0; // K
   /// The most that the bounces past K add to a diffuse term (BounceLimit); infinite where the
   /// albedo reaches 1.
   double restBound = 0;
@@ -71,6 +79,19 @@ using RangeLoop = std::function<void(std::size_t count, const std::function<void
 /// The range loop of one thread.
 void serialLoop(std::size_t count, const std::function<void(std::size_t, std::size_t)>& body);
 
+/// A mesh split over processes, each holding the whole mesh's triangles but gathering at its
+/// own vertices only: the sweeps read every vertex's values, so after each one the processes
+/// share what they computed. Every vertex's value is then the one process alone computes.
+struct SplitVertices
+{
+  /// The vertices this process gathers at (several processes may hold one); may be empty.
+  std::vector<std::size_t> own;
+  /// Fills in every vertex's values (perVertex of them each), given this process's own
+  /// vertices', from the processes that hold them: a collective call, which every process makes
+  /// as often as the others (the bounces' count is the same everywhere).
+  std::function<void(std::vector<Rgb>& values, std::size_t perVertex)> share;
+};
+
 /// Interreflection over the vertices of a mesh: addVertex for each vertex's traced rays, then
 /// bounce().
 class BounceGather
@@ -79,7 +100,11 @@ public:
   /// sampling.samples rays per vertex (gatherHits), from the direct radiosity B_0 (per vertex,
   /// the direct diffuse term kd E). A surface sends out no negative light: a channel of B_0
   /// below 0 (the ringing of a map's spherical-harmonic irradiance) reflects nothing.
-  BounceGather(const OccluderMesh& occluders, std::vector<Rgb> directRadiosity, const Sampling& sampling);
+  /// transferRadiosity, if not empty, carries fields through the same bounces: the same count
+  /// per vertex, each vertex's after one another (for a transfer vector, coefficient k's kd T_k,
+  /// channel by channel). They are signed and kept so: a coefficient is not a light.
+  BounceGather(const OccluderMesh& occluders, std::vector<Rgb> directRadiosity, const Sampling& sampling,
+    const std::vector<Rgb>& transferRadiosity = {});
 
   /// How many of a vertex's rays the later bounces gather on (quarterOfGatherRays): their hits,
   /// 8 bytes each, are most of what interreflection holds in memory.
@@ -90,25 +115,44 @@ public:
   void addVertex(std::size_t vertex, const OccluderMesh::RayHit* hits);
 
   /// After addVertex for every vertex, once (it hands over the first bounce's values and frees
-  /// the direct radiosity): E_1 + ... + E_K, K as `limit` says. E_n = gather(B_{n-1}) and
+  /// the direct radiosity): E_1 + ... + E_K, K as `limit` says, and the carried fields' over
+  /// the same K bounces. E_n = gather(B_{n-1}) and
   /// B_n = kd E_n; E_2 + ... + E_K is gathered once more from B_1 + ... + B_{K-1} (the gather
   /// is linear in B), so that its standard error is that of one mean over the rays; the total's
   /// is the first bounce's plus the rest's (added as if they erred together: they share rays).
   /// keepBounces: also each E_n. Throws std::invalid_argument for a restShare with an albedo
-  /// that reaches 1, where no number of bounces has a bound.
-  IndirectIrradiance bounce(
-    const Albedo& albedo, const BounceLimit& limit, bool keepBounces, const RangeLoop& loop = serialLoop);
+  /// that reaches 1, where no number of bounces has a bound. With `split`, addVertex has been
+  /// called for its own vertices only, and only theirs are computed in the result (the bounds
+  /// and bounce counts are every vertex's, the same on every process).
+  IndirectIrradiance bounce(const Albedo& albedo, const BounceLimit& limit, bool keepBounces,
+    const RangeLoop& loop = serialLoop, const SplitVertices* split = nullptr);
 
 private:
-  /// E_2 + ... + E_K gathered from sum = B_1 + ... + B_{K-1} into `rest`, its standard error
-  /// into `restError`, and both added to the result's.
-  void addLaterBounces(const std::vector<Rgb>& sum, std::vector<Rgb>& rest, std::vector<Rgb>& restError,
-    IndirectIrradiance& result, const RangeLoop& loop) const;
+  /// The vertices this process gathers at: `split`'s own, or every one.
+  struct Gathering
+  {
+    const SplitVertices* split;
+    std::size_t all;
+    std::size_t count() const { return split ? split->own.size() : all; }
+    std::size_t vertex(std::size_t i) const { return split ? split->own[i] : i; }
+  };
 
-  /// E = gather(radiosity) on the kept hits at vertices [first, last), with the standard error
-  /// where standardError is not null.
-  void gatherLater(
-    const Rgb* radiosity, std::size_t first, std::size_t last, Rgb* irradiance, Rgb* standardError = nullptr) const;
+  /// E_2 + ... + E_K gathered from sum = B_1 + ... + B_{K-1} into `rest` (every field), the
+  /// light's standard error into `restError`, and both added to irradiance and standardError.
+  void addLaterBounces(const std::vector<Rgb>& sum, std::vector<Rgb>& rest, std::vector<Rgb>& restError,
+    std::vector<Rgb>& irradiance, std::vector<Rgb>& standardError, const RangeLoop& loop, const Gathering& at) const;
+
+  /// Every field's irradiance handed to the result: the light's and the carried fields'.
+  void splitFields(std::vector<Rgb> irradiance, IndirectIrradiance& result) const;
+
+  /// E = gather(radiosity) on the kept hits at the vertices at.vertex(first .. last - 1), every
+  /// field (fields_ of them per vertex), with the light's standard error where standardError is
+  /// not null.
+  void gatherLater(const Rgb* radiosity, std::size_t first, std::size_t last, const Gathering& at, Rgb* irradiance,
+    Rgb* standardError = nullptr) const;
+
+  /// Field 0 of each vertex, the light's, out of values of every field.
+  std::vector<Rgb> lightField(const std::vector<Rgb>& values) const;
 
   /// A kept hit in 8 bytes: its triangle, and its barycentric coordinates in steps of 1/65535
   /// (an interpolation error below 1e-5 of the radiosity's spread over the triangle, far below
@@ -127,10 +171,12 @@ private:
   };
 
   const OccluderMesh& occluders_;
-  std::vector<Rgb> direct_; // B_0, at least 0
+  std::size_t fields_;      // per vertex: the light's radiosity, then the carried fields
+  std::vector<Rgb> direct_; // B_0 of every field; the light's at least 0
   Sampling sampling_;
-  std::vector<int> kept_; // which of a vertex's rays the later bounces use
-  std::vector<Rgb> firstBounce_, firstBounceError_;
-  std::vector<KeptHit> keptHits_; // kept_.size() per vertex
+  std::vector<int> kept_;             // which of a vertex's rays the later bounces use
+  std::vector<Rgb> firstBounce_;      // every field's
+  std::vector<Rgb> firstBounceError_; // the light's
+  std::vector<KeptHit> keptHits_;     // kept_.size() per vertex
 };
 }

@@ -76,6 +76,13 @@ const std::array<TermInfo, InterreflectionTermCount> interreflectionTerms = { {
 /// What bounce n adds: "indirect_bounce_<n>".
 const char* const indirectBouncePrefix = "indirect_bounce_";
 const char* const indirectBounceDescription = "the irradiance that bounce n alone adds to indirect_irradiance, RGB";
+
+/// A "prt" map's transfer carried through the bounces: "<light>_sh_transfer_indirect".
+const char* const indirectTransferTerm = "sh_transfer_indirect";
+const char* const indirectTransferDescription =
+  "\"estimator\": \"prt\" with interreflection: what the bounces add to the transfer vector, per channel "
+  "(component 3 k + c: coefficient k, channel c), so that the indirect irradiance under any map is the dot product "
+  "of its coefficients with each channel's";
 }
 
 const TermInfo flagsInfo = { "shading_flags", 1,
@@ -203,11 +210,20 @@ std::string indirectBounceArrayName(const std::string& prefix, int bounce)
   return prefix + indirectBouncePrefix + std::to_string(bounce);
 }
 
+std::string indirectTransferArrayName(const std::string& prefix, const std::string& light)
+{
+  return prefix + light + "_" + indirectTransferTerm;
+}
+
+bool hasIndirectTransfer(const Scene& scene, std::size_t light)
+{
+  return scene.interreflection && lightHasTerm(scene.lights.at(light), LightTerm::ShTransfer);
+}
+
 bool needsInterreflection(const Scene& scene, const ArrayRequest& request)
 {
-  const bool own =
-    std::any_of(request.interreflection.begin(), request.interreflection.end(), [](bool b) { return b; }) ||
-    std::any_of(request.bounces.begin(), request.bounces.end(), [](bool b) { return b; });
+  auto any = [](const auto& asked) { return std::any_of(asked.begin(), asked.end(), [](bool b) { return b; }); };
+  const bool own = any(request.interreflection) || any(request.bounces) || any(request.indirectTransfer);
   return scene.interreflection &&
     (own || request.totals[int(TotalTerm::Diffuse)] || request.totals[int(TotalTerm::Total)]);
 }
@@ -238,8 +254,9 @@ std::vector<ArrayDescription> availableArrays(const Scene& scene, const std::str
   {
     arrays.push_back({ indirectBounceArrayName(prefix, n), 3, indirectBounceDescription });
   }
-  for (const NamedLight& light : scene.lights)
+  for (std::size_t l = 0; l < scene.lights.size(); ++l)
   {
+    const NamedLight& light = scene.lights[l];
     for (int t = 0; t < LightTermCount; ++t)
     {
       if (lightHasTerm(light, LightTerm(t)))
@@ -248,6 +265,12 @@ std::vector<ArrayDescription> availableArrays(const Scene& scene, const std::str
         arrays.push_back({ lightArrayName(prefix, light.name, LightTerm(t)), lightTermComponents(light, LightTerm(t)),
           "light '" + light.name + "': " + info.description });
       }
+    }
+    if (hasIndirectTransfer(scene, l))
+    {
+      arrays.push_back(
+        { indirectTransferArrayName(prefix, light.name), 3 * lightTermComponents(light, LightTerm::ShTransfer),
+          "light '" + light.name + "': " + indirectTransferDescription });
     }
   }
   return arrays;
@@ -271,12 +294,21 @@ void requestAll(const Scene& scene, ArrayRequest& request)
     {
       request.lights[l][t] = lightHasTerm(scene.lights[l], LightTerm(t));
     }
+    request.indirectTransfer[l] = hasIndirectTransfer(scene, l);
   }
 }
 
 // "*_TERM": the term on every light that has it. Returns false if TERM is not a term name.
 bool requestTermOnEveryLight(const Scene& scene, const std::string& term, ArrayRequest& request)
 {
+  if (term == indirectTransferTerm)
+  {
+    for (std::size_t l = 0; l < scene.lights.size(); ++l)
+    {
+      request.indirectTransfer[l] = request.indirectTransfer[l] || hasIndirectTransfer(scene, l);
+    }
+    return true;
+  }
   for (int t = 0; t < LightTermCount; ++t)
   {
     if (term == lightTerms[t].name)
@@ -341,6 +373,11 @@ bool requestByName(const Scene& scene, const std::string& name, ArrayRequest& re
         return true;
       }
     }
+    if (hasIndirectTransfer(scene, l) && name == indirectTransferArrayName("", scene.lights[l].name))
+    {
+      request.indirectTransfer[l] = true;
+      return true;
+    }
   }
   return false;
 }
@@ -351,6 +388,14 @@ std::string knownSelections(const Scene& scene)
   for (const TermInfo& info : lightTerms)
   {
     known += std::string(", *_") + info.name;
+  }
+  for (std::size_t l = 0; l < scene.lights.size(); ++l)
+  {
+    if (hasIndirectTransfer(scene, l))
+    {
+      known += std::string(", *_") + indirectTransferTerm; // only where some light has it
+      break;
+    }
   }
   for (const ArrayDescription& array : availableArrays(scene))
   {
@@ -369,6 +414,7 @@ ArrayRequest selectArrays(const Scene& scene, const std::vector<std::string>& se
   ArrayRequest request;
   request.lights.resize(scene.lights.size());
   request.bounces.resize(scene.interreflection ? std::size_t(scene.interreflection->bounces) : 0);
+  request.indirectTransfer.resize(scene.lights.size());
   for (const std::string& entry : selection)
   {
     bool known = true;
@@ -401,6 +447,7 @@ ArrayRequest selectArrays(const Scene& scene, const std::vector<std::string>& se
       // Transfer vectors are what a "prt" map is chosen for.
       requestTermOnEveryLight(scene, termInfo(LightTerm::ShTransfer).name, request);
       requestTermOnEveryLight(scene, termInfo(LightTerm::ShTransferStdError).name, request);
+      requestTermOnEveryLight(scene, indirectTransferTerm, request);
     }
     else if (entry.rfind("*_", 0) == 0)
     {
@@ -446,7 +493,8 @@ bool covers(const ArrayRequest& outer, const ArrayRequest& inner)
     }
   }
   return all(outer.totals, inner.totals) && (outer.flags || !inner.flags) && all(outer.occlusion, inner.occlusion) &&
-    all(outer.interreflection, inner.interreflection) && all(outer.bounces, inner.bounces);
+    all(outer.interreflection, inner.interreflection) && all(outer.bounces, inner.bounces) &&
+    all(outer.indirectTransfer, inner.indirectTransfer);
 }
 }
 

@@ -76,6 +76,9 @@ struct ArrayRequest
   std::array<bool, InterreflectionTermCount> interreflection{};
   /// bounces[n - 1]: the irradiance bounce n adds (indirectBounceArrayName), one per bounce.
   std::vector<bool> bounces;
+  /// Follows scene.lights: a "prt" map's transfer carried through the bounces
+  /// (indirectTransferArrayName).
+  std::vector<bool> indirectTransfer;
 
   bool any(LightTerm term) const;
 };
@@ -123,6 +126,12 @@ std::string occlusionArrayName(const std::string& prefix, OcclusionTerm term);
 std::string interreflectionArrayName(const std::string& prefix, InterreflectionTerm term);
 /// The array of what bounce n (from 1) adds to the indirect irradiance: <prefix>indirect_bounce_<n>.
 std::string indirectBounceArrayName(const std::string& prefix, int bounce);
+/// The array of what the bounces add to a "prt" map's transfer vector, per channel:
+/// <prefix><light>_sh_transfer_indirect.
+std::string indirectTransferArrayName(const std::string& prefix, const std::string& light);
+/// Whether the scene carries the light's transfer vector through its bounces: a "prt" map in a
+/// scene with interreflection.
+bool hasIndirectTransfer(const Scene& scene, std::size_t light);
 /// Whether the request asks for anything that interreflection computes: its own arrays, or the
 /// diffuse and total arrays that include it.
 bool needsInterreflection(const Scene& scene, const ArrayRequest& request);
@@ -130,7 +139,8 @@ bool needsInterreflection(const Scene& scene, const ArrayRequest& request);
 /// The selection the command line documents:
 ///   "default"  the totals and shading_flags, and where the scene has them, ambient_occlusion
 ///              with its standard error, each shadowed light's visibility, each "prt" map's
-///              transfer vectors, and indirect_irradiance with its standard error and indirect
+///              transfer vectors, and indirect_irradiance with its standard error, indirect and
+///              the "prt" maps' indirect transfer
 ///   "totals"   ambient, diffuse, specular, total
 ///   "all"      every array the scene has
 ///   "*_TERM"   TERM for every light that has it, e.g. "*_cos_incidence"
