@@ -683,6 +683,8 @@ void runAccuracyStudies(const AccuracyOptions& options)
     [&](ChartSpec& chart) { return interreflectionBouncesStudy(options.maxRepeats, chart); });
   study(
     "14b_interreflection_rays", [&](ChartSpec& chart) { return interreflectionRaysStudy(options.maxRepeats, chart); });
+  study(
+    "14c_interreflection_time", [&](ChartSpec& chart) { return interreflectionPlanStudy(options.maxRepeats, chart); });
   const std::vector<AccuracyRow> grazing = grazingRows();
   rows.insert(rows.end(), grazing.begin(), grazing.end());
   for (const AccuracyRow& r : grazing)

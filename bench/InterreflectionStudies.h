@@ -13,4 +13,9 @@ std::vector<AccuracyRow> interreflectionBouncesStudy(int maxRepeats, ChartSpec& 
 
 /// 14b. The same with the bounces converged, against 16 to 1024 gather rays.
 std::vector<AccuracyRow> interreflectionRaysStudy(int maxRepeats, ChartSpec& chart);
+
+/// 14c. Time against the error reached through vtkLocalReflectanceFilter, in the bowl lit by a
+/// constant sky without shadows: fixed bounces and rays, and the plan of a tolerance
+/// ("bounces" and "samples": "auto").
+std::vector<AccuracyRow> interreflectionPlanStudy(int maxRepeats, ChartSpec& chart);
 }
