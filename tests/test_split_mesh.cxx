@@ -379,6 +379,10 @@ TEST(SplitMeshFiles, PiecesWrittenAndReadBack)
   geometry->GetPointData()->SetGlobalIds(read->GetPointData()->GetGlobalIds());
   geometry->GetCellData()->SetGlobalIds(read->GetCellData()->GetGlobalIds());
   EXPECT_GT(expectPieceOfWhole(whole, shaded(geometry, "studio.json", { "default" }, nullptr)), 2);
+  // And with interreflection, whose gather takes each of the points the pieces share once.
+  EXPECT_GT(expectPieceOfWhole(shaded(mesh, "interreflection.json", { "all" }, nullptr),
+              shaded(geometry, "interreflection.json", { "all" }, nullptr)),
+    10);
 }
 
 // Pieces that cannot be put together: every process stops with the same message.

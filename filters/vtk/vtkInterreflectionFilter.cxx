@@ -6,12 +6,12 @@
 #include "ShBands.h"
 #include "ShadeLabMeshPieces.h"
 #include "ShadeLabMeshPolygons.h"
+#include "ShadeLabPieceExchange.h"
 #include "ShadeLabRunAborted.h"
 #include "ShadeLabThreadCount.h"
 #include "ShadeLabWholeMesh.h"
 #include "Visibility.h"
 
-#include "vtkCommunicator.h"
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
 #include "vtkFloatArray.h"
@@ -367,7 +367,11 @@ int vtkInterreflectionFilter::InterreflectWhole(
   {
     mesh->GetPointData()->AddArray(atEveryPoint(this->Controller, array, pieceIds, whole->GetNumberOfPoints()));
   }
-  shadelab::SplitVertices split{ std::vector<std::size_t>(pieceIds.begin(), pieceIds.end()),
+  // Each vertex once: a piece may hold copies of a point (pieces read into one process).
+  std::vector<std::size_t> own(pieceIds.begin(), pieceIds.end());
+  std::sort(own.begin(), own.end());
+  own.erase(std::unique(own.begin(), own.end()), own.end());
+  shadelab::SplitVertices split{ std::move(own),
     [&](std::vector<shadelab::Rgb>& values, std::size_t perVertex)
     { shareValues(this->Controller, values, perVertex, pieceIds, whole->GetNumberOfPoints()); } };
   vtkNew<vtkPolyData> computed;
@@ -377,11 +381,14 @@ int vtkInterreflectionFilter::InterreflectWhole(
   }
   if (this->BounceCount > 0) // the rays of every process (a point several pieces hold casts them on each)
   {
-    const long long mine[2] = { this->BackHits, this->GatherRays };
-    long long all[2] = { 0, 0 };
-    this->Controller->AllReduce(mine, all, 2, vtkCommunicator::SUM_OP);
-    this->BackHits = all[0];
-    this->GatherRays = all[1];
+    const std::vector<long long> every = shadelab::gathered(this->Controller,
+      std::vector<long long>{ this->BackHits, this->GatherRays }, shadelab::WholeMeshOn::EveryProcess);
+    this->BackHits = this->GatherRays = 0;
+    for (std::size_t p = 0; p < every.size(); p += 2)
+    {
+      this->BackHits += every[p];
+      this->GatherRays += every[p + 1];
+    }
     this->Report = this->ReportOf(transfers);
   }
   for (int a = 0; a < computed->GetPointData()->GetNumberOfArrays(); ++a)
