@@ -202,6 +202,21 @@ TEST(Interreflection, TheFilterAloneGathersFromAnyRadiosityArray)
   filter->Update();
   EXPECT_EQ(tupleOf(filter->GetOutput(), "ir_indirect_irradiance", 0), Rgb(0.0));
   EXPECT_EQ(filter->GetReport(), "0 bounces: no indirect light");
+
+  // A transfer to carry must have the coefficients of order 2, 3 or 4: 4 (order 1) is refused.
+  vtkNew<vtkDoubleArray> bands;
+  bands->SetName("short_transfer");
+  bands->SetNumberOfComponents(4);
+  bands->SetNumberOfTuples(points);
+  bands->Fill(1);
+  sphere->GetPointData()->AddArray(bands);
+  filter->AddTransferArrayName("short_transfer");
+  vtkNew<shadelab::app::VtkErrorCapture> errors;
+  errors->watch(filter);
+  filter->Update();
+  EXPECT_EQ(errors->message(),
+    "the input has no numeric point array 'short_transfer' of transfer vectors (9, 16 or 25 components: "
+    "\"estimator\": \"prt\") to carry through the bounces");
 }
 
 // Under a tolerance, "auto" bounces stop where what the rest can add, max(B_K) rho / (1 - rho),

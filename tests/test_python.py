@@ -407,24 +407,27 @@ class Relighting(unittest.TestCase):
 
     def test_relight_adds_the_interreflection_the_transfer_carries_unless_direct_only(self):
         studio_map = os.path.join(DATA, "envmaps", "studio_small_03_1k.hdr")
-        sunset = os.path.join(DATA, "envmaps", "venice_sunset_1k.hdr")
         transfer = os.path.join(WORK, "transfer_bounces.vtp")
         subprocess.run([SHADELAB, "shade", BUNNY, "-o", transfer, "--envmap", studio_map, "--envmap-estimator", "prt",
-                        "--bounces", "2", "-a", "envmap_sh_transfer,envmap_sh_transfer_indirect"],
+                        "--bounces", "2", "-a", "envmap_sh_transfer,envmap_sh_transfer_indirect,indirect_irradiance"],
                        check=True, capture_output=True)
         reader = vtkXMLPolyDataReader()
         reader.SetFileName(transfer)
         reader.Update()
         self.assertEqual(reader.GetOutput().GetPointData().GetArray("envmap_sh_transfer_indirect")
                          .GetNumberOfComponents(), 27)
-        both = arrays_of(shadelab.relight(reader.GetOutput(), sunset, rotation=30))
-        direct = arrays_of(shadelab.relight(reader.GetOutput(), sunset, rotation=30, direct_only=True))
+        # Relit under the map it was shaded with, the indirect part is the shading's gather, but
+        # where the map's nine coefficients ring below 0 (shading reflects nothing there, the
+        # transfer all its sign): 91% of the vertices agree to 1e-5, and none by more than 0.1%
+        # of the largest (docs/guide/relighting.md).
+        relit = arrays_of(shadelab.relight(reader.GetOutput(), studio_map))
+        shaded = arrays_of(reader.GetOutput())["indirect_irradiance"]
+        difference = np.abs(relit["relit_irradiance_indirect"] - shaded).max(axis=1)
+        self.assertGreater(np.mean(difference < 1e-5), 0.85)
+        self.assertLess(difference.max(), 1e-3 * shaded.max())
+        direct = arrays_of(shadelab.relight(reader.GetOutput(), studio_map, direct_only=True))
         self.assertNotIn("relit_irradiance_indirect", direct)
-        indirect = both["relit_irradiance_indirect"]
-        self.assertGreater(indirect.max(), 0.01)
-        # The total is the direct part and the indirect part, to float32's rounding.
-        np.testing.assert_allclose(both["relit_irradiance"], direct["relit_irradiance"] + indirect, rtol=0, atol=1e-6)
-
+        self.assertGreater(np.abs(relit["relit_irradiance"] - direct["relit_irradiance"]).max(), 0.1)
 
 
 class Interreflection(unittest.TestCase):

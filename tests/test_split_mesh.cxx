@@ -6,6 +6,7 @@
 #include "MeshFiles.h"
 #include "MeshPieces.h"
 #include "ShadeLabWholeMesh.h"
+#include "vtkInterreflectionFilter.h"
 #include "vtkLocalReflectanceFilter.h"
 #include "vtkMeshVisibilityFilter.h"
 #include "vtkShadingNormalsFilter.h"
@@ -504,6 +505,74 @@ TEST(SplitMeshInterreflection, AProcessWithAnEmptyPiece)
     return;
   }
   EXPECT_GT(expectPieceOfWhole(shaded(mesh, "interreflection.json", { "all" }, nullptr), shadedPiece), 10);
+}
+
+/// The bunny with its normals and a radiosity that varies over it, for the interreflection
+/// filter alone.
+vtkSmartPointer<vtkPolyData> glowingBunny()
+{
+  vtkNew<vtkShadingNormalsFilter> normals;
+  normals->SetController(nullptr);
+  normals->SetInputData(bunny());
+  normals->Update();
+  auto mesh = vtkSmartPointer<vtkPolyData>::New();
+  mesh->ShallowCopy(normals->GetOutput());
+  vtkNew<vtkDoubleArray> glow;
+  glow->SetName("glow");
+  glow->SetNumberOfComponents(3);
+  glow->SetNumberOfTuples(mesh->GetNumberOfPoints());
+  for (vtkIdType i = 0; i < mesh->GetNumberOfPoints(); ++i)
+  {
+    const double* p = mesh->GetPoint(i);
+    glow->SetTuple3(i, 1 + 10 * p[1], 0.5, 1 + 10 * p[0]);
+  }
+  mesh->GetPointData()->AddArray(glow);
+  return mesh;
+}
+
+/// vtkInterreflectionFilter alone on the mesh (or a piece), 2 bounces from "glow".
+vtkSmartPointer<vtkPolyData> gatheredAlone(vtkPolyData* mesh, vtkMultiProcessController* controller)
+{
+  vtkNew<vtkInterreflectionFilter> filter;
+  filter->SetController(controller);
+  filter->SetInputData(mesh);
+  filter->SetRadiosityArrayName("glow");
+  filter->SetBounces(2);
+  filter->SetSamples(16);
+  filter->SetNumberOfThreads(1);
+  filter->Update();
+  auto output = vtkSmartPointer<vtkPolyData>::New();
+  output->ShallowCopy(filter->GetOutput());
+  return output;
+}
+
+// The interreflection filter alone, as a ParaView pipeline runs it: a process whose piece is
+// empty has no arrays at all (a reader's empty piece), and takes part with none; the others'
+// pieces get the whole mesh's values. One process's piece without the radiosity stops every
+// process, none waits for it, and a later run completes.
+TEST(SplitMeshInterreflection, TheFilterAloneOnPiecesAndAnEmptyOneWithoutArrays)
+{
+  const int count = processes()->GetNumberOfProcesses();
+  const int rank = processes()->GetLocalProcessId();
+  const vtkSmartPointer<vtkPolyData> mesh = glowingBunny();
+  const vtkSmartPointer<vtkPolyData> whole = gatheredAlone(mesh, nullptr);
+  const bool holdsNone = count > 1 && rank == count - 1;
+  const vtkSmartPointer<vtkPolyData> piece = holdsNone
+    ? vtkSmartPointer<vtkPolyData>::New()
+    : shadelab::testing::meshPiece(mesh, rank, std::max(count - 1, 1), 1);
+  const vtkSmartPointer<vtkPolyData> gathered = gatheredAlone(piece, processes());
+  if (!holdsNone)
+  {
+    EXPECT_GT(expectPieceOfWhole(whole, gathered), 2);
+  }
+  vtkSmartPointer<vtkPolyData> broken = vtkSmartPointer<vtkPolyData>::New();
+  broken->DeepCopy(piece);
+  if (rank == 0)
+  {
+    broken->GetPointData()->RemoveArray("glow");
+  }
+  EXPECT_EQ(gatheredAlone(broken, processes())->GetNumberOfPoints(), 0);
+  EXPECT_EQ(gatheredAlone(piece, processes())->GetNumberOfPoints(), piece->GetNumberOfPoints());
 }
 
 // One process's piece cannot be shaded (it has an array of a name the filter writes): every

@@ -9,6 +9,7 @@
 #include "vtkPolyData.h"
 
 #include <algorithm>
+#include <new>
 #include <numeric>
 #include <stdexcept>
 
@@ -70,7 +71,20 @@ std::vector<double> valuesAtEveryPoint(vtkMultiProcessController* controller, co
   }
   const std::vector<vtkIdType> allIds = allGather(controller, ids);
   const std::vector<double> allValues = allGather(controller, values);
-  std::vector<double> everyPoint(static_cast<std::size_t>(points) * width);
+  std::vector<double> everyPoint;
+  bool allocated = true;
+  try
+  {
+    everyPoint.resize(static_cast<std::size_t>(points) * width);
+  }
+  catch (const std::bad_alloc&)
+  {
+    allocated = false;
+  }
+  if (!everyProcessHolds(controller, allocated)) // so that every process stops alike
+  {
+    throw std::runtime_error("out of memory for the whole mesh's values (" + std::to_string(points) + " points)");
+  }
   for (std::size_t k = 0; k < allIds.size(); ++k)
   {
     std::copy_n(&allValues[k * width], width, &everyPoint[static_cast<std::size_t>(allIds[k]) * width]);

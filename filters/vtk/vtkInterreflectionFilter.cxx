@@ -26,6 +26,10 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <functional>
+#include <memory>
+#include <new>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -230,25 +234,55 @@ vtkSmartPointer<vtkDataArray> atEveryPoint(
   return whole;
 }
 
-/// Every vertex's values, from each process's at its piece's points (SplitVertices::share).
-void shareValues(vtkMultiProcessController* controller, std::vector<shadelab::Rgb>& values, std::size_t perVertex,
-  const std::vector<vtkIdType>& pieceIds, vtkIdType points)
+/// Whether `make` ran on every process without running out of memory (a collective call).
+bool madeEverywhere(vtkMultiProcessController* controller, const std::function<void()>& make)
 {
-  std::vector<double> mine;
-  mine.reserve(pieceIds.size() * perVertex * 3);
-  for (const vtkIdType id : pieceIds)
+  bool made = true;
+  try
   {
-    const shadelab::Rgb* own = &values[static_cast<std::size_t>(id) * perVertex];
-    for (std::size_t field = 0; field < perVertex; ++field)
-    {
-      mine.insert(mine.end(), { own[field].r, own[field].g, own[field].b });
-    }
+    make();
   }
-  const std::vector<double> every =
-    shadelab::valuesAtEveryPoint(controller, pieceIds, mine, static_cast<int>(3 * perVertex), points);
-  for (std::size_t i = 0; i < values.size(); ++i)
+  catch (const std::bad_alloc&)
   {
-    values[i] = shadelab::Rgb(every[3 * i], every[3 * i + 1], every[3 * i + 2]);
+    made = false;
+  }
+  return shadelab::everyProcessHolds(controller, made);
+}
+
+/// The vertices a process gathers at, each once and in order, and every process's of them, in
+/// process order: what the sweeps' values are shared by.
+struct SharedVertices
+{
+  std::vector<vtkIdType> own, everyProcesses;
+};
+
+/// Every vertex's values, from each process's at its own vertices (SplitVertices::share): one
+/// field at a time, so that an exchange holds 3 values a vertex whatever the fields.
+void shareValues(vtkMultiProcessController* controller, const SharedVertices& vertices,
+  std::vector<shadelab::Rgb>& values, std::size_t perVertex, bool ready)
+{
+  if (!shadelab::everyProcessHolds(controller, ready))
+  {
+    throw std::runtime_error("a process of the split mesh ran out of memory for interreflection's sweeps");
+  }
+  for (std::size_t field = 0; field < perVertex; ++field)
+  {
+    std::vector<double> mine;
+    if (!madeEverywhere(controller, [&] { mine.reserve(3 * vertices.own.size()); }))
+    {
+      throw std::runtime_error("a process of the split mesh ran out of memory sharing interreflection's sweeps");
+    }
+    for (const vtkIdType id : vertices.own)
+    {
+      const shadelab::Rgb& value = values[static_cast<std::size_t>(id) * perVertex + field];
+      mine.insert(mine.end(), { value.r, value.g, value.b });
+    }
+    const std::vector<double> every = shadelab::gathered(controller, mine, shadelab::WholeMeshOn::EveryProcess);
+    for (std::size_t k = 0; k < vertices.everyProcesses.size(); ++k)
+    {
+      values[static_cast<std::size_t>(vertices.everyProcesses[k]) * perVertex + field] =
+        shadelab::Rgb(every[3 * k], every[3 * k + 1], every[3 * k + 2]);
+    }
   }
 }
 }
@@ -292,7 +326,7 @@ bool vtkInterreflectionFilter::TransferArrays(vtkPolyData* input, std::vector<vt
   for (const std::string& name : this->TransferArrayNames)
   {
     vtkDataArray* transfer = input->GetPointData()->GetArray(name.c_str());
-    if (!transfer || shadelab::shOrderOfCount(transfer->GetNumberOfComponents()) < 0)
+    if (!transfer || shadelab::shOrderOfCount(transfer->GetNumberOfComponents()) < 2)
     {
       vtkErrorMacro("the input has no numeric point array '"
         << name
@@ -302,6 +336,32 @@ bool vtkInterreflectionFilter::TransferArrays(vtkPolyData* input, std::vector<vt
     arrays.push_back(transfer);
   }
   return true;
+}
+
+void vtkInterreflectionFilter::AddArraysAnEmptyPieceLacks(vtkPolyData* piece)
+{
+  std::vector<std::pair<std::string, int>> needed{ { this->RadiosityArrayName, 3 } };
+  if (!this->AlbedoArrayName.empty())
+  {
+    needed.emplace_back(this->AlbedoArrayName, 3);
+  }
+  for (const std::string& name : this->TransferArrayNames) // as many coefficients as the others'
+  {
+    vtkDataArray* transfer = piece->GetPointData()->GetArray(name.c_str());
+    const std::vector<int> counts = shadelab::gathered(this->Controller,
+      std::vector<int>{ transfer ? transfer->GetNumberOfComponents() : 0 }, shadelab::WholeMeshOn::EveryProcess);
+    needed.emplace_back(name, *std::max_element(counts.begin(), counts.end()));
+  }
+  for (const auto& [name, components] : needed)
+  {
+    if (piece->GetNumberOfPoints() == 0 && !piece->GetPointData()->GetArray(name.c_str()))
+    {
+      vtkNew<vtkDoubleArray> none;
+      none->SetName(name.c_str());
+      none->SetNumberOfComponents(components);
+      piece->GetPointData()->AddArray(none);
+    }
+  }
 }
 
 vtkDataArray* vtkInterreflectionFilter::RgbArray(vtkPolyData* input, const std::string& name, const char* role)
@@ -344,8 +404,13 @@ int vtkInterreflectionFilter::InterreflectPiece(vtkPolyData* input, vtkPolyData*
 }
 
 int vtkInterreflectionFilter::InterreflectWhole(
-  vtkPolyData* whole, vtkPolyData* result, const std::vector<vtkIdType>& pieceIds, vtkPolyData* piece)
+  vtkPolyData* whole, vtkPolyData* result, const std::vector<vtkIdType>& pieceIds, vtkPolyData* givenPiece)
 {
+  // An empty piece (more processes than pieces) may have none of the arrays: it takes part with
+  // empty ones of the others' sizes.
+  vtkNew<vtkPolyData> piece;
+  piece->ShallowCopy(givenPiece);
+  this->AddArraysAnEmptyPieceLacks(piece);
   // The piece's arrays, checked on every process alike before any value is exchanged.
   vtkSmartPointer<vtkDoubleArray> albedo;
   std::vector<vtkDataArray*> transfers;
@@ -368,16 +433,17 @@ int vtkInterreflectionFilter::InterreflectWhole(
     mesh->GetPointData()->AddArray(atEveryPoint(this->Controller, array, pieceIds, whole->GetNumberOfPoints()));
   }
   // Each vertex once: a piece may hold copies of a point (pieces read into one process).
-  std::vector<std::size_t> own(pieceIds.begin(), pieceIds.end());
-  std::sort(own.begin(), own.end());
-  own.erase(std::unique(own.begin(), own.end()), own.end());
-  shadelab::SplitVertices split{ std::move(own),
-    [&](std::vector<shadelab::Rgb>& values, std::size_t perVertex)
-    { shareValues(this->Controller, values, perVertex, pieceIds, whole->GetNumberOfPoints()); } };
+  SharedVertices vertices{ pieceIds, {} };
+  std::sort(vertices.own.begin(), vertices.own.end());
+  vertices.own.erase(std::unique(vertices.own.begin(), vertices.own.end()), vertices.own.end());
+  vertices.everyProcesses = shadelab::gathered(this->Controller, vertices.own, shadelab::WholeMeshOn::EveryProcess);
+  shadelab::SplitVertices split{ std::vector<std::size_t>(vertices.own.begin(), vertices.own.end()),
+    [&](std::vector<shadelab::Rgb>& values, std::size_t perVertex, bool ready)
+    { shareValues(this->Controller, vertices, values, perVertex, ready); } };
   vtkNew<vtkPolyData> computed;
-  if (this->Interreflect(mesh, computed, &split) != 1)
+  if (!shadelab::everyProcessHolds(this->Controller, this->Interreflect(mesh, computed, &split) == 1))
   {
-    return 0;
+    return 0; // where another process failed, it has said why
   }
   if (this->BounceCount > 0) // the rays of every process (a point several pieces hold casts them on each)
   {
@@ -490,18 +556,39 @@ shadelab::IndirectIrradiance vtkInterreflectionFilter::GatherBounces(vtkPolyData
   const shadelab::Sampling sampling{ this->Samples, this->Stratified };
   const shadelab::Albedo kd{ { this->Albedo[0], this->Albedo[1], this->Albedo[2] },
     albedo ? albedo->GetPointer(0) : nullptr };
-  const std::unique_ptr<shadelab::OccluderMesh> occluders = shadelab::occludersOf(input);
-  shadelab::BounceGather gather(*occluders, rgbValues(radiosity), sampling,
-    transfers.empty() ? std::vector<shadelab::Rgb>() : reflectedTransfer(transfers, kd, input->GetNumberOfPoints()));
-  this->BackHits = gatherEveryVertex(*occluders, input, normals, sampling, gather, this, split);
-  occluders->releaseTracing(); // the sweeps' peak memory without the BVH
+  std::unique_ptr<shadelab::OccluderMesh> occluders;
+  std::unique_ptr<shadelab::BounceGather> gather;
+  // On a split mesh every process traces its rays before any value is shared: a failure here is
+  // agreed, so that no process waits in an exchange for one that stopped.
+  std::string failure;
+  try
+  {
+    occluders = shadelab::occludersOf(input);
+    gather = std::make_unique<shadelab::BounceGather>(*occluders, rgbValues(radiosity), sampling,
+      transfers.empty() ? std::vector<shadelab::Rgb>() : reflectedTransfer(transfers, kd, input->GetNumberOfPoints()));
+    this->BackHits = gatherEveryVertex(*occluders, input, normals, sampling, *gather, this, split);
+    occluders->releaseTracing(); // the sweeps' peak memory without the BVH
+  }
+  catch (const std::exception& error)
+  {
+    if (!split)
+    {
+      throw;
+    }
+    failure = error.what();
+  }
+  if (split && !shadelab::everyProcessHolds(this->Controller, failure.empty()))
+  {
+    throw std::runtime_error(
+      failure.empty() ? "another process of the split mesh could not trace its gather rays" : failure);
+  }
   shadelab::IndirectIrradiance indirect =
-    gather.bounce(kd, { this->Bounces, this->BounceTolerance }, this->KeepBounces, smpLoop, split);
+    gather->bounce(kd, { this->Bounces, this->BounceTolerance }, this->KeepBounces, smpLoop, split);
   this->BounceCount = indirect.bounceCount;
   this->RestBound = indirect.restBound;
   this->GatherRays =
     static_cast<long long>(split ? split->own.size() : std::size_t(input->GetNumberOfPoints())) * this->Samples;
-  this->LaterRays = gather.laterRays();
+  this->LaterRays = gather->laterRays();
   this->Report = this->ReportOf(transfers);
   return indirect;
 }

@@ -130,7 +130,10 @@ private:
   /// On the whole mesh gathered from the pieces: the piece's arrays made whole, its points
   /// gathered at, and their values (at pieceIds) into result.
   int InterreflectWhole(
-    vtkPolyData* whole, vtkPolyData* result, const std::vector<vtkIdType>& pieceIds, vtkPolyData* piece);
+    vtkPolyData* whole, vtkPolyData* result, const std::vector<vtkIdType>& pieceIds, vtkPolyData* givenPiece);
+  /// Onto an empty piece, empty arrays for those it lacks, of the sizes the other processes'
+  /// have (a collective call where transfers are carried).
+  void AddArraysAnEmptyPieceLacks(vtkPolyData* piece);
   /// The mesh gathered at, every point or split's own.
   int Interreflect(vtkPolyData* input, vtkPolyData* output, const shadelab::SplitVertices* split);
   /// The input's array of that name if it is numeric with 3 components; nullptr after

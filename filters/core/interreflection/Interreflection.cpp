@@ -9,6 +9,7 @@
 #include <array>
 #include <limits>
 #include <mutex>
+#include <new>
 #include <stdexcept>
 
 namespace shadelab
@@ -91,6 +92,57 @@ std::vector<Rgb> directOfEveryField(std::vector<Rgb> light, const std::vector<Rg
   }
   return fields;
 }
+
+/// What the sweeps exchange on a split mesh: each vertex's values, shared after a sweep, and the
+/// memory one process could not have, agreed at the next share so that every process stops
+/// there alike. On a whole mesh nothing is shared and memory throws at once.
+class SweepExchange
+{
+public:
+  SweepExchange(const SplitVertices* split, std::size_t fields)
+    : split_(split)
+    , fields_(fields)
+  {
+  }
+
+  void attempt(const std::function<void()>& allocate)
+  {
+    try
+    {
+      allocate();
+    }
+    catch (const std::bad_alloc&)
+    {
+      if (!split_)
+      {
+        throw;
+      }
+      ready_ = false;
+    }
+  }
+
+  void share(std::vector<Rgb>& values) const
+  {
+    if (split_)
+    {
+      split_->share(values, fields_, ready_);
+    }
+  }
+
+  /// After the last share: this process's failure, which its caller agrees on with the others.
+  void throwIfShort() const
+  {
+    if (!ready_)
+    {
+      throw std::bad_alloc();
+    }
+  }
+
+private:
+  const SplitVertices* split_;
+  std::size_t fields_;
+  bool ready_ = true;
+};
 }
 
 void serialLoop(std::size_t count, const std::function<void(std::size_t, std::size_t)>& body)
@@ -166,79 +218,92 @@ IndirectIrradiance BounceGather::bounce(
   }
   std::vector<Rgb>().swap(direct_); // the first bounce is gathered: its room is free
   const Gathering at{ split, n };
-  // Every vertex's values, where each process has its own vertices'.
-  auto share = [&](std::vector<Rgb>& values)
-  {
-    if (split)
-    {
-      split->share(values, fields_);
-    }
-  };
+  SweepExchange exchange(split, fields_);
   // Every field's E_1 + ... + E_k, and the light's standard error.
   std::vector<Rgb> irradiance = std::move(firstBounce_);
-  share(irradiance);
   IndirectIrradiance result;
   result.standardError = std::move(firstBounceError_);
+  // B_k, B_1 + ... + B_{k-1}, E_k, every field's (E_1 is in irradiance, until the rest is added).
+  std::vector<Rgb> radiosity, sum, gathered;
+  exchange.attempt(
+    [&]
+    {
+      for (std::vector<Rgb>* made : { &radiosity, &sum, &gathered })
+      {
+        made->resize(n * fields_);
+      }
+      result.bounces.reserve(keepBounces ? std::size_t(limit.most) : 0);
+    });
+  exchange.share(irradiance);
   if (keepBounces)
   {
-    result.bounces.push_back(lightField(irradiance));
+    exchange.attempt([&] { result.bounces.push_back(lightField(irradiance)); });
   }
-  // B_k, B_1 + ... + B_{k-1}, E_k, every field's (E_1 is in irradiance, until the rest is added).
-  std::vector<Rgb> radiosity(n * fields_), sum(n * fields_), gathered(n * fields_);
-  // B_k = kd E_k; returns the bound on what the bounces past k add to the light.
-  auto reflect = [&](const std::vector<Rgb>& reflected)
-  {
-    std::mutex largestLock;
-    double largest = 0;
-    loop(n,
-      [&](std::size_t first, std::size_t last)
-      {
-        double mine = 0;
-        for (std::size_t vertex = first; vertex < last; ++vertex)
-        {
-          const Rgb kd = albedo.at(vertex);
-          for (std::size_t i = vertex * fields_; i < (vertex + 1) * fields_; ++i)
-          {
-            radiosity[i] = kd * reflected[i];
-          }
-          mine = std::max(mine, largestComponent(radiosity[vertex * fields_]));
-        }
-        const std::lock_guard<std::mutex> lock(largestLock);
-        largest = std::max(largest, mine);
-      });
-    return rho < 1 ? largest * rho / (1 - rho) : std::numeric_limits<double>::infinity();
-  };
   int bounce = 1;
-  result.restBound = reflect(irradiance);
+  result.restBound = reflect(albedo, rho, irradiance, radiosity, loop);
   // Sweep k gathers E_k from B_{k-1} and makes B_k, whose largest value bounds the rest.
   while (bounce < limit.most && !(limit.restShare > 0 && result.restBound <= limit.restShare))
   {
-    loop(n,
-      [&](std::size_t first, std::size_t last)
-      {
-        for (std::size_t i = first * fields_; i < last * fields_; ++i)
-        {
-          sum[i] += radiosity[i];
-        }
-      });
-    loop(at.count(),
-      [&](std::size_t first, std::size_t last) { gatherLater(radiosity.data(), first, last, at, gathered.data()); });
-    share(gathered);
+    sweep(radiosity, sum, gathered, loop, at);
+    exchange.share(gathered);
     ++bounce;
     if (keepBounces)
     {
-      result.bounces.push_back(lightField(gathered));
+      exchange.attempt([&] { result.bounces.push_back(lightField(gathered)); });
     }
-    result.restBound = reflect(gathered);
+    result.restBound = reflect(albedo, rho, gathered, radiosity, loop);
   }
+  exchange.throwIfShort();
   result.bounceCount = bounce;
   if (bounce > 1)
   {
     addLaterBounces(sum, radiosity, gathered, irradiance, result.standardError, loop, at);
   }
-  std::vector<Rgb>().swap(radiosity), std::vector<Rgb>().swap(sum), std::vector<Rgb>().swap(gathered);
+  for (std::vector<Rgb>* freed : { &radiosity, &sum, &gathered })
+  {
+    std::vector<Rgb>().swap(*freed);
+  }
   splitFields(std::move(irradiance), result);
   return result;
+}
+
+double BounceGather::reflect(const Albedo& albedo, double rho, const std::vector<Rgb>& irradiance,
+  std::vector<Rgb>& radiosity, const RangeLoop& loop) const
+{
+  std::mutex largestLock;
+  double largest = 0;
+  loop(radiosity.size() / fields_,
+    [&](std::size_t first, std::size_t last)
+    {
+      double mine = 0;
+      for (std::size_t vertex = first; vertex < last; ++vertex)
+      {
+        const Rgb kd = albedo.at(vertex);
+        for (std::size_t i = vertex * fields_; i < (vertex + 1) * fields_; ++i)
+        {
+          radiosity[i] = kd * irradiance[i];
+        }
+        mine = std::max(mine, largestComponent(radiosity[vertex * fields_]));
+      }
+      const std::lock_guard<std::mutex> lock(largestLock);
+      largest = std::max(largest, mine);
+    });
+  return rho < 1 ? largest * rho / (1 - rho) : std::numeric_limits<double>::infinity();
+}
+
+void BounceGather::sweep(const std::vector<Rgb>& radiosity, std::vector<Rgb>& sum, std::vector<Rgb>& gathered,
+  const RangeLoop& loop, const Gathering& at) const
+{
+  loop(radiosity.size() / fields_,
+    [&](std::size_t first, std::size_t last)
+    {
+      for (std::size_t i = first * fields_; i < last * fields_; ++i)
+      {
+        sum[i] += radiosity[i];
+      }
+    });
+  loop(at.count(),
+    [&](std::size_t first, std::size_t last) { gatherLater(radiosity.data(), first, last, at, gathered.data()); });
 }
 
 void BounceGather::addLaterBounces(const std::vector<Rgb>& sum, std::vector<Rgb>& rest, std::vector<Rgb>& restError,

@@ -88,8 +88,10 @@ struct SplitVertices
   std::vector<std::size_t> own;
   /// Fills in every vertex's values (perVertex of them each), given this process's own
   /// vertices', from the processes that hold them: a collective call, which every process makes
-  /// as often as the others (the bounces' count is the same everywhere).
-  std::function<void(std::vector<Rgb>& values, std::size_t perVertex)> share;
+  /// as often as the others (the bounces' count is the same everywhere). `ready` says whether
+  /// this process made what it had to since the last call (its memory); where any process did
+  /// not, it throws std::runtime_error on every process alike, so that none waits for another.
+  std::function<void(std::vector<Rgb>& values, std::size_t perVertex, bool ready)> share;
 };
 
 /// Interreflection over the vertices of a mesh: addVertex for each vertex's traced rays, then
@@ -136,6 +138,16 @@ private:
     std::size_t count() const { return split ? split->own.size() : all; }
     std::size_t vertex(std::size_t i) const { return split ? split->own[i] : i; }
   };
+
+  /// B = kd E, every field at every vertex, into radiosity; returns the bound on what the
+  /// bounces past this one add to the light (BounceLimit), rho the largest albedo.
+  double reflect(const Albedo& albedo, double rho, const std::vector<Rgb>& irradiance, std::vector<Rgb>& radiosity,
+    const RangeLoop& loop) const;
+
+  /// One sweep: sum += radiosity everywhere, and gathered = gather(radiosity) at the vertices
+  /// this process gathers at.
+  void sweep(const std::vector<Rgb>& radiosity, std::vector<Rgb>& sum, std::vector<Rgb>& gathered,
+    const RangeLoop& loop, const Gathering& at) const;
 
   /// E_2 + ... + E_K gathered from sum = B_1 + ... + B_{K-1} into `rest` (every field), the
   /// light's standard error into `restError`, and both added to irradiance and standardError.
