@@ -169,15 +169,13 @@ void markAsPiece(vtkPolyData* piece, vtkPolyData* surface)
 {
   surface->GetPointData()->SetGlobalIds(piece->GetPointData()->GetGlobalIds());
   surface->GetCellData()->SetGlobalIds(piece->GetCellData()->GetGlobalIds());
-  for (vtkDataSetAttributes* data : { static_cast<vtkDataSetAttributes*>(piece->GetPointData()),
-         static_cast<vtkDataSetAttributes*>(piece->GetCellData()) })
+  if (vtkDataArray* ghosts = piece->GetPointData()->GetArray(vtkDataSetAttributes::GhostArrayName()))
   {
-    if (vtkDataArray* ghosts = data->GetArray(vtkDataSetAttributes::GhostArrayName()))
-    {
-      (data == piece->GetPointData() ? static_cast<vtkDataSetAttributes*>(surface->GetPointData())
-                                     : static_cast<vtkDataSetAttributes*>(surface->GetCellData()))
-        ->AddArray(ghosts);
-    }
+    surface->GetPointData()->AddArray(ghosts);
+  }
+  if (vtkDataArray* ghosts = piece->GetCellData()->GetArray(vtkDataSetAttributes::GhostArrayName()))
+  {
+    surface->GetCellData()->AddArray(ghosts);
   }
 }
 
