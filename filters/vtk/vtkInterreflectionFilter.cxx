@@ -171,14 +171,21 @@ void smpLoop(std::size_t count, const std::function<void(std::size_t, std::size_
     [&](vtkIdType begin, vtkIdType end) { body(std::size_t(begin), std::size_t(end)); });
 }
 
-/// An RGB point array of the values, in float64 or float32.
-vtkSmartPointer<vtkDataArray> rgbArray(const std::string& name, const std::vector<shadelab::Rgb>& values, bool float64)
+/// A named point array of `tuples` tuples of `components`, in float64 or float32.
+vtkSmartPointer<vtkDataArray> realArray(const std::string& name, int components, vtkIdType tuples, bool float64)
 {
   vtkSmartPointer<vtkDataArray> array = float64 ? vtkSmartPointer<vtkDataArray>(vtkSmartPointer<vtkDoubleArray>::New())
                                                 : vtkSmartPointer<vtkDataArray>(vtkSmartPointer<vtkFloatArray>::New());
   array->SetName(name.c_str());
-  array->SetNumberOfComponents(3);
-  array->SetNumberOfTuples(static_cast<vtkIdType>(values.size()));
+  array->SetNumberOfComponents(components);
+  array->SetNumberOfTuples(tuples);
+  return array;
+}
+
+/// An RGB point array of the values, in float64 or float32.
+vtkSmartPointer<vtkDataArray> rgbArray(const std::string& name, const std::vector<shadelab::Rgb>& values, bool float64)
+{
+  vtkSmartPointer<vtkDataArray> array = realArray(name, 3, static_cast<vtkIdType>(values.size()), float64);
   for (std::size_t i = 0; i < values.size(); ++i)
   {
     array->SetTuple(static_cast<vtkIdType>(i), &values[i].x);
@@ -192,12 +199,8 @@ vtkSmartPointer<vtkDataArray> rgbArray(const std::string& name, const std::vecto
 vtkSmartPointer<vtkDataArray> indirectTransferArray(const std::string& name, const std::vector<shadelab::Rgb>& carried,
   std::size_t first, std::size_t coefficients, int count, bool float64)
 {
-  vtkSmartPointer<vtkDataArray> array = float64 ? vtkSmartPointer<vtkDataArray>(vtkSmartPointer<vtkDoubleArray>::New())
-                                                : vtkSmartPointer<vtkDataArray>(vtkSmartPointer<vtkFloatArray>::New());
-  array->SetName(name.c_str());
-  array->SetNumberOfComponents(3 * count);
   const vtkIdType points = static_cast<vtkIdType>(carried.size() / coefficients);
-  array->SetNumberOfTuples(points);
+  vtkSmartPointer<vtkDataArray> array = realArray(name, 3 * count, points, float64);
   for (vtkIdType i = 0; i < points; ++i)
   {
     const shadelab::Rgb* vertex = &carried[static_cast<std::size_t>(i) * coefficients + first];
@@ -211,6 +214,7 @@ vtkSmartPointer<vtkDataArray> indirectTransferArray(const std::string& name, con
   }
   return array;
 }
+
 /// Every point's values of a piece's array, in its type and the whole mesh's order (a
 /// collective call).
 vtkSmartPointer<vtkDataArray> atEveryPoint(
