@@ -246,6 +246,13 @@ TEST(Interreflection, AutoBouncesStopWhereTheRestFitsTheTolerance)
   {
     ASSERT_NEAR(tupleOf(shaded, "indirect", i).g, indirect, 1e-6) << i; // float32, which the tolerance chose
   }
+  // "all" takes each bounce the plan made, bounce n adding rho^n I / R^2, and none past them.
+  for (int n = 1; n <= 10; ++n)
+  {
+    const double bounce = std::pow(rho, n) * direct;
+    EXPECT_NEAR(tupleOf(shaded, ("indirect_bounce_" + std::to_string(n)).c_str(), 0).b, bounce, 1e-5 * bounce) << n;
+  }
+  EXPECT_FALSE(shaded->GetPointData()->GetArray("indirect_bounce_11"));
   const InterreflectionChoice& chosen = *filter->GetMethodPlan()->interreflection;
   EXPECT_EQ(chosen.bounces, 10);
   EXPECT_NEAR(chosen.bouncesLeftOut, rest, 1e-6 * rest);

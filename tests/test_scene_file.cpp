@@ -438,6 +438,10 @@ TEST(SceneFile, Interreflection)
   EXPECT_TRUE(automatic.interreflection->bouncesFromTolerance);
   EXPECT_TRUE(automatic.interreflection->sampling.fromTolerance);
   EXPECT_EQ(automatic.interreflection->sampling.maximum, 256);
+  // The plan chooses the bounces once the direct light is known: any of them can be asked for.
+  EXPECT_EQ(selectArrays(automatic, { "all" }).bounces, std::vector<bool>(Interreflection::maxBounces, true));
+  EXPECT_EQ(
+    selectedArrayNames(automatic, { "indirect_bounce_64" }), std::vector<std::string>({ "indirect_bounce_64" }));
   EXPECT_EQ(
     parseScene(R"({ "lights": [], "interreflection": {} })", "scene.json").interreflection->sampling.maximum, 1024);
   EXPECT_EQ(errorOf(R"({ "lights": [], "interreflection": { "bounces": "many" } })"),

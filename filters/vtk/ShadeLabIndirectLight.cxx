@@ -314,7 +314,8 @@ std::string addIndirectLight(vtkInterreflectionFilter* step, vtkPolyData* input,
     interreflectionArrayName(prefix, InterreflectionTerm::IndirectIrradianceStdError));
   keep(wanted[int(InterreflectionTerm::Indirect)], indirect,
     interreflectionArrayName(prefix, InterreflectionTerm::Indirect));
-  for (std::size_t n = 1; n <= asked.bounces.size(); ++n)
+  // Under "bounces": "auto" the request reaches past the bounces the plan made.
+  for (std::size_t n = 1; n <= asked.bounces.size() && n <= std::size_t(step->GetBounceCount()); ++n)
   {
     keep(asked.bounces[n - 1], gathered->GetArray(("indirect_bounce_" + std::to_string(n)).c_str()),
       indirectBounceArrayName(prefix, int(n)));

@@ -76,6 +76,20 @@ const std::array<TermInfo, InterreflectionTermCount> interreflectionTerms = { {
 /// What bounce n adds: "indirect_bounce_<n>".
 const char* const indirectBouncePrefix = "indirect_bounce_";
 const char* const indirectBounceDescription = "the irradiance that bounce n alone adds to indirect_irradiance, RGB";
+const char* const plannedBounceDescription =
+  "the irradiance that bounce n alone adds to indirect_irradiance, RGB; under \"bounces\": \"auto\", written for "
+  "each bounce the tolerance's plan makes";
+
+/// How many indirect_bounce_<n> arrays the scene can write: its bounces, or under "bounces":
+/// "auto" as many as a plan may choose, since the count is known only once the direct light is.
+int bounceArrayCount(const Scene& scene)
+{
+  if (!scene.interreflection)
+  {
+    return 0;
+  }
+  return scene.interreflection->bouncesFromTolerance ? Interreflection::maxBounces : scene.interreflection->bounces;
+}
 
 /// A "prt" map's transfer carried through the bounces: "<light>_sh_transfer_indirect".
 const char* const indirectTransferTerm = "sh_transfer_indirect";
@@ -250,9 +264,11 @@ std::vector<ArrayDescription> availableArrays(const Scene& scene, const std::str
     const TermInfo& info = interreflectionTerms[t];
     arrays.push_back({ interreflectionArrayName(prefix, InterreflectionTerm(t)), info.components, info.description });
   }
-  for (int n = 1; scene.interreflection && n <= scene.interreflection->bounces; ++n)
+  const bool planned = scene.interreflection && scene.interreflection->bouncesFromTolerance;
+  for (int n = 1; n <= bounceArrayCount(scene); ++n)
   {
-    arrays.push_back({ indirectBounceArrayName(prefix, n), 3, indirectBounceDescription });
+    arrays.push_back(
+      { indirectBounceArrayName(prefix, n), 3, planned ? plannedBounceDescription : indirectBounceDescription });
   }
   for (std::size_t l = 0; l < scene.lights.size(); ++l)
   {
@@ -413,7 +429,7 @@ ArrayRequest selectArrays(const Scene& scene, const std::vector<std::string>& se
   }
   ArrayRequest request;
   request.lights.resize(scene.lights.size());
-  request.bounces.resize(scene.interreflection ? std::size_t(scene.interreflection->bounces) : 0);
+  request.bounces.resize(std::size_t(bounceArrayCount(scene)));
   request.indirectTransfer.resize(scene.lights.size());
   for (const std::string& entry : selection)
   {
