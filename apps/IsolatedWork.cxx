@@ -95,6 +95,16 @@ std::size_t currentAddressSpace()
   return 0;
 }
 
+/// A child stopped while it showed its progress leaves no half line for what follows.
+void clearProgressLine()
+{
+  if (::isatty(STDERR_FILENO))
+  {
+    std::fprintf(stderr, "\r%40s\r", "");
+    std::fflush(stderr);
+  }
+}
+
 void limit(int resource, rlim_t value)
 {
   const rlimit bound{ value, value };
@@ -215,7 +225,8 @@ IsolatedOutcome::~IsolatedOutcome()
   }
 }
 
-IsolatedOutcome runIsolated(const std::function<void(ChildChannel&)>& work, const IsolationLimits& limits)
+IsolatedOutcome runIsolated(
+  const std::function<void(ChildChannel&)>& work, const IsolationLimits& limits, const std::function<bool()>& meanwhile)
 {
   IsolatedOutcome outcome;
   outcome.resultFd = ::memfd_create("shadelab-result", 0);
@@ -239,6 +250,17 @@ IsolatedOutcome runIsolated(const std::function<void(ChildChannel&)>& work, cons
     runChild(channel[1], resultPath, work, limits);
   }
   ::close(channel[1]);
+  if (meanwhile && !meanwhile())
+  {
+    ::close(channel[0]);
+    ::kill(child, SIGKILL);
+    while (::waitpid(child, nullptr, 0) < 0 && errno == EINTR)
+    {
+    }
+    clearProgressLine();
+    outcome.end = IsolatedOutcome::End::Stopped;
+    return outcome;
+  }
   bool stalled = false;
   const auto deadline =
     std::chrono::steady_clock::now() + std::chrono::milliseconds(static_cast<long long>(limits.wallSeconds * 1000));

@@ -67,6 +67,7 @@ struct IsolatedOutcome
     TimedOut,    // it used more than IsolationLimits::cpuSeconds
     Stalled,     // it had not ended after IsolationLimits::wallSeconds
     Crashed,     // a signal ended it: signalName says which
+    Stopped,     // the parent stopped it: what it checked meanwhile makes the result moot
   };
   End end = End::Failed;
   std::string resultPath; // Finished: the result file, readable while this outcome lives
@@ -78,8 +79,10 @@ struct IsolatedOutcome
 
 /// Runs work(channel) in a forked child under the limits. The work ends by writing its result
 /// to channel.resultPath() and calling channel.finished(), or by throwing. Progress written to standard error while it
-/// runs still reaches a terminal.
-IsolatedOutcome runIsolated(const std::function<void(ChildChannel&)>& work, const IsolationLimits& limits);
+/// runs still reaches a terminal. meanwhile, if given, runs in this process while the child works
+/// (on another core); when it returns false the child is stopped, and the outcome is Stopped.
+IsolatedOutcome runIsolated(const std::function<void(ChildChannel&)>& work, const IsolationLimits& limits,
+  const std::function<bool()>& meanwhile = {});
 
 /// text with every byte that is not printable ASCII shown as '?', cut to at most maxLength
 /// characters: for messages that quote a binary file.

@@ -171,15 +171,18 @@ std::uintmax_t readableFileSize(const std::string& fileName)
 /// own, and takes the dataset over. VTK's readers are not hardened against damaged files: the
 /// process is bounded in processor time and memory by the file's size (a reader asking for far
 /// more is answering a lie in the file), so that a crash there is an error here. reader names
-/// the reader in messages ("VTK's .ply reader"). Throws UserError.
+/// the reader in messages ("VTK's .ply reader"). fileProblem, if given, checks the file in this
+/// process while the reader reads it (VTK's readers use one core); what it finds is the error,
+/// whatever the reader made of the file. Throws UserError.
 vtkSmartPointer<vtkDataSet> readIsolated(const std::string& fileName, const std::string& reader, std::uintmax_t size,
-  const std::function<void(ChildChannel&)>& read)
+  const std::function<void(ChildChannel&)>& read, const std::function<std::string()>& fileProblem = {})
 {
   const double megabytes = static_cast<double>(size) / 1e6;
   IsolationLimits limits;
   limits.cpuSeconds = 10 + 2 * megabytes;
   limits.memoryBytes = (std::size_t(512) << 20) + 32 * static_cast<std::size_t>(size);
   limits.wallSeconds = 10 + 3 * limits.cpuSeconds; // room for a busy machine
+  std::string problem;
   const IsolatedOutcome outcome = runIsolated(
     [&](ChildChannel& channel)
     {
@@ -199,7 +202,12 @@ vtkSmartPointer<vtkDataSet> readIsolated(const std::string& fileName, const std:
       }
       channel.finished();
     },
-    limits);
+    limits,
+    [&]()
+    {
+      problem = fileProblem ? fileProblem() : "";
+      return problem.empty();
+    });
   for (const std::string& warning : outcome.warnings)
   {
     vtkOutputWindow::GetInstance()->DisplayWarningText(warning.c_str());
@@ -223,6 +231,7 @@ vtkSmartPointer<vtkDataSet> readIsolated(const std::string& fileName, const std:
         message << "the mesh read from it could not be taken over: " << printableText(error.what());
         break;
       }
+    case IsolatedOutcome::End::Stopped: throw UserError(fileName + ": " + problem);
     case IsolatedOutcome::End::Failed:
       throw UserError(printableText(outcome.error, 400)); // the reading's message names the file
     case IsolatedOutcome::End::OutOfMemory:
@@ -261,22 +270,24 @@ vtkSmartPointer<vtkPolyData> readMesh(const std::string& fileName, std::string* 
 {
   const std::string extension = lowerExtension(fileName);
   const std::uintmax_t size = readableFileSize(fileName);
-  const MeshFileCheck check = checkMeshFile(fileName, extension, size);
-  if (!check.problem.empty())
-  {
-    throw UserError(fileName + ": " + check.problem);
-  }
-  if (ignored)
-  {
-    *ignored = check.ignored;
-  }
-  vtkSmartPointer<vtkDataSet> data = readIsolated(fileName, "VTK's " + extension + " reader", size,
+  MeshFileCheck check;
+  vtkSmartPointer<vtkDataSet> data = readIsolated(
+    fileName, "VTK's " + extension + " reader", size,
     [&](ChildChannel& channel)
     {
       vtkSmartPointer<vtkPolyData> mesh = readDirectly(fileName, extension, channel.terminal());
       checkCells(mesh, fileName);
       handOverMesh(mesh, channel.resultPath());
+    },
+    [&]()
+    {
+      check = checkMeshFile(fileName, extension, size);
+      return check.problem;
     });
+  if (ignored)
+  {
+    *ignored = check.ignored;
+  }
   auto* mesh = vtkPolyData::SafeDownCast(data);
   if (!mesh)
   {

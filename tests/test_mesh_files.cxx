@@ -107,6 +107,29 @@ TEST(IsolatedWork, EveryEndingIsReported)
   IsolatedOutcome silent = runIsolated([](ChildChannel&) {}, limits);
   EXPECT_EQ(silent.end, IsolatedOutcome::End::Crashed); // it ended without a word
   EXPECT_EQ(silent.signalName, "exit code 0");
+
+  // What this process checks meanwhile stops the child when it finds a problem: an endless one
+  // here, which its processor time (60 s) or the clock (an hour) would stop much later.
+  limits.cpuSeconds = 60;
+  limits.wallSeconds = 3600;
+  IsolatedOutcome stopped = runIsolated(
+    [](ChildChannel&)
+    {
+      for (volatile unsigned long i = 0;; i = i + 1)
+      {
+      }
+    },
+    limits, [] { return false; });
+  EXPECT_EQ(stopped.end, IsolatedOutcome::End::Stopped);
+  bool checked = false;
+  IsolatedOutcome kept = runIsolated([](ChildChannel& channel) { channel.finished(); }, limits,
+    [&]
+    {
+      checked = true;
+      return true;
+    });
+  EXPECT_TRUE(checked);
+  EXPECT_EQ(kept.end, IsolatedOutcome::End::Finished);
 }
 
 /// A mesh with one of each kind of cell and arrays of several types, names and roles.
