@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <cstring>
 #include <fcntl.h>
+#include <filesystem>
 #include <fstream>
 #include <new>
 #include <poll.h>
@@ -15,6 +16,7 @@
 #include <sys/mman.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
+#include <thread>
 #include <unistd.h>
 
 // Defined by the sanitizer runtimes, absent otherwise (hence weak).
@@ -93,6 +95,40 @@ std::size_t currentAddressSpace()
     status.ignore(1 << 12, '\n');
   }
   return 0;
+}
+
+/// Waits, a second at most, until every other thread of this process waits on something. A
+/// thread that a library started as it was loaded (OpenImageIO's dependencies start a logging
+/// pool of four) may still be running its start, and hold a lock of the allocator, when this
+/// thread forks: the child, which has only a copy of the lock, then waits for it forever.
+/// glibc's malloc takes its locks around fork; the allocator of clang 14's AddressSanitizer
+/// does not, and its reading children stalled on a busy machine.
+void waitForOtherThreadsToWait()
+{
+  const std::string self = std::to_string(::gettid());
+  for (int attempt = 0; attempt < 1000; ++attempt)
+  {
+    bool waiting = true;
+    std::error_code error;
+    for (const auto& task : std::filesystem::directory_iterator("/proc/self/task", error))
+    {
+      std::ifstream stat(task.path() / "stat");
+      std::string line;
+      std::getline(stat, line);
+      const std::size_t name = line.rfind(')'); // the state follows the name, which may hold spaces
+      if (task.path().filename() != self && name != std::string::npos && line.size() > name + 2 &&
+        line[name + 2] != 'S')
+      {
+        waiting = false;
+        break;
+      }
+    }
+    if (waiting)
+    {
+      return;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
 }
 
 /// A child stopped while it showed its progress leaves no half line for what follows.
@@ -237,6 +273,7 @@ IsolatedOutcome runIsolated(
   }
   const std::string resultPath = "/proc/self/fd/" + std::to_string(outcome.resultFd);
   std::fflush(nullptr); // nothing buffered is written twice, once by each process
+  waitForOtherThreadsToWait();
   const pid_t child = ::fork();
   if (child < 0)
   {

@@ -20,12 +20,16 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
+#include <chrono>
 #include <csignal>
 #include <filesystem>
 #include <fstream>
+#include <future>
 #include <iterator>
 #include <sys/stat.h>
 #include <sys/wait.h>
+#include <thread>
 #include <unistd.h>
 #include <vector>
 
@@ -130,6 +134,41 @@ TEST(IsolatedWork, EveryEndingIsReported)
     });
   EXPECT_TRUE(checked);
   EXPECT_EQ(kept.end, IsolatedOutcome::End::Finished);
+}
+
+// A thread still running when the child is forked may hold a lock the child needs (the
+// allocator's, under AddressSanitizer): the child is forked once the other threads wait. Here
+// one runs for 300 ms and then waits; the child sees what it did before waiting.
+TEST(IsolatedWork, TheChildIsForkedOnceTheOtherThreadsWait)
+{
+  std::atomic<bool> started{ false }, ranToItsEnd{ false };
+  std::promise<void> release;
+  std::thread running(
+    [&, waited = release.get_future()]
+    {
+      started = true;
+      const auto end = std::chrono::steady_clock::now() + std::chrono::milliseconds(300);
+      while (std::chrono::steady_clock::now() < end)
+      {
+      }
+      ranToItsEnd = true;
+      waited.wait();
+    });
+  while (!started)
+  {
+  }
+  IsolatedOutcome outcome = runIsolated(
+    [&](ChildChannel& channel)
+    {
+      std::ofstream(channel.resultPath()) << (ranToItsEnd ? "after" : "while it ran");
+      channel.finished();
+    },
+    IsolationLimits());
+  release.set_value();
+  running.join();
+  ASSERT_EQ(outcome.end, IsolatedOutcome::End::Finished);
+  std::ifstream result(outcome.resultPath);
+  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(result), {}), "after");
 }
 
 /// A mesh with one of each kind of cell and arrays of several types, names and roles.
