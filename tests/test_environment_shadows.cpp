@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace
@@ -201,6 +202,34 @@ TEST(EnvironmentShadows, AnOpenSkyIsTheUnshadowedValueAndAClosedBoxIsDark)
       EXPECT_EQ(dark.visibility, 0.0);
     }
   }
+}
+
+// Nine coefficients ring below 0 where a bright source lies behind the surface (formulas.md
+// 12.5), and the shadowed irradiance keeps that sign; its standard error, the unshadowed value
+// times the visibility's, is a magnitude all the same. A dim sky, which the box's walls hide in
+// part, over a band 22.5 to 45 degrees below the horizon a hundred times brighter, where the
+// order-2 irradiance of a floor facing up is below 0.
+TEST(EnvironmentShadows, TheStandardErrorIsAMagnitudeWhereTheShIrradianceRings)
+{
+  auto map = std::make_shared<EnvironmentMap>();
+  map->width = 64;
+  map->height = 32;
+  map->radiance.assign(64 * 32, Rgb(0.0));
+  std::fill(map->radiance.begin(), map->radiance.begin() + 64 * 16, Rgb(1.0));
+  std::fill(map->radiance.begin() + 64 * 20, map->radiance.begin() + 64 * 24, Rgb(100.0));
+  const Quads walls = box(false);
+  const OccluderMesh occluders = walls.occluders();
+  const EnvironmentLightEstimator light(
+    mapLight(map, EnvironmentEstimator::SphericalHarmonics, EnvironmentDirections::Cosine, 64), 3, LobeModel{});
+  int ringing = 0;
+  for (const SurfacePoint& point : floorPoints())
+  {
+    const DistributedTerms open = light.estimate(point), seen = shadowed(occluders, light, point);
+    ASSERT_LT(open.irradiance.x, 0.0);
+    EXPECT_EQ(seen.irradianceStdError.x, -open.irradiance.x * seen.visibilityStdError);
+    ringing += seen.irradiance.x < 0 && seen.irradianceStdError.x > 0 ? 1 : 0;
+  }
+  EXPECT_GT(ringing, 0);
 }
 
 TEST(EnvironmentShadows, TheRaysTurnWithTheMap)

@@ -400,7 +400,8 @@ DistributedTerms EnvironmentLightEstimator::shadowedEstimate(
   DistributedTerms terms =
     monteCarlo(n, v, point.index, false, light_.directions, withVisibilityTarget(targets_, unshadowed), shadowing);
   terms.irradiance = unshadowed * terms.visibility;
-  terms.irradianceStdError = unshadowed * terms.visibilityStdError;
+  // A magnitude, where nine coefficients ring below 0 as where they do not.
+  terms.irradianceStdError = glm::abs(unshadowed) * terms.visibilityStdError;
   return terms;
 }
 
