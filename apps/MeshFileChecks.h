@@ -2,10 +2,11 @@
 // Checks of a mesh file, made while VTK's reader reads it in a process of its own
 // (MeshFiles.cxx); what they find wins over whatever the reader made of the file. A PLY
 // header's counts against the bytes the file has, an OBJ's indices against what it lists: a
-// lie there crashes or stalls VTK's readers, or has them read out of bounds. And every number of a text file (OBJ, ASCII PLY,
-// ASCII STL), read strictly: VTK 9.1's readers read "1.0abc" as 1, "abc" as 0 or as the
-// previous value and "nan" as NaN, and skip a line they do not know, all without a word.
-// Found here, each gets a message that says where ("line 12: ...") and what is wrong.
+// lie there crashes or stalls VTK's readers, or has them read out of bounds. And every number
+// of a text file (OBJ, ASCII PLY, ASCII STL), read strictly: VTK 9.1's readers read "1.0abc"
+// as 1, "abc" as 0 or as the previous value and "nan" as NaN, and skip a line they do not
+// know, all without a word. Found here, each gets a message that says where ("line 12: ...")
+// and what is wrong.
 #include <cstdint>
 #include <string>
 #include <string_view>
