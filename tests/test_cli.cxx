@@ -934,6 +934,35 @@ TEST_F(Cli, HelpAndUsageErrors)
 
 namespace
 {
+// Images are read by OpenImageIO in a module loaded at the first image (ImageFile.h): a command
+// without one runs without the module, and one that needs it says why it cannot have it.
+TEST_F(Cli, TheImageModuleIsLoadedOnlyToReadAnImage)
+{
+  const std::string mesh = goodMesh(), out = (folder / "out.vtp").string();
+  const std::string map = SHADELAB_SOURCE_DIR "/data/envmaps/venice_sunset_1k.hdr";
+  const std::string nowhere = (folder / "nowhere" / "libshadelab_images.so").string();
+  const Result plain =
+    shadelab("shade " + mesh + " -s " + goodScene() + " -o " + out, "SHADELAB_IMAGE_MODULE=" + nowhere + " ");
+  EXPECT_EQ(plain.exitCode, 0) << plain.err;
+  const Result missing =
+    shadelab("shade " + mesh + " --envmap " + map + " -o " + out, "SHADELAB_IMAGE_MODULE=" + nowhere + " ");
+  EXPECT_EQ(missing.exitCode, 1);
+  EXPECT_EQ(missing.err,
+    "shadelab: --envmap: SHADELAB_IMAGE_MODULE names " + nowhere +
+      ", which does not exist: give the path of ShadeLab's libshadelab_images.so, or unset it\n");
+  const std::string notAModule = file("text.so", "not a module\n");
+  const Result unloadable =
+    shadelab("shade " + mesh + " --envmap " + map + " -o " + out, "SHADELAB_IMAGE_MODULE=" + notAModule + " ");
+  EXPECT_EQ(unloadable.exitCode, 1);
+  EXPECT_EQ(unloadable.err.substr(0, 120),
+    ("shadelab: --envmap: ShadeLab's image module " + notAModule + " does not load (").substr(0, 120));
+  EXPECT_NE(
+    unloadable.err.find(
+      "): is it ShadeLab's libshadelab_images.so, and is OpenImageIO installed (Debian 12: libopenimageio2.4)?\n"),
+    std::string::npos)
+    << unloadable.err;
+}
+
 TEST_F(Cli, EnvironmentMapOption)
 {
   const std::string mesh = goodMesh(), out = (folder / "out.vtp").string();

@@ -1,6 +1,6 @@
 #include "EnvironmentMap.h"
+#include "ImageFile.h"
 
-#include <OpenImageIO/imageio.h>
 #include <glm/gtc/constants.hpp>
 
 #include <algorithm>
@@ -151,31 +151,25 @@ EnvironmentMap readEnvironmentMap(const std::string& path)
   {
     throw std::runtime_error(path + ": no such file");
   }
-  // Clears any error an earlier failure left, so that the message below is this file's.
-  OIIO::geterror();
-  const auto input = OIIO::ImageInput::open(path);
-  if (!input)
+  const std::unique_ptr<ImageFile> input = ImageFile::open(path);
+  const int width = input->width(), height = input->height();
+  if (width <= 0 || height <= 0)
   {
-    throw std::runtime_error(path + ": cannot read as an image: " + OIIO::geterror());
+    throw std::runtime_error(path + ": the image is empty (" + shapeText(width, height) + ")");
   }
-  const OIIO::ImageSpec& spec = input->spec();
-  if (spec.width <= 0 || spec.height <= 0)
-  {
-    throw std::runtime_error(path + ": the image is empty (" + shapeText(spec.width, spec.height) + ")");
-  }
-  if (spec.nchannels != 1 && spec.nchannels < 3)
+  if (input->channels() != 1 && input->channels() < 3)
   {
     throw std::runtime_error(
-      path + ": has " + std::to_string(spec.nchannels) + " channels; expected 1 (grey) or 3 or more (RGB)");
+      path + ": has " + std::to_string(input->channels()) + " channels; expected 1 (grey) or 3 or more (RGB)");
   }
-  if (static_cast<long long>(spec.width) != 2LL * spec.height)
+  if (static_cast<long long>(width) != 2LL * height)
   {
-    throw std::runtime_error(path + ": an equirectangular map must be twice as wide as it is high; this one is " +
-      shapeText(spec.width, spec.height));
+    throw std::runtime_error(
+      path + ": an equirectangular map must be twice as wide as it is high; this one is " + shapeText(width, height));
   }
 
-  const int channels = spec.nchannels == 1 ? 1 : 3;
-  const std::size_t texels = static_cast<std::size_t>(spec.width) * spec.height;
+  const int channels = input->channels() == 1 ? 1 : 3;
+  const std::size_t texels = static_cast<std::size_t>(width) * height;
   // A header can declare any size; the pixels must be in the file. Compressed formats hold
   // far more texels than bytes only for flat images, so the bound is generous, and it stops
   // a 1 kB file from asking for gigabytes before a single pixel is read.
@@ -184,7 +178,7 @@ EnvironmentMap readEnvironmentMap(const std::string& path)
   if (texels > mostTexels || texels > maxEnvironmentTexels)
   {
     std::ostringstream message;
-    message << path << ": the header declares " << shapeText(spec.width, spec.height) << " texels ("
+    message << path << ": the header declares " << shapeText(width, height) << " texels ("
             << static_cast<double>(texels) * channels * sizeof(float) / 1e9 << " GB as floats), more than "
             << (texels > maxEnvironmentTexels ? "ShadeLab takes (" + std::to_string(maxEnvironmentTexels) + " texels)"
                                               : "a file of " + std::to_string(fileBytes) + " bytes can hold")
@@ -192,14 +186,11 @@ EnvironmentMap readEnvironmentMap(const std::string& path)
     throw std::runtime_error(message.str());
   }
   std::vector<float> pixels(texels * channels);
-  if (!input->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, pixels.data()))
-  {
-    throw std::runtime_error(path + ": cannot read as an image: " + input->geterror());
-  }
+  input->read(channels, pixels.data());
 
   EnvironmentMap map;
-  map.width = spec.width;
-  map.height = spec.height;
+  map.width = width;
+  map.height = height;
   map.radiance.resize(texels);
   for (std::size_t i = 0; i < texels; ++i)
   {

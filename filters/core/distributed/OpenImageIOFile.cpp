@@ -1,0 +1,49 @@
+// libshadelab_images.so: ImageFile through OpenImageIO, loaded by ImageFile::open at the first
+// image read (ImageFile.h says why it is a module of its own).
+#include "ImageFile.h"
+
+#include <OpenImageIO/imageio.h>
+
+namespace shadelab
+{
+namespace
+{
+class OpenImageIOFile : public ImageFile
+{
+public:
+  OpenImageIOFile(std::unique_ptr<OIIO::ImageInput> input, std::string path)
+    : input_(std::move(input))
+    , path_(std::move(path))
+  {
+  }
+  int width() const override { return input_->spec().width; }
+  int height() const override { return input_->spec().height; }
+  int channels() const override { return input_->spec().nchannels; }
+  void read(int channels, float* pixels) override
+  {
+    if (!input_->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, pixels))
+    {
+      throw std::runtime_error(path_ + ": cannot read as an image: " + input_->geterror());
+    }
+  }
+
+private:
+  std::unique_ptr<OIIO::ImageInput> input_;
+  std::string path_;
+};
+}
+}
+
+extern "C" __attribute__((visibility("default"))) shadelab::ImageFile* shadelab_open_image_v1(
+  const std::string& path, std::string& error)
+{
+  // Clears any error an earlier failure left, so that the message is this file's.
+  OIIO::geterror();
+  auto input = OIIO::ImageInput::open(path);
+  if (!input)
+  {
+    error = OIIO::geterror();
+    return nullptr;
+  }
+  return new shadelab::OpenImageIOFile(std::move(input), path);
+}
