@@ -97,16 +97,18 @@ std::size_t currentAddressSpace()
   return 0;
 }
 
-/// Waits, a second at most, until every other thread of this process waits on something. A
-/// thread that a library started as it was loaded (OpenImageIO's dependencies start a logging
+/// Waits, for a second at most, until every other thread of this process waits on something.
+/// A thread that a library starts as it is loaded (OpenImageIO's dependencies start a logging
 /// pool of four) may still be running its start, and hold a lock of the allocator, when this
 /// thread forks: the child, which has only a copy of the lock, then waits for it forever.
 /// glibc's malloc takes its locks around fork; the allocator of clang 14's AddressSanitizer
-/// does not, and its reading children stalled on a busy machine.
+/// does not. This makes the hazard rarer, not impossible: a waiting thread may wake between the
+/// look and the fork, or wait while it holds a lock.
 void waitForOtherThreadsToWait()
 {
   const std::string self = std::to_string(::gettid());
-  for (int attempt = 0; attempt < 1000; ++attempt)
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(1);
+  while (std::chrono::steady_clock::now() < deadline)
   {
     bool waiting = true;
     std::error_code error;
@@ -287,7 +289,7 @@ IsolatedOutcome runIsolated(
     runChild(channel[1], resultPath, work, limits);
   }
   ::close(channel[1]);
-  if (meanwhile && !meanwhile())
+  auto stopChild = [&]
   {
     ::close(channel[0]);
     ::kill(child, SIGKILL);
@@ -295,8 +297,20 @@ IsolatedOutcome runIsolated(
     {
     }
     clearProgressLine();
-    outcome.end = IsolatedOutcome::End::Stopped;
-    return outcome;
+  };
+  try
+  {
+    if (meanwhile && !meanwhile())
+    {
+      stopChild();
+      outcome.end = IsolatedOutcome::End::Stopped;
+      return outcome;
+    }
+  }
+  catch (...)
+  {
+    stopChild(); // no reader left running after the error
+    throw;
   }
   bool stalled = false;
   const auto deadline =

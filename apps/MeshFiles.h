@@ -33,8 +33,9 @@ void writeThroughTemporary(
 void writeTextFile(const std::string& fileName, const std::string& text);
 
 /// Reads .vtp, .vtk (legacy polydata), .ply, .obj or .stl, showing progress on a terminal.
-/// An .obj, .ply or .stl is checked whole first (MeshFileChecks.h); ignored, when given, is set
-/// to what the file holds that the reader skips ("" when nothing). Throws UserError.
+/// An .obj, .ply or .stl is checked whole while it is read (MeshFileChecks.h); ignored, when
+/// given, is set to what the file holds that the reader skips ("" when nothing). Throws
+/// UserError.
 vtkSmartPointer<vtkPolyData> readMesh(const std::string& fileName, std::string* ignored = nullptr);
 
 /// The extensions readDataSet understands, for messages.

@@ -1,4 +1,4 @@
-# OpenImageIO, found as ShadeLab needs it, here and in projects that find ShadeLab's package.
+# OpenImageIO, found as ShadeLab's image module and the tests that write images need it.
 # Debian 12's package lists /usr/include/opencv4 among its include directories, which only
 # libopencv-dev (not one of its dependencies) creates, and CMake refuses a missing one: keep
 # those that exist.

@@ -22,4 +22,14 @@ step("running README.md's Python example" "${CMAKE_COMMAND}" -E chdir "${SOURCE}
 if(NOT step_output MATCHES "${EXPECTED}")
   message(FATAL_ERROR "README.md's Python example did not finish:\n${step_output}")
 endif()
+# A map is read through the image module the install put under its prefix (ImageFile.h), found
+# from the package's own place, not the build tree's.
+file(WRITE "${WORK}/map.json" "{ \"lights\": [ { \"name\": \"sky\", \"type\": \"environment\", \"file\": "
+  "\"${SOURCE}/data/envmaps/venice_sunset_1k.hdr\", \"estimator\": \"sh\" } ] }")
+step("shading under a map" "${CMAKE_COMMAND}" -E chdir "${WORK}/elsewhere" env "PYTHONPATH=${packages}" "${PYTHON}" -c
+  "import shadelab\nfrom vtkmodules.vtkFiltersSources import vtkSphereSource\nsphere = vtkSphereSource()\nshade = shadelab.vtkLocalReflectanceFilter()\nshade.SetInputConnection(sphere.GetOutputPort())\nshade.SetSceneFileName('${WORK}/map.json')\nshade.Update()\nprint([line.split()[-1] for line in open('/proc/self/maps') if 'libshadelab_images' in line][0])")
+string(FIND "${step_output}" "${WORK}/prefix/" found)
+if(NOT found EQUAL 0)
+  message(FATAL_ERROR "the image module was loaded from ${step_output}, not from under ${WORK}/prefix")
+endif()
 message(STATUS "the package was imported from the install prefix and ran README.md's Python example")

@@ -21,6 +21,7 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <cerrno>
 #include <chrono>
 #include <csignal>
 #include <filesystem>
@@ -125,6 +126,18 @@ TEST(IsolatedWork, EveryEndingIsReported)
     },
     limits, [] { return false; });
   EXPECT_EQ(stopped.end, IsolatedOutcome::End::Stopped);
+  // A check that throws stops the child too, before its error goes on: no child is left.
+  EXPECT_THROW(runIsolated(
+                 [](ChildChannel&)
+                 {
+                   for (volatile unsigned long i = 0;; i = i + 1)
+                   {
+                   }
+                 },
+                 limits, []() -> bool { throw std::runtime_error("the check failed"); }),
+    std::runtime_error);
+  EXPECT_EQ(::waitpid(-1, nullptr, WNOHANG), -1);
+  EXPECT_EQ(errno, ECHILD);
   bool checked = false;
   IsolatedOutcome kept = runIsolated([](ChildChannel& channel) { channel.finished(); }, limits,
     [&]

@@ -16,34 +16,49 @@ namespace fs = std::filesystem;
 
 constexpr const char* moduleName = "libshadelab_images.so";
 
+#define SHADELAB_TEXT(name) #name
+#define SHADELAB_NAME_TEXT(name) SHADELAB_TEXT(name)
+/// The module's entry point, named for ShadeLab's version: a module of another version is not
+/// taken for this one's.
+constexpr const char* entryPoint = SHADELAB_NAME_TEXT(SHADELAB_IMAGE_ENTRY);
+
+/// SHADELAB_IMAGE_MODULE, or null where it is unset or empty.
+const char* givenModule()
+{
+  const char* given = std::getenv("SHADELAB_IMAGE_MODULE");
+  return given && *given ? given : nullptr;
+}
+
 /// Where the module may be, in the order it is sought: where SHADELAB_IMAGE_MODULE says only,
 /// if it is set.
 std::vector<fs::path> moduleCandidates()
 {
-  if (const char* given = std::getenv("SHADELAB_IMAGE_MODULE"))
-  {
-    return { fs::path(given) };
-  }
-  // The object this code was linked into (a plugin's or a Python extension's path; for a program
-  // dladdr may give only the name it was run by) and the running program, with the folders above
-  // them: an install moved to another prefix keeps the module at the same place relative to them.
-  std::vector<fs::path> origins;
   std::error_code error;
-  const fs::path program = fs::read_symlink("/proc/self/exe", error);
-  if (!error)
+  if (const char* given = givenModule())
   {
-    origins.push_back(program);
+    return { fs::absolute(given, error) }; // dlopen would search the library path for a bare name
   }
+  // The object this code was linked into (a plugin or a Python extension; for a program dladdr
+  // may give only the name it was run by), then the running program, and the folders up to five
+  // above each (a Python package's or a plugin's prefix): an install moved to another prefix
+  // keeps the module at the same place relative to them.
+  std::vector<fs::path> origins;
   Dl_info self{};
   if (::dladdr(reinterpret_cast<void*>(&moduleCandidates), &self) && self.dli_fname && std::strchr(self.dli_fname, '/'))
   {
     origins.push_back(fs::absolute(self.dli_fname, error));
   }
+  const fs::path program = fs::read_symlink("/proc/self/exe", error);
+  if (!error)
+  {
+    origins.push_back(program);
+  }
   std::vector<fs::path> candidates;
   for (const fs::path& origin : origins)
   {
     candidates.push_back(origin.parent_path() / moduleName);
-    for (fs::path folder = origin.parent_path(); folder != folder.root_path(); folder = folder.parent_path())
+    fs::path folder = origin.parent_path();
+    for (int level = 0; level <= 5 && folder != folder.root_path(); ++level, folder = folder.parent_path())
     {
       candidates.push_back(folder / SHADELAB_IMAGE_MODULE_UNDER_PREFIX);
     }
@@ -91,15 +106,15 @@ OpenImageFunction openImageFunction()
             "): is it ShadeLab's " + moduleName + ", and is OpenImageIO installed (Debian 12: libopenimageio2.4)?";
           return;
         }
-        function = reinterpret_cast<OpenImageFunction>(::dlsym(module, openImageSymbol));
+        function = reinterpret_cast<OpenImageFunction>(::dlsym(module, entryPoint));
         if (!function)
         {
-          failure = "ShadeLab's image module " + candidate.string() + " has no " + openImageSymbol +
-            ": it is from another version of ShadeLab; reinstall it";
+          failure = candidate.string() + " has no " + entryPoint +
+            ": it is not the image module of this version of ShadeLab; reinstall ShadeLab";
         }
         return;
       }
-      failure = notFoundMessage(std::getenv("SHADELAB_IMAGE_MODULE"), sought);
+      failure = notFoundMessage(givenModule(), sought);
     });
   if (!function)
   {

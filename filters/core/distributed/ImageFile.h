@@ -27,8 +27,7 @@ public:
   virtual void read(int channels, float* pixels) = 0;
 };
 
-/// The module's one entry point, which open() looks up by this name: the image at path, or null
-/// with error set to why it cannot be read.
+/// The module's one entry point (SHADELAB_IMAGE_ENTRY, a name that holds ShadeLab's version):
+/// the image at path, or null with error set to why it cannot be read.
 using OpenImageFunction = ImageFile* (*)(const std::string& path, std::string& error);
-constexpr const char* openImageSymbol = "shadelab_open_image_v1";
 }

@@ -34,7 +34,7 @@ private:
 }
 }
 
-extern "C" __attribute__((visibility("default"))) shadelab::ImageFile* shadelab_open_image_v1(
+extern "C" __attribute__((visibility("default"))) shadelab::ImageFile* SHADELAB_IMAGE_ENTRY(
   const std::string& path, std::string& error)
 {
   // Clears any error an earlier failure left, so that the message is this file's.
