@@ -253,6 +253,15 @@ TEST(Interreflection, AutoBouncesStopWhereTheRestFitsTheTolerance)
     EXPECT_NEAR(tupleOf(shaded, ("indirect_bounce_" + std::to_string(n)).c_str(), 0).b, bounce, 1e-5 * bounce) << n;
   }
   EXPECT_FALSE(shaded->GetPointData()->GetArray("indirect_bounce_11"));
+  EXPECT_EQ(filter->GetInterreflectionReport().find("asked for"), std::string::npos);
+  // One asked for by name past them is not written, and the report says so.
+  filter->SetArraySelection({ "indirect", "indirect_bounce_12" });
+  filter->Update();
+  EXPECT_FALSE(filter->GetOutput()->GetPointData()->GetArray("indirect_bounce_12"));
+  const std::string& report = filter->GetInterreflectionReport();
+  const std::string note = "; indirect_bounce_12 was asked for, past the 10 bounces the plan made: not written";
+  ASSERT_GE(report.size(), note.size());
+  EXPECT_EQ(report.substr(report.size() - note.size()), note);
   const InterreflectionChoice& chosen = *filter->GetMethodPlan()->interreflection;
   EXPECT_EQ(chosen.bounces, 10);
   EXPECT_NEAR(chosen.bouncesLeftOut, rest, 1e-6 * rest);

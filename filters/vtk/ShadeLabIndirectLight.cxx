@@ -271,6 +271,27 @@ void dropSourcesNotAsked(const Scene& scene, const ArrayRequest& asked, const st
 }
 }
 
+/// The bounce arrays asked for by name past the count that "bounces": "auto" chose, which are not
+/// written (-a all asks for every one a plan may choose, and is not told).
+std::string bouncesNotMade(const ArrayRequest& asked, const std::string& prefix, int made)
+{
+  std::string note;
+  const auto& bounces = asked.bounces;
+  if (std::all_of(bounces.begin(), bounces.end(), [](bool b) { return b; }))
+  {
+    return note;
+  }
+  for (std::size_t n = std::size_t(made) + 1; n <= bounces.size(); ++n)
+  {
+    if (bounces[n - 1])
+    {
+      note += "; " + indirectBounceArrayName(prefix, int(n)) + " was asked for, past the " + std::to_string(made) +
+        " bounces the plan made: not written";
+    }
+  }
+  return note;
+}
+
 std::string addIndirectLight(vtkInterreflectionFilter* step, vtkPolyData* input, vtkDataArray* shadingNormals,
   const Scene& scene, const ArrayRequest& asked, const VertexMaterial* material, const std::string& prefix,
   std::vector<vtkSmartPointer<vtkDataArray>>& arrays, const MeshPieces& pieces, InterreflectionChoice* choice)
@@ -329,6 +350,6 @@ std::string addIndirectLight(vtkInterreflectionFilter* step, vtkPolyData* input,
   // What the step holds is not kept until the next run (the arrays asked for are in `arrays`).
   step->GetOutput()->Initialize();
   step->SetInputData(nullptr);
-  return step->GetReport();
+  return step->GetReport() + bouncesNotMade(asked, prefix, step->GetBounceCount());
 }
 }
