@@ -5,6 +5,7 @@ line's executable), SHADELAB_DATA (the repository's data/) and SHADELAB_WORK (a 
 """
 import os
 import subprocess
+import sys
 import unittest
 
 import numpy as np
@@ -175,6 +176,37 @@ class Errors(unittest.TestCase):
         self.assertEqual(run.returncode, 1, run.stderr)
         self.assertTrue(run.stderr.startswith("shadelab: "), run.stderr)
         return run.stderr[len("shadelab: "):].strip()
+
+    def test_the_image_module_is_found_once_it_is_named(self):
+        """A failure to load the module that reads maps is not kept: a long-lived process finds it
+        once it is named. In a Python of its own, which has not loaded the module yet."""
+        scene = os.path.join(WORK, "sunset_sky.json")
+        with open(scene, "w") as out:
+            out.write('{"lights": [{"name": "sky", "type": "environment", "estimator": "sh", "file": "%s"}]}'
+                      % os.path.join(DATA, "envmaps", "venice_sunset_1k.hdr"))
+        module = os.path.join(os.path.dirname(os.path.dirname(SHADELAB)), "lib", "shadelab", "libshadelab_images.so")
+        nowhere = os.path.join(WORK, "nowhere", "libshadelab_images.so")
+        code = "\n".join([
+            "import os, shadelab",
+            "from vtkmodules.vtkFiltersSources import vtkSphereSource",
+            "sphere = vtkSphereSource()",
+            "shade = shadelab.vtkLocalReflectanceFilter()",
+            "shade.SetInputConnection(sphere.GetOutputPort())",
+            "shade.SetSceneFileName(%r)" % scene,
+            "os.environ['SHADELAB_IMAGE_MODULE'] = %r" % nowhere,
+            "try:",
+            "    shade.Update()",
+            "except shadelab.ShadeLabError as error:",
+            "    print(error)",
+            "os.environ['SHADELAB_IMAGE_MODULE'] = %r" % module,
+            "shade.Modified()",
+            "shade.Update()",
+            "print(shade.GetOutput().GetPointData().GetArray('total').GetNumberOfTuples())"])
+        run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+        self.assertEqual(run.returncode, 0, run.stderr)
+        self.assertEqual(run.stdout.splitlines(), [
+            scene + ": /lights/0/file: SHADELAB_IMAGE_MODULE names " + nowhere + ", which does not exist: give the path "
+            "of ShadeLab's libshadelab_images.so, or unset it", "50"])
 
     def test_a_missing_scene_file(self):
         missing = os.path.join(WORK, "no_such_scene.json")

@@ -2,6 +2,7 @@
 
 #include <dlfcn.h>
 
+#include <algorithm>
 #include <cstring>
 #include <filesystem>
 #include <mutex>
@@ -54,17 +55,24 @@ std::vector<fs::path> moduleCandidates()
     origins.push_back(program);
   }
   std::vector<fs::path> candidates;
+  auto add = [&](const fs::path& candidate)
+  {
+    if (std::find(candidates.begin(), candidates.end(), candidate) == candidates.end())
+    {
+      candidates.push_back(candidate);
+    }
+  };
   for (const fs::path& origin : origins)
   {
-    candidates.push_back(origin.parent_path() / moduleName);
+    add(origin.parent_path() / moduleName);
     fs::path folder = origin.parent_path();
     for (int level = 0; level <= 5 && folder != folder.root_path(); ++level, folder = folder.parent_path())
     {
-      candidates.push_back(folder / SHADELAB_IMAGE_MODULE_UNDER_PREFIX);
+      add(folder / SHADELAB_IMAGE_MODULE_UNDER_PREFIX);
     }
   }
-  candidates.emplace_back(SHADELAB_IMAGE_MODULE_INSTALLED);
-  candidates.emplace_back(SHADELAB_IMAGE_MODULE_BUILT);
+  add(SHADELAB_IMAGE_MODULE_INSTALLED);
+  add(SHADELAB_IMAGE_MODULE_BUILT);
   return candidates;
 }
 
@@ -81,44 +89,46 @@ std::string notFoundMessage(const char* given, const std::string& sought)
     "): reinstall ShadeLab, or set SHADELAB_IMAGE_MODULE to the module's path";
 }
 
-/// The module's entry point, loaded once. Throws std::runtime_error with where it was sought.
+/// The module's entry point, from the first candidate that exists. Throws std::runtime_error
+/// with where it was sought, or why what was found does not load.
+OpenImageFunction loadedEntryPoint()
+{
+  std::string sought;
+  for (const fs::path& candidate : moduleCandidates())
+  {
+    std::error_code error;
+    if (!fs::exists(candidate, error))
+    {
+      sought += (sought.empty() ? "" : ", ") + candidate.string();
+      continue;
+    }
+    void* module = ::dlopen(candidate.c_str(), RTLD_NOW | RTLD_LOCAL);
+    if (!module)
+    {
+      throw std::runtime_error("ShadeLab's image module " + candidate.string() + " does not load (" + ::dlerror() +
+        "): is it ShadeLab's " + moduleName + ", and is OpenImageIO installed (Debian 12: libopenimageio2.4)?");
+    }
+    if (auto function = reinterpret_cast<OpenImageFunction>(::dlsym(module, entryPoint)))
+    {
+      return function;
+    }
+    ::dlclose(module);
+    throw std::runtime_error(candidate.string() + " has no " + entryPoint +
+      ": it is not the image module of this version of ShadeLab; reinstall ShadeLab");
+  }
+  throw std::runtime_error(notFoundMessage(givenModule(), sought));
+}
+
+/// The module's entry point, loaded at the first image. A failure is not kept: a long-lived
+/// process (ParaView, Python) finds the module once it is installed or named.
 OpenImageFunction openImageFunction()
 {
-  static std::once_flag loaded;
+  static std::mutex loading;
   static OpenImageFunction function = nullptr;
-  static std::string failure;
-  std::call_once(loaded,
-    []
-    {
-      std::string sought;
-      for (const fs::path& candidate : moduleCandidates())
-      {
-        std::error_code error;
-        if (!fs::exists(candidate, error))
-        {
-          sought += (sought.empty() ? "" : ", ") + candidate.string();
-          continue;
-        }
-        void* module = ::dlopen(candidate.c_str(), RTLD_NOW | RTLD_LOCAL);
-        if (!module)
-        {
-          failure = "ShadeLab's image module " + candidate.string() + " does not load (" + ::dlerror() +
-            "): is it ShadeLab's " + moduleName + ", and is OpenImageIO installed (Debian 12: libopenimageio2.4)?";
-          return;
-        }
-        function = reinterpret_cast<OpenImageFunction>(::dlsym(module, entryPoint));
-        if (!function)
-        {
-          failure = candidate.string() + " has no " + entryPoint +
-            ": it is not the image module of this version of ShadeLab; reinstall ShadeLab";
-        }
-        return;
-      }
-      failure = notFoundMessage(givenModule(), sought);
-    });
+  const std::lock_guard<std::mutex> lock(loading);
   if (!function)
   {
-    throw std::runtime_error(failure);
+    function = loadedEntryPoint();
   }
   return function;
 }
