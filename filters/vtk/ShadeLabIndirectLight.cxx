@@ -269,7 +269,6 @@ void dropSourcesNotAsked(const Scene& scene, const ArrayRequest& asked, const st
                  { return array->GetName() && std::count(sources.begin(), sources.end(), array->GetName()) > 0; }),
     arrays.end());
 }
-}
 
 /// The bounce arrays asked for by name past the count that "bounces": "auto" chose, which are not
 /// written (-a all asks for every one a plan may choose, and is not told).
@@ -290,6 +289,7 @@ std::string bouncesNotMade(const ArrayRequest& asked, const std::string& prefix,
     }
   }
   return note;
+}
 }
 
 std::string addIndirectLight(vtkInterreflectionFilter* step, vtkPolyData* input, vtkDataArray* shadingNormals,

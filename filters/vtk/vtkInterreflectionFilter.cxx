@@ -7,6 +7,7 @@
 #include "ShadeLabMeshPieces.h"
 #include "ShadeLabMeshPolygons.h"
 #include "ShadeLabPieceExchange.h"
+#include "ShadeLabRealArrays.h"
 #include "ShadeLabRunAborted.h"
 #include "ShadeLabThreadCount.h"
 #include "ShadeLabWholeMesh.h"
@@ -171,21 +172,10 @@ void smpLoop(std::size_t count, const std::function<void(std::size_t, std::size_
     [&](vtkIdType begin, vtkIdType end) { body(std::size_t(begin), std::size_t(end)); });
 }
 
-/// A named point array of `tuples` tuples of `components`, in float64 or float32.
-vtkSmartPointer<vtkDataArray> realArray(const std::string& name, int components, vtkIdType tuples, bool float64)
-{
-  vtkSmartPointer<vtkDataArray> array = float64 ? vtkSmartPointer<vtkDataArray>(vtkSmartPointer<vtkDoubleArray>::New())
-                                                : vtkSmartPointer<vtkDataArray>(vtkSmartPointer<vtkFloatArray>::New());
-  array->SetName(name.c_str());
-  array->SetNumberOfComponents(components);
-  array->SetNumberOfTuples(tuples);
-  return array;
-}
-
 /// An RGB point array of the values, in float64 or float32.
 vtkSmartPointer<vtkDataArray> rgbArray(const std::string& name, const std::vector<shadelab::Rgb>& values, bool float64)
 {
-  vtkSmartPointer<vtkDataArray> array = realArray(name, 3, static_cast<vtkIdType>(values.size()), float64);
+  vtkSmartPointer<vtkDataArray> array = shadelab::realArray(name, 3, static_cast<vtkIdType>(values.size()), float64);
   for (std::size_t i = 0; i < values.size(); ++i)
   {
     array->SetTuple(static_cast<vtkIdType>(i), &values[i].x);
@@ -200,7 +190,7 @@ vtkSmartPointer<vtkDataArray> indirectTransferArray(const std::string& name, con
   std::size_t first, std::size_t coefficients, int count, bool float64)
 {
   const vtkIdType points = static_cast<vtkIdType>(carried.size() / coefficients);
-  vtkSmartPointer<vtkDataArray> array = realArray(name, 3 * count, points, float64);
+  vtkSmartPointer<vtkDataArray> array = shadelab::realArray(name, 3 * count, points, float64);
   for (vtkIdType i = 0; i < points; ++i)
   {
     const shadelab::Rgb* vertex = &carried[static_cast<std::size_t>(i) * coefficients + first];

@@ -3,6 +3,7 @@
 #include "EnvironmentLightEstimator.h"
 #include "EnvironmentMap.h"
 #include "RadianceTransfer.h"
+#include "ShadeLabRealArrays.h"
 
 #include "vtkArrayDispatch.h"
 #include "vtkDataArrayRange.h"
@@ -82,12 +83,8 @@ template<typename Vector>
 vtkSmartPointer<vtkDataArray> relit(
   vtkDataArray* transfer, const shadelab::ShCoefficients& radiance, const std::string& name)
 {
-  vtkSmartPointer<vtkDataArray> irradiance = transfer->GetDataType() == VTK_DOUBLE
-    ? vtkSmartPointer<vtkDataArray>(vtkSmartPointer<vtkDoubleArray>::New())
-    : vtkSmartPointer<vtkDataArray>(vtkSmartPointer<vtkFloatArray>::New());
-  irradiance->SetName(name.c_str());
-  irradiance->SetNumberOfComponents(3);
-  irradiance->SetNumberOfTuples(transfer->GetNumberOfTuples());
+  vtkSmartPointer<vtkDataArray> irradiance =
+    shadelab::realArray(name, 3, transfer->GetNumberOfTuples(), transfer->GetDataType() == VTK_DOUBLE);
   using Reals = vtkArrayDispatch::Reals;
   RelightWorker<Vector> worker{ &radiance };
   if (!vtkArrayDispatch::Dispatch2ByValueType<Reals, Reals>::Execute(transfer, irradiance.Get(), worker))

@@ -152,15 +152,15 @@ EnvironmentMap readEnvironmentMap(const std::string& path)
     throw std::runtime_error(path + ": no such file");
   }
   const std::unique_ptr<ImageFile> input = ImageFile::open(path);
-  const int width = input->width(), height = input->height();
+  const int width = input->width(), height = input->height(), fileChannels = input->channels();
   if (width <= 0 || height <= 0)
   {
     throw std::runtime_error(path + ": the image is empty (" + shapeText(width, height) + ")");
   }
-  if (input->channels() != 1 && input->channels() < 3)
+  if (fileChannels != 1 && fileChannels < 3)
   {
     throw std::runtime_error(
-      path + ": has " + std::to_string(input->channels()) + " channels; expected 1 (grey) or 3 or more (RGB)");
+      path + ": has " + std::to_string(fileChannels) + " channels; expected 1 (grey) or 3 or more (RGB)");
   }
   if (static_cast<long long>(width) != 2LL * height)
   {
@@ -168,7 +168,7 @@ EnvironmentMap readEnvironmentMap(const std::string& path)
       path + ": an equirectangular map must be twice as wide as it is high; this one is " + shapeText(width, height));
   }
 
-  const int channels = input->channels() == 1 ? 1 : 3;
+  const int channels = fileChannels == 1 ? 1 : 3;
   const std::size_t texels = static_cast<std::size_t>(width) * height;
   // A header can declare any size; the pixels must be in the file. Compressed formats hold
   // far more texels than bytes only for flat images, so the bound is generous, and it stops

@@ -76,9 +76,8 @@ const std::array<TermInfo, InterreflectionTermCount> interreflectionTerms = { {
 /// What bounce n adds: "indirect_bounce_<n>".
 const char* const indirectBouncePrefix = "indirect_bounce_";
 const char* const indirectBounceDescription = "the irradiance that bounce n alone adds to indirect_irradiance, RGB";
-const char* const plannedBounceDescription =
-  "the irradiance that bounce n alone adds to indirect_irradiance, RGB; under \"bounces\": \"auto\", written for "
-  "each bounce the tolerance's plan makes";
+const std::string plannedBounceDescription = std::string(indirectBounceDescription) +
+  "; under \"bounces\": \"auto\", written for each bounce the tolerance's plan makes";
 
 /// How many indirect_bounce_<n> arrays the scene can write: its bounces, or under "bounces":
 /// "auto" as many as a plan may choose, since the count is known only once the direct light is.
