@@ -8,6 +8,8 @@
 #include <glm/geometric.hpp>
 
 #include <algorithm>
+#include <atomic>
+#include <cstdlib>
 #include <cstring>
 #include <stdexcept>
 #include <string>
@@ -201,6 +203,20 @@ std::vector<OccluderMesh::NormalCone> ownNormalConesOf(const std::vector<float>&
   }
   return pointCones;
 }
+
+/// Whether the process has begun to exit. ParaView deletes its filters as its own libraries
+/// are unloaded at exit, after Embree's static state has gone: a release then locks a mutex
+/// that Embree has freed, which threw ("pthread_mutex_lock failed") or, once the memory was
+/// reused, waited forever (pvpython hung after tests/paraview_plugin_check.py's last check).
+std::atomic<bool> processExiting{ false };
+
+/// Registered after Embree is loaded, so that it runs before Embree's static destructors
+/// (exit runs its handlers last registered, first run).
+void watchForExit()
+{
+  static const bool watching = std::atexit([] { processExiting = true; }) == 0;
+  (void)watching;
+}
 }
 
 /// The Embree device and scene, kept out of the header so that users of OccluderMesh need no
@@ -212,24 +228,19 @@ struct OccluderMesh::Embree
 
   ~Embree()
   {
-    // Embree can throw here when the process is ending: ParaView deletes its filters after
-    // Embree's own static state has gone, and a release then throws from a lock
-    // ("pthread_mutex_lock failed"), which out of a destructor would abort ParaView as it
-    // exits (tests/paraview_plugin_check.py showed it at every run). What is released then no
-    // longer matters.
-    try
+    // Once the process is exiting, Embree may be gone (watchForExit); what would be released
+    // then no longer matters.
+    if (processExiting)
     {
-      if (scene)
-      {
-        rtcReleaseScene(scene);
-      }
-      if (device)
-      {
-        rtcReleaseDevice(device);
-      }
+      return;
     }
-    catch (...)
+    if (scene)
     {
+      rtcReleaseScene(scene);
+    }
+    if (device)
+    {
+      rtcReleaseDevice(device);
     }
   }
 
@@ -277,6 +288,7 @@ OccluderMesh::OccluderMesh(UnitFrame frame, const PolygonList& polygons)
   jointNormals_ = jointNormalsOf(frame_.vertices, triangles_, copyGroups, groups);
   ownReach_ = ownReachOf(frame_.vertices, pointCount, triangles_, copyGroups, groups);
   ownNormalCones_ = ownNormalConesOf(frame_.vertices, pointCount, triangles_, copyGroups, groups);
+  watchForExit();
   embree_ = std::make_unique<Embree>();
   embree_->device = rtcNewDevice(nullptr);
   if (!embree_->device)
