@@ -1,12 +1,11 @@
-// Environment maps: orientation, texel solid angles, downsampling, reading HDR files and
-// their failures, the 9-coefficient irradiance of Ramamoorthi and Hanrahan, and importance
-// sampling by luminance.
+// Environment maps: orientation, texel solid angles, downsampling, the bundled map read from
+// its two files (test_map_files.cpp reads the maps it writes), the 9-coefficient irradiance of
+// Ramamoorthi and Hanrahan, and importance sampling by luminance.
 #include "EnvironmentMap.h"
 #include "EnvironmentSampler.h"
 #include "ShRotation.h"
 #include "SphericalHarmonics.h"
 
-#include <OpenImageIO/imageio.h>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/trigonometric.hpp>
 #include <gtest/gtest.h>
@@ -14,7 +13,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <fstream>
 #include <functional>
 #include <iostream>
 #include <limits>
@@ -259,188 +257,7 @@ TEST(Downsampled, RefusesWidthsThatAreNotEvenDivisors)
   EXPECT_THROW(downsampled(mapOf(64, 64, [](const glm::dvec3&) { return Rgb(1.0); }), 32), std::invalid_argument);
 }
 
-// --- Reading files --------------------------------------------------------------------------
-
-std::string tempPath(const std::string& name)
-{
-  return ::testing::TempDir() + "shadelab_envmap_" + name;
-}
-
-void writeImage(const std::string& path, int width, int height, int channels, const std::vector<float>& pixels,
-  OIIO::TypeDesc storedAs)
-{
-  const auto output = OIIO::ImageOutput::create(path);
-  ASSERT_TRUE(output) << OIIO::geterror();
-  const OIIO::ImageSpec spec(width, height, channels, storedAs);
-  ASSERT_TRUE(output->open(path, spec)) << output->geterror();
-  ASSERT_TRUE(output->write_image(OIIO::TypeDesc::FLOAT, pixels.data())) << output->geterror();
-  ASSERT_TRUE(output->close());
-}
-
-std::vector<float> randomPixels(std::size_t count, unsigned seed)
-{
-  // Log-uniform over five decades, as in real HDR maps.
-  std::mt19937_64 random(seed);
-  std::uniform_real_distribution<float> exponent(-2.0f, 3.0f);
-  std::vector<float> pixels(count);
-  for (float& p : pixels)
-  {
-    p = std::pow(10.0f, exponent(random));
-  }
-  return pixels;
-}
-
-std::string readError(const std::string& path)
-{
-  try
-  {
-    readEnvironmentMap(path);
-  }
-  catch (const std::runtime_error& error)
-  {
-    return error.what();
-  }
-  ADD_FAILURE() << path << " was read without an error";
-  return "";
-}
-
-TEST(ReadEnvironmentMap, RadianceHdrRoundTrip)
-{
-  const std::string path = tempPath("round_trip.hdr");
-  const std::vector<float> pixels = randomPixels(16 * 8 * 3, 3);
-  writeImage(path, 16, 8, 3, pixels, OIIO::TypeDesc::FLOAT);
-  const EnvironmentMap map = readEnvironmentMap(path);
-  ASSERT_EQ(map.width, 16);
-  ASSERT_EQ(map.height, 8);
-  for (std::size_t i = 0; i < map.radiance.size(); ++i)
-  {
-    // RGBE keeps 8 bits of mantissa under the largest channel's exponent: every channel is
-    // within 1/128 of the texel's largest channel.
-    const Rgb written(pixels[3 * i], pixels[3 * i + 1], pixels[3 * i + 2]);
-    EXPECT_LE(largestComponent(map.radiance[i] - written), 0.01 * largestComponent(written)) << i;
-  }
-}
-
-TEST(ReadEnvironmentMap, HalfExrRoundTrip)
-{
-  const std::string path = tempPath("round_trip.exr");
-  const std::vector<float> pixels = randomPixels(16 * 8 * 3, 4);
-  writeImage(path, 16, 8, 3, pixels, OIIO::TypeDesc::HALF);
-  const EnvironmentMap map = readEnvironmentMap(path);
-  ASSERT_EQ(map.width, 16);
-  ASSERT_EQ(map.height, 8);
-  for (std::size_t i = 0; i < map.radiance.size(); ++i)
-  {
-    for (int c = 0; c < 3; ++c)
-    {
-      // A half has 11 significant bits: relative rounding below 2^-11 = 4.9e-4.
-      EXPECT_NEAR(map.radiance[i][c], pixels[3 * i + c], 1e-3 * pixels[3 * i + c]) << i;
-    }
-  }
-}
-
-TEST(ReadEnvironmentMap, OneChannelIsGreyAndAlphaIsIgnored)
-{
-  const std::string greyPath = tempPath("grey.exr");
-  const std::vector<float> grey = randomPixels(8 * 4, 5);
-  writeImage(greyPath, 8, 4, 1, grey, OIIO::TypeDesc::FLOAT);
-  const EnvironmentMap greyMap = readEnvironmentMap(greyPath);
-  for (std::size_t i = 0; i < grey.size(); ++i)
-  {
-    EXPECT_EQ(greyMap.radiance[i], Rgb(grey[i]));
-  }
-
-  const std::string rgbaPath = tempPath("rgba.exr");
-  std::vector<float> rgba = randomPixels(8 * 4 * 4, 6);
-  writeImage(rgbaPath, 8, 4, 4, rgba, OIIO::TypeDesc::FLOAT);
-  const EnvironmentMap rgbaMap = readEnvironmentMap(rgbaPath);
-  for (std::size_t i = 0; i < rgbaMap.radiance.size(); ++i)
-  {
-    EXPECT_EQ(rgbaMap.radiance[i], Rgb(rgba[4 * i], rgba[4 * i + 1], rgba[4 * i + 2]));
-  }
-}
-
-TEST(ReadEnvironmentMap, MissingFile)
-{
-  const std::string path = tempPath("missing.hdr");
-  EXPECT_EQ(readError(path), path + ": no such file");
-}
-
-TEST(ReadEnvironmentMap, NotAnImage)
-{
-  const std::string path = tempPath("text.hdr");
-  std::ofstream(path) << "this is text, not a Radiance picture\n";
-  // The reason after the colon is OpenImageIO's own, as it gives it.
-  ASSERT_FALSE(OIIO::ImageInput::open(path));
-  const std::string oiioError = OIIO::geterror();
-  EXPECT_FALSE(oiioError.empty());
-  EXPECT_EQ(readError(path), path + ": cannot read as an image: " + oiioError);
-}
-
-TEST(ReadEnvironmentMap, HeaderDeclaresMoreThanTheFileCanHold)
-{
-  // The sunset's header (1024 x 512) on its first 2000 bytes: 64 texels a byte at most is
-  // 128,000, so it is refused before anything is allocated or decoded.
-  std::ifstream whole(venicePath + ".hdr", std::ios::binary);
-  std::vector<char> start(2000);
-  whole.read(start.data(), static_cast<std::streamsize>(start.size()));
-  const std::string path = tempPath("cut_short.hdr");
-  std::ofstream(path, std::ios::binary).write(start.data(), whole.gcount());
-  EXPECT_EQ(readError(path),
-    path +
-      ": the header declares 1024x512 texels (0.00629146 GB as floats), more than a "
-      "file of 2000 bytes can hold: it is damaged, or too large a map");
-}
-
-TEST(ReadEnvironmentMap, TruncatedFile)
-{
-  // A real header with 20000 bytes of pixels: OpenImageIO opens it and fails while decoding.
-  std::ifstream whole(venicePath + ".hdr", std::ios::binary);
-  std::vector<char> start(20000);
-  whole.read(start.data(), static_cast<std::streamsize>(start.size()));
-  const std::string path = tempPath("truncated.hdr");
-  std::ofstream(path, std::ios::binary).write(start.data(), whole.gcount());
-  const std::string prefix = path + ": cannot read as an image: ";
-  const std::string message = readError(path);
-  EXPECT_EQ(message.substr(0, prefix.size()), prefix);
-  EXPECT_GT(message.size(), prefix.size()) << "no reason given";
-}
-
-TEST(ReadEnvironmentMap, EmptyImage)
-{
-  const std::string path = tempPath("empty.ppm");
-  std::ofstream(path) << "P6\n0 0\n255\n";
-  EXPECT_EQ(readError(path), path + ": the image is empty (0x0)");
-}
-
-TEST(ReadEnvironmentMap, TwoChannels)
-{
-  const std::string path = tempPath("two_channels.exr");
-  writeImage(path, 8, 4, 2, std::vector<float>(8 * 4 * 2, 1.0f), OIIO::TypeDesc::HALF);
-  EXPECT_EQ(readError(path), path + ": has 2 channels; expected 1 (grey) or 3 or more (RGB)");
-}
-
-TEST(ReadEnvironmentMap, NotTwiceAsWideAsHigh)
-{
-  const std::string path = tempPath("square.exr");
-  writeImage(path, 6, 4, 3, std::vector<float>(6 * 4 * 3, 1.0f), OIIO::TypeDesc::HALF);
-  EXPECT_EQ(readError(path), path + ": an equirectangular map must be twice as wide as it is high; this one is 6x4");
-}
-
-TEST(ReadEnvironmentMap, NegativeOrNonFiniteTexel)
-{
-  const std::string path = tempPath("bad_texel.exr");
-  std::vector<float> pixels(8 * 4 * 3, 1.0f);
-  pixels[3 * (2 * 8 + 5) + 1] = -1.5f; // column 5, row 2, green
-  writeImage(path, 8, 4, 3, pixels, OIIO::TypeDesc::FLOAT);
-  EXPECT_EQ(readError(path), path + ": texel (column 5, row 2) is not a finite non-negative radiance (1, -1.5, 1)");
-
-  // The first bad texel in row-major order is the one named.
-  pixels[3 * (1 * 8 + 3) + 2] = std::numeric_limits<float>::quiet_NaN(); // column 3, row 1
-  pixels[3 * (3 * 8 + 0) + 0] = std::numeric_limits<float>::infinity();
-  writeImage(path, 8, 4, 3, pixels, OIIO::TypeDesc::FLOAT);
-  EXPECT_EQ(readError(path), path + ": texel (column 3, row 1) is not a finite non-negative radiance (1, 1, nan)");
-}
+// --- The bundled map, read ---------------------------------------------------------------
 
 Rgb meanRadiance(const EnvironmentMap& map)
 {
