@@ -3,6 +3,7 @@
 #include "IsolatedWork.h"
 #include "MeshFileChecks.h"
 #include "MeshHandOver.h"
+#include "ObjScene.h"
 #include "ProgressLine.h"
 #include "VtkErrorCapture.h"
 
@@ -254,6 +255,34 @@ vtkSmartPointer<vtkDataSet> readIsolated(const std::string& fileName, const std:
   throw UserError(message.str());
 }
 
+/// An OBJ file with its materials where it names a material library that is there (ObjScene.h),
+/// else the mesh alone; what was skipped is a warning that names the file, in place of VTK's own.
+vtkSmartPointer<vtkPolyData> readObj(const std::string& fileName, ChildChannel& channel)
+{
+  std::vector<std::string> notes;
+  const ObjStatements statements = objStatementsOf(fileName, notes);
+  std::error_code error;
+  vtkSmartPointer<vtkPolyData> mesh;
+  if (!statements.library.empty() && !fs::is_regular_file(statements.library, error))
+  {
+    notes.push_back("names the material library " + statements.library +
+      ", which is not there: its parts are read as one mesh, shaded with the scene's material");
+  }
+  else if (!statements.library.empty())
+  {
+    mesh = importObjScene(fileName, statements, notes);
+  }
+  if (auto* window = QuietOutputWindow::SafeDownCast(vtkOutputWindow::GetInstance()))
+  {
+    window->takeWarnings();
+  }
+  for (const std::string& note : notes)
+  {
+    channel.warning(printableText(note, 400));
+  }
+  return mesh ? mesh : readDirectly(fileName, ".obj", channel.terminal());
+}
+
 /// Checked before a mesh is handed over: a reader can build cells whose offsets lie, and
 /// reading them back would trust the lie.
 void checkCells(vtkPolyData* mesh, const std::string& fileName)
@@ -275,7 +304,8 @@ vtkSmartPointer<vtkPolyData> readMesh(const std::string& fileName, std::string* 
     fileName, "VTK's " + extension + " reader", size,
     [&](ChildChannel& channel)
     {
-      vtkSmartPointer<vtkPolyData> mesh = readDirectly(fileName, extension, channel.terminal());
+      vtkSmartPointer<vtkPolyData> mesh =
+        extension == ".obj" ? readObj(fileName, channel) : readDirectly(fileName, extension, channel.terminal());
       checkCells(mesh, fileName);
       handOverMesh(mesh, channel.resultPath());
     },

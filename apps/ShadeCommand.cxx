@@ -14,6 +14,7 @@
 #include "MaterialArrays.h"
 #include "NumberText.h"
 #include "ShBands.h"
+#include "ShadeLabImportedParts.h"
 #include "ShadingFlags.h"
 #include "vtkLocalReflectanceFilter.h"
 #include "vtkShadingNormalsFilter.h"
@@ -21,8 +22,10 @@
 #include "vtkArrayDispatch.h"
 #include "vtkDataArray.h"
 #include "vtkDataArrayRange.h"
+#include "vtkFieldData.h"
 #include "vtkPointData.h"
 #include "vtkSMPTools.h"
+#include "vtkStringArray.h"
 #include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
@@ -415,12 +418,40 @@ struct StageSeconds
   double read = 0, shade = 0, write = 0;
 };
 
+/// Where the mesh has materials of its own (an OBJ's MTL): whether they shade it, and if not,
+/// why; "" for a mesh without.
+std::string ownMaterialsText(vtkPolyData* mesh, const Scene& scene, const ShadeOptions& options)
+{
+  if (!hasOwnMaterials(mesh))
+  {
+    return "";
+  }
+  auto* names = vtkStringArray::SafeDownCast(mesh->GetFieldData()->GetAbstractArray(partNamesArrayName));
+  const vtkIdType parts = names ? names->GetNumberOfValues() : 0;
+  std::string list;
+  for (vtkIdType p = 0; p < std::min<vtkIdType>(parts, 8); ++p)
+  {
+    list += (p ? ", " : "") + names->GetValue(p);
+  }
+  list += parts > 8 ? ", ..." : "";
+  const std::string partsText = countOf(std::size_t(parts), "part") + (list.empty() ? "" : ": " + list);
+  if (shadesWithOwnMaterials(scene, mesh, !options.colorBy.empty()))
+  {
+    return "the mesh's own, part by part (" + partsText + ")";
+  }
+  const std::string instead = scene.materialGiven ? "the scene's"
+    : !options.colorBy.empty()                    ? "--color-by's"
+                                                  : "the vtk model's (it reproduces VTK's renderer, not the MTL)";
+  return instead + ", in place of the mesh's own (" + partsText + ")";
+}
+
 /// The report's opening: the files, the mesh, the scene and the normals.
 void printRunHeading(
   const ShadingPipeline& pipeline, const Scene& scene, const std::string& ignored, const ShadeOptions& options)
 {
   vtkPolyData* output = pipeline.filter->GetOutput();
   const std::string& environmentMap = options.overrides.environment.file;
+  const std::string ownMaterials = ownMaterialsText(output, scene, options);
   std::cout << "shadelab shade: " << options.mesh << " -> " << options.output << "\n"
             << "  mesh: " << output->GetNumberOfPoints() << " vertices, "
             << output->GetNumberOfPolys() + output->GetNumberOfStrips() << " polygons and strips\n"
@@ -431,6 +462,7 @@ void printRunHeading(
             << (environmentMap.empty() ? "" : " + --envmap " + environmentMap) << " ("
             << (scene.model == ShadingModel::Lecture ? "lecture" : "vtk") << " model, "
             << countOf(scene.lights.size(), "light") << ")\n"
+            << (ownMaterials.empty() ? "" : "  material: " + ownMaterials + "\n")
             << "  normals: " << (options.splitAngle ? pipeline.splitter->GetReport() + " " : "")
             << pipeline.filter->GetNormalsReport() << "\n";
 }
@@ -579,7 +611,8 @@ CLI::App* addShadeCommand(CLI::App& cli, ShadeOptions& options)
 {
   CLI::App* command = cli.add_subcommand("shade",
     "Shade a mesh under a scene and write the terms as point-data arrays.\n"
-    "Reads .vtp, .vtk, .ply, .obj, .stl; writes .vtp (binary, compressed) or legacy .vtk\n(binary).");
+    "Reads .vtp, .vtk, .ply, .obj (with its MTL file's materials and textures), .stl; writes .vtp\n(binary, "
+    "compressed) or legacy .vtk (binary).");
   // In the order --help lists them.
   addFileOptions(command, options);
   addPrecisionOptions(command, options);

@@ -1,6 +1,8 @@
 #pragma once
 // The shadelab command run as a user runs it, for the command-line tests: each test gets a
 // folder of its own, and a run's exit code, standard output and standard error.
+#include "TestFolder.h"
+
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -22,28 +24,9 @@ struct Result
   std::string err;
 };
 
-class Cli : public ::testing::Test
+class Cli : public TestFolder
 {
 protected:
-  void SetUp() override
-  {
-    // The process id too: two test runs at once (two clones, or the sanitizer build's beside
-    // the plain one) must not share a folder.
-    folder = fs::temp_directory_path() /
-      ("shadelab_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" +
-        std::to_string(::getpid()));
-    fs::remove_all(folder);
-    fs::create_directories(folder);
-  }
-  void TearDown() override { fs::remove_all(folder); }
-
-  std::string file(const std::string& name, const std::string& content)
-  {
-    const std::string path = (folder / name).string();
-    std::ofstream(path) << content;
-    return path;
-  }
-
   static std::string slurp(const fs::path& path)
   {
     std::ifstream in(path);
@@ -85,7 +68,5 @@ protected:
   }
 
   std::string goodMesh() { return SHADELAB_SOURCE_DIR "/data/meshes/bunny_zipper.ply"; }
-
-  fs::path folder;
 };
 }

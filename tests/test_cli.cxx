@@ -913,12 +913,38 @@ TEST_F(Cli, BenchmarkTableAgreesWithItsBaseline)
   EXPECT_EQ(compared, 7);
 }
 
+TEST_F(Cli, AnObjIsShadedWithItsOwnMaterialsAndSaysSo)
+{
+  const std::string folderOfScene = SHADELAB_SOURCE_DIR "/data/scenes/still_life/";
+  const Result own = shadelab("shade " + folderOfScene + "still_life.obj --scene " + folderOfScene +
+    "still_life.json -o " + (folder / "own.vtp").string());
+  ASSERT_EQ(own.exitCode, 0) << own.err;
+  EXPECT_NE(own.out.find("  material: the mesh's own, part by part (3 parts: floor, ball, box)\n"), std::string::npos)
+    << own.out;
+  EXPECT_EQ(own.err, "");
+
+  // The same parts beside an MTL whose texture is missing, under a scene with a material.
+  fs::copy_file(folderOfScene + "still_life.obj", folder / "still_life.obj");
+  fs::copy_file(folderOfScene + "still_life.mtl", folder / "still_life.mtl");
+  const std::string scene =
+    file("grey.json", R"({ "material": { "kd": 0.5 }, "lights": [ { "type": "distant", "direction": [0, -1, 0] } ] })");
+  const Result grey = shadelab("shade still_life.obj --scene grey.json -o grey.vtp", "cd " + folder.string() + " && ");
+  ASSERT_EQ(grey.exitCode, 0) << grey.err;
+  EXPECT_NE(grey.out.find("  material: the scene's, in place of the mesh's own (3 parts: floor, ball, box)\n"),
+    std::string::npos)
+    << grey.out;
+  EXPECT_EQ(grey.err,
+    "shadelab: warning: still_life.obj: material 'floor' names the texture " + (folder / "checker.png").string() +
+      ", which VTK could not read: shaded with its diffuse colour alone\n");
+}
+
 TEST_F(Cli, HelpAndUsageErrors)
 {
   const Result help = shadelab("shade --help");
   EXPECT_EQ(help.exitCode, 0);
   EXPECT_NE(help.out.find("--arrays"), std::string::npos);
-  EXPECT_NE(help.out.find("Reads .vtp, .vtk, .ply, .obj, .stl"), std::string::npos);
+  EXPECT_NE(help.out.find("Reads .vtp, .vtk, .ply, .obj (with its MTL file's materials and textures), .stl"),
+    std::string::npos);
   const Result featureAngle = shadelab("shade " + goodMesh() + " -o out.vtp --feature-angle 200");
   EXPECT_EQ(featureAngle.exitCode, 2);
   EXPECT_EQ(

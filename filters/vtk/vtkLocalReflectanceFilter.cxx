@@ -4,6 +4,7 @@
 #include "MethodChoice.h"
 #include "SceneFrame.h"
 #include "ShadeLabFieldNotes.h"
+#include "ShadeLabImportedParts.h"
 #include "ShadeLabIndirectLight.h"
 #include "ShadeLabMaterialArrays.h"
 #include "ShadeLabMeshChecks.h"
@@ -503,6 +504,10 @@ bool vtkLocalReflectanceFilter::PlaceScene(vtkPolyData* input, const shadelab::M
   }
   // A scene written relative to the mesh is placed on it here, and checked where it lands.
   plan.scene = shadelab::placedOnMesh(*given, plan.extent);
+  if (shadelab::shadesWithOwnMaterials(plan.scene, input, this->ColorByArray))
+  {
+    plan.scene.material = shadelab::ownMaterial(plan.scene.material);
+  }
   if (this->ColorByArray)
   {
     if (!shadelab::isColorMapName(this->MaterialColorMap))

@@ -43,6 +43,8 @@ const std::string& defaultLightKitText()
 
 Scene defaultLightKit()
 {
-  return parseScene(defaultLightKitText(), "the default light kit");
+  Scene kit = parseScene(defaultLightKitText(), "the default light kit");
+  kit.materialGiven = false; // the kit's material is a default: a mesh's own materials win over it
+  return kit;
 }
 }

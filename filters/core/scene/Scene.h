@@ -89,6 +89,9 @@ struct Scene
   SceneFrame frame = SceneFrame::World;
   std::vector<NamedLight> lights;
   Material material;
+  /// Whether the scene gives the material: where it does not, a mesh file's own materials
+  /// shade it (an OBJ with its MTL file).
+  bool materialGiven = false;
   Viewer viewer;
   /// VtkOpenGL2 only: VTK's "lighting complexity 1", the single-headlight shader.
   /// SceneFromVtk sets it by VTK's own rule; the scene file sets it when the only light is a

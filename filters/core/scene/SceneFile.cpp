@@ -248,6 +248,7 @@ Scene readScene(const Json& document, const std::string& sceneFile)
   {
     scene.viewer = readViewer(root.at("viewer"));
   }
+  scene.materialGiven = root.has("material");
   scene.material =
     readMaterial(root.has("material") ? root.at("material") : JsonNode(Json::object(), "/material"), scene.model);
   const JsonNode lights = root.at("lights");

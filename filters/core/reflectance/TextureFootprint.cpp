@@ -1,0 +1,156 @@
+#include "TextureFootprint.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <unordered_map>
+
+namespace shadelab
+{
+namespace
+{
+/// The texel index of a repeated texture: index modulo count, into [0, count).
+int wrapped(long long index, int count)
+{
+  const long long r = index % count;
+  return int(r < 0 ? r + count : r);
+}
+
+/// How much of texel i, the interval [i, i + 1), the interval [low, high) covers.
+double covered(long long i, double low, double high)
+{
+  return std::max(0.0, std::min(high, double(i + 1)) - std::max(low, double(i)));
+}
+
+/// The texels of a repeated row (or column) of `count` that [low, high) covers, each with how
+/// much of it is covered, summed over the repeats: a square wider than the texture costs no more
+/// than the texture.
+std::vector<std::pair<int, double>> coverage(double low, double high, int count)
+{
+  // Whole repeats of the texture cover each texel once; the rest is narrower than the texture,
+  // so it meets each texel at most once.
+  const double periods = std::floor((high - low) / count);
+  low += periods * count;
+  std::vector<std::pair<int, double>> covering;
+  if (periods > 0)
+  {
+    for (int i = 0; i < count; ++i)
+    {
+      covering.emplace_back(i, periods);
+    }
+  }
+  for (auto i = (long long)std::floor(low); i < high; ++i)
+  {
+    const double part = covered(i, low, high);
+    if (periods > 0)
+    {
+      covering[std::size_t(wrapped(i, count))].second += part;
+    }
+    else
+    {
+      covering.emplace_back(wrapped(i, count), part);
+    }
+  }
+  return covering;
+}
+
+/// A point's position and texture coordinates, bit for bit: the key of the points that are one.
+struct SurfacePoint
+{
+  std::array<double, 5> values;
+  bool operator==(const SurfacePoint& other) const
+  {
+    return std::memcmp(values.data(), other.values.data(), sizeof(values)) == 0;
+  }
+};
+struct SurfacePointHash
+{
+  std::size_t operator()(const SurfacePoint& p) const
+  {
+    std::uint64_t hash = 1469598103934665603ull;
+    for (double value : p.values)
+    {
+      std::uint64_t bits;
+      std::memcpy(&bits, &value, sizeof(bits));
+      hash = (hash ^ bits) * 1099511628211ull;
+    }
+    return std::size_t(hash);
+  }
+};
+}
+
+Rgb boxMean(const RgbImage& image, double u, double v, double side)
+{
+  if (!std::isfinite(u) || !std::isfinite(v) || !std::isfinite(side))
+  {
+    return Rgb(std::nan("")); // refused with the vertex by the material's checks
+  }
+  // The texture repeats, so only u and v's fractions matter. A square over 2^20 textures wide
+  // has the texture's mean within 2^-20, and wider ones are clamped to it: their coordinates
+  // would lose the texel's precision.
+  u -= std::floor(u);
+  v -= std::floor(v);
+  // A point with no area of its own (a corner of degenerate triangles) takes the texel it is in.
+  side = std::clamp(side, 1e-6, 1048576.0 * std::max(image.width, image.height));
+  // In texel units texel (i, j) spans [i, i + 1) x [j, j + 1), its centre at i + 1/2.
+  const double x0 = u * image.width - side / 2, y0 = v * image.height - side / 2;
+  const std::vector<std::pair<int, double>> columns = coverage(x0, x0 + side, image.width);
+  const std::vector<std::pair<int, double>> rows = coverage(y0, y0 + side, image.height);
+  // Each weight over the weights' own sum (side, up to rounding): within one texel they are
+  // exactly 1, and the mean is the texel's colour to the bit.
+  auto total = [](const std::vector<std::pair<int, double>>& weights)
+  {
+    double sum = 0;
+    for (const auto& weight : weights)
+    {
+      sum += weight.second;
+    }
+    return sum;
+  };
+  const double columnsTotal = total(columns), rowsTotal = total(rows);
+  Rgb mean(0.0);
+  for (const auto& [row, wy] : rows)
+  {
+    Rgb rowMean(0.0);
+    for (const auto& [column, wx] : columns)
+    {
+      rowMean += (wx / columnsTotal) * image.at(column, row);
+    }
+    mean += (wy / rowsTotal) * rowMean;
+  }
+  return mean;
+}
+
+std::vector<double> texelFootprints(const std::vector<std::array<double, 3>>& positions,
+  const std::vector<std::array<double, 2>>& uv, const std::vector<std::array<std::size_t, 3>>& triangles, int width,
+  int height)
+{
+  // The surface point each point is, numbered in the order first met.
+  std::unordered_map<SurfacePoint, std::size_t, SurfacePointHash> numbers;
+  std::vector<std::size_t> surfacePoint(positions.size());
+  for (std::size_t p = 0; p < positions.size(); ++p)
+  {
+    const SurfacePoint key{ { positions[p][0], positions[p][1], positions[p][2], uv[p][0], uv[p][1] } };
+    surfacePoint[p] = numbers.emplace(key, numbers.size()).first->second;
+  }
+  std::vector<double> area(numbers.size(), 0.0);
+  for (const auto& t : triangles)
+  {
+    // The triangle's area in texels: half the cross product of its edges in texture space.
+    const double ax = (uv[t[1]][0] - uv[t[0]][0]) * width, ay = (uv[t[1]][1] - uv[t[0]][1]) * height;
+    const double bx = (uv[t[2]][0] - uv[t[0]][0]) * width, by = (uv[t[2]][1] - uv[t[0]][1]) * height;
+    const double third = std::abs(ax * by - ay * bx) / 6;
+    for (std::size_t corner : t)
+    {
+      area[surfacePoint[corner]] += third;
+    }
+  }
+  std::vector<double> side(positions.size());
+  for (std::size_t p = 0; p < positions.size(); ++p)
+  {
+    side[p] = std::sqrt(area[surfacePoint[p]]);
+  }
+  return side;
+}
+}

@@ -1,0 +1,39 @@
+#pragma once
+// A texture's colour at a vertex, averaged over the texels the vertex stands for
+// (docs/formulas.md section 7.2). Sampling a texture at the vertex alone (point sampling) takes
+// one texel's colour where a vertex stands for many, and so aliases where the texture is finer
+// than the mesh; a box filter over the vertex's share of the texture does not.
+#include "Vec3.h"
+
+#include <array>
+#include <cstddef>
+#include <vector>
+
+namespace shadelab
+{
+/// An image of linear RGB texels, row by row from the row at texture coordinate v = 0 (VTK's
+/// image order), repeated beyond [0, 1) in both directions (a texture's default wrap).
+struct RgbImage
+{
+  int width = 0;
+  int height = 0;
+  std::vector<Rgb> texels; // width * height
+
+  const Rgb& at(int column, int row) const { return texels[std::size_t(row) * std::size_t(width) + column]; }
+};
+
+/// The mean of the image over the square of side `side` texels centred at the texture
+/// coordinates (u, v), each texel weighted by the part of it the square covers. A square within
+/// one texel is that texel's colour (where the mesh is finer than the texture, each vertex takes
+/// the texel it stands in, and only vertices near a texel's edge mix), and a square of one texel
+/// is bilinear interpolation between texel centres.
+Rgb boxMean(const RgbImage& image, double u, double v, double side);
+
+/// The side, in texels of a width x height texture, of the square each point stands for: the
+/// square root of a third of the texture area of the triangles around it. Points that are one
+/// surface point read as several (the same position and texture coordinates: an OBJ's corners)
+/// share their triangles. positions and uv hold each point's, triangles three point ids each.
+std::vector<double> texelFootprints(const std::vector<std::array<double, 3>>& positions,
+  const std::vector<std::array<double, 2>>& uv, const std::vector<std::array<std::size_t, 3>>& triangles, int width,
+  int height);
+}

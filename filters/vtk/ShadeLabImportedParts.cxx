@@ -1,0 +1,254 @@
+#include "ShadeLabImportedParts.h"
+
+#include "vtkActor.h"
+#include "vtkAlgorithm.h"
+#include "vtkAppendPolyData.h"
+#include "vtkCellArray.h"
+#include "vtkCleanPolyData.h"
+#include "vtkDataArray.h"
+#include "vtkFieldData.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkIntArray.h"
+#include "vtkMapper.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkProperty.h"
+#include "vtkStringArray.h"
+#include "vtkTexture.h"
+
+#include "MaterialArrays.h"
+#include "TextureFootprint.h"
+
+#include <array>
+
+namespace shadelab
+{
+namespace
+{
+/// The texture's image as linear RGB: 8- and 16-bit channels sRGB-decoded (a colour texture's
+/// encoding, MTL's convention for map_Kd), floating-point ones taken as linear; one or two
+/// channels are a grey. An empty image where it has none.
+RgbImage linearImage(vtkTexture* texture)
+{
+  RgbImage image;
+  if (vtkAlgorithm* source = texture->GetInputAlgorithm())
+  {
+    source->Update();
+  }
+  vtkImageData* data = texture->GetInput();
+  vtkDataArray* scalars = data ? data->GetPointData()->GetScalars() : nullptr;
+  int dimensions[3] = { 0, 0, 0 };
+  if (data)
+  {
+    data->GetDimensions(dimensions);
+  }
+  if (!scalars || dimensions[0] < 1 || dimensions[1] < 1 || scalars->GetNumberOfTuples() == 0)
+  {
+    return image;
+  }
+  const bool encoded = scalars->GetDataType() != VTK_FLOAT && scalars->GetDataType() != VTK_DOUBLE;
+  const double scale = encoded ? scalars->GetDataTypeMax() : 1.0;
+  const int components = scalars->GetNumberOfComponents();
+  auto channel = [&](vtkIdType texel, int c)
+  {
+    const double value = scalars->GetComponent(texel, components < 3 ? 0 : c) / scale;
+    return encoded ? srgbToLinear(value) : value;
+  };
+  image.width = dimensions[0];
+  image.height = dimensions[1];
+  image.texels.resize(std::size_t(image.width) * std::size_t(image.height));
+  for (vtkIdType t = 0; t < vtkIdType(image.texels.size()); ++t)
+  {
+    image.texels[std::size_t(t)] = Rgb(channel(t, 0), channel(t, 1), channel(t, 2));
+  }
+  return image;
+}
+
+/// The part's triangles, its polygons cut into fans.
+std::vector<std::array<std::size_t, 3>> trianglesOf(vtkPolyData* part)
+{
+  std::vector<std::array<std::size_t, 3>> triangles;
+  vtkIdType count;
+  const vtkIdType* ids;
+  vtkCellArray* polys = part->GetPolys();
+  for (polys->InitTraversal(); polys->GetNextCell(count, ids);)
+  {
+    for (vtkIdType k = 2; k < count; ++k)
+    {
+      triangles.push_back({ std::size_t(ids[0]), std::size_t(ids[k - 1]), std::size_t(ids[k]) });
+    }
+  }
+  return triangles;
+}
+
+/// The texture's colour at each point, averaged over the texels it stands for (TextureFootprint.h).
+std::vector<Rgb> textureColors(vtkPolyData* part, const RgbImage& image, vtkDataArray* tcoords)
+{
+  const vtkIdType points = part->GetNumberOfPoints();
+  std::vector<std::array<double, 3>> positions(std::size_t(points), std::array<double, 3>{});
+  std::vector<std::array<double, 2>> uv(std::size_t(points), std::array<double, 2>{});
+  for (vtkIdType p = 0; p < points; ++p)
+  {
+    part->GetPoint(p, positions[std::size_t(p)].data());
+    uv[std::size_t(p)] = { tcoords->GetComponent(p, 0), tcoords->GetComponent(p, 1) };
+  }
+  const std::vector<double> sides = texelFootprints(positions, uv, trianglesOf(part), image.width, image.height);
+  std::vector<Rgb> colors(static_cast<std::size_t>(points));
+  for (std::size_t p = 0; p < colors.size(); ++p)
+  {
+    colors[p] = boxMean(image, uv[p][0], uv[p][1], sides[p]);
+  }
+  return colors;
+}
+
+vtkSmartPointer<vtkFloatArray> constantArray(const char* name, vtkIdType points, const std::vector<double>& value)
+{
+  auto array = vtkSmartPointer<vtkFloatArray>::New();
+  array->SetName(name);
+  array->SetNumberOfComponents(int(value.size()));
+  array->SetNumberOfTuples(points);
+  for (int c = 0; c < int(value.size()); ++c)
+  {
+    array->FillComponent(c, value[std::size_t(c)]);
+  }
+  return array;
+}
+
+std::vector<double> rgbOf(const double* color)
+{
+  return { color[0], color[1], color[2] };
+}
+
+/// The part with its index and material as point arrays; a texture that cannot be placed is
+/// added to skipped.
+vtkSmartPointer<vtkPolyData> partWithMaterial(
+  const ImportedPart& part, vtkPolyData* polygons, int index, std::vector<std::string>& skipped)
+{
+  // vtkOBJImporter gives every part the whole file's points: each keeps those its cells use.
+  vtkNew<vtkCleanPolyData> usedPoints;
+  usedPoints->SetInputData(polygons);
+  usedPoints->PointMergingOff();
+  usedPoints->ConvertLinesToPointsOff();
+  usedPoints->ConvertPolysToLinesOff();
+  usedPoints->ConvertStripsToPolysOff();
+  usedPoints->Update();
+  auto copy = vtkSmartPointer<vtkPolyData>::New();
+  copy->ShallowCopy(usedPoints->GetOutput());
+  vtkPointData* pointData = copy->GetPointData();
+  const vtkIdType points = copy->GetNumberOfPoints();
+  // vtkOBJImporter leaves its normals and texture coordinates unnamed, which a .vtp cannot hold.
+  for (vtkDataArray* array : { pointData->GetNormals(), pointData->GetTCoords() })
+  {
+    if (array && !array->GetName())
+    {
+      array->SetName(array == pointData->GetNormals() ? "Normals" : "TCoords");
+    }
+  }
+  vtkProperty* property = part.actor->GetProperty();
+  pointData->AddArray(constantArray(partArrayName, points, { double(index) }));
+  pointData->AddArray(constantArray(materialKaArrayName, points, rgbOf(property->GetAmbientColor())));
+  pointData->AddArray(constantArray(materialKsArrayName, points, rgbOf(property->GetSpecularColor())));
+  // vtkOBJImporter 9.1 sets the specular power to the MTL's Ns / 4; times 4 it is Ns exactly.
+  pointData->AddArray(constantArray(materialShininessArrayName, points, { 4 * property->GetSpecularPower() }));
+  vtkSmartPointer<vtkFloatArray> kd = constantArray(materialKdArrayName, points, rgbOf(property->GetDiffuseColor()));
+  vtkTexture* texture = part.actor->GetTexture();
+  if (!texture && !part.textureFile.empty())
+  {
+    skipped.push_back("material '" + part.name + "' names the texture " + part.textureFile +
+      ", which VTK could not read: shaded with its diffuse colour alone");
+  }
+  if (texture)
+  {
+    const RgbImage image = linearImage(texture);
+    vtkDataArray* tcoords = pointData->GetTCoords();
+    if (image.texels.empty())
+    {
+      skipped.push_back("part '" + part.name + "': its texture has no image: shaded with its diffuse colour alone");
+    }
+    else if (!tcoords || tcoords->GetNumberOfComponents() < 2)
+    {
+      skipped.push_back(
+        "part '" + part.name + "': textured, but without texture coordinates: shaded with its diffuse colour alone");
+    }
+    else
+    {
+      const std::vector<Rgb> colors = textureColors(copy, image, tcoords);
+      for (vtkIdType p = 0; p < points; ++p)
+      {
+        for (int c = 0; c < 3; ++c)
+        {
+          kd->SetComponent(p, c, kd->GetComponent(p, c) * colors[std::size_t(p)][c]);
+        }
+      }
+    }
+  }
+  pointData->AddArray(kd);
+  return copy;
+}
+}
+
+vtkSmartPointer<vtkPolyData> meshOfParts(const std::vector<ImportedPart>& parts, std::vector<std::string>& skipped)
+{
+  vtkNew<vtkAppendPolyData> append;
+  auto names = vtkSmartPointer<vtkStringArray>::New();
+  names->SetName(partNamesArrayName);
+  for (const ImportedPart& part : parts)
+  {
+    vtkMapper* mapper = part.actor->GetMapper();
+    if (mapper && mapper->GetInputAlgorithm())
+    {
+      mapper->GetInputAlgorithm()->Update();
+    }
+    auto* polygons = vtkPolyData::SafeDownCast(mapper ? mapper->GetInput() : nullptr);
+    if (!polygons || polygons->GetNumberOfCells() == 0)
+    {
+      continue;
+    }
+    append->AddInputData(partWithMaterial(part, polygons, int(names->GetNumberOfValues()), skipped));
+    names->InsertNextValue(part.name);
+  }
+  auto mesh = vtkSmartPointer<vtkPolyData>::New();
+  if (names->GetNumberOfValues() > 0)
+  {
+    append->Update();
+    mesh->ShallowCopy(append->GetOutput());
+  }
+  mesh->GetFieldData()->AddArray(names);
+  return mesh;
+}
+
+bool hasOwnMaterials(vtkPolyData* mesh)
+{
+  vtkPointData* pointData = mesh->GetPointData();
+  return pointData->HasArray(partArrayName) && pointData->HasArray(materialKaArrayName) &&
+    pointData->HasArray(materialKdArrayName) && pointData->HasArray(materialKsArrayName) &&
+    pointData->HasArray(materialShininessArrayName);
+}
+
+bool shadesWithOwnMaterials(const Scene& scene, vtkPolyData* mesh, bool colorByArray)
+{
+  return !scene.materialGiven && !colorByArray && scene.model == ShadingModel::Lecture && hasOwnMaterials(mesh);
+}
+
+Material ownMaterial(const Material& scenes)
+{
+  Material material = scenes;
+  material.spectra = {};
+  auto fromArray = [&](MaterialCoefficient coefficient, const char* name)
+  {
+    ArrayCoefficient array;
+    array.array = name;
+    array.encoding = ArrayEncoding::Linear;
+    material.arrays[coefficient] = array;
+  };
+  fromArray(MaterialCoefficient::Ambient, materialKaArrayName);
+  fromArray(MaterialCoefficient::Diffuse, materialKdArrayName);
+  fromArray(MaterialCoefficient::Specular, materialKsArrayName);
+  fromArray(MaterialCoefficient::Shininess, materialShininessArrayName);
+  // An array's number in the material is its bound (Material): the scale, 1.
+  material.ka = material.kd = material.ks = Rgb(1.0);
+  material.shininess = 1.0;
+  return material;
+}
+}

@@ -1,0 +1,64 @@
+/**
+ * A scene file's parts as one mesh (docs/guide/scene-files.md, "Meshes with their own
+ * materials"): the actors that one of VTK's importers (vtkOBJImporter) made of the file, their
+ * polygons in one polydata whose points know their part and carry their part's material as
+ * point arrays, which the scene's material then reads (shadelab::MaterialArrays).
+ */
+#ifndef ShadeLabImportedParts_h
+#define ShadeLabImportedParts_h
+
+#include "ShadeLabFiltersModule.h"
+#include "vtkSmartPointer.h"
+
+#include "Scene.h"
+
+#include <string>
+#include <vector>
+
+class vtkActor;
+class vtkPolyData;
+class vtkRenderer;
+
+namespace shadelab
+{
+/// The point arrays of a mesh's own materials: the part's index, and its coefficients, linear,
+/// as floats (RGB, and 1 component for the shininess, the MTL file's Ns).
+constexpr const char* partArrayName = "part";
+constexpr const char* materialKaArrayName = "material_ka";
+constexpr const char* materialKdArrayName = "material_kd";
+constexpr const char* materialKsArrayName = "material_ks";
+constexpr const char* materialShininessArrayName = "material_shininess";
+/// The field-data array of the parts' names, indexed by the part array's values.
+constexpr const char* partNamesArrayName = "part_names";
+
+/// One part as an importer made it: its actor, a name for it, and the texture file its material
+/// names ("" for none), to say which one could not be read.
+struct ImportedPart
+{
+  vtkActor* actor;
+  std::string name;
+  std::string textureFile;
+};
+
+/// The parts' polygons, lines and vertices as one mesh (the parts with none are left out), with
+/// each point's part, the parts' materials per point from their actors' properties (ka the
+/// ambient colour, kd the diffuse colour times the texture's colour averaged over the texels the
+/// point stands for, sRGB-decoded; ks the specular colour; the shininess 4 x the specular power,
+/// which vtkOBJImporter sets to the MTL's Ns / 4), their normals where every part has them, and
+/// their texture coordinates. What could not be used is added to `skipped`, one line each.
+SHADELABFILTERS_EXPORT vtkSmartPointer<vtkPolyData> meshOfParts(
+  const std::vector<ImportedPart>& parts, std::vector<std::string>& skipped);
+
+/// Whether a mesh carries the arrays of its own materials (meshOfParts').
+SHADELABFILTERS_EXPORT bool hasOwnMaterials(vtkPolyData* mesh);
+
+/// Whether the mesh is shaded with its own materials: it has their arrays, and the scene, in the
+/// lecture model, gives no material (nor does a colouring by an array, colorByArray).
+SHADELABFILTERS_EXPORT bool shadesWithOwnMaterials(const Scene& scene, vtkPolyData* mesh, bool colorByArray);
+
+/// The scene's material made to read those arrays: the MTL's Ka, Kd, Ks and Ns are the lecture's
+/// ka, kd, ks and shininess (the specular model and sides stay the scene's).
+SHADELABFILTERS_EXPORT Material ownMaterial(const Material& scenes);
+}
+
+#endif
