@@ -1,5 +1,6 @@
 #include "MeshFiles.h"
 
+#include "GltfScene.h"
 #include "IsolatedWork.h"
 #include "MeshFileChecks.h"
 #include "MeshHandOver.h"
@@ -50,7 +51,7 @@ namespace fs = std::filesystem;
 
 namespace shadelab::app
 {
-const char* const readableExtensions = ".vtp, .vtk, .ply, .obj, .stl";
+const char* const readableExtensions = ".vtp, .vtk, .ply, .obj, .stl, .gltf, .glb";
 
 namespace
 {
@@ -255,6 +256,19 @@ vtkSmartPointer<vtkDataSet> readIsolated(const std::string& fileName, const std:
   throw UserError(message.str());
 }
 
+/// What an importer skipped, as warnings that replace VTK's own (ours say what was done instead).
+void sendNotes(const std::vector<std::string>& notes, ChildChannel& channel)
+{
+  if (auto* window = QuietOutputWindow::SafeDownCast(vtkOutputWindow::GetInstance()))
+  {
+    window->takeWarnings();
+  }
+  for (const std::string& note : notes)
+  {
+    channel.warning(printableText(note, 400));
+  }
+}
+
 /// An OBJ file with its materials where it names a material library that is there (ObjScene.h),
 /// else the mesh alone; what was skipped is a warning that names the file, in place of VTK's own.
 vtkSmartPointer<vtkPolyData> readObj(const std::string& fileName, ChildChannel& channel)
@@ -272,15 +286,18 @@ vtkSmartPointer<vtkPolyData> readObj(const std::string& fileName, ChildChannel& 
   {
     mesh = importObjScene(fileName, statements, notes);
   }
-  if (auto* window = QuietOutputWindow::SafeDownCast(vtkOutputWindow::GetInstance()))
-  {
-    window->takeWarnings();
-  }
-  for (const std::string& note : notes)
-  {
-    channel.warning(printableText(note, 400));
-  }
+  sendNotes(notes, channel);
   return mesh ? mesh : readDirectly(fileName, ".obj", channel.terminal());
+}
+
+/// A glTF file's parts with their materials, and its lights (GltfScene.h); what was skipped
+/// is a warning, in place of VTK's own.
+vtkSmartPointer<vtkPolyData> readGltf(const std::string& fileName, ChildChannel& channel)
+{
+  std::vector<std::string> notes;
+  vtkSmartPointer<vtkPolyData> mesh = importGltfScene(fileName, notes);
+  sendNotes(notes, channel);
+  return mesh;
 }
 
 /// Checked before a mesh is handed over: a reader can build cells whose offsets lie, and
@@ -298,14 +315,16 @@ void checkCells(vtkPolyData* mesh, const std::string& fileName)
 vtkSmartPointer<vtkPolyData> readMesh(const std::string& fileName, std::string* ignored)
 {
   const std::string extension = lowerExtension(fileName);
-  const std::uintmax_t size = readableFileSize(fileName);
+  const std::uintmax_t size =
+    extension == ".gltf" ? std::max(readableFileSize(fileName), gltfBytes(fileName)) : readableFileSize(fileName);
   MeshFileCheck check;
   vtkSmartPointer<vtkDataSet> data = readIsolated(
     fileName, "VTK's " + extension + " reader", size,
     [&](ChildChannel& channel)
     {
-      vtkSmartPointer<vtkPolyData> mesh =
-        extension == ".obj" ? readObj(fileName, channel) : readDirectly(fileName, extension, channel.terminal());
+      vtkSmartPointer<vtkPolyData> mesh = extension == ".obj" ? readObj(fileName, channel)
+        : extension == ".gltf" || extension == ".glb"         ? readGltf(fileName, channel)
+                                                              : readDirectly(fileName, extension, channel.terminal());
       checkCells(mesh, fileName);
       handOverMesh(mesh, channel.resultPath());
     },

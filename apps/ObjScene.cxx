@@ -107,7 +107,16 @@ vtkSmartPointer<vtkPolyData> importObjScene(
   {
     const std::string texture = describedField(importer, i, "texture file");
     const fs::path texturePath = fs::absolute(fs::path(folderOf(library)) / texture).lexically_normal();
-    parts.push_back({ actors->GetNextActor(), describedField(importer, i, "material named"),
+    vtkActor* actor = actors->GetNextActor();
+    vtkProperty* property = actor->GetProperty();
+    PartMaterial material;
+    material.ka = Rgb(property->GetAmbientColor()[0], property->GetAmbientColor()[1], property->GetAmbientColor()[2]);
+    material.kd = Rgb(property->GetDiffuseColor()[0], property->GetDiffuseColor()[1], property->GetDiffuseColor()[2]);
+    material.ks =
+      Rgb(property->GetSpecularColor()[0], property->GetSpecularColor()[1], property->GetSpecularColor()[2]);
+    // vtkOBJImporter 9.1 sets the specular power to the MTL's Ns / 4; times 4 it is Ns exactly.
+    material.shininess = 4 * property->GetSpecularPower();
+    parts.push_back({ actor, describedField(importer, i, "material named"), material, actor->GetTexture(),
       texture == "none" || texture.empty() ? "" : texturePath.string() });
   }
   std::vector<std::string> skipped; // noted once the parts are known to be whole

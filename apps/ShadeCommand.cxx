@@ -1,6 +1,7 @@
 #include "ShadeCommand.h"
 
 #include "CommandLineParse.h"
+#include "GltfScene.h"
 #include "MeshFiles.h"
 #include "OptionValues.h"
 #include "PlanBeforeRun.h"
@@ -13,6 +14,7 @@
 #include "DefaultLightKit.h"
 #include "MaterialArrays.h"
 #include "NumberText.h"
+#include "SceneFile.h"
 #include "ShBands.h"
 #include "ShadeLabImportedParts.h"
 #include "ShadingFlags.h"
@@ -228,6 +230,26 @@ Scene sceneOf(const ShadeOptions& options)
     return withOverrides(std::move(read), options.overrides, options.scene);
   }
   catch (const SceneOverrideError& error)
+  {
+    throw UserError(error.what());
+  }
+}
+
+/// Whether the run is lit by the mesh file's own lights (a glTF file's): the file has some, and
+/// neither --scene nor --envmap gives others.
+bool shadesWithFileLights(vtkPolyData* mesh, const ShadeOptions& options)
+{
+  return options.scene.empty() && options.overrides.environment.file.empty() && !fileLightsOf(mesh).empty();
+}
+
+/// The scene of the mesh file's lights (GltfScene.h), with the command line's overrides.
+Scene sceneOfFileLights(vtkPolyData* mesh, const ShadeOptions& options)
+{
+  try
+  {
+    return withOverrides(parseScene(fileLightsOf(mesh), options.mesh + "'s lights"), options.overrides, "");
+  }
+  catch (const std::exception& error)
   {
     throw UserError(error.what());
   }
@@ -456,9 +478,10 @@ void printRunHeading(
             << "  mesh: " << output->GetNumberOfPoints() << " vertices, "
             << output->GetNumberOfPolys() + output->GetNumberOfStrips() << " polygons and strips\n"
             << (ignored.empty() ? "" : "  ignored: " + ignored + "\n") << "  scene: "
-            << (!options.scene.empty()      ? options.scene
-                   : environmentMap.empty() ? "the default light kit, placed on the mesh"
-                                            : "default material and viewer")
+            << (!options.scene.empty()                     ? options.scene
+                   : shadesWithFileLights(output, options) ? "the file's own lights"
+                   : environmentMap.empty()                ? "the default light kit, placed on the mesh"
+                                                           : "default material and viewer")
             << (environmentMap.empty() ? "" : " + --envmap " + environmentMap) << " ("
             << (scene.model == ShadingModel::Lecture ? "lecture" : "vtk") << " model, "
             << countOf(scene.lights.size(), "light") << ")\n"
@@ -626,8 +649,8 @@ CLI::App* addShadeCommand(CLI::App& cli, ShadeOptions& options)
 int runShade(const ShadeOptions& options)
 {
   // Everything that can be checked before the slow work is checked first.
-  const Scene scene = sceneOf(options);
-  const std::vector<std::string> selection = arraySelection(scene, options.arrays);
+  Scene scene = sceneOf(options);
+  std::vector<std::string> selection = arraySelection(scene, options.arrays);
   checkOutputFile(options.output, meshExtensions);
 
   if (options.threads > 0)
@@ -640,6 +663,11 @@ int runShade(const ShadeOptions& options)
   std::string ignored;
   vtkSmartPointer<vtkPolyData> mesh = readMeshToShade(options.mesh, ignored, warnings);
   seconds.read = secondsSince(start);
+  if (shadesWithFileLights(mesh, options))
+  {
+    scene = sceneOfFileLights(mesh, options);
+    selection = arraySelection(scene, options.arrays);
+  }
 
   ShadingPipeline pipeline;
   connectPipeline(pipeline, mesh, options);

@@ -43,7 +43,7 @@ TEST_F(Cli, MissingOrUnreadableMesh)
     garbage + ": not a PLY file (it does not start with a PLY header)");
   const std::string unknown = file("mesh.xyz", "1 2 3\n");
   expectError("shade " + unknown + " -s " + scene + " -o " + out,
-    unknown + ": unknown mesh format '.xyz'; ShadeLab reads .vtp, .vtk, .ply, .obj, .stl");
+    unknown + ": unknown mesh format '.xyz'; ShadeLab reads .vtp, .vtk, .ply, .obj, .stl, .gltf, .glb");
 }
 
 TEST_F(Cli, EmptyMeshAndMeshWithoutPolygons)
@@ -936,6 +936,36 @@ TEST_F(Cli, AnObjIsShadedWithItsOwnMaterialsAndSaysSo)
   EXPECT_EQ(grey.err,
     "shadelab: warning: still_life.obj: material 'floor' names the texture " + (folder / "checker.png").string() +
       ", which VTK could not read: shaded with its diffuse colour alone\n");
+}
+
+TEST_F(Cli, AGltfIsLitByItsOwnLightsAndABrokenOneIsRefused)
+{
+  const Result lamps = shadelab("shade " SHADELAB_SOURCE_DIR "/data/scenes/lamps/lamps.gltf -o " +
+    (folder / "lamps.vtp").string() + " --arrays '*_cos_incidence'");
+  ASSERT_EQ(lamps.exitCode, 0) << lamps.err;
+  EXPECT_NE(lamps.out.find("  scene: the file's own lights (lecture model, 3 lights)\n"), std::string::npos)
+    << lamps.out;
+  for (const char* light : { "bulb", "spot", "sky" })
+  {
+    EXPECT_NE(lamps.out.find(std::string("    ") + light + "_cos_incidence"), std::string::npos) << light;
+  }
+  // A --scene's lights win over the file's.
+  const Result scene = shadelab("shade " SHADELAB_SOURCE_DIR "/data/scenes/lamps/lamps.gltf -s " + goodScene() +
+    " -o " + (folder / "sun.vtp").string() + " --arrays sun_diffuse");
+  ASSERT_EQ(scene.exitCode, 0) << scene.err;
+  EXPECT_NE(
+    scene.out.find("  scene: " + (folder / "scene.json").string() + " (lecture model, 1 light)\n"), std::string::npos)
+    << scene.out;
+
+  const std::string output = (folder / "out.vtp").string();
+  const std::string empty =
+    file("empty.gltf", R"({ "asset": { "version": "2.0" }, "scene": 0, "scenes": [ { "nodes": [] } ] })");
+  expectError("shade " + empty + " -o " + output,
+    empty + ": the glTF file has no geometry that VTK's importer reads (no mesh primitives)");
+  const std::string broken = file("broken.gltf", "not json");
+  expectError("shade " + broken + " -o " + output,
+    broken + ": VTK's glTF importer could not read it: Error loading model metadata");
+  EXPECT_FALSE(fs::exists(output));
 }
 
 TEST_F(Cli, HelpAndUsageErrors)

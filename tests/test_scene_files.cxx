@@ -1,11 +1,14 @@
 // Meshes with their own materials (docs/guide/scene-files.md): an OBJ file read with its MTL
 // file by VTK's importer, each part shaded with its own Kd against the closed form, a texture
 // decoded and placed texel by texel, a scene's material winning over the file's, and what a
-// missing library or texture leaves.
+// missing library or texture leaves; a glTF file's lights against the same lights written by
+// hand, as .gltf and as .glb, and its material's coefficients.
 #include "FilterRun.h"
 #include "TestFolder.h"
 
+#include "GltfScene.h"
 #include "MeshFiles.h"
+#include "MetallicRoughness.h"
 #include "SceneFile.h"
 #include "ShadeLabImportedParts.h"
 
@@ -19,6 +22,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <unistd.h>
@@ -214,4 +218,140 @@ TEST_F(SceneFiles, AMissingTextureLeavesTheDiffuseColour)
     EXPECT_EQ(diffuse->GetComponent(p, 1), double(part->GetComponent(p, 0) == 0 ? 0.2f : 0.8f));
   }
 }
+}
+
+namespace
+{
+/// A glTF file's binary buffer: a unit square at height 0.5 (its node's translation), normals +y,
+/// two triangles.
+std::string squareBuffer()
+{
+  const float positions[4][3] = { { -1, 0, -1 }, { 1, 0, -1 }, { 1, 0, 1 }, { -1, 0, 1 } };
+  const float normals[4][3] = { { 0, 1, 0 }, { 0, 1, 0 }, { 0, 1, 0 }, { 0, 1, 0 } };
+  const std::uint16_t indices[8] = { 0, 2, 1, 0, 3, 2, 0, 0 }; // padded to 4 bytes
+  std::string bytes(reinterpret_cast<const char*>(positions), sizeof(positions));
+  bytes.append(reinterpret_cast<const char*>(normals), sizeof(normals));
+  bytes.append(reinterpret_cast<const char*>(indices), sizeof(indices));
+  return bytes;
+}
+
+/// The glTF JSON of the square with a point, a spot and a directional light; `buffer` is the
+/// buffer's entry (with or without a uri).
+std::string lampsGltf(const std::string& buffer)
+{
+  return R"({ "asset": { "version": "2.0" }, "extensionsUsed": ["KHR_lights_punctual"],
+  "extensions": { "KHR_lights_punctual": { "lights": [
+    { "name": "bulb", "type": "point", "color": [1, 0.9, 0.8], "intensity": 3, "range": 10 },
+    { "type": "spot", "color": [0.5, 0.6, 1], "intensity": 5, "spot": { "innerConeAngle": 0.2, "outerConeAngle": 0.6 } },
+    { "type": "directional", "intensity": 0.5 } ] } },
+  "scene": 0, "scenes": [ { "nodes": [0, 1, 2, 3] } ],
+  "nodes": [ { "mesh": 0, "translation": [0, 0.5, 0] },
+    { "extensions": { "KHR_lights_punctual": { "light": 0 } }, "translation": [0.3, 2, 0.1] },
+    { "extensions": { "KHR_lights_punctual": { "light": 1 } }, "translation": [0, 3, 0],
+      "rotation": [-0.70710678, 0, 0, 0.70710678] },
+    { "extensions": { "KHR_lights_punctual": { "light": 2 } }, "rotation": [-0.38268343, 0, 0, 0.92387953] } ],
+  "meshes": [ { "primitives": [ { "attributes": { "POSITION": 0, "NORMAL": 1 }, "indices": 2, "material": 0 } ] } ],
+  "materials": [ { "pbrMetallicRoughness": { "baseColorFactor": [0.8, 0.5, 0.3, 1], "metallicFactor": 0.1,
+    "roughnessFactor": 0.7 } } ],
+  "buffers": [ )" +
+    buffer + R"( ],
+  "bufferViews": [ { "buffer": 0, "byteOffset": 0, "byteLength": 48 }, { "buffer": 0, "byteOffset": 48, "byteLength": 48 },
+    { "buffer": 0, "byteOffset": 96, "byteLength": 12 } ],
+  "accessors": [ { "bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [-1, 0, -1], "max": [1, 0, 1] },
+    { "bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC3" },
+    { "bufferView": 2, "componentType": 5123, "count": 6, "type": "SCALAR" } ] })";
+}
+
+/// The same lights written by hand in ShadeLab's JSON, from KHR_lights_punctual's conventions:
+/// each at its node's origin, pointing down its node's -z (rotated -90 and -45 degrees about x).
+const char* const lampsScene = R"({ "lights": [
+  { "name": "directional", "type": "distant", "direction": [0, -0.70710678, -0.70710678], "intensity": 0.5 },
+  { "name": "spot", "type": "spot", "position": [0, 3, 0], "direction": [0, -1, 0], "color": [0.5, 0.6, 1],
+    "intensity": 5, "cone": { "model": "gltf", "inner_angle": 11.459155902616464, "outer_angle": 34.37746770784939 } },
+  { "name": "bulb", "type": "point", "position": [0.3, 2, 0.1], "color": [1, 0.9, 0.8], "intensity": 3,
+    "attenuation": { "model": "gltf_range", "range": 10 } } ] })";
+
+/// The output's per-light diffuse and specular terms, light by light in the order given.
+std::vector<double> lightTerms(vtkPolyData* output, const std::vector<std::string>& lights)
+{
+  std::vector<double> values;
+  for (const std::string& light : lights)
+  {
+    for (const char* term : { "_diffuse", "_specular" })
+    {
+      vtkDataArray* array = output->GetPointData()->GetArray((light + term).c_str());
+      EXPECT_NE(array, nullptr) << light << term;
+      for (vtkIdType i = 0; array && i < array->GetNumberOfValues(); ++i)
+      {
+        values.push_back(array->GetVariantValue(i).ToDouble());
+      }
+    }
+  }
+  return values;
+}
+}
+
+TEST_F(SceneFiles, AGltfFilesLightsShadeAsTheSameSceneInShadeLabsJson)
+{
+  std::ofstream(folder / "square.bin", std::ios::binary) << squareBuffer();
+  vtkSmartPointer<vtkPolyData> mesh =
+    app::readMesh(file("lamps.gltf", lampsGltf(R"({ "byteLength": 112, "uri": "square.bin" })")));
+  ASSERT_TRUE(hasOwnMaterials(mesh));
+  const Scene fromFile = parseScene(app::fileLightsOf(mesh), "lamps.gltf");
+  ASSERT_EQ(fromFile.lights.size(), 3u);
+  const std::vector<std::string> names = { fromFile.lights[0].name, fromFile.lights[1].name, fromFile.lights[2].name };
+  EXPECT_EQ(names, (std::vector<std::string>{ "directional0", "spot1", "bulb" }));
+  std::vector<std::string> arrays;
+  for (const std::string& name : names)
+  {
+    arrays.push_back(name + "_diffuse");
+    arrays.push_back(name + "_specular");
+  }
+  const std::vector<double> imported =
+    lightTerms(shadelab::testing::shadeWithFilter(mesh, fromFile, arrays, vtkAlgorithm::SINGLE_PRECISION), names);
+
+  Scene byHand = parseScene(lampsScene, "lamps.json");
+  std::vector<std::string> handArrays;
+  for (const char* name : { "directional", "spot", "bulb" })
+  {
+    handArrays.push_back(std::string(name) + "_diffuse");
+    handArrays.push_back(std::string(name) + "_specular");
+  }
+  const std::vector<double> written =
+    lightTerms(shadelab::testing::shadeWithFilter(mesh, byHand, handArrays, vtkAlgorithm::SINGLE_PRECISION),
+      { "directional", "spot", "bulb" });
+  ASSERT_EQ(imported.size(), written.size());
+  ASSERT_EQ(imported.size(), 3u * 2 * 4 * 3);
+  for (std::size_t i = 0; i < imported.size(); ++i)
+  {
+    // The file's numbers pass through float32 (the importer's) and radians: float rounding.
+    EXPECT_NEAR(imported[i], written[i], 2e-6 * std::max(1.0, std::abs(written[i]))) << "value " << i;
+  }
+
+  // The same file as one binary .glb: its JSON chunk, then its buffer.
+  std::string json = lampsGltf(R"({ "byteLength": 112 })");
+  json.append((4 - json.size() % 4) % 4, ' ');
+  const std::string buffer = squareBuffer();
+  auto word = [](std::uint32_t value) { return std::string(reinterpret_cast<const char*>(&value), 4); };
+  std::ofstream(folder / "lamps.glb", std::ios::binary)
+    << "glTF" << word(2) << word(std::uint32_t(12 + 8 + json.size() + 8 + buffer.size()))
+    << word(std::uint32_t(json.size())) << "JSON" << json << word(std::uint32_t(buffer.size())) << "BIN" << '\0'
+    << buffer;
+  vtkSmartPointer<vtkPolyData> binary = app::readMesh((folder / "lamps.glb").string());
+  EXPECT_EQ(app::fileLightsOf(binary), app::fileLightsOf(mesh));
+}
+
+TEST(MetallicRoughness, TheGltfSplitAndTheBlinnPhongExponent)
+{
+  const LectureCoefficients dielectric = lectureCoefficients(Rgb(0.8, 0.5, 0.3), 0, 1);
+  EXPECT_EQ(dielectric.kd, Rgb(0.8, 0.5, 0.3));
+  EXPECT_EQ(dielectric.ks, Rgb(0.04));
+  EXPECT_EQ(dielectric.shininess, 0); // alpha 1: 2 / 1 - 2
+  const LectureCoefficients metal = lectureCoefficients(Rgb(0.9, 0.6, 0.2), 1, 0.5);
+  EXPECT_EQ(metal.kd, Rgb(0.0));
+  EXPECT_EQ(metal.ks, Rgb(0.9, 0.6, 0.2));
+  EXPECT_DOUBLE_EQ(metal.shininess, 2 / std::pow(0.25, 2) - 2); // 30
+  const LectureCoefficients half = lectureCoefficients(Rgb(0.5), 0.5, 0.0);
+  EXPECT_DOUBLE_EQ(half.ks.x, 0.5 * 0.04 + 0.5 * 0.5);
+  EXPECT_NEAR(half.shininess, 2 / std::pow(0.03, 4) - 2, 1e-3); // clamped at 0.03
 }

@@ -11,11 +11,13 @@
 #include "vtkImageData.h"
 #include "vtkIntArray.h"
 #include "vtkMapper.h"
+#include "vtkMatrix4x4.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
-#include "vtkProperty.h"
 #include "vtkStringArray.h"
 #include "vtkTexture.h"
+#include "vtkTransform.h"
+#include "vtkTransformPolyDataFilter.h"
 
 #include "MaterialArrays.h"
 #include "TextureFootprint.h"
@@ -115,26 +117,38 @@ vtkSmartPointer<vtkFloatArray> constantArray(const char* name, vtkIdType points,
   return array;
 }
 
-std::vector<double> rgbOf(const double* color)
+/// The part's polygons where the actor places them, with only the points they use: VTK's
+/// importers give every OBJ part the whole file's points, and a glTF node its transform.
+vtkSmartPointer<vtkPolyData> placedPart(vtkActor* actor, vtkPolyData* polygons)
 {
-  return { color[0], color[1], color[2] };
-}
-
-/// The part with its index and material as point arrays; a texture that cannot be placed is
-/// added to skipped.
-vtkSmartPointer<vtkPolyData> partWithMaterial(
-  const ImportedPart& part, vtkPolyData* polygons, int index, std::vector<std::string>& skipped)
-{
-  // vtkOBJImporter gives every part the whole file's points: each keeps those its cells use.
   vtkNew<vtkCleanPolyData> usedPoints;
   usedPoints->SetInputData(polygons);
   usedPoints->PointMergingOff();
   usedPoints->ConvertLinesToPointsOff();
   usedPoints->ConvertPolysToLinesOff();
   usedPoints->ConvertStripsToPolysOff();
-  usedPoints->Update();
-  auto copy = vtkSmartPointer<vtkPolyData>::New();
-  copy->ShallowCopy(usedPoints->GetOutput());
+  vtkAlgorithm* last = usedPoints;
+  vtkNew<vtkTransform> placement;
+  placement->SetMatrix(actor->GetMatrix());
+  vtkNew<vtkTransformPolyDataFilter> placed;
+  if (!actor->GetMatrix()->IsIdentity())
+  {
+    placed->SetInputConnection(usedPoints->GetOutputPort());
+    placed->SetTransform(placement);
+    last = placed;
+  }
+  last->Update();
+  auto part = vtkSmartPointer<vtkPolyData>::New();
+  part->ShallowCopy(last->GetOutputDataObject(0));
+  return part;
+}
+
+/// The part with its index and material as point arrays; a texture that cannot be used is
+/// added to skipped.
+vtkSmartPointer<vtkPolyData> partWithMaterial(
+  const ImportedPart& part, vtkPolyData* polygons, int index, std::vector<std::string>& skipped)
+{
+  vtkSmartPointer<vtkPolyData> copy = placedPart(part.actor, polygons);
   vtkPointData* pointData = copy->GetPointData();
   const vtkIdType points = copy->GetNumberOfPoints();
   // vtkOBJImporter leaves its normals and texture coordinates unnamed, which a .vtp cannot hold.
@@ -145,22 +159,20 @@ vtkSmartPointer<vtkPolyData> partWithMaterial(
       array->SetName(array == pointData->GetNormals() ? "Normals" : "TCoords");
     }
   }
-  vtkProperty* property = part.actor->GetProperty();
+  const PartMaterial& m = part.material;
   pointData->AddArray(constantArray(partArrayName, points, { double(index) }));
-  pointData->AddArray(constantArray(materialKaArrayName, points, rgbOf(property->GetAmbientColor())));
-  pointData->AddArray(constantArray(materialKsArrayName, points, rgbOf(property->GetSpecularColor())));
-  // vtkOBJImporter 9.1 sets the specular power to the MTL's Ns / 4; times 4 it is Ns exactly.
-  pointData->AddArray(constantArray(materialShininessArrayName, points, { 4 * property->GetSpecularPower() }));
-  vtkSmartPointer<vtkFloatArray> kd = constantArray(materialKdArrayName, points, rgbOf(property->GetDiffuseColor()));
-  vtkTexture* texture = part.actor->GetTexture();
-  if (!texture && !part.textureFile.empty())
+  pointData->AddArray(constantArray(materialKaArrayName, points, { m.ka.x, m.ka.y, m.ka.z }));
+  pointData->AddArray(constantArray(materialKsArrayName, points, { m.ks.x, m.ks.y, m.ks.z }));
+  pointData->AddArray(constantArray(materialShininessArrayName, points, { m.shininess }));
+  vtkSmartPointer<vtkFloatArray> kd = constantArray(materialKdArrayName, points, { m.kd.x, m.kd.y, m.kd.z });
+  if (!part.kdTexture && !part.textureFile.empty())
   {
     skipped.push_back("material '" + part.name + "' names the texture " + part.textureFile +
       ", which VTK could not read: shaded with its diffuse colour alone");
   }
-  if (texture)
+  if (part.kdTexture)
   {
-    const RgbImage image = linearImage(texture);
+    const RgbImage image = linearImage(part.kdTexture);
     vtkDataArray* tcoords = pointData->GetTCoords();
     if (image.texels.empty())
     {

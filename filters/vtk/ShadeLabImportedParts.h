@@ -1,7 +1,7 @@
 /**
  * A scene file's parts as one mesh (docs/guide/scene-files.md, "Meshes with their own
- * materials"): the actors that one of VTK's importers (vtkOBJImporter) made of the file, their
- * polygons in one polydata whose points know their part and carry their part's material as
+ * materials"): the actors that one of VTK's importers (vtkOBJImporter, vtkGLTFImporter) made of
+ * the file, their polygons in one polydata whose points know their part and carry their part's material as
  * point arrays, which the scene's material then reads (shadelab::MaterialArrays).
  */
 #ifndef ShadeLabImportedParts_h
@@ -18,6 +18,7 @@
 class vtkActor;
 class vtkPolyData;
 class vtkRenderer;
+class vtkTexture;
 
 namespace shadelab
 {
@@ -31,21 +32,30 @@ constexpr const char* materialShininessArrayName = "material_shininess";
 /// The field-data array of the parts' names, indexed by the part array's values.
 constexpr const char* partNamesArrayName = "part_names";
 
-/// One part as an importer made it: its actor, a name for it, and the texture file its material
-/// names ("" for none), to say which one could not be read.
+/// A part's coefficients in the lecture model, linear.
+struct PartMaterial
+{
+  Rgb ka{ 0.0 }, kd{ 0.0 }, ks{ 0.0 };
+  double shininess = 0;
+};
+
+/// One part as an importer made it: its actor (its mapper's polydata, placed by the actor's
+/// matrix), a name for it, its material, and the texture that multiplies its kd: kdTexture, or
+/// where that is null and textureFile names one, a texture that could not be read.
 struct ImportedPart
 {
   vtkActor* actor;
   std::string name;
+  PartMaterial material;
+  vtkTexture* kdTexture = nullptr;
   std::string textureFile;
 };
 
 /// The parts' polygons, lines and vertices as one mesh (the parts with none are left out), with
-/// each point's part, the parts' materials per point from their actors' properties (ka the
-/// ambient colour, kd the diffuse colour times the texture's colour averaged over the texels the
-/// point stands for, sRGB-decoded; ks the specular colour; the shininess 4 x the specular power,
-/// which vtkOBJImporter sets to the MTL's Ns / 4), their normals where every part has them, and
-/// their texture coordinates. What could not be used is added to `skipped`, one line each.
+/// each point's part, the parts' materials per point (kd times the texture's colour averaged
+/// over the texels the point stands for, sRGB-decoded where the texture is 8- or 16-bit), their
+/// normals where every part has them, and their texture coordinates. What could not be used is
+/// added to `skipped`, one line each.
 SHADELABFILTERS_EXPORT vtkSmartPointer<vtkPolyData> meshOfParts(
   const std::vector<ImportedPart>& parts, std::vector<std::string>& skipped);
 
