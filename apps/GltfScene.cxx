@@ -234,6 +234,25 @@ vtkSmartPointer<vtkPolyData> importGltfScene(const std::string& fileName, std::v
   return mesh;
 }
 
+bool isGltfFile(const std::string& fileName)
+{
+  std::string extension = std::filesystem::path(fileName).extension().string();
+  for (char& c : extension)
+  {
+    c = char(std::tolower(static_cast<unsigned char>(c)));
+  }
+  return extension == ".gltf" || extension == ".glb";
+}
+
+void importGltfAlone(const std::string& fileName)
+{
+  vtkNew<vtkGLTFImporter> importer;
+  importer->SetFileName(fileName.c_str());
+  vtkNew<vtkRenderWindow> window;
+  importer->SetRenderWindow(window);
+  importer->Update();
+}
+
 std::uintmax_t gltfBytes(const std::string& fileName)
 {
   std::error_code error;

@@ -20,6 +20,13 @@ constexpr const char* fileLightsArrayName = "file_lights";
 /// is added to `notes`. Throws UserError where the importer fails or the file has no geometry.
 vtkSmartPointer<vtkPolyData> importGltfScene(const std::string& fileName, std::vector<std::string>& notes);
 
+/// Whether the file is glTF, by its extension (.gltf, .glb in any case).
+bool isGltfFile(const std::string& fileName);
+
+/// VTK's importer alone on the file, in this process, its scene then dropped: what reading it
+/// costs without ShadeLab's parts, materials, lights and process (the benchmark's floor).
+void importGltfAlone(const std::string& fileName);
+
 /// The bytes the file and the buffers and images it names beside it hold: what its reading is
 /// bounded by, for a .gltf whose data lie in files of their own.
 std::uintmax_t gltfBytes(const std::string& fileName);

@@ -13,6 +13,7 @@
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkStringArray.h"
 #include "vtkXMLDataSetWriter.h"
 #include "vtkXMLGenericDataObjectReader.h"
 
@@ -63,7 +64,23 @@ struct Entry
   std::string name;
   std::vector<std::string> componentNames;
   vtkDataArray* array = nullptr; // the child's, while writing
+  std::string text;              // a string array's values, each after its length (packedText)
 };
+
+/// A field-data string array (part names, a scene's JSON) as one block: each value's length as
+/// 32 bits, then its bytes.
+std::string packedText(vtkStringArray* strings)
+{
+  std::string block;
+  for (vtkIdType i = 0; i < strings->GetNumberOfValues(); ++i)
+  {
+    const std::string& value = strings->GetValue(i);
+    const auto size = static_cast<std::uint32_t>(value.size());
+    block.append(reinterpret_cast<const char*>(&size), sizeof size);
+    block += value;
+  }
+  return block;
+}
 
 vtkCellArray* cellsAt(vtkPolyData* mesh, int kind)
 {
@@ -85,6 +102,21 @@ std::vector<Entry> entriesOf(vtkPolyData* mesh)
   bool allPlain = true;
   auto add = [&](vtkAbstractArray* abstract, Place place, int attribute)
   {
+    auto* strings = vtkStringArray::SafeDownCast(abstract);
+    if (strings && place == FieldData && strings->GetNumberOfComponents() == 1)
+    {
+      Entry entry;
+      entry.place = place;
+      entry.type = VTK_STRING;
+      entry.components = 1;
+      entry.tuples = strings->GetNumberOfValues();
+      entry.text = packedText(strings);
+      entry.bytes = entry.text.size();
+      entry.named = strings->GetName() != nullptr;
+      entry.name = entry.named ? strings->GetName() : "";
+      entries.push_back(std::move(entry));
+      return;
+    }
     vtkDataArray* array = plainArray(abstract);
     allPlain = allPlain && array;
     if (!array)
@@ -216,7 +248,8 @@ void handOverRaw(std::vector<Entry>& entries, const std::string& path)
     writeAt(fd, table.data(), table.size(), 0);
     for (const Entry& entry : entries)
     {
-      writeAt(fd, entry.array->GetVoidPointer(0), static_cast<std::size_t>(entry.bytes), entry.offset);
+      writeAt(fd, entry.array ? entry.array->GetVoidPointer(0) : entry.text.data(),
+        static_cast<std::size_t>(entry.bytes), entry.offset);
     }
   }
   catch (...)
@@ -339,6 +372,48 @@ vtkSmartPointer<vtkDataArray> mappedArray(const Entry& entry, int fd, std::uint6
   return array;
 }
 
+/// A string array packedText wrote: read (not mapped, a few bytes) and checked value by value.
+vtkSmartPointer<vtkStringArray> unpackedText(const Entry& entry, int fd, std::uint64_t fileSize)
+{
+  if (entry.place != FieldData || entry.components != 1 || entry.tuples < 0 || entry.bytes > fileSize ||
+    entry.offset > fileSize - entry.bytes)
+  {
+    TableReader::fail();
+  }
+  std::string block(static_cast<std::size_t>(entry.bytes), '\0');
+  if (::pread(fd, block.data(), block.size(), static_cast<off_t>(entry.offset)) != static_cast<ssize_t>(block.size()))
+  {
+    TableReader::fail();
+  }
+  auto strings = vtkSmartPointer<vtkStringArray>::New();
+  if (entry.named)
+  {
+    strings->SetName(entry.name.c_str());
+  }
+  std::size_t at = 0;
+  for (std::int64_t i = 0; i < entry.tuples; ++i)
+  {
+    std::uint32_t size = 0;
+    if (block.size() - at < sizeof size)
+    {
+      TableReader::fail();
+    }
+    std::memcpy(&size, block.data() + at, sizeof size);
+    at += sizeof size;
+    if (size > block.size() - at)
+    {
+      TableReader::fail();
+    }
+    strings->InsertNextValue(block.substr(at, size));
+    at += size;
+  }
+  if (at != block.size())
+  {
+    TableReader::fail();
+  }
+  return strings;
+}
+
 vtkSmartPointer<vtkPolyData> takeOverRaw(const std::string& table, int fd, std::uint64_t fileSize)
 {
   TableReader reader(table);
@@ -366,6 +441,11 @@ vtkSmartPointer<vtkPolyData> takeOverRaw(const std::string& table, int fd, std::
     if (entry.place < 0 || entry.place >= PlaceCount)
     {
       TableReader::fail();
+    }
+    if (entry.type == VTK_STRING)
+    {
+      mesh->GetFieldData()->AddArray(unpackedText(entry, fd, fileSize));
+      continue;
     }
     vtkSmartPointer<vtkDataArray> array = mappedArray(entry, fd, fileSize);
     if (entry.place == Points)

@@ -3,8 +3,10 @@
 // IsolatedWork.h) without a format to encode and decode: each array's bytes as they are in
 // memory, at a page boundary, after a table of what they are. The parent maps the pages
 // (mmap) and wraps them as VTK arrays, so that a mesh of hundreds of megabytes changes
-// process without being parsed or copied. A mesh with an array whose bytes are not one plain
-// block (strings, bits, VTK's other memory layouts) goes as VTK XML instead.
+// process without being parsed or copied. Field data's string arrays (part names, a scene's
+// JSON) go as their values' lengths and bytes. A mesh with another array whose bytes are not
+// one plain block (strings in point or cell data, bits, VTK's other memory layouts) goes as
+// VTK XML instead.
 #include "vtkDataSet.h"
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"

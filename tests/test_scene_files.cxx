@@ -2,7 +2,8 @@
 // file by VTK's importer, each part shaded with its own Kd against the closed form, a texture
 // decoded and placed texel by texel, a scene's material winning over the file's, and what a
 // missing library or texture leaves; a glTF file's lights against the same lights written by
-// hand, as .gltf and as .glb, and its material's coefficients.
+// hand, as .gltf and as .glb, and its material's coefficients; an OBJ that VTK's exporter wrote
+// read back with its actors' properties.
 #include "FilterRun.h"
 #include "TestFolder.h"
 
@@ -12,11 +13,18 @@
 #include "SceneFile.h"
 #include "ShadeLabImportedParts.h"
 
+#include "vtkActor.h"
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
+#include "vtkOBJExporter.h"
 #include "vtkPNGWriter.h"
 #include "vtkPointData.h"
+#include "vtkPolyDataMapper.h"
+#include "vtkProperty.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
+#include "vtkSphereSource.h"
 #include "vtkUnsignedCharArray.h"
 
 #include <gtest/gtest.h>
@@ -354,4 +362,65 @@ TEST(MetallicRoughness, TheGltfSplitAndTheBlinnPhongExponent)
   const LectureCoefficients half = lectureCoefficients(Rgb(0.5), 0.5, 0.0);
   EXPECT_DOUBLE_EQ(half.ks.x, 0.5 * 0.04 + 0.5 * 0.5);
   EXPECT_NEAR(half.shininess, 2 / std::pow(0.03, 4) - 2, 1e-3); // clamped at 0.03
+}
+
+TEST_F(SceneFiles, AnObjExportedByVtkComesBackWithItsMaterials)
+{
+  // Two spheres with properties of their own, written by VTK's vtkOBJExporter, which writes
+  // Ka = Ambient x AmbientColor, Kd = Diffuse x DiffuseColor, Ks = Specular x SpecularColor and
+  // Ns = SpecularPower.
+  struct Look
+  {
+    double diffuse[3], center[3];
+  };
+  const Look looks[2] = { { { 0.8, 0.2, 0.1 }, { 0, 0, 0 } }, { { 0.1, 0.3, 0.9 }, { 2, 0, 0 } } };
+  vtkNew<vtkRenderer> renderer;
+  vtkNew<vtkRenderWindow> window;
+  window->AddRenderer(renderer);
+  for (const Look& look : looks)
+  {
+    vtkNew<vtkSphereSource> sphere;
+    sphere->SetCenter(look.center);
+    vtkNew<vtkPolyDataMapper> mapper;
+    mapper->SetInputConnection(sphere->GetOutputPort());
+    vtkNew<vtkActor> actor;
+    actor->SetMapper(mapper);
+    vtkProperty* property = actor->GetProperty();
+    property->SetDiffuseColor(look.diffuse);
+    property->SetDiffuse(0.9);
+    property->SetAmbientColor(0.05, 0.1, 0.15);
+    property->SetAmbient(0.5);
+    property->SetSpecularColor(0.3, 0.3, 0.3);
+    property->SetSpecular(0.4);
+    property->SetSpecularPower(24);
+    renderer->AddActor(actor);
+  }
+  vtkNew<vtkOBJExporter> exporter;
+  exporter->SetRenderWindow(window);
+  exporter->SetFilePrefix((folder / "spheres").string().c_str());
+  exporter->Write();
+
+  vtkSmartPointer<vtkPolyData> mesh = app::readMesh((folder / "spheres.obj").string());
+  ASSERT_TRUE(hasOwnMaterials(mesh));
+  vtkPointData* points = mesh->GetPointData();
+  vtkDataArray* part = points->GetArray(partArrayName);
+  int seen[2] = { 0, 0 };
+  for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)
+  {
+    const int index = int(part->GetComponent(p, 0));
+    ASSERT_TRUE(index == 0 || index == 1);
+    ++seen[index];
+    double position[3];
+    mesh->GetPoint(p, position);
+    EXPECT_NEAR(std::hypot(position[0] - looks[index].center[0], position[1], position[2]), 0.5, 1e-6) << p;
+    for (int c = 0; c < 3; ++c)
+    {
+      EXPECT_FLOAT_EQ(points->GetArray(materialKdArrayName)->GetComponent(p, c), 0.9 * looks[index].diffuse[c]);
+      EXPECT_FLOAT_EQ(points->GetArray(materialKsArrayName)->GetComponent(p, c), 0.4 * 0.3);
+    }
+    EXPECT_FLOAT_EQ(points->GetArray(materialKaArrayName)->GetComponent(p, 2), 0.5 * 0.15);
+    EXPECT_EQ(points->GetArray(materialShininessArrayName)->GetComponent(p, 0), 24);
+  }
+  EXPECT_GT(seen[0], 0);
+  EXPECT_EQ(seen[0], seen[1]);
 }

@@ -22,6 +22,7 @@
 #include "MaterialArrays.h"
 #include "TextureFootprint.h"
 
+#include <algorithm>
 #include <array>
 
 namespace shadelab
@@ -117,29 +118,53 @@ vtkSmartPointer<vtkFloatArray> constantArray(const char* name, vtkIdType points,
   return array;
 }
 
+/// Whether every point of the part is a corner of one of its cells.
+bool everyPointUsed(vtkPolyData* part)
+{
+  std::vector<bool> used(std::size_t(part->GetNumberOfPoints()), false);
+  vtkIdType count;
+  const vtkIdType* ids;
+  for (vtkCellArray* cells : { part->GetVerts(), part->GetLines(), part->GetPolys(), part->GetStrips() })
+  {
+    for (cells->InitTraversal(); cells->GetNextCell(count, ids);)
+    {
+      for (vtkIdType k = 0; k < count; ++k)
+      {
+        used[std::size_t(ids[k])] = true;
+      }
+    }
+  }
+  return std::find(used.begin(), used.end(), false) == used.end();
+}
+
 /// The part's polygons where the actor places them, with only the points they use: VTK's
-/// importers give every OBJ part the whole file's points, and a glTF node its transform.
+/// OBJ importer gives every part the whole file's points, and the glTF importer a node its
+/// transform.
 vtkSmartPointer<vtkPolyData> placedPart(vtkActor* actor, vtkPolyData* polygons)
 {
-  vtkNew<vtkCleanPolyData> usedPoints;
-  usedPoints->SetInputData(polygons);
-  usedPoints->PointMergingOff();
-  usedPoints->ConvertLinesToPointsOff();
-  usedPoints->ConvertPolysToLinesOff();
-  usedPoints->ConvertStripsToPolysOff();
-  vtkAlgorithm* last = usedPoints;
-  vtkNew<vtkTransform> placement;
-  placement->SetMatrix(actor->GetMatrix());
-  vtkNew<vtkTransformPolyDataFilter> placed;
+  auto part = vtkSmartPointer<vtkPolyData>::New();
+  part->ShallowCopy(polygons);
+  if (!everyPointUsed(part))
+  {
+    vtkNew<vtkCleanPolyData> usedPoints;
+    usedPoints->SetInputData(part);
+    usedPoints->PointMergingOff();
+    usedPoints->ConvertLinesToPointsOff();
+    usedPoints->ConvertPolysToLinesOff();
+    usedPoints->ConvertStripsToPolysOff();
+    usedPoints->Update();
+    part->ShallowCopy(usedPoints->GetOutput());
+  }
   if (!actor->GetMatrix()->IsIdentity())
   {
-    placed->SetInputConnection(usedPoints->GetOutputPort());
+    vtkNew<vtkTransform> placement;
+    placement->SetMatrix(actor->GetMatrix());
+    vtkNew<vtkTransformPolyDataFilter> placed;
+    placed->SetInputData(part);
     placed->SetTransform(placement);
-    last = placed;
+    placed->Update();
+    part->ShallowCopy(placed->GetOutput());
   }
-  last->Update();
-  auto part = vtkSmartPointer<vtkPolyData>::New();
-  part->ShallowCopy(last->GetOutputDataObject(0));
   return part;
 }
 
@@ -202,7 +227,7 @@ vtkSmartPointer<vtkPolyData> partWithMaterial(
 
 vtkSmartPointer<vtkPolyData> meshOfParts(const std::vector<ImportedPart>& parts, std::vector<std::string>& skipped)
 {
-  vtkNew<vtkAppendPolyData> append;
+  std::vector<vtkSmartPointer<vtkPolyData>> withMaterials;
   auto names = vtkSmartPointer<vtkStringArray>::New();
   names->SetName(partNamesArrayName);
   for (const ImportedPart& part : parts)
@@ -217,12 +242,21 @@ vtkSmartPointer<vtkPolyData> meshOfParts(const std::vector<ImportedPart>& parts,
     {
       continue;
     }
-    append->AddInputData(partWithMaterial(part, polygons, int(names->GetNumberOfValues()), skipped));
+    withMaterials.push_back(partWithMaterial(part, polygons, int(names->GetNumberOfValues()), skipped));
     names->InsertNextValue(part.name);
   }
   auto mesh = vtkSmartPointer<vtkPolyData>::New();
-  if (names->GetNumberOfValues() > 0)
+  if (withMaterials.size() == 1)
   {
+    mesh->ShallowCopy(withMaterials.front()); // one part: nothing to append, nor to copy
+  }
+  else if (!withMaterials.empty())
+  {
+    vtkNew<vtkAppendPolyData> append;
+    for (vtkPolyData* part : withMaterials)
+    {
+      append->AddInputData(part);
+    }
     append->Update();
     mesh->ShallowCopy(append->GetOutput());
   }
