@@ -22,6 +22,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -34,90 +35,167 @@ namespace
 {
 using Json = nlohmann::json;
 
+/// The most JSON text read from a glTF file: the JSON of a glTF scene, without its buffers,
+/// is rarely more than a few megabytes.
+constexpr std::uint32_t largestJson = 256u << 20;
+
 /// The file's JSON: a .gltf is JSON text; a .glb a 12-byte header and then chunks, the first of
-/// them the JSON (glTF 2.0, "Binary glTF Layout"). Null where it cannot be read as either.
+/// them the JSON (glTF 2.0, "Binary glTF Layout"), of which only the JSON is read. Null where
+/// it is not a regular file, or cannot be read as either.
 Json gltfJson(const std::string& fileName)
 {
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(fileName, error))
+  {
+    return nullptr;
+  }
   std::ifstream file(fileName, std::ios::binary);
-  std::string bytes((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  char header[20] = {};
+  file.read(header, sizeof header);
   auto word = [&](std::size_t at)
   {
     std::uint32_t value = 0;
     for (int b = 3; b >= 0; --b)
     {
-      value = (value << 8) | static_cast<unsigned char>(bytes[at + std::size_t(b)]);
+      value = (value << 8) | static_cast<unsigned char>(header[at + std::size_t(b)]);
     }
     return value;
   };
-  if (bytes.size() >= 20 && bytes.compare(0, 4, "glTF") == 0)
+  const bool binary = file.gcount() == sizeof header && std::string(header, 4) == "glTF";
+  std::uint32_t length =
+    std::uint32_t(std::min<std::uintmax_t>(std::filesystem::file_size(fileName, error), largestJson));
+  if (binary)
   {
-    const std::uint32_t length = word(12);
-    if (word(16) != 0x4E4F534A || 20 + std::size_t(length) > bytes.size()) // "JSON"
+    length = word(12);
+    if (word(16) != 0x4E4F534A || length > largestJson) // the chunk's type, "JSON"
     {
       return nullptr;
     }
-    bytes = bytes.substr(20, length);
   }
-  return Json::parse(bytes, nullptr, false);
-}
-
-/// The lights the file's KHR_lights_punctual extension defines, or none.
-Json punctualLights(const Json& gltf)
-{
-  const Json* lights = nullptr;
-  if (gltf.is_object() && gltf.contains("extensions") && gltf["extensions"].contains("KHR_lights_punctual"))
+  else
   {
-    lights = &gltf["extensions"]["KHR_lights_punctual"]["lights"];
+    file.clear();
+    file.seekg(0);
   }
-  return lights && lights->is_array() ? *lights : Json::array();
+  std::string text(length, '\0');
+  file.read(text.data(), length);
+  text.resize(std::size_t(file.gcount()));
+  if (!binary && file.peek() != std::char_traits<char>::eof())
+  {
+    return nullptr; // longer than largestJson
+  }
+  return Json::parse(text, nullptr, false);
 }
 
-/// A number of the light's, or its default.
-double numberOr(const Json& node, const char* key, double fallback)
+/// The member `key` of a JSON object, or null where the node is not an object or has none.
+const Json* member(const Json* node, const char* key)
 {
-  return node.is_object() && node.contains(key) && node[key].is_number() ? node[key].get<double>() : fallback;
+  if (!node || !node->is_object())
+  {
+    return nullptr;
+  }
+  const auto found = node->find(key);
+  return found == node->end() ? nullptr : &*found;
 }
 
-/// The glTF type of a light as vtkGLTFImporter 9.1 makes it: positional off for a directional
-/// light, a cone under 90 degrees for a spot.
-std::string gltfType(vtkLight* light)
+/// An index the file gives (a node's, a light's), or -1 where it is not one.
+long long indexAt(const Json* node)
 {
+  return node && node->is_number_unsigned() ? static_cast<long long>(node->get<std::uint64_t>()) : -1;
+}
+
+/// The element `index` of a JSON array, or null.
+const Json* element(const Json* array, long long index)
+{
+  return array && array->is_array() && index >= 0 && std::size_t(index) < array->size() ? &(*array)[std::size_t(index)]
+                                                                                        : nullptr;
+}
+
+/// The KHR_lights_punctual definition of each light vtkGLTFImporter 9.1 makes, in its order
+/// (null where a node's light index names none). It puts the scene's nodes on a stack and pops
+/// them one at a time, making the node's light and pushing its children, so the last node comes
+/// first (measured: nodes [A, B] with B's children [C, D] give B, D, C, A). A file whose nodes
+/// form a cycle is cut after as many pops as it has nodes.
+std::vector<const Json*> lightsInImporterOrder(const Json& gltf)
+{
+  const Json* definitions = member(member(member(&gltf, "extensions"), "KHR_lights_punctual"), "lights");
+  const Json* nodes = member(&gltf, "nodes");
+  const long long sceneIndex = member(&gltf, "scene") ? indexAt(member(&gltf, "scene")) : 0;
+  const Json* roots = member(element(member(&gltf, "scenes"), sceneIndex), "nodes");
+  std::vector<long long> stack;
+  for (std::size_t r = 0; roots && roots->is_array() && r < roots->size(); ++r)
+  {
+    stack.push_back(indexAt(&(*roots)[r]));
+  }
+  std::vector<const Json*> lights;
+  for (std::size_t pops = 0; !stack.empty() && nodes && nodes->is_array() && pops < nodes->size(); ++pops)
+  {
+    const Json* node = element(nodes, stack.back());
+    stack.pop_back();
+    if (const Json* light = member(member(member(node, "extensions"), "KHR_lights_punctual"), "light"))
+    {
+      lights.push_back(element(definitions, indexAt(light)));
+    }
+    const Json* children = member(node, "children");
+    for (std::size_t c = 0; children && children->is_array() && c < children->size(); ++c)
+    {
+      stack.push_back(indexAt(&(*children)[c]));
+    }
+  }
+  return lights;
+}
+
+/// A number of the definition's, or its default.
+double numberOr(const Json* node, const char* key, double fallback)
+{
+  const Json* value = member(node, key);
+  return value && value->is_number() ? value->get<double>() : fallback;
+}
+
+/// A text of the definition's, or "".
+std::string textOr(const Json* node, const char* key)
+{
+  const Json* value = member(node, key);
+  return value && value->is_string() ? value->get<std::string>() : "";
+}
+
+/// The light's glTF type: its definition's, or where it has none, as vtkGLTFImporter 9.1 makes
+/// the light (positional off for a directional light, a cone under 90 degrees for a spot).
+std::string gltfType(vtkLight* light, const Json* definition)
+{
+  const std::string type = textOr(definition, "type");
+  if (type == "point" || type == "spot" || type == "directional")
+  {
+    return type;
+  }
   return !light->GetPositional() ? "directional" : light->GetConeAngle() < 90 ? "spot" : "point";
 }
 
-/// The definition in `lights` that the importer's light was made from: the one of its type,
-/// colour and intensity (and outer cone, for a spot). The importer keeps neither a point
-/// light's range nor a spot's inner cone, which only the definition has.
-const Json* definitionOf(vtkLight* light, const Json& lights)
+/// A light's name from its definition where it is one ShadeLab takes (letters, digits and _,
+/// starting with a letter), else its type and index; made unique among `taken` with _2, _3, ...
+std::string lightName(
+  const Json* definition, const std::string& type, std::size_t index, std::vector<std::string>& taken)
 {
-  const std::string type = gltfType(light);
-  for (const Json& definition : lights)
+  std::string name = textOr(definition, "name");
+  const bool usable = !name.empty() && name.size() <= 48 && std::isalpha(static_cast<unsigned char>(name[0])) &&
+    name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_") == std::string::npos;
+  const std::string base = usable ? name : type + std::to_string(index);
+  name = base;
+  for (int copy = 2; std::find(taken.begin(), taken.end(), name) != taken.end(); ++copy)
   {
-    const Json color = definition.value("color", Json::array({ 1.0, 1.0, 1.0 }));
-    bool same = definition.value("type", "") == type && numberOr(definition, "intensity", 1) == light->GetIntensity();
-    for (int c = 0; c < 3 && same && color.is_array() && color.size() == 3; ++c)
-    {
-      same = color[std::size_t(c)].is_number() && color[std::size_t(c)].get<double>() == light->GetDiffuseColor()[c];
-    }
-    if (same && type == "spot")
-    {
-      const double outer = numberOr(definition.value("spot", Json::object()), "outerConeAngle", M_PI / 4);
-      same = std::abs(outer * 180 / M_PI - light->GetConeAngle()) < 1e-9;
-    }
-    if (same)
-    {
-      return &definition;
-    }
+    name = base + "_" + std::to_string(copy);
   }
-  return nullptr;
+  taken.push_back(name);
+  return name;
 }
 
 /// The importer's light as a ShadeLab light (KHR_lights_punctual's conventions, docs/guide/
 /// scene-files.md "glTF files"): placed at its node's origin, pointing down its node's -z. A
 /// point or spot light of I candela is a light of intensity I under the inverse-square law (with
 /// glTF's window where it has a range), a directional light of E lux a distant one of
-/// intensity E.
-Json shadeLabLight(vtkLight* light, const Json* definition, std::size_t index)
+/// intensity E. The importer keeps neither a point light's range nor a spot's inner cone,
+/// which only the definition has.
+Json shadeLabLight(vtkLight* light, const Json* definition, const std::string& name)
 {
   vtkMatrix4x4* node = light->GetTransformMatrix();
   const double origin[4] = { 0, 0, 0, 1 }, down[4] = { 0, 0, -1, 0 };
@@ -127,28 +205,21 @@ Json shadeLabLight(vtkLight* light, const Json* definition, std::size_t index)
     node->MultiplyPoint(origin, position);
     node->MultiplyPoint(down, axis);
   }
-  const std::string type = gltfType(light);
+  const std::string type = gltfType(light, definition);
   const double* color = light->GetDiffuseColor();
-  std::string name = definition && definition->contains("name") && (*definition)["name"].is_string()
-    ? (*definition)["name"].get<std::string>()
-    : "";
-  const bool usable = !name.empty() && std::isalpha(static_cast<unsigned char>(name[0])) &&
-    name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_") == std::string::npos &&
-    name.size() <= 64;
-  Json out = { { "name", usable ? name : type + std::to_string(index) },
-    { "type", type == "directional" ? "distant" : type }, { "color", { color[0], color[1], color[2] } },
-    { "intensity", light->GetIntensity() } };
+  Json out = { { "name", name }, { "type", type == "directional" ? "distant" : type },
+    { "color", { color[0], color[1], color[2] } }, { "intensity", light->GetIntensity() } };
   if (type == "directional")
   {
     out["direction"] = { axis[0], axis[1], axis[2] };
     return out;
   }
   out["position"] = { position[0], position[1], position[2] };
-  const double range = definition ? numberOr(*definition, "range", 0) : 0;
+  const double range = numberOr(definition, "range", 0);
   out["attenuation"] = range > 0 ? Json{ { "model", "gltf_range" }, { "range", range } } : Json("inverse_square");
   if (type == "spot")
   {
-    const Json spot = definition ? definition->value("spot", Json::object()) : Json::object();
+    const Json* spot = member(definition, "spot");
     out["direction"] = { axis[0], axis[1], axis[2] };
     out["cone"] = { { "model", "gltf" }, { "inner_angle", numberOr(spot, "innerConeAngle", 0) * 180 / M_PI },
       { "outer_angle", numberOr(spot, "outerConeAngle", M_PI / 4) * 180 / M_PI } };
@@ -159,20 +230,23 @@ Json shadeLabLight(vtkLight* light, const Json* definition, std::size_t index)
 /// The renderer's lights as a ShadeLab scene's JSON text, or "" for none.
 std::string lightsScene(vtkRenderer* renderer, const Json& gltf, std::vector<std::string>& notes)
 {
-  const Json definitions = punctualLights(gltf);
-  Json lights = Json::array();
+  const std::vector<const Json*> definitions = lightsInImporterOrder(gltf);
   vtkLightCollection* collection = renderer->GetLights();
+  if (definitions.size() != std::size_t(collection->GetNumberOfItems()))
+  {
+    notes.push_back("VTK's importer made " + std::to_string(collection->GetNumberOfItems()) +
+      " lights where the file's nodes name " + std::to_string(definitions.size()) +
+      ": their ranges and inner cones are glTF's defaults");
+  }
+  Json lights = Json::array();
+  std::vector<std::string> names;
   collection->InitTraversal();
   for (int i = 0; i < collection->GetNumberOfItems(); ++i)
   {
     vtkLight* light = collection->GetNextItem();
-    const Json* definition = definitionOf(light, definitions);
-    if (!definition)
-    {
-      notes.push_back("light " + std::to_string(i) + " (" + gltfType(light) +
-        "): its KHR_lights_punctual definition was not found: its range and inner cone are glTF's defaults");
-    }
-    lights.push_back(shadeLabLight(light, definition, std::size_t(i)));
+    const Json* definition =
+      definitions.size() == std::size_t(collection->GetNumberOfItems()) ? definitions[i] : nullptr;
+    lights.push_back(shadeLabLight(light, definition, lightName(definition, gltfType(light, definition), i, names)));
   }
   return lights.empty() ? "" : Json{ { "lights", lights } }.dump(2);
 }
@@ -261,13 +335,10 @@ std::uintmax_t gltfBytes(const std::string& fileName)
   const std::filesystem::path folder = std::filesystem::path(fileName).parent_path();
   for (const char* kind : { "buffers", "images" })
   {
-    if (!gltf.is_object() || !gltf.contains(kind) || !gltf[kind].is_array())
+    const Json* resources = member(&gltf, kind);
+    for (std::size_t r = 0; resources && resources->is_array() && r < resources->size(); ++r)
     {
-      continue;
-    }
-    for (const Json& resource : gltf[kind])
-    {
-      const std::string uri = resource.is_object() ? resource.value("uri", "") : "";
+      const std::string uri = textOr(&(*resources)[r], "uri");
       if (!uri.empty() && uri.rfind("data:", 0) != 0)
       {
         const std::uintmax_t size = std::filesystem::file_size(folder / uri, error);

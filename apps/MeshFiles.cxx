@@ -315,8 +315,8 @@ void checkCells(vtkPolyData* mesh, const std::string& fileName)
 vtkSmartPointer<vtkPolyData> readMesh(const std::string& fileName, std::string* ignored)
 {
   const std::string extension = lowerExtension(fileName);
-  const std::uintmax_t size =
-    extension == ".gltf" ? std::max(readableFileSize(fileName), gltfBytes(fileName)) : readableFileSize(fileName);
+  std::uintmax_t size = readableFileSize(fileName); // first: it refuses what is not a regular file
+  size = extension == ".gltf" ? std::max(size, gltfBytes(fileName)) : size;
   MeshFileCheck check;
   vtkSmartPointer<vtkDataSet> data = readIsolated(
     fileName, "VTK's " + extension + " reader", size,

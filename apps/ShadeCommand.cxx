@@ -650,7 +650,11 @@ int runShade(const ShadeOptions& options)
 {
   // Everything that can be checked before the slow work is checked first.
   Scene scene = sceneOf(options);
-  std::vector<std::string> selection = arraySelection(scene, options.arrays);
+  // A glTF file may bring its own lights, whose arrays --arrays may name: checked once it is read.
+  const bool lightsMayComeFromFile =
+    isGltfFile(options.mesh) && options.scene.empty() && options.overrides.environment.file.empty();
+  std::vector<std::string> selection =
+    lightsMayComeFromFile ? std::vector<std::string>{} : arraySelection(scene, options.arrays);
   checkOutputFile(options.output, meshExtensions);
 
   if (options.threads > 0)
@@ -666,6 +670,9 @@ int runShade(const ShadeOptions& options)
   if (shadesWithFileLights(mesh, options))
   {
     scene = sceneOfFileLights(mesh, options);
+  }
+  if (lightsMayComeFromFile)
+  {
     selection = arraySelection(scene, options.arrays);
   }
 

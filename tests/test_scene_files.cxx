@@ -33,6 +33,8 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <set>
 #include <unistd.h>
 
 namespace
@@ -423,4 +425,53 @@ TEST_F(SceneFiles, AnObjExportedByVtkComesBackWithItsMaterials)
   }
   EXPECT_GT(seen[0], 0);
   EXPECT_EQ(seen[0], seen[1]);
+}
+
+TEST_F(SceneFiles, AGltfFilesLightsKeepTheirOwnDefinitionsWhereverTheirNodesAre)
+{
+  // Two point lights alike but for their range, one of them used by two nodes, one under a
+  // parent that is moved and turned; a spot whose cone is the widest glTF allows.
+  std::ofstream(folder / "square.bin", std::ios::binary) << squareBuffer();
+  std::string gltf = lampsGltf(R"({ "byteLength": 112, "uri": "square.bin" })");
+  const std::string lights = R"("lights": [
+    { "name": "near", "type": "point", "intensity": 2, "range": 1 },
+    { "name": "near", "type": "point", "intensity": 2, "range": 100 },
+    { "type": "spot", "spot": { "innerConeAngle": 0.5, "outerConeAngle": 1.5707963267948966 } } ])";
+  gltf.replace(gltf.find("\"lights\": ["), gltf.find("] } },") + 1 - gltf.find("\"lights\": ["), lights);
+  const std::string nodes = R"("nodes": [ { "mesh": 0 },
+    { "translation": [1, 0, 0], "rotation": [0, 0.70710678, 0, 0.70710678], "children": [2] },
+    { "translation": [0, 0, 2], "extensions": { "KHR_lights_punctual": { "light": 0 } } },
+    { "translation": [0, 5, 0], "extensions": { "KHR_lights_punctual": { "light": 1 } } },
+    { "translation": [0, 6, 0], "extensions": { "KHR_lights_punctual": { "light": 1 } } },
+    { "translation": [0, 7, 0], "extensions": { "KHR_lights_punctual": { "light": 2 } } } ],
+  "meshes")";
+  gltf.replace(
+    gltf.find("\"nodes\": [ { \"mesh\""), gltf.find("\"meshes\"") + 8 - gltf.find("\"nodes\": [ { \"mesh\""), nodes);
+  gltf.replace(gltf.find("\"nodes\": [0, 1, 2, 3]"), 21, "\"nodes\": [0, 1, 3, 4, 5]");
+  const Scene scene = parseScene(app::fileLightsOf(app::readMesh(file("nested.gltf", gltf))), "nested.gltf");
+  ASSERT_EQ(scene.lights.size(), 4u);
+  std::set<std::string> names;
+  std::map<double, double> rangeAtHeight; // the point lights' ranges by their positions' y
+  for (const NamedLight& light : scene.lights)
+  {
+    names.insert(light.name);
+    if (const auto* point = std::get_if<PointLight>(&light.source))
+    {
+      rangeAtHeight[point->position.y] = point->attenuation.range;
+      // The parent turns its child's offset (0, 0, 2) by 90 degrees about y to (2, 0, 0), then
+      // moves it by (1, 0, 0).
+      if (point->attenuation.range == 1)
+      {
+        EXPECT_NEAR(glm::distance(point->position, glm::dvec3(3, 0, 0)), 0, 1e-6);
+      }
+    }
+    if (const auto* spot = std::get_if<SpotLight>(&light.source))
+    {
+      EXPECT_NEAR(spot->cone.innerAngleDegrees, 0.5 * 180 / M_PI, 1e-9);
+      EXPECT_NEAR(spot->cone.outerAngleDegrees, 90, 1e-9);
+    }
+  }
+  // Named in the importer's order (the last node first), made unique.
+  EXPECT_EQ(names, (std::set<std::string>{ "spot0", "near", "near_2", "near_3" }));
+  EXPECT_EQ(rangeAtHeight, (std::map<double, double>{ { 0, 1 }, { 5, 100 }, { 6, 100 } }));
 }
