@@ -463,7 +463,7 @@ std::string ownMaterialsText(vtkPolyData* mesh, const Scene& scene, const ShadeO
   }
   const std::string instead = scene.materialGiven ? "the scene's"
     : !options.colorBy.empty()                    ? "--color-by's"
-                                                  : "the vtk model's (it reproduces VTK's renderer, not the MTL)";
+                               : "the vtk model's (it reproduces VTK's renderer, not the file's materials)";
   return instead + ", in place of the mesh's own (" + partsText + ")";
 }
 

@@ -209,6 +209,40 @@ TEST_F(SceneFiles, FacesTheImporterLeavesOutKeepTheWholeMesh)
   EXPECT_EQ(mesh->GetNumberOfPolys(), 8);
 }
 
+TEST_F(SceneFiles, TheMtlFilesNumbersAreReadAsTheFileStatesThem)
+{
+  // illum 1 (no highlights) has no specular term, though Ks is given: VTK's importer would keep
+  // Ks but not Ns; a grey Kd given as one number; a material the MTL lacks: VTK's defaults.
+  std::string mtl = partsMtl;
+  mtl.replace(mtl.find("Ns 20"), 5, "Ns 40\nillum 1");
+  mtl.replace(mtl.find("Kd 0.9 0.8 0.6"), 14, "Kd 0.5");
+  mtl.replace(mtl.find("map_Kd texture.png"), 18, "");
+  file("parts.mtl", mtl);
+  vtkSmartPointer<vtkPolyData> mesh = app::readMesh(file("parts.obj", twoPartObj));
+  vtkPointData* points = mesh->GetPointData();
+  for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)
+  {
+    const bool red = points->GetArray(partArrayName)->GetComponent(p, 0) == 0;
+    EXPECT_EQ(points->GetArray(materialKsArrayName)->GetComponent(p, 0), red ? 0 : 0.2f);
+    EXPECT_EQ(points->GetArray(materialShininessArrayName)->GetComponent(p, 0), red ? 40 : 64);
+    EXPECT_EQ(points->GetArray(materialKdArrayName)->GetComponent(p, 2), red ? 0.1f : 0.5f);
+  }
+  std::string undefined = twoPartObj;
+  undefined.replace(undefined.find("usemtl tex"), 10, "usemtl gone");
+  vtkSmartPointer<vtkPolyData> gone = app::readMesh(file("gone.obj", undefined));
+  vtkPointData* goneData = gone->GetPointData();
+  int defaults = 0;
+  for (vtkIdType p = 0; p < gone->GetNumberOfPoints(); ++p)
+  {
+    if (goneData->GetArray(materialKdArrayName)->GetComponent(p, 0) == 1)
+    {
+      EXPECT_EQ(goneData->GetArray(materialKsArrayName)->GetComponent(p, 0), 0);
+      ++defaults;
+    }
+  }
+  EXPECT_EQ(defaults, 18);
+}
+
 TEST_F(SceneFiles, AMissingLibraryLeavesTheMeshAlone)
 {
   vtkSmartPointer<vtkPolyData> mesh = app::readMesh(file("parts.obj", twoPartObj));
