@@ -175,14 +175,23 @@ std::uintmax_t readableFileSize(const std::string& fileName)
 /// more is answering a lie in the file), so that a crash there is an error here. reader names
 /// the reader in messages ("VTK's .ply reader"). fileProblem, if given, checks the file in this
 /// process while the reader reads it (VTK's readers use one core); what it finds is the error,
-/// whatever the reader made of the file. Throws UserError.
+/// whatever the reader made of the file. With textures, the file may name images, which are
+/// given room of their own. Throws UserError.
 vtkSmartPointer<vtkDataSet> readIsolated(const std::string& fileName, const std::string& reader, std::uintmax_t size,
-  const std::function<void(ChildChannel&)>& read, const std::function<std::string()>& fileProblem = {})
+  const std::function<void(ChildChannel&)>& read, const std::function<std::string()>& fileProblem = {},
+  bool textures = false)
 {
   const double megabytes = static_cast<double>(size) / 1e6;
   IsolationLimits limits;
   limits.cpuSeconds = 10 + 2 * megabytes;
   limits.memoryBytes = (std::size_t(512) << 20) + 32 * static_cast<std::size_t>(size);
+  if (textures)
+  {
+    // A compressed image says little of its decoded size (a smooth 4096 x 4096 PNG of 1 MB is
+    // 1.2 GB once decoded and summed, 72 bytes a texel): room for such textures.
+    limits.cpuSeconds += 30;
+    limits.memoryBytes += std::size_t(4) << 30;
+  }
   limits.wallSeconds = 10 + 3 * limits.cpuSeconds; // room for a busy machine
   std::string problem;
   const IsolatedOutcome outcome = runIsolated(
@@ -332,7 +341,8 @@ vtkSmartPointer<vtkPolyData> readMesh(const std::string& fileName, std::string* 
     {
       check = checkMeshFile(fileName, extension, size);
       return check.problem;
-    });
+    },
+    extension == ".obj" || extension == ".gltf" || extension == ".glb"); // the formats with textures
   if (ignored)
   {
     *ignored = check.ignored;

@@ -97,6 +97,34 @@ TEST(TextureFootprint, AWholeRepeatIsTheTexturesMean)
   EXPECT_TRUE(std::isnan(boxMean(image, NAN, 0.5, 1).x));
 }
 
+TEST(TextureFootprint, LargeSquaresFromTheTableOfSumsAgreeWithTexelByTexel)
+{
+  // A 96 x 80 image of varied texels; squares from 65 texels (the table's) to several repeats.
+  RgbImage image;
+  image.width = 96;
+  image.height = 80;
+  for (int j = 0; j < image.height; ++j)
+  {
+    for (int i = 0; i < image.width; ++i)
+    {
+      image.texels.push_back(Rgb(std::sin(i * 0.37 + j), (i * j) % 7, std::cos(0.1 * i * j)));
+    }
+  }
+  const BoxFilteredTexture texture(image);
+  for (double side : { 65.5, 80.0, 150.25, 400.0 })
+  {
+    for (double u : { 0.013, 0.5, 0.97, 3.4, -1.2 })
+    {
+      const Rgb fromTable = texture.mean(u, 0.31, side), byTexels = boxMean(image, u, 0.31, side);
+      for (int c = 0; c < 3; ++c)
+      {
+        EXPECT_NEAR(fromTable[c], byTexels[c], 1e-9) << "side " << side << ", u " << u;
+      }
+    }
+  }
+  EXPECT_EQ(texture.mean(0.3, 0.4, 10), boxMean(image, 0.3, 0.4, 10)); // small: texel by texel
+}
+
 TEST(TextureFootprint, AGridVertexStandsForOneGridStep)
 {
   // A 5 x 5 grid of vertices over a 64 x 32 texture, one step 0.25 in u and v: 16 x 8 texels,

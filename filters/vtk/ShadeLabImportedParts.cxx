@@ -97,10 +97,11 @@ std::vector<Rgb> textureColors(vtkPolyData* part, const RgbImage& image, vtkData
     uv[std::size_t(p)] = { tcoords->GetComponent(p, 0), tcoords->GetComponent(p, 1) };
   }
   const std::vector<double> sides = texelFootprints(positions, uv, trianglesOf(part), image.width, image.height);
+  const BoxFilteredTexture texture(image);
   std::vector<Rgb> colors(static_cast<std::size_t>(points));
   for (std::size_t p = 0; p < colors.size(); ++p)
   {
-    colors[p] = boxMean(image, uv[p][0], uv[p][1], sides[p]);
+    colors[p] = texture.mean(uv[p][0], uv[p][1], sides[p]);
   }
   return colors;
 }

@@ -122,6 +122,52 @@ Rgb boxMean(const RgbImage& image, double u, double v, double side)
   return mean;
 }
 
+Rgb BoxFilteredTexture::mean(double u, double v, double side) const
+{
+  const double texels = std::min(side, double(image_.width)) * std::min(side, double(image_.height));
+  if (!(texels > 64 * 64) || !std::isfinite(u) || !std::isfinite(v) || !std::isfinite(side))
+  {
+    return boxMean(image_, u, v, side);
+  }
+  if (sums_.empty())
+  {
+    const std::size_t columns = std::size_t(image_.width) + 1;
+    sums_.assign(columns * (std::size_t(image_.height) + 1), Rgb(0.0));
+    for (int j = 0; j < image_.height; ++j)
+    {
+      for (int i = 0; i < image_.width; ++i)
+      {
+        sums_[(j + 1) * columns + i + 1] =
+          image_.at(i, j) + sums_[j * columns + i + 1] + sums_[(j + 1) * columns + i] - sums_[j * columns + i];
+      }
+    }
+  }
+  side = std::min(side, 1048576.0 * std::max(image_.width, image_.height)); // as boxMean clamps it
+  const double x0 = (u - std::floor(u)) * image_.width - side / 2, y0 = (v - std::floor(v)) * image_.height - side / 2;
+  const double x1 = x0 + side, y1 = y0 + side;
+  return (sumTo(x1, y1) - sumTo(x0, y1) - sumTo(x1, y0) + sumTo(x0, y0)) / (side * side);
+}
+
+Rgb BoxFilteredTexture::sumTo(double x, double y) const
+{
+  // x = a width + r, y = b height + t, r and t within a repeat: a b whole repeats, a strips of
+  // [0, width) x [0, t), b strips of [0, r) x [0, height), and [0, r) x [0, t).
+  const double a = std::floor(x / image_.width), b = std::floor(y / image_.height);
+  const double r = x - a * image_.width, t = y - b * image_.height;
+  const double w = image_.width, h = image_.height;
+  return a * b * sumWithin(w, h) + a * sumWithin(w, t) + b * sumWithin(r, h) + sumWithin(r, t);
+}
+
+Rgb BoxFilteredTexture::sumWithin(double x, double y) const
+{
+  const std::size_t columns = std::size_t(image_.width) + 1;
+  const int i = std::clamp(int(std::floor(x)), 0, image_.width - 1),
+            j = std::clamp(int(std::floor(y)), 0, image_.height - 1);
+  const double fx = std::clamp(x - i, 0.0, 1.0), fy = std::clamp(y - j, 0.0, 1.0);
+  auto at = [&](int column, int row) { return sums_[std::size_t(row) * columns + std::size_t(column)]; };
+  return (1 - fy) * ((1 - fx) * at(i, j) + fx * at(i + 1, j)) + fy * ((1 - fx) * at(i, j + 1) + fx * at(i + 1, j + 1));
+}
+
 std::vector<double> texelFootprints(const std::vector<std::array<double, 3>>& positions,
   const std::vector<std::array<double, 2>>& uv, const std::vector<std::array<std::size_t, 3>>& triangles, int width,
   int height)
