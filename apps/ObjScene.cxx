@@ -154,13 +154,13 @@ PartMaterial lectureMaterial(
   return m;
 }
 
-/// Whether the actor's polydata has cells: vtkOBJImporter makes a part for every material of
-/// the MTL file, and one more, with those the faces use.
-bool partHasCells(vtkActor* actor)
+/// The polygons of the actor's polydata: vtkOBJImporter makes a part for every material of the
+/// MTL file, and one more, with those the faces use (none for the others).
+vtkIdType polygonsOf(vtkActor* actor)
 {
   vtkMapper* mapper = actor->GetMapper();
   auto* data = vtkPolyData::SafeDownCast(mapper ? mapper->GetInput() : nullptr);
-  return data && data->GetNumberOfCells() > 0;
+  return data ? data->GetNumberOfPolys() : 0;
 }
 
 /// A field of vtkOBJImporter 9.1's description of output `index` ("data output 1 with material
@@ -226,6 +226,7 @@ vtkSmartPointer<vtkPolyData> importObjScene(
   std::vector<std::string> skipped; // noted once the parts are known to be whole
   const std::map<std::string, MtlMaterial> materials = mtlMaterials(library, skipped);
   std::vector<ImportedPart> parts;
+  long long imported = 0; // the faces the importer kept, as polygons
   actors->InitTraversal();
   for (int i = 0; i < actors->GetNumberOfItems(); ++i)
   {
@@ -233,22 +234,24 @@ vtkSmartPointer<vtkPolyData> importObjScene(
     const fs::path texturePath = fs::absolute(fs::path(folderOf(library)) / texture).lexically_normal();
     vtkActor* actor = actors->GetNextActor();
     const std::string name = describedField(importer, i, "material named");
-    if (!partHasCells(actor))
+    const vtkIdType polygons = polygonsOf(actor);
+    imported += polygons;
+    if (polygons == 0)
     {
-      continue; // the importer's default part, which the file's faces rarely use
+      continue; // a material no face uses, or the importer's default part
     }
     parts.push_back({ actor, name.empty() ? "(undefined)" : name, lectureMaterial(name, materials, skipped),
       actor->GetTexture(), texture == "none" || texture.empty() ? "" : texturePath.string() });
   }
-  vtkSmartPointer<vtkPolyData> mesh = meshOfParts(parts, skipped);
-  if (mesh->GetNumberOfPolys() < statements.faces)
+  if (imported < statements.faces)
   {
-    notes.push_back("VTK's OBJ importer read " + std::to_string(mesh->GetNumberOfPolys()) + " of its " +
+    notes.push_back("VTK's OBJ importer read " + std::to_string(imported) + " of its " +
       std::to_string(statements.faces) +
       " faces (it leaves out faces without texture coordinates where others have them): read as one mesh "
       "without its materials");
     return nullptr;
   }
+  vtkSmartPointer<vtkPolyData> mesh = meshOfParts(parts, skipped);
   notes.insert(notes.end(), skipped.begin(), skipped.end());
   return mesh;
 }
