@@ -251,6 +251,28 @@ std::string lightsScene(vtkRenderer* renderer, const Json& gltf, std::vector<std
   return lights.empty() ? "" : Json{ { "lights", lights } }.dump(2);
 }
 
+/// The extensions the file uses that ShadeLab does not read, those it requires first: each may
+/// change how the file looks (a texture's transform, a clear coat, an emission), so each is said.
+void noteUnreadExtensions(const Json& gltf, std::vector<std::string>& notes)
+{
+  const Json* required = member(&gltf, "extensionsRequired");
+  const Json* used = member(&gltf, "extensionsUsed");
+  for (const Json* list : { required, used })
+  {
+    for (std::size_t e = 0; list && list->is_array() && e < list->size(); ++e)
+    {
+      const std::string name = (*list)[e].is_string() ? (*list)[e].get<std::string>() : "";
+      const bool alsoRequired = list == used && required && required->is_array() &&
+        std::find(required->begin(), required->end(), (*list)[e]) != required->end();
+      if (!name.empty() && name != "KHR_lights_punctual" && !alsoRequired)
+      {
+        notes.push_back(std::string(list == required ? "requires" : "uses") + " the extension " + name +
+          ", which ShadeLab does not read: what it changes is not shaded");
+      }
+    }
+  }
+}
+
 /// The part's material from its PBR property (glTF's pbrMetallicRoughness), in the lecture's
 /// coefficients.
 PartMaterial materialOf(vtkProperty* property)
@@ -297,7 +319,9 @@ vtkSmartPointer<vtkPolyData> importGltfScene(const std::string& fileName, std::v
   {
     throw UserError(fileName + ": the glTF file has no geometry that VTK's importer reads (no mesh primitives)");
   }
-  const std::string lights = lightsScene(renderer, gltfJson(fileName), notes);
+  const Json gltf = gltfJson(fileName);
+  noteUnreadExtensions(gltf, notes);
+  const std::string lights = lightsScene(renderer, gltf, notes);
   if (!lights.empty())
   {
     auto text = vtkSmartPointer<vtkStringArray>::New();

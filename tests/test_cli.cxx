@@ -957,6 +957,19 @@ TEST_F(Cli, AGltfIsLitByItsOwnLightsAndABrokenOneIsRefused)
     scene.out.find("  scene: " + (folder / "scene.json").string() + " (lecture model, 1 light)\n"), std::string::npos)
     << scene.out;
 
+  // An extension that changes the look, which ShadeLab does not read, is said.
+  fs::copy_file(SHADELAB_SOURCE_DIR "/data/scenes/lamps/lamps.bin", folder / "lamps.bin");
+  fs::copy_file(SHADELAB_SOURCE_DIR "/data/scenes/lamps/checker.png", folder / "checker.png");
+  std::string gltf = slurp(SHADELAB_SOURCE_DIR "/data/scenes/lamps/lamps.gltf");
+  gltf.replace(gltf.find("\"extensionsUsed\": ["), 19,
+    "\"extensionsRequired\": [\"KHR_texture_transform\"], \"extensionsUsed\": [\"KHR_texture_transform\", ");
+  const std::string transformed = file("transformed.gltf", gltf);
+  const Result extension = shadelab("shade " + transformed + " -o " + (folder / "t.vtp").string());
+  ASSERT_EQ(extension.exitCode, 0) << extension.err;
+  EXPECT_EQ(extension.err,
+    "shadelab: warning: " + transformed +
+      ": requires the extension KHR_texture_transform, which ShadeLab does not read: what it changes is not shaded\n");
+
   const std::string output = (folder / "out.vtp").string();
   const std::string empty =
     file("empty.gltf", R"({ "asset": { "version": "2.0" }, "scene": 0, "scenes": [ { "nodes": [] } ] })");

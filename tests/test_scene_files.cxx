@@ -243,6 +243,21 @@ TEST_F(SceneFiles, TheMtlFilesNumbersAreReadAsTheFileStatesThem)
   EXPECT_EQ(defaults, 18);
 }
 
+TEST_F(SceneFiles, TheSpectralModeAsksForAMaterialOfItsOwn)
+{
+  writeTexture((folder / "texture.png").string());
+  file("parts.mtl", partsMtl);
+  vtkSmartPointer<vtkPolyData> mesh = app::readMesh(file("parts.obj", twoPartObj));
+  const Scene spectral =
+    parseScene(R"({ "spectral": {}, "lights": [ { "type": "distant", "direction": [0, 0, -1] } ] })", "spectral.json");
+  EXPECT_EQ(shadelab::testing::filterError(mesh, spectral),
+    "the mesh's own materials (a scene file's parts, RGB per point) cannot be shaded in the spectral mode, which "
+    "takes spectra or numbers: give the scene a \"material\"");
+  Scene withMaterial = spectral;
+  withMaterial.materialGiven = true;
+  EXPECT_EQ(shadelab::testing::filterError(mesh, withMaterial), "");
+}
+
 TEST_F(SceneFiles, AMissingLibraryLeavesTheMeshAlone)
 {
   vtkSmartPointer<vtkPolyData> mesh = app::readMesh(file("parts.obj", twoPartObj));

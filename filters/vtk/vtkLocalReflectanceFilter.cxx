@@ -506,6 +506,12 @@ bool vtkLocalReflectanceFilter::PlaceScene(vtkPolyData* input, const shadelab::M
   plan.scene = shadelab::placedOnMesh(*given, plan.extent);
   if (shadelab::shadesWithOwnMaterials(plan.scene, input, this->ColorByArray))
   {
+    if (plan.scene.spectral)
+    {
+      vtkErrorMacro("the mesh's own materials (a scene file's parts, RGB per point) cannot be shaded in the spectral "
+                    "mode, which takes spectra or numbers: give the scene a \"material\"");
+      return false;
+    }
     plan.scene.material = shadelab::ownMaterial(plan.scene.material);
   }
   if (this->ColorByArray)
