@@ -334,11 +334,7 @@ vtkSmartPointer<vtkPolyData> importGltfScene(const std::string& fileName, std::v
 
 bool isGltfFile(const std::string& fileName)
 {
-  std::string extension = std::filesystem::path(fileName).extension().string();
-  for (char& c : extension)
-  {
-    c = char(std::tolower(static_cast<unsigned char>(c)));
-  }
+  const std::string extension = lowerExtension(fileName);
   return extension == ".gltf" || extension == ".glb";
 }
 

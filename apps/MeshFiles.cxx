@@ -53,8 +53,6 @@ namespace shadelab::app
 {
 const char* const readableExtensions = ".vtp, .vtk, .ply, .obj, .stl, .gltf, .glb";
 
-namespace
-{
 std::string lowerExtension(const std::string& fileName)
 {
   std::string extension = fs::path(fileName).extension().string();
@@ -63,6 +61,8 @@ std::string lowerExtension(const std::string& fileName)
   return extension;
 }
 
+namespace
+{
 vtkSmartPointer<vtkAlgorithm> readerFor(const std::string& fileName, const std::string& extension)
 {
   if (extension == ".vtp")
@@ -332,7 +332,7 @@ vtkSmartPointer<vtkPolyData> readMesh(const std::string& fileName, std::string* 
     [&](ChildChannel& channel)
     {
       vtkSmartPointer<vtkPolyData> mesh = extension == ".obj" ? readObj(fileName, channel)
-        : extension == ".gltf" || extension == ".glb"         ? readGltf(fileName, channel)
+        : isGltfFile(fileName)                                ? readGltf(fileName, channel)
                                                               : readDirectly(fileName, extension, channel.terminal());
       checkCells(mesh, fileName);
       handOverMesh(mesh, channel.resultPath());
@@ -342,7 +342,7 @@ vtkSmartPointer<vtkPolyData> readMesh(const std::string& fileName, std::string* 
       check = checkMeshFile(fileName, extension, size);
       return check.problem;
     },
-    extension == ".obj" || extension == ".gltf" || extension == ".glb"); // the formats with textures
+    extension == ".obj" || isGltfFile(fileName)); // the formats with textures
   if (ignored)
   {
     *ignored = check.ignored;

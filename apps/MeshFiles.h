@@ -18,6 +18,9 @@ public:
   using std::runtime_error::runtime_error;
 };
 
+/// The file name's extension with its dot, in lower case (".obj"), or "".
+std::string lowerExtension(const std::string& fileName);
+
 /// The extensions readMesh understands, for messages.
 extern const char* const readableExtensions;
 /// The extensions writeMesh writes.

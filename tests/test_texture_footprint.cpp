@@ -132,21 +132,28 @@ TEST(TextureFootprint, AGridVertexStandsForOneGridStep)
   // triangle's corners are points of their own (as an OBJ importer keeps them).
   std::vector<std::array<double, 3>> positions;
   std::vector<std::array<double, 2>> uv;
-  std::vector<std::array<std::size_t, 3>> triangles;
+  std::vector<PointId> offsets = { 0 }, connectivity;
   auto corner = [&](int i, int j)
   {
     positions.push_back({ double(i), double(j), 0 });
     uv.push_back({ i * 0.25, j * 0.25 });
-    return positions.size() - 1;
+    connectivity.push_back(PointId(positions.size() - 1));
   };
   for (int j = 0; j < 4; ++j)
   {
     for (int i = 0; i < 4; ++i)
     {
-      triangles.push_back({ corner(i, j), corner(i + 1, j), corner(i + 1, j + 1) });
-      triangles.push_back({ corner(i, j), corner(i + 1, j + 1), corner(i, j + 1) });
+      corner(i, j);
+      corner(i + 1, j);
+      corner(i + 1, j + 1);
+      offsets.push_back(PointId(connectivity.size()));
+      corner(i, j);
+      corner(i + 1, j + 1);
+      corner(i, j + 1);
+      offsets.push_back(PointId(connectivity.size()));
     }
   }
+  const PolygonList triangles{ offsets.data(), connectivity.data(), offsets.size() - 1 };
   const std::vector<double> sides = texelFootprints(positions, uv, triangles, 64, 32);
   for (std::size_t p = 0; p < positions.size(); ++p)
   {
@@ -160,5 +167,19 @@ TEST(TextureFootprint, AGridVertexStandsForOneGridStep)
   // the corner (4, 0), the last cell's first triangle's second point, one: a sixth.
   EXPECT_NEAR(sides[0], std::sqrt(16.0 * 8.0 / 3), 1e-12);
   EXPECT_NEAR(sides[3 * 6 + 1], std::sqrt(16.0 * 8.0 / 6), 1e-12);
+}
+
+TEST(TextureFootprint, APolygonGivesEachTriangleOfItsFanToItsCorners)
+{
+  // One quad over the whole of a 4 x 4 texture, 16 texels: its fan's two triangles, of 8 texels
+  // each, give a third to their corners, so corners 0 and 2 (in both) stand for 16/3 texels.
+  const std::vector<std::array<double, 3>> positions = { { 0, 0, 0 }, { 1, 0, 0 }, { 1, 1, 0 }, { 0, 1, 0 } };
+  const std::vector<std::array<double, 2>> uv = { { 0, 0 }, { 1, 0 }, { 1, 1 }, { 0, 1 } };
+  const PointId offsets[2] = { 0, 4 }, connectivity[4] = { 0, 1, 2, 3 };
+  const std::vector<double> sides = texelFootprints(positions, uv, PolygonList{ offsets, connectivity, 1 }, 4, 4);
+  EXPECT_NEAR(sides[0], std::sqrt(16.0 / 3), 1e-12);
+  EXPECT_NEAR(sides[1], std::sqrt(8.0 / 3), 1e-12);
+  EXPECT_NEAR(sides[2], std::sqrt(16.0 / 3), 1e-12);
+  EXPECT_NEAR(sides[3], std::sqrt(8.0 / 3), 1e-12);
 }
 }

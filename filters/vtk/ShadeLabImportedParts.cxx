@@ -9,7 +9,6 @@
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
-#include "vtkIntArray.h"
 #include "vtkMapper.h"
 #include "vtkMatrix4x4.h"
 #include "vtkPointData.h"
@@ -20,6 +19,7 @@
 #include "vtkTransformPolyDataFilter.h"
 
 #include "MaterialArrays.h"
+#include "ShadeLabMeshPolygons.h"
 #include "TextureFootprint.h"
 
 #include <algorithm>
@@ -68,23 +68,6 @@ RgbImage linearImage(vtkTexture* texture)
   return image;
 }
 
-/// The part's triangles, its polygons cut into fans.
-std::vector<std::array<std::size_t, 3>> trianglesOf(vtkPolyData* part)
-{
-  std::vector<std::array<std::size_t, 3>> triangles;
-  vtkIdType count;
-  const vtkIdType* ids;
-  vtkCellArray* polys = part->GetPolys();
-  for (polys->InitTraversal(); polys->GetNextCell(count, ids);)
-  {
-    for (vtkIdType k = 2; k < count; ++k)
-    {
-      triangles.push_back({ std::size_t(ids[0]), std::size_t(ids[k - 1]), std::size_t(ids[k]) });
-    }
-  }
-  return triangles;
-}
-
 /// The texture's colour at each point, averaged over the texels it stands for (TextureFootprint.h).
 std::vector<Rgb> textureColors(vtkPolyData* part, const RgbImage& image, vtkDataArray* tcoords)
 {
@@ -96,7 +79,8 @@ std::vector<Rgb> textureColors(vtkPolyData* part, const RgbImage& image, vtkData
     part->GetPoint(p, positions[std::size_t(p)].data());
     uv[std::size_t(p)] = { tcoords->GetComponent(p, 0), tcoords->GetComponent(p, 1) };
   }
-  const std::vector<double> sides = texelFootprints(positions, uv, trianglesOf(part), image.width, image.height);
+  const std::vector<double> sides =
+    texelFootprints(positions, uv, MeshPolygons(part).list(), image.width, image.height);
   const BoxFilteredTexture texture(image);
   std::vector<Rgb> colors(static_cast<std::size_t>(points));
   for (std::size_t p = 0; p < colors.size(); ++p)

@@ -169,8 +169,7 @@ Rgb BoxFilteredTexture::sumWithin(double x, double y) const
 }
 
 std::vector<double> texelFootprints(const std::vector<std::array<double, 3>>& positions,
-  const std::vector<std::array<double, 2>>& uv, const std::vector<std::array<std::size_t, 3>>& triangles, int width,
-  int height)
+  const std::vector<std::array<double, 2>>& uv, const PolygonList& polygons, int width, int height)
 {
   // The surface point each point is, numbered in the order first met.
   std::unordered_map<SurfacePoint, std::size_t, SurfacePointHash> numbers;
@@ -180,16 +179,20 @@ std::vector<double> texelFootprints(const std::vector<std::array<double, 3>>& po
     const SurfacePoint key{ { positions[p][0], positions[p][1], positions[p][2], uv[p][0], uv[p][1] } };
     surfacePoint[p] = numbers.emplace(key, numbers.size()).first->second;
   }
+  auto inTexels = [&](PointId p) { return glm::dvec3(uv[p][0] * width, uv[p][1] * height, 0); };
   std::vector<double> area(numbers.size(), 0.0);
-  for (const auto& t : triangles)
+  for (std::size_t k = 0; k < polygons.count; ++k)
   {
-    // The triangle's area in texels: half the cross product of its edges in texture space.
-    const double ax = (uv[t[1]][0] - uv[t[0]][0]) * width, ay = (uv[t[1]][1] - uv[t[0]][1]) * height;
-    const double bx = (uv[t[2]][0] - uv[t[0]][0]) * width, by = (uv[t[2]][1] - uv[t[0]][1]) * height;
-    const double third = std::abs(ax * by - ay * bx) / 6;
-    for (std::size_t corner : t)
+    const PointId* ids = polygons.ids(k);
+    for (std::size_t i = 2; i < polygons.size(k); ++i)
     {
-      area[surfacePoint[corner]] += third;
+      // Each triangle of the polygon's fan gives a third of its texture area to its corners.
+      const PointId triangle[3] = { ids[0], ids[i - 1], ids[i] };
+      const double third = std::abs(polygonAreaVector(triangle, 3, inTexels).z) / 3;
+      for (PointId corner : triangle)
+      {
+        area[surfacePoint[std::size_t(corner)]] += third;
+      }
     }
   }
   std::vector<double> side(positions.size());

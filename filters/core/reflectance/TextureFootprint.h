@@ -3,6 +3,7 @@
 // (docs/formulas.md section 7.2). Sampling a texture at the vertex alone (point sampling) takes
 // one texel's colour where a vertex stands for many, and so aliases where the texture is finer
 // than the mesh; a box filter over the vertex's share of the texture does not.
+#include "PointNormals.h"
 #include "Vec3.h"
 
 #include <array>
@@ -56,8 +57,8 @@ private:
 /// The side, in texels of a width x height texture, of the square each point stands for: the
 /// square root of a third of the texture area of the triangles around it. Points that are one
 /// surface point read as several (the same position and texture coordinates: an OBJ's corners)
-/// share their triangles. positions and uv hold each point's, triangles three point ids each.
+/// share their triangles. positions and uv hold each point's; a polygon counts as the triangles
+/// of its fan.
 std::vector<double> texelFootprints(const std::vector<std::array<double, 3>>& positions,
-  const std::vector<std::array<double, 2>>& uv, const std::vector<std::array<std::size_t, 3>>& triangles, int width,
-  int height);
+  const std::vector<std::array<double, 2>>& uv, const PolygonList& polygons, int width, int height);
 }
