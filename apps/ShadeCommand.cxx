@@ -463,7 +463,8 @@ std::string ownMaterialsText(vtkPolyData* mesh, const Scene& scene, const ShadeO
   }
   const std::string instead = scene.materialGiven ? "the scene's"
     : !options.colorBy.empty()                    ? "--color-by's"
-                               : "the vtk model's (it reproduces VTK's renderer, not the file's materials)";
+                                                  : std::string("the ") + modelName(scene.model) +
+      " model's (it reproduces VTK's renderer, not the file's materials)";
   return instead + ", in place of the mesh's own (" + partsText + ")";
 }
 
@@ -482,9 +483,8 @@ void printRunHeading(
                    : shadesWithFileLights(output, options) ? "the file's own lights"
                    : environmentMap.empty()                ? "the default light kit, placed on the mesh"
                                                            : "default material and viewer")
-            << (environmentMap.empty() ? "" : " + --envmap " + environmentMap) << " ("
-            << (scene.model == ShadingModel::Lecture ? "lecture" : "vtk") << " model, "
-            << countOf(scene.lights.size(), "light") << ")\n"
+            << (environmentMap.empty() ? "" : " + --envmap " + environmentMap) << " (" << modelName(scene.model)
+            << " model, " << countOf(scene.lights.size(), "light") << ")\n"
             << (ownMaterials.empty() ? "" : "  material: " + ownMaterials + "\n")
             << "  normals: " << (options.splitAngle ? pipeline.splitter->GetReport() + " " : "")
             << pipeline.filter->GetNormalsReport() << "\n";
@@ -634,8 +634,9 @@ CLI::App* addShadeCommand(CLI::App& cli, ShadeOptions& options)
 {
   CLI::App* command = cli.add_subcommand("shade",
     "Shade a mesh under a scene and write the terms as point-data arrays.\n"
-    "Reads .vtp, .vtk, .ply, .obj (with its MTL file's materials and textures), .stl; writes .vtp\n(binary, "
-    "compressed) or legacy .vtk (binary).");
+    "Reads .vtp, .vtk, .ply, .stl, .obj (with its MTL file's materials and textures), .gltf and .glb (with\n"
+    "their materials, base colour textures and KHR_lights_punctual lights); writes .vtp (binary, compressed) or\n"
+    "legacy .vtk (binary).");
   // In the order --help lists them.
   addFileOptions(command, options);
   addPrecisionOptions(command, options);

@@ -986,7 +986,8 @@ TEST_F(Cli, HelpAndUsageErrors)
   const Result help = shadelab("shade --help");
   EXPECT_EQ(help.exitCode, 0);
   EXPECT_NE(help.out.find("--arrays"), std::string::npos);
-  EXPECT_NE(help.out.find("Reads .vtp, .vtk, .ply, .obj (with its MTL file's materials and textures), .stl"),
+  EXPECT_NE(help.out.find("Reads .vtp, .vtk, .ply, .stl, .obj (with its MTL file's materials and textures), .gltf and "
+                          ".glb"),
     std::string::npos);
   const Result featureAngle = shadelab("shade " + goodMesh() + " -o out.vtp --feature-angle 200");
   EXPECT_EQ(featureAngle.exitCode, 2);

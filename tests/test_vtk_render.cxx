@@ -1,7 +1,8 @@
-// The vtk model against what VTK 9.1's OpenGL2 renderer really draws. Each vertex of a sphere
-// is rendered as a one-pixel point carrying its normal: the shader then lights it with exactly
-// that position and normal, with no interpolation, so the pixel must hold ShadeLab's total,
-// clamped to [0, 1] and rounded to 8 bits. Runs under Xvfb (Mesa's software OpenGL).
+// The vtk and vtk_pbr models against what VTK 9.1's OpenGL2 renderer really draws. Each vertex
+// of a sphere is rendered as a one-pixel point carrying its normal: the shader then lights it
+// with exactly that position and normal, with no interpolation, so the pixel must hold
+// ShadeLab's total (for PBR, raised to 1/2.2 as VTK's PBR shader encodes it), clamped to
+// [0, 1] and rounded to 8 bits. Runs under Xvfb (Mesa's software OpenGL).
 #include "TestMeshes.h"
 #include "VtkLightSets.h"
 
@@ -10,12 +11,16 @@
 #include "ShadeLabMaterialArrays.h"
 
 #include "vtkActor.h"
+#include "vtkActorCollection.h"
 #include "vtkCellArray.h"
 #include "vtkDoubleArray.h"
+#include "vtkGLTFImporter.h"
 #include "vtkImageData.h"
 #include "vtkMatrix4x4.h"
 #include "vtkPolyDataMapper.h"
+#include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
+#include "vtkRendererCollection.h"
 #include "vtkUnsignedCharArray.h"
 
 #include <cmath>
@@ -30,90 +35,117 @@ using shadelab::testing::litSphereRadius;
 
 constexpr int windowSize = 800;
 
+/// Renders a mesh's vertices as one-pixel points, carrying its normals and arrays, under these
+/// lights, property and camera, and compares each pixel with the total ShadeLab computed at its
+/// vertex (for PBR, raised to 1/2.2 as VTK's PBR shader encodes it). mapWith sets the mapper's
+/// scalar colouring, where the material comes from an array. Only pixels that exactly one vertex
+/// lands in, well inside the pixel, on the side facing the camera, are compared: there the pixel
+/// is that vertex.
+struct ComparedPixels
+{
+  int count = 0;
+  int midTones = 0; // those with a channel whose expected value is within (1, 254): neither black nor clipped
+};
+
+ComparedPixels expectPixelsMatchTotal(vtkPolyData* mesh, vtkDataArray* total, vtkProperty* property,
+  vtkLightCollection* lights, vtkCamera* camera, const std::function<void(vtkPolyDataMapper*)>& mapWith = {})
+{
+  // The same vertices, normals and arrays as a cloud of vertex cells.
+  vtkNew<vtkPolyData> cloud;
+  cloud->SetPoints(mesh->GetPoints());
+  cloud->GetPointData()->ShallowCopy(mesh->GetPointData());
+  vtkNew<vtkCellArray> vertices;
+  for (vtkIdType i = 0; i < mesh->GetNumberOfPoints(); ++i)
+  {
+    vertices->InsertNextCell(1, &i);
+  }
+  cloud->SetVerts(vertices);
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputData(cloud);
+  mapper->SetScalarVisibility(bool(mapWith));
+  if (mapWith)
+  {
+    mapWith(mapper);
+  }
+  vtkNew<vtkActor> actor;
+  actor->SetMapper(mapper);
+  actor->SetProperty(property);
+  vtkNew<vtkRenderer> renderer;
+  renderer->AddActor(actor);
+  renderer->SetActiveCamera(camera);
+  renderer->SetLightCollection(lights);
+  renderer->ResetCameraClippingRange();
+  vtkSmartPointer<vtkImageData> image = shadelab::app::renderOffScreen(renderer, windowSize, windowSize);
+  EXPECT_EQ(image->GetDimensions()[0], windowSize);
+
+  std::map<std::pair<int, int>, std::vector<vtkIdType>> landings;
+  vtkMatrix4x4* projection = camera->GetCompositeProjectionTransformMatrix(1.0, -1, 1);
+  std::map<vtkIdType, bool> clearlyInside;
+  for (vtkIdType i = 0; i < mesh->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    mesh->GetPoint(i, p);
+    // Where the vertex lands: the camera's projection (square window, so aspect 1) takes it
+    // to normalised device coordinates, whose [-1, 1] spans the window's pixels.
+    double h[4] = { p[0], p[1], p[2], 1.0 };
+    projection->MultiplyPoint(h, h);
+    const double d[2] = { (h[0] / h[3] + 1) * 0.5 * windowSize, (h[1] / h[3] + 1) * 0.5 * windowSize };
+    const std::pair<int, int> pixel{ int(std::floor(d[0])), int(std::floor(d[1])) };
+    landings[pixel].push_back(i);
+    const double fx = d[0] - pixel.first, fy = d[1] - pixel.second;
+    double n[3];
+    mesh->GetPointData()->GetNormals()->GetTuple(i, n);
+    const double* eye = camera->GetPosition();
+    const double facing = n[0] * (eye[0] - p[0]) + n[1] * (eye[1] - p[1]) + n[2] * (eye[2] - p[2]);
+    clearlyInside[i] = fx > 0.1 && fx < 0.9 && fy > 0.1 && fy < 0.9 && facing > 0.5;
+  }
+  // docs/vtk-renderer.md section 11.5: the PBR shader writes color^(1/2.2).
+  const bool pbr = property->GetInterpolation() == VTK_PBR;
+  auto encoded = [pbr](double value) { return pbr ? std::pow(std::max(value, 0.0), 1.0 / 2.2) : value; };
+  // Half a level is the 8-bit rounding itself; 0.001 more covers the shader's float32, 0.005
+  // in the PBR shader, whose 1/2.2 power steepens near 0 and whose GGX distribution cancels
+  // digits in (n.h)^2 (alpha^2 - 1) + 1 near n.h = 1 (measured: 0.0021 at most).
+  const double tolerance = pbr ? 0.505 : 0.501;
+  ComparedPixels compared;
+  double worst = 0;
+  for (const auto& [pixel, ids] : landings)
+  {
+    if (ids.size() != 1 || !clearlyInside[ids[0]])
+    {
+      continue;
+    }
+    bool midTone = false;
+    for (int c = 0; c < 3; ++c)
+    {
+      const double expected = 255.0 * std::clamp(encoded(total->GetComponent(ids[0], c)), 0.0, 1.0);
+      midTone = midTone || (expected > 1 && expected < 254);
+      const double drawn = image->GetScalarComponentAsDouble(pixel.first, pixel.second, 0, c);
+      worst = std::max(worst, std::abs(drawn - expected));
+      EXPECT_LE(std::abs(drawn - expected), tolerance)
+        << "vertex " << ids[0] << " channel " << c << " at pixel " << pixel.first << ", " << pixel.second;
+    }
+    ++compared.count;
+    compared.midTones += midTone ? 1 : 0;
+  }
+  std::cout << "compared " << compared.count << " vertices with their pixels (" << compared.midTones
+            << " in mid-tones); largest difference " << worst << "/255\n";
+  return compared;
+}
+
 class RealRender : public shadelab::testing::VtkLightSets
 {
 protected:
-  /// Renders the sphere's vertices as one-pixel points and compares each pixel with the vtk
-  /// model's total. With colorBy, the sphere carries the arrays it adds and the scene takes
-  /// its material from them; mapWith then sets the mapper's scalar colouring to match.
+  /// Renders the sphere's vertices and compares each pixel with the model's total
+  /// (expectPixelsMatchTotal). With colorBy, the sphere carries the arrays it adds and the scene
+  /// takes its material from them; mapWith then sets the mapper's scalar colouring to match.
   void expectPixelsMatch(bool lone, const std::function<void(vtkPolyData*, shadelab::Scene&)>& colorBy = {},
     const std::function<void(vtkPolyDataMapper*)>& mapWith = {})
   {
     const auto [sphere, total] = shadeLitSphere(120, lone, colorBy);
     ASSERT_NE(total, nullptr);
-
-    // The same vertices, normals and arrays as a cloud of vertex cells.
-    vtkNew<vtkPolyData> cloud;
-    cloud->SetPoints(sphere->GetPoints());
-    cloud->GetPointData()->ShallowCopy(sphere->GetPointData());
-    vtkNew<vtkCellArray> vertices;
-    for (vtkIdType i = 0; i < sphere->GetNumberOfPoints(); ++i)
-    {
-      vertices->InsertNextCell(1, &i);
-    }
-    cloud->SetVerts(vertices);
-    vtkNew<vtkPolyDataMapper> mapper;
-    mapper->SetInputData(cloud);
-    mapper->SetScalarVisibility(bool(mapWith));
-    if (mapWith)
-    {
-      mapWith(mapper);
-    }
-    vtkNew<vtkActor> actor;
-    actor->SetMapper(mapper);
-    actor->SetProperty(property);
-    vtkNew<vtkRenderer> renderer;
-    renderer->AddActor(actor);
-    renderer->SetActiveCamera(camera);
-    renderer->SetLightCollection(lights);
-    renderer->ResetCameraClippingRange();
-    vtkSmartPointer<vtkImageData> image = shadelab::app::renderOffScreen(renderer, windowSize, windowSize);
-    ASSERT_EQ(image->GetDimensions()[0], windowSize);
-
-    // Where each vertex lands. Only pixels that exactly one vertex lands in, well inside the
-    // pixel, on the side facing the camera, are compared: there the pixel is that vertex.
-    std::map<std::pair<int, int>, std::vector<vtkIdType>> landings;
-    vtkMatrix4x4* projection = camera->GetCompositeProjectionTransformMatrix(1.0, -1, 1);
-    std::map<vtkIdType, bool> clearlyInside;
-    for (vtkIdType i = 0; i < sphere->GetNumberOfPoints(); ++i)
-    {
-      double p[3];
-      sphere->GetPoint(i, p);
-      // Where the vertex lands: the camera's projection (square window, so aspect 1) takes it
-      // to normalised device coordinates, whose [-1, 1] spans the window's pixels.
-      double h[4] = { p[0], p[1], p[2], 1.0 };
-      projection->MultiplyPoint(h, h);
-      const double d[2] = { (h[0] / h[3] + 1) * 0.5 * windowSize, (h[1] / h[3] + 1) * 0.5 * windowSize };
-      const std::pair<int, int> pixel{ int(std::floor(d[0])), int(std::floor(d[1])) };
-      landings[pixel].push_back(i);
-      const double fx = d[0] - pixel.first, fy = d[1] - pixel.second;
-      double n[3];
-      sphere->GetPointData()->GetNormals()->GetTuple(i, n);
-      const double* eye = camera->GetPosition();
-      const double facing = n[0] * (eye[0] - p[0]) + n[1] * (eye[1] - p[1]) + n[2] * (eye[2] - p[2]);
-      clearlyInside[i] = fx > 0.1 && fx < 0.9 && fy > 0.1 && fy < 0.9 && facing > 0.5;
-    }
-    int compared = 0;
-    double worst = 0;
-    for (const auto& [pixel, ids] : landings)
-    {
-      if (ids.size() != 1 || !clearlyInside[ids[0]])
-      {
-        continue;
-      }
-      for (int c = 0; c < 3; ++c)
-      {
-        const double expected = 255.0 * std::clamp(total->GetComponent(ids[0], c), 0.0, 1.0);
-        const double drawn = image->GetScalarComponentAsDouble(pixel.first, pixel.second, 0, c);
-        worst = std::max(worst, std::abs(drawn - expected));
-        // Half a level is the 8-bit rounding itself; 0.001 more covers the shader's float32.
-        EXPECT_LE(std::abs(drawn - expected), 0.501)
-          << "vertex " << ids[0] << " channel " << c << " at pixel " << pixel.first << ", " << pixel.second;
-      }
-      ++compared;
-    }
-    EXPECT_GT(compared, 2000);
-    std::cout << "compared " << compared << " vertices with their pixels; largest difference " << worst << "/255\n";
+    const ComparedPixels compared = expectPixelsMatchTotal(sphere, total, property, lights, camera, mapWith);
+    EXPECT_GT(compared.count, 2000);
+    EXPECT_GT(compared.midTones, 1000);
   }
 };
 
@@ -138,6 +170,49 @@ TEST_F(RealRender, SwitchedOffSceneLightStillEndsTheLoneHeadlightShader)
 TEST_F(RealRender, PositionalSpotAndPointLights)
 {
   addPositionalLights();
+  expectPixelsMatch(false);
+}
+
+/// A metal-and-dielectric mix of medium roughness, with a base IOR other than the default.
+void makePbr(vtkProperty* property)
+{
+  property->SetInterpolationToPBR();
+  property->SetMetallic(0.4);
+  property->SetRoughness(0.35);
+  property->SetBaseIOR(1.8);
+}
+
+TEST_F(RealRender, PbrLoneHeadlightAtTheEye)
+{
+  makePbr(property);
+  addLoneHeadlight();
+  expectPixelsMatch(true);
+}
+
+TEST_F(RealRender, PbrLightKitOfDirectionalLights)
+{
+  makePbr(property);
+  addLightKit();
+  expectPixelsMatch(false);
+}
+
+TEST_F(RealRender, PbrPositionalLightsAndADirectionalOneShiningFromItsPosition)
+{
+  makePbr(property);
+  property->SetEdgeTint(0.9, 0.6, 0.3);
+  addPositionalLights();
+  expectPixelsMatch(false);
+}
+
+TEST_F(RealRender, PbrRoughMetalAndSmoothDielectric)
+{
+  makePbr(property);
+  property->SetMetallic(1.0);
+  property->SetRoughness(1.0);
+  addLightKit();
+  expectPixelsMatch(false);
+  property->SetMetallic(0.0);
+  property->SetRoughness(0.08);
   expectPixelsMatch(false);
 }
 
@@ -232,5 +307,46 @@ TEST_F(RealRender, DirectEightBitColors)
       mapper->SelectColorArray("Colors");
       mapper->SetColorModeToDirectScalars();
     });
+}
+/// The vtk_pbr model against VTK's own render of an imported scene: the bundled lamps' ball
+/// (metallic 0.6, roughness 0.35, no texture) with its property as vtkGLTFImporter makes it,
+/// under the file's three lights as the importer makes them (a point light whose range becomes
+/// VTK's attenuation, a spot whose outer cone becomes VTK's, and a directional light, which the
+/// positional ones make shine from its position).
+TEST(RealRenderOfImportedScene, GltfBallUnderTheFilesOwnLights)
+{
+  vtkNew<vtkGLTFImporter> importer;
+  importer->SetFileName(SHADELAB_SOURCE_DIR "/data/scenes/lamps/lamps.gltf");
+  vtkNew<vtkRenderWindow> window;
+  importer->SetRenderWindow(window);
+  importer->Update();
+  vtkRenderer* imported = window->GetRenderers()->GetFirstRenderer();
+  ASSERT_NE(imported, nullptr);
+  vtkActor* ball = nullptr;
+  vtkActorCollection* actors = imported->GetActors();
+  actors->InitTraversal();
+  while (vtkActor* actor = actors->GetNextActor())
+  {
+    ball = std::abs(actor->GetProperty()->GetMetallic() - 0.6) < 1e-6 ? actor : ball; // a float in the file
+  }
+  ASSERT_NE(ball, nullptr);
+  EXPECT_EQ(ball->GetProperty()->GetInterpolation(), VTK_PBR);
+  EXPECT_TRUE(ball->GetMatrix()->IsIdentity()); // its points are where the renderer draws them
+  vtkPolyData* surface = vtkPolyData::SafeDownCast(ball->GetMapper()->GetInput());
+  ASSERT_NE(surface, nullptr);
+
+  vtkNew<vtkCamera> camera;
+  camera->SetPosition(0.5, 1.3, 1.8);
+  camera->SetFocalPoint(0.0, 0.5, 0.0);
+  const shadelab::Scene scene = shadelab::sceneFromVtk(imported->GetLights(), ball->GetProperty(), camera);
+  EXPECT_EQ(scene.model, shadelab::ShadingModel::VtkPbr);
+  EXPECT_EQ(scene.lights.size(), 3u);
+  vtkSmartPointer<vtkPolyData> shaded = shadelab::testing::shadeWithFilter(surface, scene, { "total" });
+  vtkDataArray* total = shaded->GetPointData()->GetArray("total");
+  ASSERT_NE(total, nullptr);
+  const ComparedPixels compared =
+    expectPixelsMatchTotal(shaded, total, ball->GetProperty(), imported->GetLights(), camera);
+  EXPECT_GT(compared.count, 300);
+  EXPECT_GT(compared.midTones, 300);
 }
 }

@@ -7,6 +7,8 @@
 #include "vtkNew.h"
 #include "vtkProperty.h"
 
+#include <stdexcept>
+
 namespace shadelab
 {
 namespace
@@ -27,10 +29,10 @@ bool isOn(vtkLight* light)
   return light->GetSwitch() > 0;
 }
 
-// vtkOpenGLRenderer::UpdateLights (VTK 9.1) picks the single-headlight shader ("lighting
-// complexity 1") with this loop. Note that it looks at every light, switched on or not,
-// when it moves on to the general shaders.
-bool usesLoneHeadlightShader(vtkLightCollection* lights)
+// vtkOpenGLRenderer::UpdateLights (VTK 9.1) picks the shader's "lighting complexity" with this
+// loop: 1 for a lone headlight, 2 for directional lights, 3 with a positional one. Note that it
+// looks at every light, switched on or not, when it moves on to the general shaders.
+int lightingComplexity(vtkLightCollection* lights)
 {
   int complexity = 0;
   int switchedOn = 0;
@@ -58,9 +60,9 @@ bool usesLoneHeadlightShader(vtkLightCollection* lights)
     // collection's first light: 1 if it is a headlight (or the new one), else 2.
     lights->InitTraversal(it);
     vtkLight* first = lights->GetNextLight(it);
-    return first == nullptr || first->GetLightType() == VTK_LIGHT_TYPE_HEADLIGHT;
+    return first == nullptr || first->GetLightType() == VTK_LIGHT_TYPE_HEADLIGHT ? 1 : 2;
   }
-  return complexity == 1;
+  return complexity;
 }
 
 glm::dvec3 transformedPoint(vtkMatrix4x4* matrix, const double p[3])
@@ -98,13 +100,20 @@ void placeLight(vtkLight* light, vtkCamera* camera, glm::dvec3& position, glm::d
   focalPoint = transformedPoint(matrix, f);
 }
 
-LightSource lightSource(vtkLight* light, vtkCamera* camera)
+/// positionalShader: complexity 3, whose PBR shader takes every light's direction from its
+/// position (docs/vtk-renderer.md section 11.4).
+LightSource lightSource(vtkLight* light, vtkCamera* camera, bool pbrPositionalShader)
 {
   // vtkOpenGLRenderer::UpdateLightingUniforms: light colour = DiffuseColor * Intensity.
   const Rgb color = toGlm(light->GetDiffuseColor());
   const double intensity = light->GetIntensity();
   glm::dvec3 position, focalPoint;
   placeLight(light, camera, position, focalPoint);
+  if (!light->GetPositional() && pbrPositionalShader)
+  {
+    // Complexity 3's PBR shader: a directional light shines from its position, unattenuated.
+    return PointLight{ position, color, intensity, Attenuation{ AttenuationModel::None } };
+  }
   if (!light->GetPositional())
   {
     if (light->LightTypeIsHeadlight())
@@ -133,20 +142,48 @@ LightSource lightSource(vtkLight* light, vtkCamera* camera)
   cone.exponent = light->GetExponent();
   return SpotLight{ position, focalPoint - position, color, intensity, attenuation, cone };
 }
+
+/// vtkOpenGLPolyDataMapper::SetPropertyShaderParameters: each colour times its coefficient.
+Material phongMaterial(vtkProperty* property)
+{
+  Material m;
+  m.ka = scaledColor(property->GetAmbient(), property->GetAmbientColor());
+  m.kd = scaledColor(property->GetDiffuse(), property->GetDiffuseColor());
+  m.ks = scaledColor(property->GetSpecular(), property->GetSpecularColor());
+  m.shininess = property->GetSpecularPower();
+  return m;
+}
+
+/// The PBR shader's uniforms (docs/vtk-renderer.md section 11.1): the albedo is Diffuse x
+/// DiffuseColor; a coat or anisotropy, which it would add, is refused.
+Material microfacetMaterial(vtkProperty* property)
+{
+  if (property->GetCoatStrength() > 0 || property->GetAnisotropy() > 0)
+  {
+    throw std::invalid_argument("the vtk_pbr model has no coat layer or anisotropy: set the property's "
+                                "CoatStrength and Anisotropy to 0");
+  }
+  Material m;
+  m.ka = m.kd = m.ks = Rgb(0.0);
+  m.microfacet.baseColor = scaledColor(property->GetDiffuse(), property->GetDiffuseColor());
+  m.microfacet.metallic = property->GetMetallic();
+  m.microfacet.roughness = property->GetRoughness();
+  m.microfacet.baseIor = property->GetBaseIOR();
+  m.microfacet.edgeTint = toGlm(property->GetEdgeTint());
+  return m;
+}
 }
 
 Scene sceneFromVtk(vtkLightCollection* lights, vtkProperty* property, vtkCamera* camera)
 {
   Scene scene;
-  scene.model = ShadingModel::VtkOpenGL2;
+  const bool pbr = property->GetInterpolation() == VTK_PBR;
+  scene.model = pbr ? ShadingModel::VtkPbr : ShadingModel::VtkOpenGL2;
   scene.viewer.position = toGlm(camera->GetPosition());
   scene.viewer.focalPoint = toGlm(camera->GetFocalPoint());
+  scene.material = pbr ? microfacetMaterial(property) : phongMaterial(property);
 
-  // vtkOpenGLPolyDataMapper::SetPropertyShaderParameters: each colour times its coefficient.
-  scene.material.ka = scaledColor(property->GetAmbient(), property->GetAmbientColor());
-  scene.material.kd = scaledColor(property->GetDiffuse(), property->GetDiffuseColor());
-  scene.material.ks = scaledColor(property->GetSpecular(), property->GetSpecularColor());
-  scene.material.shininess = property->GetSpecularPower();
+  const int complexity = lightingComplexity(lights);
 
   vtkCollectionSimpleIterator it;
   vtkLight* light;
@@ -155,14 +192,14 @@ Scene sceneFromVtk(vtkLightCollection* lights, vtkProperty* property, vtkCamera*
   {
     if (isOn(light))
     {
-      scene.lights.push_back({ "light" + std::to_string(index), lightSource(light, camera) });
+      scene.lights.push_back({ "light" + std::to_string(index), lightSource(light, camera, pbr && complexity == 3) });
     }
   }
   if (scene.lights.empty())
   {
     scene.lights.push_back({ "headlight", Headlight{} });
   }
-  scene.vtkLoneHeadlight = usesLoneHeadlightShader(lights);
+  scene.vtkLoneHeadlight = complexity == 1;
   return scene;
 }
 }

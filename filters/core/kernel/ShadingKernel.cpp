@@ -2,6 +2,8 @@
 
 #include <stdexcept>
 
+#include "KernelLanes.h"
+#include "Microfacet.h"
 #include "Overloaded.h"
 #include "Reflectance.h"
 
@@ -23,141 +25,8 @@ Vec3<T> toVec(const glm::dvec3& v)
 // (zero-area triangles, isolated points), not from a surface direction.
 template<typename T>
 constexpr T degenerateNormalLength2 = T(1e-12);
-
-template<typename T>
-using Lane = std::array<T, VertexBlock<T>::capacity>;
-
-/// Multiplies a term by a light's visibility, where it has shadows (visibility not null).
-template<typename T>
-void applyVisibility(const float* visibility, const VertexBlock<T>& b, Lane<T>& term)
-{
-  for (std::size_t k = 0; visibility && k < b.count; ++k)
-  {
-    term[k] *= T(visibility[b.first + k]);
-  }
 }
-
-template<typename T>
-void store(T* out, std::size_t first, std::size_t count, const Lane<T>& values)
-{
-  if (out)
-  {
-    std::copy(values.begin(), values.begin() + count, out + first);
-  }
-}
-
-template<typename T>
-void store(T* out, std::size_t first, std::size_t count, const Lane<T>& x, const Lane<T>& y, const Lane<T>& z)
-{
-  if (out)
-  {
-    for (std::size_t k = 0; k < count; ++k)
-    {
-      out[3 * (first + k)] = x[k];
-      out[3 * (first + k) + 1] = y[k];
-      out[3 * (first + k) + 2] = z[k];
-    }
-  }
-}
-
-/// A light's term per channel, before its colour.
-template<typename T>
-struct RgbLanes
-{
-  const Lane<T>& r;
-  const Lane<T>& g;
-  const Lane<T>& b;
-};
-
-/// A term that is the same in every channel (a material whose coefficient is one number).
-template<typename T>
-RgbLanes<T> sameLanes(const Lane<T>& term)
-{
-  return { term, term, term };
-}
-
-/// Three lanes as a term's channels.
-template<typename T>
-RgbLanes<T> lanesOf(const std::array<Lane<T>, 3>& channels)
-{
-  return { channels[0], channels[1], channels[2] };
-}
-
-/// A term times the vertices' own coefficient (a material from arrays), channel by channel.
-template<typename T>
-RgbLanes<T> timesCoefficient(const RgbLanes<T>& term, const std::array<Lane<T>, 3>& coefficient, std::size_t count,
-  std::array<Lane<T>, 3>& product)
-{
-  const Lane<T>* channels[3] = { &term.r, &term.g, &term.b };
-  for (int channel = 0; channel < 3; ++channel)
-  {
-    for (std::size_t k = 0; k < count; ++k)
-    {
-      product[channel][k] = (*channels[channel])[k] * coefficient[channel][k];
-    }
-  }
-  return lanesOf(product);
-}
-
-/// Vertex k's own coefficient (lanes).
-template<typename T>
-Vec3<T> coefficientAt(const std::array<Lane<T>, 3>& lanes, std::size_t k)
-{
-  return Vec3<T>(lanes[0][k], lanes[1][k], lanes[2][k]);
-}
-
-/// An RGB term that is colour x (r, g, b) at each vertex.
-template<typename T>
-void store(T* out, std::size_t first, std::size_t count, const Lane<T>& r, const Lane<T>& g, const Lane<T>& b,
-  const Vec3<T>& color)
-{
-  if (out)
-  {
-    for (std::size_t k = 0; k < count; ++k)
-    {
-      out[3 * (first + k)] = r[k] * color.x;
-      out[3 * (first + k) + 1] = g[k] * color.y;
-      out[3 * (first + k) + 2] = b[k] * color.z;
-    }
-  }
-}
-}
-
-/// Whether slot k's position and normal are finite. & rather than &&: no branches, so that a
-/// loop of it vectorises.
-template<typename T>
-bool isFiniteVertex(const VertexBlock<T>& b, std::size_t k)
-{
-  return std::isfinite(b.px[k]) & std::isfinite(b.py[k]) & std::isfinite(b.pz[k]) & std::isfinite(b.nx[k]) &
-    std::isfinite(b.ny[k]) & std::isfinite(b.nz[k]);
-}
-
-/// The unit vectors (x, y, z) from each vertex of the block to `target`, and the distances.
-/// Returns how many vertices are closer than the smallest normal number, where the direction
-/// is undefined: they get (0, 0, 0) here. (A select against a fallback direction inside this
-/// loop would stop GCC vectorising it, so the rare fix-up is a separate pass.)
-template<typename T>
-std::size_t unitVectorsFrom(
-  const Vec3<T>& target, const VertexBlock<T>& b, Lane<T>& x, Lane<T>& y, Lane<T>& z, Lane<T>& distance)
-{
-  constexpr T smallest = std::numeric_limits<T>::min();
-  const T tx = target.x, ty = target.y, tz = target.z; // copies: target could alias the lanes
-  std::size_t undefined = 0;
-  for (std::size_t k = 0; k < b.count; ++k)
-  {
-    const T ox = tx - b.px[k];
-    const T oy = ty - b.py[k];
-    const T oz = tz - b.pz[k];
-    const T d = std::sqrt(ox * ox + oy * oy + oz * oz);
-    const T divisor = std::max(d, smallest);
-    x[k] = ox / divisor;
-    y[k] = oy / divisor;
-    z[k] = oz / divisor;
-    distance[k] = d;
-    undefined += d < smallest ? 1 : 0;
-  }
-  return undefined;
-}
+using namespace kernel_lanes;
 
 /// The per-vertex quantities of one block, one array ("lane") each.
 template<typename T>
@@ -180,7 +49,9 @@ struct ShadingKernel<T>::Workspace
   // specular factors times them (the light's colour holds the rest).
   std::array<Lane<T>, 3> ka, kd, ks, diffuseRgb, specularRgb;
   Lane<T> shininess;
-  Lane<T> halfVectorDefined; // 1 or 0: a lane of T, so that its loops vectorise with the rest
+  Lane<T> ggxDistribution, smithVisibility; // the microfacet model's D and V
+  std::array<Lane<T>, 3> fresnel;           // and its F, channel by channel
+  Lane<T> halfVectorDefined;                // 1 or 0: a lane of T, so that its loops vectorise with the rest
   std::size_t nonFinite = 0;
 };
 
@@ -214,15 +85,19 @@ typename ShadingKernel<T>::PreparedLight ShadingKernel<T>::prepareLocal(const Lo
   light.axis = toVec<T>(evaluation.axis);
   light.attenuationModel = evaluation.falloff;
   light.cone = PreparedCone<T>(evaluation.cone);
-  light.diffuseColor = toVec<T>(evaluation.color * m.kd);
-  light.specularColor = toVec<T>(evaluation.color * m.ks);
+  // The microfacet model's diffuse colour is (1 - m) base / pi (its 1 - F per channel in the
+  // lanes), its specular one 1 (D V F in the lanes).
+  const MicrofacetMaterial& microfacet = m.microfacet;
+  light.diffuseColor = toVec<T>(
+    evaluation.color * (microfacet_ ? (1.0 - microfacet.metallic) * microfacet.baseColor / vtkPi<double> : m.kd));
+  light.specularColor = toVec<T>(evaluation.color * (microfacet_ ? Rgb(1.0) : m.ks));
   light.pow = pow;
   light.out = out;
   light.needsSpecular = needsSpecular;
   light.needsReflection = out[int(LightTerm::Reflection)] || out[int(LightTerm::RDotV)] ||
     (needsSpecular && specularModel_ == SpecularModel::Phong);
   light.needsHalfVector = out[int(LightTerm::HalfVector)] || out[int(LightTerm::NDotH)] ||
-    (needsSpecular && specularModel_ == SpecularModel::BlinnPhong) || outputs_.flags;
+    (needsSpecular && specularModel_ == SpecularModel::BlinnPhong) || outputs_.flags || microfacet_;
   return light;
 }
 
@@ -275,6 +150,13 @@ ShadingKernel<T>::ShadingKernel(
   // viewer is the light.
   specularModel_ = evaluatedSpecularModel(scene);
   specularViewerIsLight_ = vtk && scene.vtkLoneHeadlight;
+  microfacet_ = scene.model == ShadingModel::VtkPbr;
+  lightAtViewer_ = microfacet_ && scene.vtkLoneHeadlight;
+  roughness_ = T(scene.material.microfacet.roughness);
+  const Rgb f0 = reflectanceAtNormalIncidence(scene.material.microfacet);
+  const Rgb f90 = reflectanceAtGrazingIncidence(scene.material.microfacet, f0);
+  normalFresnel_ = { T(f0.x), T(f0.y), T(f0.z) };
+  grazingFresnel_ = { T(f90.x), T(f90.y), T(f90.z) };
   twoSided_ = shadesBothSides(scene);
   shininess_ = T(m.shininess);
 
@@ -512,22 +394,19 @@ void ShadingKernel<T>::addLight(const PreparedLight& light, const VertexBlock<T>
 {
   const std::size_t count = b.count;
   sampleLight(light, b, w);
+  if (lightAtViewer_)
+  {
+    // VTK's PBR shader puts a lone headlight at the eye: s = v at every vertex.
+    std::copy_n(w.vx.begin(), count, w.sx.begin());
+    std::copy_n(w.vy.begin(), count, w.sy.begin());
+    std::copy_n(w.vz.begin(), count, w.sz.begin());
+  }
   for (std::size_t k = 0; k < count; ++k)
   {
     const T cosIncidence = w.nx[k] * w.sx[k] + w.ny[k] * w.sy[k] + w.nz[k] * w.sz[k];
     w.cosIncidence[k] = cosIncidence;
     w.flags[k] |= cosIncidence > T(0) ? 0 : FlagLightBelowHorizon;
     w.diffuse[k] = lambertFactor(cosIncidence) * (w.attenuation[k] * w.spotFactor[k]);
-  }
-  applyVisibility(light.visibility, b, w.diffuse);
-  const auto& [diffuseR, diffuseG, diffuseB] = perVertex(MaterialCoefficient::Diffuse)
-    ? timesCoefficient(sameLanes(w.diffuse), w.kd, count, w.diffuseRgb)
-    : sameLanes(w.diffuse);
-  for (std::size_t k = 0; k < count; ++k)
-  {
-    w.diffuseR[k] += diffuseR[k] * light.diffuseColor.x;
-    w.diffuseG[k] += diffuseG[k] * light.diffuseColor.y;
-    w.diffuseB[k] += diffuseB[k] * light.diffuseColor.z;
   }
   // The viewer of the specular term: v, or the light itself for VTK's lone headlight.
   const Lane<T>& svx = specularViewerIsLight_ ? w.sx : w.vx;
@@ -560,6 +439,39 @@ void ShadingKernel<T>::addLight(const PreparedLight& light, const VertexBlock<T>
       w.flags[k] |= defined ? 0 : FlagHalfVectorUndefined;
     }
   }
+  if (microfacet_)
+  {
+    addMicrofacetTerms(light, b, w);
+  }
+  else
+  {
+    addLectureTerms(light, b, w);
+  }
+  if (light.out[int(LightTerm::IncidenceAngle)])
+  {
+    // atan2 is the costliest term here: evaluated only when its array was asked for.
+    for (std::size_t k = 0; k < count; ++k)
+    {
+      w.incidenceAngle[k] =
+        incidenceAngleDegrees(Vec3<T>(w.nx[k], w.ny[k], w.nz[k]), Vec3<T>(w.sx[k], w.sy[k], w.sz[k]));
+    }
+  }
+}
+
+template<typename T>
+void ShadingKernel<T>::addLectureTerms(const PreparedLight& light, const VertexBlock<T>& b, Workspace& w) const
+{
+  const std::size_t count = b.count;
+  applyVisibility(light.visibility, b, w.diffuse);
+  const auto& [diffuseR, diffuseG, diffuseB] = perVertex(MaterialCoefficient::Diffuse)
+    ? timesCoefficient(sameLanes(w.diffuse), w.kd, count, w.diffuseRgb)
+    : sameLanes(w.diffuse);
+  for (std::size_t k = 0; k < count; ++k)
+  {
+    w.diffuseR[k] += diffuseR[k] * light.diffuseColor.x;
+    w.diffuseG[k] += diffuseG[k] * light.diffuseColor.y;
+    w.diffuseB[k] += diffuseB[k] * light.diffuseColor.z;
+  }
   if (light.needsSpecular)
   {
     specularLobes(light, count, w);
@@ -574,14 +486,49 @@ void ShadingKernel<T>::addLight(const PreparedLight& light, const VertexBlock<T>
       w.specularB[k] += specularB[k] * light.specularColor.z;
     }
   }
-  if (light.out[int(LightTerm::IncidenceAngle)])
+}
+
+template<typename T>
+void ShadingKernel<T>::addMicrofacetTerms(const PreparedLight& light, const VertexBlock<T>& b, Workspace& w) const
+{
+  // docs/vtk-renderer.md section 11.2, VTK's PBR light loop: every cosine clamped to [1e-5, 1],
+  // diffuse (1 - m)(1 - F) base / pi and specular D V F, each times the light's radiance and n.s.
+  // The light's diffuse colour holds its radiance x (1 - m) base / pi, its specular colour the
+  // radiance; the lanes hold the rest, channel by channel.
+  const std::size_t count = b.count;
+  for (std::size_t k = 0; k < count; ++k)
   {
-    // atan2 is the costliest term here: evaluated only when its array was asked for.
-    for (std::size_t k = 0; k < count; ++k)
+    const T nDotV = vtkClampedCosine(w.nx[k] * w.vx[k] + w.ny[k] * w.vy[k] + w.nz[k] * w.vz[k]);
+    const T nDotL = vtkClampedCosine(w.cosIncidence[k]);
+    const T hDotL = vtkClampedCosine(w.hx[k] * w.sx[k] + w.hy[k] * w.sy[k] + w.hz[k] * w.sz[k]);
+    w.ggxDistribution[k] = ggxDistribution(vtkClampedCosine(w.nDotH[k]), roughness_);
+    w.smithVisibility[k] = smithCorrelatedVisibility(nDotV, nDotL, roughness_);
+    const T radiance = nDotL * (w.attenuation[k] * w.spotFactor[k]);
+    const T specular = w.ggxDistribution[k] * w.smithVisibility[k] * radiance;
+    for (int c = 0; c < 3; ++c)
     {
-      w.incidenceAngle[k] =
-        incidenceAngleDegrees(Vec3<T>(w.nx[k], w.ny[k], w.nz[k]), Vec3<T>(w.sx[k], w.sy[k], w.sz[k]));
+      const T fresnel = schlickFresnel(normalFresnel_[c], grazingFresnel_[c], hDotL);
+      w.fresnel[c][k] = fresnel;
+      w.diffuseRgb[c][k] = (T(1) - fresnel) * radiance;
+      w.specularRgb[c][k] = fresnel * specular;
     }
+  }
+  for (int c = 0; c < 3; ++c)
+  {
+    applyVisibility(light.visibility, b, w.diffuseRgb[c]);
+    applyVisibility(light.visibility, b, w.specularRgb[c]);
+  }
+  for (std::size_t k = 0; k < count; ++k)
+  {
+    w.diffuseR[k] += w.diffuseRgb[0][k] * light.diffuseColor.x;
+    w.diffuseG[k] += w.diffuseRgb[1][k] * light.diffuseColor.y;
+    w.diffuseB[k] += w.diffuseRgb[2][k] * light.diffuseColor.z;
+  }
+  for (std::size_t k = 0; light.needsSpecular && k < count; ++k)
+  {
+    w.specularR[k] += w.specularRgb[0][k] * light.specularColor.x;
+    w.specularG[k] += w.specularRgb[1][k] * light.specularColor.y;
+    w.specularB[k] += w.specularRgb[2][k] * light.specularColor.z;
   }
 }
 
@@ -666,12 +613,17 @@ void ShadingKernel<T>::storeLight(const PreparedLight& light, const VertexBlock<
   store(out[int(LightTerm::RDotV)], first, count, w.rDotV);
   store(out[int(LightTerm::HalfVector)], first, count, w.hx, w.hy, w.hz);
   store(out[int(LightTerm::NDotH)], first, count, w.nDotH);
-  const RgbLanes<T> diffuse = perVertex(MaterialCoefficient::Diffuse) ? lanesOf(w.diffuseRgb) : sameLanes(w.diffuse);
+  store(out[int(LightTerm::GgxDistribution)], first, count, w.ggxDistribution);
+  store(out[int(LightTerm::SmithVisibility)], first, count, w.smithVisibility);
+  store(out[int(LightTerm::SchlickFresnel)], first, count, w.fresnel[0], w.fresnel[1], w.fresnel[2]);
+  // The lanes that hold a term channel by channel: a material from arrays, or the microfacet model's F.
+  const RgbLanes<T> diffuse =
+    perVertex(MaterialCoefficient::Diffuse) || microfacet_ ? lanesOf(w.diffuseRgb) : sameLanes(w.diffuse);
   store(out[int(LightTerm::Diffuse)], first, count, diffuse.r, diffuse.g, diffuse.b, light.diffuseColor);
   if (light.needsSpecular)
   {
     const RgbLanes<T> specular =
-      perVertex(MaterialCoefficient::Specular) ? lanesOf(w.specularRgb) : sameLanes(w.specular);
+      perVertex(MaterialCoefficient::Specular) || microfacet_ ? lanesOf(w.specularRgb) : sameLanes(w.specular);
     store(out[int(LightTerm::Specular)], first, count, specular.r, specular.g, specular.b, light.specularColor);
   }
   else if (T* specular = out[int(LightTerm::Specular)])

@@ -185,6 +185,8 @@ private:
   void prepareViewer(const VertexBlock<T>& block, Workspace& w) const;
   void sampleLight(const PreparedLight& light, const VertexBlock<T>& block, Workspace& w) const;
   void addLight(const PreparedLight& light, const VertexBlock<T>& block, Workspace& w) const;
+  void addLectureTerms(const PreparedLight& light, const VertexBlock<T>& block, Workspace& w) const;
+  void addMicrofacetTerms(const PreparedLight& light, const VertexBlock<T>& block, Workspace& w) const;
   void specularLobes(const PreparedLight& light, std::size_t count, Workspace& w) const;
   void storeLight(const PreparedLight& light, const VertexBlock<T>& block, const Workspace& w) const;
   void addDistributedLight(const DistributedLightSlot& light, const VertexBlock<T>& block, Workspace& w) const;
@@ -207,6 +209,12 @@ private:
   Vec3<T> towardViewer_{ 0 }; // viewer at infinity: the constant v
   /// VTK's lone headlight: the specular viewer is the light itself, so h = s and n.h = n.s.
   bool specularViewerIsLight_ = false;
+  /// The vtk_pbr model (Microfacet.h): its roughness, and F0 and F90 per channel.
+  bool microfacet_ = false;
+  T roughness_ = 0;
+  std::array<T, 3> normalFresnel_{}, grazingFresnel_{};
+  /// VTK's lone headlight in its PBR shader: the light is at the eye, s = v.
+  bool lightAtViewer_ = false;
 };
 
 /// Shades vertices [begin, end) block by block. vertex(i, block, k) copies vertex i's

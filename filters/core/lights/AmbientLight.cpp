@@ -30,8 +30,10 @@ Rgb AmbientLight::emitted() const
 void AmbientLight::check(LightChecks& checks) const
 {
   checks.strength(color, intensity);
-  checks.require(checks.model != ShadingModel::VtkOpenGL2, "/type",
-    "VTK's renderer has no ambient light: with the vtk model, put the ambient colour in material.ka");
+  checks.require(!reproducesVtkRenderer(checks.model), "/type",
+    checks.model == ShadingModel::VtkPbr
+      ? "VTK's renderer has no ambient light, and its PBR shader no ambient term: use the vtk or lecture model"
+      : "VTK's renderer has no ambient light: with the vtk model, put the ambient colour in material.ka");
 }
 
 double AmbientLight::peakContribution(const Material& m) const

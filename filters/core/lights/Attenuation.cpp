@@ -52,8 +52,9 @@ Attenuation readAttenuation(const JsonNode& light)
 void checkAttenuation(const Attenuation& a, LightChecks& checks)
 {
   const bool vtkCanExpress = a.model == AttenuationModel::None || a.model == AttenuationModel::ConstantLinearQuadratic;
-  checks.require(checks.model != ShadingModel::VtkOpenGL2 || vtkCanExpress, "/attenuation",
-    "the vtk model has only vtkLight's constant-linear-quadratic attenuation (or none)");
+  checks.require(!reproducesVtkRenderer(checks.model) || vtkCanExpress, "/attenuation",
+    std::string("the ") + modelName(checks.model) +
+      " model has only vtkLight's constant-linear-quadratic attenuation (or none)");
   checks.require(isNonNegative(a.minDistance), "/min_distance", "must be a number >= 0");
   checks.require(!divergesAtZero(a) || a.minDistance > 0, "/min_distance",
     "must be > 0: this attenuation is infinite at distance 0");

@@ -26,8 +26,11 @@ void LightChecks::direction(const glm::dvec3& v, const std::string& field)
 
 void LightChecks::distributed(const Sampling& sampling)
 {
-  require(model != ShadingModel::VtkOpenGL2, "/type",
-    "VTK's renderer has no area lights or environment maps: use the lecture model");
+  require(!reproducesVtkRenderer(model), "/type",
+    model == ShadingModel::VtkPbr
+      ? "the vtk_pbr model has VTK's punctual lights only (its image-based lighting is not reproduced): use the "
+        "lecture model"
+      : "VTK's renderer has no area lights or environment maps: use the lecture model");
   require(sampling.samples >= 2 && sampling.samples <= maxSamplesPerVertex, "/samples",
     "must be a whole number from 2 to " + std::to_string(maxSamplesPerVertex));
 }

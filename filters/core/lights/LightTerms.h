@@ -16,8 +16,12 @@ enum class LightTerm
   RDotV,          // r.v
   HalfVector,     // h
   NDotH,          // n.h
-  Diffuse,        // RGB
-  Specular,       // RGB
+  // The vtk_pbr model's microfacet factors (Microfacet.h):
+  GgxDistribution, // D
+  SmithVisibility, // V = G / (4 (n.s)(n.v))
+  SchlickFresnel,  // F, RGB
+  Diffuse,         // RGB
+  Specular,        // RGB
   // Area lights and environment maps (DistributedLight.h):
   Irradiance,         // E, RGB
   IrradianceStdError, // Monte Carlo standard error of E, RGB
@@ -32,11 +36,18 @@ enum class LightTerm
   ShTransfer,         // the vertex's transfer vector
   ShTransferStdError, // with shadows: the standard errors of its coefficients
 };
-constexpr int LightTermCount = 20;
+constexpr int LightTermCount = 23;
 static_assert(static_cast<int>(LightTerm::ShTransferStdError) + 1 == LightTermCount, "LightTermCount is stale");
 
+/// The terms only the vtk_pbr model computes.
+inline bool isMicrofacetTerm(LightTerm term)
+{
+  return term == LightTerm::GgxDistribution || term == LightTerm::SmithVisibility || term == LightTerm::SchlickFresnel;
+}
+
 /// A light seen from each vertex as one direction: every term up to the specular one, and the
-/// distance only when the light has a position.
+/// distance only when the light has a position. (The microfacet terms only in the vtk_pbr model:
+/// ArrayCatalog's sceneLightHasTerm.)
 inline bool localLightHasTerm(LightTerm term, bool positional)
 {
   return term < LightTerm::Irradiance && (term != LightTerm::Distance || positional);

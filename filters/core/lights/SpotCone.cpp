@@ -40,8 +40,8 @@ void checkCone(const SpotCone& cone, LightChecks& checks)
       "must be in [0, 128], the range vtkLight allows");
     return;
   }
-  checks.require(
-    checks.model != ShadingModel::VtkOpenGL2, "/cone/model", "the vtk model has only vtkLight's cone (model \"vtk\")");
+  checks.require(!reproducesVtkRenderer(checks.model), "/cone/model",
+    std::string("the ") + modelName(checks.model) + " model has only vtkLight's cone (model \"vtk\")");
   checks.require(std::isfinite(cone.outerAngleDegrees) && cone.outerAngleDegrees > 0 && cone.outerAngleDegrees <= 90,
     "/cone/outer_angle", "must be in (0, 90] degrees");
   checks.require(std::isfinite(cone.innerAngleDegrees) && cone.innerAngleDegrees >= 0 &&

@@ -21,6 +21,13 @@ const std::array<TermInfo, LightTermCount> lightTerms = { {
   { "r_dot_v", 1, "r.v, cosine of the angle between r and the viewer" },
   { "half_vector", 3, "h = (s + v)/|s + v| (0 where s = -v)" },
   { "n_dot_h", 1, "n.h" },
+  { "ggx_d", 1,
+    "vtk_pbr model: D, GGX's distribution of microfacet normals at n.h (alpha = roughness^2), from VTK 9.1's "
+    "PBR shader, with its cosines clamped to [1e-5, 1]" },
+  { "smith_v", 1,
+    "vtk_pbr model: V = G / (4 (n.s)(n.v)), the height-correlated Smith masking-shadowing over the BRDF's "
+    "denominator, as VTK 9.1's PBR shader computes it" },
+  { "schlick_f", 3, "vtk_pbr model: F, Schlick's Fresnel reflectance at h.s, RGB" },
   { "diffuse", 3, "this light's diffuse term, RGB" },
   { "specular", 3, "this light's specular term, RGB" },
   { "irradiance", 3, "E: irradiance, the integral of L max(0, n.w) over the light's solid angle, RGB" },
@@ -122,6 +129,11 @@ const TermInfo& termInfo(OcclusionTerm term)
 const TermInfo& termInfo(InterreflectionTerm term)
 {
   return interreflectionTerms[static_cast<int>(term)];
+}
+
+bool sceneLightHasTerm(const Scene& scene, std::size_t light, LightTerm term)
+{
+  return lightHasTerm(scene.lights.at(light), term) && (!isMicrofacetTerm(term) || scene.model == ShadingModel::VtkPbr);
 }
 
 int lightTermComponents(const NamedLight& light, LightTerm term)
@@ -274,7 +286,7 @@ std::vector<ArrayDescription> availableArrays(const Scene& scene, const std::str
     const NamedLight& light = scene.lights[l];
     for (int t = 0; t < LightTermCount; ++t)
     {
-      if (lightHasTerm(light, LightTerm(t)))
+      if (sceneLightHasTerm(scene, l, LightTerm(t)))
       {
         const TermInfo& info = lightTerms[t];
         arrays.push_back({ lightArrayName(prefix, light.name, LightTerm(t)), lightTermComponents(light, LightTerm(t)),
@@ -307,7 +319,7 @@ void requestAll(const Scene& scene, ArrayRequest& request)
   {
     for (int t = 0; t < LightTermCount; ++t)
     {
-      request.lights[l][t] = lightHasTerm(scene.lights[l], LightTerm(t));
+      request.lights[l][t] = sceneLightHasTerm(scene, l, LightTerm(t));
     }
     request.indirectTransfer[l] = hasIndirectTransfer(scene, l);
   }
@@ -326,11 +338,11 @@ bool requestTermOnEveryLight(const Scene& scene, const std::string& term, ArrayR
   }
   for (int t = 0; t < LightTermCount; ++t)
   {
-    if (term == lightTerms[t].name)
+    if (term == lightTerms[t].name && (!isMicrofacetTerm(LightTerm(t)) || scene.model == ShadingModel::VtkPbr))
     {
       for (std::size_t l = 0; l < scene.lights.size(); ++l)
       {
-        request.lights[l][t] = request.lights[l][t] || lightHasTerm(scene.lights[l], LightTerm(t));
+        request.lights[l][t] = request.lights[l][t] || sceneLightHasTerm(scene, l, LightTerm(t));
       }
       return true;
     }
@@ -382,7 +394,7 @@ bool requestByName(const Scene& scene, const std::string& name, ArrayRequest& re
   {
     for (int t = 0; t < LightTermCount; ++t)
     {
-      if (lightHasTerm(scene.lights[l], LightTerm(t)) && name == lightArrayName("", scene.lights[l].name, LightTerm(t)))
+      if (sceneLightHasTerm(scene, l, LightTerm(t)) && name == lightArrayName("", scene.lights[l].name, LightTerm(t)))
       {
         request.lights[l][t] = true;
         return true;
@@ -400,9 +412,12 @@ bool requestByName(const Scene& scene, const std::string& name, ArrayRequest& re
 std::string knownSelections(const Scene& scene)
 {
   std::string known = "default, totals, all";
-  for (const TermInfo& info : lightTerms)
+  for (int t = 0; t < LightTermCount; ++t)
   {
-    known += std::string(", *_") + info.name;
+    if (!isMicrofacetTerm(LightTerm(t)) || scene.model == ShadingModel::VtkPbr)
+    {
+      known += std::string(", *_") + lightTerms[t].name;
+    }
   }
   for (std::size_t l = 0; l < scene.lights.size(); ++l)
   {

@@ -58,6 +58,9 @@ const TermInfo& termInfo(LightTerm term);
 const TermInfo& termInfo(TotalTerm term);
 const TermInfo& termInfo(OcclusionTerm term);
 const TermInfo& termInfo(InterreflectionTerm term);
+/// Whether the scene's light `light` has the term: lightHasTerm, and the microfacet terms only in
+/// the vtk_pbr model.
+bool sceneLightHasTerm(const Scene& scene, std::size_t light, LightTerm term);
 /// How many components the light's array of the term has: the term's own count, or for a
 /// transfer vector its light's coefficients.
 int lightTermComponents(const NamedLight& light, LightTerm term);

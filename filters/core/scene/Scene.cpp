@@ -1,5 +1,6 @@
 #include "Scene.h"
 
+#include "Microfacet.h"
 #include "SpectralColors.h"
 
 #include <algorithm>
@@ -10,15 +11,21 @@ namespace shadelab
 {
 SpecularModel evaluatedSpecularModel(const Scene& scene)
 {
-  if (scene.model == ShadingModel::VtkOpenGL2)
+  switch (scene.model)
   {
-    return scene.vtkLoneHeadlight ? SpecularModel::BlinnPhong : SpecularModel::Phong;
+    case ShadingModel::Lecture: return scene.material.specular;
+    case ShadingModel::VtkOpenGL2: return scene.vtkLoneHeadlight ? SpecularModel::BlinnPhong : SpecularModel::Phong;
+    case ShadingModel::VtkPbr: return SpecularModel::None; // its microfacet term instead (Microfacet.h)
   }
-  return scene.material.specular;
+  return SpecularModel::None;
 }
 
 bool hasSpecularTerm(const Scene& scene)
 {
+  if (scene.model == ShadingModel::VtkPbr)
+  {
+    return true;
+  }
   return evaluatedSpecularModel(scene) != SpecularModel::None && scene.material.ks != Rgb(0.0);
 }
 
@@ -58,6 +65,21 @@ std::string meshCoordinateProblem(double reach, Precision precision)
 
 namespace
 {
+Material peakMaterial(const Scene& scene)
+{
+  if (scene.model != ShadingModel::VtkPbr)
+  {
+    return scene.material;
+  }
+  // The lecture's kd and ks that bound the microfacet model's diffuse and specular factors:
+  // (1 - m)(1 - F) base / pi <= base / pi, and D V F (n.s) <= microfacetSpecularBound.
+  const MicrofacetMaterial& microfacet = scene.material.microfacet;
+  Material bound;
+  bound.kd = microfacet.baseColor / vtkPi<double>;
+  bound.ks = Rgb(microfacetSpecularBound(microfacet.roughness));
+  return bound;
+}
+
 /// A material read from the mesh's arrays (MaterialArrays.h): scales in their domain, and
 /// what the array cannot give in this scene.
 void checkMaterialArrays(const Scene& scene, ProblemList& list)
@@ -99,6 +121,48 @@ bool isLightName(const std::string& name)
   return !name.empty() && isAsciiLetter(name[0]) &&
     std::all_of(
       name.begin(), name.end(), [&](char c) { return isAsciiLetter(c) || (c >= '0' && c <= '9') || c == '_'; });
+}
+
+/// The vtk_pbr model's material, and what VTK's PBR shader (without image-based lighting) has
+/// no counterpart for.
+void checkMicrofacetModel(const Scene& scene, ProblemList& list)
+{
+  if (scene.model != ShadingModel::VtkPbr)
+  {
+    return;
+  }
+  const MicrofacetMaterial& m = scene.material.microfacet;
+  list.check(isNonNegative(m.baseColor), "/material/base_color", "components must be numbers >= 0");
+  list.check(m.metallic >= 0 && m.metallic <= 1, "/material/metallic", "must be a number from 0 to 1");
+  list.check(m.roughness > 0 && m.roughness <= 1, "/material/roughness",
+    "must be a number above 0 and at most 1 (at 0, VTK's GGX distribution is 0/0 in the mirror direction)");
+  list.check(std::isfinite(m.baseIor) && m.baseIor >= 1, "/material/base_ior", "must be a number >= 1");
+  list.check(isNonNegative(m.edgeTint), "/material/edge_tint", "components must be numbers >= 0");
+  list.check(!scene.ambientOcclusion, "/ambient_occlusion",
+    "VTK's PBR shader has no ambient term for the occlusion to darken: use the vtk or lecture model");
+  list.check(!scene.interreflection, "/interreflection",
+    "the vtk_pbr model does not compute interreflection: use the lecture model");
+}
+
+/// The viewer's position and focal point within the precision's range, or its direction.
+void checkViewer(const Scene& scene, Precision precision, ProblemList& list)
+{
+  const Viewer& viewer = scene.viewer;
+  const double limit = coordinateLimit(precision);
+  if (viewer.position)
+  {
+    list.check(isWithin(*viewer.position, limit), "/viewer/position", outOfRange(precision));
+    if (viewer.focalPoint)
+    {
+      list.check(isWithin(*viewer.focalPoint, limit), "/viewer/focal_point", outOfRange(precision));
+      list.check(*viewer.focalPoint != *viewer.position, "/viewer/focal_point", "must differ from the position");
+    }
+    return;
+  }
+  list.check(isNonZero(viewer.viewDirection), "/viewer/direction", "must be a non-zero vector");
+  list.check(!reproducesVtkRenderer(scene.model), "/viewer/position",
+    std::string("the ") + modelName(scene.model) +
+      " model needs a camera position (VTK's renderer always has a local viewer)");
 }
 
 /// What interreflection needs of the rest of the scene.
@@ -145,29 +209,14 @@ std::vector<SceneProblem> sceneProblems(const Scene& scene, Precision precision)
 {
   ProblemList list;
   const Viewer& viewer = scene.viewer;
-  const double limit = coordinateLimit(precision);
-  if (viewer.position)
-  {
-    list.check(isWithin(*viewer.position, limit), "/viewer/position", outOfRange(precision));
-    if (viewer.focalPoint)
-    {
-      list.check(isWithin(*viewer.focalPoint, limit), "/viewer/focal_point", outOfRange(precision));
-      list.check(*viewer.focalPoint != *viewer.position, "/viewer/focal_point", "must differ from the position");
-    }
-  }
-  else
-  {
-    list.check(isNonZero(viewer.viewDirection), "/viewer/direction", "must be a non-zero vector");
-    list.check(scene.model != ShadingModel::VtkOpenGL2, "/viewer/position",
-      "the vtk model needs a camera position (VTK's renderer always has a local viewer)");
-  }
-
+  checkViewer(scene, precision, list);
   const Material& m = scene.material;
   list.check(isNonNegative(m.ka), "/material/ka", "components must be numbers >= 0");
   list.check(isNonNegative(m.kd), "/material/kd", "components must be numbers >= 0");
   list.check(isNonNegative(m.ks), "/material/ks", "components must be numbers >= 0");
   list.check(isNonNegative(m.shininess), "/material/shininess", "must be a number >= 0");
   checkMaterialArrays(scene, list);
+  checkMicrofacetModel(scene, list);
   if (const std::optional<SceneProblem> spectral = spectralModeProblem(scene))
   {
     list.problems.push_back(*spectral);
@@ -215,12 +264,12 @@ std::vector<SceneProblem> sceneProblems(const Scene& scene, Precision precision)
     double sum = 0;
     for (std::size_t i = 0; i < scene.lights.size(); ++i)
     {
-      const double peak = peakContribution(scene.lights[i].source, m);
+      const double peak = peakContribution(scene.lights[i].source, peakMaterial(scene));
       // The light of colour and intensity 1 reaches k x attenuation: where that is the larger
       // factor, a tiny min_distance is what overflows, not the light's strength.
       LightSource unit = scene.lights[i].source;
       std::visit([](auto& light) { light.color = Rgb(1.0), light.intensity = 1.0; }, unit);
-      const double unitPeak = peakContribution(unit, m);
+      const double unitPeak = peakContribution(unit, peakMaterial(scene));
       const bool nearness = unitPeak > 1 && unitPeak * unitPeak > peak;
       list.check(peak <= limit, "/lights/" + std::to_string(i) + (nearness ? "/min_distance" : "/intensity"),
         "this light alone can reach " + beyond(peak) +
@@ -243,7 +292,7 @@ std::vector<SceneProblem> sceneProblems(const Scene& scene, Precision precision)
 
 bool shadesBothSides(const Scene& scene)
 {
-  return scene.material.twoSided || scene.model == ShadingModel::VtkOpenGL2;
+  return scene.material.twoSided || reproducesVtkRenderer(scene.model);
 }
 
 std::vector<SceneProblem> untargetedSamplingProblems(const Scene& scene, bool lightsPlanned)

@@ -150,9 +150,28 @@ void readColorCoefficient(const JsonNode& material, MaterialCoefficient coeffici
   }
 }
 
+/// The vtk_pbr model's material: vtkProperty's PBR parameters, with its defaults.
+MicrofacetMaterial readMicrofacetMaterial(const JsonNode& node)
+{
+  node.expectObject({ "base_color", "metallic", "roughness", "base_ior", "edge_tint" });
+  MicrofacetMaterial m;
+  m.baseColor = rgbOr(node, "base_color", m.baseColor);
+  m.metallic = numberOr(node, "metallic", m.metallic);
+  m.roughness = numberOr(node, "roughness", m.roughness);
+  m.baseIor = numberOr(node, "base_ior", m.baseIor);
+  m.edgeTint = rgbOr(node, "edge_tint", m.edgeTint);
+  return m;
+}
+
 Material readMaterial(const JsonNode& node, ShadingModel model)
 {
   Material m;
+  if (model == ShadingModel::VtkPbr)
+  {
+    m.microfacet = readMicrofacetMaterial(node);
+    m.ka = m.kd = m.ks = Rgb(0.0); // the lecture's coefficients, which the microfacet model has none of
+    return m;
+  }
   if (model == ShadingModel::VtkOpenGL2)
   {
     // vtkProperty's defaults: Ambient 0, Diffuse 1, Specular 0, SpecularPower 1, white colours.
@@ -237,8 +256,9 @@ Scene readScene(const Json& document, const std::string& sceneFile)
   Scene scene;
   if (root.has("model"))
   {
-    scene.model = root.at("model").choice<ShadingModel>(
-      { { "lecture", ShadingModel::Lecture }, { "vtk", ShadingModel::VtkOpenGL2 } });
+    scene.model = root.at("model").choice<ShadingModel>({ { modelName(ShadingModel::Lecture), ShadingModel::Lecture },
+      { modelName(ShadingModel::VtkOpenGL2), ShadingModel::VtkOpenGL2 },
+      { modelName(ShadingModel::VtkPbr), ShadingModel::VtkPbr } });
   }
   if (root.has("frame"))
   {
@@ -280,7 +300,7 @@ Scene readScene(const Json& document, const std::string& sceneFile)
     spectral.expectObject({ "band_nm" });
     scene.spectral = SpectralMode{ numberOr(spectral, "band_nm", SpectralMode{}.bandNm) };
   }
-  if (scene.model == ShadingModel::VtkOpenGL2)
+  if (reproducesVtkRenderer(scene.model))
   {
     // Like vtkRenderer with AutomaticLightCreation: no light means one white headlight.
     if (scene.lights.empty())

@@ -97,9 +97,11 @@ std::optional<SceneProblem> spectralModeProblem(const Scene& scene)
   {
     return SceneProblem{ "/spectral/band_nm", "must be a number of nm > 0 and <= 50" };
   }
-  if (scene.model == ShadingModel::VtkOpenGL2)
+  if (reproducesVtkRenderer(scene.model))
   {
-    return SceneProblem{ "/spectral", "the vtk model is VTK's renderer, whose colours are RGB: use the lecture model" };
+    return SceneProblem{ "/spectral",
+      std::string("the ") + modelName(scene.model) +
+        " model is VTK's renderer, whose colours are RGB: use the lecture model" };
   }
   if (scene.material.arrays.any())
   {

@@ -1,0 +1,90 @@
+#pragma once
+// The microfacet terms of VTK 9.1's PBR shader (docs/vtk-renderer.md section 11), written as
+// VTK's Rendering/OpenGL2/glsl/vtkPBRFunctions.glsl computes them at tag v9.1.0, so that the
+// vtk_pbr model gives what VTK draws. The forms are GGX's distribution (Walter, Marschner, Li
+// and Torrance, "Microfacet Models for Refraction through Rough Surfaces", EGSR 2007), the
+// height-correlated Smith visibility (Heitz, "Understanding the Masking-Shadowing Function in
+// Microfacet-Based BRDFs", JCGT 3(2), 2014) and Schlick's Fresnel ("An Inexpensive BRDF Model
+// for Physically-based Rendering", Eurographics 1994), as Karis ("Real Shading in Unreal
+// Engine 4", SIGGRAPH 2013) and Filament's documentation arrange them.
+#include "Material.h"
+#include "Vec3.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace shadelab
+{
+/// VTK's pi (vtkPBRFunctions.glsl), kept to its digits: the shader's constant, not M_PI.
+template<typename T>
+constexpr T vtkPi = T(3.14159265359);
+
+/// The shader clamps every cosine (n.v, n.s, n.h, h.s) to [1e-5, 1]: a light behind the surface
+/// still adds its term at a cosine of 1e-5, and a grazing viewer divides by no less than it.
+template<typename T>
+T vtkClampedCosine(T cosine)
+{
+  return std::clamp(cosine, T(1e-5), T(1));
+}
+
+/// D, GGX's distribution of normals at n.h, with alpha = roughness^2:
+/// D = alpha^2 / (pi ((n.h)^2 (alpha^2 - 1) + 1)^2). At roughness 1 it is 1/pi everywhere; as
+/// the roughness falls to 0 it narrows to a peak of 1 / (pi roughness^4) at n.h = 1.
+template<typename T>
+T ggxDistribution(T nDotH, T roughness)
+{
+  const T alpha = roughness * roughness;
+  const T alpha2 = alpha * alpha;
+  const T d = (nDotH * alpha2 - nDotH) * nDotH + T(1);
+  return alpha2 / (vtkPi<T> * d * d);
+}
+
+/// V = G / (4 (n.s)(n.v)), the height-correlated Smith masking and shadowing divided by the
+/// BRDF's denominator, as VTK 9.1 computes it. VTK passes the roughness where Heitz's form has
+/// alpha, so that V uses alpha = roughness while D uses roughness^2 (docs/vtk-renderer.md
+/// section 11.3): V = 0.5 / ((n.s) sqrt(r^2 + (n.v)^2 (1 - r^2)) + (n.v) sqrt(r^2 + (n.s)^2 (1 - r^2))).
+template<typename T>
+T smithCorrelatedVisibility(T nDotV, T nDotL, T roughness)
+{
+  const T r2 = roughness * roughness;
+  const T viewSide = nDotL * std::sqrt(r2 + nDotV * (nDotV - r2 * nDotV));
+  const T lightSide = nDotV * std::sqrt(r2 + nDotL * (nDotL - r2 * nDotL));
+  return T(0.5) / (viewSide + lightSide);
+}
+
+/// Schlick's Fresnel at h.s for one channel: F = F0 + (F90 - F0) (1 - h.s)^5.
+template<typename T>
+T schlickFresnel(T f0, T f90, T hDotL)
+{
+  const T m = T(1) - hDotL;
+  const T m2 = m * m;
+  return f0 + (f90 - f0) * (m2 * m2 * m);
+}
+
+/// F0, the reflectance at normal incidence: the base layer's ((ior - 1) / (ior + 1))^2 (0.04 at
+/// ior 1.5; vtkProperty::ComputeReflectanceOfBaseLayer, with no coat), mixed toward the base
+/// colour by the metallic factor.
+inline Rgb reflectanceAtNormalIncidence(const MicrofacetMaterial& m)
+{
+  const double dielectric = std::pow((m.baseIor - 1.0) / (m.baseIor + 1.0), 2.0);
+  return (1.0 - m.metallic) * Rgb(dielectric) + m.metallic * m.baseColor;
+}
+
+/// F90, the reflectance at grazing incidence: 1 for any F0 whose channels sum to 1/16.5 or more
+/// (VTK's "specular occlusion", which darkens only an F0 below about 0.02), mixed toward the edge
+/// tint by the metallic factor.
+inline Rgb reflectanceAtGrazingIncidence(const MicrofacetMaterial& m, const Rgb& f0)
+{
+  const double f90 = std::clamp(50.0 * 0.33 * (f0.x + f0.y + f0.z), 0.0, 1.0);
+  return (1.0 - m.metallic) * Rgb(f90) + m.metallic * m.edgeTint;
+}
+
+/// The largest value the specular factor D V F (n.s) can take for a roughness in (0, 1]: D is
+/// at most 1 / (pi r^4), V (n.s) at most 1 / (4 n.v) <= 1 / (4e-5) with the clamps, and F at
+/// most 1. The scene's checks bound each light's peak with it.
+inline double microfacetSpecularBound(double roughness)
+{
+  const double r2 = roughness * roughness;
+  return 1.0 / (vtkPi<double> * r2 * r2) * (0.25 / 1e-5);
+}
+}

@@ -1,0 +1,183 @@
+// The vtk_pbr model's microfacet terms (Microfacet.h) against closed forms computed another way,
+// at the angles and roughnesses where they break, and the model's scene rules.
+#include "Microfacet.h"
+#include "SceneFileErrors.h"
+
+#include <cmath>
+#include <string>
+
+#include <gtest/gtest.h>
+
+namespace
+{
+using namespace shadelab;
+using shadelab::testing::sceneFileErrorOf;
+
+constexpr double pi = 3.14159265358979323846;
+
+/// GGX's D written from the angle theta between n and h: alpha^2 / (pi (alpha^2 cos^2 + sin^2)^2).
+double ggxFromAngle(double theta, double roughness)
+{
+  const double alpha2 = std::pow(roughness, 4.0);
+  const double c = std::cos(theta), s = std::sin(theta);
+  return alpha2 / (pi * std::pow(alpha2 * c * c + s * s, 2.0));
+}
+
+TEST(Microfacet, GgxDistributionIsTheAngleFormAndIntegratesToOneOverTheProjectedHemisphere)
+{
+  for (const double roughness : { 0.2, 0.5, 0.8, 1.0 })
+  {
+    for (const double theta : { 0.0, 0.1, 0.7, 1.2, 1.5 })
+    {
+      // vtkPi is the shader's 3.14159265359, 2e-12 from pi.
+      EXPECT_NEAR(ggxDistribution(std::cos(theta), roughness) / ggxFromAngle(theta, roughness), 1.0, 1e-11)
+        << "roughness " << roughness << " theta " << theta;
+    }
+    // A distribution of normals: the integral of D (n.h) over the hemisphere of h is 1. The
+    // midpoint rule in cos^2, where D is a smooth function (1 / (a + b x)^2).
+    const int steps = 200000;
+    double integral = 0;
+    for (int i = 0; i < steps; ++i)
+    {
+      const double cos2 = (i + 0.5) / steps;
+      // d omega = 2 pi sin d theta; (n.h) sin d theta = d(cos^2) / 2.
+      integral += ggxDistribution(std::sqrt(cos2), roughness) * pi / steps;
+    }
+    EXPECT_NEAR(integral, 1.0, 1e-6) << "roughness " << roughness;
+  }
+  // Roughness 1: a uniform distribution, 1/pi (to the shader's pi) at every angle.
+  EXPECT_NEAR(ggxDistribution(0.3, 1.0), 1 / pi, 1e-12);
+  EXPECT_NEAR(ggxDistribution(1e-5, 1.0), 1 / pi, 1e-12);
+}
+
+TEST(Microfacet, GgxDistributionNarrowsToItsPeakAsTheRoughnessFalls)
+{
+  // At n.h = 1 the peak is 1 / (pi r^4); one degree off, a small roughness has almost nothing.
+  for (const double roughness : { 0.03, 0.1, 0.3 })
+  {
+    EXPECT_NEAR(ggxDistribution(1.0, roughness) * pi * std::pow(roughness, 4.0), 1.0, 1e-10);
+  }
+  const double oneDegree = pi / 180;
+  EXPECT_LT(ggxDistribution(std::cos(oneDegree), 0.03), 1e-3 * ggxDistribution(1.0, 0.03));
+  // Where it breaks in float32: near n.h = 1, (n.h)^2 (alpha^2 - 1) + 1 cancels digits. At
+  // roughness 0.03 a tenth of a degree off the peak, float32 keeps only about 1% of D.
+  const double theta = 0.1 * oneDegree;
+  const double exact = ggxFromAngle(theta, 0.03);
+  const float single = ggxDistribution(float(std::cos(theta)), 0.03f);
+  EXPECT_NEAR(ggxDistribution(std::cos(theta), 0.03) / exact, 1.0, 1e-6);
+  EXPECT_GT(std::abs(single / exact - 1.0), 1e-4);
+  EXPECT_LT(std::abs(single / exact - 1.0), 5e-2);
+}
+
+/// Heitz 2014, eq. 99 with eq. 72: the height-correlated G2 = 1 / (1 + Lambda(v) + Lambda(l)),
+/// Lambda(mu) = (-1 + sqrt(1 + alpha^2 tan^2)) / 2, for GGX of width alpha.
+double heitzCorrelatedG2(double nDotV, double nDotL, double alpha)
+{
+  auto lambda = [alpha](double mu) { return (-1 + std::sqrt(1 + alpha * alpha * (1 - mu * mu) / (mu * mu))) / 2; };
+  return 1 / (1 + lambda(nDotV) + lambda(nDotL));
+}
+
+TEST(Microfacet, SmithVisibilityIsHeitzsCorrelatedMaskingWithAlphaEqualToTheRoughness)
+{
+  for (const double roughness : { 0.05, 0.35, 0.7, 1.0 })
+  {
+    for (const double nDotV : { 1e-5, 0.05, 0.4, 0.9, 1.0 })
+    {
+      for (const double nDotL : { 1e-5, 0.2, 0.75, 1.0 })
+      {
+        // VTK's V = G2 / (4 (n.s)(n.v)) with alpha = roughness (not roughness^2, as its D).
+        const double heitz = heitzCorrelatedG2(nDotV, nDotL, roughness) / (4 * nDotV * nDotL);
+        EXPECT_NEAR(smithCorrelatedVisibility(nDotV, nDotL, roughness) / heitz, 1.0, 1e-9)
+          << "r " << roughness << " n.v " << nDotV << " n.s " << nDotL;
+        EXPECT_EQ(smithCorrelatedVisibility(nDotV, nDotL, roughness),
+          smithCorrelatedVisibility(nDotL, nDotV, roughness)); // reciprocity
+      }
+    }
+  }
+  // Roughness 1: 0.5 / (n.s + n.v); roughness 0: no masking, G2 = 1.
+  EXPECT_DOUBLE_EQ(smithCorrelatedVisibility(0.3, 0.6, 1.0), 0.5 / 0.9);
+  EXPECT_DOUBLE_EQ(smithCorrelatedVisibility(0.3, 0.6, 0.0), 0.25 / (0.3 * 0.6));
+  // At grazing view the shader's clamp keeps V finite: with n.v at 1e-5 and n.s = 1, V n.s is
+  // 0.5 / (sqrt(r^2 + 1e-10 (1 - r^2)) + 1e-5) at roughness r.
+  const double r = 0.35;
+  const double grazing = vtkClampedCosine(0.0);
+  EXPECT_EQ(grazing, 1e-5);
+  EXPECT_NEAR(smithCorrelatedVisibility(grazing, 1.0, r), 0.5 / (std::sqrt(r * r + 1e-10 * (1 - r * r)) + 1e-5), 1e-12);
+  EXPECT_LE(smithCorrelatedVisibility(grazing, grazing, r) * grazing, microfacetSpecularBound(1.0) * pi);
+}
+
+TEST(Microfacet, SchlickFresnelRunsFromF0AtNormalIncidenceToF90AtGrazing)
+{
+  MicrofacetMaterial dielectric;
+  const Rgb f0 = reflectanceAtNormalIncidence(dielectric);
+  EXPECT_NEAR(f0.x, 0.04, 1e-15); // ((1.5 - 1) / (1.5 + 1))^2
+  EXPECT_EQ(reflectanceAtGrazingIncidence(dielectric, f0), Rgb(1.0));
+  EXPECT_EQ(schlickFresnel(0.04, 1.0, 1.0), 0.04);
+  EXPECT_NEAR(schlickFresnel(0.04, 1.0, vtkClampedCosine(0.0)), 1.0 - 0.96 * 5e-5, 1e-9);
+  EXPECT_NEAR(schlickFresnel(0.04, 1.0, 0.5), 0.04 + 0.96 / 32, 1e-15);
+
+  // A metal: F0 is its base colour, F90 its edge tint.
+  MicrofacetMaterial metal;
+  metal.metallic = 1.0;
+  metal.baseColor = { 0.9, 0.6, 0.2 };
+  metal.edgeTint = { 1.0, 0.8, 0.5 };
+  EXPECT_EQ(reflectanceAtNormalIncidence(metal), metal.baseColor);
+  EXPECT_EQ(reflectanceAtGrazingIncidence(metal, metal.baseColor), metal.edgeTint);
+
+  // VTK's "specular occlusion": an F0 whose channels sum below 1/16.5 has F90 = 16.5 x that sum.
+  MicrofacetMaterial lowIndex;
+  lowIndex.baseIor = 1.2;
+  const Rgb low = reflectanceAtNormalIncidence(lowIndex);
+  EXPECT_NEAR(low.x, std::pow(0.2 / 2.2, 2.0), 1e-15);
+  EXPECT_NEAR(reflectanceAtGrazingIncidence(lowIndex, low).x, 16.5 * 3 * low.x, 1e-12);
+}
+
+const std::string pbrViewer = R"("model": "vtk_pbr", "viewer": { "position": [0, 0, 3], "focal_point": [0, 0, 0] })";
+
+TEST(Microfacet, SceneFileGivesVtksPbrMaterialAndRefusesWhatItsShaderLacks)
+{
+  const Scene scene = parseScene("{ " + pbrViewer +
+      R"(, "material": { "base_color": [0.5, 0.4, 0.3], "metallic": 0.25, "roughness": 0.6, "base_ior": 1.6,
+        "edge_tint": [1, 0.9, 0.8] }, "lights": [] })",
+    "scene.json");
+  EXPECT_EQ(scene.model, ShadingModel::VtkPbr);
+  EXPECT_EQ(scene.material.microfacet.baseColor, Rgb(0.5, 0.4, 0.3));
+  EXPECT_EQ(scene.material.microfacet.metallic, 0.25);
+  EXPECT_EQ(scene.material.microfacet.roughness, 0.6);
+  EXPECT_EQ(scene.material.microfacet.baseIor, 1.6);
+  EXPECT_EQ(scene.material.microfacet.edgeTint, Rgb(1, 0.9, 0.8));
+  // No light: vtkRenderer's automatic headlight, alone, so the shader's light at the eye.
+  ASSERT_EQ(scene.lights.size(), 1u);
+  EXPECT_TRUE(scene.vtkLoneHeadlight);
+
+  auto errorWith = [](const std::string& rest) { return sceneFileErrorOf("{ " + pbrViewer + ", " + rest + " }"); };
+  EXPECT_EQ(errorWith(R"("material": { "roughness": 0 }, "lights": [])"),
+    "scene.json: /material/roughness: must be a number above 0 and at most 1 (at 0, VTK's GGX distribution is 0/0 "
+    "in the mirror direction)");
+  EXPECT_EQ(errorWith(R"("material": { "metallic": 1.5 }, "lights": [])"),
+    "scene.json: /material/metallic: must be a number from 0 to 1");
+  EXPECT_EQ(errorWith(R"("material": { "base_ior": 0.9 }, "lights": [])"),
+    "scene.json: /material/base_ior: must be a number >= 1");
+  EXPECT_EQ(errorWith(R"("material": { "kd": [1, 1, 1] }, "lights": [])"),
+    "scene.json: /material/kd: unknown field; allowed here: base_color, metallic, roughness, base_ior, edge_tint");
+  EXPECT_EQ(errorWith(R"("lights": [ { "type": "ambient" } ])"),
+    "scene.json: /lights/0/type: VTK's renderer has no ambient light, and its PBR shader no ambient term: use the "
+    "vtk or lecture model");
+  EXPECT_EQ(errorWith(R"("lights": [ { "type": "sphere", "center": [0, 0, 2], "radius": 0.1 } ])"),
+    "scene.json: /lights/0/type: the vtk_pbr model has VTK's punctual lights only (its image-based lighting is not "
+    "reproduced): use the lecture model");
+  EXPECT_EQ(errorWith(R"("lights": [], "ambient_occlusion": { "rays": 16 })"),
+    "scene.json: /ambient_occlusion: VTK's PBR shader has no ambient term for the occlusion to darken: use the vtk "
+    "or lecture model");
+  EXPECT_EQ(errorWith(R"("lights": [], "interreflection": { "bounces": 1 })"),
+    "scene.json: /interreflection: the vtk_pbr model does not compute interreflection: use the lecture model");
+  EXPECT_EQ(errorWith(R"("lights": [], "spectral": {})"),
+    "scene.json: /spectral: the vtk_pbr model is VTK's renderer, whose colours are RGB: use the lecture model");
+  EXPECT_EQ(errorWith(R"("lights": [ { "type": "point", "position": [0, 0, 2] } ])"),
+    "scene.json: /lights/0/attenuation: the vtk_pbr model has only vtkLight's constant-linear-quadratic "
+    "attenuation (or none)");
+  EXPECT_EQ(sceneFileErrorOf(R"({ "model": "vtk_pbr", "viewer": { "direction": [0, 0, -1] }, "lights": [] })"),
+    "scene.json: /viewer/position: the vtk_pbr model needs a camera position (VTK's renderer always has a local "
+    "viewer)");
+}
+}
