@@ -7,6 +7,7 @@
 #include "DistributedStudies.h"
 #include "InterreflectionStudies.h"
 #include "MeshFiles.h"
+#include "MetallicRoughness.h"
 #include "SceneFile.h"
 #include "SpectralStudies.h"
 
@@ -268,6 +269,85 @@ std::vector<AccuracyRow> phongStudy(const Mesh& mesh, int maxRepeats, ChartSpec&
   chart.xTitle = "Phong exponent eta";
   chart.yTitle = "|difference| of the specular term";
   chart.logX = chart.logY = true;
+  return rows;
+}
+
+/// The specular term over its largest value on the mesh, against the angle between n and h in
+/// degrees, at every stride-th vertex where it is above 1e-6 of that largest (a log axis).
+ChartSeries normalisedLobe(const MethodRun& run, const std::string& name, std::array<unsigned char, 3> color)
+{
+  vtkDataArray* specular = arrayOf(run, "key_specular");
+  vtkDataArray* nDotH = arrayOf(run, "key_n_dot_h");
+  double largest = 0;
+  for (vtkIdType i = 0; i < specular->GetNumberOfTuples(); ++i)
+  {
+    largest = std::max(largest, specular->GetComponent(i, 1));
+  }
+  ChartSeries series{ name, {}, {}, false, color };
+  const vtkIdType stride = std::max<vtkIdType>(1, specular->GetNumberOfTuples() / 3000);
+  for (vtkIdType i = 0; i < specular->GetNumberOfTuples(); i += stride)
+  {
+    const double value = specular->GetComponent(i, 1) / largest;
+    if (value > 1e-6)
+    {
+      series.x.push_back(std::acos(std::clamp(nDotH->GetComponent(i, 0), -1.0, 1.0)) * 180 / 3.14159265358979323846);
+      series.y.push_back(value);
+    }
+  }
+  return series;
+}
+
+/// 15. The lecture's Phong and Blinn-Phong lobes against VTK's PBR microfacet model (the
+/// vtk_pbr model: GGX, Smith, Schlick) on the same mesh, light and viewer, with lobes of matched
+/// width: GGX of roughness r, Blinn-Phong of Walter's eta = 2 / r^4 - 2 (the exponent whose lobe
+/// matches it; docs/formulas.md section 7.3) and Phong of eta / 4.
+std::vector<AccuracyRow> reflectanceModelsStudy(const Mesh& mesh, int maxRepeats, ChartSpec& chart)
+{
+  const double roughness = 0.4;
+  const double blinnEta = lectureCoefficients(Rgb(1.0), 0.0, roughness).shininess;
+  Scene blinn = bunnyScene(mesh.data, blinnEta);
+  // VTK's attenuation 1 / d^2, which every model accepts, and a local viewer, which VTK has.
+  auto& key = std::get<PointLight>(blinn.lights[0].source);
+  key.attenuation.model = AttenuationModel::ConstantLinearQuadratic;
+  key.attenuation.constant = 0;
+  key.attenuation.quadratic = 1;
+  Scene phong = blinn;
+  phong.material.specular = SpecularModel::Phong;
+  phong.material.shininess = blinnEta / 4;
+  Scene microfacet = blinn;
+  microfacet.model = ShadingModel::VtkPbr;
+  microfacet.material.microfacet.baseColor = blinn.material.kd;
+  microfacet.material.microfacet.roughness = roughness;
+  const std::vector<std::string> arrays = { "key_specular", "key_n_dot_h" };
+  std::vector<AccuracyRow> rows;
+  std::ostringstream parameters;
+  parameters << std::setprecision(3) << "roughness " << roughness << ", Blinn-Phong eta " << blinnEta
+             << ", Phong eta " << blinnEta / 4;
+  int colour = 0;
+  for (const auto& [name, scene] : { std::pair{ "Phong", &phong }, std::pair{ "Blinn-Phong", &blinn },
+         std::pair{ "GGX microfacets (vtk_pbr)", &microfacet } })
+  {
+    const MethodRun run = runMethod(mesh.data, *scene, arrays, Precision::Float32, {}, maxRepeats);
+    chart.series.push_back(normalisedLobe(run, name, palette[colour++]));
+    // The share of the specular light beyond 30 degrees from the half vector: the lobe's tail.
+    vtkDataArray* specular = arrayOf(run, "key_specular");
+    vtkDataArray* nDotH = arrayOf(run, "key_n_dot_h");
+    double all = 0, tail = 0;
+    for (vtkIdType i = 0; i < specular->GetNumberOfTuples(); ++i)
+    {
+      all += specular->GetComponent(i, 1);
+      tail += nDotH->GetComponent(i, 0) < std::cos(3.14159265358979323846 / 6) ? specular->GetComponent(i, 1) : 0;
+    }
+    std::ostringstream note;
+    note << std::setprecision(3) << parameters.str() << "; " << 100 * tail / all
+         << "% of the specular light more than 30 degrees from h";
+    rows.push_back({ "15 reflectance models", name, "roughness", roughness, mesh.data->GetNumberOfPoints(),
+      run.milliseconds, std::nullopt, std::nullopt, std::nullopt, note.str() });
+  }
+  chart.title = "15 Specular lobes on " + mesh.name + " under one point light (" + parameters.str() + ")";
+  chart.xTitle = "angle between n and h (degrees)";
+  chart.yTitle = "specular term / its largest on the mesh";
+  chart.logY = true;
   return rows;
 }
 
@@ -685,6 +765,8 @@ void runAccuracyStudies(const AccuracyOptions& options)
     "14b_interreflection_rays", [&](ChartSpec& chart) { return interreflectionRaysStudy(options.maxRepeats, chart); });
   study(
     "14c_interreflection_time", [&](ChartSpec& chart) { return interreflectionPlanStudy(options.maxRepeats, chart); });
+  study("15_reflectance_models",
+    [&](ChartSpec& chart) { return reflectanceModelsStudy(*bunny, options.maxRepeats, chart); });
   const std::vector<AccuracyRow> grazing = grazingRows();
   rows.insert(rows.end(), grazing.begin(), grazing.end());
   for (const AccuracyRow& r : grazing)
