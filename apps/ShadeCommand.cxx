@@ -364,18 +364,23 @@ void checkRun(const ShadingPipeline& pipeline, const ShadeOptions& options)
     return;
   }
   const std::string sceneProblem = pipeline.filter->GetSceneProblem();
-  // Occlusion's rays, when --ambient-occlusion set them, are the option's problem.
-  const std::string occlusionRays = "/ambient_occlusion/rays: ";
+  auto problemText = [&] { return sceneProblem.substr(sceneProblem.find(": ") + 2); };
+  // Occlusion, when --ambient-occlusion asked for it, is the option's problem.
   const std::string& ambientOcclusion = options.overrides.ambientOcclusion;
-  if (!ambientOcclusion.empty() && sceneProblem.rfind(occlusionRays, 0) == 0)
+  if (!ambientOcclusion.empty() && sceneProblem.rfind("/ambient_occlusion", 0) == 0)
   {
-    throw UserError("--ambient-occlusion " + ambientOcclusion + ": " + sceneProblem.substr(occlusionRays.size()));
+    throw UserError("--ambient-occlusion " + ambientOcclusion + ": " + problemText());
+  }
+  // The material's arrays, when --color-by set them.
+  if (!options.colorBy.empty() && sceneProblem.rfind("/material: ", 0) == 0)
+  {
+    throw UserError("--color-by " + options.colorBy + ": " + problemText());
   }
   // And interreflection's, when --bounces set it.
   const std::string& bounces = options.overrides.bounces;
   if (!bounces.empty() && sceneProblem.rfind("/interreflection", 0) == 0)
   {
-    throw UserError("--bounces " + bounces + ": " + sceneProblem.substr(sceneProblem.find(": ") + 2));
+    throw UserError("--bounces " + bounces + ": " + problemText());
   }
   if (!sceneProblem.empty())
   {
@@ -463,8 +468,9 @@ std::string ownMaterialsText(vtkPolyData* mesh, const Scene& scene, const ShadeO
   }
   const std::string instead = scene.materialGiven ? "the scene's"
     : !options.colorBy.empty()                    ? "--color-by's"
-                                                  : std::string("the ") + modelName(scene.model) +
-      " model's (it reproduces VTK's renderer, not the file's materials)";
+    : scene.model == ShadingModel::VtkOpenGL2
+    ? "the vtk model's (it reproduces VTK's renderer, not the file's materials)"
+    : "the vtk_pbr model's defaults (it does not read a file's own materials yet)";
   return instead + ", in place of the mesh's own (" + partsText + ")";
 }
 
@@ -651,6 +657,11 @@ int runShade(const ShadeOptions& options)
 {
   // Everything that can be checked before the slow work is checked first.
   Scene scene = sceneOf(options);
+  if (scene.model == ShadingModel::VtkPbr && options.tolerance > 0)
+  {
+    throw UserError("--tolerance " + withDigits(options.tolerance, 6) +
+      ": the vtk_pbr model has no tolerance plan yet (its bounds are the lecture model's): use --precision");
+  }
   // A glTF file may bring its own lights, whose arrays --arrays may name: checked once it is read.
   const bool lightsMayComeFromFile =
     isGltfFile(options.mesh) && options.scene.empty() && options.overrides.environment.file.empty();

@@ -321,8 +321,8 @@ std::vector<AccuracyRow> reflectanceModelsStudy(const Mesh& mesh, int maxRepeats
   const std::vector<std::string> arrays = { "key_specular", "key_n_dot_h" };
   std::vector<AccuracyRow> rows;
   std::ostringstream parameters;
-  parameters << std::setprecision(3) << "roughness " << roughness << ", Blinn-Phong eta " << blinnEta
-             << ", Phong eta " << blinnEta / 4;
+  parameters << std::setprecision(3) << "roughness " << roughness << ", Blinn-Phong eta " << blinnEta << ", Phong eta "
+             << blinnEta / 4;
   int colour = 0;
   for (const auto& [name, scene] : { std::pair{ "Phong", &phong }, std::pair{ "Blinn-Phong", &blinn },
          std::pair{ "GGX microfacets (vtk_pbr)", &microfacet } })

@@ -1221,3 +1221,38 @@ TEST_F(Cli, AnyMeshWithoutASceneUnderTheDefaultLightKit)
     << split.out;
 }
 }
+
+namespace
+{
+TEST_F(Cli, TheVtkPbrModelShadesAndSaysWhatItCannotDo)
+{
+  const std::string scene = (folder / "pbr.json").string();
+  std::ofstream(scene) << R"({ "model": "vtk_pbr", "viewer": { "position": [0, 0.1, 0.4], "focal_point": [0, 0.1, 0] },
+    "material": { "base_color": [0.9, 0.6, 0.2], "metallic": 1.0, "roughness": 0.3 },
+    "lights": [ { "name": "key", "type": "distant", "direction": [-1, -1, -1], "intensity": 3 } ] })";
+  const std::string out = (folder / "pbr.vtp").string();
+  const Result shaded = shadelab("shade " + goodMesh() + " -s " + scene + " -o " + out);
+  ASSERT_EQ(shaded.exitCode, 0) << shaded.err;
+  EXPECT_NE(shaded.out.find("(vtk_pbr model, 1 light)"), std::string::npos) << shaded.out;
+  const Result listed = shadelab("arrays --scene " + scene);
+  EXPECT_NE(listed.out.find("key_ggx_d"), std::string::npos);
+  EXPECT_NE(listed.out.find("key_smith_v"), std::string::npos);
+  EXPECT_NE(listed.out.find("key_schlick_f"), std::string::npos);
+
+  const Result tolerance = shadelab("shade " + goodMesh() + " -s " + scene + " --tolerance 1e-3 -o " + out);
+  EXPECT_EQ(tolerance.exitCode, 1);
+  EXPECT_EQ(tolerance.err,
+    "shadelab: --tolerance 0.001: the vtk_pbr model has no tolerance plan yet (its bounds are the lecture model's): "
+    "use --precision\n");
+  const Result colored = shadelab("shade " + goodMesh() + " -s " + scene + " --color-by Normals -o " + out);
+  EXPECT_EQ(colored.exitCode, 1);
+  EXPECT_EQ(colored.err,
+    "shadelab: --color-by Normals: the vtk_pbr model takes its material from the scene: per-vertex colours (VTK's "
+    "scalar colouring) are not reproduced yet\n");
+  const Result occlusion = shadelab("shade " + goodMesh() + " -s " + scene + " --ambient-occlusion 16 -o " + out);
+  EXPECT_EQ(occlusion.exitCode, 1);
+  EXPECT_EQ(occlusion.err,
+    "shadelab: --ambient-occlusion 16: VTK's PBR shader has no ambient term for the occlusion to darken: use the vtk "
+    "or lecture model\n");
+}
+}

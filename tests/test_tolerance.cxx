@@ -305,6 +305,14 @@ TEST(Tolerance, BadTolerancesAreRefusedWithTheReason)
   EXPECT_EQ(error(1e-20),
     "tolerance 1e-20 is below the predicted float64 rounding error of this scene on this mesh, 7.2e-15: "
     "give a larger tolerance, or none for the exact methods");
+  Scene microfacet = scene;
+  microfacet.model = ShadingModel::VtkPbr;
+  microfacet.material = Material{};
+  microfacet.viewer.position = glm::dvec3(0, 0.1, 0.5);
+  microfacet.lights = { { "above", DistantLight{ { 0, -1, 0 }, Rgb(1.0), 1.0, false } } };
+  EXPECT_EQ(shadelab::testing::filterError(bunny, microfacet, 1e-3),
+    "the vtk_pbr model has no tolerance plan yet (its bounds are the lecture model's): shade it exactly, with a "
+    "tolerance of 0 and an output precision");
 }
 }
 

@@ -1,4 +1,4 @@
-// The VtkOpenGL2 model against VTK 9.1's shader formulas (vtkOpenGLPolyDataMapper::
+// The VtkOpenGL2 and VtkPbr models against VTK 9.1's shader formulas (vtkOpenGLPolyDataMapper::
 // ReplaceShaderLight, vtkOpenGLRenderer::UpdateLightingUniforms) evaluated by hand here, in
 // view coordinates as the shader does, for several light sets built from vtkLight,
 // vtkProperty and vtkCamera. ShadeLab works in world coordinates; the two must agree.
@@ -13,6 +13,7 @@
 #include "vtkLightCollection.h"
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
+#include "vtkPointData.h"
 #include "vtkProperty.h"
 
 #include <gtest/gtest.h>
@@ -39,12 +40,12 @@ struct ShaderLight
   double exponent, coneAngle;
 };
 
-/// VTK 9.1's fragment shader for lighting complexity 1, 2 or 3, transcribed.
-class ShaderReference
+/// The camera's view transform (a rotation plus a translation, so that its normal matrix is its
+/// rotation).
+class ViewTransform
 {
 public:
-  ShaderReference(vtkLightCollection* lights, vtkProperty* property, vtkCamera* camera, int complexity)
-    : complexity_(complexity)
+  explicit ViewTransform(vtkCamera* camera)
   {
     vtkMatrix4x4* view = camera->GetModelViewTransformMatrix();
     for (int r = 0; r < 4; ++r)
@@ -54,42 +55,74 @@ public:
         view_[r][c] = view->GetElement(r, c);
       }
     }
+  }
+  dvec3 point(const dvec3& p) const { return transform(p, 1.0); }
+  dvec3 direction(const dvec3& v) const { return transform(v, 0.0); }
+
+private:
+  dvec3 transform(const dvec3& v, double w) const
+  {
+    dvec3 out;
+    for (int r = 0; r < 3; ++r)
+    {
+      out[r] = view_[r][0] * v.x + view_[r][1] * v.y + view_[r][2] * v.z + view_[r][3] * w;
+    }
+    return out;
+  }
+  double view_[4][4];
+};
+
+/// The lights that are on, as the shader receives them: what vtkRenderer::
+/// UpdateLightsGeometryToFollowCamera does to them before a render, then UpdateLightingUniforms'
+/// transformed position and focal point in view coordinates.
+std::vector<ShaderLight> shaderLightsOf(vtkLightCollection* lights, vtkCamera* camera, const ViewTransform& view)
+{
+  std::vector<ShaderLight> result;
+  vtkCollectionSimpleIterator it;
+  vtkLight* light;
+  for (lights->InitTraversal(it); (light = lights->GetNextLight(it));)
+  {
+    if (!light->GetSwitch())
+    {
+      continue;
+    }
+    if (light->LightTypeIsHeadlight())
+    {
+      light->SetPosition(camera->GetPosition());
+      light->SetFocalPoint(camera->GetFocalPoint());
+    }
+    else if (light->LightTypeIsCameraLight())
+    {
+      light->SetTransformMatrix(camera->GetCameraLightTransformMatrix());
+    }
+    const dvec3 position = view.point(toGlm(light->GetTransformedPosition()));
+    const dvec3 focal = view.point(toGlm(light->GetTransformedFocalPoint()));
+    result.push_back({ light->GetIntensity() * toGlm(light->GetDiffuseColor()), glm::normalize(focal - position),
+      position, toGlm(light->GetAttenuationValues()), light->GetPositional() != 0, light->GetExponent(),
+      light->GetConeAngle() });
+  }
+  return result;
+}
+
+/// VTK 9.1's fragment shader for lighting complexity 1, 2 or 3, transcribed.
+class ShaderReference
+{
+public:
+  ShaderReference(vtkLightCollection* lights, vtkProperty* property, vtkCamera* camera, int complexity)
+    : complexity_(complexity)
+    , view_(camera)
+    , lights_(shaderLightsOf(lights, camera, view_))
+  {
     ambient_ = property->GetAmbient() * toGlm(property->GetAmbientColor());
     diffuse_ = property->GetDiffuse() * toGlm(property->GetDiffuseColor());
     specular_ = property->GetSpecular() * toGlm(property->GetSpecularColor());
     power_ = property->GetSpecularPower();
-    vtkCollectionSimpleIterator it;
-    vtkLight* light;
-    for (lights->InitTraversal(it); (light = lights->GetNextLight(it));)
-    {
-      if (!light->GetSwitch())
-      {
-        continue;
-      }
-      // What vtkRenderer::UpdateLightsGeometryToFollowCamera does to the lights before a
-      // render; then UpdateLightingUniforms takes the transformed position and focal point
-      // into view coordinates.
-      if (light->LightTypeIsHeadlight())
-      {
-        light->SetPosition(camera->GetPosition());
-        light->SetFocalPoint(camera->GetFocalPoint());
-      }
-      else if (light->LightTypeIsCameraLight())
-      {
-        light->SetTransformMatrix(camera->GetCameraLightTransformMatrix());
-      }
-      const dvec3 position = point(toGlm(light->GetTransformedPosition()));
-      const dvec3 focal = point(toGlm(light->GetTransformedFocalPoint()));
-      lights_.push_back({ light->GetIntensity() * toGlm(light->GetDiffuseColor()), glm::normalize(focal - position),
-        position, toGlm(light->GetAttenuationValues()), light->GetPositional() != 0, light->GetExponent(),
-        light->GetConeAngle() });
-    }
   }
 
   dvec3 total(const dvec3& worldPoint, const dvec3& worldNormal) const
   {
-    const dvec3 vertexVC = point(worldPoint);
-    dvec3 normal = glm::normalize(direction(worldNormal));
+    const dvec3 vertexVC = view_.point(worldPoint);
+    dvec3 normal = glm::normalize(view_.direction(worldNormal));
     // gl_FrontFacing, per vertex: the face is a back face when its normal points away from
     // the camera (the origin of view coordinates).
     if (glm::dot(normal, -vertexVC) < 0)
@@ -133,24 +166,102 @@ public:
   }
 
 private:
-  dvec3 point(const dvec3& p) const { return transform(p, 1.0); }
-  // The view matrix is a rotation plus a translation, so its normal matrix is its rotation.
-  dvec3 direction(const dvec3& v) const { return transform(v, 0.0); }
-  dvec3 transform(const dvec3& v, double w) const
-  {
-    dvec3 out;
-    for (int r = 0; r < 3; ++r)
-    {
-      out[r] = view_[r][0] * v.x + view_[r][1] * v.y + view_[r][2] * v.z + view_[r][3] * w;
-    }
-    return out;
-  }
-
   int complexity_;
-  double view_[4][4];
+  ViewTransform view_;
+  std::vector<ShaderLight> lights_;
   dvec3 ambient_, diffuse_, specular_;
   double power_;
+};
+
+/// One light's terms at a vertex in VTK 9.1's PBR shader (docs/vtk-renderer.md section 11).
+struct PbrLightTerms
+{
+  double d = 0, v = 0;
+  dvec3 f{ 0 }, diffuse{ 0 }, specular{ 0 };
+};
+
+/// VTK 9.1's PBR fragment shader without image-based lighting (vtkOpenGLPolyDataMapper::
+/// ReplaceShaderLight and glsl/vtkPBRFunctions.glsl at v9.1.0), transcribed in view coordinates
+/// with VTK's own arrangement of every formula.
+class PbrShaderReference
+{
+public:
+  PbrShaderReference(vtkLightCollection* lights, vtkProperty* property, vtkCamera* camera, int complexity)
+    : complexity_(complexity)
+    , view_(camera)
+    , lights_(shaderLightsOf(lights, camera, view_))
+  {
+    albedo_ = property->GetDiffuse() * toGlm(property->GetDiffuseColor());
+    metallic_ = property->GetMetallic();
+    roughness_ = property->GetRoughness();
+    const double ior = property->GetBaseIOR();
+    const double baseF0 = (ior - 1) * (ior - 1) / ((ior + 1) * (ior + 1));
+    f0_ = (1 - metallic_) * dvec3(baseF0) + metallic_ * albedo_;
+    const double f90 = std::clamp(glm::dot(f0_, dvec3(50.0 * 0.33)), 0.0, 1.0);
+    f90_ = (1 - metallic_) * dvec3(f90) + metallic_ * toGlm(property->GetEdgeTint());
+  }
+
+  /// Each light's terms at the vertex, in the order of the lights that are on.
+  std::vector<PbrLightTerms> terms(const dvec3& worldPoint, const dvec3& worldNormal) const
+  {
+    const dvec3 vertexVC = view_.point(worldPoint);
+    dvec3 n = glm::normalize(view_.direction(worldNormal));
+    n = glm::dot(n, -vertexVC) < 0 ? -n : n; // gl_FrontFacing, per vertex
+    const dvec3 v = glm::normalize(-vertexVC);
+    const double nDotV = std::clamp(glm::dot(n, v), 1e-5, 1.0);
+    std::vector<PbrLightTerms> result;
+    for (const ShaderLight& light : lights_)
+    {
+      double attenuation = 1.0;
+      dvec3 l = -light.directionVC;
+      if (complexity_ == 1)
+      {
+        l = v; // "L = V = H for headlights"
+      }
+      else if (complexity_ == 3)
+      {
+        const dvec3 toLight = light.positionVC - vertexVC;
+        const double distanceVC = glm::length(toLight);
+        l = glm::normalize(toLight);
+        if (light.positional)
+        {
+          attenuation = 1.0 /
+            (light.attenuation.x + light.attenuation.y * distanceVC + light.attenuation.z * distanceVC * distanceVC);
+          if (light.coneAngle < 90.0)
+          {
+            const double coneDot = glm::dot(-l, light.directionVC);
+            attenuation =
+              coneDot >= std::cos(light.coneAngle * M_PI / 180.0) ? attenuation * std::pow(coneDot, light.exponent) : 0;
+          }
+        }
+      }
+      const dvec3 h = glm::normalize(v + l);
+      const double hDotL = std::clamp(glm::dot(h, l), 1e-5, 1.0);
+      const double nDotL = std::clamp(glm::dot(n, l), 1e-5, 1.0);
+      const double nDotH = std::clamp(glm::dot(n, h), 1e-5, 1.0);
+      const double pi = 3.14159265359;
+      const double a = roughness_ * roughness_, a2 = a * a;
+      const double d = (nDotH * a2 - nDotH) * nDotH + 1.0;
+      PbrLightTerms t;
+      t.d = a2 / (pi * d * d);
+      const double r2 = roughness_ * roughness_;
+      t.v = 0.5 /
+        (nDotL * std::sqrt(r2 + nDotV * (nDotV - r2 * nDotV)) + nDotV * std::sqrt(r2 + nDotL * (nDotL - r2 * nDotL)));
+      t.f = f0_ + (f90_ - f0_) * std::pow(1.0 - hDotL, 5.0);
+      const dvec3 radiance = light.color * attenuation;
+      t.diffuse = radiance * ((1.0 - metallic_) * (1.0 - t.f) * albedo_ * 0.31830988618) * nDotL;
+      t.specular = radiance * (t.d * t.v * t.f) * nDotL;
+      result.push_back(t);
+    }
+    return result;
+  }
+
+private:
+  int complexity_;
+  ViewTransform view_;
   std::vector<ShaderLight> lights_;
+  dvec3 albedo_, f0_, f90_;
+  double metallic_, roughness_;
 };
 
 class VtkRendererMode : public shadelab::testing::VtkLightSets
@@ -219,5 +330,90 @@ TEST_F(VtkRendererMode, PositionalSpotAndPointLights)
 {
   addPositionalLights();
   expectShaderResult(3);
+}
+
+class VtkPbrMode : public shadelab::testing::VtkLightSets
+{
+protected:
+  /// A PBR property (a metal-dielectric mix with an edge tint and a base IOR of 1.8) on the
+  /// off-centre sphere: every light's D, V, F, diffuse and specular arrays and the total against
+  /// the shader's formulas, evaluated by hand in view coordinates.
+  void expectShaderTerms(int complexity)
+  {
+    property->SetInterpolationToPBR();
+    property->SetMetallic(0.4);
+    property->SetRoughness(0.35);
+    property->SetBaseIOR(1.8);
+    property->SetEdgeTint(0.9, 0.6, 0.3);
+    const shadelab::Scene scene = shadelab::sceneFromVtk(lights, property, camera);
+    ASSERT_EQ(scene.model, shadelab::ShadingModel::VtkPbr);
+    vtkSmartPointer<vtkPolyData> sphere =
+      shadelab::testing::exactSphere(60, shadelab::testing::litSphereCentre, shadelab::testing::litSphereRadius);
+    vtkSmartPointer<vtkPolyData> shaded = shadelab::testing::shadeWithFilter(sphere, scene, { "all" });
+    const PbrShaderReference shader(lights, property, camera, complexity);
+    vtkPointData* arrays = shaded->GetPointData();
+    vtkDataArray* normals = arrays->GetNormals();
+    auto expectClose = [](double got, double want, const std::string& what)
+    { EXPECT_NEAR(got, want, 1e-12 * std::max(1.0, std::abs(want))) << what; };
+    double largest = 0;
+    for (vtkIdType i = 0; i < shaded->GetNumberOfPoints(); ++i)
+    {
+      const std::vector<PbrLightTerms> want = shader.terms(toGlm(shaded->GetPoint(i)), toGlm(normals->GetTuple3(i)));
+      ASSERT_EQ(want.size(), scene.lights.size());
+      dvec3 total(0);
+      for (std::size_t l = 0; l < want.size(); ++l)
+      {
+        const std::string light = scene.lights[l].name;
+        const std::string at = " at vertex " + std::to_string(i);
+        expectClose(arrays->GetArray((light + "_ggx_d").c_str())->GetComponent(i, 0), want[l].d, light + " D" + at);
+        expectClose(arrays->GetArray((light + "_smith_v").c_str())->GetComponent(i, 0), want[l].v, light + " V" + at);
+        for (int c = 0; c < 3; ++c)
+        {
+          const std::string channel = " channel " + std::to_string(c) + at;
+          expectClose(
+            arrays->GetArray((light + "_schlick_f").c_str())->GetComponent(i, c), want[l].f[c], light + " F" + channel);
+          expectClose(arrays->GetArray((light + "_diffuse").c_str())->GetComponent(i, c), want[l].diffuse[c],
+            light + " diffuse" + channel);
+          expectClose(arrays->GetArray((light + "_specular").c_str())->GetComponent(i, c), want[l].specular[c],
+            light + " specular" + channel);
+        }
+        total += want[l].diffuse + want[l].specular;
+      }
+      for (int c = 0; c < 3; ++c)
+      {
+        expectClose(arrays->GetArray("total")->GetComponent(i, c), total[c], "total at vertex " + std::to_string(i));
+        EXPECT_EQ(arrays->GetArray("ambient")->GetComponent(i, c), 0.0);
+        largest = std::max(largest, total[c]);
+      }
+    }
+    EXPECT_GT(largest, 0.3); // the light set really lights the sphere
+  }
+};
+
+TEST_F(VtkPbrMode, LoneHeadlightAtTheEye)
+{
+  addLoneHeadlight();
+  expectShaderTerms(1);
+}
+
+TEST_F(VtkPbrMode, LightKitOfDirectionalLights)
+{
+  addLightKit();
+  expectShaderTerms(2);
+}
+
+TEST_F(VtkPbrMode, PositionalLightsWithTheDirectionalOneShiningFromItsPosition)
+{
+  addPositionalLights();
+  expectShaderTerms(3);
+}
+
+TEST_F(VtkPbrMode, AHeadlightBesideAPointLightShinesFromTheCamera)
+{
+  addLight(VTK_LIGHT_TYPE_HEADLIGHT, { 0, 0, 1 }, { 0, 0, 0 })->SetIntensity(0.7);
+  auto bulb = addLight(VTK_LIGHT_TYPE_SCENE_LIGHT, { -2.0, 1.0, 3.0 }, { 0, 0, 0 });
+  bulb->PositionalOn();
+  bulb->SetConeAngle(90);
+  expectShaderTerms(3);
 }
 }

@@ -76,7 +76,11 @@ ComparedPixels expectPixelsMatchTotal(vtkPolyData* mesh, vtkDataArray* total, vt
   renderer->SetLightCollection(lights);
   renderer->ResetCameraClippingRange();
   vtkSmartPointer<vtkImageData> image = shadelab::app::renderOffScreen(renderer, windowSize, windowSize);
-  EXPECT_EQ(image->GetDimensions()[0], windowSize);
+  if (image->GetDimensions()[0] != windowSize || image->GetDimensions()[1] != windowSize)
+  {
+    ADD_FAILURE() << "the render is " << image->GetDimensions()[0] << " x " << image->GetDimensions()[1];
+    return {};
+  }
 
   std::map<std::pair<int, int>, std::vector<vtkIdType>> landings;
   vtkMatrix4x4* projection = camera->GetCompositeProjectionTransformMatrix(1.0, -1, 1);

@@ -100,19 +100,24 @@ void placeLight(vtkLight* light, vtkCamera* camera, glm::dvec3& position, glm::d
   focalPoint = transformedPoint(matrix, f);
 }
 
-/// positionalShader: complexity 3, whose PBR shader takes every light's direction from its
-/// position (docs/vtk-renderer.md section 11.4).
-LightSource lightSource(vtkLight* light, vtkCamera* camera, bool pbrPositionalShader)
+PointLight unattenuatedPointLight(const glm::dvec3& position, const Rgb& color, double intensity)
+{
+  return PointLight{ position, color, intensity, Attenuation{ AttenuationModel::None } };
+}
+
+/// shinesFromPosition: VTK's PBR shader at complexity 1 or 3, which takes every light's
+/// direction from its position (docs/vtk-renderer.md section 11.4).
+LightSource lightSource(vtkLight* light, vtkCamera* camera, bool shinesFromPosition)
 {
   // vtkOpenGLRenderer::UpdateLightingUniforms: light colour = DiffuseColor * Intensity.
   const Rgb color = toGlm(light->GetDiffuseColor());
   const double intensity = light->GetIntensity();
   glm::dvec3 position, focalPoint;
   placeLight(light, camera, position, focalPoint);
-  if (!light->GetPositional() && pbrPositionalShader)
+  if (!light->GetPositional() && shinesFromPosition)
   {
-    // Complexity 3's PBR shader: a directional light shines from its position, unattenuated.
-    return PointLight{ position, color, intensity, Attenuation{ AttenuationModel::None } };
+    // A directional light (a headlight: at the camera) shining from its position, unattenuated.
+    return unattenuatedPointLight(position, color, intensity);
   }
   if (!light->GetPositional())
   {
@@ -155,13 +160,18 @@ Material phongMaterial(vtkProperty* property)
 }
 
 /// The PBR shader's uniforms (docs/vtk-renderer.md section 11.1): the albedo is Diffuse x
-/// DiffuseColor; a coat or anisotropy, which it would add, is refused.
+/// DiffuseColor; a coat, anisotropy or textures, which it would add, are refused.
 Material microfacetMaterial(vtkProperty* property)
 {
   if (property->GetCoatStrength() > 0 || property->GetAnisotropy() > 0)
   {
     throw std::invalid_argument("the vtk_pbr model has no coat layer or anisotropy: set the property's "
                                 "CoatStrength and Anisotropy to 0");
+  }
+  if (property->GetNumberOfTextures() > 0)
+  {
+    throw std::invalid_argument("the vtk_pbr model reads no textures (base colour, ORM, emissive, normal): remove "
+                                "the property's textures");
   }
   Material m;
   m.ka = m.kd = m.ks = Rgb(0.0);
@@ -192,12 +202,14 @@ Scene sceneFromVtk(vtkLightCollection* lights, vtkProperty* property, vtkCamera*
   {
     if (isOn(light))
     {
-      scene.lights.push_back({ "light" + std::to_string(index), lightSource(light, camera, pbr && complexity == 3) });
+      scene.lights.push_back({ "light" + std::to_string(index), lightSource(light, camera, pbr && complexity != 2) });
     }
   }
   if (scene.lights.empty())
   {
-    scene.lights.push_back({ "headlight", Headlight{} });
+    const LightSource white =
+      pbr ? LightSource(unattenuatedPointLight(*scene.viewer.position, Rgb(1.0), 1.0)) : Headlight{};
+    scene.lights.push_back({ "headlight", white });
   }
   scene.vtkLoneHeadlight = complexity == 1;
   return scene;

@@ -19,8 +19,8 @@ namespace shadelab
 /// attenuation) unless their constant attenuation coefficient is 0, where the 0.01 default
 /// keeps d = 0 finite. A property with PBR interpolation gives the vtk_pbr model; with a
 /// positional light among the lights, its directional ones become unattenuated point lights at
-/// their positions, as VTK's PBR shader treats them. A coat or anisotropy throws
-/// std::invalid_argument.
+/// their positions (a headlight at the camera, as also when it is the lone light), as VTK's PBR
+/// shader treats them. A coat, anisotropy or textures throw std::invalid_argument.
 ///
 /// Assumed, as VTK's defaults: the renderer's LightFollowCamera and AutomaticLightCreation
 /// are on, no UserLightTransform, no image-based lighting, and the actor is a lit surface with

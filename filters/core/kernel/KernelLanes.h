@@ -85,6 +85,19 @@ RgbLanes<T> timesCoefficient(const RgbLanes<T>& term, const std::array<Lane<T>, 
   return lanesOf(product);
 }
 
+/// Adds a term, channel by channel times a colour, to the sums over lights.
+template<typename T>
+void addTimesColor(
+  const RgbLanes<T>& term, const Vec3<T>& color, std::size_t count, Lane<T>& sumR, Lane<T>& sumG, Lane<T>& sumB)
+{
+  for (std::size_t k = 0; k < count; ++k)
+  {
+    sumR[k] += term.r[k] * color.x;
+    sumG[k] += term.g[k] * color.y;
+    sumB[k] += term.b[k] * color.z;
+  }
+}
+
 /// Vertex k's own coefficient (lanes).
 template<typename T>
 Vec3<T> coefficientAt(const std::array<Lane<T>, 3>& lanes, std::size_t k)

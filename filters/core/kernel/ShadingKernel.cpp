@@ -89,7 +89,7 @@ typename ShadingKernel<T>::PreparedLight ShadingKernel<T>::prepareLocal(const Lo
   // lanes), its specular one 1 (D V F in the lanes).
   const MicrofacetMaterial& microfacet = m.microfacet;
   light.diffuseColor = toVec<T>(
-    evaluation.color * (microfacet_ ? (1.0 - microfacet.metallic) * microfacet.baseColor / vtkPi<double> : m.kd));
+    evaluation.color * (microfacet_ ? (1.0 - microfacet.metallic) * microfacet.baseColor * vtkReciprocalPi : m.kd));
   light.specularColor = toVec<T>(evaluation.color * (microfacet_ ? Rgb(1.0) : m.ks));
   light.pow = pow;
   light.out = out;
@@ -151,7 +151,6 @@ ShadingKernel<T>::ShadingKernel(
   specularModel_ = evaluatedSpecularModel(scene);
   specularViewerIsLight_ = vtk && scene.vtkLoneHeadlight;
   microfacet_ = scene.model == ShadingModel::VtkPbr;
-  lightAtViewer_ = microfacet_ && scene.vtkLoneHeadlight;
   roughness_ = T(scene.material.microfacet.roughness);
   const Rgb f0 = reflectanceAtNormalIncidence(scene.material.microfacet);
   const Rgb f90 = reflectanceAtGrazingIncidence(scene.material.microfacet, f0);
@@ -394,13 +393,6 @@ void ShadingKernel<T>::addLight(const PreparedLight& light, const VertexBlock<T>
 {
   const std::size_t count = b.count;
   sampleLight(light, b, w);
-  if (lightAtViewer_)
-  {
-    // VTK's PBR shader puts a lone headlight at the eye: s = v at every vertex.
-    std::copy_n(w.vx.begin(), count, w.sx.begin());
-    std::copy_n(w.vy.begin(), count, w.sy.begin());
-    std::copy_n(w.vz.begin(), count, w.sz.begin());
-  }
   for (std::size_t k = 0; k < count; ++k)
   {
     const T cosIncidence = w.nx[k] * w.sx[k] + w.ny[k] * w.sy[k] + w.nz[k] * w.sz[k];
@@ -463,28 +455,18 @@ void ShadingKernel<T>::addLectureTerms(const PreparedLight& light, const VertexB
 {
   const std::size_t count = b.count;
   applyVisibility(light.visibility, b, w.diffuse);
-  const auto& [diffuseR, diffuseG, diffuseB] = perVertex(MaterialCoefficient::Diffuse)
+  const RgbLanes<T> diffuse = perVertex(MaterialCoefficient::Diffuse)
     ? timesCoefficient(sameLanes(w.diffuse), w.kd, count, w.diffuseRgb)
     : sameLanes(w.diffuse);
-  for (std::size_t k = 0; k < count; ++k)
-  {
-    w.diffuseR[k] += diffuseR[k] * light.diffuseColor.x;
-    w.diffuseG[k] += diffuseG[k] * light.diffuseColor.y;
-    w.diffuseB[k] += diffuseB[k] * light.diffuseColor.z;
-  }
+  addTimesColor(diffuse, light.diffuseColor, count, w.diffuseR, w.diffuseG, w.diffuseB);
   if (light.needsSpecular)
   {
     specularLobes(light, count, w);
     applyVisibility(light.visibility, b, w.specular);
-    const auto& [specularR, specularG, specularB] = perVertex(MaterialCoefficient::Specular)
+    const RgbLanes<T> specular = perVertex(MaterialCoefficient::Specular)
       ? timesCoefficient(sameLanes(w.specular), w.ks, count, w.specularRgb)
       : sameLanes(w.specular);
-    for (std::size_t k = 0; k < count; ++k)
-    {
-      w.specularR[k] += specularR[k] * light.specularColor.x;
-      w.specularG[k] += specularG[k] * light.specularColor.y;
-      w.specularB[k] += specularB[k] * light.specularColor.z;
-    }
+    addTimesColor(specular, light.specularColor, count, w.specularR, w.specularG, w.specularB);
   }
 }
 
@@ -503,7 +485,10 @@ void ShadingKernel<T>::addMicrofacetTerms(const PreparedLight& light, const Vert
     const T hDotL = vtkClampedCosine(w.hx[k] * w.sx[k] + w.hy[k] * w.sy[k] + w.hz[k] * w.sz[k]);
     w.ggxDistribution[k] = ggxDistribution(vtkClampedCosine(w.nDotH[k]), roughness_);
     w.smithVisibility[k] = smithCorrelatedVisibility(nDotV, nDotL, roughness_);
-    const T radiance = nDotL * (w.attenuation[k] * w.spotFactor[k]);
+    // A degenerate normal faces nothing (docs/formulas.md section 16.6), though VTK's clamps
+    // would light it at n.s = 1e-5.
+    const T facing = (w.flags[k] & FlagDegenerateNormal) ? T(0) : T(1);
+    const T radiance = facing * nDotL * (w.attenuation[k] * w.spotFactor[k]);
     const T specular = w.ggxDistribution[k] * w.smithVisibility[k] * radiance;
     for (int c = 0; c < 3; ++c)
     {
@@ -518,17 +503,10 @@ void ShadingKernel<T>::addMicrofacetTerms(const PreparedLight& light, const Vert
     applyVisibility(light.visibility, b, w.diffuseRgb[c]);
     applyVisibility(light.visibility, b, w.specularRgb[c]);
   }
-  for (std::size_t k = 0; k < count; ++k)
+  addTimesColor(lanesOf(w.diffuseRgb), light.diffuseColor, count, w.diffuseR, w.diffuseG, w.diffuseB);
+  if (light.needsSpecular)
   {
-    w.diffuseR[k] += w.diffuseRgb[0][k] * light.diffuseColor.x;
-    w.diffuseG[k] += w.diffuseRgb[1][k] * light.diffuseColor.y;
-    w.diffuseB[k] += w.diffuseRgb[2][k] * light.diffuseColor.z;
-  }
-  for (std::size_t k = 0; light.needsSpecular && k < count; ++k)
-  {
-    w.specularR[k] += w.specularRgb[0][k] * light.specularColor.x;
-    w.specularG[k] += w.specularRgb[1][k] * light.specularColor.y;
-    w.specularB[k] += w.specularRgb[2][k] * light.specularColor.z;
+    addTimesColor(lanesOf(w.specularRgb), light.specularColor, count, w.specularR, w.specularG, w.specularB);
   }
 }
 

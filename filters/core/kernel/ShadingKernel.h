@@ -213,8 +213,6 @@ private:
   bool microfacet_ = false;
   T roughness_ = 0;
   std::array<T, 3> normalFresnel_{}, grazingFresnel_{};
-  /// VTK's lone headlight in its PBR shader: the light is at the eye, s = v.
-  bool lightAtViewer_ = false;
 };
 
 /// Shades vertices [begin, end) block by block. vertex(i, block, k) copies vertex i's

@@ -1,6 +1,7 @@
 #include "Scene.h"
 
 #include "Microfacet.h"
+#include "NumberText.h"
 #include "SpectralColors.h"
 
 #include <algorithm>
@@ -75,7 +76,7 @@ Material peakMaterial(const Scene& scene)
   // (1 - m)(1 - F) base / pi <= base / pi, and D V F (n.s) <= microfacetSpecularBound.
   const MicrofacetMaterial& microfacet = scene.material.microfacet;
   Material bound;
-  bound.kd = microfacet.baseColor / vtkPi<double>;
+  bound.kd = microfacet.baseColor * vtkReciprocalPi;
   bound.ks = Rgb(microfacetSpecularBound(microfacet.roughness));
   return bound;
 }
@@ -125,19 +126,40 @@ bool isLightName(const std::string& name)
 
 /// The vtk_pbr model's material, and what VTK's PBR shader (without image-based lighting) has
 /// no counterpart for.
-void checkMicrofacetModel(const Scene& scene, ProblemList& list)
+void checkMicrofacetModel(const Scene& scene, Precision precision, ProblemList& list)
 {
   if (scene.model != ShadingModel::VtkPbr)
   {
     return;
   }
   const MicrofacetMaterial& m = scene.material.microfacet;
-  list.check(isNonNegative(m.baseColor), "/material/base_color", "components must be numbers >= 0");
+  auto isReflectance = [](const Rgb& c) { return isNonNegative(c) && largestComponent(c) <= 1; };
+  list.check(isReflectance(m.baseColor), "/material/base_color", "components must be numbers from 0 to 1");
   list.check(m.metallic >= 0 && m.metallic <= 1, "/material/metallic", "must be a number from 0 to 1");
   list.check(m.roughness > 0 && m.roughness <= 1, "/material/roughness",
     "must be a number above 0 and at most 1 (at 0, VTK's GGX distribution is 0/0 in the mirror direction)");
   list.check(std::isfinite(m.baseIor) && m.baseIor >= 1, "/material/base_ior", "must be a number >= 1");
-  list.check(isNonNegative(m.edgeTint), "/material/edge_tint", "components must be numbers >= 0");
+  // A percent of D at the highlight's peak: float32 cannot resolve 1 - n.h below that roughness.
+  const double float32Error = float32DistributionError(m.roughness);
+  list.check(precision != Precision::Float32 || !(m.roughness > 0) || float32Error <= 0.01, "/material/roughness",
+    "at roughness " + withDigits(m.roughness, 3) + " float32 arithmetic errs by " +
+      (float32Error >= 1 ? std::string("100% or more") : "up to " + withDigits(100 * float32Error, 2) + "%") +
+      " at the highlight's peak (D needs 1 - n.h finer than float32 holds): use float64, or a roughness of at "
+      "least 0.07");
+  list.check(isReflectance(m.edgeTint), "/material/edge_tint", "components must be numbers from 0 to 1");
+  list.check(!scene.material.arrays.any(), "/material",
+    "the vtk_pbr model takes its material from the scene: per-vertex colours (VTK's scalar colouring) are not "
+    "reproduced yet");
+  // VTK's PBR shader takes a light's direction from its position where any light is positional,
+  // which a distant light in a scene file has not (headlights sit at the camera: SceneFile.cpp).
+  const bool positional = std::any_of(
+    scene.lights.begin(), scene.lights.end(), [](const NamedLight& light) { return isPositional(light.source); });
+  for (std::size_t i = 0; i < scene.lights.size() && positional; ++i)
+  {
+    list.check(!std::holds_alternative<DistantLight>(scene.lights[i].source), "/lights/" + std::to_string(i) + "/type",
+      "beside a point or spot light, VTK's PBR shader makes a directional light shine from its position, which a "
+      "distant light has not: give it as a point light with \"attenuation\": {\"model\": \"none\"}");
+  }
   list.check(!scene.ambientOcclusion, "/ambient_occlusion",
     "VTK's PBR shader has no ambient term for the occlusion to darken: use the vtk or lecture model");
   list.check(!scene.interreflection, "/interreflection",
@@ -216,7 +238,7 @@ std::vector<SceneProblem> sceneProblems(const Scene& scene, Precision precision)
   list.check(isNonNegative(m.ks), "/material/ks", "components must be numbers >= 0");
   list.check(isNonNegative(m.shininess), "/material/shininess", "must be a number >= 0");
   checkMaterialArrays(scene, list);
-  checkMicrofacetModel(scene, list);
+  checkMicrofacetModel(scene, precision, list);
   if (const std::optional<SceneProblem> spectral = spectralModeProblem(scene))
   {
     list.problems.push_back(*spectral);

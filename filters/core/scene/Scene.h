@@ -93,7 +93,8 @@ struct Scene
   /// shade it (an OBJ with its MTL file).
   bool materialGiven = false;
   Viewer viewer;
-  /// VtkOpenGL2 only: VTK's "lighting complexity 1", the single-headlight shader.
+  /// VtkOpenGL2 and VtkPbr: VTK's "lighting complexity 1", the single-headlight shader (in
+  /// VtkPbr the scene file then puts the headlight at the camera, as a point light).
   /// SceneFromVtk sets it by VTK's own rule; the scene file sets it when the only light is a
   /// headlight.
   bool vtkLoneHeadlight = false;
