@@ -111,14 +111,13 @@ const Json* element(const Json* array, long long index)
                                                                                         : nullptr;
 }
 
-/// The KHR_lights_punctual definition of each light vtkGLTFImporter 9.1 makes, in its order
-/// (null where a node's light index names none). It puts the scene's nodes on a stack and pops
-/// them one at a time, making the node's light and pushing its children, so the last node comes
-/// first (measured: nodes [A, B] with B's children [C, D] give B, D, C, A). A file whose nodes
-/// form a cycle is cut after as many pops as it has nodes.
-std::vector<const Json*> lightsInImporterOrder(const Json& gltf)
+/// The nodes vtkGLTFImporter 9.1 visits, in its order, for its actors and its lights alike. It
+/// puts the scene's nodes on a stack and pops them one at a time, making the node's actors (one
+/// per mesh primitive, in order) and light and pushing its children, so the last node comes
+/// first (measured: nodes [A, B] with B's children [C, D] give D, C, A; the lamps' ball before
+/// their floor). A file whose nodes form a cycle is cut after as many pops as it has nodes.
+std::vector<const Json*> nodesInImporterOrder(const Json& gltf)
 {
-  const Json* definitions = member(member(member(&gltf, "extensions"), "KHR_lights_punctual"), "lights");
   const Json* nodes = member(&gltf, "nodes");
   const long long sceneIndex = member(&gltf, "scene") ? indexAt(member(&gltf, "scene")) : 0;
   const Json* roots = member(element(member(&gltf, "scenes"), sceneIndex), "nodes");
@@ -127,19 +126,32 @@ std::vector<const Json*> lightsInImporterOrder(const Json& gltf)
   {
     stack.push_back(indexAt(&(*roots)[r]));
   }
-  std::vector<const Json*> lights;
+  std::vector<const Json*> visited;
   for (std::size_t pops = 0; !stack.empty() && nodes && nodes->is_array() && pops < nodes->size(); ++pops)
   {
     const Json* node = element(nodes, stack.back());
     stack.pop_back();
-    if (const Json* light = member(member(member(node, "extensions"), "KHR_lights_punctual"), "light"))
-    {
-      lights.push_back(element(definitions, indexAt(light)));
-    }
+    visited.push_back(node);
     const Json* children = member(node, "children");
     for (std::size_t c = 0; children && children->is_array() && c < children->size(); ++c)
     {
       stack.push_back(indexAt(&(*children)[c]));
+    }
+  }
+  return visited;
+}
+
+/// The KHR_lights_punctual definition of each light vtkGLTFImporter 9.1 makes, in its order
+/// (null where a node's light index names none).
+std::vector<const Json*> lightsInImporterOrder(const Json& gltf)
+{
+  const Json* definitions = member(member(member(&gltf, "extensions"), "KHR_lights_punctual"), "lights");
+  std::vector<const Json*> lights;
+  for (const Json* node : nodesInImporterOrder(gltf))
+  {
+    if (const Json* light = member(member(member(node, "extensions"), "KHR_lights_punctual"), "light"))
+    {
+      lights.push_back(element(definitions, indexAt(light)));
     }
   }
   return lights;
@@ -157,6 +169,39 @@ std::string textOr(const Json* node, const char* key)
 {
   const Json* value = member(node, key);
   return value && value->is_string() ? value->get<std::string>() : "";
+}
+
+/// A name for each part vtkGLTFImporter 9.1 makes (one per mesh primitive, in its order): the
+/// primitive's material's name, as an OBJ's parts are named by their materials, or else its
+/// mesh's, or else "" (the caller then numbers it).
+std::vector<std::string> partNamesInImporterOrder(const Json& gltf)
+{
+  const Json* meshes = member(&gltf, "meshes");
+  const Json* materials = member(&gltf, "materials");
+  std::vector<std::string> names;
+  for (const Json* node : nodesInImporterOrder(gltf))
+  {
+    const Json* mesh = member(node, "mesh") ? element(meshes, indexAt(member(node, "mesh"))) : nullptr;
+    const Json* primitives = member(mesh, "primitives");
+    for (std::size_t p = 0; primitives && primitives->is_array() && p < primitives->size(); ++p)
+    {
+      const std::string material = textOr(element(materials, indexAt(member(&(*primitives)[p], "material"))), "name");
+      names.push_back(!material.empty() ? material : textOr(mesh, "name"));
+    }
+  }
+  return names;
+}
+
+/// `name`, or where it is taken, name_2, name_3, ...
+std::string uniqueName(const std::string& name, std::vector<std::string>& taken)
+{
+  std::string unique = name;
+  for (int copy = 2; std::find(taken.begin(), taken.end(), unique) != taken.end(); ++copy)
+  {
+    unique = name + "_" + std::to_string(copy);
+  }
+  taken.push_back(unique);
+  return unique;
 }
 
 /// The light's glTF type: its definition's, or where it has none, as vtkGLTFImporter 9.1 makes
@@ -179,14 +224,7 @@ std::string lightName(
   std::string name = textOr(definition, "name");
   const bool usable = !name.empty() && name.size() <= 48 && std::isalpha(static_cast<unsigned char>(name[0])) &&
     name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_") == std::string::npos;
-  const std::string base = usable ? name : type + std::to_string(index);
-  name = base;
-  for (int copy = 2; std::find(taken.begin(), taken.end(), name) != taken.end(); ++copy)
-  {
-    name = base + "_" + std::to_string(copy);
-  }
-  taken.push_back(name);
-  return name;
+  return uniqueName(usable ? name : type + std::to_string(index), taken);
 }
 
 /// The importer's light as a ShadeLab light (KHR_lights_punctual's conventions, docs/guide/
@@ -303,14 +341,20 @@ vtkSmartPointer<vtkPolyData> importGltfScene(const std::string& fileName, std::v
     throw UserError(fileName + ": VTK's glTF importer could not read it: " +
       printableText(errors->failed() ? errors->message() : "it made no scene"));
   }
+  const Json gltf = gltfJson(fileName);
   std::vector<ImportedPart> parts;
   vtkActorCollection* actors = renderer->GetActors();
+  // Named from the file where its primitives are the importer's actors one for one.
+  const std::vector<std::string> fileNames = partNamesInImporterOrder(gltf);
+  const bool named = fileNames.size() == std::size_t(actors->GetNumberOfItems());
+  std::vector<std::string> taken;
   actors->InitTraversal();
   for (int i = 0; i < actors->GetNumberOfItems(); ++i)
   {
     vtkActor* actor = actors->GetNextActor();
     vtkProperty* property = actor->GetProperty();
-    parts.push_back({ actor, "part" + std::to_string(i), materialOf(property), property->GetTexture("albedoTex"), "" });
+    const std::string name = named && !fileNames[i].empty() ? fileNames[i] : "part" + std::to_string(i);
+    parts.push_back({ actor, uniqueName(name, taken), materialOf(property), property->GetTexture("albedoTex"), "" });
   }
   std::vector<std::string> skipped;
   vtkSmartPointer<vtkPolyData> mesh = meshOfParts(parts, skipped);
@@ -319,7 +363,6 @@ vtkSmartPointer<vtkPolyData> importGltfScene(const std::string& fileName, std::v
   {
     throw UserError(fileName + ": the glTF file has no geometry that VTK's importer reads (no mesh primitives)");
   }
-  const Json gltf = gltfJson(fileName);
   noteUnreadExtensions(gltf, notes);
   const std::string lights = lightsScene(renderer, gltf, notes);
   if (!lights.empty())

@@ -524,3 +524,51 @@ TEST_F(SceneFiles, AGltfFilesLightsKeepTheirOwnDefinitionsWhereverTheirNodesAre)
   EXPECT_EQ(names, (std::set<std::string>{ "spot0", "near", "near_2", "near_3" }));
   EXPECT_EQ(rangeAtHeight, (std::map<double, double>{ { 0, 1 }, { 5, 100 }, { 6, 100 } }));
 }
+
+namespace
+{
+TEST_F(SceneFiles, AGltfFilesPartsAreNamedByTheirMaterialsInTheImportersOrder)
+{
+  // vtkGLTFImporter 9.1 makes its actors popping the scene's nodes off a stack (children pushed
+  // after their parent), so here D, C, then A's two primitives. Each part is named by its
+  // material, else its mesh, else numbered; a name met twice gets _2. Each node stands at its
+  // own x, which says which part is which.
+  std::ofstream(folder / "square.bin", std::ios::binary) << squareBuffer();
+  const std::string primitive = R"({ "attributes": { "POSITION": 0, "NORMAL": 1 }, "indices": 2)";
+  const std::string gltf = R"({ "asset": { "version": "2.0" }, "scene": 0, "scenes": [ { "nodes": [0, 1] } ],
+  "nodes": [ { "name": "A", "mesh": 0 }, { "name": "B", "children": [2, 3] },
+    { "name": "C", "mesh": 1, "translation": [10, 0, 0] }, { "name": "D", "mesh": 2, "translation": [20, 0, 0] } ],
+  "meshes": [ { "name": "pair", "primitives": [ )" +
+    primitive + R"(, "material": 0 }, )" + primitive + R"(, "material": 1 } ] },
+    { "name": "lone", "primitives": [ )" +
+    primitive + R"(, "material": 2 } ] }, { "primitives": [ )" + primitive + R"( } ] } ],
+  "materials": [ { "name": "paint" }, { "pbrMetallicRoughness": { "metallicFactor": 0.2 } }, { "name": "paint" } ],
+  "buffers": [ { "byteLength": 112, "uri": "square.bin" } ],
+  "bufferViews": [ { "buffer": 0, "byteOffset": 0, "byteLength": 48 }, { "buffer": 0, "byteOffset": 48, "byteLength": 48 },
+    { "buffer": 0, "byteOffset": 96, "byteLength": 12 } ],
+  "accessors": [ { "bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [-1, 0, -1], "max": [1, 0, 1] },
+    { "bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC3" },
+    { "bufferView": 2, "componentType": 5123, "count": 6, "type": "SCALAR" } ] })";
+  vtkSmartPointer<vtkPolyData> mesh = app::readMesh(file("parts.gltf", gltf));
+  auto* names = vtkStringArray::SafeDownCast(mesh->GetFieldData()->GetAbstractArray(partNamesArrayName));
+  ASSERT_NE(names, nullptr);
+  ASSERT_EQ(names->GetNumberOfValues(), 4);
+  const std::vector<std::pair<std::string, double>> expected = { { "part0", 20 }, { "paint", 10 }, { "paint_2", 0 },
+    { "pair", 0 } };
+  vtkDataArray* part = mesh->GetPointData()->GetArray(partArrayName);
+  for (vtkIdType p = 0; p < 4; ++p)
+  {
+    EXPECT_EQ(names->GetValue(p), expected[std::size_t(p)].first);
+    int points = 0;
+    for (vtkIdType i = 0; i < mesh->GetNumberOfPoints(); ++i)
+    {
+      if (part->GetComponent(i, 0) == double(p))
+      {
+        EXPECT_NEAR(mesh->GetPoint(i)[0], expected[std::size_t(p)].second, 1.0) << names->GetValue(p);
+        ++points;
+      }
+    }
+    EXPECT_EQ(points, 4) << names->GetValue(p);
+  }
+}
+}
