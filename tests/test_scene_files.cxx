@@ -16,6 +16,7 @@
 #include "vtkActor.h"
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
+#include "vtkGLTFExporter.h"
 #include "vtkImageData.h"
 #include "vtkOBJExporter.h"
 #include "vtkPNGWriter.h"
@@ -415,6 +416,28 @@ TEST(MetallicRoughness, TheGltfSplitAndTheBlinnPhongExponent)
   EXPECT_NEAR(half.shininess, 2 / std::pow(0.03, 4) - 2, 1e-3); // clamped at 0.03
 }
 
+/// Spheres of radius 0.5 as the actors of a render window, for an exporter to write.
+struct SpheresToExport
+{
+  SpheresToExport() { window->AddRenderer(renderer); }
+
+  /// A sphere at `center`; returns its actor's property.
+  vtkProperty* add(const double center[3])
+  {
+    vtkNew<vtkSphereSource> sphere;
+    sphere->SetCenter(center);
+    vtkNew<vtkPolyDataMapper> mapper;
+    mapper->SetInputConnection(sphere->GetOutputPort());
+    vtkNew<vtkActor> actor;
+    actor->SetMapper(mapper);
+    renderer->AddActor(actor);
+    return actor->GetProperty();
+  }
+
+  vtkNew<vtkRenderer> renderer;
+  vtkNew<vtkRenderWindow> window;
+};
+
 TEST_F(SceneFiles, AnObjExportedByVtkComesBackWithItsMaterials)
 {
   // Two spheres with properties of their own, written by VTK's vtkOBJExporter, which writes
@@ -425,18 +448,10 @@ TEST_F(SceneFiles, AnObjExportedByVtkComesBackWithItsMaterials)
     double diffuse[3], center[3];
   };
   const Look looks[2] = { { { 0.8, 0.2, 0.1 }, { 0, 0, 0 } }, { { 0.1, 0.3, 0.9 }, { 2, 0, 0 } } };
-  vtkNew<vtkRenderer> renderer;
-  vtkNew<vtkRenderWindow> window;
-  window->AddRenderer(renderer);
+  SpheresToExport spheres;
   for (const Look& look : looks)
   {
-    vtkNew<vtkSphereSource> sphere;
-    sphere->SetCenter(look.center);
-    vtkNew<vtkPolyDataMapper> mapper;
-    mapper->SetInputConnection(sphere->GetOutputPort());
-    vtkNew<vtkActor> actor;
-    actor->SetMapper(mapper);
-    vtkProperty* property = actor->GetProperty();
+    vtkProperty* property = spheres.add(look.center);
     property->SetDiffuseColor(look.diffuse);
     property->SetDiffuse(0.9);
     property->SetAmbientColor(0.05, 0.1, 0.15);
@@ -444,10 +459,9 @@ TEST_F(SceneFiles, AnObjExportedByVtkComesBackWithItsMaterials)
     property->SetSpecularColor(0.3, 0.3, 0.3);
     property->SetSpecular(0.4);
     property->SetSpecularPower(24);
-    renderer->AddActor(actor);
   }
   vtkNew<vtkOBJExporter> exporter;
-  exporter->SetRenderWindow(window);
+  exporter->SetRenderWindow(spheres.window);
   exporter->SetFilePrefix((folder / "spheres").string().c_str());
   exporter->Write();
 
@@ -471,6 +485,59 @@ TEST_F(SceneFiles, AnObjExportedByVtkComesBackWithItsMaterials)
     }
     EXPECT_FLOAT_EQ(points->GetArray(materialKaArrayName)->GetComponent(p, 2), 0.5 * 0.15);
     EXPECT_EQ(points->GetArray(materialShininessArrayName)->GetComponent(p, 0), 24);
+  }
+  EXPECT_GT(seen[0], 0);
+  EXPECT_EQ(seen[0], seen[1]);
+}
+
+TEST_F(SceneFiles, AGltfExportedByVtkComesBackWithTheMaterialItWrote)
+{
+  // Two spheres written by VTK 9.1's vtkGLTFExporter, which turns a Phong property into glTF's
+  // metallic-roughness: base colour = DiffuseColor, metallic = Specular, roughness =
+  // 1 / (1 + 0.2 Specular SpecularPower). Read back, each part has that glTF material in the
+  // lecture model (docs/formulas.md section 7.3) and its sphere's points.
+  struct Look
+  {
+    double diffuse[3], center[3], specular, power;
+  };
+  const Look looks[2] = { { { 0.8, 0.2, 0.1 }, { 0, 0, 0 }, 0.4, 24 }, { { 0.1, 0.3, 0.9 }, { 2, 0, 0 }, 0.1, 5 } };
+  SpheresToExport spheres;
+  for (const Look& look : looks)
+  {
+    vtkProperty* property = spheres.add(look.center);
+    property->SetDiffuseColor(look.diffuse);
+    property->SetSpecular(look.specular);
+    property->SetSpecularPower(look.power);
+  }
+  vtkNew<vtkGLTFExporter> exporter;
+  exporter->SetRenderWindow(spheres.window);
+  exporter->SetFileName((folder / "spheres.gltf").string().c_str());
+  exporter->SaveNormalOn();
+  exporter->Write();
+
+  vtkSmartPointer<vtkPolyData> mesh = app::readMesh((folder / "spheres.gltf").string());
+  ASSERT_TRUE(hasOwnMaterials(mesh));
+  vtkPointData* points = mesh->GetPointData();
+  int seen[2] = { 0, 0 };
+  for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)
+  {
+    double position[3];
+    mesh->GetPoint(p, position);
+    const int index = position[0] > 1 ? 1 : 0; // which sphere, whatever the parts' order
+    ++seen[index];
+    const Look& look = looks[index];
+    EXPECT_NEAR(std::hypot(position[0] - look.center[0], position[1], position[2]), 0.5, 1e-6) << p;
+    const LectureCoefficients wrote = lectureCoefficients(Rgb(look.diffuse[0], look.diffuse[1], look.diffuse[2]),
+      look.specular, 1 / (1 + 0.2 * look.specular * look.power));
+    for (int c = 0; c < 3; ++c)
+    {
+      EXPECT_FLOAT_EQ(points->GetArray(materialKdArrayName)->GetComponent(p, c), wrote.kd[c]);
+      EXPECT_FLOAT_EQ(points->GetArray(materialKsArrayName)->GetComponent(p, c), wrote.ks[c]);
+    }
+    // VTK's loader keeps the factors as floats, whose rounding the exponent 2 / r^4 - 2 multiplies
+    // by about 4.
+    EXPECT_NEAR(
+      points->GetArray(materialShininessArrayName)->GetComponent(p, 0), wrote.shininess, 1e-6 * wrote.shininess);
   }
   EXPECT_GT(seen[0], 0);
   EXPECT_EQ(seen[0], seen[1]);
