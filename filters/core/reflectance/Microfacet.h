@@ -34,8 +34,8 @@ T vtkClampedCosine(T cosine)
 /// D = alpha^2 / (pi ((n.h)^2 (alpha^2 - 1) + 1)^2). At roughness 1 it is 1/pi everywhere; as
 /// the roughness falls to 0 it narrows to a peak of 1 / (pi roughness^4) at n.h = 1. The
 /// denominator's base is summed as (1 - n.h)(1 + n.h) + (n.h)^2 alpha^2, where VTK's
-/// (n.h alpha^2 - n.h) n.h + 1 cancels digits near n.h = 1: in float32 at roughness 0.02 VTK's
-/// form errs by 20% at the peak (tests/test_microfacet.cpp), and below 0.012 gives 0/0.
+/// (n.h alpha^2 - n.h) n.h + 1 cancels digits near n.h = 1 (tests/test_microfacet.cpp): in
+/// float32 at roughness 0.013 and below, where alpha^2 - 1 rounds to -1, it gives Inf at n.h = 1.
 template<typename T>
 T ggxDistribution(T nDotH, T roughness)
 {
