@@ -13,6 +13,7 @@
 #include "ArrayCatalog.h"
 #include "DefaultLightKit.h"
 #include "MaterialArrays.h"
+#include "MethodChoice.h"
 #include "NumberText.h"
 #include "SceneFile.h"
 #include "ShBands.h"
@@ -657,10 +658,9 @@ int runShade(const ShadeOptions& options)
 {
   // Everything that can be checked before the slow work is checked first.
   Scene scene = sceneOf(options);
-  if (scene.model == ShadingModel::VtkPbr && options.tolerance > 0)
+  if (const std::string problem = tolerancePlanProblem(scene); options.tolerance > 0 && !problem.empty())
   {
-    throw UserError("--tolerance " + withDigits(options.tolerance, 6) +
-      ": the vtk_pbr model has no tolerance plan yet (its bounds are the lecture model's): use --precision");
+    throw UserError("--tolerance " + withDigits(options.tolerance, 6) + ": " + problem + ": use --precision");
   }
   // A glTF file may bring its own lights, whose arrays --arrays may name: checked once it is read.
   const bool lightsMayComeFromFile =

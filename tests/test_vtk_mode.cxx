@@ -417,3 +417,21 @@ TEST_F(VtkPbrMode, AHeadlightBesideAPointLightShinesFromTheCamera)
   expectShaderTerms(3);
 }
 }
+
+namespace
+{
+TEST_F(VtkPbrMode, NoLightSwitchedOnMeansVtksHeadlightAtTheCamera)
+{
+  // The headlight vtkRenderer creates, alone (complexity 1): VTK's PBR shader puts it at the eye.
+  property->SetInterpolationToPBR();
+  const shadelab::Scene scene = shadelab::sceneFromVtk(lights, property, camera);
+  ASSERT_EQ(scene.lights.size(), 1u);
+  const auto* head = std::get_if<shadelab::PointLight>(&scene.lights[0].source);
+  ASSERT_NE(head, nullptr);
+  EXPECT_EQ(head->position, toGlm(camera->GetPosition()));
+  EXPECT_EQ(head->attenuation.model, shadelab::AttenuationModel::None);
+  EXPECT_EQ(head->color, shadelab::Rgb(1.0));
+  EXPECT_EQ(head->intensity, 1.0);
+  EXPECT_TRUE(scene.vtkLoneHeadlight);
+}
+}

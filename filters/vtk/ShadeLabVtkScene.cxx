@@ -100,11 +100,6 @@ void placeLight(vtkLight* light, vtkCamera* camera, glm::dvec3& position, glm::d
   focalPoint = transformedPoint(matrix, f);
 }
 
-PointLight unattenuatedPointLight(const glm::dvec3& position, const Rgb& color, double intensity)
-{
-  return PointLight{ position, color, intensity, Attenuation{ AttenuationModel::None } };
-}
-
 /// shinesFromPosition: VTK's PBR shader at complexity 1 or 3, which takes every light's
 /// direction from its position (docs/vtk-renderer.md section 11.4).
 LightSource lightSource(vtkLight* light, vtkCamera* camera, bool shinesFromPosition)
@@ -114,10 +109,11 @@ LightSource lightSource(vtkLight* light, vtkCamera* camera, bool shinesFromPosit
   const double intensity = light->GetIntensity();
   glm::dvec3 position, focalPoint;
   placeLight(light, camera, position, focalPoint);
-  if (!light->GetPositional() && shinesFromPosition)
+  if (!light->GetPositional() && shinesFromPosition && !light->LightTypeIsHeadlight())
   {
-    // A directional light (a headlight: at the camera) shining from its position, unattenuated.
-    return unattenuatedPointLight(position, color, intensity);
+    // A directional light shining from its position, unattenuated (a headlight's position is
+    // the camera's: placeHeadlightsAtTheCamera, below).
+    return PointLight{ position, color, intensity, Attenuation{ AttenuationModel::None } };
   }
   if (!light->GetPositional())
   {
@@ -207,11 +203,13 @@ Scene sceneFromVtk(vtkLightCollection* lights, vtkProperty* property, vtkCamera*
   }
   if (scene.lights.empty())
   {
-    const LightSource white =
-      pbr ? LightSource(unattenuatedPointLight(*scene.viewer.position, Rgb(1.0), 1.0)) : Headlight{};
-    scene.lights.push_back({ "headlight", white });
+    scene.lights.push_back({ "headlight", Headlight{} });
   }
   scene.vtkLoneHeadlight = complexity == 1;
+  if (pbr)
+  {
+    placeHeadlightsAtTheCamera(scene, complexity != 2);
+  }
   return scene;
 }
 }

@@ -562,11 +562,10 @@ bool vtkLocalReflectanceFilter::ChooseArraysAndMethods(ShadingPlan& plan)
   }
   plan.float32Fits = shadelab::meshCoordinateProblem(plan.extent.reach, shadelab::Precision::Float32).empty() &&
     shadelab::sceneProblems(plan.scene, shadelab::Precision::Float32).empty();
-  if (this->Tolerance > 0 && plan.scene.model == shadelab::ShadingModel::VtkPbr)
+  const std::string unplanned = shadelab::tolerancePlanProblem(plan.scene);
+  if (this->Tolerance > 0 && !unplanned.empty())
   {
-    // Its bounds (MethodChoice.h) are the lecture model's terms.
-    vtkErrorMacro("the vtk_pbr model has no tolerance plan yet (its bounds are the lecture model's): shade it "
-                  "exactly, with a tolerance of 0 and an output precision");
+    vtkErrorMacro(<< unplanned << ": shade it exactly, with a tolerance of 0 and an output precision");
     return false;
   }
   if (this->Tolerance > 0 && !this->ChooseMethods(plan, true))

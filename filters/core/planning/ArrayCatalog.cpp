@@ -80,6 +80,12 @@ const std::array<TermInfo, InterreflectionTermCount> interreflectionTerms = { {
     "the light it imitates, RGB" },
 } };
 
+/// Whether the model computes the term: the microfacet terms only the vtk_pbr model does.
+bool modelHasTerm(ShadingModel model, LightTerm term)
+{
+  return !isMicrofacetTerm(term) || model == ShadingModel::VtkPbr;
+}
+
 /// What bounce n adds: "indirect_bounce_<n>".
 const char* const indirectBouncePrefix = "indirect_bounce_";
 const char* const indirectBounceDescription = "the irradiance that bounce n alone adds to indirect_irradiance, RGB";
@@ -133,7 +139,7 @@ const TermInfo& termInfo(InterreflectionTerm term)
 
 bool sceneLightHasTerm(const Scene& scene, std::size_t light, LightTerm term)
 {
-  return lightHasTerm(scene.lights.at(light), term) && (!isMicrofacetTerm(term) || scene.model == ShadingModel::VtkPbr);
+  return lightHasTerm(scene.lights.at(light), term) && modelHasTerm(scene.model, term);
 }
 
 int lightTermComponents(const NamedLight& light, LightTerm term)
@@ -338,7 +344,7 @@ bool requestTermOnEveryLight(const Scene& scene, const std::string& term, ArrayR
   }
   for (int t = 0; t < LightTermCount; ++t)
   {
-    if (term == lightTerms[t].name && (!isMicrofacetTerm(LightTerm(t)) || scene.model == ShadingModel::VtkPbr))
+    if (term == lightTerms[t].name && modelHasTerm(scene.model, LightTerm(t)))
     {
       for (std::size_t l = 0; l < scene.lights.size(); ++l)
       {
@@ -414,7 +420,7 @@ std::string knownSelections(const Scene& scene)
   std::string known = "default, totals, all";
   for (int t = 0; t < LightTermCount; ++t)
   {
-    if (!isMicrofacetTerm(LightTerm(t)) || scene.model == ShadingModel::VtkPbr)
+    if (modelHasTerm(scene.model, LightTerm(t)))
     {
       known += std::string(", *_") + lightTerms[t].name;
     }

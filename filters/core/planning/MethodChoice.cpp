@@ -695,6 +695,13 @@ InterreflectionChoice chooseInterreflection(const Scene& scene, const MeshMeasur
 }
 }
 
+std::string tolerancePlanProblem(const Scene& scene)
+{
+  return scene.model == ShadingModel::VtkPbr
+    ? "the vtk_pbr model has no tolerance plan yet (its bounds are the lecture model's)"
+    : "";
+}
+
 MethodPlan chooseMethods(const Scene& scene, const ArrayRequest& request, const MeshExtent& mesh, double tolerance,
   bool float32Allowed, const MeshMeasurements& measured)
 {

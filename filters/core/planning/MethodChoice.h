@@ -250,4 +250,8 @@ double fixedRaysError(int n);
 /// measured on the points (nothing: the bounding sphere's bounds and float32's a priori).
 MethodPlan chooseMethods(const Scene& scene, const ArrayRequest& request, const MeshExtent& mesh, double tolerance,
   bool float32Allowed = true, const MeshMeasurements& measured = {});
+
+/// Why no tolerance can plan this scene, whatever its value, or "" where one can: the vtk_pbr
+/// model, whose terms the plan's bounds (which are the lecture model's) do not cover.
+std::string tolerancePlanProblem(const Scene& scene);
 }

@@ -151,9 +151,9 @@ void checkMicrofacetModel(const Scene& scene, Precision precision, ProblemList& 
     "the vtk_pbr model takes its material from the scene: per-vertex colours (VTK's scalar colouring) are not "
     "reproduced yet");
   // VTK's PBR shader takes a light's direction from its position where any light is positional,
-  // which a distant light in a scene file has not (headlights sit at the camera: SceneFile.cpp).
-  const bool positional = std::any_of(
-    scene.lights.begin(), scene.lights.end(), [](const NamedLight& light) { return isPositional(light.source); });
+  // which a distant light in a scene file has not (headlights sit at the camera:
+  // placeHeadlightsAtTheCamera).
+  const bool positional = hasPositionalLight(scene);
   for (std::size_t i = 0; i < scene.lights.size() && positional; ++i)
   {
     list.check(!std::holds_alternative<DistantLight>(scene.lights[i].source), "/lights/" + std::to_string(i) + "/type",
@@ -284,14 +284,15 @@ std::vector<SceneProblem> sceneProblems(const Scene& scene, Precision precision)
         precisionName(precision) + " holds: use " + (precision == Precision::Float32 ? "float64 or " : "");
     };
     double sum = 0;
+    const Material bounding = peakMaterial(scene);
     for (std::size_t i = 0; i < scene.lights.size(); ++i)
     {
-      const double peak = peakContribution(scene.lights[i].source, peakMaterial(scene));
+      const double peak = peakContribution(scene.lights[i].source, bounding);
       // The light of colour and intensity 1 reaches k x attenuation: where that is the larger
       // factor, a tiny min_distance is what overflows, not the light's strength.
       LightSource unit = scene.lights[i].source;
       std::visit([](auto& light) { light.color = Rgb(1.0), light.intensity = 1.0; }, unit);
-      const double unitPeak = peakContribution(unit, peakMaterial(scene));
+      const double unitPeak = peakContribution(unit, bounding);
       const bool nearness = unitPeak > 1 && unitPeak * unitPeak > peak;
       list.check(peak <= limit, "/lights/" + std::to_string(i) + (nearness ? "/min_distance" : "/intensity"),
         "this light alone can reach " + beyond(peak) +
@@ -310,6 +311,25 @@ std::vector<SceneProblem> sceneProblems(const Scene& scene, Precision precision)
         "fewer bounces or smaller intensities");
   }
   return list.problems;
+}
+
+bool hasPositionalLight(const Scene& scene)
+{
+  return std::any_of(
+    scene.lights.begin(), scene.lights.end(), [](const NamedLight& light) { return isPositional(light.source); });
+}
+
+void placeHeadlightsAtTheCamera(Scene& scene, bool lightsFromPositions)
+{
+  for (NamedLight& light : scene.lights)
+  {
+    const auto* headlight = std::get_if<Headlight>(&light.source);
+    if (headlight && lightsFromPositions)
+    {
+      light.source =
+        PointLight{ scene.viewer.position.value(), headlight->color, headlight->intensity, { AttenuationModel::None } };
+    }
+  }
 }
 
 bool shadesBothSides(const Scene& scene)

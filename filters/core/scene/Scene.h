@@ -133,6 +133,15 @@ std::string meshCoordinateProblem(double reach, Precision precision);
 /// VTK filter both report these, so the rules live here once.
 std::vector<SceneProblem> sceneProblems(const Scene& scene, Precision precision = Precision::Float64);
 
+/// Whether any of the scene's lights has a position (a point or spot light).
+bool hasPositionalLight(const Scene& scene);
+
+/// docs/vtk-renderer.md section 11.4: where VTK's PBR shader takes every light's direction from
+/// its position (lightsFromPositions: the lone headlight, or any light beside a positional one),
+/// each headlight becomes what the shader makes of it, an unattenuated point light at the
+/// viewer's position. Needs that position.
+void placeHeadlightsAtTheCamera(Scene& scene, bool lightsFromPositions);
+
 /// Whether the surface is shaded on both sides (a two-sided material, or VTK's renderer, which
 /// always flips back faces): the normal turned toward the viewer where it faces away.
 bool shadesBothSides(const Scene& scene);

@@ -248,24 +248,6 @@ Viewer readViewer(const JsonNode& node)
   return viewer;
 }
 
-/// docs/vtk-renderer.md section 11.4: VTK's PBR shader puts a headlight at the camera, shining
-/// unattenuated, where it is the lone light or beside a point or spot light (a distant light
-/// there is refused: Scene.cpp).
-void placeHeadlightsAtTheCamera(Scene& scene)
-{
-  const bool positional = std::any_of(
-    scene.lights.begin(), scene.lights.end(), [](const NamedLight& light) { return isPositional(light.source); });
-  for (NamedLight& light : scene.lights)
-  {
-    const auto* headlight = std::get_if<Headlight>(&light.source);
-    if (headlight && scene.viewer.position && (scene.vtkLoneHeadlight || positional))
-    {
-      light.source =
-        PointLight{ *scene.viewer.position, headlight->color, headlight->intensity, { AttenuationModel::None } };
-    }
-  }
-}
-
 Scene readScene(const Json& document, const std::string& sceneFile)
 {
   const JsonNode root(document, "");
@@ -327,9 +309,11 @@ Scene readScene(const Json& document, const std::string& sceneFile)
     }
     scene.vtkLoneHeadlight = scene.lights.size() == 1 && std::holds_alternative<Headlight>(scene.lights[0].source);
   }
-  if (scene.model == ShadingModel::VtkPbr)
+  // The lone headlight, or one beside a point or spot light (a distant light there is refused:
+  // Scene.cpp).
+  if (scene.model == ShadingModel::VtkPbr && scene.viewer.position)
   {
-    placeHeadlightsAtTheCamera(scene);
+    placeHeadlightsAtTheCamera(scene, scene.vtkLoneHeadlight || hasPositionalLight(scene));
   }
   const std::vector<SceneProblem> problems = sceneProblems(scene);
   if (!problems.empty())
