@@ -2,6 +2,7 @@
 // The shadelab command run as a user runs it, for the command-line tests: each test gets a
 // folder of its own, and a run's exit code, standard output and standard error.
 #include "TestFolder.h"
+#include "TestPaths.h"
 
 #include <gtest/gtest.h>
 
@@ -38,7 +39,7 @@ protected:
   /// Runs shadelab with these arguments; launcher (such as xvfb-run) goes before it.
   Result shadelab(const std::string& arguments, const std::string& launcher = "")
   {
-    return run(SHADELAB_EXECUTABLE, arguments, launcher);
+    return run(shadelab::testing::shadelabExecutable(), arguments, launcher);
   }
 
   /// Runs an executable with these arguments, launcher before it.
@@ -67,6 +68,6 @@ protected:
     return file("scene.json", R"({ "lights": [ { "name": "sun", "type": "distant", "direction": [0, 0, -1] } ] })");
   }
 
-  std::string goodMesh() { return SHADELAB_SOURCE_DIR "/data/meshes/bunny_zipper.ply"; }
+  std::string goodMesh() { return shadelab::testing::sourcePath("data/meshes/bunny_zipper.ply"); }
 };
 }

@@ -3,6 +3,7 @@
 // and the shading, in order.
 #include "MeshFiles.h"
 #include "SceneFile.h"
+#include "TestPaths.h"
 #include "VtkErrorCapture.h"
 #include "vtkLocalReflectanceFilter.h"
 
@@ -21,7 +22,7 @@
 namespace
 {
 using namespace shadelab;
-const std::string data = SHADELAB_SOURCE_DIR "/data/";
+const std::string data = shadelab::testing::sourcePath("data/");
 
 /// The studio lights with ambient occlusion of `rays` rays per vertex.
 Scene studioWithOcclusion(int rays)

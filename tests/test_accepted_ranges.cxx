@@ -3,6 +3,7 @@
 // with exit code 0). A shininess of 1e30 once made the sampled specular integral Inf / Inf.
 #include "SceneFile.h"
 #include "TestMeshes.h"
+#include "TestPaths.h"
 #include "VtkErrorCapture.h"
 #include "vtkLocalReflectanceFilter.h"
 
@@ -78,7 +79,7 @@ Outcome shade(vtkPolyData* mesh, const std::string& sceneText, int precision)
     vtkNew<app::VtkErrorCapture> errors;
     errors->watch(filter);
     filter->SetInputData(mesh);
-    filter->SetScene(parseScene(sceneText, SHADELAB_SOURCE_DIR "/data/scenes/scene.json"));
+    filter->SetScene(parseScene(sceneText, shadelab::testing::sourcePath("data/scenes/scene.json")));
     filter->SetArraySelection({ "all" });
     filter->SetOutputPrecision(precision);
     filter->Update();
@@ -115,7 +116,7 @@ std::string firstNonFinite(vtkPolyData* output)
 TEST(AcceptedRanges, EveryLightAndEstimatorIsFiniteOrRefusedByField)
 {
   const auto sphere = shadelab::testing::exactSphere(12);
-  const std::string envmap = SHADELAB_SOURCE_DIR "/data/envmaps/venice_sunset_1k.hdr";
+  const std::string envmap = shadelab::testing::sourcePath("data/envmaps/venice_sunset_1k.hdr");
   int shaded = 0, refused = 0;
   for (const std::string& light : lightsUnderTest)
   {

@@ -306,8 +306,8 @@ TEST_F(Cli, SelfShadowingFollowsTheSmoothSurfaceUnlessToldFacets)
   // The dragon under the sun with shadows: the vertices whose shadow ray meets one of their
   // own facets first (flag 64) are all dark with --self-shadowing facets, and by default some
   // of them are lit, where nothing beyond their own facets hides the sun.
-  const std::string mesh = SHADELAB_SOURCE_DIR "/data/meshes/xyzrgb_dragon_50k.ply";
-  const std::string scene = SHADELAB_SOURCE_DIR "/data/scenes/sun.json";
+  const std::string mesh = shadelab::testing::sourcePath("data/meshes/xyzrgb_dragon_50k.ply");
+  const std::string scene = shadelab::testing::sourcePath("data/scenes/sun.json");
   auto flaggedAndLit = [&](const std::string& option)
   {
     const std::string out = (folder / "dragon.vtp").string();
@@ -340,7 +340,7 @@ TEST_F(Cli, SelfShadowingFollowsTheSmoothSurfaceUnlessToldFacets)
 
 TEST_F(Cli, ToleranceChoosesAndReportsMethods)
 {
-  const std::string scene = SHADELAB_SOURCE_DIR "/data/scenes/three_lights.json";
+  const std::string scene = shadelab::testing::sourcePath("data/scenes/three_lights.json");
   const std::string out = (folder / "tolerance.vtp").string();
   const Result result = shadelab("shade " + goodMesh() + " -s " + scene + " -o " + out + " --tolerance 1e-2");
   EXPECT_EQ(result.exitCode, 0) << result.err;
@@ -425,11 +425,11 @@ TEST_F(Cli, RendersArraysToPng)
   {
     GTEST_SKIP() << NO_XVFB_REASON;
   }
-  const std::string golden = SHADELAB_SOURCE_DIR "/data/golden/bunny_studio.vtp";
+  const std::string golden = shadelab::testing::sourcePath("data/golden/bunny_studio.vtp");
   const std::string png = (folder / "ambient.png").string();
   const std::string xvfb = std::string(XVFB_RUN) + " --auto-servernum ";
   const Result result = shadelab("render " + golden + " --array ambient --size 320x240 -s " +
-      SHADELAB_SOURCE_DIR "/data/scenes/studio.json -o " + png,
+      shadelab::testing::sourcePath("data/scenes/studio.json") + " -o " + png,
     xvfb);
   ASSERT_EQ(result.exitCode, 0) << result.err;
   EXPECT_EQ(result.out, "shadelab render: ambient of " + golden + " -> " + png + " (320x240)\n");
@@ -484,7 +484,7 @@ TEST_F(Cli, RendersArraysToPng)
 
 TEST_F(Cli, RenderErrors)
 {
-  const std::string golden = SHADELAB_SOURCE_DIR "/data/golden/bunny_studio.vtp";
+  const std::string golden = shadelab::testing::sourcePath("data/golden/bunny_studio.vtp");
   const std::string png = (folder / "out.png").string();
   expectError("render " + golden + " -o " + png + " --size 10x10",
     "--size: '10x10' is not WIDTHxHEIGHT with each from 16 to 8192");
@@ -743,7 +743,7 @@ TEST_F(Cli, RenderCountsTheGoldenBunnysBrightVertices)
   {
     GTEST_SKIP() << NO_XVFB_REASON;
   }
-  const std::string golden = SHADELAB_SOURCE_DIR "/data/golden/bunny_studio.vtp";
+  const std::string golden = shadelab::testing::sourcePath("data/golden/bunny_studio.vtp");
   vtkNew<vtkXMLPolyDataReader> reader;
   reader->SetFileName(golden.c_str());
   reader->Update();
@@ -773,7 +773,7 @@ TEST_F(Cli, RenderCountsTheGoldenBunnysBrightVertices)
 
 TEST_F(Cli, RenderExposureErrors)
 {
-  const std::string golden = SHADELAB_SOURCE_DIR "/data/golden/bunny_studio.vtp";
+  const std::string golden = shadelab::testing::sourcePath("data/golden/bunny_studio.vtp");
   const std::string png = (folder / "out.png").string();
   for (const char* exposure : { "0", "-1", "inf", "nan", "bright" })
   {
@@ -845,9 +845,9 @@ TEST_F(Cli, BenchmarkSetsInterreflectionAgainstAmbientOcclusion)
 {
   // Both runs in one process, and their ratios, the quotients of the rows printed (to the
   // rows' two decimals); the scene option names what it belongs to.
-  const std::string studio = SHADELAB_SOURCE_DIR "/data/scenes/studio.json";
+  const std::string studio = shadelab::testing::sourcePath("data/scenes/studio.json");
   const Result result =
-    run(SHADELAB_BENCH_EXECUTABLE, "--interreflection " + goodMesh() + " -s " + studio + " --repeats 1");
+    run(shadelab::testing::benchExecutable(), "--interreflection " + goodMesh() + " -s " + studio + " --repeats 1");
   ASSERT_EQ(result.exitCode, 0) << result.err;
   const std::regex row("  (ambient occlusion, 64 rays per vertex|interreflection, 3 bounces of 64 gather rays) +"
                        "([0-9.]+) s +([0-9.]+) GB peak\n");
@@ -868,7 +868,7 @@ TEST_F(Cli, BenchmarkSetsInterreflectionAgainstAmbientOcclusion)
   EXPECT_LE(std::stod(ratios[1]) - half, (seconds[1] + half) / (seconds[0] - half)) << result.out;
   EXPECT_GE(std::stod(ratios[2]) + half, (peaks[1] - half) / (peaks[0] + half)) << result.out;
   EXPECT_LE(std::stod(ratios[2]) - half, (peaks[1] + half) / (peaks[0] - half)) << result.out;
-  const Result alone = run(SHADELAB_BENCH_EXECUTABLE, "-s " + studio);
+  const Result alone = run(shadelab::testing::benchExecutable(), "-s " + studio);
   EXPECT_EQ(alone.exitCode, 1);
   EXPECT_EQ(alone.err, "shadelab-bench: --scene is the scene of --end-to-end or --interreflection: give one of them\n");
 }
@@ -878,7 +878,8 @@ TEST_F(Cli, BenchmarkTableAgreesWithItsBaseline)
   // A small run: the table's rows, and vtkArrayCalculator's result for the same expression
   // equal to ShadeLab's within float32 rounding in every case that has one.
   const fs::path csv = folder / "bench.csv";
-  const Result result = run(SHADELAB_BENCH_EXECUTABLE, "--sizes 3k --no-bunny --repeats 1 --csv " + csv.string());
+  const Result result =
+    run(shadelab::testing::benchExecutable(), "--sizes 3k --no-bunny --repeats 1 --csv " + csv.string());
   ASSERT_EQ(result.exitCode, 0) << result.err;
   std::istringstream lines(slurp(csv));
   std::string header;
@@ -915,7 +916,7 @@ TEST_F(Cli, BenchmarkTableAgreesWithItsBaseline)
 
 TEST_F(Cli, AnObjIsShadedWithItsOwnMaterialsAndSaysSo)
 {
-  const std::string folderOfScene = SHADELAB_SOURCE_DIR "/data/scenes/still_life/";
+  const std::string folderOfScene = shadelab::testing::sourcePath("data/scenes/still_life/");
   const Result own = shadelab("shade " + folderOfScene + "still_life.obj --scene " + folderOfScene +
     "still_life.json -o " + (folder / "own.vtp").string());
   ASSERT_EQ(own.exitCode, 0) << own.err;
@@ -940,7 +941,7 @@ TEST_F(Cli, AnObjIsShadedWithItsOwnMaterialsAndSaysSo)
 
 TEST_F(Cli, AGltfIsLitByItsOwnLightsAndABrokenOneIsRefused)
 {
-  const Result lamps = shadelab("shade " SHADELAB_SOURCE_DIR "/data/scenes/lamps/lamps.gltf -o " +
+  const Result lamps = shadelab("shade " + shadelab::testing::sourcePath("data/scenes/lamps/lamps.gltf") + " -o " +
     (folder / "lamps.vtp").string() + " --arrays '*_cos_incidence'");
   ASSERT_EQ(lamps.exitCode, 0) << lamps.err;
   EXPECT_NE(lamps.out.find("  scene: the file's own lights (lecture model, 3 lights)\n"), std::string::npos)
@@ -950,17 +951,17 @@ TEST_F(Cli, AGltfIsLitByItsOwnLightsAndABrokenOneIsRefused)
     EXPECT_NE(lamps.out.find(std::string("    ") + light + "_cos_incidence"), std::string::npos) << light;
   }
   // A --scene's lights win over the file's.
-  const Result scene = shadelab("shade " SHADELAB_SOURCE_DIR "/data/scenes/lamps/lamps.gltf -s " + goodScene() +
-    " -o " + (folder / "sun.vtp").string() + " --arrays sun_diffuse");
+  const Result scene = shadelab("shade " + shadelab::testing::sourcePath("data/scenes/lamps/lamps.gltf") + " -s " +
+    goodScene() + " -o " + (folder / "sun.vtp").string() + " --arrays sun_diffuse");
   ASSERT_EQ(scene.exitCode, 0) << scene.err;
   EXPECT_NE(
     scene.out.find("  scene: " + (folder / "scene.json").string() + " (lecture model, 1 light)\n"), std::string::npos)
     << scene.out;
 
   // An extension that changes the look, which ShadeLab does not read, is said.
-  fs::copy_file(SHADELAB_SOURCE_DIR "/data/scenes/lamps/lamps.bin", folder / "lamps.bin");
-  fs::copy_file(SHADELAB_SOURCE_DIR "/data/scenes/lamps/checker.png", folder / "checker.png");
-  std::string gltf = slurp(SHADELAB_SOURCE_DIR "/data/scenes/lamps/lamps.gltf");
+  fs::copy_file(shadelab::testing::sourcePath("data/scenes/lamps/lamps.bin"), folder / "lamps.bin");
+  fs::copy_file(shadelab::testing::sourcePath("data/scenes/lamps/checker.png"), folder / "checker.png");
+  std::string gltf = slurp(shadelab::testing::sourcePath("data/scenes/lamps/lamps.gltf"));
   gltf.replace(gltf.find("\"extensionsUsed\": ["), 19,
     "\"extensionsRequired\": [\"KHR_texture_transform\"], \"extensionsUsed\": [\"KHR_texture_transform\", ");
   const std::string transformed = file("transformed.gltf", gltf);
@@ -1009,7 +1010,7 @@ namespace
 TEST_F(Cli, TheImageModuleIsLoadedOnlyToReadAnImage)
 {
   const std::string mesh = goodMesh(), out = (folder / "out.vtp").string();
-  const std::string map = SHADELAB_SOURCE_DIR "/data/envmaps/venice_sunset_1k.hdr";
+  const std::string map = shadelab::testing::sourcePath("data/envmaps/venice_sunset_1k.hdr");
   const std::string nowhere = (folder / "nowhere" / "libshadelab_images.so").string();
   const Result plain =
     shadelab("shade " + mesh + " -s " + goodScene() + " -o " + out, "SHADELAB_IMAGE_MODULE=" + nowhere + " ");
@@ -1047,36 +1048,36 @@ TEST_F(Cli, EnvironmentMapOption)
   EXPECT_EQ(noMap.err, "--envmap-rotation requires --envmap\nRun with --help for more information.\n");
   const std::string named = file("named.json", R"({ "lights": [ { "name": "envmap", "type": "ambient" } ] })");
   expectError("shade " + mesh + " -s " + named + " --envmap " +
-      SHADELAB_SOURCE_DIR "/data/envmaps/venice_sunset_1k.hdr -o " + out,
+      shadelab::testing::sourcePath("data/envmaps/venice_sunset_1k.hdr") + " -o " + out,
     "--envmap: " + named + " already has a light named 'envmap', the name --envmap gives its light: rename that light");
 
   // The map alone lights the bunny; its arrays are listed in the summary.
-  const Result shaded = shadelab("shade " + mesh +
-    " --envmap " SHADELAB_SOURCE_DIR
-    "/data/envmaps/venice_sunset_1k.hdr --envmap-estimator monte_carlo --envmap-samples 16 -a all -o " +
-    out);
+  const Result shaded =
+    shadelab("shade " + mesh + " --envmap " + shadelab::testing::sourcePath("data/envmaps/venice_sunset_1k.hdr") +
+      " --envmap-estimator monte_carlo --envmap-samples 16 -a all -o " + out);
   EXPECT_EQ(shaded.exitCode, 0) << shaded.err;
   EXPECT_NE(shaded.out.find("scene: default material and viewer + --envmap "), std::string::npos) << shaded.out;
   EXPECT_NE(shaded.out.find("envmap_irradiance_std_error"), std::string::npos) << shaded.out;
   EXPECT_TRUE(fs::exists(out));
 
   // With --shadows the map casts the mesh's shadows, its rays drawn as --envmap-directions says.
-  const Result shadowed = shadelab("shade " + mesh +
-    " --envmap " SHADELAB_SOURCE_DIR
-    "/data/envmaps/venice_sunset_1k.hdr --envmap-directions mis --envmap-samples 16 --shadows -o " +
-    out);
+  const Result shadowed =
+    shadelab("shade " + mesh + " --envmap " + shadelab::testing::sourcePath("data/envmaps/venice_sunset_1k.hdr") +
+      " --envmap-directions mis --envmap-samples 16 --shadows -o " + out);
   EXPECT_EQ(shadowed.exitCode, 0) << shadowed.err;
   EXPECT_NE(shadowed.out.find("    envmap_visibility            1 "), std::string::npos) << shadowed.out;
   EXPECT_NE(shadowed.out.find("    envmap_visibility_std_error  1 "), std::string::npos) << shadowed.out;
   EXPECT_NE(shadowed.out.find("rays (16 per vertex)"), std::string::npos) << shadowed.out;
   // --envmap-samples auto takes the count from --tolerance, which must be given.
-  expectError("shade " + mesh +
-      " --envmap " SHADELAB_SOURCE_DIR "/data/envmaps/venice_sunset_1k.hdr --envmap-samples auto -o " + out,
-    "--envmap " SHADELAB_SOURCE_DIR "/data/envmaps/venice_sunset_1k.hdr: /lights/0/samples: \"auto\" takes the count "
-    "of light 'envmap' from a tolerance: give one (shadelab shade --tolerance, the filter's Tolerance), or a number of "
-    "samples");
-  const Result badDirections = shadelab("shade " + mesh +
-    " --envmap " SHADELAB_SOURCE_DIR "/data/envmaps/venice_sunset_1k.hdr --envmap-directions sun -o " + out);
+  expectError("shade " + mesh + " --envmap " + shadelab::testing::sourcePath("data/envmaps/venice_sunset_1k.hdr") +
+      " --envmap-samples auto -o " + out,
+    "--envmap " + shadelab::testing::sourcePath("data/envmaps/venice_sunset_1k.hdr") +
+      ": /lights/0/samples: \"auto\" takes the count "
+      "of light 'envmap' from a tolerance: give one (shadelab shade --tolerance, the filter's Tolerance), or a number "
+      "of "
+      "samples");
+  const Result badDirections = shadelab("shade " + mesh + " --envmap " +
+    shadelab::testing::sourcePath("data/envmaps/venice_sunset_1k.hdr") + " --envmap-directions sun -o " + out);
   EXPECT_EQ(badDirections.exitCode, 2);
   EXPECT_EQ(badDirections.err,
     "--envmap-directions: sun not in {luminance,cosine,mis}\nRun with --help for more information.\n");
@@ -1088,8 +1089,8 @@ namespace
 TEST_F(Cli, ColorByTakesTheMaterialsColourFromAnArray)
 {
   // The head scan's own colours by --color-by are the scene's "kd": {"array": "RGB"}, bit for bit.
-  const std::string head = SHADELAB_SOURCE_DIR "/data/meshes/head_scan.ply";
-  const std::string scene = SHADELAB_SOURCE_DIR "/data/scenes/scan_colors.json";
+  const std::string head = shadelab::testing::sourcePath("data/meshes/head_scan.ply");
+  const std::string scene = shadelab::testing::sourcePath("data/scenes/scan_colors.json");
   const std::string byScene = (folder / "by_scene.vtp").string(), byOption = (folder / "by_option.vtp").string();
   ASSERT_EQ(shadelab("shade " + head + " -s " + scene + " -o " + byScene).exitCode, 0);
   std::ifstream sceneFile(scene);
@@ -1122,7 +1123,7 @@ TEST_F(Cli, PrecomputedTransferRelightsWithoutRays)
   // unturned; the unturned transfer relit under the map turned 90 degrees is the turned shading's
   // irradiance, to float32's rounding of the transfer (what `compare` takes by default, and
   // 1e-5 where the sum cancels to near 0).
-  const std::string mesh = goodMesh(), map = SHADELAB_SOURCE_DIR "/data/envmaps/studio_small_03_1k.hdr";
+  const std::string mesh = goodMesh(), map = shadelab::testing::sourcePath("data/envmaps/studio_small_03_1k.hdr");
   const std::string turned = (folder / "turned.vtp").string(), unturned = (folder / "unturned.vtp").string();
   const std::string relit = (folder / "relit.vtp").string();
   const std::string prt = " --envmap " + map + " --envmap-estimator prt --envmap-order 4 ";
@@ -1192,7 +1193,7 @@ TEST_F(Cli, AnyMeshWithoutASceneUnderTheDefaultLightKit)
 {
   // spot.obj as vtkOBJReader splits it: one point set per triangle, welded for its normals.
   const std::string out = (folder / "spot.vtp").string();
-  const Result spot = shadelab("shade " SHADELAB_SOURCE_DIR "/data/meshes/spot.obj -o " + out);
+  const Result spot = shadelab("shade " + shadelab::testing::sourcePath("data/meshes/spot.obj") + " -o " + out);
   EXPECT_EQ(spot.exitCode, 0) << spot.err;
   EXPECT_NE(spot.out.find("  mesh: 17568 vertices, 5856 polygons and strips\n"), std::string::npos) << spot.out;
   EXPECT_NE(
@@ -1202,7 +1203,8 @@ TEST_F(Cli, AnyMeshWithoutASceneUnderTheDefaultLightKit)
     std::string::npos)
     << spot.out;
   EXPECT_TRUE(fs::exists(out));
-  const Result faceted = shadelab("shade " SHADELAB_SOURCE_DIR "/data/meshes/spot.obj --no-weld -o " + out);
+  const Result faceted =
+    shadelab("shade " + shadelab::testing::sourcePath("data/meshes/spot.obj") + " --no-weld -o " + out);
   EXPECT_EQ(faceted.exitCode, 0) << faceted.err;
   EXPECT_EQ(faceted.out.find("positions are shared"), std::string::npos) << faceted.out;
 

@@ -719,7 +719,7 @@ TEST_F(Compare, ReorderedMeshesMatchByNearestPoint)
     "  DIFFER cell_value                     cell   float32 x1 not compared: the result's cell centre 0 (0.337, 0.667, "
     "0) has no match in the baseline within 0.001 (the nearest is 0.00333 away)\n");
   // Copies of a point (a seam: spot.obj has a point per corner) match one to one.
-  const std::string spot = SHADELAB_SOURCE_DIR "/data/meshes/spot.obj";
+  const std::string spot = shadelab::testing::sourcePath("data/meshes/spot.obj");
   EXPECT_EQ(shadelab("compare " + spot + " " + spot + " --nearest 0").exitCode, 0);
 }
 }
@@ -783,16 +783,16 @@ std::string noiseLine(const nlohmann::json& check)
 class CompareSampled : public Compare
 {
 protected:
-  static constexpr const char* mesh = SHADELAB_SOURCE_DIR "/data/meshes/teapot.obj";
-  static constexpr const char* scene = SHADELAB_SOURCE_DIR "/data/scenes/shadows_occlusion.json";
+  const std::string mesh = shadelab::testing::sourcePath("data/meshes/teapot.obj");
+  const std::string scene = shadelab::testing::sourcePath("data/scenes/shadows_occlusion.json");
   static constexpr const char* arrays = "ambient_occlusion,ambient_occlusion_std_error";
 
   /// The occlusion from this many rays per vertex, in the test's folder.
   std::string shadeOcclusion(int rays)
   {
     const std::string path = (folder / ("teapot_" + std::to_string(rays) + ".vtp")).string();
-    const Result run = shadelab(std::string("shade ") + mesh + " --scene " + scene + " --ambient-occlusion " +
-      std::to_string(rays) + " -a " + arrays + " -o " + path);
+    const Result run = shadelab("shade " + mesh + " --scene " + scene + " --ambient-occlusion " + std::to_string(rays) +
+      " -a " + arrays + " -o " + path);
     EXPECT_EQ(run.exitCode, 0) << run.err;
     return path;
   }
@@ -863,13 +863,16 @@ TEST_F(CompareSampled, TheCTestHelperPassesTheStatisticalModeThrough)
   std::filesystem::create_directories(project);
   file("project/CMakeLists.txt",
     "cmake_minimum_required(VERSION 3.20)\nproject(SampledRegression NONE)\nenable_testing()\n"
-    "include(\"" SHADELAB_SOURCE_DIR "/cmake/ShadeLabRegression.cmake\")\n"
-    "shadelab_add_regression_test(NAME teapot_occlusion MESH \"" +
-      std::string(mesh) + "\" SCENE \"" + scene + "\" BASELINE \"" + baseline + "\" ARRAYS \"" + arrays +
+    "include(\"" +
+      shadelab::testing::sourcePath("cmake/ShadeLabRegression.cmake") +
+      "\")\n"
+      "shadelab_add_regression_test(NAME teapot_occlusion MESH \"" +
+      mesh + "\" SCENE \"" + scene + "\" BASELINE \"" + baseline + "\" ARRAYS \"" + arrays +
       "\" EXCLUDE \"*_std_error\" STANDARD_ERRORS 3 "
       "SIGNIFICANCE 0.01 SHADE_ARGS --ambient-occlusion 32)\n");
-  const Result configured =
-    run("cmake", "-S " + project.string() + " -B " + build.string() + " -DSHADELAB_EXECUTABLE=" SHADELAB_EXECUTABLE);
+  const Result configured = run("cmake",
+    "-S " + project.string() + " -B " + build.string() +
+      " -DSHADELAB_EXECUTABLE=" + shadelab::testing::shadelabExecutable());
   ASSERT_EQ(configured.exitCode, 0) << configured.out << configured.err;
   const Result tested = run("ctest", "--test-dir " + build.string() + " -V");
   EXPECT_EQ(tested.exitCode, 0) << tested.out << tested.err;

@@ -6,6 +6,7 @@
 #include "FilterRun.h"
 #include "ShadingFlags.h"
 #include "TestMeshes.h"
+#include "TestPaths.h"
 #include "VtkErrorCapture.h"
 #include "vtkLocalReflectanceFilter.h"
 
@@ -223,7 +224,7 @@ TEST(DistributedLightsFilter, VectorisedShIrradianceIsTheEstimators)
   vtkSmartPointer<vtkPolyData> sphere = shadelab::testing::exactSphere(30);
   EnvironmentLight environment;
   environment.map = std::make_shared<const EnvironmentMap>(
-    readEnvironmentMap(SHADELAB_SOURCE_DIR "/data/envmaps/studio_small_03_1k.hdr"));
+    readEnvironmentMap(shadelab::testing::sourcePath("data/envmaps/studio_small_03_1k.hdr")));
   environment.rotationDegrees = 37;
   environment.color = { 1.0, 0.5, 0.25 };
   environment.intensity = 0.04;

@@ -7,6 +7,7 @@
 #include "MonteCarloEstimate.h"
 #include "PolygonIrradiance.h"
 #include "SampleSequence.h"
+#include "TestPaths.h"
 
 #include <gtest/gtest.h>
 
@@ -172,7 +173,7 @@ TEST(EnvironmentEstimators, SphericalHarmonicsAgainstBruteForceOnBundledMaps)
 {
   for (const char* name : { "studio_small_03_1k.hdr", "venice_sunset_1k.hdr" })
   {
-    const std::string file = std::string(SHADELAB_SOURCE_DIR) + "/data/envmaps/" + name;
+    const std::string file = shadelab::testing::sourcePath(std::string("data/envmaps/") + name);
     const auto map = std::make_shared<const EnvironmentMap>(readEnvironmentMap(file));
     double totalPower = 0; // sum of luminance x solid angle
     for (int row = 0; row < map->height; ++row)

@@ -5,6 +5,7 @@
 #include "EnvironmentSampler.h"
 #include "ShRotation.h"
 #include "SphericalHarmonics.h"
+#include "TestPaths.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/trigonometric.hpp>
@@ -26,7 +27,7 @@ namespace
 {
 using namespace shadelab;
 constexpr double pi = M_PI;
-const std::string venicePath = SHADELAB_SOURCE_DIR "/data/envmaps/venice_sunset_1k";
+const std::string venicePath = shadelab::testing::sourcePath("data/envmaps/venice_sunset_1k");
 
 EnvironmentMap mapOf(int width, int height, const std::function<Rgb(const glm::dvec3&)>& radianceAt)
 {

@@ -6,6 +6,7 @@
 #include "PolygonIrradiance.h"
 #include "RadianceTransfer.h"
 #include "SampleWarps.h"
+#include "TestPaths.h"
 #include "Visibility.h"
 
 #include <gtest/gtest.h>
@@ -273,8 +274,8 @@ TEST(EnvironmentShadows, ShadowedTransferIsMonteCarloWithinTheBandLimitAndThreeS
   // coefficients, integrated) plus three standard errors of the difference. A sharp sun is what
   // a few bands hold worst: the bound is loose, and the measured differences are charted
   // by order in charts 7b and 8b (shadelab-bench --charts DIR --study 7b).
-  EnvironmentLight light = mapLight(std::make_shared<const EnvironmentMap>(
-                                      readEnvironmentMap(SHADELAB_SOURCE_DIR "/data/envmaps/venice_sunset_1k.hdr")),
+  EnvironmentLight light = mapLight(std::make_shared<const EnvironmentMap>(readEnvironmentMap(
+                                      shadelab::testing::sourcePath("data/envmaps/venice_sunset_1k.hdr"))),
     EnvironmentEstimator::MonteCarlo, EnvironmentDirections::Mis, 1024);
   const Quads walls = box(false);
   const OccluderMesh occluders = walls.occluders();

@@ -3,6 +3,7 @@
 // number of components.
 #include "ArrayCatalog.h"
 #include "ShBands.h"
+#include "TestPaths.h"
 
 #include <gtest/gtest.h>
 
@@ -17,7 +18,7 @@ using Rows = std::map<std::string, int>; // name -> components
 
 std::string arraysPage()
 {
-  std::ifstream file(SHADELAB_SOURCE_DIR "/docs/guide/arrays.md");
+  std::ifstream file(shadelab::testing::sourcePath("docs/guide/arrays.md"));
   std::ostringstream text;
   text << file.rdbuf();
   return text.str();

@@ -22,7 +22,7 @@ struct Hostile
   std::string message; // after "shadelab: <file>: "
 };
 
-const std::string hostileFolder = SHADELAB_SOURCE_DIR "/tests/hostile-inputs/";
+const std::string hostileFolder = shadelab::testing::sourcePath("tests/hostile-inputs/");
 
 /// Asserts that the run failed with exactly "shadelab: <prefix><message>", wrote nothing and
 /// left no temporary file behind.
@@ -129,7 +129,7 @@ TEST_F(Cli, HostileMeshesAreRefusedInOneLine)
 
 TEST_F(Cli, HostileScenesAndMapsAreRefusedInOneLine)
 {
-  const std::string mesh = SHADELAB_SOURCE_DIR "/data/meshes/spot.obj", out = (folder / "out.vtp").string();
+  const std::string mesh = shadelab::testing::sourcePath("data/meshes/spot.obj"), out = (folder / "out.vtp").string();
   const Hostile scenes[] = {
     { "scenes/deeply_nested_100000.json",
       "nested more than 32 levels deep: a scene file has a few levels (lights, a light, its fields)" },
@@ -170,7 +170,8 @@ TEST_F(Cli, AHugeFiniteNormalGivesFiniteTerms)
     SCOPED_TRACE(precision);
     const std::string out = (folder / "out.vtp").string();
     const Result result = shadelab("shade " + hostileFolder + "meshes/normal_component_1e30.vtp -s " +
-      SHADELAB_SOURCE_DIR "/data/scenes/area_lights.json -a all --precision " + precision + " -o " + out);
+      shadelab::testing::sourcePath("data/scenes/area_lights.json") + " -a all --precision " + precision + " -o " +
+      out);
     ASSERT_EQ(result.exitCode, 0) << result.err;
     vtkNew<vtkXMLPolyDataReader> reader;
     reader->SetFileName(out.c_str());
@@ -196,7 +197,7 @@ TEST_F(Cli, StaleTemporariesOfDeadRunsAreRemoved)
   const std::string dead = out + ".partial-999999999", live = out + ".partial-1"; // pid 1 always runs
   std::ofstream(dead) << "half a file";
   std::ofstream(live) << "being written";
-  const Result result = shadelab("shade " SHADELAB_SOURCE_DIR "/data/meshes/spot.obj -o " + out);
+  const Result result = shadelab("shade " + shadelab::testing::sourcePath("data/meshes/spot.obj") + " -o " + out);
   ASSERT_EQ(result.exitCode, 0) << result.err;
   EXPECT_FALSE(fs::exists(dead));
   EXPECT_TRUE(fs::exists(live));

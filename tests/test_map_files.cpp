@@ -3,6 +3,7 @@
 // with its message. Kept apart from test_environment_map.cpp, whose tests need no image written,
 // so that only this binary links OpenImageIO (tests/CMakeLists.txt says why).
 #include "EnvironmentMap.h"
+#include "TestPaths.h"
 
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
@@ -18,7 +19,7 @@
 namespace
 {
 using namespace shadelab;
-const std::string venicePath = SHADELAB_SOURCE_DIR "/data/envmaps/venice_sunset_1k";
+const std::string venicePath = shadelab::testing::sourcePath("data/envmaps/venice_sunset_1k");
 
 std::string tempPath(const std::string& name)
 {

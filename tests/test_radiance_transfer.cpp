@@ -6,6 +6,7 @@
 #include "RadianceTransfer.h"
 #include "SampleSequence.h"
 #include "SampleWarps.h"
+#include "TestPaths.h"
 
 #include <gtest/gtest.h>
 
@@ -146,8 +147,8 @@ TEST(RadianceTransfer, AConstantSkyOverAnOpenBoxGivesTheOpeningsFormFactorOnTheF
 
 namespace
 {
-const std::string studioMap = SHADELAB_SOURCE_DIR "/data/envmaps/studio_small_03_1k.hdr";
-const std::string veniceMap = SHADELAB_SOURCE_DIR "/data/envmaps/venice_sunset_1k.hdr";
+const std::string studioMap = shadelab::testing::sourcePath("data/envmaps/studio_small_03_1k.hdr");
+const std::string veniceMap = shadelab::testing::sourcePath("data/envmaps/venice_sunset_1k.hdr");
 
 EnvironmentLight transferLight(const std::string& file, EnvironmentEstimator estimator, int order, double rotation)
 {

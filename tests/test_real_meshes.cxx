@@ -3,6 +3,7 @@
 // the mesh, and a picture a person would call well lit.
 #include "FilterRun.h"
 #include "MeshFiles.h"
+#include "TestPaths.h"
 
 #include "DefaultLightKit.h"
 #include "NormalOrientation.h"
@@ -54,7 +55,7 @@ double luminance(const glm::dvec3& rgb)
 TEST_P(RealMesh, DefaultLightKitLightsItWell)
 {
   const MeshCase meshCase = GetParam();
-  vtkSmartPointer<vtkPolyData> mesh = app::readMesh(std::string(SHADELAB_SOURCE_DIR "/data/meshes/") + meshCase.file);
+  vtkSmartPointer<vtkPolyData> mesh = app::readMesh(shadelab::testing::sourcePath("data/meshes/") + meshCase.file);
   ASSERT_EQ(mesh->GetNumberOfPoints(), meshCase.points);
   const Scene kit = defaultLightKit();
   vtkSmartPointer<vtkPolyData> output =
@@ -199,7 +200,7 @@ TEST_P(RealMesh, APointLightsShadowDarkensNoVertexByItsOwnTrianglesAlone)
   // facets. (With "self_shadowing": "facets", 64 of the bunny's vertices are not, 20 of spot's,
   // 5 of the teapot's, 9 of the owl's and 642 of the dragon's.)
   const MeshCase meshCase = GetParam();
-  vtkSmartPointer<vtkPolyData> mesh = app::readMesh(std::string(SHADELAB_SOURCE_DIR "/data/meshes/") + meshCase.file);
+  vtkSmartPointer<vtkPolyData> mesh = app::readMesh(shadelab::testing::sourcePath("data/meshes/") + meshCase.file);
   const Scene scene = parseScene(R"({ "frame": "mesh", "viewer": { "position": [0, 0, 5] }, "lights": [
     { "name": "lamp", "type": "point", "position": [1.5, 2.5, 2], "shadows": true } ] })",
     "lamp.json");
@@ -232,7 +233,7 @@ TEST(MeshFrame, AScenePlacedOnTheMeshLightsItAlikeAnywhereAtAnySize)
 {
   // The bunny as it comes, and moved to x = 1e3 and made 40 times larger (the size and place
   // of a CAD part in millimetres), under studio_mesh.json: the same totals at every vertex.
-  vtkSmartPointer<vtkPolyData> bunny = app::readMesh(SHADELAB_SOURCE_DIR "/data/meshes/bunny_zipper.ply");
+  vtkSmartPointer<vtkPolyData> bunny = app::readMesh(shadelab::testing::sourcePath("data/meshes/bunny_zipper.ply"));
   auto moved = vtkSmartPointer<vtkPolyData>::New();
   moved->DeepCopy(bunny);
   vtkNew<vtkPoints> points;
@@ -244,7 +245,7 @@ TEST(MeshFrame, AScenePlacedOnTheMeshLightsItAlikeAnywhereAtAnySize)
     points->InsertNextPoint(1e3 + 40 * p[0], -250 + 40 * p[1], 40 * p[2]);
   }
   moved->SetPoints(points);
-  const Scene studio = readSceneFile(SHADELAB_SOURCE_DIR "/data/scenes/studio_mesh.json");
+  const Scene studio = readSceneFile(shadelab::testing::sourcePath("data/scenes/studio_mesh.json"));
   vtkSmartPointer<vtkPolyData> here = shadelab::testing::shadeWithFilter(bunny, studio, { "totals" });
   vtkSmartPointer<vtkPolyData> there = shadelab::testing::shadeWithFilter(moved, studio, { "totals" });
   vtkDataArray* expected = here->GetPointData()->GetArray("total");

@@ -4,6 +4,7 @@
 #include "EnvironmentLightEstimator.h"
 #include "EnvironmentMap.h"
 #include "RadianceTransfer.h"
+#include "TestPaths.h"
 #include "VtkErrorCapture.h"
 #include "vtkTransferRelightFilter.h"
 
@@ -22,7 +23,7 @@
 namespace
 {
 using namespace shadelab;
-const std::string sunset = SHADELAB_SOURCE_DIR "/data/envmaps/venice_sunset_1k.hdr";
+const std::string sunset = shadelab::testing::sourcePath("data/envmaps/venice_sunset_1k.hdr");
 
 /// Three points whose transfer is the unshadowed one of three normals, at order 3.
 vtkSmartPointer<vtkPolyData> meshWithTransfer(vtkDataArray* transfer, const std::vector<glm::dvec3>& normals)

@@ -6,6 +6,7 @@
 #include "SceneFile.h"
 #include "SceneFileErrors.h"
 #include "SceneSource.h"
+#include "TestPaths.h"
 
 #include <gtest/gtest.h>
 
@@ -64,7 +65,7 @@ TEST(SceneFile, ReadsEveryLightType)
 TEST(SceneFile, EveryBundledSceneIsValid)
 {
   int scenes = 0;
-  for (const auto& entry : std::filesystem::recursive_directory_iterator(SHADELAB_SOURCE_DIR "/data/scenes"))
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(shadelab::testing::sourcePath("data/scenes")))
   {
     if (entry.path().extension() != ".json")
     {
@@ -345,7 +346,7 @@ TEST(SceneFile, ReadsAreaLightsAndEnvironmentMaps)
         "estimator": "monte_carlo", "directions": "cosine", "brute_force_width": 64 }
     ]
   })",
-    SHADELAB_SOURCE_DIR "/data/scenes/inline.json");
+    shadelab::testing::sourcePath("data/scenes/inline.json"));
   ASSERT_EQ(scene.lights.size(), 5u);
   const auto& panel = std::get<AreaLight>(scene.lights[0].source);
   const std::vector<glm::dvec3> corners = { { -1, 2, -0.5 }, { 1, 2, -0.5 }, { 1, 2, 0.5 }, { -1, 2, 0.5 } };
@@ -367,7 +368,7 @@ TEST(SceneFile, ReadsAreaLightsAndEnvironmentMaps)
   EXPECT_EQ(scene.lights[3].name, "sphere3");
   EXPECT_EQ(std::get<SphereEmitter>(std::get<AreaLight>(scene.lights[3].source).shape).centre, glm::dvec3(1.0));
   const auto& sky = std::get<EnvironmentLight>(scene.lights[4].source);
-  EXPECT_EQ(sky.file, SHADELAB_SOURCE_DIR "/data/envmaps/venice_sunset_1k.hdr");
+  EXPECT_EQ(sky.file, shadelab::testing::sourcePath("data/envmaps/venice_sunset_1k.hdr"));
   ASSERT_NE(sky.map, nullptr);
   EXPECT_EQ(sky.map->width, 1024);
   EXPECT_EQ(sky.rotationDegrees, 90);
@@ -407,7 +408,7 @@ TEST(SceneFile, AreaLightAndEnvironmentMapErrors)
   EXPECT_EQ(errorOf(R"({ "lights": [ { "type": "environment", "file": "no_such_map.hdr" } ] })"),
     "scene.json: /lights/0/file: no_such_map.hdr: no such file");
   EXPECT_EQ(errorOf(R"({ "lights": [ { "type": "environment" } ] })"), "scene.json: /lights/0/file: missing");
-  const std::string map = SHADELAB_SOURCE_DIR "/data/envmaps/venice_sunset_1k.hdr";
+  const std::string map = shadelab::testing::sourcePath("data/envmaps/venice_sunset_1k.hdr");
   EXPECT_EQ(
     errorOf(R"({ "lights": [ { "type": "environment", "file": ")" + map + R"(", "brute_force_width": 100 } ] })"),
     "scene.json: /lights/0/brute_force_width: must be an even number that divides the map's width (1024), or at "
@@ -676,7 +677,7 @@ TEST(SceneSource, JsonTextThenFileThenSceneThenTheDefaultLightKit)
   source.setScene(made);
   EXPECT_EQ(source.scene().lights.front().name, "made");
 
-  const std::string studio = SHADELAB_SOURCE_DIR "/data/scenes/studio.json";
+  const std::string studio = shadelab::testing::sourcePath("data/scenes/studio.json");
   EXPECT_TRUE(source.setFileName(studio));
   EXPECT_FALSE(source.setFileName(studio)); // no change
   EXPECT_EQ(source.scene().lights.front().name, "key");

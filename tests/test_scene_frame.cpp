@@ -7,6 +7,7 @@
 #include "SceneFile.h"
 #include "SceneFileErrors.h"
 #include "SceneFrame.h"
+#include "TestPaths.h"
 
 #include <gtest/gtest.h>
 
@@ -381,7 +382,7 @@ TEST(SceneFrame, AMeshOfRadiusZeroIsMeasuredInWorldUnits)
 /// reader does, as the filter measures a mesh.
 MeshExtent bunnyExtent()
 {
-  std::ifstream file(SHADELAB_SOURCE_DIR "/data/meshes/bunny_zipper.ply");
+  std::ifstream file(shadelab::testing::sourcePath("data/meshes/bunny_zipper.ply"));
   std::string line;
   std::size_t count = 0;
   while (std::getline(file, line) && line != "end_header")
@@ -415,8 +416,9 @@ TEST(SceneFrame, StudioMeshIsStudioOnTheBunny)
   EXPECT_NEAR(bunny.centre.y, 0.1101542, 1e-7);
   EXPECT_NEAR(bunny.centre.z, -0.0015370, 1e-7);
   EXPECT_NEAR(bunny.radius, 0.1251230, 1e-7);
-  const Scene studio = readSceneFile(SHADELAB_SOURCE_DIR "/data/scenes/studio.json");
-  const Scene placed = placedOnMesh(readSceneFile(SHADELAB_SOURCE_DIR "/data/scenes/studio_mesh.json"), bunny);
+  const Scene studio = readSceneFile(shadelab::testing::sourcePath("data/scenes/studio.json"));
+  const Scene placed =
+    placedOnMesh(readSceneFile(shadelab::testing::sourcePath("data/scenes/studio_mesh.json")), bunny);
   expectSameScene(placed, studio, 1e-9);
 
   // The same totals on a few of the bunny's points (bounding-box corners and its centre).
@@ -495,7 +497,7 @@ TEST(DefaultLightKit, LightsAPartAnywhereFromTheSameDirections)
 
 TEST(DefaultLightKit, TheGuideShowsIt)
 {
-  std::ifstream file(SHADELAB_SOURCE_DIR "/docs/guide/scene-files.md");
+  std::ifstream file(shadelab::testing::sourcePath("docs/guide/scene-files.md"));
   std::ostringstream text;
   text << file.rdbuf();
   EXPECT_NE(text.str().find("```json\n" + defaultLightKitText() + "```\n"), std::string::npos);

@@ -3,6 +3,7 @@
 #include "EnvironmentMap.h"
 #include "SceneFile.h"
 #include "SceneOverrides.h"
+#include "TestPaths.h"
 
 #include <gtest/gtest.h>
 
@@ -12,7 +13,7 @@ namespace
 {
 using namespace shadelab;
 
-const std::string sunset = SHADELAB_SOURCE_DIR "/data/envmaps/venice_sunset_1k.hdr";
+const std::string sunset = shadelab::testing::sourcePath("data/envmaps/venice_sunset_1k.hdr");
 
 /// The message withOverrides throws, or "" where it does not.
 std::string problemOf(const Scene& scene, const SceneOverrides& overrides)

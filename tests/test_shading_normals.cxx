@@ -2,6 +2,7 @@
 // split at sharp edges on purpose (a cube with a point set per face), stored unsplit (a cube
 // with 8 points), and wound inconsistently.
 #include "MeshFiles.h"
+#include "TestPaths.h"
 
 #include "vtkShadingNormalsFilter.h"
 
@@ -107,7 +108,7 @@ bool isFaceNormal(const double n[3])
 
 TEST(ShadingNormals, SpotSplitAtItsTextureSeamsShadesSmooth)
 {
-  vtkSmartPointer<vtkPolyData> spot = shadelab::app::readMesh(SHADELAB_SOURCE_DIR "/data/meshes/spot.obj");
+  vtkSmartPointer<vtkPolyData> spot = shadelab::app::readMesh(shadelab::testing::sourcePath("data/meshes/spot.obj"));
   // vtkOBJReader gives each of the 5,856 triangles its own three points, at 2,930 positions.
   ASSERT_EQ(spot->GetNumberOfPoints(), 17568);
   vtkSmartPointer<vtkPolyData> smooth = withNormals(spot);

@@ -6,6 +6,7 @@
 #include "MeshFiles.h"
 #include "MeshPieces.h"
 #include "ShadeLabWholeMesh.h"
+#include "TestPaths.h"
 #include "vtkInterreflectionFilter.h"
 #include "vtkLocalReflectanceFilter.h"
 #include "vtkMeshVisibilityFilter.h"
@@ -41,7 +42,7 @@ vtkMultiProcessController* processes()
 
 std::string dataPath(const std::string& relative)
 {
-  return std::string(SHADELAB_SOURCE_DIR) + "/data/" + relative;
+  return shadelab::testing::sourcePath("data/" + relative);
 }
 
 /// The piece's global point ids.

@@ -9,6 +9,7 @@
 // vertices; vtkSTLReader merges equal points and drops the triangles that merging collapses).
 #include "MeshFileChecks.h"
 #include "MeshFiles.h"
+#include "TestPaths.h"
 
 #include "vtkCellArray.h"
 #include "vtkIdList.h"
@@ -1059,7 +1060,7 @@ TEST(StrictMeshFiles, EveryBundledMeshPasses)
 {
   for (const char* name : { "bunny_zipper.ply", "head_scan.ply", "xyzrgb_dragon_50k.ply", "spot.obj", "teapot.obj" })
   {
-    const std::string file = std::string(SHADELAB_SOURCE_DIR "/data/meshes/") + name;
+    const std::string file = shadelab::testing::sourcePath("data/meshes/") + name;
     const MeshFileCheck check = checkMeshFile(file, fs::path(file).extension().string(), fs::file_size(file));
     EXPECT_EQ(check.problem, "") << name;
     EXPECT_EQ(check.ignored, "") << name;

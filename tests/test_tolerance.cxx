@@ -3,6 +3,7 @@
 #include "ArrayComparison.h"
 #include "FilterRun.h"
 #include "MeshFiles.h"
+#include "TestPaths.h"
 #include "VtkErrorCapture.h"
 
 #include "NumberText.h"
@@ -24,7 +25,7 @@
 namespace
 {
 using namespace shadelab;
-const std::string data = SHADELAB_SOURCE_DIR "/data/";
+const std::string data = shadelab::testing::sourcePath("data/");
 
 const std::vector<std::string> shadedArrays = { "ambient", "diffuse", "specular", "total" };
 

@@ -4,6 +4,7 @@
 // ShadeLab's total (for PBR, raised to 1/2.2 as VTK's PBR shader encodes it), clamped to
 // [0, 1] and rounded to 8 bits. Runs under Xvfb (Mesa's software OpenGL).
 #include "TestMeshes.h"
+#include "TestPaths.h"
 #include "VtkLightSets.h"
 
 #include "OffScreenImage.h"
@@ -320,7 +321,7 @@ TEST_F(RealRender, DirectEightBitColors)
 TEST(RealRenderOfImportedScene, GltfBallUnderTheFilesOwnLights)
 {
   vtkNew<vtkGLTFImporter> importer;
-  importer->SetFileName(SHADELAB_SOURCE_DIR "/data/scenes/lamps/lamps.gltf");
+  importer->SetFileName(shadelab::testing::sourcePath("data/scenes/lamps/lamps.gltf").c_str());
   vtkNew<vtkRenderWindow> window;
   importer->SetRenderWindow(window);
   importer->Update();
