@@ -416,10 +416,7 @@ TEST_F(VtkPbrMode, AHeadlightBesideAPointLightShinesFromTheCamera)
   bulb->SetConeAngle(90);
   expectShaderTerms(3);
 }
-}
 
-namespace
-{
 TEST_F(VtkPbrMode, NoLightSwitchedOnMeansVtksHeadlightAtTheCamera)
 {
   // The headlight vtkRenderer creates, alone (complexity 1): VTK's PBR shader puts it at the eye.

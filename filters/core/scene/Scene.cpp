@@ -321,10 +321,13 @@ bool hasPositionalLight(const Scene& scene)
 
 void placeHeadlightsAtTheCamera(Scene& scene, bool lightsFromPositions)
 {
+  if (!lightsFromPositions)
+  {
+    return;
+  }
   for (NamedLight& light : scene.lights)
   {
-    const auto* headlight = std::get_if<Headlight>(&light.source);
-    if (headlight && lightsFromPositions)
+    if (const auto* headlight = std::get_if<Headlight>(&light.source))
     {
       light.source =
         PointLight{ scene.viewer.position.value(), headlight->color, headlight->intensity, { AttenuationModel::None } };
