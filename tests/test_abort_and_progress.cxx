@@ -112,6 +112,44 @@ TEST(AbortAndProgress, AnAbortStopsA2048RayOcclusionRunWithinAQuarterOfItsTime)
   }
 }
 
+/// The progress a run of the filter reports, in order.
+std::vector<double> progressOf(vtkLocalReflectanceFilter* filter)
+{
+  std::vector<double> seen;
+  vtkNew<vtkCallbackCommand> observer;
+  observer->SetCallback([](vtkObject*, unsigned long, void* values, void* done)
+    { static_cast<std::vector<double>*>(values)->push_back(*static_cast<double*>(done)); });
+  observer->SetClientData(&seen);
+  filter->AddObserver(vtkCommand::ProgressEvent, observer);
+  filter->Update();
+  filter->RemoveObserver(observer);
+  return seen;
+}
+
+// With interreflection on a two-sided surface, the hidden side's rays and shading and then the
+// bounces follow the seen side's, in order.
+TEST(AbortAndProgress, ProgressMovesThroughBothSidesAndTheBouncesInOrder)
+{
+  vtkSmartPointer<vtkPolyData> bunny = app::readMesh(data + "meshes/bunny_zipper.ply");
+  vtkNew<vtkLocalReflectanceFilter> filter;
+  Scene scene = studioWithOcclusion(16);
+  for (NamedLight& light : scene.lights) // rays for each side
+  {
+    light.shadows = castsShadows(light.source);
+  }
+  scene.material.twoSided = true;
+  scene.interreflection = Interreflection{ 2, { 16, true } };
+  setUp(filter, bunny, scene);
+  const std::vector<double> seen = progressOf(filter);
+  ASSERT_GE(seen.size(), 6u);
+  EXPECT_EQ(seen.front(), 0.0);
+  EXPECT_EQ(seen.back(), 1.0);
+  for (std::size_t k = 1; k < seen.size(); ++k)
+  {
+    ASSERT_GE(seen[k], seen[k - 1]) << "event " << k;
+  }
+}
+
 TEST(AbortAndProgress, ProgressMovesThroughTheNormalsTheRaysAndTheShadingInOrder)
 {
   vtkSmartPointer<vtkPolyData> bunny = app::readMesh(data + "meshes/bunny_zipper.ply");

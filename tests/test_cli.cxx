@@ -15,6 +15,9 @@
 #include "vtkXMLPolyDataReader.h"
 #include "vtkXMLPolyDataWriter.h"
 
+#include <glm/gtc/type_ptr.hpp>
+#include <glm/vec3.hpp>
+
 #include <cmath>
 #include <fstream>
 #include <iterator>
@@ -937,6 +940,49 @@ TEST_F(Cli, AnObjIsShadedWithItsOwnMaterialsAndSaysSo)
   EXPECT_EQ(grey.err,
     "shadelab: warning: still_life.obj: material 'floor' names the texture " + (folder / "checker.png").string() +
       ", which VTK could not read: shaded with its diffuse colour alone\n");
+}
+
+// The guide's open box: one layer of walls whose normals point out, two-sided, lit by a lamp
+// that lights no point of the ceiling. Both sides are shaded and gather: the ceiling's light is
+// the walls' alone, and the white back wall is redder beside the red wall than beside the green.
+TEST_F(Cli, TheOpenBoxIsLitInsideByItsOwnWalls)
+{
+  const std::string box = shadelab::testing::sourcePath("data/scenes/open_box/");
+  const std::string out = (folder / "open_box.vtp").string();
+  const Result run =
+    shadelab("shade " + box + "open_box.vtp -s " + box + "open_box.json -a diffuse,indirect -o " + out);
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  EXPECT_NE(run.out.find("  interreflection: both sides shaded (front_diffuse: the diffuse term on the side the "
+                         "normals point to): 4 bounces from 'front_diffuse' and 'back_diffuse', 256 gather rays per "
+                         "vertex on each side"),
+    std::string::npos)
+    << run.out;
+  vtkNew<vtkXMLPolyDataReader> reader;
+  reader->SetFileName(out.c_str());
+  reader->Update();
+  vtkPolyData* shaded = reader->GetOutput();
+  vtkDataArray* diffuse = shaded->GetPointData()->GetArray("diffuse");
+  vtkDataArray* indirect = shaded->GetPointData()->GetArray("indirect");
+  vtkDataArray* normals = shaded->GetPointData()->GetArray("Normals");
+  int ceiling = 0;
+  glm::dvec3 besideRed(0.0), besideGreen(0.0);
+  for (vtkIdType i = 0; i < shaded->GetNumberOfPoints(); ++i)
+  {
+    const double* p = shaded->GetPoint(i);
+    if (p[1] == 1.0 && normals->GetComponent(i, 1) == 1.0) // the ceiling (its normals point out of the box)
+    {
+      ++ceiling;
+      ASSERT_EQ(diffuse->GetComponent(i, 0), indirect->GetComponent(i, 0)) << i;
+      ASSERT_GT(indirect->GetComponent(i, 1), 0.01) << i;
+    }
+    const bool backWall = normals->GetComponent(i, 2) == -1.0;
+    if (backWall && p[1] > 0.5 && (p[0] < 0.1 || p[0] > 0.9)) // its upper corners
+    {
+      (p[0] < 0.1 ? besideRed : besideGreen) += glm::make_vec3(indirect->GetTuple3(i));
+    }
+  }
+  EXPECT_EQ(ceiling, 33 * 33);
+  EXPECT_GT(besideRed.r / besideRed.g, 1.5 * besideGreen.r / besideGreen.g);
 }
 
 TEST_F(Cli, AGltfIsLitByItsOwnLightsAndABrokenOneIsRefused)

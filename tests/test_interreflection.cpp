@@ -41,6 +41,25 @@ Gathered gatherAll(const Mesh& mesh, const OccluderMesh& occluders, int rays, co
   return gathered;
 }
 
+/// gatherAll on both sides of a two-sided surface: radiosity holds the N fronts' values, then
+/// the N backs'; each vertex gathers about its normal with lit backs, then about the opposite.
+Gathered gatherBothSides(const Mesh& mesh, const OccluderMesh& occluders, int rays, const std::vector<Rgb>& radiosity)
+{
+  Gathered gathered{ std::make_unique<BounceGather>(
+    occluders, radiosity, Sampling{ rays, true }, std::vector<Rgb>(), ShadedSides::Both) };
+  std::vector<OccluderMesh::RayHit> hits(static_cast<std::size_t>(rays));
+  const std::size_t n = mesh.points.size();
+  for (std::size_t point = 0; point < 2 * n; ++point)
+  {
+    RayVertex vertex = mesh.vertex(point % n);
+    vertex.normal = point < n ? vertex.normal : -vertex.normal;
+    gathered.backHits += gatherHits(
+      occluders, vertex, { rays, true }, PackedPoints<double>{ &mesh.normals[0].x }, hits.data(), TriangleBacks::Lit);
+    gathered.gather->addVertex(point, hits.data());
+  }
+  return gathered;
+}
+
 double sumOfPowers(double x, int from, int to)
 {
   double sum = 0;
@@ -364,6 +383,80 @@ TEST(Interreflection, RaysThatMeetATrianglesBackCarryNothingAndAreCounted)
     }
   }
   EXPECT_GT(backHits, long(0.95 * 16 * double(inside.points.size())));
+}
+
+// A two-sided closed sphere whose normals point out, lit from inside: its backs face the light
+// and gather what the same sphere with inward normals gathers on its fronts, bit for bit (the
+// same rays, about the same directions, meeting the same triangles, read on their backs), over
+// every bounce; its fronts, outside, see nothing of it. The radiosity is a light's off the
+// centre, so that every hit's value differs.
+TEST(Interreflection, BothSidesOfATwoSidedSurfaceGatherWhatTheirOwnSideSends)
+{
+  Mesh inward;
+  addSphere(inward, glm::dvec3(0.0), 1.0, 24, 48, true);
+  Mesh outward = inward; // the same triangles, their normals turned round
+  for (glm::dvec3& n : outward.normals)
+  {
+    n = -n;
+  }
+  const std::size_t n = inward.points.size();
+  const glm::dvec3 light(0.3, 0.2, -0.4);
+  std::vector<Rgb> inside(n), bothSides(2 * n, Rgb(0.0));
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const glm::dvec3 toLight = light - inward.points[i];
+    inside[i] = Rgb(0.5 * glm::dot(inward.normals[i], toLight) / std::pow(glm::length(toLight), 3));
+    bothSides[n + i] = inside[i];
+  }
+  const OccluderMesh occluders = inward.occluders();
+  const Albedo albedo{ Rgb(0.5, 0.6, 0.7), nullptr };
+  const Gathered oneSide = gatherAll(inward, occluders, 32, inside);
+  const IndirectIrradiance expected = oneSide.gather->bounce(albedo, 3, true);
+  const Gathered twoSides = gatherBothSides(outward, occluders, 32, bothSides);
+  const IndirectIrradiance gathered = twoSides.gather->bounce(albedo, 3, true);
+  EXPECT_EQ(oneSide.backHits, 0);
+  EXPECT_EQ(twoSides.backHits, 32 * long(n) - oneSide.backHits); // every back ray met a back, and carried it
+  ASSERT_EQ(gathered.irradiance.size(), 2 * n);
+  EXPECT_EQ(gathered.restBound, expected.restBound);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    ASSERT_EQ(gathered.irradiance[i], Rgb(0.0)) << i;
+    ASSERT_EQ(gathered.irradiance[n + i], expected.irradiance[i]) << i;
+    ASSERT_EQ(gathered.standardError[n + i], expected.standardError[i]) << i;
+    for (int b = 0; b < 3; ++b)
+    {
+      ASSERT_EQ(gathered.bounces[std::size_t(b)][n + i], expected.bounces[std::size_t(b)][i]) << i;
+    }
+  }
+  EXPECT_GT(expected.irradiance[0].b, 0.1); // something was gathered
+}
+
+// Lit from its centre, the two-sided sphere's backs gain the closed sphere's (I / R^2)(rho + ...
+// + rho^k), its fronts nothing, and one side's light does not leak to the other: the outside
+// lit alone leaves the inside dark.
+TEST(Interreflection, ATwoSidedSphereLitInsideKeepsItsLightInside)
+{
+  Mesh sphere;
+  addSphere(sphere, glm::dvec3(0.5, -1, 2), 2.0, 16, 32);
+  const std::size_t n = sphere.points.size();
+  const OccluderMesh occluders = sphere.occluders();
+  const double rho = 0.6, direct = 3.0 / (2.0 * 2.0);
+  std::vector<Rgb> lit(2 * n, Rgb(0.0));
+  std::fill(lit.begin() + std::ptrdiff_t(n), lit.end(), Rgb(rho * direct));
+  const IndirectIrradiance inside =
+    gatherBothSides(sphere, occluders, 32, lit).gather->bounce({ Rgb(rho), nullptr }, 4, false);
+  std::vector<Rgb> outsideLit(2 * n, Rgb(0.0));
+  std::fill(outsideLit.begin(), outsideLit.begin() + std::ptrdiff_t(n), Rgb(1.0));
+  const IndirectIrradiance outside =
+    gatherBothSides(sphere, occluders, 32, outsideLit).gather->bounce({ Rgb(rho), nullptr }, 4, false);
+  const double expected = direct * sumOfPowers(rho, 1, 4);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    ASSERT_EQ(inside.irradiance[i], Rgb(0.0)) << i;
+    ASSERT_NEAR(inside.irradiance[n + i].r, expected, 1e-12 * expected) << i;
+    ASSERT_EQ(outside.irradiance[i], Rgb(0.0)) << i;
+    ASSERT_EQ(outside.irradiance[n + i], Rgb(0.0)) << i;
+  }
 }
 
 // Each vertex depends only on the previous sweep: split into ranges in any order, the results

@@ -7,16 +7,20 @@
 #include "TestMeshes.h"
 
 #include "EnvironmentMap.h"
+#include "ShadingFlags.h"
 #include "VtkErrorCapture.h"
 #include "vtkInterreflectionFilter.h"
 #include "vtkTransferRelightFilter.h"
 
+#include "vtkAppendPolyData.h"
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
 #include "vtkFloatArray.h"
+#include "vtkPlaneSource.h"
 #include "vtkPointData.h"
 #include "vtkSMPTools.h"
 #include "vtkSphereSource.h"
+#include "vtkTriangleFilter.h"
 
 #include <OpenImageIO/imageio.h>
 #include <glm/gtc/type_ptr.hpp>
@@ -143,6 +147,109 @@ TEST(Interreflection, TheSameBitsOnOneAndTwoThreads)
   EXPECT_GT(gained, 1.0);
 }
 
+// The lamp in the sphere again, but its normals point out, as most meshes' do, and the
+// material is two-sided: the viewer inside sees each wall's back, which gathers on its own side
+// and reads the other walls' backs. It gathers what the sphere with inward normals gathers, bit
+// for bit (the same rays, turned round with the normals), here with the lamp off the centre so
+// that every wall's light differs. From outside, the walls the viewer sees get nothing, though
+// their hidden sides are lit.
+TEST(Interreflection, ATwoSidedSphereWhoseNormalsPointOutGathersOnTheSideItIsSeenFrom)
+{
+  vtkSmartPointer<vtkPolyData> outward = shadelab::testing::exactSphere(30, glm::dvec3(0.0), 1.0);
+  Scene scene = lampInside(2.0, 0.6, 3);
+  std::get<PointLight>(scene.lights[0].source).position = glm::dvec3(0.2, -0.3, 0.1);
+  const std::vector<std::string> arrays{ "diffuse", "indirect_irradiance", "indirect_irradiance_std_error",
+    "indirect_bounce_2", "shading_flags" };
+  vtkSmartPointer<vtkPolyData> inwardShaded =
+    shadeWithFilter(insideOfSphere(30, 1.0), scene, arrays, vtkAlgorithm::DOUBLE_PRECISION, false);
+  scene.material.twoSided = true;
+  vtkSmartPointer<vtkPolyData> seenInside =
+    shadeWithFilter(outward, scene, arrays, vtkAlgorithm::DOUBLE_PRECISION, false);
+  for (const char* name : { "diffuse", "indirect_irradiance", "indirect_irradiance_std_error", "indirect_bounce_2" })
+  {
+    shadelab::testing::expectSameBits(
+      inwardShaded->GetPointData()->GetArray(name), seenInside->GetPointData()->GetArray(name), name);
+  }
+  vtkDataArray* flags = seenInside->GetPointData()->GetArray("shading_flags");
+  for (vtkIdType i = 0; i < outward->GetNumberOfPoints(); ++i)
+  {
+    ASSERT_EQ(int(flags->GetComponent(i, 0)) & FlagNormalFlipped, FlagNormalFlipped) << i;
+  }
+  EXPECT_GT(tupleOf(seenInside, "indirect_irradiance", 0).r, 0.5);
+
+  scene.viewer.position = glm::dvec3(0, 0, 5);
+  vtkSmartPointer<vtkPolyData> seenOutside =
+    shadeWithFilter(outward, scene, arrays, vtkAlgorithm::DOUBLE_PRECISION, false);
+  for (vtkIdType i = 0; i < outward->GetNumberOfPoints(); ++i)
+  {
+    const bool seenFromOutside =
+      (int(seenOutside->GetPointData()->GetArray("shading_flags")->GetComponent(i, 0)) & FlagNormalFlipped) == 0;
+    // The walls turned away from the camera are seen from inside (their backs, flipped).
+    const Rgb expected = seenFromOutside ? Rgb(0.0) : tupleOf(seenInside, "indirect_irradiance", i);
+    ASSERT_EQ(tupleOf(seenOutside, "indirect_irradiance", i), expected) << i;
+    ASSERT_EQ(tupleOf(seenOutside, "diffuse", i), seenFromOutside ? Rgb(0.0) : tupleOf(seenInside, "diffuse", i)) << i;
+  }
+}
+
+/// Two squares of side 2 facing +z, one at z = 0 over the other at z = 1, each cells x cells;
+/// the upper one's normals turned down where asked.
+vtkSmartPointer<vtkPolyData> twoSquares(int cells, bool upperFacesDown)
+{
+  vtkNew<vtkAppendPolyData> both;
+  for (const double z : { 0.0, 1.0 })
+  {
+    vtkNew<vtkPlaneSource> square;
+    square->SetOrigin(-1, -1, z);
+    square->SetPoint1(1, -1, z);
+    square->SetPoint2(-1, 1, z);
+    square->SetResolution(cells, cells);
+    vtkNew<vtkTriangleFilter> triangles;
+    triangles->SetInputConnection(square->GetOutputPort());
+    triangles->Update();
+    auto part = vtkSmartPointer<vtkPolyData>::New();
+    part->DeepCopy(triangles->GetOutput());
+    vtkDataArray* normals = part->GetPointData()->GetNormals();
+    for (vtkIdType i = 0; z > 0 && upperFacesDown && i < normals->GetNumberOfTuples(); ++i)
+    {
+      normals->SetTuple3(i, 0, 0, -1);
+    }
+    both->AddInputData(part);
+  }
+  both->Update();
+  auto mesh = vtkSmartPointer<vtkPolyData>::New();
+  mesh->ShallowCopy(both->GetOutput());
+  return mesh;
+}
+
+// A lamp between two squares, the camera above both: it sees the lower square's top and the
+// upper one's top, whose underside, lit by the lamp, is hidden from it. Two-sided, that hidden
+// side sends its light down to the lower square as a one-sided upper square facing down does,
+// bit for bit at the lower square over three bounces; the upper square's top, seen, gathers
+// nothing.
+TEST(Interreflection, TheHiddenSideOfATwoSidedSurfaceLightsWhatItFaces)
+{
+  Scene scene = lampInside(1.0, 0.7, 3);
+  std::get<PointLight>(scene.lights[0].source).position = glm::dvec3(0.3, 0.1, 0.5);
+  scene.viewer.position = glm::dvec3(0.5, 0.2, 4);
+  const std::vector<std::string> arrays{ "diffuse", "indirect_irradiance", "indirect_bounce_3" };
+  vtkSmartPointer<vtkPolyData> facingDown =
+    shadeWithFilter(twoSquares(24, true), scene, arrays, vtkAlgorithm::DOUBLE_PRECISION, false);
+  scene.material.twoSided = true;
+  vtkSmartPointer<vtkPolyData> mesh = twoSquares(24, false);
+  vtkSmartPointer<vtkPolyData> twoSided = shadeWithFilter(mesh, scene, arrays, vtkAlgorithm::DOUBLE_PRECISION, false);
+  const vtkIdType lower = mesh->GetNumberOfPoints() / 2;
+  double gathered = 0;
+  for (vtkIdType i = 0; i < mesh->GetNumberOfPoints(); ++i)
+  {
+    for (const char* name : { "indirect_irradiance", "indirect_bounce_3" })
+    {
+      ASSERT_EQ(tupleOf(twoSided, name, i), i < lower ? tupleOf(facingDown, name, i) : Rgb(0.0)) << name << " " << i;
+    }
+    gathered += i < lower ? tupleOf(twoSided, "indirect_irradiance", i).r : 0.0;
+  }
+  EXPECT_GT(gathered / double(lower), 0.05);
+}
+
 // vtkInterreflectionFilter alone, on any mesh with a radiosity array: the closed sphere's
 // closed form with a per-vertex albedo that is red alone (no green or blue to reflect).
 TEST(Interreflection, TheFilterAloneGathersFromAnyRadiosityArray)
@@ -219,6 +326,62 @@ TEST(Interreflection, TheFilterAloneGathersFromAnyRadiosityArray)
     "\"estimator\": \"prt\") to carry through the bounces");
 }
 
+// The filter alone on both sides of a surface: a closed sphere whose normals point out, its
+// fronts (outside) sending 0 and its backs (inside) 2, with an albedo of 0.5. The backs gather
+// the inside's E_1 = 2 and E_2 = 1 on the backs' hits; the fronts see nothing. Every back ray
+// meets a back. Transfer vectors are carried on one side only.
+TEST(Interreflection, TheFilterAloneGathersOnBothSidesOfASurface)
+{
+  vtkSmartPointer<vtkPolyData> sphere = shadelab::testing::exactSphere(30, glm::dvec3(0.0), 1.0);
+  const vtkIdType points = sphere->GetNumberOfPoints();
+  for (const auto& [name, value] : { std::pair<const char*, double>{ "glow", 0.0 }, { "inner_glow", 2.0 } })
+  {
+    vtkNew<vtkDoubleArray> radiosity;
+    radiosity->SetName(name);
+    radiosity->SetNumberOfComponents(3);
+    radiosity->SetNumberOfTuples(points);
+    radiosity->Fill(value);
+    sphere->GetPointData()->AddArray(radiosity);
+  }
+  vtkNew<vtkInterreflectionFilter> filter;
+  filter->SetInputData(sphere);
+  filter->SetRadiosityArrayName("glow");
+  filter->SetBackRadiosityArrayName("inner_glow");
+  filter->SetAlbedo(0.5, 0.5, 0.5);
+  filter->SetBounces(2);
+  filter->KeepBouncesOn();
+  filter->Update();
+  vtkPolyData* output = filter->GetOutput();
+  for (vtkIdType i = 0; i < points; ++i)
+  {
+    ASSERT_EQ(tupleOf(output, "indirect_irradiance", i), Rgb(0.0)) << i;
+    ASSERT_NEAR(tupleOf(output, "indirect_irradiance_back", i).g, 3.0, 1e-12) << i;
+    ASSERT_NEAR(tupleOf(output, "indirect_bounce_2_back", i).b, 1.0, 1e-12) << i;
+    ASSERT_LT(tupleOf(output, "indirect_irradiance_std_error_back", i).r, 1e-12) << i;
+  }
+  EXPECT_EQ(filter->GetBackHits(), 64 * points);
+  EXPECT_NE(filter->GetReport().find("2 bounces from 'glow' and 'inner_glow', 64 gather rays per vertex on each "
+                                     "side (16 for the later bounces); " +
+              std::to_string(64 * points) + " of " + std::to_string(128 * points) +
+              " rays (50%) met the back of a triangle and carried the backs' radiosity;"),
+    std::string::npos)
+    << filter->GetReport();
+
+  vtkNew<vtkDoubleArray> transfer;
+  transfer->SetName("transfer");
+  transfer->SetNumberOfComponents(9);
+  transfer->SetNumberOfTuples(points);
+  transfer->Fill(1);
+  sphere->GetPointData()->AddArray(transfer);
+  filter->AddTransferArrayName("transfer");
+  vtkNew<shadelab::app::VtkErrorCapture> errors;
+  errors->watch(filter);
+  filter->Update();
+  EXPECT_EQ(errors->message(),
+    "transfer vectors are carried through the bounces of one side only: leave "
+    "BackRadiosityArrayName empty, or carry no transfer array");
+}
+
 // Under a tolerance, "auto" bounces stop where what the rest can add, max(B_K) rho / (1 - rho),
 // fits a tenth of interreflection's half of it. Inside the closed sphere that bound is exact:
 // B_K = rho^K B_0 everywhere, B_0 = rho I / R^2 = 0.5, so K = 10 (0.5^11 <= 5e-4 < 0.5^10) and
@@ -273,6 +436,37 @@ TEST(Interreflection, AutoBouncesStopWhereTheRestFitsTheTolerance)
   EXPECT_LT(*chosen.estimatedSamplingError, 1e-7); // the float32 direct term's rounding
   EXPECT_EQ(chosen.describeRun().substr(0, 94),
     "interreflection chose 10 bounces (the rest add at most 0.00049) and 64 gather rays per vertex;");
+
+  // Two-sided, with its normals pointing out, the sphere seen from inside gets the same plan and
+  // the same bits: the hidden side is shaded under the plan too.
+  auto planned = [&](vtkPolyData* mesh, const Scene& shadedScene)
+  {
+    vtkNew<vtkLocalReflectanceFilter> run;
+    run->SetInputData(mesh);
+    run->SetScene(shadedScene);
+    run->SetArraySelection({ "all" });
+    run->SetOrientNormalsOutward(false);
+    run->SetTolerance(tolerance);
+    run->Update();
+    EXPECT_EQ(run->GetMethodPlan()->interreflection->bounces, 10);
+    auto output = vtkSmartPointer<vtkPolyData>::New();
+    output->DeepCopy(run->GetOutput());
+    return output;
+  };
+  const vtkSmartPointer<vtkPolyData> inward = planned(sphere, scene);
+  scene.material.twoSided = true;
+  const vtkSmartPointer<vtkPolyData> outward =
+    planned(shadelab::testing::exactSphere(40, glm::dvec3(0.0), radius), scene);
+  std::vector<std::string> bounceArrays{ "indirect", "indirect_irradiance_std_error" };
+  for (int n = 1; n <= 10; ++n)
+  {
+    bounceArrays.push_back("indirect_bounce_" + std::to_string(n));
+  }
+  for (const std::string& name : bounceArrays)
+  {
+    shadelab::testing::expectSameBits(
+      inward->GetPointData()->GetArray(name.c_str()), outward->GetPointData()->GetArray(name.c_str()), name.c_str());
+  }
 }
 
 // The rays are cosine-weighted about the normals' directions, whatever their length: inside a
@@ -471,6 +665,18 @@ TEST(Interreflection, TheTransferCarriedThroughTheBouncesRelightsTheClosedSphere
     ASSERT_NEAR(tupleOf(direct, "relit_irradiance", i).g, 2 * lit.g, 1e-9) << i;
   }
   EXPECT_EQ(direct->GetPointData()->GetArray("relit_irradiance_indirect"), nullptr);
+
+  // The transfer is carried on one side only: on a two-sided surface it is refused with what to
+  // do, and the rest shaded without it.
+  scene.material.twoSided = true;
+  EXPECT_EQ(shadelab::testing::filterError(sphere, scene),
+    "array 'sky_sh_transfer_indirect': a \"prt\" map's transfer is carried through the bounces of one side, and "
+    "this surface is shaded on both (a two-sided material, or VTK's renderer): leave the array out, give the map "
+    "another estimator, or make the material one-sided");
+  vtkSmartPointer<vtkPolyData> twoSided =
+    shadeWithFilter(sphere, scene, { "indirect_irradiance", "sky_sh_transfer" }, vtkAlgorithm::DOUBLE_PRECISION, false);
+  EXPECT_NE(twoSided->GetPointData()->GetArray("indirect_irradiance"), nullptr);
+  EXPECT_EQ(twoSided->GetPointData()->GetArray("sky_sh_transfer_indirect"), nullptr);
 
   // An indirect part of the wrong size is refused with what to do.
   vtkNew<vtkDoubleArray> wrong;

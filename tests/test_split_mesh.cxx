@@ -455,6 +455,18 @@ std::string sceneFile(const std::string& name, const std::string& json)
   return path.string();
 }
 
+/// A two-sided bunny lit from below its open base, seen from the side: both sides of each
+/// vertex gather, the hidden one shaded on the side of the rays too.
+std::string twoSidedBounces()
+{
+  return sceneFile("two_sided_bounces",
+    R"({ "material": { "kd": [0.8, 0.62, 0.45], "ks": [0, 0, 0], "two_sided": true },
+         "viewer": { "position": [0.3, 0.1, 0.2] },
+         "interreflection": { "bounces": 2, "samples": 32 },
+         "lights": [ { "name": "key", "type": "point", "position": [-0.02, 0.0, 0.02], "intensity": 0.02,
+                       "shadows": true } ] })");
+}
+
 // Interreflection: each process gathers at its own points against the whole mesh's triangles,
 // and the processes share every bounce's values, so that each piece gets the whole mesh's
 // bounces bit for bit: under a map with its shadows (interreflection.json, 3 bounces of 256
@@ -483,6 +495,9 @@ TEST(SplitMeshInterreflection, GathersAgainstTheWholeMeshAndSharesEachBounce)
   EXPECT_GT(expectPieceOfWhole(shaded(mesh, automatic, { "all" }, nullptr, 0.05),
               shaded(myPiece(mesh), automatic, { "all" }, processes(), 0.05)),
     8);
+  EXPECT_GT(expectPieceOfWhole(shaded(mesh, twoSidedBounces(), { "all" }, nullptr),
+              shaded(myPiece(mesh), twoSidedBounces(), { "all" }, processes())),
+    8);
 }
 
 // More processes than pieces: the process with an empty piece takes part in every bounce's
@@ -499,13 +514,16 @@ TEST(SplitMeshInterreflection, AProcessWithAnEmptyPiece)
   const bool holdsNone = rank == count - 1;
   vtkSmartPointer<vtkPolyData> piece =
     holdsNone ? vtkSmartPointer<vtkPolyData>::New() : shadelab::testing::meshPiece(mesh, rank, count - 1, 1);
-  const vtkSmartPointer<vtkPolyData> shadedPiece = shaded(piece, "interreflection.json", { "all" }, processes());
-  if (holdsNone)
+  for (const std::string& scene : { std::string("interreflection.json"), twoSidedBounces() })
   {
-    EXPECT_EQ(shadedPiece->GetNumberOfPoints(), 0);
-    return;
+    const vtkSmartPointer<vtkPolyData> shadedPiece = shaded(piece, scene, { "all" }, processes());
+    if (holdsNone)
+    {
+      EXPECT_EQ(shadedPiece->GetNumberOfPoints(), 0);
+      continue;
+    }
+    EXPECT_GT(expectPieceOfWhole(shaded(mesh, scene, { "all" }, nullptr), shadedPiece), 10);
   }
-  EXPECT_GT(expectPieceOfWhole(shaded(mesh, "interreflection.json", { "all" }, nullptr), shadedPiece), 10);
 }
 
 /// The bunny with its normals and a radiosity that varies over it, for the interreflection

@@ -1,5 +1,6 @@
 #include "ShadeLabIndirectLight.h"
 
+#include "ShadingFlags.h"
 #include "vtkInterreflectionFilter.h"
 
 #include "vtkCellArray.h"
@@ -60,6 +61,45 @@ vtkDataArray* namedOrEmpty(std::vector<vtkSmartPointer<vtkDataArray>>& arrays, c
   return empty;
 }
 
+/// Whether a vertex's hidden side is its normal's back (so the seen one is its front). A vertex
+/// of non-finite input, whose flags say that alone, sends nothing from either side.
+bool hiddenOnBack(const HiddenSide& hidden, vtkIdType i)
+{
+  return (static_cast<unsigned>(hidden.flags->GetComponent(i, 0)) & FlagNormalFlipped) != 0;
+}
+
+/// The radiosity of each vertex's front (the side its normal points to) or back, from the
+/// seen side's diffuse term and the hidden side's.
+vtkSmartPointer<vtkDataArray> radiosityOfSide(
+  vtkDataArray* seen, const HiddenSide& hidden, bool back, const std::string& name)
+{
+  vtkSmartPointer<vtkDataArray> side = vtk::TakeSmartPointer(seen->NewInstance());
+  side->SetName(name.c_str());
+  side->SetNumberOfComponents(3);
+  side->SetNumberOfTuples(seen->GetNumberOfTuples());
+  for (vtkIdType i = 0; i < seen->GetNumberOfTuples(); ++i)
+  {
+    side->SetTuple(i, (hiddenOnBack(hidden, i) == back ? hidden.diffuse.Get() : seen)->GetTuple(i));
+  }
+  return side;
+}
+
+/// The step's front and back arrays of that name made one, of the side each vertex is seen
+/// from, under the front's name.
+void keepSeenSide(vtkPointData* gathered, const HiddenSide& hidden, const std::string& name)
+{
+  vtkDataArray* front = gathered->GetArray(name.c_str());
+  vtkDataArray* back = gathered->GetArray((name + "_back").c_str());
+  for (vtkIdType i = 0; i < front->GetNumberOfTuples(); ++i)
+  {
+    if (!hiddenOnBack(hidden, i))
+    {
+      front->SetTuple(i, back->GetTuple(i));
+    }
+  }
+  gathered->RemoveArray((name + "_back").c_str());
+}
+
 /// into += scale x added, RGB tuple by tuple.
 void addScaled(vtkDataArray* into, vtkDataArray* added, double scale)
 {
@@ -71,6 +111,21 @@ void addScaled(vtkDataArray* into, vtkDataArray* added, double scale)
     }
   }
 }
+}
+
+std::string oneSidedTransferProblem(const Scene& scene, const ArrayRequest& asked)
+{
+  for (std::size_t l = 0; l < asked.indirectTransfer.size(); ++l)
+  {
+    if (asked.indirectTransfer[l] && shadesBothSides(scene))
+    {
+      return "array '" + indirectTransferArrayName("", scene.lights[l].name) +
+        "': a \"prt\" map's transfer is carried through the bounces of one side, and this surface is shaded on both "
+        "(a two-sided material, or VTK's renderer): leave the array out, give the map another estimator, or make the "
+        "material one-sided";
+    }
+  }
+  return "";
 }
 
 ArrayRequest withInterreflectionSources(const Scene& scene, const ArrayRequest& asked)
@@ -114,9 +169,10 @@ double gatherError(vtkPointData* gathered, vtkDoubleArray* albedo, const Scene& 
 }
 
 /// The step run, and under a tolerance run once more with more rays where the first run's
-/// standard errors say its share needs them.
+/// standard errors say its share needs them. With a hidden side, each vertex keeps the arrays
+/// of the side it is seen from.
 vtkPointData* runStep(vtkInterreflectionFilter* step, vtkDoubleArray* albedo, const Scene& scene,
-  const MeshPieces& pieces, InterreflectionChoice* choice)
+  const MeshPieces& pieces, InterreflectionChoice* choice, const HiddenSide* hidden)
 {
   auto run = [&]
   {
@@ -125,6 +181,18 @@ vtkPointData* runStep(vtkInterreflectionFilter* step, vtkDoubleArray* albedo, co
     if (!gathered->GetArray("indirect_irradiance"))
     {
       throw std::runtime_error("interreflection failed (see the error above)");
+    }
+    std::vector<std::string> sided{ "indirect_irradiance", "indirect_irradiance_std_error" };
+    for (int n = 1; n <= step->GetBounceCount(); ++n) // where kept
+    {
+      sided.push_back("indirect_bounce_" + std::to_string(n));
+    }
+    for (const std::string& name : sided)
+    {
+      if (hidden && gathered->GetArray(name.c_str()))
+      {
+        keepSeenSide(gathered, *hidden, name);
+      }
     }
     return gathered;
   };
@@ -185,7 +253,7 @@ void markAsPiece(vtkPolyData* piece, vtkPolyData* surface)
 /// rest fits the choice's share. Throws std::runtime_error where it failed.
 vtkPointData* gatherBounces(vtkInterreflectionFilter* step, vtkPolyData* input, vtkDataArray* shadingNormals,
   vtkDataArray* diffuse, vtkDoubleArray* albedo, const std::vector<vtkDataArray*>& transfers, const Scene& scene,
-  const ArrayRequest& asked, const MeshPieces& pieces, InterreflectionChoice* choice)
+  const ArrayRequest& asked, const MeshPieces& pieces, InterreflectionChoice* choice, const HiddenSide* hidden)
 {
   vtkNew<vtkPolyData> surface;
   surface->SetPoints(input->GetPoints());
@@ -197,10 +265,25 @@ vtkPointData* gatherBounces(vtkInterreflectionFilter* step, vtkPolyData* input, 
   {
     markAsPiece(input, surface);
   }
-  vtkSmartPointer<vtkDataArray> radiosity = vtk::TakeSmartPointer(diffuse->NewInstance());
-  radiosity->ShallowCopy(diffuse);
-  radiosity->SetName("diffuse");
+  // With a hidden side (an empty piece has none), the fronts' and the backs' radiosity.
+  const bool sides = hidden && hidden->diffuse;
+  vtkSmartPointer<vtkDataArray> radiosity;
+  if (sides)
+  {
+    radiosity = radiosityOfSide(diffuse, *hidden, false, "front_diffuse");
+  }
+  else
+  {
+    radiosity = vtk::TakeSmartPointer(diffuse->NewInstance());
+    radiosity->ShallowCopy(diffuse);
+    radiosity->SetName(hidden ? "front_diffuse" : "diffuse"); // an empty piece's, with a hidden side
+  }
   surface->GetPointData()->AddArray(radiosity);
+  if (sides)
+  {
+    surface->GetPointData()->AddArray(radiosityOfSide(diffuse, *hidden, true, "back_diffuse"));
+  }
+  step->SetBackRadiosityArrayName(hidden ? "back_diffuse" : "");
   if (albedo)
   {
     surface->GetPointData()->AddArray(albedo);
@@ -213,7 +296,7 @@ vtkPointData* gatherBounces(vtkInterreflectionFilter* step, vtkPolyData* input, 
   }
   const Interreflection& settings = *scene.interreflection;
   step->SetInputData(surface);
-  step->SetRadiosityArrayName("diffuse");
+  step->SetRadiosityArrayName(radiosity->GetName());
   step->SetAlbedoArrayName(albedo ? "albedo" : "");
   step->SetAlbedo(scene.material.kd.r, scene.material.kd.g, scene.material.kd.b);
   step->SetBounces(choice ? Interreflection::maxBounces : settings.bounces);
@@ -223,7 +306,7 @@ vtkPointData* gatherBounces(vtkInterreflectionFilter* step, vtkPolyData* input, 
   step->SetStratified(settings.sampling.stratified);
   step->SetKeepBounces(std::any_of(asked.bounces.begin(), asked.bounces.end(), [](bool b) { return b; }));
   step->SetArrayPrefix("");
-  return runStep(step, albedo, scene, pieces, choice);
+  return runStep(step, albedo, scene, pieces, choice, hidden);
 }
 
 /// kd E_ind, in the precision of `like` (the shaded diffuse term).
@@ -294,13 +377,14 @@ std::string bouncesNotMade(const ArrayRequest& asked, const std::string& prefix,
 
 std::string addIndirectLight(vtkInterreflectionFilter* step, vtkPolyData* input, vtkDataArray* shadingNormals,
   const Scene& scene, const ArrayRequest& asked, const VertexMaterial* material, const std::string& prefix,
-  std::vector<vtkSmartPointer<vtkDataArray>>& arrays, const MeshPieces& pieces, InterreflectionChoice* choice)
+  std::vector<vtkSmartPointer<vtkDataArray>>& arrays, const MeshPieces& pieces, InterreflectionChoice* choice,
+  const HiddenSide* hidden)
 {
   vtkDataArray* diffuse = namedOrEmpty(arrays, totalArrayName(prefix, TotalTerm::Diffuse), 3);
   const vtkSmartPointer<vtkDoubleArray> albedo = albedoArray(scene, material, input->GetNumberOfPoints());
   const std::vector<vtkDataArray*> transfers = transfersToCarry(scene, asked, prefix, arrays);
   vtkPointData* gathered =
-    gatherBounces(step, input, shadingNormals, diffuse, albedo, transfers, scene, asked, pieces, choice);
+    gatherBounces(step, input, shadingNormals, diffuse, albedo, transfers, scene, asked, pieces, choice, hidden);
   vtkDataArray* irradiance = gathered->GetArray("indirect_irradiance");
   const vtkSmartPointer<vtkDataArray> indirect = indirectDiffuseTerm(
     irradiance, albedo, scene, diffuse, interreflectionArrayName(prefix, InterreflectionTerm::Indirect));
@@ -350,6 +434,8 @@ std::string addIndirectLight(vtkInterreflectionFilter* step, vtkPolyData* input,
   // What the step holds is not kept until the next run (the arrays asked for are in `arrays`).
   step->GetOutput()->Initialize();
   step->SetInputData(nullptr);
-  return step->GetReport() + bouncesNotMade(asked, prefix, step->GetBounceCount());
+  const std::string sides =
+    hidden ? "both sides shaded (front_diffuse: the diffuse term on the side the normals point to): " : "";
+  return sides + step->GetReport() + bouncesNotMade(asked, prefix, step->GetBounceCount());
 }
 }

@@ -20,12 +20,28 @@ class vtkPolyData;
 
 namespace shadelab
 {
+/// On a surface shaded on both sides, the side of each vertex that the viewer does not see,
+/// shaded as the seen side is (Scene::shadedSide Hidden): its direct diffuse term, the light it
+/// sends to the vertices that see that side, and its shading flags, whose FlagNormalFlipped
+/// says that side is the normal's back (so the seen one is its front).
+struct HiddenSide
+{
+  vtkSmartPointer<vtkDataArray> diffuse;
+  vtkSmartPointer<vtkDataArray> flags;
+};
+
+/// Why the request cannot be shaded where it carries a "prt" map's transfer through the bounces
+/// (an indirect transfer array) on a surface shaded on both sides: the transfer is carried on
+/// one side only. "" where it can.
+std::string oneSidedTransferProblem(const Scene& scene, const ArrayRequest& asked);
+
 /// The request the kernel shades for interreflection: `asked`, with the diffuse total (the
 /// first bounce's radiosity) and, for ambient_minus_indirect, the ambient total.
 ArrayRequest withInterreflectionSources(const Scene& scene, const ArrayRequest& asked);
 
 /// Runs `step` on the input's surface with the shading normals, from the diffuse total in
-/// `arrays` and the material's kd (per vertex where `material` has it); adds kd E_ind to the
+/// `arrays` and the material's kd (per vertex where `material` has it), and on a surface shaded
+/// on both sides from `hidden`'s diffuse term on the other side too; adds kd E_ind to the
 /// diffuse and total arrays and appends the interreflection arrays `asked` names, then drops the
 /// totals shaded only for it. On a split mesh's piece (`pieces`), the step gathers against the
 /// whole mesh, every process alike, an empty piece too (a collective call). Under a tolerance
@@ -33,6 +49,6 @@ ArrayRequest withInterreflectionSources(const Scene& scene, const ArrayRequest& 
 /// written into it. Returns the step's report. Throws std::runtime_error where the step failed.
 std::string addIndirectLight(vtkInterreflectionFilter* step, vtkPolyData* input, vtkDataArray* shadingNormals,
   const Scene& scene, const ArrayRequest& asked, const VertexMaterial* material, const std::string& prefix,
-  std::vector<vtkSmartPointer<vtkDataArray>>& arrays, const MeshPieces& pieces,
-  InterreflectionChoice* choice = nullptr);
+  std::vector<vtkSmartPointer<vtkDataArray>>& arrays, const MeshPieces& pieces, InterreflectionChoice* choice = nullptr,
+  const HiddenSide* hidden = nullptr);
 }

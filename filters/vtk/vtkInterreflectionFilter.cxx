@@ -121,16 +121,20 @@ bool isAlbedo(const shadelab::Rgb& kd)
   return inUnit(kd.r) && inUnit(kd.g) && inUnit(kd.b);
 }
 
-/// Every vertex's gather rays traced (gatherHits) and handed to `gather`, or on a mesh split
-/// over processes the vertices `split` owns, in hundredths of them, so that progress is
-/// reported and an abort heard between them (only where the filter may stop alone, a whole
-/// mesh). Returns how many met a back.
-long long gatherEveryVertex(const shadelab::OccluderMesh& occluders, vtkPolyData* mesh, vtkDataArray* normals,
-  const shadelab::Sampling& sampling, shadelab::BounceGather& gather, vtkAlgorithm* filter,
+/// Every point's gather rays traced (gatherHits) and handed to `gather`: every vertex's front
+/// and, with both sides, every vertex's back (point N + v, gathering about the reversed normal,
+/// with lit backs), or on a mesh split over processes the points `split` owns; in hundredths of
+/// them, so that progress is reported and an abort heard between them (only where the filter
+/// may stop alone, a whole mesh). Returns how many met a back.
+long long gatherEveryPoint(const shadelab::OccluderMesh& occluders, vtkPolyData* mesh, vtkDataArray* normals,
+  const shadelab::Sampling& sampling, shadelab::ShadedSides sides, shadelab::BounceGather& gather, vtkAlgorithm* filter,
   const shadelab::SplitVertices* split)
 {
-  const vtkIdType count = split ? static_cast<vtkIdType>(split->own.size()) : mesh->GetNumberOfPoints();
-  auto vertexAt = [&](vtkIdType k) { return split ? static_cast<vtkIdType>(split->own[std::size_t(k)]) : k; };
+  const bool both = sides == shadelab::ShadedSides::Both;
+  const vtkIdType vertices = mesh->GetNumberOfPoints();
+  const vtkIdType count = split ? static_cast<vtkIdType>(split->own.size()) : vertices * (both ? 2 : 1);
+  auto pointAt = [&](vtkIdType k) { return split ? static_cast<vtkIdType>(split->own[std::size_t(k)]) : k; };
+  const shadelab::TriangleBacks backs = both ? shadelab::TriangleBacks::Lit : shadelab::TriangleBacks::Dark;
   std::atomic<long long> backHits{ 0 };
   const vtkIdType block = std::max<vtkIdType>(count / 100, 256);
   shadelab::visitPackedPoints(normals,
@@ -149,11 +153,12 @@ long long gatherEveryVertex(const shadelab::OccluderMesh& occluders, vtkPolyData
             long long back = 0;
             for (vtkIdType k = begin; k < end; ++k)
             {
-              const vtkIdType i = vertexAt(k);
-              shadelab::RayVertex vertex{ {}, unitOrZero(packedNormals(i)), i };
+              const vtkIdType point = pointAt(k), i = point % vertices;
+              const double side = point < vertices ? 1.0 : -1.0;
+              shadelab::RayVertex vertex{ {}, side * unitOrZero(packedNormals(i)), i };
               mesh->GetPoint(i, &vertex.position.x);
-              back += shadelab::gatherHits(occluders, vertex, sampling, packedNormals, hits.data());
-              gather.addVertex(static_cast<std::size_t>(i), hits.data());
+              back += shadelab::gatherHits(occluders, vertex, sampling, packedNormals, hits.data(), backs);
+              gather.addVertex(static_cast<std::size_t>(point), hits.data());
             }
             backHits += back;
           });
@@ -172,13 +177,14 @@ void smpLoop(std::size_t count, const std::function<void(std::size_t, std::size_
     [&](vtkIdType begin, vtkIdType end) { body(std::size_t(begin), std::size_t(end)); });
 }
 
-/// An RGB point array of the values, in float64 or float32.
-vtkSmartPointer<vtkDataArray> rgbArray(const std::string& name, const std::vector<shadelab::Rgb>& values, bool float64)
+/// An RGB point array of `points` values from values[first], in float64 or float32.
+vtkSmartPointer<vtkDataArray> rgbArray(
+  const std::string& name, const std::vector<shadelab::Rgb>& values, std::size_t first, vtkIdType points, bool float64)
 {
-  vtkSmartPointer<vtkDataArray> array = shadelab::realArray(name, 3, static_cast<vtkIdType>(values.size()), float64);
-  for (std::size_t i = 0; i < values.size(); ++i)
+  vtkSmartPointer<vtkDataArray> array = shadelab::realArray(name, 3, points, float64);
+  for (vtkIdType i = 0; i < points; ++i)
   {
-    array->SetTuple(static_cast<vtkIdType>(i), &values[i].x);
+    array->SetTuple(i, &values[first + static_cast<std::size_t>(i)].x);
   }
   return array;
 }
@@ -285,6 +291,7 @@ void vtkInterreflectionFilter::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "RadiosityArrayName: " << this->RadiosityArrayName << "\n";
+  os << indent << "BackRadiosityArrayName: " << this->BackRadiosityArrayName << "\n";
   os << indent << "Albedo: " << this->Albedo[0] << " " << this->Albedo[1] << " " << this->Albedo[2] << "\n";
   os << indent << "AlbedoArrayName: " << this->AlbedoArrayName << "\n";
   os << indent << "Bounces: " << this->Bounces << "\n";
@@ -335,6 +342,10 @@ bool vtkInterreflectionFilter::TransferArrays(vtkPolyData* input, std::vector<vt
 void vtkInterreflectionFilter::AddArraysAnEmptyPieceLacks(vtkPolyData* piece)
 {
   std::vector<std::pair<std::string, int>> needed{ { this->RadiosityArrayName, 3 } };
+  if (!this->BackRadiosityArrayName.empty())
+  {
+    needed.emplace_back(this->BackRadiosityArrayName, 3);
+  }
   if (!this->AlbedoArrayName.empty())
   {
     needed.emplace_back(this->AlbedoArrayName, 3);
@@ -409,7 +420,9 @@ int vtkInterreflectionFilter::InterreflectWhole(
   vtkSmartPointer<vtkDoubleArray> albedo;
   std::vector<vtkDataArray*> transfers;
   vtkDataArray* radiosity = this->RgbArray(piece, this->RadiosityArrayName, "the direct radiosity");
-  const bool usable = radiosity && this->AlbedoOf(piece, albedo) && this->TransferArrays(piece, transfers);
+  vtkDataArray* backRadiosity = nullptr;
+  const bool usable = radiosity && this->AlbedoOf(piece, albedo) && this->TransferArrays(piece, transfers) &&
+    this->BackRadiosity(piece, transfers, backRadiosity);
   if (!shadelab::everyProcessHolds(this->Controller, usable))
   {
     return 0;
@@ -418,6 +431,10 @@ int vtkInterreflectionFilter::InterreflectWhole(
   mesh->ShallowCopy(whole);
   std::vector<vtkDataArray*> inputs = transfers;
   inputs.push_back(radiosity);
+  if (backRadiosity)
+  {
+    inputs.push_back(backRadiosity);
+  }
   if (albedo)
   {
     inputs.push_back(piece->GetPointData()->GetArray(this->AlbedoArrayName.c_str()));
@@ -426,10 +443,15 @@ int vtkInterreflectionFilter::InterreflectWhole(
   {
     mesh->GetPointData()->AddArray(atEveryPoint(this->Controller, array, pieceIds, whole->GetNumberOfPoints()));
   }
-  // Each vertex once: a piece may hold copies of a point (pieces read into one process).
+  // Each vertex once: a piece may hold copies of a point (pieces read into one process). With
+  // both sides, each vertex's back too, point N + v.
   SharedVertices vertices{ pieceIds, {} };
   std::sort(vertices.own.begin(), vertices.own.end());
   vertices.own.erase(std::unique(vertices.own.begin(), vertices.own.end()), vertices.own.end());
+  for (std::size_t k = 0, fronts = vertices.own.size(); backRadiosity && k < fronts; ++k)
+  {
+    vertices.own.push_back(whole->GetNumberOfPoints() + vertices.own[k]);
+  }
   vertices.everyProcesses = shadelab::gathered(this->Controller, vertices.own, shadelab::WholeMeshOn::EveryProcess);
   shadelab::SplitVertices split{ std::vector<std::size_t>(vertices.own.begin(), vertices.own.end()),
     [&](std::vector<shadelab::Rgb>& values, std::size_t perVertex, bool ready)
@@ -478,9 +500,11 @@ int vtkInterreflectionFilter::Interreflect(
     return 0;
   }
   vtkDataArray* radiosity = this->RgbArray(input, this->RadiosityArrayName, "the direct radiosity");
+  vtkDataArray* backRadiosity = nullptr;
   vtkSmartPointer<vtkDoubleArray> albedo;
   std::vector<vtkDataArray*> transfers;
-  if (!radiosity || !this->AlbedoOf(input, albedo) || !this->TransferArrays(input, transfers))
+  if (!radiosity || !this->AlbedoOf(input, albedo) || !this->TransferArrays(input, transfers) ||
+    !this->BackRadiosity(input, transfers, backRadiosity))
   {
     return 0;
   }
@@ -489,11 +513,14 @@ int vtkInterreflectionFilter::Interreflect(
   {
     if (this->Bounces > 0)
     {
-      indirect = this->GatherBounces(input, normals, radiosity, albedo, transfers, split); // and its report
+      indirect =
+        this->GatherBounces(input, normals, radiosity, backRadiosity, albedo, transfers, split); // and its report
     }
     else
     {
-      indirect = noIndirectLight(static_cast<std::size_t>(input->GetNumberOfPoints()), coefficientsOf(transfers));
+      const std::size_t sides = backRadiosity ? 2 : 1;
+      indirect =
+        noIndirectLight(sides * static_cast<std::size_t>(input->GetNumberOfPoints()), coefficientsOf(transfers));
       this->Report = "0 bounces: no indirect light";
     }
   }
@@ -543,10 +570,34 @@ bool vtkInterreflectionFilter::AlbedoOf(vtkPolyData* input, vtkSmartPointer<vtkD
   return true;
 }
 
-shadelab::IndirectIrradiance vtkInterreflectionFilter::GatherBounces(vtkPolyData* input, vtkDataArray* normals,
-  vtkDataArray* radiosity, vtkDoubleArray* albedo, const std::vector<vtkDataArray*>& transfers,
-  const shadelab::SplitVertices* split)
+bool vtkInterreflectionFilter::BackRadiosity(
+  vtkPolyData* input, const std::vector<vtkDataArray*>& transfers, vtkDataArray*& backRadiosity)
 {
+  if (this->BackRadiosityArrayName.empty())
+  {
+    return true;
+  }
+  if (!transfers.empty())
+  {
+    vtkErrorMacro("transfer vectors are carried through the bounces of one side only: leave BackRadiosityArrayName "
+                  "empty, or carry no transfer array");
+    return false;
+  }
+  backRadiosity = this->RgbArray(input, this->BackRadiosityArrayName, "the backs' direct radiosity");
+  return backRadiosity != nullptr;
+}
+
+shadelab::IndirectIrradiance vtkInterreflectionFilter::GatherBounces(vtkPolyData* input, vtkDataArray* normals,
+  vtkDataArray* radiosity, vtkDataArray* backRadiosity, vtkDoubleArray* albedo,
+  const std::vector<vtkDataArray*>& transfers, const shadelab::SplitVertices* split)
+{
+  const shadelab::ShadedSides sides = backRadiosity ? shadelab::ShadedSides::Both : shadelab::ShadedSides::Front;
+  std::vector<shadelab::Rgb> direct = rgbValues(radiosity);
+  if (backRadiosity)
+  {
+    const std::vector<shadelab::Rgb> backs = rgbValues(backRadiosity);
+    direct.insert(direct.end(), backs.begin(), backs.end());
+  }
   const shadelab::Sampling sampling{ this->Samples, this->Stratified };
   const shadelab::Albedo kd{ { this->Albedo[0], this->Albedo[1], this->Albedo[2] },
     albedo ? albedo->GetPointer(0) : nullptr };
@@ -558,9 +609,10 @@ shadelab::IndirectIrradiance vtkInterreflectionFilter::GatherBounces(vtkPolyData
   try
   {
     occluders = shadelab::occludersOf(input);
-    gather = std::make_unique<shadelab::BounceGather>(*occluders, rgbValues(radiosity), sampling,
-      transfers.empty() ? std::vector<shadelab::Rgb>() : reflectedTransfer(transfers, kd, input->GetNumberOfPoints()));
-    this->BackHits = gatherEveryVertex(*occluders, input, normals, sampling, *gather, this, split);
+    gather = std::make_unique<shadelab::BounceGather>(*occluders, std::move(direct), sampling,
+      transfers.empty() ? std::vector<shadelab::Rgb>() : reflectedTransfer(transfers, kd, input->GetNumberOfPoints()),
+      sides);
+    this->BackHits = gatherEveryPoint(*occluders, input, normals, sampling, sides, *gather, this, split);
     occluders->releaseTracing(); // the sweeps' peak memory without the BVH
   }
   catch (const std::exception& error)
@@ -580,8 +632,7 @@ shadelab::IndirectIrradiance vtkInterreflectionFilter::GatherBounces(vtkPolyData
     gather->bounce(kd, { this->Bounces, this->BounceTolerance }, this->KeepBounces, smpLoop, split);
   this->BounceCount = indirect.bounceCount;
   this->RestBound = indirect.restBound;
-  this->GatherRays =
-    static_cast<long long>(split ? split->own.size() : std::size_t(input->GetNumberOfPoints())) * this->Samples;
+  this->GatherRays = static_cast<long long>(split ? split->own.size() : indirect.irradiance.size()) * this->Samples;
   this->LaterRays = gather->laterRays();
   this->Report = this->ReportOf(transfers);
   return indirect;
@@ -591,12 +642,23 @@ void vtkInterreflectionFilter::AddIndirectArrays(vtkPolyData* output, const shad
   bool float64, const std::vector<vtkDataArray*>& transfers)
 {
   vtkPointData* out = output->GetPointData();
-  out->AddArray(rgbArray(this->ArrayPrefix + "indirect_irradiance", indirect.irradiance, float64));
-  out->AddArray(rgbArray(this->ArrayPrefix + "indirect_irradiance_std_error", indirect.standardError, float64));
-  for (std::size_t n = 0; n < indirect.bounces.size(); ++n)
+  const vtkIdType points = output->GetNumberOfPoints();
+  for (const bool back : { false, true })
   {
-    out->AddArray(
-      rgbArray(this->ArrayPrefix + "indirect_bounce_" + std::to_string(n + 1), indirect.bounces[n], float64));
+    if (back && this->BackRadiosityArrayName.empty())
+    {
+      break;
+    }
+    // The backs' values follow the fronts'.
+    const std::size_t first = back ? static_cast<std::size_t>(points) : 0;
+    auto side = [&](const std::vector<shadelab::Rgb>& values, const std::string& name)
+    { out->AddArray(rgbArray(this->ArrayPrefix + name + (back ? "_back" : ""), values, first, points, float64)); };
+    side(indirect.irradiance, "indirect_irradiance");
+    side(indirect.standardError, "indirect_irradiance_std_error");
+    for (std::size_t n = 0; n < indirect.bounces.size(); ++n)
+    {
+      side(indirect.bounces[n], "indirect_bounce_" + std::to_string(n + 1));
+    }
   }
   const std::size_t coefficients = coefficientsOf(transfers);
   std::size_t first = 0; // the array's first coefficient among every vertex's
@@ -611,14 +673,16 @@ void vtkInterreflectionFilter::AddIndirectArrays(vtkPolyData* output, const shad
 std::string vtkInterreflectionFilter::ReportOf(const std::vector<vtkDataArray*>& transfers) const
 {
   const std::size_t rays = std::size_t(this->GatherRays);
+  const bool both = !this->BackRadiosityArrayName.empty();
   std::string report = shadelab::countOf(std::size_t(this->BounceCount), "bounce") + " from '" +
-    this->RadiosityArrayName + "', " + std::to_string(this->Samples) + " gather rays per vertex" +
+    this->RadiosityArrayName + (both ? "' and '" + this->BackRadiosityArrayName : "") + "', " +
+    std::to_string(this->Samples) + " gather rays per vertex" + (both ? " on each side" : "") +
     (this->BounceCount > 1 && this->LaterRays < this->Samples
         ? " (" + std::to_string(this->LaterRays) + " for the later bounces)"
         : "") +
     "; " + std::to_string(this->BackHits) + " of " + shadelab::countOf(rays, "ray") + " (" +
-    shadelab::withDigits(100.0 * double(this->BackHits) / double(rays), 2) +
-    "%) met the back of a triangle and carried nothing; " +
+    shadelab::withDigits(100.0 * double(this->BackHits) / double(rays), 2) + "%) met the back of a triangle and " +
+    (both ? "carried the backs' radiosity; " : "carried nothing; ") +
     (std::isfinite(this->RestBound)
         ? "the bounces past them add at most " + shadelab::scientific(this->RestBound) + " to a diffuse term"
         : std::string("with an albedo of 1 the bounces past them have no bound"));

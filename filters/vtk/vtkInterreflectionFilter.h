@@ -13,6 +13,10 @@
  * AddTransferArrayName are carried through the same bounces (interreflected transfer). Every
  * input array passes through. The results are the same bits on any number of threads.
  *
+ * A two-sided surface (BackRadiosityArrayName set) sends light out from both sides: each vertex
+ * also gathers about its reversed normal, a ray that meets a triangle's back reads the backs'
+ * radiosity, and the backs' arrays are written too, named with "_back" after the fronts'.
+ *
  * vtkLocalReflectanceFilter runs it for a scene's "interreflection", and adds kd times the
  * indirect irradiance to its diffuse and total terms.
  */
@@ -46,6 +50,12 @@ public:
   /// "diffuse").
   vtkSetMacro(RadiosityArrayName, std::string);
   vtkGetMacro(RadiosityArrayName, std::string);
+
+  /// The point array of the direct radiosity of each vertex's back, the side opposite its
+  /// normal, RGB, for a surface shaded on both sides (default "": the backs send out nothing,
+  /// and a ray that meets one carries nothing). Not with transfer arrays.
+  vtkSetMacro(BackRadiosityArrayName, std::string);
+  vtkGetMacro(BackRadiosityArrayName, std::string);
 
   /// The albedo kd of every vertex, RGB in [0, 1] (default 0.8 0.8 0.8), where AlbedoArrayName
   /// is empty.
@@ -108,7 +118,8 @@ public:
 
   /// What the last run did: the rays, how many met a triangle's back, the bounces.
   const std::string& GetReport() const { return this->Report; }
-  /// Of the last run's gather rays, how many met the back of a triangle (and carried nothing).
+  /// Of the last run's gather rays, how many met the back of a triangle (and carried nothing,
+  /// or with BackRadiosityArrayName the backs' radiosity).
   long long GetBackHits() const { return this->BackHits; }
   /// The last run's bounces, and the most that the bounces past them add to a diffuse term
   /// (infinite where the albedo reaches 1).
@@ -145,10 +156,14 @@ private:
   /// The transfer arrays TransferArrayNames names, into `arrays`; false after reporting the
   /// first that is missing or has a count of components no order has.
   bool TransferArrays(vtkPolyData* input, std::vector<vtkDataArray*>& arrays);
-  /// Traces every vertex's gather rays, then bounces the light and the transfer vectors (the
-  /// core's BounceGather).
+  /// Traces every vertex's gather rays (on both sides where backRadiosity is not null), then
+  /// bounces the light and the transfer vectors (the core's BounceGather).
   shadelab::IndirectIrradiance GatherBounces(vtkPolyData* input, vtkDataArray* normals, vtkDataArray* radiosity,
-    vtkDoubleArray* albedo, const std::vector<vtkDataArray*>& transfers, const shadelab::SplitVertices* split);
+    vtkDataArray* backRadiosity, vtkDoubleArray* albedo, const std::vector<vtkDataArray*>& transfers,
+    const shadelab::SplitVertices* split);
+  /// The back radiosity's array where BackRadiosityArrayName names one (backRadiosity set; false
+  /// after reporting why it cannot be used).
+  bool BackRadiosity(vtkPolyData* input, const std::vector<vtkDataArray*>& transfers, vtkDataArray*& backRadiosity);
   void AddIndirectArrays(vtkPolyData* output, const shadelab::IndirectIrradiance& indirect, bool float64,
     const std::vector<vtkDataArray*>& transfers);
   /// The run's report: its bounces, rays, the rays that met a triangle's back, the bound on the
@@ -156,6 +171,7 @@ private:
   std::string ReportOf(const std::vector<vtkDataArray*>& transfers) const;
 
   std::string RadiosityArrayName = "diffuse";
+  std::string BackRadiosityArrayName;
   double Albedo[3] = { 0.8, 0.8, 0.8 };
   std::string AlbedoArrayName;
   int Bounces = 1;

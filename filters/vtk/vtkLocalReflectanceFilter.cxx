@@ -318,21 +318,30 @@ std::vector<vtkSmartPointer<vtkDataArray>> vtkLocalReflectanceFilter::RaysAndArr
   {
     arrays = this->ShadedArrays(input, shadingNormals, seen, plan, pieces, sampling);
   }
-  this->InterreflectionReport.clear();
-  if (indirect)
-  {
-    this->StartStep(normalsShare + raysShare + shadingShare, 1 - normalsShare - raysShare - shadingShare);
-    this->InterreflectionReport =
-      shadelab::addIndirectLight(this->Internals->InterreflectionStep, input, shadingNormals, plan.scene, plan.request,
-        plan.scene.material.arrays.any() ? &this->Internals->VertexMaterial : nullptr, this->ArrayPrefix, arrays,
-        pieces, this->Tolerance > 0 ? &*this->MethodPlan->interreflection : nullptr);
-    this->StopIfAborted(); // the step stopped (ForwardStepProgress asked it to)
-  }
   if (this->Tolerance > 0 && this->MethodPlan->forecast) // what the run drew, against it
   {
     this->MethodPlan->forecast->drawn =
       shadelab::SampleCounts{ std::accumulate(sampling.samplesDrawn.begin(), sampling.samplesDrawn.end(), 0.0),
         occlusionRayCount(plan.scene, seen, this->ArrayPrefix, sampling.samplesDrawn.size()) };
+  }
+  this->InterreflectionReport.clear();
+  if (indirect)
+  {
+    // Where both sides are shaded, the side the viewer does not see sends light too: its rays
+    // and shading take a third of the interreflection's progress.
+    const double start = normalsShare + raysShare + shadingShare, span = 1 - start;
+    const bool bothSides = shadelab::shadesBothSides(plan.scene);
+    std::optional<shadelab::HiddenSide> hidden;
+    if (bothSides)
+    {
+      hidden = this->ShadeHiddenSide(input, shadingNormals, plan, pieces, start, span / 3);
+    }
+    this->StartStep(start + (bothSides ? span / 3 : 0), bothSides ? 2 * span / 3 : span);
+    this->InterreflectionReport =
+      shadelab::addIndirectLight(this->Internals->InterreflectionStep, input, shadingNormals, plan.scene, plan.request,
+        plan.scene.material.arrays.any() ? &this->Internals->VertexMaterial : nullptr, this->ArrayPrefix, arrays,
+        pieces, this->Tolerance > 0 ? &*this->MethodPlan->interreflection : nullptr, hidden ? &*hidden : nullptr);
+    this->StopIfAborted(); // the step stopped (ForwardStepProgress asked it to)
   }
   // The rays' arrays have been used (those asked for are in `arrays`): not kept until the next run.
   this->Internals->VisibilityStep->GetOutput()->Initialize();
@@ -560,6 +569,12 @@ bool vtkLocalReflectanceFilter::ChooseArraysAndMethods(ShadingPlan& plan)
     vtkErrorMacro(<< error.what());
     return false;
   }
+  const std::string oneSided = shadelab::oneSidedTransferProblem(plan.scene, plan.request);
+  if (!oneSided.empty())
+  {
+    vtkErrorMacro(<< oneSided);
+    return false;
+  }
   plan.float32Fits = shadelab::meshCoordinateProblem(plan.extent.reach, shadelab::Precision::Float32).empty() &&
     shadelab::sceneProblems(plan.scene, shadelab::Precision::Float32).empty();
   const std::string unplanned = shadelab::tolerancePlanProblem(plan.scene);
@@ -574,63 +589,6 @@ bool vtkLocalReflectanceFilter::ChooseArraysAndMethods(ShadingPlan& plan)
   }
   // Under a tolerance, its plan gives every "auto" its target (in the second pass at the latest).
   return this->Tolerance > 0 || this->SceneIsValid(shadelab::untargetedSamplingProblems(plan.scene, false));
-}
-
-std::vector<vtkSmartPointer<vtkDataArray>> vtkLocalReflectanceFilter::ShadedArrays(vtkPolyData* input,
-  vtkDataArray* shadingNormals, vtkPolyData* seen, const ShadingPlan& plan, const shadelab::MeshPieces& pieces,
-  SamplingOutcome& sampling)
-{
-  shadelab::ShadingInputs inputs;
-  if (pieces.split()) // each point's samples are seeded by its index in the whole mesh
-  {
-    static_assert(sizeof(vtkIdType) == sizeof(long long), "ids seed samples as 64-bit integers");
-    inputs.sampleIds = reinterpret_cast<const long long*>(pieces.pointIds()->data());
-  }
-  if (plan.scene.material.arrays.any())
-  {
-    if (plan.precision == shadelab::Precision::Float32)
-    {
-      this->Internals->VertexMaterial.withFloat32(); // under a tolerance that chose float32: from float64
-    }
-    inputs.material = &this->Internals->VertexMaterial;
-  }
-  // Besides the kernel's: the occlusion arrays asked for, and which material values were clamped.
-  std::vector<vtkSmartPointer<vtkDataArray>> besideShading = seen
-    ? useVisibility(seen, plan.scene, plan.request, this->ArrayPrefix, inputs)
-    : std::vector<vtkSmartPointer<vtkDataArray>>();
-  if (plan.scene.material.arrays.clamps())
-  {
-    besideShading.push_back(clampedMaterialArray(this->Internals->VertexMaterial.clamped, this->ArrayPrefix));
-  }
-  vtkDataArray* points = input->GetPoints()->GetData();
-  // The spectral mode always has its total, in XYZ too, and its difference from the RGB model.
-  shadelab::ArrayRequest request = shadelab::withInterreflectionSources(plan.scene, plan.request);
-  std::optional<shadelab::LightColors> spectralColors;
-  if (plan.scene.spectral)
-  {
-    spectralColors = shadelab::spectralLightColors(plan.scene);
-    inputs.lightColors = &*spectralColors;
-    request.totals[int(shadelab::TotalTerm::Total)] = true;
-  }
-  const ProgressReport progress = [this](double done) { this->ReportProgress(done); };
-  auto shadeWith = [&](const shadelab::ArrayRequest& asked, SamplingOutcome* outcome)
-  {
-    return shadeIn(plan.precision, plan.scene, asked, plan.methods, this->ArrayPrefix, points, shadingNormals, inputs,
-      &progress, outcome ? &outcome->shortOfTarget : nullptr, outcome ? &outcome->standardError : nullptr,
-      outcome ? &outcome->samplesDrawn : nullptr);
-  };
-
-  std::vector<vtkSmartPointer<vtkDataArray>> arrays = shadeWith(request, &sampling);
-  if (spectralColors)
-  {
-    inputs.lightColors = nullptr; // the kernel's own products of RGB values: the RGB model
-    shadelab::ArrayRequest totalAlone = shadelab::selectArrays(plan.scene, { "total" });
-    totalAlone.flags = false;
-    const std::vector<vtkSmartPointer<vtkDataArray>> rgbModel = shadeWith(totalAlone, nullptr);
-    addSpectralArrays(arrays, rgbModel.front(), this->ArrayPrefix);
-  }
-  arrays.insert(arrays.end(), besideShading.begin(), besideShading.end());
-  return arrays;
 }
 
 void vtkLocalReflectanceFilter::AddFieldNotes(vtkPolyData* output) const

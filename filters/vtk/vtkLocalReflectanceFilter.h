@@ -46,6 +46,7 @@
 
 namespace shadelab
 {
+struct HiddenSide;
 struct MeshPieces;
 }
 
@@ -304,6 +305,11 @@ private:
   /// allocated or the rays failed.
   std::vector<vtkSmartPointer<vtkDataArray>> RaysAndArrays(vtkPolyData* input, vtkDataArray* shadingNormals,
     const ShadingPlan& plan, const shadelab::MeshPieces& pieces, SamplingOutcome& sampling);
+  /// For interreflection on a surface shaded on both sides: the side of each vertex the viewer
+  /// does not see, with the plan's methods and its rays (a collective call on a split mesh),
+  /// its progress over [start, start + span]. Throws std::runtime_error where the rays failed.
+  shadelab::HiddenSide ShadeHiddenSide(vtkPolyData* input, vtkDataArray* shadingNormals, const ShadingPlan& plan,
+    const shadelab::MeshPieces& pieces, double start, double span);
   /// The arrays the kernel computes with the normals and the rays' arrays in `seen` (nullptr:
   /// no rays), then the occlusion arrays asked for and material_clamped.
   std::vector<vtkSmartPointer<vtkDataArray>> ShadedArrays(vtkPolyData* input, vtkDataArray* shadingNormals,

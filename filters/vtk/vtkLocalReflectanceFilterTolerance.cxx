@@ -131,7 +131,9 @@ std::vector<unsigned char> pointsToMeasure(const shadelab::Scene& scene, vtkData
                   const double cosine = glm::dot(unit, s);
                   unsigned char measure = std::abs(cosine) < horizonBand ? AtAHorizon : 0;
                   // The lobe's cosine x on the side the kernel shades.
-                  const glm::dvec3 shaded = twoSided && glm::dot(unit, toViewer) < 0 ? -unit : unit;
+                  const bool turned =
+                    twoSided && shadelab::turnsNormalRound(glm::dot(unit, toViewer), scene.shadedSide);
+                  const glm::dvec3 shaded = turned ? -unit : unit;
                   if (measuresPow && glm::dot(shaded, s) > 0)
                   {
                     const double x = cosineOfLobe(shaded, s, toViewer);

@@ -234,6 +234,7 @@ class RayVertices
 public:
   RayVertices(vtkPolyData* input, const std::vector<vtkIdType>* rayPoints, const shadelab::Scene& scene)
     : twoSided(shadelab::shadesBothSides(scene))
+    , shadedSide(scene.shadedSide)
     , selfShadowing(scene.selfShadowing)
     , points(vtk::DataArrayTupleRange<3>(input->GetPoints()->GetData()))
     , normals(vtk::DataArrayTupleRange<3>(input->GetPointData()->GetNormals()))
@@ -242,8 +243,9 @@ public:
   {
   }
 
-  /// Whether the surface is shaded on both sides, which the rays leave from alike.
+  /// Whether the surface is shaded on both sides, which the rays leave from alike, and which.
   const bool twoSided;
+  const shadelab::ShadedSide shadedSide;
   /// Which triangles hide a shadowed light.
   const shadelab::SelfShadowing selfShadowing;
 
@@ -261,7 +263,9 @@ public:
       length2 > 1e-12 && std::isfinite(length2) && std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z);
     vertex.normal = usable ? vertex.normal / std::sqrt(length2) : glm::dvec3(0.0);
     toViewer = this->viewer.directionFrom(vertex.position);
-    occlusionNormal = this->twoSided && glm::dot(vertex.normal, toViewer) < 0 ? -vertex.normal : vertex.normal;
+    const bool turned =
+      this->twoSided && shadelab::turnsNormalRound(glm::dot(vertex.normal, toViewer), this->shadedSide);
+    occlusionNormal = turned ? -vertex.normal : vertex.normal;
     if (toViewer == glm::dvec3(0.0)) // at a local viewer: seen along its normal, as the kernel sees it
     {
       toViewer = occlusionNormal;

@@ -24,13 +24,14 @@ double largestAlbedo(const Albedo& albedo, std::size_t vertices)
 }
 
 /// The irradiance gathered along `count` hits, hitAt(j) the j-th, from `radiosity` (B, `fields`
-/// per vertex), into mean[0 .. fields - 1]: the mean of each field's B interpolated at each hit
-/// from the hit triangle's corners with its barycentric coordinates (0 for a miss, which
-/// gatherHits also makes of a triangle's back), and the light's (field 0's) standard error
-/// (stratified: consecutive rays paired, MonteCarloEstimate.h) where standardError is not null.
+/// per point; a triangle's back reads the points from firstBack on), into mean[0 .. fields - 1]:
+/// the mean of each field's B interpolated at each hit from the hit triangle's corners with its
+/// barycentric coordinates (0 for a miss, which gatherHits also makes of a dark back), and the
+/// light's (field 0's) standard error (stratified: consecutive rays paired, MonteCarloEstimate.h)
+/// where standardError is not null.
 template<typename HitAt>
 void meanOverHits(const OccluderMesh& occluders, std::size_t count, const Rgb* radiosity, std::size_t fields,
-  bool stratified, HitAt hitAt, Rgb* mean, Rgb* standardError)
+  std::size_t firstBack, bool stratified, HitAt hitAt, Rgb* mean, Rgb* standardError)
 {
   MonteCarloEstimate light(stratified);
   std::fill(mean + 1, mean + fields, Rgb(0.0));
@@ -43,11 +44,12 @@ void meanOverHits(const OccluderMesh& occluders, std::size_t count, const Rgb* r
       continue;
     }
     const std::array<std::uint32_t, 3> corners = occluders.corners(hit.triangle);
+    const Rgb* side = radiosity + (hit.onBack ? firstBack * fields : 0);
     const double u = hit.u, v = hit.v;
     auto at = [&](std::size_t field)
     {
-      return (1.0 - u - v) * radiosity[corners[0] * fields + field] + u * radiosity[corners[1] * fields + field] +
-        v * radiosity[corners[2] * fields + field];
+      return (1.0 - u - v) * side[corners[0] * fields + field] + u * side[corners[1] * fields + field] +
+        v * side[corners[2] * fields + field];
     };
     light.add(at(0));
     for (std::size_t field = 1; field < fields; ++field)
@@ -66,7 +68,7 @@ void meanOverHits(const OccluderMesh& occluders, std::size_t count, const Rgb* r
   }
 }
 
-/// B_0 of every field, each vertex's light (at least 0: a surface sends out no negative light)
+/// B_0 of every field, each point's light (at least 0: a surface sends out no negative light)
 /// followed by its carried fields.
 std::vector<Rgb> directOfEveryField(std::vector<Rgb> light, const std::vector<Rgb>& carried)
 {
@@ -80,20 +82,20 @@ std::vector<Rgb> directOfEveryField(std::vector<Rgb> light, const std::vector<Rg
   }
   if (light.empty() || carried.size() % light.size() != 0)
   {
-    throw std::invalid_argument("BounceGather: the carried fields must be as many for every vertex");
+    throw std::invalid_argument("BounceGather: the carried fields must be as many for every point");
   }
-  const std::size_t carriedPerVertex = carried.size() / light.size();
+  const std::size_t carriedPerPoint = carried.size() / light.size();
   std::vector<Rgb> fields(light.size() + carried.size());
-  for (std::size_t vertex = 0; vertex < light.size(); ++vertex)
+  for (std::size_t point = 0; point < light.size(); ++point)
   {
-    Rgb* own = &fields[vertex * (1 + carriedPerVertex)];
-    own[0] = light[vertex];
-    std::copy_n(&carried[vertex * carriedPerVertex], carriedPerVertex, own + 1);
+    Rgb* own = &fields[point * (1 + carriedPerPoint)];
+    own[0] = light[point];
+    std::copy_n(&carried[point * carriedPerPoint], carriedPerPoint, own + 1);
   }
   return fields;
 }
 
-/// What the sweeps exchange on a split mesh: each vertex's values, shared after a sweep, and the
+/// What the sweeps exchange on a split mesh: each point's values, shared after a sweep, and the
 /// memory one process could not have, agreed at the next share so that every process stops
 /// there alike. On a whole mesh nothing is shared and memory throws at once.
 class SweepExchange
@@ -151,8 +153,9 @@ void serialLoop(std::size_t count, const std::function<void(std::size_t, std::si
 }
 
 BounceGather::BounceGather(const OccluderMesh& occluders, std::vector<Rgb> directRadiosity, const Sampling& sampling,
-  const std::vector<Rgb>& transferRadiosity)
+  const std::vector<Rgb>& transferRadiosity, ShadedSides sides)
   : occluders_(occluders)
+  , vertices_(directRadiosity.size() / (sides == ShadedSides::Both ? 2 : 1))
   , fields_(1 + (directRadiosity.empty() ? 0 : transferRadiosity.size() / directRadiosity.size()))
   , direct_(directOfEveryField(std::move(directRadiosity), transferRadiosity))
   , sampling_(sampling)
@@ -165,16 +168,24 @@ BounceGather::BounceGather(const OccluderMesh& occluders, std::vector<Rgb> direc
   {
     throw std::invalid_argument("BounceGather: a vertex needs at least 2 rays");
   }
+  if (sides == ShadedSides::Both && firstBounceError_.size() % 2 != 0)
+  {
+    throw std::invalid_argument("BounceGather: both sides need each vertex's front and back");
+  }
+  if (occluders.triangleCount() > KeptHit::backBit - 1) // a kept hit's side is its index's top bit
+  {
+    throw std::invalid_argument("BounceGather: at most 2^31 - 1 triangles");
+  }
 }
 
-void BounceGather::addVertex(std::size_t vertex, const OccluderMesh::RayHit* hits)
+void BounceGather::addVertex(std::size_t point, const OccluderMesh::RayHit* hits)
 {
   meanOverHits(
-    occluders_, std::size_t(sampling_.samples), direct_.data(), fields_, sampling_.stratified,
-    [&](std::size_t j) { return hits[j]; }, &firstBounce_[vertex * fields_], &firstBounceError_[vertex]);
+    occluders_, std::size_t(sampling_.samples), direct_.data(), fields_, vertices_, sampling_.stratified,
+    [&](std::size_t j) { return hits[j]; }, &firstBounce_[point * fields_], &firstBounceError_[point]);
   for (std::size_t k = 0; k < kept_.size(); ++k)
   {
-    keptHits_[vertex * kept_.size() + k] = KeptHit::of(hits[kept_[k]]);
+    keptHits_[point * kept_.size() + k] = KeptHit::of(hits[kept_[k]]);
   }
 }
 
@@ -183,21 +194,21 @@ void BounceGather::gatherLater(const Rgb* radiosity, std::size_t first, std::siz
 {
   for (std::size_t i = first; i < last; ++i)
   {
-    const std::size_t vertex = at.vertex(i);
-    const KeptHit* hits = &keptHits_[vertex * kept_.size()];
+    const std::size_t point = at.point(i);
+    const KeptHit* hits = &keptHits_[point * kept_.size()];
     meanOverHits(
-      occluders_, kept_.size(), radiosity, fields_, sampling_.stratified,
-      [&](std::size_t k) { return hits[k].unpacked(); }, &irradiance[vertex * fields_],
-      standardError ? &standardError[vertex] : nullptr);
+      occluders_, kept_.size(), radiosity, fields_, vertices_, sampling_.stratified,
+      [&](std::size_t k) { return hits[k].unpacked(); }, &irradiance[point * fields_],
+      standardError ? &standardError[point] : nullptr);
   }
 }
 
 std::vector<Rgb> BounceGather::lightField(const std::vector<Rgb>& values) const
 {
   std::vector<Rgb> light(values.size() / fields_);
-  for (std::size_t vertex = 0; vertex < light.size(); ++vertex)
+  for (std::size_t point = 0; point < light.size(); ++point)
   {
-    light[vertex] = values[vertex * fields_];
+    light[point] = values[point * fields_];
   }
   return light;
 }
@@ -210,7 +221,7 @@ IndirectIrradiance BounceGather::bounce(
     throw std::invalid_argument("BounceGather::bounce: at least 1 bounce, once");
   }
   const std::size_t n = firstBounceError_.size();
-  const double rho = largestAlbedo(albedo, n);
+  const double rho = largestAlbedo(albedo, vertices_);
   if (limit.restShare > 0 && !(rho < 1))
   {
     throw std::invalid_argument("an albedo up to " + withDigits(rho, 3) +
@@ -276,14 +287,14 @@ double BounceGather::reflect(const Albedo& albedo, double rho, const std::vector
     [&](std::size_t first, std::size_t last)
     {
       double mine = 0;
-      for (std::size_t vertex = first; vertex < last; ++vertex)
+      for (std::size_t point = first; point < last; ++point)
       {
-        const Rgb kd = albedo.at(vertex);
-        for (std::size_t i = vertex * fields_; i < (vertex + 1) * fields_; ++i)
+        const Rgb kd = albedoAt(albedo, point);
+        for (std::size_t i = point * fields_; i < (point + 1) * fields_; ++i)
         {
           radiosity[i] = kd * irradiance[i];
         }
-        mine = std::max(mine, largestComponent(radiosity[vertex * fields_]));
+        mine = std::max(mine, largestComponent(radiosity[point * fields_]));
       }
       const std::lock_guard<std::mutex> lock(largestLock);
       largest = std::max(largest, mine);
@@ -315,12 +326,12 @@ void BounceGather::addLaterBounces(const std::vector<Rgb>& sum, std::vector<Rgb>
       gatherLater(sum.data(), first, last, at, rest.data(), restError.data());
       for (std::size_t i = first; i < last; ++i)
       {
-        const std::size_t vertex = at.vertex(i);
-        for (std::size_t field = vertex * fields_; field < (vertex + 1) * fields_; ++field)
+        const std::size_t point = at.point(i);
+        for (std::size_t field = point * fields_; field < (point + 1) * fields_; ++field)
         {
           irradiance[field] += rest[field];
         }
-        standardError[vertex] += restError[vertex];
+        standardError[point] += restError[point];
       }
     });
 }
@@ -335,9 +346,9 @@ void BounceGather::splitFields(std::vector<Rgb> irradiance, IndirectIrradiance& 
   result.irradiance = lightField(irradiance);
   const std::size_t carried = fields_ - 1;
   result.transfer.resize(result.irradiance.size() * carried);
-  for (std::size_t vertex = 0; vertex < result.irradiance.size(); ++vertex)
+  for (std::size_t point = 0; point < result.irradiance.size(); ++point)
   {
-    std::copy_n(&irradiance[vertex * fields_ + 1], carried, &result.transfer[vertex * carried]);
+    std::copy_n(&irradiance[point * fields_ + 1], carried, &result.transfer[point * carried]);
   }
 }
 }

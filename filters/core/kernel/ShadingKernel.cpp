@@ -157,6 +157,7 @@ ShadingKernel<T>::ShadingKernel(
   normalFresnel_ = { T(f0.x), T(f0.y), T(f0.z) };
   grazingFresnel_ = { T(f90.x), T(f90.y), T(f90.z) };
   twoSided_ = shadesBothSides(scene);
+  shadedSide_ = scene.shadedSide;
   shininess_ = T(m.shininess);
 
   localViewer_ = scene.viewer.position.has_value();
@@ -319,12 +320,12 @@ void ShadingKernel<T>::prepareViewer(const VertexBlock<T>& b, Workspace& w) cons
   {
     for (std::size_t k = 0; k < count; ++k)
     {
-      const bool facesAway = w.nx[k] * w.vx[k] + w.ny[k] * w.vy[k] + w.nz[k] * w.vz[k] < T(0);
-      const T sign = facesAway ? T(-1) : T(1);
+      const bool turned = turnsNormalRound(w.nx[k] * w.vx[k] + w.ny[k] * w.vy[k] + w.nz[k] * w.vz[k], shadedSide_);
+      const T sign = turned ? T(-1) : T(1);
       w.nx[k] *= sign;
       w.ny[k] *= sign;
       w.nz[k] *= sign;
-      w.flags[k] |= facesAway ? FlagNormalFlipped : 0;
+      w.flags[k] |= turned ? FlagNormalFlipped : 0;
     }
   }
 }

@@ -203,6 +203,7 @@ private:
   SpecularModel specularModel_ = SpecularModel::None;
   T shininess_ = 0;
   bool twoSided_ = false;
+  ShadedSide shadedSide_ = ShadedSide::Seen;
   bool localViewer_ = false;
   bool needsViewer_ = true;
   Vec3<T> viewerPosition_{ 0 };

@@ -83,6 +83,14 @@ struct SpectralMode
   double bandNm = 5;
 };
 
+/// Which side of a two-sided surface a vertex is shaded on: the one the viewer sees, or the
+/// other (whose light interreflection needs too: it reaches the vertices that see that side).
+enum class ShadedSide
+{
+  Seen,
+  Hidden
+};
+
 struct Scene
 {
   ShadingModel model = ShadingModel::Lecture;
@@ -103,6 +111,8 @@ struct Scene
   std::optional<SpectralMode> spectral;
   /// Which triangles hide a shadowed light: "self_shadowing" in a scene file.
   SelfShadowing selfShadowing = SelfShadowing::SmoothSurface;
+  /// Set by the filter, not by a scene file: the side shaded where both sides are.
+  ShadedSide shadedSide = ShadedSide::Seen;
 
   /// Whether anything needs rays cast against the mesh: a light's shadows or occlusion.
   bool needsVisibility() const;
@@ -145,6 +155,16 @@ void placeHeadlightsAtTheCamera(Scene& scene, bool lightsFromPositions);
 /// Whether the surface is shaded on both sides (a two-sided material, or VTK's renderer, which
 /// always flips back faces): the normal turned toward the viewer where it faces away.
 bool shadesBothSides(const Scene& scene);
+
+/// Whether a vertex of a surface shaded on both sides is shaded with its normal turned round,
+/// given n . v (v toward the viewer): where the normal faces away from the viewer, or for the
+/// hidden side, where it does not. One rule for the kernel and the rays, so that they agree.
+template<typename T>
+bool turnsNormalRound(T normalDotToViewer, ShadedSide side)
+{
+  const bool facesAway = normalDotToViewer < T(0);
+  return side == ShadedSide::Seen ? facesAway : !facesAway;
+}
 
 /// Why the scene's samples cannot be drawn as it stands, at the field that says so (none
 /// where they can): ambient occlusion with "rays": "auto" that no tolerance has given a target

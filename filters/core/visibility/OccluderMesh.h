@@ -78,6 +78,8 @@ public:
     static constexpr std::uint32_t noTriangle = 0xFFFFFFFFu;
     std::uint32_t triangle = noTriangle;
     float u = 0, v = 0;
+    /// Whether the ray met the triangle's back (gatherHits says which side that is).
+    bool onBack = false;
   };
   /// The first hits of rays[0..count-1] (count <= bundleSize), traced as one packet.
   void firstHits(const FrameRay* rays, int count, RayHit* hits) const;

@@ -362,7 +362,7 @@ OcclusionEstimate ambientOcclusion(
 
 template<typename Real>
 int gatherHits(const OccluderMesh& occluders, const RayVertex& vertex, const Sampling& sampling,
-  PackedPoints<Real> normals, OccluderMesh::RayHit* hits)
+  PackedPoints<Real> normals, OccluderMesh::RayHit* hits, TriangleBacks backs)
 {
   if (!hasNormal(vertex))
   {
@@ -382,7 +382,8 @@ int gatherHits(const OccluderMesh& occluders, const RayVertex& vertex, const Sam
         if (hit.triangle != OccluderMesh::RayHit::noTriangle &&
           !arrivesOnFront(occluders, normals, hit, glm::dvec3(x[j], y[j], z[j])))
         {
-          hit = OccluderMesh::RayHit{};
+          hit.onBack = true;
+          hit = backs == TriangleBacks::Lit ? hit : OccluderMesh::RayHit{};
           ++backHits;
         }
       }
@@ -391,9 +392,9 @@ int gatherHits(const OccluderMesh& occluders, const RayVertex& vertex, const Sam
 }
 
 template int gatherHits(
-  const OccluderMesh&, const RayVertex&, const Sampling&, PackedPoints<float>, OccluderMesh::RayHit*);
+  const OccluderMesh&, const RayVertex&, const Sampling&, PackedPoints<float>, OccluderMesh::RayHit*, TriangleBacks);
 template int gatherHits(
-  const OccluderMesh&, const RayVertex&, const Sampling&, PackedPoints<double>, OccluderMesh::RayHit*);
+  const OccluderMesh&, const RayVertex&, const Sampling&, PackedPoints<double>, OccluderMesh::RayHit*, TriangleBacks);
 
 std::vector<int> quarterOfGatherRays(const Sampling& sampling)
 {

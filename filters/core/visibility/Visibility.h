@@ -157,17 +157,26 @@ struct OcclusionEstimate
 OcclusionEstimate ambientOcclusion(
   const OccluderMesh& occluders, const RayVertex& vertex, const OcclusionSettings& settings);
 
+/// What a gather ray that meets a triangle's back brings: nothing, where only the side the
+/// normals point to is shaded; that side's radiosity, where both sides are (a two-sided material).
+enum class TriangleBacks
+{
+  Dark,
+  Lit
+};
+
 /// Interreflection's gather at a vertex (docs/formulas.md section 23): sampling.samples
 /// cosine-weighted rays about its normal, stratified in pairs as ambient occlusion's are but
 /// from a pattern of their own (seeded by the vertex's id, so the same on any thread or
 /// process), and each ray's first hit into hits[0..samples-1] in sample order. A ray that
 /// meets the back of a triangle, the side its shading normals (normals, per point) point away
-/// from, reads as a miss: it left into the solid or sees the inside of an open mesh, where no
-/// radiosity is computed. Returns how many did. A vertex without a normal casts no ray: every
-/// hit a miss.
+/// from, left into the solid or sees the inside of an open mesh: with dark backs it reads as a
+/// miss, with lit ones as a hit marked onBack. Returns how many did. A vertex without a normal
+/// casts no ray: every hit a miss. The back of a two-sided vertex gathers as a vertex with the
+/// opposite normal.
 template<typename Real>
 int gatherHits(const OccluderMesh& occluders, const RayVertex& vertex, const Sampling& sampling,
-  PackedPoints<Real> normals, OccluderMesh::RayHit* hits);
+  PackedPoints<Real> normals, OccluderMesh::RayHit* hits, TriangleBacks backs = TriangleBacks::Dark);
 
 /// About a quarter of a vertex's gather rays (gatherHits with `sampling`), spread as evenly as
 /// all of them: stratified, the first ray of the pairs whose cells make a checkerboard of the
