@@ -180,9 +180,11 @@ BounceGather::BounceGather(const OccluderMesh& occluders, std::vector<Rgb> direc
 
 void BounceGather::addVertex(std::size_t point, const OccluderMesh::RayHit* hits)
 {
+  Rgb error;
   meanOverHits(
     occluders_, std::size_t(sampling_.samples), direct_.data(), fields_, vertices_, sampling_.stratified,
-    [&](std::size_t j) { return hits[j]; }, &firstBounce_[point * fields_], &firstBounceError_[point]);
+    [&](std::size_t j) { return hits[j]; }, &firstBounce_[point * fields_], &error);
+  firstBounceError_[point] = glm::vec3(error);
   for (std::size_t k = 0; k < kept_.size(); ++k)
   {
     keptHits_[point * kept_.size() + k] = KeptHit::of(hits[kept_[k]]);
@@ -233,12 +235,15 @@ IndirectIrradiance BounceGather::bounce(
   // Every field's E_1 + ... + E_k, and the light's standard error.
   std::vector<Rgb> irradiance = std::move(firstBounce_);
   IndirectIrradiance result;
-  result.standardError = std::move(firstBounceError_);
   // B_k, B_1 + ... + B_{k-1}, E_k, every field's (E_1 is in irradiance, until the rest is added).
   std::vector<Rgb> radiosity, sum, gathered;
   exchange.attempt(
     [&]
     {
+      // In float64 from here, in the direct radiosity's room.
+      result.standardError.resize(n);
+      std::copy(firstBounceError_.begin(), firstBounceError_.end(), result.standardError.begin());
+      std::vector<glm::vec3>().swap(firstBounceError_);
       for (std::vector<Rgb>* made : { &radiosity, &sum, &gathered })
       {
         made->resize(n * fields_);
