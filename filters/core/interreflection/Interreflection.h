@@ -212,11 +212,11 @@ private:
   std::size_t fields_;      // per point: the light's radiosity, then the carried fields
   std::vector<Rgb> direct_; // B_0 of every field; the light's at least 0
   Sampling sampling_;
-  std::vector<int> kept_;             // which of a vertex's rays the later bounces use
-  std::vector<Rgb> firstBounce_;      // every field's
+  std::vector<int> kept_;        // which of a point's rays the later bounces use
+  std::vector<Rgb> firstBounce_; // every field's
   /// The light's, in float32 while the rays are traced (it bounds an estimate's error and needs
   /// no more digits): 12 bytes a point less at the gather's peak of memory.
   std::vector<glm::vec3> firstBounceError_;
-  std::vector<KeptHit> keptHits_;     // kept_.size() per vertex
+  std::vector<KeptHit> keptHits_; // kept_.size() per point
 };
 }
