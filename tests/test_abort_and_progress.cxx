@@ -155,13 +155,7 @@ TEST(AbortAndProgress, ProgressMovesThroughTheNormalsTheRaysAndTheShadingInOrder
   vtkSmartPointer<vtkPolyData> bunny = app::readMesh(data + "meshes/bunny_zipper.ply");
   vtkNew<vtkLocalReflectanceFilter> filter;
   setUp(filter, bunny, studioWithOcclusion(64));
-  std::vector<double> seen;
-  vtkNew<vtkCallbackCommand> observer;
-  observer->SetCallback([](vtkObject*, unsigned long, void* values, void* done)
-    { static_cast<std::vector<double>*>(values)->push_back(*static_cast<double*>(done)); });
-  observer->SetClientData(&seen);
-  filter->AddObserver(vtkCommand::ProgressEvent, observer);
-  filter->Update();
+  const std::vector<double> seen = progressOf(filter);
   ASSERT_GE(seen.size(), 4u);
   EXPECT_EQ(seen.front(), 0.0);
   EXPECT_EQ(seen.back(), 1.0);
