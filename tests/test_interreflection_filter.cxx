@@ -329,7 +329,8 @@ TEST(Interreflection, TheFilterAloneGathersFromAnyRadiosityArray)
 // The filter alone on both sides of a surface: a closed sphere whose normals point out, its
 // fronts (outside) sending 0 and its backs (inside) 2, with an albedo of 0.5. The backs gather
 // the inside's E_1 = 2 and E_2 = 1 on the backs' hits; the fronts see nothing. Every back ray
-// meets a back. Transfer vectors are carried on one side only.
+// meets a back. A transfer vector is carried on both sides from its fronts' and backs' arrays:
+// its backs' coefficients of 1 gain 0.5 + 0.25.
 TEST(Interreflection, TheFilterAloneGathersOnBothSidesOfASurface)
 {
   vtkSmartPointer<vtkPolyData> sphere = shadelab::testing::exactSphere(30, glm::dvec3(0.0), 1.0);
@@ -367,19 +368,36 @@ TEST(Interreflection, TheFilterAloneGathersOnBothSidesOfASurface)
     std::string::npos)
     << filter->GetReport();
 
-  vtkNew<vtkDoubleArray> transfer;
-  transfer->SetName("transfer");
-  transfer->SetNumberOfComponents(9);
-  transfer->SetNumberOfTuples(points);
-  transfer->Fill(1);
-  sphere->GetPointData()->AddArray(transfer);
+  for (const char* name : { "transfer", "transfer_back" })
+  {
+    vtkNew<vtkDoubleArray> transfer;
+    transfer->SetName(name);
+    transfer->SetNumberOfComponents(9);
+    transfer->SetNumberOfTuples(points);
+    transfer->Fill(1);
+    sphere->GetPointData()->AddArray(transfer);
+  }
   filter->AddTransferArrayName("transfer");
+  filter->Update();
+  vtkDataArray* front = filter->GetOutput()->GetPointData()->GetArray("transfer_indirect");
+  vtkDataArray* back = filter->GetOutput()->GetPointData()->GetArray("transfer_indirect_back");
+  ASSERT_EQ(back->GetNumberOfComponents(), 27);
+  for (vtkIdType i = 0; i < points; ++i)
+  {
+    for (int c = 0; c < 27; ++c)
+    {
+      ASSERT_EQ(front->GetComponent(i, c), 0.0) << i;
+      ASSERT_NEAR(back->GetComponent(i, c), 0.75, 1e-12) << i;
+    }
+  }
+  // Without its backs' array, the transfer is refused.
+  sphere->GetPointData()->RemoveArray("transfer_back");
   vtkNew<shadelab::app::VtkErrorCapture> errors;
   errors->watch(filter);
   filter->Update();
   EXPECT_EQ(errors->message(),
-    "transfer vectors are carried through the bounces of one side only: leave "
-    "BackRadiosityArrayName empty, or carry no transfer array");
+    "the input has no numeric point array 'transfer_back' of transfer vectors (9, 16 or 25 components: "
+    "\"estimator\": \"prt\") to carry through the bounces");
 }
 
 // Under a tolerance, "auto" bounces stop where what the rest can add, max(B_K) rho / (1 - rho),
@@ -666,17 +684,16 @@ TEST(Interreflection, TheTransferCarriedThroughTheBouncesRelightsTheClosedSphere
   }
   EXPECT_EQ(direct->GetPointData()->GetArray("relit_irradiance_indirect"), nullptr);
 
-  // The transfer is carried on one side only: on a two-sided surface it is refused with what to
-  // do, and the rest shaded without it.
+  // Two-sided, the sphere with its normals pointing out carries the transfer through the bounces
+  // on the side it is seen from, inside: the bits of the sphere with inward normals.
   scene.material.twoSided = true;
-  EXPECT_EQ(shadelab::testing::filterError(sphere, scene),
-    "array 'sky_sh_transfer_indirect': a \"prt\" map's transfer is carried through the bounces of one side, and "
-    "this surface is shaded on both (a two-sided material, or VTK's renderer): leave the array out, give the map "
-    "another estimator, or make the material one-sided");
-  vtkSmartPointer<vtkPolyData> twoSided =
-    shadeWithFilter(sphere, scene, { "indirect_irradiance", "sky_sh_transfer" }, vtkAlgorithm::DOUBLE_PRECISION, false);
-  EXPECT_NE(twoSided->GetPointData()->GetArray("indirect_irradiance"), nullptr);
-  EXPECT_EQ(twoSided->GetPointData()->GetArray("sky_sh_transfer_indirect"), nullptr);
+  vtkSmartPointer<vtkPolyData> outward = shadeWithFilter(shadelab::testing::exactSphere(30, glm::dvec3(0.0), 2.0),
+    scene, { "default", "sky_irradiance" }, vtkAlgorithm::DOUBLE_PRECISION, false);
+  for (const char* name : { "sky_sh_transfer", "sky_sh_transfer_indirect", "indirect_irradiance", "sky_irradiance" })
+  {
+    shadelab::testing::expectSameBits(
+      shaded->GetPointData()->GetArray(name), outward->GetPointData()->GetArray(name), name);
+  }
 
   // An indirect part of the wrong size is refused with what to do.
   vtkNew<vtkDoubleArray> wrong;

@@ -487,6 +487,16 @@ TEST(SplitMeshInterreflection, GathersAgainstTheWholeMeshAndSharesEachBounce)
   const vtkSmartPointer<vtkPolyData> whole = shaded(mesh, transfer, { "all" }, nullptr);
   ASSERT_NE(whole->GetPointData()->GetArray("studio_sh_transfer_indirect"), nullptr);
   EXPECT_GT(expectPieceOfWhole(whole, shaded(myPiece(mesh), transfer, { "all" }, processes())), 10);
+  const std::string bothSides = sceneFile("transfer_bounces_two_sided",
+    R"({ "material": { "kd": [0.8, 0.62, 0.45], "ks": [0, 0, 0], "two_sided": true },
+         "viewer": { "position": [0.3, 0.1, 0.2] },
+         "interreflection": { "bounces": 2, "samples": 16 },
+         "lights": [ { "name": "studio", "type": "environment", "file": ")" +
+      dataPath("envmaps/studio_small_03_1k.hdr") +
+      R"(", "estimator": "prt", "order": 3, "samples": 16, "intensity": 0.04, "shadows": true } ] })");
+  EXPECT_GT(expectPieceOfWhole(
+              shaded(mesh, bothSides, { "all" }, nullptr), shaded(myPiece(mesh), bothSides, { "all" }, processes())),
+    10);
   const std::string automatic = sceneFile("auto_bounces",
     R"({ "material": { "kd": [0.8, 0.62, 0.45], "ks": [0, 0, 0] },
          "interreflection": { "bounces": "auto", "samples": "auto", "max_samples": 128 },

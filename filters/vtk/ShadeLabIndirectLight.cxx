@@ -68,18 +68,18 @@ bool hiddenOnBack(const HiddenSide& hidden, vtkIdType i)
   return (static_cast<unsigned>(hidden.flags->GetComponent(i, 0)) & FlagNormalFlipped) != 0;
 }
 
-/// The radiosity of each vertex's front (the side its normal points to) or back, from the
-/// seen side's diffuse term and the hidden side's.
-vtkSmartPointer<vtkDataArray> radiosityOfSide(
-  vtkDataArray* seen, const HiddenSide& hidden, bool back, const std::string& name)
+/// The values of each vertex's front (the side its normal points to) or back, from the seen
+/// side's array and the hidden side's (its diffuse term, or a transfer vector).
+vtkSmartPointer<vtkDataArray> valuesOfSide(
+  vtkDataArray* seen, vtkDataArray* hiddenValues, const HiddenSide& hidden, bool back, const std::string& name)
 {
   vtkSmartPointer<vtkDataArray> side = vtk::TakeSmartPointer(seen->NewInstance());
   side->SetName(name.c_str());
-  side->SetNumberOfComponents(3);
+  side->SetNumberOfComponents(seen->GetNumberOfComponents());
   side->SetNumberOfTuples(seen->GetNumberOfTuples());
   for (vtkIdType i = 0; i < seen->GetNumberOfTuples(); ++i)
   {
-    side->SetTuple(i, (hiddenOnBack(hidden, i) == back ? hidden.diffuse.Get() : seen)->GetTuple(i));
+    side->SetTuple(i, (hiddenOnBack(hidden, i) == back ? hiddenValues : seen)->GetTuple(i));
   }
   return side;
 }
@@ -111,21 +111,6 @@ void addScaled(vtkDataArray* into, vtkDataArray* added, double scale)
     }
   }
 }
-}
-
-std::string oneSidedTransferProblem(const Scene& scene, const ArrayRequest& asked)
-{
-  for (std::size_t l = 0; l < asked.indirectTransfer.size(); ++l)
-  {
-    if (asked.indirectTransfer[l] && shadesBothSides(scene))
-    {
-      return "array '" + indirectTransferArrayName("", scene.lights[l].name) +
-        "': a \"prt\" map's transfer is carried through the bounces of one side, and this surface is shaded on both "
-        "(a two-sided material, or VTK's renderer): leave the array out, give the map another estimator, or make the "
-        "material one-sided";
-    }
-  }
-  return "";
 }
 
 ArrayRequest withInterreflectionSources(const Scene& scene, const ArrayRequest& asked)
@@ -182,17 +167,19 @@ vtkPointData* runStep(vtkInterreflectionFilter* step, vtkDoubleArray* albedo, co
     {
       throw std::runtime_error("interreflection failed (see the error above)");
     }
-    std::vector<std::string> sided{ "indirect_irradiance", "indirect_irradiance_std_error" };
-    for (int n = 1; n <= step->GetBounceCount(); ++n) // where kept
+    std::vector<std::string> sided; // every array the step wrote for the fronts and the backs
+    vtkPointData* given = vtkPolyData::SafeDownCast(step->GetInputDataObject(0, 0))->GetPointData();
+    for (int a = 0; hidden && a < gathered->GetNumberOfArrays(); ++a)
     {
-      sided.push_back("indirect_bounce_" + std::to_string(n));
+      const std::string name = gathered->GetArrayName(a);
+      if (!given->HasArray(name.c_str()) && gathered->GetArray((name + "_back").c_str()))
+      {
+        sided.push_back(name);
+      }
     }
     for (const std::string& name : sided)
     {
-      if (hidden && gathered->GetArray(name.c_str()))
-      {
-        keepSeenSide(gathered, *hidden, name);
-      }
+      keepSeenSide(gathered, *hidden, name);
     }
     return gathered;
   };
@@ -270,7 +257,7 @@ vtkPointData* gatherBounces(vtkInterreflectionFilter* step, vtkPolyData* input, 
   vtkSmartPointer<vtkDataArray> radiosity;
   if (sides)
   {
-    radiosity = radiosityOfSide(diffuse, *hidden, false, "front_diffuse");
+    radiosity = valuesOfSide(diffuse, hidden->diffuse, *hidden, false, "front_diffuse");
   }
   else
   {
@@ -281,7 +268,7 @@ vtkPointData* gatherBounces(vtkInterreflectionFilter* step, vtkPolyData* input, 
   surface->GetPointData()->AddArray(radiosity);
   if (sides)
   {
-    surface->GetPointData()->AddArray(radiosityOfSide(diffuse, *hidden, true, "back_diffuse"));
+    surface->GetPointData()->AddArray(valuesOfSide(diffuse, hidden->diffuse, *hidden, true, "back_diffuse"));
   }
   step->SetBackRadiosityArrayName(hidden ? "back_diffuse" : "");
   if (albedo)
@@ -289,10 +276,17 @@ vtkPointData* gatherBounces(vtkInterreflectionFilter* step, vtkPolyData* input, 
     surface->GetPointData()->AddArray(albedo);
   }
   step->RemoveAllTransferArrayNames();
-  for (vtkDataArray* transfer : transfers)
+  for (vtkDataArray* transfer : transfers) // with a hidden side, the fronts' and the backs' (<name>_back)
   {
-    surface->GetPointData()->AddArray(transfer);
-    step->AddTransferArrayName(transfer->GetName());
+    const std::string name = transfer->GetName();
+    vtkDataArray* hiddenTransfer = sides ? hidden->transfers.at(name).Get() : nullptr;
+    surface->GetPointData()->AddArray(
+      hiddenTransfer ? valuesOfSide(transfer, hiddenTransfer, *hidden, false, name).Get() : transfer);
+    if (hiddenTransfer)
+    {
+      surface->GetPointData()->AddArray(valuesOfSide(transfer, hiddenTransfer, *hidden, true, name + "_back"));
+    }
+    step->AddTransferArrayName(name);
   }
   const Interreflection& settings = *scene.interreflection;
   step->SetInputData(surface);

@@ -12,6 +12,7 @@
 #include "vtkDataArray.h"
 #include "vtkSmartPointer.h"
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -28,12 +29,9 @@ struct HiddenSide
 {
   vtkSmartPointer<vtkDataArray> diffuse;
   vtkSmartPointer<vtkDataArray> flags;
+  /// The transfer vectors whose bounces are asked for, by the seen side's array names.
+  std::map<std::string, vtkSmartPointer<vtkDataArray>> transfers;
 };
-
-/// Why the request cannot be shaded where it carries a "prt" map's transfer through the bounces
-/// (an indirect transfer array) on a surface shaded on both sides: the transfer is carried on
-/// one side only. "" where it can.
-std::string oneSidedTransferProblem(const Scene& scene, const ArrayRequest& asked);
 
 /// The request the kernel shades for interreflection: `asked`, with the diffuse total (the
 /// first bounce's radiosity) and, for ambient_minus_indirect, the ambient total.

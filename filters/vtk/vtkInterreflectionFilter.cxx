@@ -189,17 +189,16 @@ vtkSmartPointer<vtkDataArray> rgbArray(
   return array;
 }
 
-/// One transfer array's part of every vertex's carried coefficients (`coefficients` of them per
-/// vertex, this array's `count` from `first`), as a point array of 3 x count components:
-/// coefficient k's channel c at 3 k + c.
+/// One transfer array's part of the carried coefficients of `points` points from firstPoint
+/// (`coefficients` of them per point, this array's `count` from `first`), as a point array of
+/// 3 x count components: coefficient k's channel c at 3 k + c.
 vtkSmartPointer<vtkDataArray> indirectTransferArray(const std::string& name, const std::vector<shadelab::Rgb>& carried,
-  std::size_t first, std::size_t coefficients, int count, bool float64)
+  std::size_t firstPoint, vtkIdType points, std::size_t first, std::size_t coefficients, int count, bool float64)
 {
-  const vtkIdType points = static_cast<vtkIdType>(carried.size() / coefficients);
   vtkSmartPointer<vtkDataArray> array = shadelab::realArray(name, 3 * count, points, float64);
   for (vtkIdType i = 0; i < points; ++i)
   {
-    const shadelab::Rgb* vertex = &carried[static_cast<std::size_t>(i) * coefficients + first];
+    const shadelab::Rgb* vertex = &carried[(firstPoint + static_cast<std::size_t>(i)) * coefficients + first];
     for (int k = 0; k < count; ++k)
     {
       for (int c = 0; c < 3; ++c)
@@ -322,10 +321,12 @@ void vtkInterreflectionFilter::RemoveAllTransferArrayNames()
   }
 }
 
-bool vtkInterreflectionFilter::TransferArrays(vtkPolyData* input, std::vector<vtkDataArray*>& arrays)
+bool vtkInterreflectionFilter::TransferArrays(
+  vtkPolyData* input, std::vector<vtkDataArray*>& arrays, const std::string& suffix)
 {
-  for (const std::string& name : this->TransferArrayNames)
+  for (const std::string& front : this->TransferArrayNames)
   {
+    const std::string name = front + suffix;
     vtkDataArray* transfer = input->GetPointData()->GetArray(name.c_str());
     if (!transfer || shadelab::shOrderOfCount(transfer->GetNumberOfComponents()) < 2)
     {
@@ -356,6 +357,10 @@ void vtkInterreflectionFilter::AddArraysAnEmptyPieceLacks(vtkPolyData* piece)
     const std::vector<int> counts = shadelab::gathered(this->Controller,
       std::vector<int>{ transfer ? transfer->GetNumberOfComponents() : 0 }, shadelab::WholeMeshOn::EveryProcess);
     needed.emplace_back(name, *std::max_element(counts.begin(), counts.end()));
+    if (!this->BackRadiosityArrayName.empty())
+    {
+      needed.emplace_back(name + "_back", needed.back().second);
+    }
   }
   for (const auto& [name, components] : needed)
   {
@@ -418,11 +423,11 @@ int vtkInterreflectionFilter::InterreflectWhole(
   this->AddArraysAnEmptyPieceLacks(piece);
   // The piece's arrays, checked on every process alike before any value is exchanged.
   vtkSmartPointer<vtkDoubleArray> albedo;
-  std::vector<vtkDataArray*> transfers;
+  std::vector<vtkDataArray*> transfers, backTransfers;
   vtkDataArray* radiosity = this->RgbArray(piece, this->RadiosityArrayName, "the direct radiosity");
   vtkDataArray* backRadiosity = nullptr;
   const bool usable = radiosity && this->AlbedoOf(piece, albedo) && this->TransferArrays(piece, transfers) &&
-    this->BackRadiosity(piece, transfers, backRadiosity);
+    this->BackArrays(piece, backRadiosity, backTransfers);
   if (!shadelab::everyProcessHolds(this->Controller, usable))
   {
     return 0;
@@ -430,6 +435,7 @@ int vtkInterreflectionFilter::InterreflectWhole(
   vtkNew<vtkPolyData> mesh; // the whole mesh with every point's radiosity, albedo and transfers
   mesh->ShallowCopy(whole);
   std::vector<vtkDataArray*> inputs = transfers;
+  inputs.insert(inputs.end(), backTransfers.begin(), backTransfers.end());
   inputs.push_back(radiosity);
   if (backRadiosity)
   {
@@ -502,9 +508,9 @@ int vtkInterreflectionFilter::Interreflect(
   vtkDataArray* radiosity = this->RgbArray(input, this->RadiosityArrayName, "the direct radiosity");
   vtkDataArray* backRadiosity = nullptr;
   vtkSmartPointer<vtkDoubleArray> albedo;
-  std::vector<vtkDataArray*> transfers;
+  std::vector<vtkDataArray*> transfers, backTransfers;
   if (!radiosity || !this->AlbedoOf(input, albedo) || !this->TransferArrays(input, transfers) ||
-    !this->BackRadiosity(input, transfers, backRadiosity))
+    !this->BackArrays(input, backRadiosity, backTransfers))
   {
     return 0;
   }
@@ -513,8 +519,8 @@ int vtkInterreflectionFilter::Interreflect(
   {
     if (this->Bounces > 0)
     {
-      indirect =
-        this->GatherBounces(input, normals, radiosity, backRadiosity, albedo, transfers, split); // and its report
+      indirect = this->GatherBounces(
+        input, normals, radiosity, backRadiosity, albedo, transfers, backTransfers, split); // and its report
     }
     else
     {
@@ -570,26 +576,21 @@ bool vtkInterreflectionFilter::AlbedoOf(vtkPolyData* input, vtkSmartPointer<vtkD
   return true;
 }
 
-bool vtkInterreflectionFilter::BackRadiosity(
-  vtkPolyData* input, const std::vector<vtkDataArray*>& transfers, vtkDataArray*& backRadiosity)
+bool vtkInterreflectionFilter::BackArrays(
+  vtkPolyData* input, vtkDataArray*& backRadiosity, std::vector<vtkDataArray*>& backTransfers)
 {
   if (this->BackRadiosityArrayName.empty())
   {
     return true;
   }
-  if (!transfers.empty())
-  {
-    vtkErrorMacro("transfer vectors are carried through the bounces of one side only: leave BackRadiosityArrayName "
-                  "empty, or carry no transfer array");
-    return false;
-  }
   backRadiosity = this->RgbArray(input, this->BackRadiosityArrayName, "the backs' direct radiosity");
-  return backRadiosity != nullptr;
+  return backRadiosity != nullptr && this->TransferArrays(input, backTransfers, "_back");
 }
 
 shadelab::IndirectIrradiance vtkInterreflectionFilter::GatherBounces(vtkPolyData* input, vtkDataArray* normals,
   vtkDataArray* radiosity, vtkDataArray* backRadiosity, vtkDoubleArray* albedo,
-  const std::vector<vtkDataArray*>& transfers, const shadelab::SplitVertices* split)
+  const std::vector<vtkDataArray*>& transfers, const std::vector<vtkDataArray*>& backTransfers,
+  const shadelab::SplitVertices* split)
 {
   const shadelab::ShadedSides sides = backRadiosity ? shadelab::ShadedSides::Both : shadelab::ShadedSides::Front;
   std::vector<shadelab::Rgb> direct = rgbValues(radiosity);
@@ -609,9 +610,14 @@ shadelab::IndirectIrradiance vtkInterreflectionFilter::GatherBounces(vtkPolyData
   try
   {
     occluders = shadelab::occludersOf(input);
-    gather = std::make_unique<shadelab::BounceGather>(*occluders, std::move(direct), sampling,
-      transfers.empty() ? std::vector<shadelab::Rgb>() : reflectedTransfer(transfers, kd, input->GetNumberOfPoints()),
-      sides);
+    std::vector<shadelab::Rgb> carried;
+    for (const std::vector<vtkDataArray*>* side : { &transfers, &backTransfers }) // the fronts' points, the backs'
+    {
+      const std::vector<shadelab::Rgb> reflected =
+        side->empty() ? std::vector<shadelab::Rgb>() : reflectedTransfer(*side, kd, input->GetNumberOfPoints());
+      carried.insert(carried.end(), reflected.begin(), reflected.end());
+    }
+    gather = std::make_unique<shadelab::BounceGather>(*occluders, std::move(direct), sampling, carried, sides);
     this->BackHits = gatherEveryPoint(*occluders, input, normals, sampling, sides, *gather, this, split);
     occluders->releaseTracing(); // the sweeps' peak memory without the BVH
   }
@@ -659,14 +665,15 @@ void vtkInterreflectionFilter::AddIndirectArrays(vtkPolyData* output, const shad
     {
       side(indirect.bounces[n], "indirect_bounce_" + std::to_string(n + 1));
     }
-  }
-  const std::size_t coefficients = coefficientsOf(transfers);
-  std::size_t first = 0; // the array's first coefficient among every vertex's
-  for (vtkDataArray* transfer : transfers)
-  {
-    out->AddArray(indirectTransferArray(this->ArrayPrefix + transfer->GetName() + "_indirect", indirect.transfer, first,
-      coefficients, transfer->GetNumberOfComponents(), transfer->GetDataType() == VTK_DOUBLE));
-    first += static_cast<std::size_t>(transfer->GetNumberOfComponents());
+    const std::size_t coefficients = coefficientsOf(transfers);
+    std::size_t coefficient = 0; // the array's first coefficient among every point's
+    for (vtkDataArray* transfer : transfers)
+    {
+      out->AddArray(indirectTransferArray(this->ArrayPrefix + transfer->GetName() + "_indirect" + (back ? "_back" : ""),
+        indirect.transfer, first, points, coefficient, coefficients, transfer->GetNumberOfComponents(),
+        transfer->GetDataType() == VTK_DOUBLE));
+      coefficient += static_cast<std::size_t>(transfer->GetNumberOfComponents());
+    }
   }
 }
 

@@ -15,7 +15,8 @@
  *
  * A two-sided surface (BackRadiosityArrayName set) sends light out from both sides: each vertex
  * also gathers about its reversed normal, a ray that meets a triangle's back reads the backs'
- * radiosity, and the backs' arrays are written too, named with "_back" after the fronts'.
+ * radiosity (and transfer, from <name>_back), and the backs' arrays are written too, named with
+ * "_back" after the fronts'.
  *
  * vtkLocalReflectanceFilter runs it for a scene's "interreflection", and adds kd times the
  * indirect irradiance to its diffuse and total terms.
@@ -53,7 +54,8 @@ public:
 
   /// The point array of the direct radiosity of each vertex's back, the side opposite its
   /// normal, RGB, for a surface shaded on both sides (default "": the backs send out nothing,
-  /// and a ray that meets one carries nothing). Not with transfer arrays.
+  /// and a ray that meets one carries nothing). Each transfer array to carry then has its
+  /// backs' in <name>_back.
   vtkSetMacro(BackRadiosityArrayName, std::string);
   vtkGetMacro(BackRadiosityArrayName, std::string);
 
@@ -153,17 +155,19 @@ private:
   /// Checks the albedo, and sets perVertex to the albedo array's values in float64 (nullptr
   /// where the uniform Albedo is every vertex's); false after reporting what is wrong.
   bool AlbedoOf(vtkPolyData* input, vtkSmartPointer<vtkDoubleArray>& perVertex);
-  /// The transfer arrays TransferArrayNames names, into `arrays`; false after reporting the
-  /// first that is missing or has a count of components no order has.
-  bool TransferArrays(vtkPolyData* input, std::vector<vtkDataArray*>& arrays);
+  /// The transfer arrays TransferArrayNames names, each with `suffix` (the backs': "_back"), into
+  /// `arrays`; false after reporting the first that is missing or has a count of components no
+  /// order has.
+  bool TransferArrays(vtkPolyData* input, std::vector<vtkDataArray*>& arrays, const std::string& suffix = "");
   /// Traces every vertex's gather rays (on both sides where backRadiosity is not null), then
-  /// bounces the light and the transfer vectors (the core's BounceGather).
+  /// bounces the light and the transfer vectors (the fronts', then the backs'; the core's
+  /// BounceGather).
   shadelab::IndirectIrradiance GatherBounces(vtkPolyData* input, vtkDataArray* normals, vtkDataArray* radiosity,
     vtkDataArray* backRadiosity, vtkDoubleArray* albedo, const std::vector<vtkDataArray*>& transfers,
-    const shadelab::SplitVertices* split);
-  /// The back radiosity's array where BackRadiosityArrayName names one (backRadiosity set; false
-  /// after reporting why it cannot be used).
-  bool BackRadiosity(vtkPolyData* input, const std::vector<vtkDataArray*>& transfers, vtkDataArray*& backRadiosity);
+    const std::vector<vtkDataArray*>& backTransfers, const shadelab::SplitVertices* split);
+  /// Where BackRadiosityArrayName names one, the back radiosity's array and the backs' transfer
+  /// arrays; false after reporting why they cannot be used.
+  bool BackArrays(vtkPolyData* input, vtkDataArray*& backRadiosity, std::vector<vtkDataArray*>& backTransfers);
   void AddIndirectArrays(vtkPolyData* output, const shadelab::IndirectIrradiance& indirect, bool float64,
     const std::vector<vtkDataArray*>& transfers);
   /// The run's report: its bounces, rays, the rays that met a triangle's back, the bound on the

@@ -569,12 +569,6 @@ bool vtkLocalReflectanceFilter::ChooseArraysAndMethods(ShadingPlan& plan)
     vtkErrorMacro(<< error.what());
     return false;
   }
-  const std::string oneSided = shadelab::oneSidedTransferProblem(plan.scene, plan.request);
-  if (!oneSided.empty())
-  {
-    vtkErrorMacro(<< oneSided);
-    return false;
-  }
   plan.float32Fits = shadelab::meshCoordinateProblem(plan.extent.reach, shadelab::Precision::Float32).empty() &&
     shadelab::sceneProblems(plan.scene, shadelab::Precision::Float32).empty();
   const std::string unplanned = shadelab::tolerancePlanProblem(plan.scene);

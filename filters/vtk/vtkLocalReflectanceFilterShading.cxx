@@ -23,6 +23,10 @@ shadelab::HiddenSide vtkLocalReflectanceFilter::ShadeHiddenSide(vtkPolyData* inp
   hidden.scene.interreflection.reset();
   hidden.scene.ambientOcclusion.reset();
   hidden.request = shadelab::selectArrays(hidden.scene, { "diffuse", "shading_flags" });
+  for (std::size_t l = 0; l < plan.request.indirectTransfer.size(); ++l) // the transfers whose bounces are asked for
+  {
+    hidden.request.lights[l][int(shadelab::LightTerm::ShTransfer)] = plan.request.indirectTransfer[l];
+  }
   const std::string seenSideReport = this->VisibilityReport;
   this->StartStep(start, span / 2);
   vtkPolyData* hiddenSideRays = this->PrepareVisibility(input, shadingNormals, hidden, pieces);
@@ -49,8 +53,18 @@ shadelab::HiddenSide vtkLocalReflectanceFilter::ShadeHiddenSide(vtkPolyData* inp
     }
     return *found;
   };
-  return { named(shadelab::totalArrayName(this->ArrayPrefix, shadelab::TotalTerm::Diffuse)),
-    named(shadelab::flagsArrayName(this->ArrayPrefix)) };
+  shadelab::HiddenSide side{ named(shadelab::totalArrayName(this->ArrayPrefix, shadelab::TotalTerm::Diffuse)),
+    named(shadelab::flagsArrayName(this->ArrayPrefix)), {} };
+  for (std::size_t l = 0; l < plan.request.indirectTransfer.size(); ++l)
+  {
+    if (plan.request.indirectTransfer[l])
+    {
+      const std::string name =
+        shadelab::lightArrayName(this->ArrayPrefix, plan.scene.lights[l].name, shadelab::LightTerm::ShTransfer);
+      side.transfers[name] = named(name);
+    }
+  }
+  return side;
 }
 
 std::vector<vtkSmartPointer<vtkDataArray>> vtkLocalReflectanceFilter::ShadedArrays(vtkPolyData* input,
