@@ -390,7 +390,21 @@ TEST(Interreflection, TheFilterAloneGathersOnBothSidesOfASurface)
       ASSERT_NEAR(back->GetComponent(i, c), 0.75, 1e-12) << i;
     }
   }
-  // Without its backs' array, the transfer is refused.
+  // With its backs' array of another order, or without it, the transfer is refused.
+  vtkNew<vtkDoubleArray> otherOrder;
+  otherOrder->SetName("transfer_back");
+  otherOrder->SetNumberOfComponents(16);
+  otherOrder->SetNumberOfTuples(points);
+  otherOrder->Fill(1);
+  sphere->GetPointData()->AddArray(otherOrder);
+  {
+    vtkNew<shadelab::app::VtkErrorCapture> mismatch;
+    mismatch->watch(filter);
+    filter->Update();
+    EXPECT_EQ(mismatch->message(),
+      "point array 'transfer_back' has 16 components, and 'transfer' 9: a transfer's "
+      "backs need as many coefficients as its fronts");
+  }
   sphere->GetPointData()->RemoveArray("transfer_back");
   vtkNew<shadelab::app::VtkErrorCapture> errors;
   errors->watch(filter);
@@ -760,4 +774,36 @@ TEST(Interreflection, RelightingUnderAnotherMapGivesItsShadedInterreflection)
   }
   EXPECT_GT(largest, 0.05); // the floor and the sphere light each other
 }
+}
+
+// The hidden side's transfer bounces too: the two squares under a sky, with shadows, the camera
+// above. The upper square's underside, hidden, carries its transfer down to the lower square as
+// a one-sided downward square does, bit for bit; the upper square's top, seen, gathers none.
+// The mesh's normals are unnamed, as VTK's OBJ importer leaves them.
+TEST(Interreflection, TheHiddenSidesTransferLightsWhatItFaces)
+{
+  Scene scene = lampInside(1.0, 0.7, 2);
+  scene.lights = { transferMap(constantMapFile("radiance_1", 1.0f), true) };
+  scene.viewer.position = glm::dvec3(0.5, 0.2, 4);
+  const std::vector<std::string> arrays{ "sky_sh_transfer_indirect", "indirect_irradiance" };
+  vtkSmartPointer<vtkPolyData> facingDown =
+    shadeWithFilter(twoSquares(16, true), scene, arrays, vtkAlgorithm::DOUBLE_PRECISION, false);
+  scene.material.twoSided = true;
+  vtkSmartPointer<vtkPolyData> mesh = twoSquares(16, false);
+  mesh->GetPointData()->GetNormals()->SetName(nullptr);
+  vtkSmartPointer<vtkPolyData> twoSided = shadeWithFilter(mesh, scene, arrays, vtkAlgorithm::DOUBLE_PRECISION, false);
+  vtkDataArray* expected = facingDown->GetPointData()->GetArray("sky_sh_transfer_indirect");
+  vtkDataArray* carried = twoSided->GetPointData()->GetArray("sky_sh_transfer_indirect");
+  ASSERT_NE(carried, nullptr);
+  const vtkIdType lower = mesh->GetNumberOfPoints() / 2;
+  double gathered = 0;
+  for (vtkIdType i = 0; i < mesh->GetNumberOfPoints(); ++i)
+  {
+    for (int c = 0; c < carried->GetNumberOfComponents(); ++c)
+    {
+      ASSERT_EQ(carried->GetComponent(i, c), i < lower ? expected->GetComponent(i, c) : 0.0) << i << " " << c;
+    }
+    gathered += i < lower ? std::abs(carried->GetComponent(i, 0)) : 0.0;
+  }
+  EXPECT_GT(gathered / double(lower), 0.05);
 }

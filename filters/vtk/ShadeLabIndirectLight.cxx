@@ -171,8 +171,8 @@ vtkPointData* runStep(vtkInterreflectionFilter* step, vtkDoubleArray* albedo, co
     vtkPointData* given = vtkPolyData::SafeDownCast(step->GetInputDataObject(0, 0))->GetPointData();
     for (int a = 0; hidden && a < gathered->GetNumberOfArrays(); ++a)
     {
-      const std::string name = gathered->GetArrayName(a);
-      if (!given->HasArray(name.c_str()) && gathered->GetArray((name + "_back").c_str()))
+      const char* name = gathered->GetArrayName(a); // null for a mesh's unnamed normals
+      if (name && !given->HasArray(name) && gathered->GetArray((std::string(name) + "_back").c_str()))
       {
         sided.push_back(name);
       }

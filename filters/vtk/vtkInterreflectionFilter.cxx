@@ -584,7 +584,23 @@ bool vtkInterreflectionFilter::BackArrays(
     return true;
   }
   backRadiosity = this->RgbArray(input, this->BackRadiosityArrayName, "the backs' direct radiosity");
-  return backRadiosity != nullptr && this->TransferArrays(input, backTransfers, "_back");
+  if (!backRadiosity || !this->TransferArrays(input, backTransfers, "_back"))
+  {
+    return false;
+  }
+  for (std::size_t k = 0; k < backTransfers.size(); ++k) // each back as its front: the same coefficients
+  {
+    vtkDataArray* front = input->GetPointData()->GetArray(this->TransferArrayNames[k].c_str());
+    if (backTransfers[k]->GetNumberOfComponents() != front->GetNumberOfComponents())
+    {
+      vtkErrorMacro("point array '" << backTransfers[k]->GetName() << "' has "
+                                    << backTransfers[k]->GetNumberOfComponents() << " components, and '"
+                                    << front->GetName() << "' " << front->GetNumberOfComponents()
+                                    << ": a transfer's backs need as many coefficients as its fronts");
+      return false;
+    }
+  }
+  return true;
 }
 
 shadelab::IndirectIrradiance vtkInterreflectionFilter::GatherBounces(vtkPolyData* input, vtkDataArray* normals,

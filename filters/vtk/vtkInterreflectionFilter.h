@@ -97,8 +97,9 @@ public:
   /// interreflected transfer). For each, it writes <ArrayPrefix><name>_indirect, 3 times as many
   /// components, what the bounces add to the vector per channel (component 3 k + c: coefficient
   /// k, channel c; float64 for a float64 transfer, float32 otherwise): its dot product with a
-  /// map's coefficients, channel by channel, is the indirect irradiance under that map. Default
-  /// none.
+  /// map's coefficients, channel by channel, is the indirect irradiance under that map. With
+  /// BackRadiosityArrayName, the backs' vectors are <name>_back, as many coefficients, and the
+  /// backs' result <name>_indirect_back. Default none.
   void AddTransferArrayName(const std::string& name);
   void RemoveAllTransferArrayNames();
   int GetNumberOfTransferArrayNames() const { return static_cast<int>(this->TransferArrayNames.size()); }
