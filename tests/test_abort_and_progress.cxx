@@ -126,6 +126,18 @@ std::vector<double> progressOf(vtkLocalReflectanceFilter* filter)
   return seen;
 }
 
+/// That a run's progress events are at least `events`, from 0 to 1, never falling.
+void expectProgressInOrder(const std::vector<double>& seen, std::size_t events)
+{
+  ASSERT_GE(seen.size(), events);
+  EXPECT_EQ(seen.front(), 0.0);
+  EXPECT_EQ(seen.back(), 1.0);
+  for (std::size_t k = 1; k < seen.size(); ++k)
+  {
+    ASSERT_GE(seen[k], seen[k - 1]) << "event " << k;
+  }
+}
+
 // With interreflection on a two-sided surface, the hidden side's rays and shading and then the
 // bounces follow the seen side's, in order.
 TEST(AbortAndProgress, ProgressMovesThroughBothSidesAndTheBouncesInOrder)
@@ -140,14 +152,7 @@ TEST(AbortAndProgress, ProgressMovesThroughBothSidesAndTheBouncesInOrder)
   scene.material.twoSided = true;
   scene.interreflection = Interreflection{ 2, { 16, true } };
   setUp(filter, bunny, scene);
-  const std::vector<double> seen = progressOf(filter);
-  ASSERT_GE(seen.size(), 6u);
-  EXPECT_EQ(seen.front(), 0.0);
-  EXPECT_EQ(seen.back(), 1.0);
-  for (std::size_t k = 1; k < seen.size(); ++k)
-  {
-    ASSERT_GE(seen[k], seen[k - 1]) << "event " << k;
-  }
+  expectProgressInOrder(progressOf(filter), 6);
 }
 
 TEST(AbortAndProgress, ProgressMovesThroughTheNormalsTheRaysAndTheShadingInOrder)
@@ -156,13 +161,7 @@ TEST(AbortAndProgress, ProgressMovesThroughTheNormalsTheRaysAndTheShadingInOrder
   vtkNew<vtkLocalReflectanceFilter> filter;
   setUp(filter, bunny, studioWithOcclusion(64));
   const std::vector<double> seen = progressOf(filter);
-  ASSERT_GE(seen.size(), 4u);
-  EXPECT_EQ(seen.front(), 0.0);
-  EXPECT_EQ(seen.back(), 1.0);
-  for (std::size_t k = 1; k < seen.size(); ++k)
-  {
-    EXPECT_GE(seen[k], seen[k - 1]) << "event " << k;
-  }
+  expectProgressInOrder(seen, 4);
   // The normals end at 5%; the rays' tenths lie between it and 80%; the shading follows.
   auto countWithin = [&](double low, double high)
   { return std::count_if(seen.begin(), seen.end(), [&](double p) { return p > low && p < high; }); };

@@ -15,9 +15,6 @@
 
 namespace shadelab
 {
-namespace
-{
-/// The array of that name among `arrays`, or nullptr.
 vtkDataArray* named(const std::vector<vtkSmartPointer<vtkDataArray>>& arrays, const std::string& name)
 {
   const auto found = std::find_if(arrays.begin(), arrays.end(),
@@ -25,6 +22,8 @@ vtkDataArray* named(const std::vector<vtkSmartPointer<vtkDataArray>>& arrays, co
   return found == arrays.end() ? nullptr : found->Get();
 }
 
+namespace
+{
 /// kd per vertex from the material's arrays, r, g, b after one another (none on an empty
 /// piece); nullptr where the scene's kd is every vertex's.
 vtkSmartPointer<vtkDoubleArray> albedoArray(const Scene& scene, const VertexMaterial* material, vtkIdType points)

@@ -21,6 +21,9 @@ class vtkPolyData;
 
 namespace shadelab
 {
+/// The array of that name among `arrays`, or nullptr.
+vtkDataArray* named(const std::vector<vtkSmartPointer<vtkDataArray>>& arrays, const std::string& name);
+
 /// On a surface shaded on both sides, the side of each vertex that the viewer does not see,
 /// shaded as the seen side is (Scene::shadedSide Hidden): its direct diffuse term, the light it
 /// sends to the vertices that see that side, and its shading flags, whose FlagNormalFlipped

@@ -427,7 +427,7 @@ int vtkInterreflectionFilter::InterreflectWhole(
   vtkDataArray* radiosity = this->RgbArray(piece, this->RadiosityArrayName, "the direct radiosity");
   vtkDataArray* backRadiosity = nullptr;
   const bool usable = radiosity && this->AlbedoOf(piece, albedo) && this->TransferArrays(piece, transfers) &&
-    this->BackArrays(piece, backRadiosity, backTransfers);
+    this->BackArrays(piece, transfers, backRadiosity, backTransfers);
   if (!shadelab::everyProcessHolds(this->Controller, usable))
   {
     return 0;
@@ -510,7 +510,7 @@ int vtkInterreflectionFilter::Interreflect(
   vtkSmartPointer<vtkDoubleArray> albedo;
   std::vector<vtkDataArray*> transfers, backTransfers;
   if (!radiosity || !this->AlbedoOf(input, albedo) || !this->TransferArrays(input, transfers) ||
-    !this->BackArrays(input, backRadiosity, backTransfers))
+    !this->BackArrays(input, transfers, backRadiosity, backTransfers))
   {
     return 0;
   }
@@ -576,8 +576,8 @@ bool vtkInterreflectionFilter::AlbedoOf(vtkPolyData* input, vtkSmartPointer<vtkD
   return true;
 }
 
-bool vtkInterreflectionFilter::BackArrays(
-  vtkPolyData* input, vtkDataArray*& backRadiosity, std::vector<vtkDataArray*>& backTransfers)
+bool vtkInterreflectionFilter::BackArrays(vtkPolyData* input, const std::vector<vtkDataArray*>& transfers,
+  vtkDataArray*& backRadiosity, std::vector<vtkDataArray*>& backTransfers)
 {
   if (this->BackRadiosityArrayName.empty())
   {
@@ -590,7 +590,7 @@ bool vtkInterreflectionFilter::BackArrays(
   }
   for (std::size_t k = 0; k < backTransfers.size(); ++k) // each back as its front: the same coefficients
   {
-    vtkDataArray* front = input->GetPointData()->GetArray(this->TransferArrayNames[k].c_str());
+    vtkDataArray* front = transfers[k];
     if (backTransfers[k]->GetNumberOfComponents() != front->GetNumberOfComponents())
     {
       vtkErrorMacro("point array '" << backTransfers[k]->GetName() << "' has "

@@ -167,8 +167,10 @@ private:
     vtkDataArray* backRadiosity, vtkDoubleArray* albedo, const std::vector<vtkDataArray*>& transfers,
     const std::vector<vtkDataArray*>& backTransfers, const shadelab::SplitVertices* split);
   /// Where BackRadiosityArrayName names one, the back radiosity's array and the backs' transfer
-  /// arrays; false after reporting why they cannot be used.
-  bool BackArrays(vtkPolyData* input, vtkDataArray*& backRadiosity, std::vector<vtkDataArray*>& backTransfers);
+  /// arrays, each as many coefficients as its front in `transfers`; false after reporting why
+  /// they cannot be used.
+  bool BackArrays(vtkPolyData* input, const std::vector<vtkDataArray*>& transfers, vtkDataArray*& backRadiosity,
+    std::vector<vtkDataArray*>& backTransfers);
   void AddIndirectArrays(vtkPolyData* output, const shadelab::IndirectIrradiance& indirect, bool float64,
     const std::vector<vtkDataArray*>& transfers);
   /// The run's report: its bounces, rays, the rays that met a triangle's back, the bound on the

@@ -8,7 +8,6 @@
 
 #include "vtkPolyData.h"
 
-#include <algorithm>
 #include <stdexcept>
 
 using namespace shadelab::shading;
@@ -43,25 +42,23 @@ shadelab::HiddenSide vtkLocalReflectanceFilter::ShadeHiddenSide(vtkPolyData* inp
   SamplingOutcome unreported; // the seen side's sampling is the one reported
   std::vector<vtkSmartPointer<vtkDataArray>> arrays =
     this->ShadedArrays(input, shadingNormals, hiddenSideRays, hidden, pieces, unreported);
-  auto named = [&](const std::string& name)
+  auto made = [&](const std::string& name)
   {
-    const auto found = std::find_if(arrays.begin(), arrays.end(),
-      [&](const vtkSmartPointer<vtkDataArray>& array) { return array->GetName() == name; });
-    if (found == arrays.end())
+    if (vtkDataArray* array = shadelab::named(arrays, name))
     {
-      throw std::logic_error("the hidden side's shading made no array '" + name + "'");
+      return vtkSmartPointer<vtkDataArray>(array);
     }
-    return *found;
+    throw std::logic_error("the hidden side's shading made no array '" + name + "'");
   };
-  shadelab::HiddenSide side{ named(shadelab::totalArrayName(this->ArrayPrefix, shadelab::TotalTerm::Diffuse)),
-    named(shadelab::flagsArrayName(this->ArrayPrefix)), {} };
+  shadelab::HiddenSide side{ made(shadelab::totalArrayName(this->ArrayPrefix, shadelab::TotalTerm::Diffuse)),
+    made(shadelab::flagsArrayName(this->ArrayPrefix)), {} };
   for (std::size_t l = 0; l < plan.request.indirectTransfer.size(); ++l)
   {
     if (plan.request.indirectTransfer[l])
     {
       const std::string name =
         shadelab::lightArrayName(this->ArrayPrefix, plan.scene.lights[l].name, shadelab::LightTerm::ShTransfer);
-      side.transfers[name] = named(name);
+      side.transfers[name] = made(name);
     }
   }
   return side;
