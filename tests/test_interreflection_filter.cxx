@@ -250,6 +250,37 @@ TEST(Interreflection, TheHiddenSideOfATwoSidedSurfaceLightsWhatItFaces)
   EXPECT_GT(gathered / double(lower), 0.05);
 }
 
+// VTK's renderer lights both sides of every polygon, so the vtk model gathers on both sides
+// with no "two_sided" in the material: the two squares again, whichever way the upper one's
+// normals point, its lit underside (hidden from the camera above) lights the lower square, the
+// same bits both ways, and its seen top gathers nothing.
+TEST(Interreflection, TheVtkModelGathersOnBothSidesAsVtkLightsThem)
+{
+  Scene scene = lampInside(1.0, 0.7, 2);
+  scene.model = ShadingModel::VtkOpenGL2;
+  PointLight& lamp = std::get<PointLight>(scene.lights[0].source);
+  lamp.position = glm::dvec3(0.3, 0.1, 0.5);
+  lamp.attenuation = Attenuation{ AttenuationModel::ConstantLinearQuadratic, 0.0, 0.0, 1.0 }; // vtkLight's 1/d^2
+  scene.viewer.position = glm::dvec3(0.5, 0.2, 4);
+  const std::vector<std::string> arrays{ "indirect_irradiance", "indirect_bounce_2" };
+  vtkSmartPointer<vtkPolyData> facingDown =
+    shadeWithFilter(twoSquares(24, true), scene, arrays, vtkAlgorithm::DOUBLE_PRECISION, false);
+  vtkSmartPointer<vtkPolyData> mesh = twoSquares(24, false);
+  vtkSmartPointer<vtkPolyData> facingUp = shadeWithFilter(mesh, scene, arrays, vtkAlgorithm::DOUBLE_PRECISION, false);
+  const vtkIdType lower = mesh->GetNumberOfPoints() / 2;
+  double gathered = 0;
+  for (vtkIdType i = 0; i < mesh->GetNumberOfPoints(); ++i)
+  {
+    for (const char* name : { "indirect_irradiance", "indirect_bounce_2" })
+    {
+      ASSERT_EQ(tupleOf(facingUp, name, i), tupleOf(facingDown, name, i)) << name << " " << i;
+      ASSERT_TRUE(i < lower || tupleOf(facingUp, name, i) == Rgb(0.0)) << name << " " << i;
+    }
+    gathered += i < lower ? tupleOf(facingUp, "indirect_irradiance", i).r : 0.0;
+  }
+  EXPECT_GT(gathered / double(lower), 0.05);
+}
+
 // vtkInterreflectionFilter alone, on any mesh with a radiosity array: the closed sphere's
 // closed form with a per-vertex albedo that is red alone (no green or blue to reflect).
 TEST(Interreflection, TheFilterAloneGathersFromAnyRadiosityArray)
