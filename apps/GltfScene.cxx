@@ -312,7 +312,8 @@ void noteUnreadExtensions(const Json& gltf, std::vector<std::string>& notes)
 }
 
 /// The part's material from its PBR property (glTF's pbrMetallicRoughness), in the lecture's
-/// coefficients.
+/// coefficients, and its sides: vtkGLTFImporter culls the back faces of a material that is not
+/// doubleSided.
 PartMaterial materialOf(vtkProperty* property)
 {
   const double* base = property->GetColor();
@@ -322,6 +323,7 @@ PartMaterial materialOf(vtkProperty* property)
   material.ka = material.kd = c.kd;
   material.ks = c.ks;
   material.shininess = c.shininess;
+  material.twoSided = !property->GetBackfaceCulling();
   return material;
 }
 }

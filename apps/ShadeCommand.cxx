@@ -465,7 +465,8 @@ std::string ownMaterialsText(vtkPolyData* mesh, const Scene& scene, const ShadeO
   const std::string partsText = countOf(std::size_t(parts), "part") + (list.empty() ? "" : ": " + list);
   if (shadesWithOwnMaterials(scene, mesh, !options.colorBy.empty()))
   {
-    return "the mesh's own, part by part (" + partsText + ")";
+    return "the mesh's own, part by part (" + partsText + ")" +
+      (ownMaterial(scene.material, mesh).twoSided ? ", two-sided (every part is)" : "");
   }
   const std::string instead = scene.materialGiven ? "the scene's"
     : !options.colorBy.empty()                    ? "--color-by's"

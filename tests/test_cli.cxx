@@ -1017,6 +1017,32 @@ TEST_F(Cli, AGltfIsLitByItsOwnLightsAndABrokenOneIsRefused)
     "shadelab: warning: " + transformed +
       ": requires the extension KHR_texture_transform, which ShadeLab does not read: what it changes is not shaded\n");
 
+  // Double-sided materials: both sides where every part's is, and one side, said, where some are.
+  std::string doubleSided = slurp(shadelab::testing::sourcePath("data/scenes/lamps/lamps.gltf"));
+  const std::size_t materials = doubleSided.find("\"materials\"");
+  for (const char* name : { "\"name\": \"ball\"", "\"name\": \"floor\"" })
+  {
+    doubleSided.insert(doubleSided.find(name, materials), "\"doubleSided\": true, ");
+  }
+  const Result bothSides =
+    shadelab("shade " + file("both_sides.gltf", doubleSided) + " -o " + (folder / "b.vtp").string());
+  ASSERT_EQ(bothSides.exitCode, 0) << bothSides.err;
+  EXPECT_NE(bothSides.out.find("  material: the mesh's own, part by part (2 parts: ball, floor), two-sided (every part "
+                               "is)\n"),
+    std::string::npos)
+    << bothSides.out;
+  doubleSided.erase(doubleSided.find("\"doubleSided\": true, "), 21);
+  const std::string mixed = file("mixed_sides.gltf", doubleSided);
+  const Result oneSide = shadelab("shade " + mixed + " -o " + (folder / "m.vtp").string());
+  ASSERT_EQ(oneSide.exitCode, 0) << oneSide.err;
+  EXPECT_EQ(oneSide.err,
+    "shadelab: warning: " + mixed +
+      ": part 'ball' is double-sided and the others are not: a mesh is shaded on one side or on both, not part by "
+      "part, so every part is shaded on the side of its normals (a scene's material with \"two_sided\": true shades "
+      "all on both)\n");
+  EXPECT_NE(oneSide.out.find("  material: the mesh's own, part by part (2 parts: ball, floor)\n"), std::string::npos)
+    << oneSide.out;
+
   const std::string output = (folder / "out.vtp").string();
   const std::string empty =
     file("empty.gltf", R"({ "asset": { "version": "2.0" }, "scene": 0, "scenes": [ { "nodes": [] } ] })");

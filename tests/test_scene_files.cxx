@@ -2,7 +2,7 @@
 // file by VTK's importer, each part shaded with its own Kd against the closed form, a texture
 // decoded and placed texel by texel, a scene's material winning over the file's, and what a
 // missing library or texture leaves; a glTF file's lights against the same lights written by
-// hand, as .gltf and as .glb, and its material's coefficients; an OBJ that VTK's exporter wrote
+// hand, as .gltf and as .glb, its material's coefficients and sides; an OBJ that VTK's exporter wrote
 // read back with its actors' properties.
 #include "FilterRun.h"
 #include "TestFolder.h"
@@ -12,6 +12,7 @@
 #include "MetallicRoughness.h"
 #include "SceneFile.h"
 #include "ShadeLabImportedParts.h"
+#include "ShadingFlags.h"
 
 #include "vtkActor.h"
 #include "vtkDataArray.h"
@@ -399,6 +400,44 @@ TEST_F(SceneFiles, AGltfFilesLightsShadeAsTheSameSceneInShadeLabsJson)
     << buffer;
   vtkSmartPointer<vtkPolyData> binary = app::readMesh((folder / "lamps.glb").string());
   EXPECT_EQ(app::fileLightsOf(binary), app::fileLightsOf(mesh));
+}
+
+// glTF's doubleSided: the square (normals up) seen from below and lit from below. Double-sided,
+// its underside is shaded, turned round: kd I (n.l) / d^2 with n = -y at each vertex. Not
+// double-sided (glTF's default), the light is behind its normals and it is dark.
+TEST_F(SceneFiles, AGltfsDoubleSidedMaterialIsShadedOnBothSides)
+{
+  std::ofstream(folder / "square.bin", std::ios::binary) << squareBuffer();
+  const Scene below = parseScene(R"({ "viewer": { "position": [0, -3, 0] },
+    "lights": [ { "name": "lamp", "type": "point", "position": [0.3, -1, 0.1], "intensity": 3 } ] })",
+    "below.json");
+  const std::vector<std::string> arrays{ "lamp_diffuse", "shading_flags" };
+  for (const bool doubleSided : { true, false })
+  {
+    std::string gltf = lampsGltf(R"({ "byteLength": 112, "uri": "square.bin" })");
+    const std::string materials = R"("materials": [ { )";
+    gltf.insert(gltf.find(materials) + materials.size(), doubleSided ? R"("doubleSided": true, )" : "");
+    vtkSmartPointer<vtkPolyData> mesh = app::readMesh(file("square.gltf", gltf));
+    EXPECT_EQ(ownMaterial(Material{}, mesh).twoSided, doubleSided);
+    vtkSmartPointer<vtkPolyData> shaded =
+      shadelab::testing::shadeWithFilter(mesh, below, arrays, vtkAlgorithm::DOUBLE_PRECISION);
+    vtkDataArray* kd = mesh->GetPointData()->GetArray(materialKdArrayName);
+    vtkDataArray* diffuse = shaded->GetPointData()->GetArray("lamp_diffuse");
+    vtkDataArray* flags = shaded->GetPointData()->GetArray("shading_flags");
+    ASSERT_EQ(shaded->GetNumberOfPoints(), 4);
+    for (vtkIdType i = 0; i < 4; ++i)
+    {
+      const glm::dvec3 p(shaded->GetPoint(i)[0], shaded->GetPoint(i)[1], shaded->GetPoint(i)[2]);
+      const glm::dvec3 toLamp = glm::dvec3(0.3, -1, 0.1) - p;
+      const double d = glm::length(toLamp);
+      for (int c = 0; c < 3; ++c)
+      {
+        const double expected = doubleSided ? kd->GetComponent(i, c) * 3 * (-toLamp.y / d) / (d * d) : 0.0;
+        EXPECT_NEAR(diffuse->GetComponent(i, c), expected, 1e-12) << doubleSided << " " << i << " " << c;
+      }
+      EXPECT_EQ((int(flags->GetComponent(i, 0)) & FlagNormalFlipped) != 0, doubleSided) << i;
+    }
+  }
 }
 
 TEST(MetallicRoughness, TheGltfSplitAndTheBlinnPhongExponent)

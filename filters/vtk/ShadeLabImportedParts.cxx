@@ -17,6 +17,7 @@
 #include "vtkTexture.h"
 #include "vtkTransform.h"
 #include "vtkTransformPolyDataFilter.h"
+#include "vtkUnsignedCharArray.h"
 
 #include "MaterialArrays.h"
 #include "ShadeLabMeshPolygons.h"
@@ -208,6 +209,28 @@ vtkSmartPointer<vtkPolyData> partWithMaterial(
   pointData->AddArray(kd);
   return copy;
 }
+
+/// Where some parts are two-sided and others not, the line that says how all are shaded
+/// (ownMaterial), naming the two-sided ones; "" where they agree.
+std::string mixedSidesNote(vtkStringArray* names, vtkUnsignedCharArray* twoSided)
+{
+  std::string list;
+  vtkIdType count = 0;
+  for (vtkIdType p = 0; p < twoSided->GetNumberOfValues(); ++p)
+  {
+    if (twoSided->GetValue(p) != 0)
+    {
+      list += (count++ ? ", '" : "'") + names->GetValue(p) + "'";
+    }
+  }
+  if (count == 0 || count == twoSided->GetNumberOfValues())
+  {
+    return "";
+  }
+  return std::string(count == 1 ? "part " : "parts ") + list + (count == 1 ? " is" : " are") +
+    " double-sided and the others are not: a mesh is shaded on one side or on both, not part by part, so every part "
+    "is shaded on the side of its normals (a scene's material with \"two_sided\": true shades all on both)";
+}
 }
 
 vtkSmartPointer<vtkPolyData> meshOfParts(const std::vector<ImportedPart>& parts, std::vector<std::string>& skipped)
@@ -215,6 +238,8 @@ vtkSmartPointer<vtkPolyData> meshOfParts(const std::vector<ImportedPart>& parts,
   std::vector<vtkSmartPointer<vtkPolyData>> withMaterials;
   auto names = vtkSmartPointer<vtkStringArray>::New();
   names->SetName(partNamesArrayName);
+  auto twoSided = vtkSmartPointer<vtkUnsignedCharArray>::New();
+  twoSided->SetName(partTwoSidedArrayName);
   for (const ImportedPart& part : parts)
   {
     vtkMapper* mapper = part.actor->GetMapper();
@@ -229,6 +254,12 @@ vtkSmartPointer<vtkPolyData> meshOfParts(const std::vector<ImportedPart>& parts,
     }
     withMaterials.push_back(partWithMaterial(part, polygons, int(names->GetNumberOfValues()), skipped));
     names->InsertNextValue(part.name);
+    twoSided->InsertNextValue(part.material.twoSided ? 1 : 0);
+  }
+  const std::string mixedSides = mixedSidesNote(names, twoSided);
+  if (!mixedSides.empty())
+  {
+    skipped.push_back(mixedSides);
   }
   auto mesh = vtkSmartPointer<vtkPolyData>::New();
   if (withMaterials.size() == 1)
@@ -246,6 +277,7 @@ vtkSmartPointer<vtkPolyData> meshOfParts(const std::vector<ImportedPart>& parts,
     mesh->ShallowCopy(append->GetOutput());
   }
   mesh->GetFieldData()->AddArray(names);
+  mesh->GetFieldData()->AddArray(twoSided);
   return mesh;
 }
 
@@ -262,10 +294,13 @@ bool shadesWithOwnMaterials(const Scene& scene, vtkPolyData* mesh, bool colorByA
   return !scene.materialGiven && !colorByArray && scene.model == ShadingModel::Lecture && hasOwnMaterials(mesh);
 }
 
-Material ownMaterial(const Material& scenes)
+Material ownMaterial(const Material& scenes, vtkPolyData* mesh)
 {
   Material material = scenes;
   material.spectra = {};
+  auto* twoSided = vtkUnsignedCharArray::SafeDownCast(mesh->GetFieldData()->GetAbstractArray(partTwoSidedArrayName));
+  material.twoSided = twoSided && twoSided->GetNumberOfValues() > 0 &&
+    std::all_of(twoSided->Begin(), twoSided->End(), [](unsigned char value) { return value != 0; });
   auto fromArray = [&](MaterialCoefficient coefficient, const char* name)
   {
     ArrayCoefficient array;

@@ -31,12 +31,17 @@ constexpr const char* materialKsArrayName = "material_ks";
 constexpr const char* materialShininessArrayName = "material_shininess";
 /// The field-data array of the parts' names, indexed by the part array's values.
 constexpr const char* partNamesArrayName = "part_names";
+/// The field-data array that says, part by part as partNamesArrayName, which parts are shaded on
+/// both sides (1) and which on the side of their normals (0).
+constexpr const char* partTwoSidedArrayName = "part_two_sided";
 
-/// A part's coefficients in the lecture model, linear.
+/// A part's coefficients in the lecture model, linear, and its sides.
 struct PartMaterial
 {
   Rgb ka{ 0.0 }, kd{ 0.0 }, ks{ 0.0 };
   double shininess = 0;
+  /// glTF's doubleSided (an MTL file has no such statement: one-sided).
+  bool twoSided = false;
 };
 
 /// One part as an importer made it: its actor (its mapper's polydata, placed by the actor's
@@ -54,8 +59,8 @@ struct ImportedPart
 /// The parts' polygons, lines and vertices as one mesh (the parts with none are left out), with
 /// each point's part, the parts' materials per point (kd times the texture's colour averaged
 /// over the texels the point stands for, sRGB-decoded where the texture is 8- or 16-bit), their
-/// normals where every part has them, and their texture coordinates. What could not be used is
-/// added to `skipped`, one line each.
+/// sides per part, their normals where every part has them, and their texture coordinates. What
+/// could not be used is added to `skipped`, one line each.
 SHADELABFILTERS_EXPORT vtkSmartPointer<vtkPolyData> meshOfParts(
   const std::vector<ImportedPart>& parts, std::vector<std::string>& skipped);
 
@@ -67,8 +72,10 @@ SHADELABFILTERS_EXPORT bool hasOwnMaterials(vtkPolyData* mesh);
 SHADELABFILTERS_EXPORT bool shadesWithOwnMaterials(const Scene& scene, vtkPolyData* mesh, bool colorByArray);
 
 /// The scene's material made to read those arrays: the MTL's Ka, Kd, Ks and Ns are the lecture's
-/// ka, kd, ks and shininess (the specular model and sides stay the scene's).
-SHADELABFILTERS_EXPORT Material ownMaterial(const Material& scenes);
+/// ka, kd, ks and shininess. The specular model stays the scene's; the surface is two-sided
+/// where every part of the mesh is (glTF's doubleSided), since a mesh is shaded on one side or
+/// on both, not part by part.
+SHADELABFILTERS_EXPORT Material ownMaterial(const Material& scenes, vtkPolyData* mesh);
 }
 
 #endif

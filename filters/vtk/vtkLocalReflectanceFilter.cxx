@@ -521,7 +521,7 @@ bool vtkLocalReflectanceFilter::PlaceScene(vtkPolyData* input, const shadelab::M
                     "mode, which takes spectra or numbers: give the scene a \"material\"");
       return false;
     }
-    plan.scene.material = shadelab::ownMaterial(plan.scene.material);
+    plan.scene.material = shadelab::ownMaterial(plan.scene.material, input);
   }
   if (this->ColorByArray)
   {
