@@ -313,7 +313,9 @@ void noteUnreadExtensions(const Json& gltf, std::vector<std::string>& notes)
 
 /// The part's material from its PBR property (glTF's pbrMetallicRoughness), in the lecture's
 /// coefficients, and its sides: vtkGLTFImporter culls the back faces of a material that is not
-/// doubleSided.
+/// doubleSided. A primitive without a material keeps vtkProperty's defaults (no culling, nor
+/// the PBR interpolation that the importer gives every material it applies), and glTF's default
+/// material is one-sided.
 PartMaterial materialOf(vtkProperty* property)
 {
   const double* base = property->GetColor();
@@ -323,7 +325,7 @@ PartMaterial materialOf(vtkProperty* property)
   material.ka = material.kd = c.kd;
   material.ks = c.ks;
   material.shininess = c.shininess;
-  material.twoSided = !property->GetBackfaceCulling();
+  material.twoSided = property->GetInterpolation() == VTK_PBR && !property->GetBackfaceCulling();
   return material;
 }
 }

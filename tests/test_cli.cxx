@@ -1038,8 +1038,8 @@ TEST_F(Cli, AGltfIsLitByItsOwnLightsAndABrokenOneIsRefused)
   EXPECT_EQ(oneSide.err,
     "shadelab: warning: " + mixed +
       ": part 'ball' is double-sided and the others are not: a mesh is shaded on one side or on both, not part by "
-      "part, so every part is shaded on the side of its normals (a scene's material with \"two_sided\": true shades "
-      "all on both)\n");
+      "part, so its own materials shade every part on the side of its normals (a scene's material with "
+      "\"two_sided\": true shades all on both, in its own colours)\n");
   EXPECT_NE(oneSide.out.find("  material: the mesh's own, part by part (2 parts: ball, floor)\n"), std::string::npos)
     << oneSide.out;
 

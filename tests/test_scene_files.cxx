@@ -404,7 +404,8 @@ TEST_F(SceneFiles, AGltfFilesLightsShadeAsTheSameSceneInShadeLabsJson)
 
 // glTF's doubleSided: the square (normals up) seen from below and lit from below. Double-sided,
 // its underside is shaded, turned round: kd I (n.l) / d^2 with n = -y at each vertex. Not
-// double-sided (glTF's default), the light is behind its normals and it is dark.
+// double-sided (glTF's default), or with no material at all (glTF's default material, which
+// VTK's importer leaves without culling), the light is behind its normals and it is dark.
 TEST_F(SceneFiles, AGltfsDoubleSidedMaterialIsShadedOnBothSides)
 {
   std::ofstream(folder / "square.bin", std::ios::binary) << squareBuffer();
@@ -412,13 +413,18 @@ TEST_F(SceneFiles, AGltfsDoubleSidedMaterialIsShadedOnBothSides)
     "lights": [ { "name": "lamp", "type": "point", "position": [0.3, -1, 0.1], "intensity": 3 } ] })",
     "below.json");
   const std::vector<std::string> arrays{ "lamp_diffuse", "shading_flags" };
-  for (const bool doubleSided : { true, false })
+  const std::string materials = R"("materials": [ { )", itsMaterial = R"(, "material": 0)";
+  for (const std::string& material : { "doubleSided", "one-sided", "none" })
   {
     std::string gltf = lampsGltf(R"({ "byteLength": 112, "uri": "square.bin" })");
-    const std::string materials = R"("materials": [ { )";
+    const bool doubleSided = material == "doubleSided";
     gltf.insert(gltf.find(materials) + materials.size(), doubleSided ? R"("doubleSided": true, )" : "");
+    if (material == "none")
+    {
+      gltf.erase(gltf.find(itsMaterial), itsMaterial.size());
+    }
     vtkSmartPointer<vtkPolyData> mesh = app::readMesh(file("square.gltf", gltf));
-    EXPECT_EQ(ownMaterial(Material{}, mesh).twoSided, doubleSided);
+    EXPECT_EQ(ownMaterial(Material{}, mesh).twoSided, doubleSided) << material;
     vtkSmartPointer<vtkPolyData> shaded =
       shadelab::testing::shadeWithFilter(mesh, below, arrays, vtkAlgorithm::DOUBLE_PRECISION);
     vtkDataArray* kd = mesh->GetPointData()->GetArray(materialKdArrayName);
@@ -433,9 +439,9 @@ TEST_F(SceneFiles, AGltfsDoubleSidedMaterialIsShadedOnBothSides)
       for (int c = 0; c < 3; ++c)
       {
         const double expected = doubleSided ? kd->GetComponent(i, c) * 3 * (-toLamp.y / d) / (d * d) : 0.0;
-        EXPECT_NEAR(diffuse->GetComponent(i, c), expected, 1e-12) << doubleSided << " " << i << " " << c;
+        EXPECT_NEAR(diffuse->GetComponent(i, c), expected, 1e-12) << material << " " << i << " " << c;
       }
-      EXPECT_EQ((int(flags->GetComponent(i, 0)) & FlagNormalFlipped) != 0, doubleSided) << i;
+      EXPECT_EQ((int(flags->GetComponent(i, 0)) & FlagNormalFlipped) != 0, doubleSided) << material << " " << i;
     }
   }
 }

@@ -228,8 +228,9 @@ std::string mixedSidesNote(vtkStringArray* names, vtkUnsignedCharArray* twoSided
     return "";
   }
   return std::string(count == 1 ? "part " : "parts ") + list + (count == 1 ? " is" : " are") +
-    " double-sided and the others are not: a mesh is shaded on one side or on both, not part by part, so every part "
-    "is shaded on the side of its normals (a scene's material with \"two_sided\": true shades all on both)";
+    " double-sided and the others are not: a mesh is shaded on one side or on both, not part by part, so its own "
+    "materials shade every part on the side of its normals (a scene's material with \"two_sided\": true shades all "
+    "on both, in its own colours)";
 }
 }
 

@@ -83,6 +83,8 @@ struct MeshPieces
   const std::vector<vtkIdType>* pointIds() const { return layout ? &layout->pieceIds : nullptr; }
   /// Whether `mine` holds on every process (on a whole mesh, `mine`).
   bool holdEverywhere(bool mine) const { return split() ? everyProcessHolds(processes, mine) : mine; }
+  /// Whether `mine` holds on some process (on a whole mesh, `mine`).
+  bool holdAnywhere(bool mine) const { return !holdEverywhere(!mine); }
   /// The first process's text that is not empty (on a whole mesh, `text`).
   std::string firstProblem(const std::string& text) const { return split() ? firstText(processes, text) : text; }
 };

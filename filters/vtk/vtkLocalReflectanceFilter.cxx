@@ -513,7 +513,10 @@ bool vtkLocalReflectanceFilter::PlaceScene(vtkPolyData* input, const shadelab::M
   }
   // A scene written relative to the mesh is placed on it here, and checked where it lands.
   plan.scene = shadelab::placedOnMesh(*given, plan.extent);
-  if (shadelab::shadesWithOwnMaterials(plan.scene, input, this->ColorByArray))
+  // Every process shades with the mesh's own materials where any does, and on both sides where
+  // any does: an empty piece has no parts to say so, and the steps that follow exchange between
+  // the pieces.
+  if (pieces.holdAnywhere(shadelab::shadesWithOwnMaterials(plan.scene, input, this->ColorByArray)))
   {
     if (plan.scene.spectral)
     {
@@ -523,6 +526,7 @@ bool vtkLocalReflectanceFilter::PlaceScene(vtkPolyData* input, const shadelab::M
     }
     plan.scene.material = shadelab::ownMaterial(plan.scene.material, input);
   }
+  plan.scene.material.twoSided = pieces.holdAnywhere(plan.scene.material.twoSided);
   if (this->ColorByArray)
   {
     if (!shadelab::isColorMapName(this->MaterialColorMap))
