@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <random>
@@ -124,6 +125,15 @@ TEST(ReadEnvironmentMap, MissingFile)
 {
   const std::string path = tempPath("missing.hdr");
   EXPECT_EQ(readError(path), path + ": no such file");
+}
+
+// Refused before OpenImageIO tries its formats on them (libheif read a folder as a 512 MB file).
+TEST(ReadEnvironmentMap, AFolderOrADeviceIsNotAnImage)
+{
+  const std::string folder = tempPath("maps");
+  std::filesystem::create_directories(folder);
+  EXPECT_EQ(readError(folder), folder + ": is a folder, not an image file");
+  EXPECT_EQ(readError("/dev/zero"), "/dev/zero: is not a regular file (a device or a pipe?): give an image file");
 }
 
 TEST(ReadEnvironmentMap, NotAnImage)

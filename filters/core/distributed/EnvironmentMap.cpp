@@ -151,6 +151,16 @@ EnvironmentMap readEnvironmentMap(const std::string& path)
   {
     throw std::runtime_error(path + ": no such file");
   }
+  // Before OpenImageIO, which tries every format on what its own does not read: libheif took a
+  // folder for a 512 MB file, and a device never ends.
+  if (std::filesystem::is_directory(path, ignored))
+  {
+    throw std::runtime_error(path + ": is a folder, not an image file");
+  }
+  if (!std::filesystem::is_regular_file(path, ignored))
+  {
+    throw std::runtime_error(path + ": is not a regular file (a device or a pipe?): give an image file");
+  }
   const std::unique_ptr<ImageFile> input = ImageFile::open(path);
   const int width = input->width(), height = input->height(), fileChannels = input->channels();
   if (width <= 0 || height <= 0)
