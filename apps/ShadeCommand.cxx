@@ -466,7 +466,7 @@ std::string ownMaterialsText(vtkPolyData* mesh, const Scene& scene, const ShadeO
   if (shadesWithOwnMaterials(scene, mesh, !options.colorBy.empty()))
   {
     return "the mesh's own, part by part (" + partsText + ")" +
-      (ownMaterial(scene.material, mesh).twoSided ? ", two-sided (every part is)" : "");
+      (everyPartTwoSided(mesh) ? ", two-sided (every part is)" : "");
   }
   const std::string instead = scene.materialGiven ? "the scene's"
     : !options.colorBy.empty()                    ? "--color-by's"

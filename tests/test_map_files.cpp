@@ -133,7 +133,7 @@ TEST(ReadEnvironmentMap, AFolderOrADeviceIsNotAnImage)
   const std::string folder = tempPath("maps");
   std::filesystem::create_directories(folder);
   EXPECT_EQ(readError(folder), folder + ": is a folder, not an image file");
-  EXPECT_EQ(readError("/dev/zero"), "/dev/zero: is not a regular file (a device or a pipe?): give an image file");
+  EXPECT_EQ(readError("/dev/zero"), "/dev/zero: not a regular file (a pipe or a device?): give an image file");
 }
 
 TEST(ReadEnvironmentMap, NotAnImage)

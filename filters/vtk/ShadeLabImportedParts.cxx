@@ -295,13 +295,18 @@ bool shadesWithOwnMaterials(const Scene& scene, vtkPolyData* mesh, bool colorByA
   return !scene.materialGiven && !colorByArray && scene.model == ShadingModel::Lecture && hasOwnMaterials(mesh);
 }
 
+bool everyPartTwoSided(vtkPolyData* mesh)
+{
+  auto* twoSided = vtkUnsignedCharArray::SafeDownCast(mesh->GetFieldData()->GetAbstractArray(partTwoSidedArrayName));
+  return twoSided && twoSided->GetNumberOfValues() > 0 &&
+    std::all_of(twoSided->Begin(), twoSided->End(), [](unsigned char value) { return value != 0; });
+}
+
 Material ownMaterial(const Material& scenes, vtkPolyData* mesh)
 {
   Material material = scenes;
   material.spectra = {};
-  auto* twoSided = vtkUnsignedCharArray::SafeDownCast(mesh->GetFieldData()->GetAbstractArray(partTwoSidedArrayName));
-  material.twoSided = twoSided && twoSided->GetNumberOfValues() > 0 &&
-    std::all_of(twoSided->Begin(), twoSided->End(), [](unsigned char value) { return value != 0; });
+  material.twoSided = everyPartTwoSided(mesh);
   auto fromArray = [&](MaterialCoefficient coefficient, const char* name)
   {
     ArrayCoefficient array;

@@ -71,6 +71,10 @@ SHADELABFILTERS_EXPORT bool hasOwnMaterials(vtkPolyData* mesh);
 /// lecture model, gives no material (nor does a colouring by an array, colorByArray).
 SHADELABFILTERS_EXPORT bool shadesWithOwnMaterials(const Scene& scene, vtkPolyData* mesh, bool colorByArray);
 
+/// Whether every part of the mesh is shaded on both sides (partTwoSidedArrayName; false for a
+/// mesh without it).
+SHADELABFILTERS_EXPORT bool everyPartTwoSided(vtkPolyData* mesh);
+
 /// The scene's material made to read those arrays: the MTL's Ka, Kd, Ks and Ns are the lecture's
 /// ka, kd, ks and shininess. The specular model stays the scene's; the surface is two-sided
 /// where every part of the mesh is (glTF's doubleSided), since a mesh is shaded on one side or

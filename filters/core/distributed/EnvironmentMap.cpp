@@ -159,7 +159,7 @@ EnvironmentMap readEnvironmentMap(const std::string& path)
   }
   if (!std::filesystem::is_regular_file(path, ignored))
   {
-    throw std::runtime_error(path + ": is not a regular file (a device or a pipe?): give an image file");
+    throw std::runtime_error(path + ": not a regular file (a pipe or a device?): give an image file");
   }
   const std::unique_ptr<ImageFile> input = ImageFile::open(path);
   const int width = input->width(), height = input->height(), fileChannels = input->channels();
