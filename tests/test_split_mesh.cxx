@@ -29,6 +29,7 @@
 #include "vtkXMLPPolyDataWriter.h"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <chrono>
@@ -139,6 +140,54 @@ vtkSmartPointer<vtkPolyData> myPiece(vtkPolyData* mesh, int ghostLevels = 1)
     mesh, processes()->GetLocalProcessId(), processes()->GetNumberOfProcesses(), ghostLevels);
 }
 
+/// A scene file of this process's own (each process writes its copy, and CTest may run the
+/// three process counts at once), in the temporary directory; its path.
+std::string sceneFile(const std::string& name, const std::string& json)
+{
+  const std::filesystem::path path = std::filesystem::temp_directory_path() /
+    ("shadelab_" + name + "_np" + std::to_string(processes()->GetNumberOfProcesses()) + "_" +
+      std::to_string(processes()->GetLocalProcessId()) + ".json");
+  std::ofstream(path) << json;
+  return path.string();
+}
+
+/// A bundled scene with at most 8 samples a light and 16 occlusion rays, written as sceneFile
+/// does (its map's path made absolute); its path. The processes trace and exchange the same
+/// things as under the bundled scene, each value from fewer rays.
+std::string withFewerRays(const std::string& bundled)
+{
+  const std::string scenes = dataPath("scenes/");
+  nlohmann::json scene = nlohmann::json::parse(std::ifstream(scenes + bundled + ".json"));
+  const std::function<void(nlohmann::json&)> fewer = [&](nlohmann::json& value)
+  {
+    for (auto& [key, field] : value.items())
+    {
+      if (key == "samples" && field.is_number_integer())
+      {
+        field = std::min(field.get<int>(), 8);
+      }
+      else if (key == "rays" && field.is_number_integer())
+      {
+        field = std::min(field.get<int>(), 16);
+      }
+      else if (key == "max_samples")
+      {
+        field = std::min(field.get<int>(), 256);
+      }
+      else if (key == "file" && field.is_string())
+      {
+        field = scenes + field.get<std::string>();
+      }
+      else if (field.is_structured())
+      {
+        fewer(field);
+      }
+    }
+  };
+  fewer(scene);
+  return sceneFile(bundled + "_fewer_rays", scene.dump());
+}
+
 struct SplitMesh : ::testing::TestWithParam<const char*>
 {
   vtkSmartPointer<vtkPolyData> mesh = shadelab::app::readMesh(dataPath(std::string("meshes/") + GetParam()));
@@ -148,7 +197,8 @@ struct SplitMesh : ::testing::TestWithParam<const char*>
 // light's samples are seeded by each point's id in the whole mesh.
 TEST_P(SplitMesh, ShadesEachPieceAsTheWholeMesh)
 {
-  for (const auto& [scene, arrays] : { std::pair{ "studio.json", 41 }, std::pair{ "area_lights.json", 18 } })
+  for (const auto& [scene, arrays] :
+    { std::pair{ std::string("studio.json"), 41 }, std::pair{ withFewerRays("area_lights"), 18 } })
   {
     const vtkSmartPointer<vtkPolyData> whole = shadedWhole(mesh, scene, { "all" });
     const vtkSmartPointer<vtkPolyData> piece = shaded(myPiece(mesh), scene, { "all" }, processes());
@@ -174,7 +224,7 @@ TEST_P(SplitMesh, PlacesTheSceneOnTheWholeMesh)
 // the whole mesh where its piece is, stop where the whole mesh's stop.
 TEST_P(SplitMesh, DrawsSoftShadowsToATargetAsTheWholeMesh)
 {
-  const char* scene = "soft_shadows_to_a_tolerance.json";
+  const std::string scene = withFewerRays("soft_shadows_to_a_tolerance");
   const vtkSmartPointer<vtkPolyData> whole = shadedWhole(mesh, scene, { "all" }, 0.02);
   const vtkSmartPointer<vtkPolyData> piece = shaded(myPiece(mesh), scene, { "all" }, processes(), 0.02);
   ASSERT_GT(piece->GetNumberOfPoints(), 0);
@@ -250,30 +300,29 @@ TEST(SplitMeshMaterial, ColoursAndAFieldsRangeAreTheWholeMeshs)
 TEST(SplitMeshVisibility, CastsAgainstTheWholeMesh)
 {
   const vtkSmartPointer<vtkPolyData> mesh = bunny();
-  const vtkSmartPointer<vtkPolyData> whole = shadedWhole(mesh, "shadows_occlusion.json", { "all" });
-  const vtkSmartPointer<vtkPolyData> piece = shaded(myPiece(mesh), "shadows_occlusion.json", { "all" }, processes());
+  const std::string occlusion = withFewerRays("shadows_occlusion");
+  const vtkSmartPointer<vtkPolyData> whole = shadedWhole(mesh, occlusion, { "all" });
+  const vtkSmartPointer<vtkPolyData> piece = shaded(myPiece(mesh), occlusion, { "all" }, processes());
   EXPECT_GT(expectPieceOfWhole(whole, piece), 10);
-  // An area light's soft shadows: each sample's ray, seeded by the point's id in the whole mesh.
-  EXPECT_GT(expectPieceOfWhole(shadedWhole(mesh, "soft_shadows.json", { "all" }),
-              shaded(myPiece(mesh), "soft_shadows.json", { "all" }, processes())),
-    10);
-  // A map's: the same, with every sample's ray going to infinity.
-  EXPECT_GT(expectPieceOfWhole(shadedWhole(mesh, "envmap_shadows.json", { "all" }),
-              shaded(myPiece(mesh), "envmap_shadows.json", { "all" }, processes())),
-    10);
-  // Transfer vectors from the same rays, 16 coefficients and their standard errors a point.
-  EXPECT_GT(expectPieceOfWhole(shadedWhole(mesh, "envmap_transfer.json", { "all" }),
-              shaded(myPiece(mesh), "envmap_transfer.json", { "all" }, processes())),
-    10);
+  // An area light's soft shadows: each sample's ray, seeded by the point's id in the whole mesh;
+  // a map's, with every sample's ray going to infinity; and transfer vectors from the same rays,
+  // 16 coefficients and their standard errors a point.
+  for (const std::string bundled : { "soft_shadows", "envmap_shadows", "envmap_transfer" })
+  {
+    const std::string scene = withFewerRays(bundled);
+    EXPECT_GT(
+      expectPieceOfWhole(shadedWhole(mesh, scene, { "all" }), shaded(myPiece(mesh), scene, { "all" }, processes())), 10)
+      << bundled;
+  }
 
   // The visibility filter alone, on normals the mesh has.
   vtkNew<vtkMeshVisibilityFilter> alone, split;
   alone->SetController(nullptr);
   alone->SetInputData(whole);
-  alone->SetSceneFileName(dataPath("scenes/shadows_occlusion.json"));
+  alone->SetSceneFileName(occlusion);
   alone->Update();
   split->SetInputData(myPiece(whole));
-  split->SetSceneFileName(dataPath("scenes/shadows_occlusion.json"));
+  split->SetSceneFileName(occlusion);
   split->Update();
   EXPECT_GT(expectPieceOfWhole(alone->GetOutput(), split->GetOutput()), 10);
 }
@@ -330,7 +379,8 @@ TEST(SplitMeshVisibility, AProcessWithAnEmptyPiece)
   {
     vtkSmartPointer<vtkPolyData> piece =
       holdsNone ? vtkSmartPointer<vtkPolyData>::New() : shadelab::testing::meshPiece(mesh, rank, count - 1, 1);
-    for (const auto& [scene, arrays] : { std::pair{ "shadows_occlusion.json", 10 }, std::pair{ "studio.json", 40 } })
+    for (const auto& [scene, arrays] :
+      { std::pair{ withFewerRays("shadows_occlusion"), 10 }, std::pair{ std::string("studio.json"), 40 } })
     {
       const bool ownNormals = mesh->GetPointData()->GetNormals() != nullptr;
       const vtkSmartPointer<vtkPolyData> shadedPiece = shaded(piece, scene, { "all" }, processes());
@@ -345,7 +395,7 @@ TEST(SplitMeshVisibility, AProcessWithAnEmptyPiece)
     }
   }
   // Drawn to a target, the vertices short of it are counted over the pieces, the empty one too.
-  const char* drawn = "soft_shadows_to_a_tolerance.json";
+  const std::string drawn = withFewerRays("soft_shadows_to_a_tolerance");
   vtkSmartPointer<vtkPolyData> piece = holdsNone
     ? vtkSmartPointer<vtkPolyData>::New()
     : shadelab::testing::meshPiece(normals->GetOutput(), rank, count - 1, 1);
@@ -381,17 +431,6 @@ TEST(SplitMeshMemory, NormalsGatherOnTheFirstProcessOnly)
     EXPECT_EQ(whole.mesh, nullptr);
     EXPECT_TRUE(whole.everyPieceIds.empty());
   }
-}
-
-/// A scene file of this process's own (each process writes its copy, and CTest may run the
-/// three process counts at once), in the temporary directory; its path.
-std::string sceneFile(const std::string& name, const std::string& json)
-{
-  const std::filesystem::path path = std::filesystem::temp_directory_path() /
-    ("shadelab_" + name + "_np" + std::to_string(processes()->GetNumberOfProcesses()) + "_" +
-      std::to_string(processes()->GetLocalProcessId()) + ".json");
-  std::ofstream(path) << json;
-  return path.string();
 }
 
 /// interreflection.json with fewer rays (32 gather rays a vertex, 16 of the map's): the same
