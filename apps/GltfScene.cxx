@@ -311,6 +311,25 @@ void noteUnreadExtensions(const Json& gltf, std::vector<std::string>& notes)
   }
 }
 
+/// A material's doubleSided that is not a boolean ("yes", 1): VTK's loader takes it for false,
+/// glTF's default, and culls the part's back faces. Said, since the file meant something else.
+void noteDoubleSidedNotBoolean(const Json& gltf, std::vector<std::string>& notes)
+{
+  const Json* materials = member(&gltf, "materials");
+  for (std::size_t m = 0; materials && materials->is_array() && m < materials->size(); ++m)
+  {
+    const Json* flag = member(&(*materials)[m], "doubleSided");
+    if (flag && !flag->is_boolean())
+    {
+      const std::string name = textOr(&(*materials)[m], "name");
+      std::string given = flag->dump();
+      given = given.size() > 40 ? given.substr(0, 37) + "..." : given;
+      notes.push_back("material " + (name.empty() ? std::to_string(m) : "'" + name + "'") + " gives doubleSided as " +
+        printableText(given) + ", not true or false: VTK's importer reads it as false, so its parts are one-sided");
+    }
+  }
+}
+
 /// The part's material from its PBR property (glTF's pbrMetallicRoughness), in the lecture's
 /// coefficients, and its sides: vtkGLTFImporter culls the back faces of a material that is not
 /// doubleSided. A primitive without a material keeps vtkProperty's defaults (no culling, nor
@@ -368,6 +387,7 @@ vtkSmartPointer<vtkPolyData> importGltfScene(const std::string& fileName, std::v
     throw UserError(fileName + ": the glTF file has no geometry that VTK's importer reads (no mesh primitives)");
   }
   noteUnreadExtensions(gltf, notes);
+  noteDoubleSidedNotBoolean(gltf, notes);
   const std::string lights = lightsScene(renderer, gltf, notes);
   if (!lights.empty())
   {

@@ -1042,6 +1042,15 @@ TEST_F(Cli, AGltfIsLitByItsOwnLightsAndABrokenOneIsRefused)
       "\"two_sided\": true shades all on both, in its own colours)\n");
   EXPECT_NE(oneSide.out.find("  material: the mesh's own, part by part (2 parts: ball, floor)\n"), std::string::npos)
     << oneSide.out;
+  // A doubleSided that is not a boolean, which VTK's importer takes for false, is said.
+  doubleSided.replace(doubleSided.find("\"doubleSided\": true"), 19, "\"doubleSided\": \"yes\"");
+  const std::string yes = file("yes_sided.gltf", doubleSided);
+  const Result notBoolean = shadelab("shade " + yes + " -o " + (folder / "y.vtp").string());
+  ASSERT_EQ(notBoolean.exitCode, 0) << notBoolean.err;
+  EXPECT_EQ(notBoolean.err,
+    "shadelab: warning: " + yes +
+      ": material 'ball' gives doubleSided as \"yes\", not true or false: VTK's importer reads it as false, so its "
+      "parts are one-sided\n");
 
   const std::string output = (folder / "out.vtp").string();
   const std::string empty =
