@@ -321,7 +321,8 @@ void noteDoubleSidedNotBoolean(const Json& gltf, std::vector<std::string>& notes
     const Json* flag = member(&(*materials)[m], "doubleSided");
     if (flag && !flag->is_boolean())
     {
-      const std::string name = textOr(&(*materials)[m], "name");
+      std::string name = textOr(&(*materials)[m], "name");
+      name = name.size() > 60 ? name.substr(0, 57) + "..." : name;
       std::string given = flag->dump();
       given = given.size() > 40 ? given.substr(0, 37) + "..." : given;
       notes.push_back("material " + (name.empty() ? std::to_string(m) : "'" + name + "'") + " gives doubleSided as " +

@@ -151,9 +151,9 @@ std::string sceneFile(const std::string& name, const std::string& json)
   return path.string();
 }
 
-/// A bundled scene with at most 8 samples a light and 16 occlusion rays, written as sceneFile
-/// does (its map's path made absolute); its path. The processes trace and exchange the same
-/// things as under the bundled scene, each value from fewer rays.
+/// A bundled scene with at most 8 samples a light, 16 occlusion rays and 256 of either drawn to
+/// a target, written as sceneFile does (its map's path made absolute); its path. The processes trace and exchange the
+/// same things as under the bundled scene, each value from fewer rays.
 std::string withFewerRays(const std::string& bundled)
 {
   const std::string scenes = dataPath("scenes/");
@@ -170,13 +170,13 @@ std::string withFewerRays(const std::string& bundled)
       {
         field = std::min(field.get<int>(), 16);
       }
-      else if (key == "max_samples")
+      else if ((key == "max_samples" || key == "max_rays") && field.is_number_integer())
       {
         field = std::min(field.get<int>(), 256);
       }
       else if (key == "file" && field.is_string())
       {
-        field = scenes + field.get<std::string>();
+        field = (std::filesystem::path(scenes) / field.get<std::string>()).lexically_normal().string();
       }
       else if (field.is_structured())
       {
