@@ -10,6 +10,7 @@
 #include "MetallicRoughness.h"
 #include "SceneFile.h"
 #include "SpectralStudies.h"
+#include "TextureStudies.h"
 
 #include "vtkLocalReflectanceFilter.h"
 
@@ -767,6 +768,7 @@ void runAccuracyStudies(const AccuracyOptions& options)
     "14c_interreflection_time", [&](ChartSpec& chart) { return interreflectionPlanStudy(options.maxRepeats, chart); });
   study("15_reflectance_models",
     [&](ChartSpec& chart) { return reflectanceModelsStudy(*bunny, options.maxRepeats, chart); });
+  study("16_texture_filtering", [&](ChartSpec& chart) { return textureFilteringStudy(chart); });
   const std::vector<AccuracyRow> grazing = grazingRows();
   rows.insert(rows.end(), grazing.begin(), grazing.end());
   for (const AccuracyRow& r : grazing)

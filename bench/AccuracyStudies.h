@@ -22,8 +22,7 @@ struct AccuracyOptions
 /// Runs the studies (arithmetic and pow, pow over eta, a point light as distant, Phong against
 /// Blinn-Phong, tessellation, an area light's estimators with and without its shadows, two
 /// environment maps' estimators and one's with its shadows, a tolerance's predicted errors
-/// against measured ones), the failure points and the speed requirements of the SH estimator; writes
-/// accuracy.csv and one PNG per study into the directory. Needs an X display for the charts.
-/// Throws UserError.
+/// against measured ones, a texture at vertices), the failure points and the speed requirements of the SH estimator;
+/// writes accuracy.csv and one PNG per study into the directory. Needs an X display for the charts. Throws UserError.
 void runAccuracyStudies(const AccuracyOptions& options);
 }

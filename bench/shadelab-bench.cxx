@@ -168,7 +168,8 @@ int main(int argc, char** argv)
       "instead, run the accuracy studies (float32, pow methods, a point light as distant, Phong against "
       "Blinn-Phong, tessellation, each at its failure point; the estimators of an area light and of two "
       "environment maps, and the SH estimator's speed; the spectral mode, interreflection, and the lecture's "
-      "lobes against VTK's PBR microfacets) and write accuracy.csv and one PNG chart per study into "
+      "lobes against VTK's PBR microfacets, a texture at vertices) and write accuracy.csv and one PNG chart per study "
+      "into "
       "this folder; reads data/scenes/area_lights.json and data/envmaps/; needs an X display (xvfb-run -a)")
     ->excludes(endToEnd)
     ->excludes(interreflection);

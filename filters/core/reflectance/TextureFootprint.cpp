@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <unordered_map>
 
 namespace shadelab
 {
@@ -63,21 +62,64 @@ struct SurfacePoint
   {
     return std::memcmp(values.data(), other.values.data(), sizeof(values)) == 0;
   }
-};
-struct SurfacePointHash
-{
-  std::size_t operator()(const SurfacePoint& p) const
+  /// Each value's bits through splitmix64's finalizer, which spreads every bit over the low
+  /// ones the table's slots use (coordinates like 3.0 or 0.5 differ only in their high bits).
+  std::size_t hash() const
   {
-    std::uint64_t hash = 1469598103934665603ull;
-    for (double value : p.values)
+    std::uint64_t hash = 0;
+    for (double value : values)
     {
       std::uint64_t bits;
       std::memcpy(&bits, &value, sizeof(bits));
-      hash = (hash ^ bits) * 1099511628211ull;
+      bits += hash + 0x9e3779b97f4a7c15ull;
+      bits = (bits ^ (bits >> 30)) * 0xbf58476d1ce4e5b9ull;
+      bits = (bits ^ (bits >> 27)) * 0x94d049bb133111ebull;
+      hash = bits ^ (bits >> 31);
     }
     return std::size_t(hash);
   }
 };
+
+/// The surface point each point is, numbered in the order first met, and how many there are:
+/// points with the same position and texture coordinates (an OBJ importer's corners) are one.
+/// An open-addressing table of each surface point's first point, its slots a power of two at
+/// least twice the points:
+/// std::unordered_map, a node allocated per point, took seconds on 4M points.
+std::vector<std::size_t> surfacePointsOf(
+  const std::vector<std::array<double, 3>>& positions, const std::vector<std::array<double, 2>>& uv, std::size_t& count)
+{
+  auto keyOf = [&](std::size_t p) {
+    return SurfacePoint{ { positions[p][0], positions[p][1], positions[p][2], uv[p][0], uv[p][1] } };
+  };
+  constexpr std::size_t empty = std::size_t(-1);
+  std::size_t slots = 1;
+  while (slots < 2 * positions.size())
+  {
+    slots *= 2;
+  }
+  std::vector<std::size_t> firstPoints(slots, empty);
+  std::vector<std::size_t> numbers(positions.size());
+  count = 0;
+  for (std::size_t p = 0; p < positions.size(); ++p)
+  {
+    const SurfacePoint key = keyOf(p);
+    for (std::size_t slot = key.hash() & (slots - 1);; slot = (slot + 1) & (slots - 1))
+    {
+      if (firstPoints[slot] == empty)
+      {
+        firstPoints[slot] = p;
+        numbers[p] = count++;
+        break;
+      }
+      if (keyOf(firstPoints[slot]) == key)
+      {
+        numbers[p] = numbers[firstPoints[slot]];
+        break;
+      }
+    }
+  }
+  return numbers;
+}
 }
 
 Rgb boxMean(const RgbImage& image, double u, double v, double side)
@@ -171,16 +213,10 @@ Rgb BoxFilteredTexture::sumWithin(double x, double y) const
 std::vector<double> texelFootprints(const std::vector<std::array<double, 3>>& positions,
   const std::vector<std::array<double, 2>>& uv, const PolygonList& polygons, int width, int height)
 {
-  // The surface point each point is, numbered in the order first met.
-  std::unordered_map<SurfacePoint, std::size_t, SurfacePointHash> numbers;
-  std::vector<std::size_t> surfacePoint(positions.size());
-  for (std::size_t p = 0; p < positions.size(); ++p)
-  {
-    const SurfacePoint key{ { positions[p][0], positions[p][1], positions[p][2], uv[p][0], uv[p][1] } };
-    surfacePoint[p] = numbers.emplace(key, numbers.size()).first->second;
-  }
+  std::size_t surfacePoints = 0;
+  const std::vector<std::size_t> surfacePoint = surfacePointsOf(positions, uv, surfacePoints);
   auto inTexels = [&](PointId p) { return glm::dvec3(uv[p][0] * width, uv[p][1] * height, 0); };
-  std::vector<double> area(numbers.size(), 0.0);
+  std::vector<double> area(surfacePoints, 0.0);
   for (std::size_t k = 0; k < polygons.count; ++k)
   {
     const PointId* ids = polygons.ids(k);
