@@ -939,7 +939,7 @@ TEST_F(Cli, AnObjIsShadedWithItsOwnMaterialsAndSaysSo)
     << grey.out;
   EXPECT_EQ(grey.err,
     "shadelab: warning: still_life.obj: material 'floor' names the texture " + (folder / "checker.png").string() +
-      ", which VTK could not read: shaded with its diffuse colour alone\n");
+      ", which neither VTK nor OpenImageIO could read (no such file): shaded with its diffuse colour alone\n");
 }
 
 // The guide's open box: one layer of walls whose normals point out, two-sided, lit by a lamp

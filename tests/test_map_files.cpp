@@ -1,9 +1,20 @@
 // Reading environment map files that the tests write with OpenImageIO: Radiance HDR and
 // half-float OpenEXR round trips, one and four channels, and each kind of broken file refused
-// with its message. Kept apart from test_environment_map.cpp, whose tests need no image written,
-// so that only this binary links OpenImageIO (tests/CMakeLists.txt says why).
+// with its message; and an OBJ's texture that VTK's readers do not take. Kept apart from test_environment_map.cpp,
+// whose tests need no image written, so that only this binary links OpenImageIO (tests/CMakeLists.txt says why).
 #include "EnvironmentMap.h"
+#include "MeshFiles.h"
+#include "ShadeLabImportedParts.h"
+#include "TestFolder.h"
 #include "TestPaths.h"
+#include "TwoPartObj.h"
+#include "VtkErrorCapture.h"
+
+#include "vtkDataArray.h"
+#include "vtkNew.h"
+#include "vtkOutputWindow.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
 
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
@@ -210,5 +221,92 @@ TEST(ReadEnvironmentMap, NegativeOrNonFiniteTexel)
   pixels[3 * (3 * 8 + 0) + 0] = std::numeric_limits<float>::infinity();
   writeImage(path, 8, 4, 3, pixels, OIIO::TypeDesc::FLOAT);
   EXPECT_EQ(readError(path), path + ": texel (column 3, row 1) is not a finite non-negative radiance (1, 1, nan)");
+}
+}
+
+namespace
+{
+using TextureFiles = shadelab::testing::TestFolder;
+
+/// A Radiance .hdr file of 4 x 2 texels, written byte by byte: each texel's R, G and B bytes
+/// (rows from the top) with the exponent 129, so that each value is its byte / 128 exactly;
+/// rows shorter than 8 texels are never run-length encoded. Written without OpenImageIO: in
+/// this process, an OpenEXR file written through it leaves OpenEXR's thread pool behind, whose
+/// threads the mesh reader's forked child does not have, and the child's read of the texture
+/// then waits for them for ever.
+void writeRadiance(const std::string& path, const std::vector<unsigned char>& bytes)
+{
+  std::ofstream out(path, std::ios::binary);
+  out << "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 2 +X 4\n";
+  for (std::size_t texel = 0; texel < 8; ++texel)
+  {
+    out << bytes[3 * texel] << bytes[3 * texel + 1] << bytes[3 * texel + 2] << static_cast<unsigned char>(129);
+  }
+}
+
+// A texture that VTK's readers do not take, a Radiance .hdr file, read through OpenImageIO:
+// each vertex of the two-part OBJ's textured part sits at a texel's centre, so its kd is the
+// MTL's Kd times that texel, taken as linear (floating point) and clamped into [0, 1]; the
+// file's rows run from the top, the texture's v from the bottom. Its texel above 1 is said.
+TEST_F(TextureFiles, AnHdrTextureIsReadThroughOpenImageIOItsTexelsAbove1Clamped)
+{
+  const std::vector<unsigned char> bytes = { 64, 32, 96, 16, 128, 0, 255, 64, 64, 48, 80, 112, 8, 64, 128, 32, 32, 32,
+    96, 64, 32, 128, 128, 128 };
+  writeRadiance((folder / "texture.hdr").string(), bytes);
+  std::string mtl = shadelab::testing::partsMtl;
+  mtl.replace(mtl.find("texture.png"), 11, "texture.hdr");
+  file("parts.mtl", mtl);
+  vtkNew<app::QuietOutputWindow> warnings;
+  vtkOutputWindow::SetInstance(warnings);
+  vtkSmartPointer<vtkPolyData> mesh = app::readMesh(file("parts.obj", shadelab::testing::twoPartObj));
+  vtkOutputWindow::SetInstance(nullptr);
+  EXPECT_EQ(warnings->takeWarnings(),
+    std::vector<std::string>{ "part 'tex': its texture has 1 texel values outside [0, 1] (the largest 1.992): "
+                              "clamped into it, since the texture multiplies kd, a reflectance" });
+  vtkDataArray* kd = mesh->GetPointData()->GetArray(materialKdArrayName);
+  vtkDataArray* part = mesh->GetPointData()->GetArray(partArrayName);
+  vtkDataArray* uv = mesh->GetPointData()->GetTCoords();
+  ASSERT_TRUE(kd && part && uv);
+  const float partKd[3] = { 0.9f, 0.8f, 0.6f };
+  int texelsSeen = 0;
+  for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)
+  {
+    if (part->GetComponent(p, 0) == 1)
+    {
+      const int column = int(std::floor(uv->GetComponent(p, 0) * 4)), row = int(std::floor(uv->GetComponent(p, 1) * 2));
+      for (int c = 0; c < 3; ++c)
+      {
+        const double texel = std::min(1.0, bytes[std::size_t(3 * ((1 - row) * 4 + column) + c)] / 128.0);
+        EXPECT_EQ(kd->GetComponent(p, c), double(float(partKd[c] * texel))) << "texel " << column << ", " << row;
+      }
+      ++texelsSeen;
+    }
+  }
+  EXPECT_EQ(texelsSeen, 18);
+}
+
+TEST_F(TextureFiles, ATextureNeitherReaderTakesLeavesTheDiffuseColour)
+{
+  std::string mtl = shadelab::testing::partsMtl;
+  mtl.replace(mtl.find("texture.png"), 11, "texture.hdr");
+  file("parts.mtl", mtl);
+  file("texture.hdr", "not an image");
+  vtkNew<app::QuietOutputWindow> warnings;
+  vtkOutputWindow::SetInstance(warnings);
+  vtkSmartPointer<vtkPolyData> mesh = app::readMesh(file("parts.obj", shadelab::testing::twoPartObj));
+  vtkOutputWindow::SetInstance(nullptr);
+  const std::vector<std::string> said = warnings->takeWarnings();
+  ASSERT_EQ(said.size(), 1u);
+  const std::string start = "material 'tex' names the texture " + (folder / "texture.hdr").string() +
+    ", which neither VTK nor OpenImageIO could read (cannot read as an image: ";
+  EXPECT_EQ(said[0].substr(0, start.size()), start) << said[0];
+  const std::string end = "): shaded with its diffuse colour alone";
+  EXPECT_EQ(said[0].substr(said[0].size() - end.size()), end) << said[0];
+  vtkDataArray* kd = mesh->GetPointData()->GetArray(materialKdArrayName);
+  vtkDataArray* part = mesh->GetPointData()->GetArray(partArrayName);
+  for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)
+  {
+    EXPECT_EQ(kd->GetComponent(p, 1), double(part->GetComponent(p, 0) == 1 ? 0.8f : 0.2f));
+  }
 }
 }

@@ -6,6 +6,7 @@
 // read back with its actors' properties.
 #include "FilterRun.h"
 #include "TestFolder.h"
+#include "TwoPartObj.h"
 
 #include "GltfScene.h"
 #include "MeshFiles.h"
@@ -45,6 +46,8 @@ using namespace shadelab;
 namespace fs = std::filesystem;
 
 using SceneFiles = shadelab::testing::TestFolder;
+using shadelab::testing::partsMtl;
+using shadelab::testing::twoPartObj;
 
 /// The 8-bit texels of a 4 x 2 texture, row 0 first (texture v = 0).
 const unsigned char texels[2][4][3] = { { { 255, 0, 0 }, { 0, 255, 0 }, { 0, 0, 255 }, { 200, 100, 50 } },
@@ -77,55 +80,6 @@ double decoded(unsigned char value)
   const double c = value / 255.0;
   return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
 }
-
-/// Two flat parts in the plane z = 0, normals +z: "red" a unit square at x in [-2, -1], and
-/// "tex" a grid of 4 x 2 vertices, one at each texel's centre of the 4 x 2 texture, at x >= 0.
-const char* const twoPartObj = R"(mtllib parts.mtl
-v -2 0 0
-v -1 0 0
-v -1 1 0
-v -2 1 0
-v 0 0 0
-v 1 0 0
-v 2 0 0
-v 3 0 0
-v 0 1 0
-v 1 1 0
-v 2 1 0
-v 3 1 0
-vt 0.125 0.25
-vt 0.375 0.25
-vt 0.625 0.25
-vt 0.875 0.25
-vt 0.125 0.75
-vt 0.375 0.75
-vt 0.625 0.75
-vt 0.875 0.75
-vn 0 0 1
-usemtl red
-f 1/1/1 2/2/1 3/6/1
-f 1/1/1 3/6/1 4/5/1
-usemtl tex
-f 5/1/1 6/2/1 10/6/1
-f 5/1/1 10/6/1 9/5/1
-f 6/2/1 7/3/1 11/7/1
-f 6/2/1 11/7/1 10/6/1
-f 7/3/1 8/4/1 12/8/1
-f 7/3/1 12/8/1 11/7/1
-)";
-
-const char* const partsMtl = R"(newmtl red
-Ka 0.1 0 0
-Kd 0.7 0.2 0.1
-Ks 0.5 0.5 0.5
-Ns 20
-newmtl tex
-Ka 0 0.1 0
-Kd 0.9 0.8 0.6
-Ks 0.2 0.2 0.2
-Ns 64
-map_Kd texture.png
-)";
 
 /// One white distant light straight down onto the parts, and no material unless given.
 Scene sunScene(const std::string& material = "")

@@ -19,12 +19,17 @@
 #include "vtkTransformPolyDataFilter.h"
 #include "vtkUnsignedCharArray.h"
 
+#include "ImageFile.h"
 #include "MaterialArrays.h"
+#include "NumberText.h"
 #include "ShadeLabMeshPolygons.h"
 #include "TextureFootprint.h"
 
 #include <algorithm>
 #include <array>
+#include <cmath>
+#include <filesystem>
+#include <memory>
 
 namespace shadelab
 {
@@ -67,6 +72,85 @@ RgbImage linearImage(vtkTexture* texture)
     image.texels[std::size_t(t)] = Rgb(channel(t, 0), channel(t, 1), channel(t, 2));
   }
   return image;
+}
+
+/// The largest texture read through OpenImageIO: 8192 x 8192 texels, 1.6 GB as linear RGB.
+constexpr std::size_t maxTextureTexels = std::size_t(8192) * 8192;
+
+/// A texture file that VTK's importer does not read (OpenEXR, Radiance .hdr, ...), read through
+/// OpenImageIO (ImageFile.h) as linear RGB: floating-point channels as they are, integer ones
+/// sRGB-decoded as linearImage decodes them, one or two channels a grey. Empty, with problem set
+/// to why, where it cannot be read.
+RgbImage imageFileTexture(const std::string& fileName, std::string& problem)
+{
+  RgbImage image;
+  try
+  {
+    const std::unique_ptr<ImageFile> file = ImageFile::open(fileName);
+    const std::size_t width = std::size_t(std::max(file->width(), 0)),
+                      height = std::size_t(std::max(file->height(), 0));
+    std::error_code ignored;
+    if (width == 0 || height == 0 || width * height > maxTextureTexels ||
+      width * height > mostTexelsIn(std::filesystem::file_size(fileName, ignored)))
+    {
+      problem = "its header declares " + std::to_string(width) + " x " + std::to_string(height) +
+        " texels, which ShadeLab does not take (at most 8192 x 8192, and no more than the file can hold)";
+      return image;
+    }
+    const int channels = file->channels() >= 3 ? 3 : 1;
+    std::vector<float> pixels(width * height * std::size_t(channels));
+    file->read(channels, pixels.data());
+    const bool linear = file->floatingPoint();
+    image.width = int(width);
+    image.height = int(height);
+    image.texels.resize(width * height);
+    for (std::size_t row = 0; row < height; ++row)
+    {
+      for (std::size_t column = 0; column < width; ++column)
+      {
+        // The file's rows run from the top, the image's from texture coordinate v = 0, the bottom.
+        const float* pixel = &pixels[((height - 1 - row) * width + column) * std::size_t(channels)];
+        Rgb& texel = image.texels[row * width + column];
+        for (int c = 0; c < 3; ++c)
+        {
+          const double value = pixel[channels == 3 ? c : 0];
+          texel[c] = linear ? value : srgbToLinear(value);
+        }
+      }
+    }
+  }
+  catch (const std::exception& error)
+  {
+    // ImageFile's messages start with the path, which the note gives already.
+    const std::string why = error.what();
+    problem = why.rfind(fileName + ": ", 0) == 0 ? why.substr(fileName.size() + 2) : why;
+    image = RgbImage{};
+  }
+  return image;
+}
+
+/// Clamps each texel value outside [0, 1] (a floating-point texture's HDR value, a negative or
+/// NaN one) into it, since the texture multiplies kd, a reflectance; says so in skipped.
+void clampIntoReflectance(RgbImage& image, const std::string& partName, std::vector<std::string>& skipped)
+{
+  std::size_t clamped = 0;
+  double largest = 0;
+  for (Rgb& texel : image.texels)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      const double value = texel[c];
+      texel[c] = std::isnan(value) ? 0.0 : std::clamp(value, 0.0, 1.0);
+      clamped += texel[c] != value ? 1 : 0;
+      largest = std::isnan(value) ? largest : std::max(largest, value);
+    }
+  }
+  if (clamped > 0)
+  {
+    skipped.push_back("part '" + partName + "': its texture has " + std::to_string(clamped) +
+      " texel values outside [0, 1] (the largest " + withDigits(largest, 4) +
+      "): clamped into it, since the texture multiplies kd, a reflectance");
+  }
 }
 
 /// The texture's colour at each point, averaged over the texels it stands for (TextureFootprint.h).
@@ -176,14 +260,19 @@ vtkSmartPointer<vtkPolyData> partWithMaterial(
   pointData->AddArray(constantArray(materialKsArrayName, points, { m.ks.x, m.ks.y, m.ks.z }));
   pointData->AddArray(constantArray(materialShininessArrayName, points, { m.shininess }));
   vtkSmartPointer<vtkFloatArray> kd = constantArray(materialKdArrayName, points, { m.kd.x, m.kd.y, m.kd.z });
-  if (!part.kdTexture && !part.textureFile.empty())
+  // A texture VTK's readers did not take is read through OpenImageIO.
+  std::string unread;
+  RgbImage image = part.kdTexture ? linearImage(part.kdTexture)
+    : part.textureFile.empty()    ? RgbImage{}
+                                  : imageFileTexture(part.textureFile, unread);
+  clampIntoReflectance(image, part.name, skipped);
+  if (!unread.empty())
   {
     skipped.push_back("material '" + part.name + "' names the texture " + part.textureFile +
-      ", which VTK could not read: shaded with its diffuse colour alone");
+      ", which neither VTK nor OpenImageIO could read (" + unread + "): shaded with its diffuse colour alone");
   }
-  if (part.kdTexture)
+  else if (part.kdTexture || !part.textureFile.empty())
   {
-    const RgbImage image = linearImage(part.kdTexture);
     vtkDataArray* tcoords = pointData->GetTCoords();
     if (image.texels.empty())
     {

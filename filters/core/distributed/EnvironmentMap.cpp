@@ -146,21 +146,6 @@ double luminance(const Rgb& rgb)
 
 EnvironmentMap readEnvironmentMap(const std::string& path)
 {
-  std::error_code ignored;
-  if (!std::filesystem::exists(path, ignored))
-  {
-    throw std::runtime_error(path + ": no such file");
-  }
-  // Before OpenImageIO, which tries every format on what its own does not read: libheif took a
-  // folder for a 512 MB file, and a device never ends.
-  if (std::filesystem::is_directory(path, ignored))
-  {
-    throw std::runtime_error(path + ": is a folder, not an image file");
-  }
-  if (!std::filesystem::is_regular_file(path, ignored))
-  {
-    throw std::runtime_error(path + ": not a regular file (a pipe or a device?): give an image file");
-  }
   const std::unique_ptr<ImageFile> input = ImageFile::open(path);
   const int width = input->width(), height = input->height(), fileChannels = input->channels();
   if (width <= 0 || height <= 0)
@@ -180,12 +165,9 @@ EnvironmentMap readEnvironmentMap(const std::string& path)
 
   const int channels = fileChannels == 1 ? 1 : 3;
   const std::size_t texels = static_cast<std::size_t>(width) * height;
-  // A header can declare any size; the pixels must be in the file. Compressed formats hold
-  // far more texels than bytes only for flat images, so the bound is generous, and it stops
-  // a 1 kB file from asking for gigabytes before a single pixel is read.
+  std::error_code ignored;
   const std::uintmax_t fileBytes = std::filesystem::file_size(path, ignored);
-  const std::size_t mostTexels = std::max<std::size_t>(4096, 64 * static_cast<std::size_t>(fileBytes));
-  if (texels > mostTexels || texels > maxEnvironmentTexels)
+  if (texels > mostTexelsIn(fileBytes) || texels > maxEnvironmentTexels)
   {
     std::ostringstream message;
     message << path << ": the header declares " << shapeText(width, height) << " texels ("

@@ -136,6 +136,21 @@ OpenImageFunction openImageFunction()
 
 std::unique_ptr<ImageFile> ImageFile::open(const std::string& path)
 {
+  std::error_code ignored;
+  if (!fs::exists(path, ignored))
+  {
+    throw std::runtime_error(path + ": no such file");
+  }
+  // Before OpenImageIO, which tries every format on what its own does not read: libheif took a
+  // folder for a 512 MB file, and a device never ends.
+  if (fs::is_directory(path, ignored))
+  {
+    throw std::runtime_error(path + ": is a folder, not an image file");
+  }
+  if (!fs::is_regular_file(path, ignored))
+  {
+    throw std::runtime_error(path + ": not a regular file (a pipe or a device?): give an image file");
+  }
   std::string error;
   std::unique_ptr<ImageFile> image(openImageFunction()(path, error));
   if (!image)

@@ -19,6 +19,7 @@ public:
   int width() const override { return input_->spec().width; }
   int height() const override { return input_->spec().height; }
   int channels() const override { return input_->spec().nchannels; }
+  bool floatingPoint() const override { return input_->spec().format.is_floating_point(); }
   void read(int channels, float* pixels) override
   {
     if (!input_->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, pixels))
