@@ -942,6 +942,30 @@ TEST_F(Cli, AnObjIsShadedWithItsOwnMaterialsAndSaysSo)
       ", which neither VTK nor OpenImageIO could read (no such file): shaded with its diffuse colour alone\n");
 }
 
+// An OpenEXR map read before the mesh (the scene is read first) and an OpenEXR texture read
+// with the mesh, in the reader's forked child: the child has none of the parent's threads, and
+// when the map's read had started OpenEXR's thread pool, the texture's read waited for them
+// until the reader's limit (130 s). The bundled map serves as the texture too; its texels above
+// 1 are clamped, with a warning.
+TEST_F(Cli, AnEnvironmentMapInOpenExrBeforeAnExrTexture)
+{
+  const std::string folderOfScene = shadelab::testing::sourcePath("data/scenes/still_life/");
+  const std::string map = shadelab::testing::sourcePath("data/envmaps/venice_sunset_1k.exr");
+  fs::copy_file(folderOfScene + "still_life.obj", folder / "still_life.obj");
+  fs::copy_file(map, folder / "texture.exr");
+  std::string mtl = slurp(folderOfScene + "still_life.mtl");
+  mtl.replace(mtl.find("checker.png"), 11, "texture.exr");
+  file("still_life.mtl", mtl);
+  file("map.json",
+    R"({ "material": { "kd": 0.5, "ks": 0 }, "lights": [ { "type": "environment", "file": ")" + map +
+      R"(", "estimator": "sh" } ] })");
+  const Result run = shadelab("shade still_life.obj -s map.json -o out.vtp", "cd " + folder.string() + " && ");
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  const std::string clamped = "shadelab: warning: still_life.obj: part 'floor': its texture has ";
+  EXPECT_EQ(run.err.substr(0, clamped.size()), clamped) << run.err;
+  EXPECT_NE(run.err.find(" outside [0, 1] (as high as "), std::string::npos) << run.err;
+}
+
 // The guide's open box: one layer of walls whose normals point out, two-sided, lit by a lamp
 // that lights no point of the ceiling. Both sides are shaded and gather: the ceiling's light is
 // the walls' alone, and the white back wall is redder beside the red wall than beside the green.

@@ -230,10 +230,10 @@ using TextureFiles = shadelab::testing::TestFolder;
 
 /// A Radiance .hdr file of 4 x 2 texels, written byte by byte: each texel's R, G and B bytes
 /// (rows from the top) with the exponent 129, so that each value is its byte / 128 exactly;
-/// rows shorter than 8 texels are never run-length encoded. Written without OpenImageIO: in
-/// this process, an OpenEXR file written through it leaves OpenEXR's thread pool behind, whose
-/// threads the mesh reader's forked child does not have, and the child's read of the texture
-/// then waits for them for ever.
+/// rows shorter than 8 texels are never run-length encoded. Written without OpenImageIO: an
+/// OpenEXR file written through it would start OpenEXR's thread pool in this process, whose
+/// threads the mesh reader's forked child would not have. (ShadeLab's own reads start no pool,
+/// for that reason: Cli.AnEnvironmentMapInOpenExrBeforeAnExrTexture.)
 void writeRadiance(const std::string& path, const std::vector<unsigned char>& bytes)
 {
   std::ofstream out(path, std::ios::binary);
@@ -261,7 +261,7 @@ TEST_F(TextureFiles, AnHdrTextureIsReadThroughOpenImageIOItsTexelsAbove1Clamped)
   vtkSmartPointer<vtkPolyData> mesh = app::readMesh(file("parts.obj", shadelab::testing::twoPartObj));
   vtkOutputWindow::SetInstance(nullptr);
   EXPECT_EQ(warnings->takeWarnings(),
-    std::vector<std::string>{ "part 'tex': its texture has 1 texel values outside [0, 1] (the largest 1.992): "
+    std::vector<std::string>{ "part 'tex': its texture has 1 texel value outside [0, 1] (as high as 1.992): "
                               "clamped into it, since the texture multiplies kd, a reflectance" });
   vtkDataArray* kd = mesh->GetPointData()->GetArray(materialKdArrayName);
   vtkDataArray* part = mesh->GetPointData()->GetArray(partArrayName);

@@ -119,11 +119,16 @@ RgbImage imageFileTexture(const std::string& fileName, std::string& problem)
       }
     }
   }
+  catch (const std::bad_alloc&)
+  {
+    throw; // the reader's own message for memory that ran out
+  }
   catch (const std::exception& error)
   {
     // ImageFile's messages start with the path, which the note gives already.
     const std::string why = error.what();
     problem = why.rfind(fileName + ": ", 0) == 0 ? why.substr(fileName.size() + 2) : why;
+    problem = problem.size() > 160 ? problem.substr(0, 157) + "..." : problem; // the note's end must fit
     image = RgbImage{};
   }
   return image;
@@ -133,23 +138,27 @@ RgbImage imageFileTexture(const std::string& fileName, std::string& problem)
 /// NaN one) into it, since the texture multiplies kd, a reflectance; says so in skipped.
 void clampIntoReflectance(RgbImage& image, const std::string& partName, std::vector<std::string>& skipped)
 {
-  std::size_t clamped = 0;
-  double largest = 0;
+  std::size_t clamped = 0, notANumber = 0;
+  double lowest = 0, highest = 1;
   for (Rgb& texel : image.texels)
   {
     for (int c = 0; c < 3; ++c)
     {
       const double value = texel[c];
+      notANumber += std::isnan(value) ? 1 : 0;
+      lowest = std::isnan(value) ? lowest : std::min(lowest, value);
+      highest = std::isnan(value) ? highest : std::max(highest, value);
       texel[c] = std::isnan(value) ? 0.0 : std::clamp(value, 0.0, 1.0);
       clamped += texel[c] != value ? 1 : 0;
-      largest = std::isnan(value) ? largest : std::max(largest, value);
     }
   }
   if (clamped > 0)
   {
-    skipped.push_back("part '" + partName + "': its texture has " + std::to_string(clamped) +
-      " texel values outside [0, 1] (the largest " + withDigits(largest, 4) +
-      "): clamped into it, since the texture multiplies kd, a reflectance");
+    std::string range = lowest < 0 ? "as low as " + withDigits(lowest, 4) : "";
+    range += highest > 1 ? (range.empty() ? "" : ", ") + std::string("as high as ") + withDigits(highest, 4) : "";
+    range += notANumber > 0 ? (range.empty() ? "" : ", ") + countOf(notANumber, "NaN") : "";
+    skipped.push_back("part '" + partName + "': its texture has " + countOf(clamped, "texel value") +
+      " outside [0, 1] (" + range + "): clamped into it, since the texture multiplies kd, a reflectance");
   }
 }
 
@@ -265,7 +274,6 @@ vtkSmartPointer<vtkPolyData> partWithMaterial(
   RgbImage image = part.kdTexture ? linearImage(part.kdTexture)
     : part.textureFile.empty()    ? RgbImage{}
                                   : imageFileTexture(part.textureFile, unread);
-  clampIntoReflectance(image, part.name, skipped);
   if (!unread.empty())
   {
     skipped.push_back("material '" + part.name + "' names the texture " + part.textureFile +
@@ -285,6 +293,7 @@ vtkSmartPointer<vtkPolyData> partWithMaterial(
     }
     else
     {
+      clampIntoReflectance(image, part.name, skipped);
       const std::vector<Rgb> colors = textureColors(copy, image, tcoords);
       for (vtkIdType p = 0; p < points; ++p)
       {

@@ -38,9 +38,19 @@ private:
 extern "C" __attribute__((visibility("default"))) shadelab::ImageFile* SHADELAB_IMAGE_ENTRY(
   const std::string& path, std::string& error)
 {
+  // No thread pools, OpenImageIO's nor OpenEXR's: the command reads a mesh (and its textures)
+  // in a forked child, which has none of the parent's threads, so a pool a map's read had
+  // started in the parent left the child's read of an EXR texture waiting for ever. ShadeLab
+  // reads each image once; one thread is enough.
+  static const bool singleThreaded = OIIO::attribute("threads", 1) && OIIO::attribute("exr_threads", -1);
+  (void)singleThreaded;
   // Clears any error an earlier failure left, so that the message is this file's.
   OIIO::geterror();
-  auto input = OIIO::ImageInput::open(path);
+  // Colours as the file holds them, not multiplied by an alpha channel ShadeLab does not read
+  // (OpenImageIO premultiplies a PNG's, a TGA's or a TIFF's by default).
+  OIIO::ImageSpec config;
+  config.attribute("oiio:UnassociatedAlpha", 1);
+  auto input = OIIO::ImageInput::open(path, &config);
   if (!input)
   {
     error = OIIO::geterror();
