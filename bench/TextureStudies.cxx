@@ -7,6 +7,7 @@
 #include <cmath>
 #include <functional>
 #include <random>
+#include <tuple>
 
 namespace shadelab::app
 {
@@ -27,6 +28,21 @@ RgbImage fineChecker()
     }
   }
   return image;
+}
+
+/// fineChecker's exact mean over the texels [x0, x1] x [y0, y1], worked out rather than summed,
+/// so that the study's truth is not the box filter's own code: the checker is 0.5 - 0.4 s(x)
+/// s(y), s the square wave +1 on [0, 2) and -1 on [2, 4) texels, whose integral from 0 is the
+/// triangle wave below (periodic: s sums to 0 over a period).
+Rgb checkerMean(double x0, double x1, double y0, double y1)
+{
+  auto integral = [](double x)
+  {
+    const double r = x - 4 * std::floor(x / 4);
+    return r < 2 ? r : 4 - r;
+  };
+  auto mean = [&](double a, double b) { return (integral(b) - integral(a)) / (b - a); };
+  return Rgb(0.5 - 0.4 * mean(x0, x1) * mean(y0, y1));
 }
 
 /// Waves of about three frequencies an octave from 1 to 231 cycles across the texture, all of
@@ -172,11 +188,14 @@ PointColours coloursOf(const TexturedGrid& grid, const RgbImage& image, const st
   return result;
 }
 
+/// The texture's mean over the texels [x0, x1] x [y0, y1].
+using CellMean = std::function<Rgb(double x0, double x1, double y0, double y1)>;
+
 /// Per cell, the largest channel's |the mean of the colours interpolated over the cell's two
 /// triangles - the texture's mean over the cell|: the largest and the RMS over the cells.
-std::pair<double, double> cellErrors(const TexturedGrid& grid, const RgbImage& image, const std::vector<Rgb>& colours)
+std::pair<double, double> cellErrors(
+  const TexturedGrid& grid, const CellMean& cellMean, const std::vector<Rgb>& colours)
 {
-  const BoxFilteredTexture texture(image);
   double largest = 0, squares = 0;
   for (int j = 0; j + 1 < grid.n; ++j)
   {
@@ -186,7 +205,8 @@ std::pair<double, double> cellErrors(const TexturedGrid& grid, const RgbImage& i
       const Rgb drawn = (2.0 * colours[grid.at(i, j)] + colours[grid.at(i + 1, j)] +
                           2.0 * colours[grid.at(i + 1, j + 1)] + colours[grid.at(i, j + 1)]) /
         6.0;
-      const Rgb truth = texture.mean(grid.coordinate(i + 0.5), grid.coordinate(j + 0.5), grid.cellTexels());
+      const Rgb truth = cellMean(grid.coordinate(i) * textureSide, grid.coordinate(i + 1) * textureSide,
+        grid.coordinate(j) * textureSide, grid.coordinate(j + 1) * textureSide);
       const double error = largestComponent(glm::abs(drawn - truth));
       largest = std::max(largest, error);
       squares += error * error;
@@ -205,22 +225,30 @@ std::vector<AccuracyRow> textureFilteringStudy(ChartSpec& chart)
   chart.yTitle = "RMS |drawn mean - texture's mean| over the cells";
   chart.logX = chart.logY = true;
   chart.legendOutside = true;
-  const std::vector<std::pair<std::string, RgbImage>> textures = { { "checker", fineChecker() },
-    { "1/f detail", detailFallingAsOneOverF() } };
+  // The waves' truth is the table of sums (BoxFilteredTexture), which the unit tests check
+  // against texel-by-texel sums; the checker's is worked out.
+  const RgbImage checker = fineChecker(), waves = detailFallingAsOneOverF();
+  const BoxFilteredTexture summed(waves);
+  const CellMean wavesMean = [&](double x0, double x1, double y0, double y1)
+  { return summed.mean((x0 + x1) / (2 * textureSide), (y0 + y1) / (2 * textureSide), x1 - x0); };
+  const std::vector<std::tuple<std::string, const RgbImage*, CellMean>> textures = {
+    { "checker", &checker, checkerMean }, { "1/f detail", &waves, wavesMean }
+  };
   const std::vector<std::pair<std::string, std::string>> methods = { { "point", "point sampling" },
     { "bilinear", "bilinear" }, { "box", "box over the footprint (ShadeLab)" } };
   for (std::size_t t = 0; t < textures.size(); ++t)
   {
     for (std::size_t m = 0; m < methods.size(); ++m)
     {
-      ChartSeries series{ textures[t].first + ", " + methods[m].second, {}, {}, true, palette[m], true, t == 1 };
+      const auto& [name, image, cellMean] = textures[t];
+      ChartSeries series{ name + ", " + methods[m].second, {}, {}, true, palette[m], true, t == 1 };
       for (const int n : { 9, 17, 33, 65, 129, 257, 513, 1025, 2049 })
       {
         const TexturedGrid grid(n);
-        const PointColours colours = coloursOf(grid, textures[t].second, methods[m].first);
-        const auto [largest, rms] = cellErrors(grid, textures[t].second, colours.colours);
+        const PointColours colours = coloursOf(grid, *image, methods[m].first);
+        const auto [largest, rms] = cellErrors(grid, cellMean, colours.colours);
         const double texelsPerVertex = grid.cellTexels();
-        rows.push_back({ study, textures[t].first + ": " + methods[m].second, "texels per vertex", texelsPerVertex,
+        rows.push_back({ study, name + ": " + methods[m].second, "texels per vertex", texelsPerVertex,
           static_cast<long long>(n) * n, colours.milliseconds, largest, rms, std::nullopt, "" });
         series.x.push_back(texelsPerVertex);
         series.y.push_back(rms);
