@@ -285,6 +285,64 @@ TEST_F(TextureFiles, AnHdrTextureIsReadThroughOpenImageIOItsTexelsAbove1Clamped)
   EXPECT_EQ(texelsSeen, 18);
 }
 
+/// A 4 x 2 TGA file of 8-bit BGRA texels, written byte by byte (uncompressed, the bottom row
+/// first, as TGA's default origin has it); `rgba` holds each texel's R, G, B and A, rows from
+/// the bottom.
+void writeTga(const std::string& path, const std::vector<unsigned char>& rgba)
+{
+  std::ofstream out(path, std::ios::binary);
+  const unsigned char header[18] = { 0, 0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 4, 0, 2, 0, 32, 8 };
+  out.write(reinterpret_cast<const char*>(header), sizeof(header));
+  for (std::size_t texel = 0; texel < 8; ++texel)
+  {
+    out << rgba[4 * texel + 2] << rgba[4 * texel + 1] << rgba[4 * texel] << rgba[4 * texel + 3];
+  }
+}
+
+// An 8-bit texture that VTK's importer does not read, a TGA file, through OpenImageIO: its
+// values are sRGB-decoded, as VTK's PNG texels are, and its alpha channel, half transparent on
+// some texels, leaves the colours as they are (OpenImageIO would premultiply them by it).
+TEST_F(TextureFiles, AnEightBitTextureThroughOpenImageIOIsSrgbDecodedWithoutItsAlpha)
+{
+  const std::vector<unsigned char> rgba = { 255, 128, 0, 255, 10, 200, 90, 128, 64, 64, 64, 0, 250, 20, 150, 255, 0, 0,
+    255, 128, 30, 60, 90, 255, 180, 180, 30, 64, 1, 254, 77, 255 };
+  writeTga((folder / "texture.tga").string(), rgba);
+  std::string mtl = shadelab::testing::partsMtl;
+  mtl.replace(mtl.find("texture.png"), 11, "texture.tga");
+  file("parts.mtl", mtl);
+  vtkNew<app::QuietOutputWindow> warnings;
+  vtkOutputWindow::SetInstance(warnings);
+  vtkSmartPointer<vtkPolyData> mesh = app::readMesh(file("parts.obj", shadelab::testing::twoPartObj));
+  vtkOutputWindow::SetInstance(nullptr);
+  EXPECT_EQ(warnings->takeWarnings(), std::vector<std::string>{});
+  vtkDataArray* kd = mesh->GetPointData()->GetArray(materialKdArrayName);
+  vtkDataArray* part = mesh->GetPointData()->GetArray(partArrayName);
+  vtkDataArray* uv = mesh->GetPointData()->GetTCoords();
+  ASSERT_TRUE(kd && part && uv);
+  // IEC 61966-2-1's decoding, written out here.
+  auto decoded = [](unsigned char byte)
+  {
+    const double c = byte / 255.0;
+    return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+  };
+  const float partKd[3] = { 0.9f, 0.8f, 0.6f };
+  int texelsSeen = 0;
+  for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)
+  {
+    if (part->GetComponent(p, 0) == 1)
+    {
+      const int column = int(std::floor(uv->GetComponent(p, 0) * 4)), row = int(std::floor(uv->GetComponent(p, 1) * 2));
+      for (int c = 0; c < 3; ++c)
+      {
+        const double texel = decoded(rgba[std::size_t(4 * (row * 4 + column) + c)]);
+        EXPECT_NEAR(kd->GetComponent(p, c), partKd[c] * texel, 1e-6) << "texel " << column << ", " << row;
+      }
+      ++texelsSeen;
+    }
+  }
+  EXPECT_EQ(texelsSeen, 18);
+}
+
 TEST_F(TextureFiles, ATextureNeitherReaderTakesLeavesTheDiffuseColour)
 {
   std::string mtl = shadelab::testing::partsMtl;
