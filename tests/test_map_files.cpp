@@ -22,6 +22,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <limits>
 #include <random>
 #include <stdexcept>
@@ -244,6 +245,43 @@ void writeRadiance(const std::string& path, const std::vector<unsigned char>& by
   }
 }
 
+/// The textured part's kd at each of its vertices, each at a texel's centre, against the MTL's
+/// Kd times expected(column, row, channel), rows from the bottom; returns the vertices seen.
+int expectTexturedKd(vtkPolyData* mesh, const std::function<double(int, int, int)>& expected)
+{
+  vtkDataArray* kd = mesh->GetPointData()->GetArray(materialKdArrayName);
+  vtkDataArray* part = mesh->GetPointData()->GetArray(partArrayName);
+  vtkDataArray* uv = mesh->GetPointData()->GetTCoords();
+  if (!kd || !part || !uv)
+  {
+    ADD_FAILURE() << "the mesh has no material arrays or texture coordinates";
+    return 0;
+  }
+  const float partKd[3] = { 0.9f, 0.8f, 0.6f };
+  int texelsSeen = 0;
+  for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)
+  {
+    if (part->GetComponent(p, 0) == 1)
+    {
+      const int column = int(std::floor(uv->GetComponent(p, 0) * 4)), row = int(std::floor(uv->GetComponent(p, 1) * 2));
+      for (int c = 0; c < 3; ++c)
+      {
+        EXPECT_NEAR(kd->GetComponent(p, c), partKd[c] * expected(column, row, c), 1e-6)
+          << "texel " << column << ", " << row;
+      }
+      ++texelsSeen;
+    }
+  }
+  return texelsSeen;
+}
+
+/// IEC 61966-2-1's decoding of an 8-bit value, written out here.
+double srgbDecoded(unsigned char byte)
+{
+  const double c = byte / 255.0;
+  return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+}
+
 // A texture that VTK's readers do not take, a Radiance .hdr file, read through OpenImageIO:
 // each vertex of the two-part OBJ's textured part sits at a texel's centre, so its kd is the
 // MTL's Kd times that texel, taken as linear (floating point) and clamped into [0, 1]; the
@@ -263,25 +301,9 @@ TEST_F(TextureFiles, AnHdrTextureIsReadThroughOpenImageIOItsTexelsAbove1Clamped)
   EXPECT_EQ(warnings->takeWarnings(),
     std::vector<std::string>{ "part 'tex': its texture has 1 texel value outside [0, 1] (as high as 1.992): "
                               "clamped into it, since the texture multiplies kd, a reflectance" });
-  vtkDataArray* kd = mesh->GetPointData()->GetArray(materialKdArrayName);
-  vtkDataArray* part = mesh->GetPointData()->GetArray(partArrayName);
-  vtkDataArray* uv = mesh->GetPointData()->GetTCoords();
-  ASSERT_TRUE(kd && part && uv);
-  const float partKd[3] = { 0.9f, 0.8f, 0.6f };
-  int texelsSeen = 0;
-  for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)
-  {
-    if (part->GetComponent(p, 0) == 1)
-    {
-      const int column = int(std::floor(uv->GetComponent(p, 0) * 4)), row = int(std::floor(uv->GetComponent(p, 1) * 2));
-      for (int c = 0; c < 3; ++c)
-      {
-        const double texel = std::min(1.0, bytes[std::size_t(3 * ((1 - row) * 4 + column) + c)] / 128.0);
-        EXPECT_EQ(kd->GetComponent(p, c), double(float(partKd[c] * texel))) << "texel " << column << ", " << row;
-      }
-      ++texelsSeen;
-    }
-  }
+  const int texelsSeen = expectTexturedKd(mesh,
+    [&](int column, int row, int c)
+    { return std::min(1.0, bytes[std::size_t(3 * ((1 - row) * 4 + column) + c)] / 128.0); });
   EXPECT_EQ(texelsSeen, 18);
 }
 
@@ -297,6 +319,15 @@ void writeTga(const std::string& path, const std::vector<unsigned char>& rgba)
   {
     out << rgba[4 * texel + 2] << rgba[4 * texel + 1] << rgba[4 * texel] << rgba[4 * texel + 3];
   }
+}
+
+/// The same with one 8-bit grey channel (TGA's image type 3).
+void writeGreyTga(const std::string& path, const std::vector<unsigned char>& grey)
+{
+  std::ofstream out(path, std::ios::binary);
+  const unsigned char header[18] = { 0, 0, 3, 0, 0, 0, 0, 0, 0, 0, 0, 0, 4, 0, 2, 0, 8, 0 };
+  out.write(reinterpret_cast<const char*>(header), sizeof(header));
+  out.write(reinterpret_cast<const char*>(grey.data()), std::streamsize(grey.size()));
 }
 
 // An 8-bit texture that VTK's importer does not read, a TGA file, through OpenImageIO: its
@@ -315,32 +346,23 @@ TEST_F(TextureFiles, AnEightBitTextureThroughOpenImageIOIsSrgbDecodedWithoutItsA
   vtkSmartPointer<vtkPolyData> mesh = app::readMesh(file("parts.obj", shadelab::testing::twoPartObj));
   vtkOutputWindow::SetInstance(nullptr);
   EXPECT_EQ(warnings->takeWarnings(), std::vector<std::string>{});
-  vtkDataArray* kd = mesh->GetPointData()->GetArray(materialKdArrayName);
-  vtkDataArray* part = mesh->GetPointData()->GetArray(partArrayName);
-  vtkDataArray* uv = mesh->GetPointData()->GetTCoords();
-  ASSERT_TRUE(kd && part && uv);
-  // IEC 61966-2-1's decoding, written out here.
-  auto decoded = [](unsigned char byte)
-  {
-    const double c = byte / 255.0;
-    return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
-  };
-  const float partKd[3] = { 0.9f, 0.8f, 0.6f };
-  int texelsSeen = 0;
-  for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)
-  {
-    if (part->GetComponent(p, 0) == 1)
-    {
-      const int column = int(std::floor(uv->GetComponent(p, 0) * 4)), row = int(std::floor(uv->GetComponent(p, 1) * 2));
-      for (int c = 0; c < 3; ++c)
-      {
-        const double texel = decoded(rgba[std::size_t(4 * (row * 4 + column) + c)]);
-        EXPECT_NEAR(kd->GetComponent(p, c), partKd[c] * texel, 1e-6) << "texel " << column << ", " << row;
-      }
-      ++texelsSeen;
-    }
-  }
+  const int texelsSeen = expectTexturedKd(
+    mesh, [&](int column, int row, int c) { return srgbDecoded(rgba[std::size_t(4 * (row * 4 + column) + c)]); });
   EXPECT_EQ(texelsSeen, 18);
+}
+
+// One grey channel is a grey: each channel of kd takes it.
+TEST_F(TextureFiles, AOneChannelTextureIsAGrey)
+{
+  const std::vector<unsigned char> grey = { 0, 40, 90, 128, 160, 200, 230, 255 };
+  writeGreyTga((folder / "texture.tga").string(), grey);
+  std::string mtl = shadelab::testing::partsMtl;
+  mtl.replace(mtl.find("texture.png"), 11, "texture.tga");
+  file("parts.mtl", mtl);
+  vtkSmartPointer<vtkPolyData> mesh = app::readMesh(file("parts.obj", shadelab::testing::twoPartObj));
+  EXPECT_EQ(
+    expectTexturedKd(mesh, [&](int column, int row, int) { return srgbDecoded(grey[std::size_t(row * 4 + column)]); }),
+    18);
 }
 
 TEST_F(TextureFiles, ATextureNeitherReaderTakesLeavesTheDiffuseColour)
