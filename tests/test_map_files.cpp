@@ -227,7 +227,24 @@ TEST(ReadEnvironmentMap, NegativeOrNonFiniteTexel)
 
 namespace
 {
-using TextureFiles = shadelab::testing::TestFolder;
+/// A folder of the test's own, where the two-part OBJ is read with a texture of its own.
+struct TextureFiles : shadelab::testing::TestFolder
+{
+  /// The two-part OBJ read with its MTL's map_Kd naming `texture` (in the folder); what the
+  /// reading said goes to `said`.
+  vtkSmartPointer<vtkPolyData> readParts(const std::string& texture, std::vector<std::string>& said)
+  {
+    std::string mtl = shadelab::testing::partsMtl;
+    mtl.replace(mtl.find("texture.png"), 11, texture);
+    file("parts.mtl", mtl);
+    vtkNew<app::QuietOutputWindow> warnings;
+    vtkOutputWindow::SetInstance(warnings);
+    vtkSmartPointer<vtkPolyData> mesh = app::readMesh(file("parts.obj", shadelab::testing::twoPartObj));
+    vtkOutputWindow::SetInstance(nullptr);
+    said = warnings->takeWarnings();
+    return mesh;
+  }
+};
 
 /// A Radiance .hdr file of 4 x 2 texels, written byte by byte: each texel's R, G and B bytes
 /// (rows from the top) with the exponent 129, so that each value is its byte / 128 exactly;
@@ -291,14 +308,9 @@ TEST_F(TextureFiles, AnHdrTextureIsReadThroughOpenImageIOItsTexelsAbove1Clamped)
   const std::vector<unsigned char> bytes = { 64, 32, 96, 16, 128, 0, 255, 64, 64, 48, 80, 112, 8, 64, 128, 32, 32, 32,
     96, 64, 32, 128, 128, 128 };
   writeRadiance((folder / "texture.hdr").string(), bytes);
-  std::string mtl = shadelab::testing::partsMtl;
-  mtl.replace(mtl.find("texture.png"), 11, "texture.hdr");
-  file("parts.mtl", mtl);
-  vtkNew<app::QuietOutputWindow> warnings;
-  vtkOutputWindow::SetInstance(warnings);
-  vtkSmartPointer<vtkPolyData> mesh = app::readMesh(file("parts.obj", shadelab::testing::twoPartObj));
-  vtkOutputWindow::SetInstance(nullptr);
-  EXPECT_EQ(warnings->takeWarnings(),
+  std::vector<std::string> said;
+  vtkSmartPointer<vtkPolyData> mesh = readParts("texture.hdr", said);
+  EXPECT_EQ(said,
     std::vector<std::string>{ "part 'tex': its texture has 1 texel value outside [0, 1] (as high as 1.992): "
                               "clamped into it, since the texture multiplies kd, a reflectance" });
   const int texelsSeen = expectTexturedKd(mesh,
@@ -338,14 +350,9 @@ TEST_F(TextureFiles, AnEightBitTextureThroughOpenImageIOIsSrgbDecodedWithoutItsA
   const std::vector<unsigned char> rgba = { 255, 128, 0, 255, 10, 200, 90, 128, 64, 64, 64, 0, 250, 20, 150, 255, 0, 0,
     255, 128, 30, 60, 90, 255, 180, 180, 30, 64, 1, 254, 77, 255 };
   writeTga((folder / "texture.tga").string(), rgba);
-  std::string mtl = shadelab::testing::partsMtl;
-  mtl.replace(mtl.find("texture.png"), 11, "texture.tga");
-  file("parts.mtl", mtl);
-  vtkNew<app::QuietOutputWindow> warnings;
-  vtkOutputWindow::SetInstance(warnings);
-  vtkSmartPointer<vtkPolyData> mesh = app::readMesh(file("parts.obj", shadelab::testing::twoPartObj));
-  vtkOutputWindow::SetInstance(nullptr);
-  EXPECT_EQ(warnings->takeWarnings(), std::vector<std::string>{});
+  std::vector<std::string> said;
+  vtkSmartPointer<vtkPolyData> mesh = readParts("texture.tga", said);
+  EXPECT_EQ(said, std::vector<std::string>{});
   const int texelsSeen = expectTexturedKd(
     mesh, [&](int column, int row, int c) { return srgbDecoded(rgba[std::size_t(4 * (row * 4 + column) + c)]); });
   EXPECT_EQ(texelsSeen, 18);
@@ -356,10 +363,8 @@ TEST_F(TextureFiles, AOneChannelTextureIsAGrey)
 {
   const std::vector<unsigned char> grey = { 0, 40, 90, 128, 160, 200, 230, 255 };
   writeGreyTga((folder / "texture.tga").string(), grey);
-  std::string mtl = shadelab::testing::partsMtl;
-  mtl.replace(mtl.find("texture.png"), 11, "texture.tga");
-  file("parts.mtl", mtl);
-  vtkSmartPointer<vtkPolyData> mesh = app::readMesh(file("parts.obj", shadelab::testing::twoPartObj));
+  std::vector<std::string> said;
+  vtkSmartPointer<vtkPolyData> mesh = readParts("texture.tga", said);
   EXPECT_EQ(
     expectTexturedKd(mesh, [&](int column, int row, int) { return srgbDecoded(grey[std::size_t(row * 4 + column)]); }),
     18);
@@ -367,15 +372,9 @@ TEST_F(TextureFiles, AOneChannelTextureIsAGrey)
 
 TEST_F(TextureFiles, ATextureNeitherReaderTakesLeavesTheDiffuseColour)
 {
-  std::string mtl = shadelab::testing::partsMtl;
-  mtl.replace(mtl.find("texture.png"), 11, "texture.hdr");
-  file("parts.mtl", mtl);
   file("texture.hdr", "not an image");
-  vtkNew<app::QuietOutputWindow> warnings;
-  vtkOutputWindow::SetInstance(warnings);
-  vtkSmartPointer<vtkPolyData> mesh = app::readMesh(file("parts.obj", shadelab::testing::twoPartObj));
-  vtkOutputWindow::SetInstance(nullptr);
-  const std::vector<std::string> said = warnings->takeWarnings();
+  std::vector<std::string> said;
+  vtkSmartPointer<vtkPolyData> mesh = readParts("texture.hdr", said);
   ASSERT_EQ(said.size(), 1u);
   const std::string start = "material 'tex' names the texture " + (folder / "texture.hdr").string() +
     ", which neither VTK nor OpenImageIO could read (cannot read as an image: ";
