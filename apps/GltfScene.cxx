@@ -4,6 +4,7 @@
 #include "MeshFiles.h"
 #include "VtkErrorCapture.h"
 
+#include "JsonNode.h"
 #include "MetallicRoughness.h"
 #include "ShadeLabImportedParts.h"
 
@@ -323,10 +324,9 @@ void noteDoubleSidedNotBoolean(const Json& gltf, std::vector<std::string>& notes
     {
       std::string name = textOr(&(*materials)[m], "name");
       name = name.size() > 60 ? name.substr(0, 57) + "..." : name;
-      std::string given = flag->dump();
-      given = given.size() > 40 ? given.substr(0, 37) + "..." : given;
       notes.push_back("material " + (name.empty() ? std::to_string(m) : "'" + name + "'") + " gives doubleSided as " +
-        printableText(given) + ", not true or false: VTK's importer reads it as false, so its parts are one-sided");
+        printableText(shortJsonText(*flag)) +
+        ", not true or false: VTK's importer reads it as false, so its parts are one-sided");
     }
   }
 }
