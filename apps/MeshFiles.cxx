@@ -5,6 +5,7 @@
 #include "MeshFileChecks.h"
 #include "MeshHandOver.h"
 #include "ObjScene.h"
+#include "PieceFiles.h"
 #include "ProgressLine.h"
 #include "VtkErrorCapture.h"
 
@@ -28,6 +29,7 @@
 #include "vtkStructuredPointsReader.h"
 #include "vtkUnstructuredGridReader.h"
 #include "vtkXMLImageDataReader.h"
+#include "vtkXMLPPolyDataReader.h"
 #include "vtkXMLPolyDataReader.h"
 #include "vtkXMLPolyDataWriter.h"
 #include "vtkXMLRectilinearGridReader.h"
@@ -51,7 +53,7 @@ namespace fs = std::filesystem;
 
 namespace shadelab::app
 {
-const char* const readableExtensions = ".vtp, .vtk, .ply, .obj, .stl, .gltf, .glb";
+const char* const readableExtensions = ".vtp, .pvtp, .vtk, .ply, .obj, .stl, .gltf, .glb";
 
 std::string lowerExtension(const std::string& fileName)
 {
@@ -74,6 +76,14 @@ vtkSmartPointer<vtkAlgorithm> readerFor(const std::string& fileName, const std::
     }
     reader->SetFileName(fileName.c_str());
     return reader;
+  }
+  if (extension == ".pvtp")
+  {
+    if (!vtkNew<vtkXMLPPolyDataReader>()->CanReadFile(fileName.c_str()))
+    {
+      throw UserError(fileName + ": not a VTK XML PPolyData file (a .pvtp must be VTK XML of type PPolyData)");
+    }
+    return pvtpReader(fileName);
   }
   if (extension == ".vtk")
   {
@@ -117,13 +127,13 @@ vtkSmartPointer<vtkAlgorithm> readerFor(const std::string& fileName, const std::
 /// one). Throws UserError with VTK's reason.
 template<typename Data>
 vtkSmartPointer<Data> outputOf(vtkAlgorithm* reader, const std::string& fileName, const std::string& extension,
-  std::FILE* terminal, const char* kind)
+  std::FILE* terminal, const char* kind, PieceToRead piece = {})
 {
   vtkNew<VtkErrorCapture> errors;
   errors->watch(reader);
   vtkNew<ProgressLine> progress;
   progress->watch(reader, "reading", terminal);
-  reader->Update();
+  reader->UpdatePiece(piece.index, piece.count, 0);
   auto* data = Data::SafeDownCast(reader->GetOutputDataObject(0));
   const unsigned long code = reader->GetErrorCode();
   if (errors->failed() || code != vtkErrorCode::NoError || !data)
@@ -136,12 +146,12 @@ vtkSmartPointer<Data> outputOf(vtkAlgorithm* reader, const std::string& fileName
   return data;
 }
 
-/// Reads the file with VTK's reader for its extension, in this process, showing progress on
-/// terminal (null: nowhere). Throws UserError.
+/// Reads the file (of a .pvtp, the piece asked for) with VTK's reader for its extension, in
+/// this process, showing progress on terminal (null: nowhere). Throws UserError.
 vtkSmartPointer<vtkPolyData> readDirectly(
-  const std::string& fileName, const std::string& extension, std::FILE* terminal)
+  const std::string& fileName, const std::string& extension, std::FILE* terminal, PieceToRead piece = {})
 {
-  return outputOf<vtkPolyData>(readerFor(fileName, extension), fileName, extension, terminal, "polydata");
+  return outputOf<vtkPolyData>(readerFor(fileName, extension), fileName, extension, terminal, "polydata", piece);
 }
 }
 
@@ -321,11 +331,13 @@ void checkCells(vtkPolyData* mesh, const std::string& fileName)
 }
 }
 
-vtkSmartPointer<vtkPolyData> readMesh(const std::string& fileName, std::string* ignored)
+vtkSmartPointer<vtkPolyData> readMesh(const std::string& fileName, std::string* ignored, PieceToRead piece)
 {
   const std::string extension = lowerExtension(fileName);
   std::uintmax_t size = readableFileSize(fileName); // first: it refuses what is not a regular file
-  size = extension == ".gltf" ? std::max(size, gltfBytes(fileName)) : size;
+  size = extension == ".gltf" ? std::max(size, gltfBytes(fileName))
+    : extension == ".pvtp"    ? size + pieceFileBytes(fileName)
+                              : size;
   MeshFileCheck check;
   vtkSmartPointer<vtkDataSet> data = readIsolated(
     fileName, "VTK's " + extension + " reader", size,
@@ -333,8 +345,13 @@ vtkSmartPointer<vtkPolyData> readMesh(const std::string& fileName, std::string* 
     {
       vtkSmartPointer<vtkPolyData> mesh = extension == ".obj" ? readObj(fileName, channel)
         : isGltfFile(fileName)                                ? readGltf(fileName, channel)
-                                                              : readDirectly(fileName, extension, channel.terminal());
+        : extension == ".pvtp" ? readDirectly(fileName, extension, channel.terminal(), piece)
+                               : readDirectly(fileName, extension, channel.terminal());
       checkCells(mesh, fileName);
+      if (piece.count > 1 && extension != ".pvtp")
+      {
+        mesh = meshPiece(mesh, piece.index, piece.count, 0);
+      }
       handOverMesh(mesh, channel.resultPath());
     },
     [&]()
@@ -508,7 +525,8 @@ private:
   std::vector<void (*)(int)> previous_;
 };
 
-/// Removes FILE.partial-PID files that runs killed before they could (their process is gone).
+}
+
 void removeStaleTemporaries(const std::string& fileName)
 {
   const fs::path target = fs::absolute(fileName);
@@ -528,10 +546,9 @@ void removeStaleTemporaries(const std::string& fileName)
     }
     if (::kill(static_cast<pid_t>(std::stol(pid)), 0) != 0 && errno == ESRCH)
     {
-      fs::remove(entry.path(), error);
+      fs::remove_all(entry.path(), error);
     }
   }
-}
 }
 
 void writeThroughTemporary(
@@ -598,6 +615,15 @@ std::string nameXmlCannotHold(vtkPolyData* mesh)
 }
 }
 
+std::string xmlNameProblem(vtkPolyData* mesh)
+{
+  const std::string unsafeName = nameXmlCannotHold(mesh);
+  return unsafeName.empty() ? ""
+                            : unsafeName +
+      " has a name that a .vtp file cannot hold (VTK 9.1 writes it unescaped, and no reader could open the "
+      "file): rename it in the input, or write legacy .vtk";
+}
+
 void writeTextFile(const std::string& fileName, const std::string& text)
 {
   writeThroughTemporary(fileName,
@@ -610,6 +636,22 @@ void writeTextFile(const std::string& fileName, const std::string& text)
     });
 }
 
+void setXmlEncoding(vtkXMLWriterBase* writer, Compression compression, VtpLayout layout)
+{
+  if (layout == VtpLayout::RawAppended)
+  {
+    writer->SetDataModeToAppended();
+    writer->EncodeAppendedDataOff();
+  }
+  else
+  {
+    writer->SetDataModeToBinary(); // base64 in each array's element
+  }
+  writer->SetCompressorType(compression == Compression::LZ4 ? vtkXMLWriterBase::LZ4
+      : compression == Compression::ZLib                    ? vtkXMLWriterBase::ZLIB
+                                                            : vtkXMLWriterBase::NONE);
+}
+
 vtkSmartPointer<vtkAlgorithm> vtkWriterFor(
   vtkPolyData* mesh, const std::string& path, const std::string& extension, Compression compression, VtpLayout layout)
 {
@@ -618,18 +660,7 @@ vtkSmartPointer<vtkAlgorithm> vtkWriterFor(
     auto writer = vtkSmartPointer<vtkXMLPolyDataWriter>::New();
     writer->SetInputData(mesh);
     writer->SetFileName(path.c_str());
-    if (layout == VtpLayout::RawAppended)
-    {
-      writer->SetDataModeToAppended();
-      writer->EncodeAppendedDataOff();
-    }
-    else
-    {
-      writer->SetDataModeToBinary(); // base64 in each array's element
-    }
-    writer->SetCompressorType(compression == Compression::LZ4 ? vtkXMLWriterBase::LZ4
-        : compression == Compression::ZLib                    ? vtkXMLWriterBase::ZLIB
-                                                              : vtkXMLWriterBase::NONE);
+    setXmlEncoding(writer, compression, layout);
     return writer;
   }
   auto writer = vtkSmartPointer<vtkPolyDataWriter>::New();
@@ -647,12 +678,10 @@ vtkSmartPointer<vtkAlgorithm> vtkReaderFor(const std::string& fileName)
 void writeMesh(vtkPolyData* mesh, const std::string& fileName, Compression compression, VtpLayout layout)
 {
   checkOutputFile(fileName, meshExtensions);
-  const std::string unsafeName = lowerExtension(fileName) == ".vtp" ? nameXmlCannotHold(mesh) : "";
+  const std::string unsafeName = lowerExtension(fileName) == ".vtp" ? xmlNameProblem(mesh) : "";
   if (!unsafeName.empty())
   {
-    throw UserError(fileName + ": " + unsafeName +
-      " has a name that a .vtp file cannot hold (VTK 9.1 writes it unescaped, and no reader could open the "
-      "file): rename it in the input, or write legacy .vtk");
+    throw UserError(fileName + ": " + unsafeName);
   }
   writeThroughTemporary(fileName,
     [&](const std::string& temporary) -> std::string

@@ -3,6 +3,7 @@
 #include "vtkAlgorithm.h"
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
+#include "vtkXMLWriterBase.h"
 
 #include <functional>
 #include <initializer_list>
@@ -25,6 +26,8 @@ std::string lowerExtension(const std::string& fileName);
 extern const char* const readableExtensions;
 /// The extensions writeMesh writes.
 constexpr std::initializer_list<const char*> meshExtensions = { ".vtp", ".vtk" };
+/// The extensions `shadelab shade` writes: writeMesh's, and .pvtp (PieceFiles.h's writePieces).
+constexpr std::initializer_list<const char*> shadedMeshExtensions = { ".vtp", ".pvtp", ".vtk" };
 
 /// Writes fileName through a temporary file in the same folder: write(temporary) returns ""
 /// on success or the reason it failed; only a complete file is renamed over fileName, so a
@@ -32,14 +35,29 @@ constexpr std::initializer_list<const char*> meshExtensions = { ".vtp", ".vtk" }
 void writeThroughTemporary(
   const std::string& fileName, const std::function<std::string(const std::string& temporary)>& write);
 
+/// Removes what runs killed before they could left of their writing to fileName: the files and
+/// folders FILE.partial-PID whose process is gone.
+void removeStaleTemporaries(const std::string& fileName);
+
 /// Writes text to fileName whole, through a temporary file (a report, a CSV). Throws UserError.
 void writeTextFile(const std::string& fileName, const std::string& text);
 
-/// Reads .vtp, .vtk (legacy polydata), .ply, .obj or .stl, showing progress on a terminal.
-/// An .obj, .ply or .stl is checked whole while it is read (MeshFileChecks.h); ignored, when
-/// given, is set to what the file holds that the reader skips ("" when nothing). Throws
-/// UserError.
-vtkSmartPointer<vtkPolyData> readMesh(const std::string& fileName, std::string* ignored = nullptr);
+/// Which piece of a mesh split over processes readMesh keeps: piece `index` of `count` (0 of 1:
+/// the whole mesh).
+struct PieceToRead
+{
+  int index = 0;
+  int count = 1;
+};
+
+/// Reads .vtp, .pvtp, .vtk (legacy polydata), .ply, .obj, .stl, .gltf or .glb, showing
+/// progress on a terminal. An .obj, .ply or .stl is checked whole while it is read
+/// (MeshFileChecks.h); ignored, when given, is set to what the file holds that the reader skips
+/// ("" when nothing). Of a piece of several, a .pvtp's reader reads the pieces it names that
+/// fall to that piece; any other file is read whole, and the piece kept (PieceFiles.h's
+/// meshPiece), all in the reading process. Throws UserError.
+vtkSmartPointer<vtkPolyData> readMesh(
+  const std::string& fileName, std::string* ignored = nullptr, PieceToRead piece = {});
 
 /// The extensions readDataSet understands, for messages.
 extern const char* const readableDataSetExtensions;
@@ -85,6 +103,13 @@ vtkSmartPointer<vtkAlgorithm> vtkReaderFor(const std::string& fileName);
 /// writes, and GetErrorCode() tells whether it could.
 vtkSmartPointer<vtkAlgorithm> vtkWriterFor(vtkPolyData* mesh, const std::string& path, const std::string& extension,
   Compression compression, VtpLayout layout = VtpLayout::Inline);
+
+/// Sets an XML writer's layout and compression as writeMesh sets them for a .vtp.
+void setXmlEncoding(vtkXMLWriterBase* writer, Compression compression, VtpLayout layout);
+
+/// Why the mesh cannot be written as VTK XML ("" where it can): an array's name that VTK 9.1
+/// would write unescaped, making the file unreadable.
+std::string xmlNameProblem(vtkPolyData* mesh);
 
 /// Writes .vtp (binary) or legacy .vtk (binary), through a temporary file, showing progress on
 /// a terminal. Throws UserError.

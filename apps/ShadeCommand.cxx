@@ -4,9 +4,12 @@
 #include "GltfScene.h"
 #include "MeshFiles.h"
 #include "OptionValues.h"
+#include "PieceFiles.h"
 #include "PlanBeforeRun.h"
 #include "ProgressLine.h"
+#include "RunProcesses.h"
 #include "RunWarnings.h"
+#include "ShadeReport.h"
 #include "StageTime.h"
 #include "VtkErrorCapture.h"
 
@@ -18,6 +21,7 @@
 #include "SceneFile.h"
 #include "ShBands.h"
 #include "ShadeLabImportedParts.h"
+#include "ShadeLabMeshPieces.h"
 #include "ShadingFlags.h"
 #include "vtkLocalReflectanceFilter.h"
 #include "vtkShadingNormalsFilter.h"
@@ -26,6 +30,7 @@
 #include "vtkDataArray.h"
 #include "vtkDataArrayRange.h"
 #include "vtkFieldData.h"
+#include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkSMPTools.h"
 #include "vtkStringArray.h"
@@ -52,7 +57,8 @@ void addFileOptions(CLI::App* command, ShadeOptions& options)
     "scene file (JSON; schema in docs/guide/scene-files.md); without it, a three-point light kit with a "
     "little ambient light, placed and scaled to fit the mesh, or with --envmap, the map alone under the "
     "default material and a viewer at infinity looking down -z");
-  command->add_option("--output,-o", options.output, "output file, .vtp or .vtk")->required();
+  command->add_option("--output,-o", options.output, "output file, .vtp, .pvtp or .vtk (under mpiexec, .pvtp)")
+    ->required();
   command
     ->add_option("--arrays,-a", options.arrays,
       "comma-separated arrays to compute: default (totals and shading_flags), totals, all, "
@@ -287,28 +293,86 @@ std::vector<std::string> arraySelection(const Scene& scene, const std::string& a
   return selection;
 }
 
-/// The mesh to shade (what its file holds that the reader skips, in ignored). One without
-/// points is refused here: the filter would pass it on empty.
+/// Under mpiexec, the mesh file's own lights (a glTF file's) on every process's piece, so that
+/// all shade one scene: a .pvtp's reader gives a process without a piece no field data.
+void shareFileLights(vtkPolyData* mesh)
+{
+  if (runProcessCount() == 1)
+  {
+    return;
+  }
+  const std::string lights = firstText(runProcesses(), fileLightsOf(mesh));
+  if (!lights.empty() && fileLightsOf(mesh).empty())
+  {
+    vtkNew<vtkStringArray> text;
+    text->SetName(fileLightsArrayName);
+    text->InsertNextValue(lights);
+    mesh->GetFieldData()->AddArray(text);
+  }
+}
+
+/// The mesh to shade, or under mpiexec this process's piece of it (what its file holds that the
+/// reader skips, in ignored). A mesh without points is refused here: the filter would pass it
+/// on empty.
 vtkSmartPointer<vtkPolyData> readMeshToShade(const std::string& fileName, std::string& ignored, RunWarnings& warnings)
 {
-  vtkSmartPointer<vtkPolyData> mesh = readMesh(fileName, &ignored);
-  warnings.collect(fileName);
-  if (mesh->GetNumberOfPoints() == 0)
+  vtkSmartPointer<vtkPolyData> mesh;
+  onEveryProcess(
+    [&]
+    {
+      mesh = readMesh(fileName, &ignored, { runProcessIndex(), runProcessCount() });
+      warnings.collect(fileName);
+    });
+  if (!onAnyRunProcess(mesh->GetNumberOfPoints() > 0))
   {
     throw UserError(fileName + ": the mesh has no points");
   }
+  shareFileLights(mesh);
   return mesh;
 }
 
-/// The filters of one run, kept for its report.
-struct ShadingPipeline
+/// Where the run's scene came from, for the report.
+std::string sceneOrigin(vtkPolyData* mesh, const ShadeOptions& options)
 {
-  vtkNew<vtkShadingNormalsFilter> splitter; // --split-sharp-edges: a step of its own, before shading
-  vtkNew<vtkLocalReflectanceFilter> filter;
-  vtkNew<VtkErrorCapture> errors;
-  vtkNew<ProgressLine> progress;
-  vtkNew<PlanBeforeRun> planBeforeRun;
-};
+  return !options.scene.empty()                  ? options.scene
+    : shadesWithFileLights(mesh, options)        ? "the file's own lights"
+    : options.overrides.environment.file.empty() ? "the default light kit, placed on the mesh"
+                                                 : "default material and viewer";
+}
+
+/// Where the run's processes write (one file, or under mpiexec a .pvtp of a piece each), and
+/// what they can do.
+void checkSplitRun(const ShadeOptions& options)
+{
+  const std::string& fileName = options.output;
+  checkOutputFile(fileName, shadedMeshExtensions);
+  const int processes = runProcessCount();
+  if (processes > 1 && options.splitAngle)
+  {
+    throw UserError("--split-sharp-edges: splitting adds points, which a mesh split over processes cannot take: "
+                    "split it in one process first (its output keeps the split normals, which shade then uses)");
+  }
+  if (processes > 1 && lowerExtension(fileName) != ".pvtp")
+  {
+    throw UserError(fileName + ": " + std::to_string(processes) +
+      " processes write a piece of the mesh each: name a .pvtp, which ParaView opens as one mesh (its pieces "
+      "go in a folder beside it)");
+  }
+}
+
+/// Writes the shaded mesh, or under mpiexec each process's piece of it.
+void writeShaded(vtkPolyData* output, const ShadeOptions& options)
+{
+  const VtpLayout layout = options.rawAppended ? VtpLayout::RawAppended : VtpLayout::Inline;
+  if (lowerExtension(options.output) == ".pvtp")
+  {
+    writePieces(output, options.output, runProcesses(), compressionNamed(options.compression), layout);
+  }
+  else
+  {
+    writeMesh(output, options.output, compressionNamed(options.compression), layout);
+  }
+}
 
 /// The mesh into the shading filter, through --split-sharp-edges' step where it is given; each
 /// filter watched for errors, the shading's progress and plan shown as it runs.
@@ -394,19 +458,6 @@ void checkRun(const ShadingPipeline& pipeline, const ShadeOptions& options)
   throw UserError(options.mesh + ": " + pipeline.errors->message());
 }
 
-/// The names of every array the scene can add to the mesh.
-std::vector<std::string> arrayNamesOf(const Scene& scene, const std::string& prefix)
-{
-  std::vector<std::string> names;
-  for (const ArrayDescription& description : availableArrays(scene, prefix))
-  {
-    names.push_back(description.name);
-  }
-  const std::vector<std::string> spectral = spectralArrayNames(scene, prefix);
-  names.insert(names.end(), spectral.begin(), spectral.end());
-  return names;
-}
-
 /// How many tuples of a float32 or float64 array have a NaN or Inf component, read through
 /// its own type (no virtual call per value); 0 for an integer array.
 vtkIdType nonFiniteTuples(vtkDataArray* array)
@@ -440,211 +491,17 @@ void refuseNonFinite(vtkPolyData* output, const Scene& scene, const std::string&
   }
 }
 
-/// How long the run's stages took, in seconds.
-struct StageSeconds
-{
-  double read = 0, shade = 0, write = 0;
-};
-
-/// Where the mesh has materials of its own (an OBJ's MTL): whether they shade it, and if not,
-/// why; "" for a mesh without.
-std::string ownMaterialsText(vtkPolyData* mesh, const Scene& scene, const ShadeOptions& options)
-{
-  if (!hasOwnMaterials(mesh))
-  {
-    return "";
-  }
-  auto* names = vtkStringArray::SafeDownCast(mesh->GetFieldData()->GetAbstractArray(partNamesArrayName));
-  const vtkIdType parts = names ? names->GetNumberOfValues() : 0;
-  std::string list;
-  for (vtkIdType p = 0; p < std::min<vtkIdType>(parts, 8); ++p)
-  {
-    list += (p ? ", " : "") + names->GetValue(p);
-  }
-  list += parts > 8 ? ", ..." : "";
-  const std::string partsText = countOf(std::size_t(parts), "part") + (list.empty() ? "" : ": " + list);
-  if (shadesWithOwnMaterials(scene, mesh, !options.colorBy.empty()))
-  {
-    return "the mesh's own, part by part (" + partsText + ")" +
-      (everyPartTwoSided(mesh) ? ", two-sided (every part is)" : "");
-  }
-  const std::string instead = scene.materialGiven ? "the scene's"
-    : !options.colorBy.empty()                    ? "--color-by's"
-    : scene.model == ShadingModel::VtkOpenGL2
-    ? "the vtk model's (it reproduces VTK's renderer, not the file's materials)"
-    : "the vtk_pbr model's defaults (it does not read a file's own materials yet)";
-  return instead + ", in place of the mesh's own (" + partsText + ")";
-}
-
-/// The report's opening: the files, the mesh, the scene and the normals.
-void printRunHeading(
-  const ShadingPipeline& pipeline, const Scene& scene, const std::string& ignored, const ShadeOptions& options)
-{
-  vtkPolyData* output = pipeline.filter->GetOutput();
-  const std::string& environmentMap = options.overrides.environment.file;
-  const std::string ownMaterials = ownMaterialsText(output, scene, options);
-  std::cout << "shadelab shade: " << options.mesh << " -> " << options.output << "\n"
-            << "  mesh: " << output->GetNumberOfPoints() << " vertices, "
-            << output->GetNumberOfPolys() + output->GetNumberOfStrips() << " polygons and strips\n"
-            << (ignored.empty() ? "" : "  ignored: " + ignored + "\n") << "  scene: "
-            << (!options.scene.empty()                     ? options.scene
-                   : shadesWithFileLights(output, options) ? "the file's own lights"
-                   : environmentMap.empty()                ? "the default light kit, placed on the mesh"
-                                                           : "default material and viewer")
-            << (environmentMap.empty() ? "" : " + --envmap " + environmentMap) << " (" << modelName(scene.model)
-            << " model, " << countOf(scene.lights.size(), "light") << ")\n"
-            << (ownMaterials.empty() ? "" : "  material: " + ownMaterials + "\n")
-            << "  normals: " << (options.splitAngle ? pipeline.splitter->GetReport() + " " : "")
-            << pipeline.filter->GetNormalsReport() << "\n";
-}
-
-/// The visibility step's report, and under a tolerance the methods chosen (those printed
-/// before the run not again) and what sampling left.
-void printVisibilityAndMethods(const ShadingPipeline& pipeline)
-{
-  vtkLocalReflectanceFilter* filter = pipeline.filter;
-  if (!filter->GetVisibilityReport().empty())
-  {
-    std::cout << "  visibility: " << filter->GetVisibilityReport() << "\n";
-  }
-  if (filter->GetMethodPlan())
-  {
-    const std::vector<std::string> lines = filter->GetMethodPlan()->describe();
-    const std::size_t shown = pipeline.planBeforeRun->shownLines();
-    std::cout << "  methods:" << (shown ? " as printed before shading, then\n" : "\n");
-    for (std::size_t l = shown; l < lines.size(); ++l)
-    {
-      std::cout << "    " << lines[l] << "\n";
-    }
-    for (const std::string& line : filter->GetSamplingReport())
-    {
-      std::cout << "    " << line << "\n";
-    }
-  }
-}
-
-/// Each array written with its range over all components, names in a column 28 wide or as wide
-/// as the longest and a space.
-void printArrayRanges(vtkPointData* pointData, const Scene& scene, const std::string& prefix)
-{
-  std::cout << "  arrays written (min and max over all components):\n";
-  std::vector<std::pair<std::string, vtkDataArray*>> written;
-  for (const std::string& name : arrayNamesOf(scene, prefix))
-  {
-    vtkDataArray* array = pointData->GetArray(name.c_str());
-    if (array && name != flagsArrayName(prefix))
-    {
-      written.emplace_back(name, array);
-    }
-  }
-  std::size_t width = 28;
-  for (const auto& [name, array] : written)
-  {
-    width = std::max(width, name.size() + 1);
-  }
-  for (const auto& [name, array] : written)
-  {
-    double low = 0, high = 0;
-    for (int c = 0; c < array->GetNumberOfComponents(); ++c)
-    {
-      double range[2];
-      array->GetRange(range, c);
-      low = c == 0 ? range[0] : std::min(low, range[0]);
-      high = c == 0 ? range[1] : std::max(high, range[1]);
-    }
-    std::cout << "    " << std::left << std::setw(static_cast<int>(width)) << name << std::right << std::setw(2)
-              << array->GetNumberOfComponents() << "  " << std::setw(12) << std::setprecision(6) << low << " "
-              << std::setw(12) << high << "\n";
-  }
-}
-
-/// How many vertices have each of the shading flags.
-void printFlagCounts(vtkPointData* pointData, const Scene& scene, const std::string& prefix)
-{
-  auto* flags = vtkUnsignedCharArray::SafeDownCast(pointData->GetArray(flagsArrayName(prefix).c_str()));
-  if (!flags)
-  {
-    return;
-  }
-  std::cout << "  " << flagsArrayName(prefix) << ":";
-  const unsigned char* values = flags->GetPointer(0);
-  const std::size_t directed = std::count_if(scene.lights.begin(), scene.lights.end(),
-    [](const NamedLight& light) { return !std::holds_alternative<AmbientLight>(light.source); });
-  for (const FlagMeaning& flag : flagMeanings)
-  {
-    const vtkIdType count = std::count_if(
-      values, values + flags->GetNumberOfValues(), [bit = flag.flag](unsigned char v) { return (v & bit) != 0; });
-    std::cout << (flag.flag == FlagDegenerateNormal ? " " : ", ") << count << " with " << flag.meaning;
-    if (flag.flag == FlagLightBelowHorizon && directed > 1)
-    {
-      std::cout << " (any one of the " << directed << " lights: most vertices of a closed mesh face away from one)";
-    }
-  }
-  std::cout << "\n";
-}
-
-/// The interreflection step's report, and the ambient term it stands against: the mean of the
-/// indirect diffuse term over the vertices, the constant ambient term nearest it (least
-/// squares), beside the scene's mean ambient term.
-void printInterreflection(const ShadingPipeline& pipeline, vtkPointData* pointData, const std::string& prefix)
-{
-  const std::string& report = pipeline.filter->GetInterreflectionReport();
-  if (report.empty())
-  {
-    return;
-  }
-  std::cout << "  interreflection: " << report << "\n";
-  auto meanOf = [&](const std::string& name) -> std::optional<Rgb>
-  {
-    vtkDataArray* array = pointData->GetArray(name.c_str());
-    if (!array || array->GetNumberOfTuples() == 0)
-    {
-      return std::nullopt;
-    }
-    Rgb sum(0.0);
-    for (vtkIdType i = 0; i < array->GetNumberOfTuples(); ++i)
-    {
-      sum += Rgb(array->GetComponent(i, 0), array->GetComponent(i, 1), array->GetComponent(i, 2));
-    }
-    return sum / double(array->GetNumberOfTuples());
-  };
-  auto rgbText = [](const Rgb& c)
-  { return "(" + withDigits(c.r, 3) + ", " + withDigits(c.g, 3) + ", " + withDigits(c.b, 3) + ")"; };
-  const std::optional<Rgb> indirect = meanOf(interreflectionArrayName(prefix, InterreflectionTerm::Indirect));
-  const std::optional<Rgb> ambient = meanOf(totalArrayName(prefix, TotalTerm::Ambient));
-  if (indirect)
-  {
-    std::cout << "    the constant ambient term nearest the indirect light (least squares over the vertices): "
-              << rgbText(*indirect) << (ambient ? "; the scene's ambient term, on average: " + rgbText(*ambient) : "")
-              << "\n";
-  }
-}
-
-/// What a person wants to see after a run: what was shaded and how, the arrays and their
-/// ranges, the flags, the time.
-void printReport(const ShadingPipeline& pipeline, const Scene& scene, const std::string& ignored,
-  const StageSeconds& seconds, const ShadeOptions& options)
-{
-  printRunHeading(pipeline, scene, ignored, options);
-  printVisibilityAndMethods(pipeline);
-  vtkPointData* pointData = pipeline.filter->GetOutput()->GetPointData();
-  printInterreflection(pipeline, pointData, options.prefix);
-  printArrayRanges(pointData, scene, options.prefix);
-  printFlagCounts(pointData, scene, options.prefix);
-  const int threads = vtkSMPTools::GetEstimatedNumberOfThreads();
-  std::cout << std::setprecision(3) << "  time: read " << seconds.read << " s, shade " << seconds.shade << " s ("
-            << threads << (threads == 1 ? " thread, " : " threads, ")
-            << (options.tolerance > 0 ? "methods above" : options.precision) << "), write " << seconds.write << " s\n";
-}
 }
 
 CLI::App* addShadeCommand(CLI::App& cli, ShadeOptions& options)
 {
   CLI::App* command = cli.add_subcommand("shade",
     "Shade a mesh under a scene and write the terms as point-data arrays.\n"
-    "Reads .vtp, .vtk, .ply, .stl, .obj (with its MTL file's materials and textures), .gltf and .glb (with\n"
-    "their materials, base colour textures and KHR_lights_punctual lights); writes .vtp (binary, compressed) or\n"
-    "legacy .vtk (binary).");
+    "Reads .vtp, .pvtp, .vtk, .ply, .stl, .obj (with its MTL file's materials and textures), .gltf and .glb\n"
+    "(with their materials, base colour textures and KHR_lights_punctual lights); writes .vtp (binary,\n"
+    "compressed), .pvtp (a folder of pieces beside it) or legacy .vtk (binary).\n"
+    "Under `mpiexec -np N` each process shades a piece of the mesh and writes it into one .pvtp, bit for bit\n"
+    "what one process writes (docs/guide/mpi.md).");
   // In the order --help lists them.
   addFileOptions(command, options);
   addPrecisionOptions(command, options);
@@ -668,46 +525,55 @@ int runShade(const ShadeOptions& options)
     isGltfFile(options.mesh) && options.scene.empty() && options.overrides.environment.file.empty();
   std::vector<std::string> selection =
     lightsMayComeFromFile ? std::vector<std::string>{} : arraySelection(scene, options.arrays);
-  checkOutputFile(options.output, meshExtensions);
+  checkSplitRun(options);
 
   if (options.threads > 0)
   {
     vtkSMPTools::Initialize(options.threads);
   }
+  // Under mpiexec each step that can fail on one process is agreed by all (onEveryProcess), so
+  // that none waits for another that stopped.
   RunWarnings warnings;
-  StageSeconds seconds;
+  RunFacts facts;
   Clock::time_point start = Clock::now();
-  std::string ignored;
-  vtkSmartPointer<vtkPolyData> mesh = readMeshToShade(options.mesh, ignored, warnings);
-  seconds.read = secondsSince(start);
-  if (shadesWithFileLights(mesh, options))
-  {
-    scene = sceneOfFileLights(mesh, options);
-  }
-  if (lightsMayComeFromFile)
-  {
-    selection = arraySelection(scene, options.arrays);
-  }
+  vtkSmartPointer<vtkPolyData> mesh = readMeshToShade(options.mesh, facts.ignored, warnings);
+  facts.seconds.read = secondsSince(start);
+  onEveryProcess(
+    [&]
+    {
+      if (shadesWithFileLights(mesh, options))
+      {
+        scene = sceneOfFileLights(mesh, options);
+      }
+      if (lightsMayComeFromFile)
+      {
+        selection = arraySelection(scene, options.arrays);
+      }
+    });
+  facts.sceneOrigin = sceneOrigin(mesh, options);
 
   ShadingPipeline pipeline;
   connectPipeline(pipeline, mesh, options);
   configureShading(pipeline.filter, scene, selection, options);
   start = Clock::now();
   pipeline.filter->Update();
-  seconds.shade = secondsSince(start);
-  warnings.collect(options.mesh);
-  checkRun(pipeline, options);
+  facts.seconds.shade = secondsSince(start);
   vtkPolyData* output = pipeline.filter->GetOutput();
-  refuseNonFinite(output, scene, options.prefix);
+  onEveryProcess(
+    [&]
+    {
+      warnings.collect(options.mesh);
+      checkRun(pipeline, options);
+      refuseNonFinite(output, scene, options.prefix);
+    });
 
   start = Clock::now();
-  writeMesh(output, options.output, compressionNamed(options.compression),
-    options.rawAppended ? VtpLayout::RawAppended : VtpLayout::Inline);
+  writeShaded(output, options);
   warnings.collect(options.output);
-  seconds.write = secondsSince(start);
+  facts.seconds.write = secondsSince(start);
 
   warnings.show();
-  printReport(pipeline, scene, ignored, seconds, options);
+  printReport(pipeline, scene, facts, options);
   return 0;
 }
 }

@@ -11,6 +11,7 @@
 #include "MeshFiles.h"
 #include "RelightCommand.h"
 #include "RenderCommand.h"
+#include "RunProcesses.h"
 #include "ShadeCommand.h"
 
 #include <CLI/CLI.hpp>
@@ -24,6 +25,8 @@
 int main(int argc, char** argv)
 {
   using namespace shadelab::app;
+  // Under mpiexec, the processes shade a mesh split among them; only the first prints.
+  const RunProcesses processes(&argc, &argv);
   CLI::App cli{ "ShadeLab: per-vertex lighting and reflectance terms as VTK arrays." };
   cli.require_subcommand(1);
   ShadeOptions shade;
@@ -54,6 +57,11 @@ int main(int argc, char** argv)
     if (shadeCommand->parsed())
     {
       return runShade(shade);
+    }
+    if (runProcessCount() > 1)
+    {
+      throw UserError("only `shadelab shade` runs under mpiexec, a piece of the mesh on each process; run `shadelab " +
+        cli.get_subcommands().front()->get_name() + "` without it");
     }
     if (renderCommand->parsed())
     {

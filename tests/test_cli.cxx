@@ -46,7 +46,7 @@ TEST_F(Cli, MissingOrUnreadableMesh)
     garbage + ": not a PLY file (it does not start with a PLY header)");
   const std::string unknown = file("mesh.xyz", "1 2 3\n");
   expectError("shade " + unknown + " -s " + scene + " -o " + out,
-    unknown + ": unknown mesh format '.xyz'; ShadeLab reads .vtp, .vtk, .ply, .obj, .stl, .gltf, .glb");
+    unknown + ": unknown mesh format '.xyz'; ShadeLab reads .vtp, .pvtp, .vtk, .ply, .obj, .stl, .gltf, .glb");
 }
 
 TEST_F(Cli, EmptyMeshAndMeshWithoutPolygons)
@@ -145,7 +145,7 @@ TEST_F(Cli, UnknownArrayNameAndBadOutput)
     "sun_n_dot_h, sun_diffuse, sun_specular\n");
   const std::string png = (folder / "out.png").string();
   expectError(
-    "shade " + mesh + " -s " + scene + " -o " + png, png + ": cannot write '.png' files here; use .vtp, .vtk");
+    "shade " + mesh + " -s " + scene + " -o " + png, png + ": cannot write '.png' files here; use .vtp, .pvtp, .vtk");
   expectError("shade " + mesh + " -s " + scene + " -o " + (folder / "o.vtp").string() + " --arrays ,",
     "--arrays: no arrays selected; this scene has: default, totals, all, *_to_light, *_distance, "
     "*_attenuation, *_spot_factor, *_cos_incidence, *_incidence_angle, *_reflection, *_r_dot_v, "
@@ -1092,8 +1092,8 @@ TEST_F(Cli, HelpAndUsageErrors)
   const Result help = shadelab("shade --help");
   EXPECT_EQ(help.exitCode, 0);
   EXPECT_NE(help.out.find("--arrays"), std::string::npos);
-  EXPECT_NE(help.out.find("Reads .vtp, .vtk, .ply, .stl, .obj (with its MTL file's materials and textures), .gltf and "
-                          ".glb"),
+  EXPECT_NE(help.out.find("Reads .vtp, .pvtp, .vtk, .ply, .stl, .obj (with its MTL file's materials and textures), "
+                          ".gltf and .glb"),
     std::string::npos);
   const Result featureAngle = shadelab("shade " + goodMesh() + " -o out.vtp --feature-angle 200");
   EXPECT_EQ(featureAngle.exitCode, 2);

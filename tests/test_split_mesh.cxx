@@ -5,7 +5,7 @@
 #include "ArrayComparison.h"
 #include "FilterRun.h"
 #include "MeshFiles.h"
-#include "MeshPieces.h"
+#include "PieceFiles.h"
 #include "ShadeLabImportedParts.h"
 #include "ShadeLabWholeMesh.h"
 #include "ShadingFlags.h"
@@ -136,7 +136,7 @@ vtkSmartPointer<vtkPolyData> shadedWhole(vtkPolyData* mesh, const std::string& s
 /// This process's piece of a mesh file, with a layer of ghost cells.
 vtkSmartPointer<vtkPolyData> myPiece(vtkPolyData* mesh, int ghostLevels = 1)
 {
-  return shadelab::testing::meshPiece(
+  return shadelab::app::meshPiece(
     mesh, processes()->GetLocalProcessId(), processes()->GetNumberOfProcesses(), ghostLevels);
 }
 
@@ -378,7 +378,7 @@ TEST(SplitMeshVisibility, AProcessWithAnEmptyPiece)
   for (vtkPolyData* mesh : { plain.Get(), normals->GetOutput() })
   {
     vtkSmartPointer<vtkPolyData> piece =
-      holdsNone ? vtkSmartPointer<vtkPolyData>::New() : shadelab::testing::meshPiece(mesh, rank, count - 1, 1);
+      holdsNone ? vtkSmartPointer<vtkPolyData>::New() : shadelab::app::meshPiece(mesh, rank, count - 1, 1);
     for (const auto& [scene, arrays] :
       { std::pair{ withFewerRays("shadows_occlusion"), 10 }, std::pair{ std::string("studio.json"), 40 } })
     {
@@ -396,9 +396,8 @@ TEST(SplitMeshVisibility, AProcessWithAnEmptyPiece)
   }
   // Drawn to a target, the vertices short of it are counted over the pieces, the empty one too.
   const std::string drawn = withFewerRays("soft_shadows_to_a_tolerance");
-  vtkSmartPointer<vtkPolyData> piece = holdsNone
-    ? vtkSmartPointer<vtkPolyData>::New()
-    : shadelab::testing::meshPiece(normals->GetOutput(), rank, count - 1, 1);
+  vtkSmartPointer<vtkPolyData> piece = holdsNone ? vtkSmartPointer<vtkPolyData>::New()
+                                                 : shadelab::app::meshPiece(normals->GetOutput(), rank, count - 1, 1);
   const vtkSmartPointer<vtkPolyData> shadedPiece = shaded(piece, drawn, { "totals" }, processes(), 0.02);
   const vtkSmartPointer<vtkPolyData> whole = shadedWhole(normals->GetOutput(), drawn, { "totals" }, 0.02);
   if (!holdsNone)
@@ -632,7 +631,7 @@ TEST(SplitMeshInterreflection, OwnTwoSidedMaterialsWithAnEmptyPiece)
   const int rank = processes()->GetLocalProcessId();
   const bool holdsNone = rank == count - 1;
   vtkSmartPointer<vtkPolyData> piece =
-    holdsNone ? vtkSmartPointer<vtkPolyData>::New() : shadelab::testing::meshPiece(mesh, rank, count - 1, 1);
+    holdsNone ? vtkSmartPointer<vtkPolyData>::New() : shadelab::app::meshPiece(mesh, rank, count - 1, 1);
   if (!holdsNone)
   {
     piece->GetFieldData()->AddArray(twoSided);
@@ -671,7 +670,7 @@ TEST(SplitMeshInterreflection, AProcessWithAnEmptyPiece)
   const int rank = processes()->GetLocalProcessId();
   const bool holdsNone = rank == count - 1;
   vtkSmartPointer<vtkPolyData> piece =
-    holdsNone ? vtkSmartPointer<vtkPolyData>::New() : shadelab::testing::meshPiece(mesh, rank, count - 1, 1);
+    holdsNone ? vtkSmartPointer<vtkPolyData>::New() : shadelab::app::meshPiece(mesh, rank, count - 1, 1);
   for (const std::string& scene : { bouncesUnderAMap(), twoSidedBounces() })
   {
     const vtkSmartPointer<vtkPolyData> shadedPiece = shaded(piece, scene, { "all" }, processes());
@@ -735,9 +734,8 @@ TEST(SplitMeshInterreflection, TheFilterAloneOnPiecesAndAnEmptyOneWithoutArrays)
   const vtkSmartPointer<vtkPolyData> mesh = glowingBunny();
   const vtkSmartPointer<vtkPolyData> whole = gatheredAlone(mesh, nullptr);
   const bool holdsNone = count > 1 && rank == count - 1;
-  const vtkSmartPointer<vtkPolyData> piece = holdsNone
-    ? vtkSmartPointer<vtkPolyData>::New()
-    : shadelab::testing::meshPiece(mesh, rank, std::max(count - 1, 1), 1);
+  const vtkSmartPointer<vtkPolyData> piece =
+    holdsNone ? vtkSmartPointer<vtkPolyData>::New() : shadelab::app::meshPiece(mesh, rank, std::max(count - 1, 1), 1);
   const vtkSmartPointer<vtkPolyData> gathered = gatheredAlone(piece, processes());
   if (!holdsNone)
   {

@@ -15,6 +15,8 @@
 
 namespace shadelab
 {
+const char* const anotherProcessFailed = "another process failed on its piece (see its error), so this one stops too";
+
 MeshExtent wholeMeshExtent(vtkMultiProcessController* controller, vtkPolyData* piece)
 {
   // An empty piece's box is VTK's empty range, which the others' replace.
@@ -92,6 +94,28 @@ std::vector<double> valuesAtEveryPoint(vtkMultiProcessController* controller, co
   return everyPoint;
 }
 
+std::vector<bool> firstCopies(vtkMultiProcessController* controller, const std::vector<vtkIdType>& ids)
+{
+  std::vector<vtkIdType> counts;
+  const std::vector<vtkIdType> all = allGather(controller, ids, &counts);
+  // In id order, each id's copies keep their order (process, then index): the first is first.
+  std::vector<std::size_t> order(all.size());
+  std::iota(order.begin(), order.end(), std::size_t(0));
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return all[a] < all[b]; });
+  const int me = controller ? controller->GetLocalProcessId() : 0;
+  const std::size_t mine = static_cast<std::size_t>(std::accumulate(counts.begin(), counts.begin() + me, vtkIdType(0)));
+  std::vector<bool> first(ids.size(), false);
+  for (std::size_t k = 0; k < order.size(); ++k)
+  {
+    const bool firstOfItsId = k == 0 || all[order[k]] != all[order[k - 1]];
+    if (firstOfItsId && order[k] >= mine && order[k] < mine + ids.size())
+    {
+      first[order[k] - mine] = true;
+    }
+  }
+  return first;
+}
+
 vtkIdType wholePointCount(vtkMultiProcessController* controller, const std::vector<vtkIdType>& pieceIds)
 {
   const vtkIdType largest = pieceIds.empty() ? -1 : *std::max_element(pieceIds.begin(), pieceIds.end());
@@ -122,7 +146,7 @@ int agreedOutcome(vtkMultiProcessController* controller, vtkAlgorithm* filter, v
   if (succeeded)
   {
     output->Initialize();
-    vtkErrorWithObjectMacro(filter, "another process failed on its piece (see its error), so this one stops too");
+    vtkErrorWithObjectMacro(filter, << anotherProcessFailed);
   }
   return 0;
 }

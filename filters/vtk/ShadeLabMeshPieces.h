@@ -38,9 +38,13 @@ SHADELABFILTERS_EXPORT std::string firstText(vtkMultiProcessController* controll
 /// Whether `mine` holds on every process (a collective call).
 SHADELABFILTERS_EXPORT bool everyProcessHolds(vtkMultiProcessController* controller, bool mine);
 
+/// The error a process reports when it stops because another failed on its piece: a program
+/// that shows one process's error looks for one that is not this.
+SHADELABFILTERS_EXPORT extern const char* const anotherProcessFailed;
+
 /// What a filter's RequestData returns for its piece (a collective call): 1 where every process
-/// succeeded. Where another failed, this one stops too, with an error saying so and its output
-/// emptied, so that no process waits for a failed one in a later collective call.
+/// succeeded. Where another failed, this one stops too, with anotherProcessFailed as its error
+/// and its output emptied, so that no process waits for a failed one in a later collective call.
 SHADELABFILTERS_EXPORT int agreedOutcome(
   vtkMultiProcessController* controller, vtkAlgorithm* filter, vtkPolyData* output, bool succeeded);
 
@@ -65,6 +69,12 @@ SHADELABFILTERS_EXPORT std::vector<double> valuesByDistinctId(
 /// A point no piece holds keeps 0.
 SHADELABFILTERS_EXPORT std::vector<double> valuesAtEveryPoint(vtkMultiProcessController* controller,
   const std::vector<vtkIdType>& ids, const std::vector<double>& values, int components, vtkIdType points);
+/// For each of the piece's points, whether it is its id's first copy over the processes (in
+/// process order, then in the piece's order) (a collective call): counting only first copies
+/// counts each point of the whole mesh once, however many pieces hold it.
+SHADELABFILTERS_EXPORT std::vector<bool> firstCopies(
+  vtkMultiProcessController* controller, const std::vector<vtkIdType>& ids);
+
 /// How many points the whole mesh has: its largest global id plus 1, over every piece's ids (a
 /// collective call).
 SHADELABFILTERS_EXPORT vtkIdType wholePointCount(

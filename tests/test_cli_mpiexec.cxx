@@ -1,0 +1,234 @@
+// shadelab shade under mpiexec: the processes shade a piece of the mesh each and write one
+// .pvtp, whose arrays must be the single process's, bit for bit, at every point of every piece.
+#include "ArrayComparison.h"
+#include "CliFixture.h"
+
+#include "vtkIdList.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkXMLPPolyDataReader.h"
+#include "vtkXMLPolyDataReader.h"
+
+#include <algorithm>
+#include <regex>
+#include <set>
+#include <sstream>
+#include <vector>
+
+namespace shadelab::testing
+{
+namespace
+{
+class CliUnderMpiexec : public Cli
+{
+protected:
+  static std::size_t occurrences(const std::string& text, const std::string& part)
+  {
+    std::size_t count = 0;
+    for (std::size_t at = text.find(part); at != std::string::npos; at = text.find(part, at + 1))
+    {
+      ++count;
+    }
+    return count;
+  }
+
+  /// shadelab under mpiexec with this many processes.
+  Result shadelabOn(int processes, const std::string& arguments)
+  {
+    return shadelab(
+      arguments, std::string(MPIEXEC) + " --allow-run-as-root --oversubscribe -np " + std::to_string(processes) + " ");
+  }
+
+  template<typename Reader>
+  static vtkSmartPointer<vtkPolyData> read(const std::string& path)
+  {
+    vtkNew<Reader> reader;
+    reader->SetFileName(path.c_str());
+    reader->Update();
+    return reader->GetOutput();
+  }
+
+  /// Expects every point array of whole (one process's result) at each point of the pieces
+  /// (read as one mesh, their shared points once per piece), found by the points' global ids,
+  /// bit for bit; and the pieces' ids to cover every point of whole.
+  static void expectWholeAtEveryPiecePoint(vtkPolyData* whole, vtkPolyData* pieces, const std::string& prefix = "")
+  {
+    vtkDataArray* globalIds = pieces->GetPointData()->GetGlobalIds();
+    ASSERT_NE(globalIds, nullptr);
+    vtkNew<vtkIdList> ids;
+    std::set<vtkIdType> distinct;
+    for (vtkIdType k = 0; k < globalIds->GetNumberOfTuples(); ++k)
+    {
+      ids->InsertNextId(static_cast<vtkIdType>(globalIds->GetTuple1(k)));
+      distinct.insert(ids->GetId(k));
+    }
+    ASSERT_EQ(distinct.size(), static_cast<std::size_t>(whole->GetNumberOfPoints()));
+    EXPECT_EQ(*distinct.rbegin(), whole->GetNumberOfPoints() - 1);
+    vtkPointData* wholeData = whole->GetPointData();
+    ASSERT_GT(wholeData->GetNumberOfArrays(), 4);
+    for (int a = 0; a < wholeData->GetNumberOfArrays(); ++a)
+    {
+      vtkDataArray* values = wholeData->GetArray(a);
+      const std::string name = values->GetName();
+      auto atIds = vtk::TakeSmartPointer(values->NewInstance());
+      atIds->SetNumberOfComponents(values->GetNumberOfComponents());
+      atIds->SetNumberOfTuples(ids->GetNumberOfIds());
+      values->GetTuples(ids, atIds);
+      const std::string pieceName = name == "Normals" ? name : prefix + name;
+      expectSameBits(atIds, pieces->GetPointData()->GetArray(pieceName.c_str()), pieceName);
+    }
+  }
+
+  /// The report's lines, without those that are the first process's own (its piece's rays and
+  /// the times) and the first, which names the files.
+  static std::vector<std::string> wholeMeshLines(const std::string& report)
+  {
+    std::istringstream lines(report);
+    std::vector<std::string> kept;
+    std::string line;
+    std::getline(lines, line);
+    while (std::getline(lines, line))
+    {
+      if (line.rfind("  visibility", 0) != 0 && line.rfind("  interreflection", 0) != 0 &&
+        line.rfind("  time:", 0) != 0)
+      {
+        kept.push_back(line);
+      }
+    }
+    return kept;
+  }
+};
+
+// Shadows and ambient occlusion (the whole surface gathered on every process) on 2 processes,
+// interreflection's bounces on 3, whose pieces are uneven: the pieces' arrays are the single
+// process's, and so is the report's every line about the whole mesh.
+TEST_F(CliUnderMpiexec, ThePiecesHoldWhatOneProcessComputes)
+{
+  // interreflection.json's scene with fewer rays, for the test's time.
+  const std::string bounces = file("bounces.json",
+    R"({ "material": { "kd": [0.8, 0.62, 0.45], "ks": [0.35, 0.35, 0.35], "shininess": 40 },
+         "viewer": { "position": [0.0, 0.12, 0.45], "focal_point": [-0.017, 0.11, 0.0] },
+         "interreflection": { "bounces": 3, "samples": 32 },
+         "lights": [ { "name": "studio", "type": "environment", "file": ")" +
+      sourcePath("data/envmaps/studio_small_03_1k.hdr") +
+      R"(", "estimator": "sh", "directions": "mis", "samples": 16, "intensity": 0.04, "shadows": true } ] })");
+  for (const auto& [scene, processes] :
+    { std::make_pair(sourcePath("data/scenes/shadows_occlusion.json"), 2), std::make_pair(bounces, 3) })
+  {
+    SCOPED_TRACE(scene);
+    const std::string arguments = "shade " + goodMesh() + " --scene " + scene;
+    const Result alone = shadelab(arguments + " -o " + (folder / "alone.vtp").string());
+    ASSERT_EQ(alone.exitCode, 0) << alone.err;
+    const Result split = shadelabOn(processes, arguments + " -o " + (folder / "split.pvtp").string());
+    ASSERT_EQ(split.exitCode, 0) << split.err;
+    EXPECT_EQ(split.err, "");
+    EXPECT_EQ(split.out.find("shadelab shade: " + goodMesh() + " -> " + (folder / "split.pvtp").string() + " (" +
+                std::to_string(processes) + " processes, a piece each)\n"),
+      0u)
+      << split.out;
+    EXPECT_EQ(wholeMeshLines(split.out), wholeMeshLines(alone.out));
+    for (int p = 0; p < processes; ++p)
+    {
+      EXPECT_TRUE(fs::is_regular_file(folder / "split" / ("split_" + std::to_string(p) + ".vtp"))) << p;
+    }
+    expectWholeAtEveryPiecePoint(read<vtkXMLPolyDataReader>((folder / "alone.vtp").string()),
+      read<vtkXMLPPolyDataReader>((folder / "split.pvtp").string()));
+  }
+}
+
+// A .pvtp is read a piece per process, whichever number of processes wrote it: here 3 pieces
+// on 2 processes, and 2 pieces on 3, one of which then holds none.
+TEST_F(CliUnderMpiexec, APvtpIsReadAPiecePerProcess)
+{
+  const std::string scene = " --scene " + sourcePath("data/scenes/shadows_occlusion.json");
+  ASSERT_EQ(shadelab("shade " + goodMesh() + scene + " -o " + (folder / "alone.vtp").string()).exitCode, 0);
+  const vtkSmartPointer<vtkPolyData> alone = read<vtkXMLPolyDataReader>((folder / "alone.vtp").string());
+  for (const auto& [written, reading] : { std::make_pair(3, 2), std::make_pair(2, 3) })
+  {
+    SCOPED_TRACE(std::to_string(written) + " pieces on " + std::to_string(reading) + " processes");
+    const std::string input = (folder / ("in" + std::to_string(written) + ".pvtp")).string();
+    ASSERT_EQ(shadelabOn(written, "shade " + goodMesh() + " --arrays totals -o " + input).exitCode, 0);
+    const std::string output = (folder / ("out" + std::to_string(reading) + ".pvtp")).string();
+    const Result split = shadelabOn(reading, "shade " + input + scene + " --prefix again_ -o " + output);
+    ASSERT_EQ(split.exitCode, 0) << split.err;
+    expectWholeAtEveryPiecePoint(alone, read<vtkXMLPPolyDataReader>(output), "again_");
+  }
+}
+
+// A failure says why once, on the first process, whichever process met it; nothing is written.
+TEST_F(CliUnderMpiexec, AFailureIsSaidOnceAndNothingIsWritten)
+{
+  const std::string vtp = (folder / "out.vtp").string();
+  Result result = shadelabOn(2, "shade " + goodMesh() + " -o " + vtp);
+  EXPECT_NE(result.exitCode, 0);
+  EXPECT_EQ(result.out, "");
+  const std::string onePiecePerProcess = "shadelab: " + vtp +
+    ": 2 processes write a piece of the mesh each: name a .pvtp, which ParaView opens as one mesh (its pieces go in "
+    "a folder beside it)\n";
+  EXPECT_EQ(result.err.substr(0, onePiecePerProcess.size()), onePiecePerProcess);
+  // The filter fails on every process: the input already has the array it would write.
+  const std::string shaded = (folder / "shaded.vtp").string();
+  ASSERT_EQ(shadelab("shade " + goodMesh() + " -o " + shaded).exitCode, 0);
+  result = shadelabOn(2, "shade " + shaded + " -o " + (folder / "again.pvtp").string());
+  EXPECT_NE(result.exitCode, 0);
+  const std::string clash = "shadelab: " + shaded +
+    ": the input already has a point array named 'ambient', which this filter would write: set an array prefix "
+    "(shadelab shade --prefix) to keep both\n";
+  EXPECT_EQ(result.err.substr(0, clash.size()), clash);
+  EXPECT_EQ(occurrences(result.err, "shadelab:"), 1u) << result.err; // after it, mpiexec's own lines
+  EXPECT_FALSE(fs::exists(folder / "again.pvtp"));
+  EXPECT_FALSE(fs::exists(folder / "again"));
+  // A piece that only the second process reads is cut short: the first says what the second met.
+  const std::string pieces = (folder / "pieces.pvtp").string();
+  ASSERT_EQ(shadelabOn(2, "shade " + goodMesh() + " --arrays totals -o " + pieces).exitCode, 0);
+  fs::resize_file(folder / "pieces" / "pieces_1.vtp", 3000);
+  result = shadelabOn(2, "shade " + pieces + " --prefix again_ -o " + (folder / "again.pvtp").string());
+  EXPECT_NE(result.exitCode, 0);
+  EXPECT_EQ(result.err.rfind("shadelab: " + pieces + ": cannot be read as .pvtp: ", 0), 0u) << result.err;
+  EXPECT_EQ(result.err.find("another process"), std::string::npos) << result.err;
+  EXPECT_EQ(occurrences(result.err, "shadelab:"), 1u) << result.err;
+  EXPECT_FALSE(fs::exists(folder / "again.pvtp"));
+  // Only shade runs under mpiexec: the others would each do the whole work, into one file.
+  result = shadelabOn(2, "render " + goodMesh() + " -o " + (folder / "picture.png").string());
+  const std::string shadeOnly =
+    "shadelab: only `shadelab shade` runs under mpiexec, a piece of the mesh on each process; run `shadelab render` "
+    "without it\n";
+  EXPECT_EQ(result.err.substr(0, shadeOnly.size()), shadeOnly);
+  EXPECT_FALSE(fs::exists(folder / "picture.png"));
+}
+}
+
+// One process writes a .pvtp of one piece over an earlier run's two: the earlier pieces go, and
+// so does what a killed run left of its writing. A folder of the pieces' name that holds
+// anything else is left alone, with a message, and so is a folder where the .pvtp would go.
+TEST_F(CliUnderMpiexec, APvtpReplacesOnlyItsOwnPieces)
+{
+  const std::string pvtp = (folder / "shaded.pvtp").string();
+  ASSERT_EQ(shadelabOn(2, "shade " + goodMesh() + " -o " + pvtp).exitCode, 0);
+  ASSERT_TRUE(fs::is_regular_file(folder / "shaded" / "shaded_1.vtp"));
+  fs::create_directories(folder / "shaded.pvtp.partial-99999999" / "shaded"); // no such process
+  ASSERT_EQ(shadelab("shade " + goodMesh() + " -o " + pvtp).exitCode, 0);
+  EXPECT_TRUE(fs::is_regular_file(folder / "shaded" / "shaded_0.vtp"));
+  EXPECT_FALSE(fs::exists(folder / "shaded" / "shaded_1.vtp"));
+  EXPECT_FALSE(fs::exists(folder / "shaded.pvtp.partial-99999999"));
+  const Result again = shadelab("shade " + goodMesh() + " --arrays totals -o " + pvtp);
+  ASSERT_EQ(again.exitCode, 0) << again.err;
+  vtkNew<vtkXMLPPolyDataReader> reader;
+  reader->SetFileName(pvtp.c_str());
+  reader->Update();
+  EXPECT_EQ(reader->GetOutput()->GetNumberOfPoints(), 35947);
+  EXPECT_NE(reader->GetOutput()->GetPointData()->GetArray("total"), nullptr);
+  EXPECT_EQ(reader->GetOutput()->GetPointData()->GetArray("shading_flags"), nullptr); // not in totals
+  file("shaded/notes.txt", "mine");
+  expectError("shade " + goodMesh() + " -o " + pvtp,
+    pvtp + ": cannot be written: " + (folder / "shaded").string() +
+      ", where its pieces go, holds other files (notes.txt): move them or write elsewhere");
+  EXPECT_EQ(slurp(folder / "shaded" / "notes.txt"), "mine");
+  EXPECT_TRUE(fs::is_regular_file(folder / "shaded" / "shaded_0.vtp"));
+  fs::create_directories(folder / "taken.pvtp");
+  expectError("shade " + goodMesh() + " -o " + (folder / "taken.pvtp").string(),
+    (folder / "taken.pvtp").string() + ": cannot be written: " + (folder / "taken.pvtp").string() + " is a folder");
+  EXPECT_TRUE(fs::is_empty(folder / "taken.pvtp"));
+}
+}
