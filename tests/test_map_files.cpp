@@ -19,6 +19,7 @@
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -27,6 +28,7 @@
 #include <random>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 #include <vector>
 
 namespace
@@ -368,6 +370,67 @@ TEST_F(TextureFiles, AOneChannelTextureIsAGrey)
   EXPECT_EQ(
     expectTexturedKd(mesh, [&](int column, int row, int) { return srgbDecoded(grey[std::size_t(row * 4 + column)]); }),
     18);
+}
+
+/// A 4 x 2 Portable Float Map of RGB float32 texels, written byte by byte (little-endian, the
+/// bottom row first, as the format has it); `rgb` holds each texel's R, G and B, rows from the
+/// bottom.
+void writePfm(const std::string& path, const std::vector<float>& rgb)
+{
+  std::ofstream out(path, std::ios::binary);
+  out << "PF\n4 2\n-1.0\n";
+  out.write(reinterpret_cast<const char*>(rgb.data()), std::streamsize(rgb.size() * sizeof(float)));
+}
+
+// A floating-point texture with values no reflectance can take: negative ones and NaNs become 0
+// and values above 1 become 1 in kd, and the message counts them and gives the extremes.
+TEST_F(TextureFiles, NegativeAndNotANumberTexelsAreClampedAndSaid)
+{
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const std::vector<float> rgb = { 0.25f, -0.5f, 0.75f, nan, 0.5f, 0.125f, 1.5f, 0.0f, 1.0f, 0.375f, 0.625f, -2.0f,
+    0.5f, 0.5f, 0.5f, 0.0625f, nan, 0.875f, 0.3f, 0.2f, 0.1f, 1.0f, 1.0f, 1.0f };
+  writePfm((folder / "texture.pfm").string(), rgb);
+  std::vector<std::string> said;
+  vtkSmartPointer<vtkPolyData> mesh = readParts("texture.pfm", said);
+  EXPECT_EQ(said,
+    std::vector<std::string>{ "part 'tex': its texture has 5 texel values outside [0, 1] (as low as -2, as high as "
+                              "1.5, 2 NaNs): clamped into it, since the texture multiplies kd, a reflectance" });
+  const int texelsSeen = expectTexturedKd(mesh,
+    [&](int column, int row, int c)
+    {
+      const float value = rgb[std::size_t(3 * (row * 4 + column) + c)];
+      return std::isnan(value) ? 0.0 : std::clamp(double(value), 0.0, 1.0);
+    });
+  EXPECT_EQ(texelsSeen, 18);
+}
+
+// A header that declares more texels than ShadeLab takes (8193 x 8192, over its 8192 x 8192), or
+// more than its file can hold, is refused before a texel is read, and the part keeps its Kd.
+TEST_F(TextureFiles, ATextureLargerThanTheBoundOrItsFileIsRefused)
+{
+  for (const auto& [width, height, bytes] :
+    { std::make_tuple(8193, 8192, std::size_t(1) << 21), std::make_tuple(100, 100, std::size_t(64)) })
+  {
+    const std::string size = std::to_string(width) + " x " + std::to_string(height);
+    SCOPED_TRACE(size);
+    {
+      std::ofstream out(folder / "texture.pfm", std::ios::binary);
+      out << "PF\n" << width << " " << height << "\n-1.0\n" << std::string(bytes, '\0');
+    }
+    std::vector<std::string> said;
+    vtkSmartPointer<vtkPolyData> mesh = readParts("texture.pfm", said);
+    ASSERT_EQ(said.size(), 1u);
+    EXPECT_NE(said[0].find("its header declares " + size +
+                " texels, which ShadeLab does not take (at most 8192 x 8192, and no more than the file can hold)"),
+      std::string::npos)
+      << said[0];
+    vtkDataArray* kd = mesh->GetPointData()->GetArray(materialKdArrayName);
+    vtkDataArray* part = mesh->GetPointData()->GetArray(partArrayName);
+    for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)
+    {
+      EXPECT_EQ(kd->GetComponent(p, 1), double(part->GetComponent(p, 0) == 1 ? 0.8f : 0.2f));
+    }
+  }
 }
 
 TEST_F(TextureFiles, ATextureNeitherReaderTakesLeavesTheDiffuseColour)
