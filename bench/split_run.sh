@@ -1,20 +1,26 @@
 #!/usr/bin/env bash
-# Time and peak memory per MPI rank of Local Reflectance under pvbatch, on 1, 2 and 4 ranks
-# (docs/guide/mpi.md; the figures in docs/dev/benchmarks.md): studio.json's default arrays in float32 (or, with
-# ARRAYS "all", every array in float64), read from the pieces and written as a .pvtp. The mesh:
-# COPIES bunnies side by side, each Loop-subdivided LEVELS times (defaults 4 and 1: 8.9M
-# vertices; 3 copies: 26.7M), cut into 4 pieces with global ids. Needs .ci/paraview to have
-# run (ParaView unpacked, the plugin built).
-#   bash bench/split_run.sh [LEVELS] [COPIES] [WORK] [ARRAYS]
+# Time and peak memory per MPI rank of shading a mesh split over 1, 2 and 4 ranks
+# (docs/guide/mpi.md; the figures in docs/dev/benchmarks.md): studio.json's default arrays in
+# float32 (or, with ARRAYS "all", every array in float64). The mesh: COPIES bunnies side by
+# side, each Loop-subdivided LEVELS times (defaults 4 and 1: 8.9M vertices; 3 copies: 26.7M).
+# RUNNER pvbatch (the default): Local Reflectance under pvbatch, read from the mesh cut into 4
+# pieces with global ids and written as a .pvtp (needs .ci/paraview to have run: ParaView
+# unpacked, the plugin built). RUNNER shadelab: `mpiexec shadelab shade` on the mesh's .ply,
+# split on read, written as a .pvtp.
+#   bash bench/split_run.sh [LEVELS] [COPIES] [WORK] [ARRAYS] [RUNNER]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 levels=${1:-4}
 copies=${2:-1}
 work=${3:-/tmp/shadelab-split-run}
 arrays=$([ "${4:-default}" = all ] || echo default) # the check script's "default", or nothing for all
+runner=${5:-pvbatch}
 paraview=$PWD/build/paraview-5.11
 plugin=build/paraview-plugin/lib/paraview-5.11/plugins/ShadeLab/ShadeLab.so
-[ -x "$paraview/usr/bin/pvbatch" ] && [ -f "$plugin" ] || { echo "split_run: run bash .ci/paraview first"; exit 1; }
+if [ "$runner" != shadelab ] && ! { [ -x "$paraview/usr/bin/pvbatch" ] && [ -f "$plugin" ]; }; then
+  echo "split_run: run bash .ci/paraview first"
+  exit 1
+fi
 mkdir -p "$work"
 mesh="$work/bunnies_${copies}_loop$levels.ply"
 if [ ! -f "$mesh" ]; then
@@ -54,16 +60,26 @@ if writer.Write() != 1:
 print(f"{output}: {append.GetOutput().GetNumberOfPoints()} points, {append.GetOutput().GetNumberOfPolys()} triangles")
 PYTHON
 fi
-export LD_LIBRARY_PATH="$paraview/usr/lib/x86_64-linux-gnu"
-[ -f "$work/pieces.pvtp" ] || "$paraview/usr/bin/pvpython" tests/paraview_split_check.py pieces "$mesh" "$work/pieces.pvtp" 4
+environment=() # what mpiexec passes on to the ranks
+if [ "$runner" = shadelab ]; then
+  shade=(build/bin/shadelab shade "$mesh" --scene data/scenes/studio.json -o "$work/shaded.pvtp")
+  [ "${4:-default}" = all ] && shade+=(--arrays all --precision float64)
+else
+  export LD_LIBRARY_PATH="$paraview/usr/lib/x86_64-linux-gnu"
+  environment=(-x LD_LIBRARY_PATH)
+  [ -f "$work/pieces.pvtp" ] ||
+    "$paraview/usr/bin/pvpython" tests/paraview_split_check.py pieces "$mesh" "$work/pieces.pvtp" 4
+  shade=("$paraview/usr/bin/pvbatch" tests/paraview_split_check.py shade "$plugin" "$work/pieces.pvtp"
+    data/scenes/studio.json "$work/shaded.pvtp" $arrays)
+fi
 echo "| processes | wall time per rank | peak memory per rank |"
 echo "|---|---|---|"
 for processes in 1 2 4; do
   # Each rank timed by its own /usr/bin/time, into a file named after its rank.
-  mpiexec --allow-run-as-root --oversubscribe -np "$processes" -x LD_LIBRARY_PATH \
+  # (Its peak is that of the rank's process or of a child it waited for, as its reader.)
+  mpiexec --allow-run-as-root --oversubscribe -np "$processes" "${environment[@]}" \
     sh -c 'exec /usr/bin/time -o "$0/rank_$OMPI_COMM_WORLD_RANK.time" -f "%e %M" "$@"' "$work" \
-    "$paraview/usr/bin/pvbatch" tests/paraview_split_check.py shade "$plugin" "$work/pieces.pvtp" \
-    data/scenes/studio.json "$work/shaded.pvtp" $arrays > "$work/np$processes.log" 2>&1 ||
+    "${shade[@]}" > "$work/np$processes.log" 2>&1 ||
     { echo "split_run: $processes ranks failed:"; tail -20 "$work/np$processes.log"; exit 1; }
   rm -rf "$work"/shaded*
   echo "| $processes | $(cat "$work"/rank_*.time | awk '{printf "%s%.1f s", (NR > 1 ? ", " : ""), $1}') | $(cat "$work"/rank_*.time | awk '{printf "%s%.2f GB", (NR > 1 ? ", " : ""), $2 / 1048576}') |"
