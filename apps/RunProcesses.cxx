@@ -105,6 +105,11 @@ bool onAnyRunProcess(bool mine)
 
 void onEveryProcess(const std::function<void()>& stage)
 {
+  if (!joined)
+  {
+    stage(); // alone: its errors reach the user as they are
+    return;
+  }
   std::string failure;
   try
   {
@@ -117,14 +122,6 @@ void onEveryProcess(const std::function<void()>& stage)
   catch (const std::exception& error)
   {
     failure = error.what();
-  }
-  if (!joined)
-  {
-    if (!failure.empty())
-    {
-      throw UserError(failure);
-    }
-    return;
   }
   const bool ownFailure = !failure.empty() && failure.find(anotherProcessFailed) == std::string::npos;
   std::string agreed = firstText(joined, ownFailure ? failure : "");

@@ -54,8 +54,8 @@ std::vector<double> reducedOverProcesses(std::vector<double> values, int operati
   return reduced;
 }
 
-/// What a filter's own report covers where the run has several processes: the first process's
-/// piece (its rays and times), which the first process prints.
+/// What the visibility step's report covers where the run has several processes: the first
+/// process's piece (its rays and times), which the first process prints.
 std::string firstPieceOnly()
 {
   return runProcessCount() > 1 ? " (the first process's piece)" : "";
@@ -267,7 +267,7 @@ void printInterreflection(
   {
     return;
   }
-  std::cout << "  interreflection" << firstPieceOnly() << ": " << report << "\n";
+  std::cout << "  interreflection: " << report << "\n";
   auto meanOf = [&](const std::string& name) -> std::optional<Rgb>
   {
     vtkDataArray* array = pointData->GetArray(name.c_str());

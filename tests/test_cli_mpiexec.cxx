@@ -80,8 +80,8 @@ protected:
     }
   }
 
-  /// The report's lines, without those that are the first process's own (its piece's rays and
-  /// the times) and the first, which names the files.
+  /// The report's lines, without those that count rays by piece (the first process's, or every
+  /// process's with shared points once for each), the times, and the first, which names the files.
   static std::vector<std::string> wholeMeshLines(const std::string& report)
   {
     std::istringstream lines(report);
