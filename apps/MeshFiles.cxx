@@ -527,7 +527,7 @@ private:
 
 }
 
-void removeStaleTemporaries(const std::string& fileName)
+void removeStaleTemporaries(const std::string& fileName, bool folders)
 {
   const fs::path target = fs::absolute(fileName);
   const std::string stem = target.filename().string() + ".partial-";
@@ -546,7 +546,14 @@ void removeStaleTemporaries(const std::string& fileName)
     }
     if (::kill(static_cast<pid_t>(std::stol(pid)), 0) != 0 && errno == ESRCH)
     {
-      fs::remove_all(entry.path(), error);
+      if (folders)
+      {
+        fs::remove_all(entry.path(), error);
+      }
+      else
+      {
+        fs::remove(entry.path(), error);
+      }
     }
   }
 }
@@ -593,11 +600,6 @@ namespace
 /// printable ASCII), with where it is; "" when there is none.
 std::string nameXmlCannotHold(vtkPolyData* mesh)
 {
-  auto unsafe = [](const std::string& name)
-  {
-    return std::any_of(name.begin(), name.end(),
-      [](char c) { return c < 0x20 || c >= 0x7f || c == '"' || c == '<' || c == '>' || c == '&'; });
-  };
   for (const auto& [data, kind] : { std::make_pair<vtkFieldData*, const char*>(mesh->GetPointData(), "point"),
          std::make_pair<vtkFieldData*, const char*>(mesh->GetCellData(), "cell"),
          std::make_pair<vtkFieldData*, const char*>(mesh->GetFieldData(), "field") })
@@ -605,7 +607,7 @@ std::string nameXmlCannotHold(vtkPolyData* mesh)
     for (int a = 0; a < data->GetNumberOfArrays(); ++a)
     {
       const char* name = data->GetArrayName(a);
-      if (name && unsafe(name))
+      if (name && xmlCannotHold(name))
       {
         return std::string("the ") + kind + " array '" + printableText(name, 60) + "'";
       }
@@ -613,6 +615,12 @@ std::string nameXmlCannotHold(vtkPolyData* mesh)
   }
   return "";
 }
+}
+
+bool xmlCannotHold(const std::string& text)
+{
+  return std::any_of(text.begin(), text.end(),
+    [](char c) { return c < 0x20 || c >= 0x7f || c == '"' || c == '<' || c == '>' || c == '&'; });
 }
 
 std::string xmlNameProblem(vtkPolyData* mesh)

@@ -35,9 +35,9 @@ constexpr std::initializer_list<const char*> shadedMeshExtensions = { ".vtp", ".
 void writeThroughTemporary(
   const std::string& fileName, const std::function<std::string(const std::string& temporary)>& write);
 
-/// Removes what runs killed before they could left of their writing to fileName: the files and
-/// folders FILE.partial-PID whose process is gone.
-void removeStaleTemporaries(const std::string& fileName);
+/// Removes what runs killed before they could left of their writing to fileName: the files
+/// FILE.partial-PID whose process is gone, and with folders (a .pvtp's staging) such folders too.
+void removeStaleTemporaries(const std::string& fileName, bool folders = false);
 
 /// Writes text to fileName whole, through a temporary file (a report, a CSV). Throws UserError.
 void writeTextFile(const std::string& fileName, const std::string& text);
@@ -106,6 +106,10 @@ vtkSmartPointer<vtkAlgorithm> vtkWriterFor(vtkPolyData* mesh, const std::string&
 
 /// Sets an XML writer's layout and compression as writeMesh sets them for a .vtp.
 void setXmlEncoding(vtkXMLWriterBase* writer, Compression compression, VtpLayout layout);
+
+/// Whether VTK 9.1's XML writer would write text unescaped into an attribute, making the file
+/// unreadable: a quote, <, > or &, or a byte that is not printable ASCII.
+bool xmlCannotHold(const std::string& text);
 
 /// Why the mesh cannot be written as VTK XML ("" where it can): an array's name that VTK 9.1
 /// would write unescaped, making the file unreadable.

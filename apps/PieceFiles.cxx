@@ -187,39 +187,24 @@ std::string onFirstProcess(const std::function<std::string()>& work)
   }
 }
 
-/// Why the summary and its pieces cannot go where asked ("" where they can), the staging folder
-/// made where they can: stale staging folders of killed runs are removed first.
-std::string placeProblem(
-  const fs::path& target, const fs::path& folder, const std::string& base, const std::string& staging)
-{
-  removeStaleTemporaries(target.string());
-  std::error_code error;
-  if (fs::is_directory(target, error))
-  {
-    return target.string() + " is a folder";
-  }
-  const std::string pieces = piecesFolderProblem(folder, base);
-  if (!pieces.empty())
-  {
-    return pieces;
-  }
-  if (!fs::create_directory(staging, error))
-  {
-    return "cannot make the folder " + staging + " to write into: " + (error ? error.message() : "it exists");
-  }
-  return "";
-}
-
 /// Moves the staged summary and pieces into place, an earlier run's pieces set aside in staging
-/// and put back where the new ones cannot take their place; "" or why not.
+/// and put back where the new ones cannot take their place; "" or why not. Earlier pieces that
+/// cannot be put back are moved beside the .pvtp (BASE.earlier-PID), out of the staging
+/// folder, which the caller then removes; where even that fails, keepStaging is set.
 std::string moveIntoPlace(
-  const fs::path& staging, const fs::path& target, const fs::path& folder, const std::string& base)
+  const fs::path& staging, const fs::path& target, const fs::path& folder, const std::string& base, bool& keepStaging)
 {
   const fs::path earlier = staging / (base + ".earlier");
   std::error_code error;
   const bool replacing = fs::exists(fs::symlink_status(folder, error));
   if (replacing)
   {
+    // Checked again: the folder may have changed while the pieces were written.
+    const std::string problem = piecesFolderProblem(folder, base);
+    if (!problem.empty())
+    {
+      return problem;
+    }
     fs::rename(folder, earlier, error);
     if (error)
     {
@@ -235,19 +220,40 @@ std::string moveIntoPlace(
       return "";
     }
     std::error_code ignored;
-    fs::rename(folder, staging / base, ignored); // the new pieces back, so the earlier can return
+    fs::rename(folder, staging / base, ignored); // the new pieces back, so that the earlier can return
   }
   const std::string why = error.message();
-  if (replacing)
+  if (!replacing)
   {
-    fs::rename(earlier, folder, error);
-    if (error)
-    {
-      return why + "; the earlier pieces are left in " + earlier.string();
-    }
+    return why;
   }
-  return why;
+  fs::rename(earlier, folder, error);
+  if (!error)
+  {
+    return why;
+  }
+  const fs::path rescued = target.parent_path() / (base + ".earlier-" + std::to_string(::getpid()));
+  fs::rename(earlier, rescued, error);
+  keepStaging = bool(error);
+  return why + "; the earlier pieces could not be put back, and are in " +
+    (error ? earlier.string() : rescued.string());
 }
+}
+
+std::string pvtpPlaceProblem(const std::string& fileName)
+{
+  const fs::path target = fs::absolute(fileName);
+  if (xmlCannotHold(target.filename().string()))
+  {
+    return "its name has a character that the .pvtp's own lines cannot hold (a quote, <, >, & or a byte that is "
+           "not printable ASCII): name it otherwise";
+  }
+  std::error_code error;
+  if (fs::is_directory(target, error))
+  {
+    return target.string() + " is a folder";
+  }
+  return piecesFolderProblem(target.parent_path() / target.stem(), target.stem().string());
 }
 
 vtkSmartPointer<vtkPolyData> meshPiece(vtkPolyData* mesh, int piece, int pieces, int ghostLevels)
@@ -318,13 +324,28 @@ void writePieces(vtkPolyData* piece, const std::string& fileName, vtkMultiProces
   const fs::path target = fs::absolute(fileName);
   const std::string base = target.stem().string();
   const fs::path folder = target.parent_path() / base;
-  // Every process checks its piece's names; the first checks the place and makes the staging
-  // folder. Whatever any finds, all stop alike.
+  // Every process checks its piece's names; then the first checks the place and makes the
+  // staging folder. Whatever any finds, all stop alike, and no staging folder is left.
   std::string staging = target.string() + ".partial-" + std::to_string(::getpid());
-  std::string problem = xmlNameProblem(piece);
+  std::string problem = firstText(processes, xmlNameProblem(piece));
   if (index == 0 && problem.empty())
   {
-    problem = onFirstProcess([&] { return placeProblem(target, folder, base, staging); });
+    problem = onFirstProcess(
+      [&]() -> std::string
+      {
+        const std::string place = pvtpPlaceProblem(fileName);
+        if (!place.empty())
+        {
+          return place;
+        }
+        removeStaleTemporaries(target.string(), true);
+        std::error_code error;
+        if (!fs::create_directory(staging, error))
+        {
+          return "cannot make the folder " + staging + " to write into: " + (error ? error.message() : "it exists");
+        }
+        return "";
+      });
   }
   problem = firstText(processes, problem);
   if (!problem.empty())
@@ -347,13 +368,14 @@ void writePieces(vtkPolyData* piece, const std::string& fileName, vtkMultiProces
     failure = onFirstProcess(
       [&]
       {
-        const std::string moved = failure.empty() ? moveIntoPlace(staging, target, folder, base) : "";
+        bool keepStaging = false;
+        const std::string moved = failure.empty() ? moveIntoPlace(staging, target, folder, base, keepStaging) : "";
         std::error_code ignored;
-        if (!fs::exists(fs::path(staging) / (base + ".earlier"), ignored)) // earlier pieces that could not go back stay
+        if (!keepStaging)
         {
           fs::remove_all(staging, ignored);
         }
-        return moved;
+        return failure.empty() ? moved : failure;
       });
   }
   failure = firstText(processes, failure);

@@ -28,6 +28,11 @@ vtkSmartPointer<vtkAlgorithm> pvtpReader(const std::string& fileName);
 /// .pvtp, where one is missing or is not a regular file.
 std::uintmax_t pieceFileBytes(const std::string& fileName);
 
+/// Why a .pvtp and its pieces cannot be written at fileName ("" where they can), found without
+/// writing: a name its summary cannot hold, a folder in its place, or a folder of its pieces'
+/// name that holds anything but an earlier run's pieces.
+std::string pvtpPlaceProblem(const std::string& fileName);
+
 /// Writes every process's piece of a mesh as one .pvtp (a collective call): the summary file,
 /// and beside it a folder named after it with a .vtp per process (VTK's layout, which
 /// ParaView opens as one mesh). Everything is written into a folder of its own first and moved

@@ -123,7 +123,7 @@ void onEveryProcess(const std::function<void()>& stage)
   {
     failure = error.what();
   }
-  const bool ownFailure = !failure.empty() && failure.find(anotherProcessFailed) == std::string::npos;
+  const bool ownFailure = !failure.empty() && !saysAnotherProcessFailed(failure);
   std::string agreed = firstText(joined, ownFailure ? failure : "");
   agreed = agreed.empty() ? firstText(joined, failure) : agreed;
   if (!agreed.empty())

@@ -33,7 +33,7 @@ bool onAnyRunProcess(bool mine);
 
 /// Runs stage on every process (a collective call). Where it throws on any, every process
 /// throws UserError with one message: that of the first process that failed on its own (not
-/// because another had: ShadeLabMeshPieces.h's anotherProcessFailed), so that the first
+/// because another had: ShadeLabMeshPieces.h's saysAnotherProcessFailed), so that the first
 /// process says why, and no process waits for another that has stopped.
 void onEveryProcess(const std::function<void()>& stage);
 }

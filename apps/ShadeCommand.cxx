@@ -358,6 +358,17 @@ void checkSplitRun(const ShadeOptions& options)
       " processes write a piece of the mesh each: name a .pvtp, which ParaView opens as one mesh (its pieces "
       "go in a folder beside it)");
   }
+  // Where a .pvtp cannot go is known before the work (and checked again when it is written).
+  onEveryProcess(
+    [&]
+    {
+      const std::string place =
+        lowerExtension(fileName) == ".pvtp" && runProcessIndex() == 0 ? pvtpPlaceProblem(fileName) : "";
+      if (!place.empty())
+      {
+        throw UserError(fileName + ": cannot be written: " + place);
+      }
+    });
 }
 
 /// Writes the shaded mesh, or under mpiexec each process's piece of it.

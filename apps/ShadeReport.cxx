@@ -1,5 +1,6 @@
 #include "ShadeReport.h"
 
+#include "MeshFiles.h"
 #include "NumberText.h"
 #include "RunProcesses.h"
 
@@ -20,7 +21,9 @@
 #include <algorithm>
 #include <iomanip>
 #include <iostream>
+#include <new>
 #include <optional>
+#include <stdexcept>
 #include <utility>
 
 namespace shadelab::app
@@ -61,28 +64,24 @@ std::string firstPieceOnly()
   return runProcessCount() > 1 ? " (the first process's piece)" : "";
 }
 
-/// The piece's points and polygons as the whole mesh counts them (a collective call): under
-/// several processes, each point once over them (its first copy by global id) and ghost cells not
-/// at all; in one process, every point and polygon of the mesh, as it is.
+/// The piece's points and polygons as the whole mesh counts them (a collective call): where
+/// pieces share points (under several processes, or a .pvtp's pieces read in one), each point
+/// once over them (its first copy by global id) and ghost cells not at all; otherwise every
+/// point and polygon of the mesh, as it is.
 class WholeMeshTally
 {
 public:
-  explicit WholeMeshTally(vtkPolyData* piece)
+  WholeMeshTally(vtkPolyData* piece, bool piecesSharePoints)
   {
     vtkDataArray* ids = piece->GetPointData()->GetGlobalIds();
-    if (runProcessCount() > 1 && onAnyRunProcess(ids != nullptr))
+    if (piecesSharePoints && onAnyRunProcess(ids != nullptr))
     {
-      std::vector<vtkIdType> pointIds(ids ? ids->GetNumberOfTuples() : 0);
-      for (std::size_t k = 0; k < pointIds.size(); ++k)
-      {
-        pointIds[k] = static_cast<vtkIdType>(ids->GetTuple1(static_cast<vtkIdType>(k)));
-      }
-      counted_ = firstCopies(runProcesses(), pointIds);
+      counted_ = firstCopies(runProcesses(), idsOf(ids));
     }
     const double points = counted_.empty() ? double(piece->GetNumberOfPoints())
                                            : double(std::count(counted_.begin(), counted_.end(), true));
-    const double polygons = runProcessCount() > 1 ? double(ownPolygons(piece))
-                                                  : double(piece->GetNumberOfPolys() + piece->GetNumberOfStrips());
+    const double polygons =
+      piecesSharePoints ? double(ownPolygons(piece)) : double(piece->GetNumberOfPolys() + piece->GetNumberOfStrips());
     const std::vector<double> whole = reducedOverProcesses({ points, polygons }, vtkCommunicator::SUM_OP);
     points_ = static_cast<vtkIdType>(whole[0]);
     polygons_ = static_cast<vtkIdType>(whole[1]);
@@ -93,6 +92,30 @@ public:
   vtkIdType polygons() const { return polygons_; }
 
 private:
+  /// The ids as a list; every process stops alike where one has no memory for it.
+  static std::vector<vtkIdType> idsOf(vtkDataArray* ids)
+  {
+    std::vector<vtkIdType> list;
+    bool allocated = true;
+    try
+    {
+      list.resize(static_cast<std::size_t>(ids ? ids->GetNumberOfTuples() : 0));
+    }
+    catch (const std::bad_alloc&)
+    {
+      allocated = false;
+    }
+    if (!everyProcessHolds(runProcesses(), allocated))
+    {
+      throw std::runtime_error("not enough memory to count the mesh's points for the report");
+    }
+    for (std::size_t k = 0; k < list.size(); ++k)
+    {
+      list[k] = static_cast<vtkIdType>(ids->GetTuple1(static_cast<vtkIdType>(k)));
+    }
+    return list;
+  }
+
   /// The piece's polygons and strips, ghost cells left out.
   static vtkIdType ownPolygons(vtkPolyData* piece)
   {
@@ -306,7 +329,7 @@ void printReport(
   const ShadingPipeline& pipeline, const Scene& scene, const RunFacts& facts, const ShadeOptions& options)
 {
   vtkPolyData* output = pipeline.filter->GetOutput();
-  const WholeMeshTally tally(output);
+  const WholeMeshTally tally(output, runProcessCount() > 1 || lowerExtension(options.mesh) == ".pvtp");
   printRunHeading(pipeline, scene, tally, facts, options);
   printVisibilityAndMethods(pipeline);
   vtkPointData* pointData = output->GetPointData();

@@ -15,6 +15,10 @@ copies=${2:-1}
 work=${3:-/tmp/shadelab-split-run}
 arrays=$([ "${4:-default}" = all ] || echo default) # the check script's "default", or nothing for all
 runner=${5:-pvbatch}
+case "$runner" in
+  pvbatch | shadelab) ;;
+  *) echo "split_run: RUNNER is pvbatch or shadelab, not '$runner'"; exit 1 ;;
+esac
 paraview=$PWD/build/paraview-5.11
 plugin=build/paraview-plugin/lib/paraview-5.11/plugins/ShadeLab/ShadeLab.so
 if [ "$runner" != shadelab ] && ! { [ -x "$paraview/usr/bin/pvbatch" ] && [ -f "$plugin" ]; }; then
@@ -75,6 +79,7 @@ fi
 echo "| processes | wall time per rank | peak memory per rank |"
 echo "|---|---|---|"
 for processes in 1 2 4; do
+  rm -f "$work"/rank_*.time # an earlier failed run's
   # Each rank timed by its own /usr/bin/time, into a file named after its rank.
   # (Its peak is that of the rank's process or of a child it waited for, as its reader.)
   mpiexec --allow-run-as-root --oversubscribe -np "$processes" "${environment[@]}" \

@@ -17,6 +17,11 @@ namespace shadelab
 {
 const char* const anotherProcessFailed = "another process failed on its piece (see its error), so this one stops too";
 
+bool saysAnotherProcessFailed(const std::string& error)
+{
+  return error.find("another process") != std::string::npos;
+}
+
 MeshExtent wholeMeshExtent(vtkMultiProcessController* controller, vtkPolyData* piece)
 {
   // An empty piece's box is VTK's empty range, which the others' replace.
@@ -99,7 +104,20 @@ std::vector<bool> firstCopies(vtkMultiProcessController* controller, const std::
   std::vector<vtkIdType> counts;
   const std::vector<vtkIdType> all = allGather(controller, ids, &counts);
   // In id order, each id's copies keep their order (process, then index): the first is first.
-  std::vector<std::size_t> order(all.size());
+  std::vector<std::size_t> order;
+  bool allocated = true;
+  try
+  {
+    order.resize(all.size());
+  }
+  catch (const std::bad_alloc&)
+  {
+    allocated = false;
+  }
+  if (!everyProcessHolds(controller, allocated)) // so that every process stops alike
+  {
+    throw std::runtime_error("out of memory ordering the pieces' " + std::to_string(all.size()) + " point ids");
+  }
   std::iota(order.begin(), order.end(), std::size_t(0));
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return all[a] < all[b]; });
   const int me = controller ? controller->GetLocalProcessId() : 0;

@@ -38,9 +38,13 @@ SHADELABFILTERS_EXPORT std::string firstText(vtkMultiProcessController* controll
 /// Whether `mine` holds on every process (a collective call).
 SHADELABFILTERS_EXPORT bool everyProcessHolds(vtkMultiProcessController* controller, bool mine);
 
-/// The error a process reports when it stops because another failed on its piece: a program
-/// that shows one process's error looks for one that is not this.
+/// The error a process reports when it stops because another failed on its piece.
 SHADELABFILTERS_EXPORT extern const char* const anotherProcessFailed;
+
+/// Whether an error is one that a process reports because another failed (each such message of
+/// the filters starts "another process"): a program that shows one process's error shows one
+/// that is not.
+SHADELABFILTERS_EXPORT bool saysAnotherProcessFailed(const std::string& error);
 
 /// What a filter's RequestData returns for its piece (a collective call): 1 where every process
 /// succeeded. Where another failed, this one stops too, with anotherProcessFailed as its error

@@ -648,7 +648,7 @@ shadelab::IndirectIrradiance vtkInterreflectionFilter::GatherBounces(vtkPolyData
   if (split && !shadelab::everyProcessHolds(this->Controller, failure.empty()))
   {
     throw std::runtime_error(
-      failure.empty() ? "another process of the split mesh could not trace its gather rays" : failure);
+      failure.empty() ? "another process of the split mesh could not trace its gather rays (see its error)" : failure);
   }
   shadelab::IndirectIrradiance indirect =
     gather->bounce(kd, { this->Bounces, this->BounceTolerance }, this->KeepBounces, smpLoop, split);
