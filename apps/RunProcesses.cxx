@@ -3,14 +3,17 @@
 #include "MeshFiles.h"
 
 #include "ShadeLabMeshPieces.h"
+#include "ShadeLabPieceExchange.h"
 
 #include "vtkMPIController.h"
 #include "vtkSmartPointer.h"
 
+#include <algorithm>
 #include <cstdlib>
 #include <fcntl.h>
 #include <iostream>
 #include <new>
+#include <sstream>
 #include <string>
 #include <unistd.h>
 
@@ -101,6 +104,30 @@ int runProcessIndex()
 bool onAnyRunProcess(bool mine)
 {
   return !everyProcessHolds(joined, !mine);
+}
+
+std::vector<std::string> distinctLinesOfEveryProcess(const std::vector<std::string>& mine)
+{
+  if (!joined)
+  {
+    return mine;
+  }
+  std::string text;
+  for (const std::string& line : mine)
+  {
+    text += line + '\n';
+  }
+  const std::vector<char> all = allGather(joined.GetPointer(), std::vector<char>(text.begin(), text.end()));
+  std::vector<std::string> lines;
+  std::istringstream every(std::string(all.begin(), all.end()));
+  for (std::string line; std::getline(every, line);)
+  {
+    if (std::find(lines.begin(), lines.end(), line) == lines.end())
+    {
+      lines.push_back(line);
+    }
+  }
+  return lines;
 }
 
 void onEveryProcess(const std::function<void()>& stage)

@@ -2,6 +2,8 @@
 // The processes a run is made of: those `mpiexec -np N` started (N > 1), which shade a mesh
 // split among them (docs/guide/mpi.md), or this process alone.
 #include <functional>
+#include <string>
+#include <vector>
 
 class vtkMultiProcessController;
 
@@ -30,6 +32,9 @@ int runProcessIndex();
 
 /// Whether mine holds on some process of the run (a collective call where it has several).
 bool onAnyRunProcess(bool mine);
+
+/// Every process's lines, each once, in process order (a collective call).
+std::vector<std::string> distinctLinesOfEveryProcess(const std::vector<std::string>& mine);
 
 /// Runs stage on every process (a collective call). Where it throws on any, every process
 /// throws UserError with one message: that of the first process that failed on its own (not

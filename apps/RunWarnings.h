@@ -1,6 +1,7 @@
 #pragma once
 // The warnings VTK gives during a run (a reader's complaint about a truncated block, say),
 // each naming the file it concerns.
+#include "RunProcesses.h"
 #include "VtkErrorCapture.h"
 
 #include <iostream>
@@ -25,6 +26,9 @@ public:
       }
     }
   }
+  /// Every process's warnings, each line once, in process order (a collective call under
+  /// mpiexec: each process reads and shades its own piece, and only the first prints).
+  void gatherFromEveryProcess() { lines_ = distinctLinesOfEveryProcess(lines_); }
   void show() const
   {
     for (const std::string& line : lines_)

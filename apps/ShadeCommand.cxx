@@ -583,6 +583,7 @@ int runShade(const ShadeOptions& options)
   warnings.collect(options.output);
   facts.seconds.write = secondsSince(start);
 
+  warnings.gatherFromEveryProcess();
   warnings.show();
   printReport(pipeline, scene, facts, options);
   return 0;

@@ -172,6 +172,23 @@ TEST_F(CliUnderMpiexec, APvtpIsReadAPiecePerProcess)
   }
 }
 
+// A warning that every process meets (each reads the file) is said once; the second process's
+// piece of a one-triangle mesh is empty, and the .pvtp names only the first's.
+TEST_F(CliUnderMpiexec, AWarningIsSaidOnce)
+{
+  const std::string truncated = file("truncated.vtk",
+    "# vtk DataFile Version 3.0\nt\nASCII\nDATASET POLYDATA\nPOINTS 3 float\n0 0 0 1 0 0 0 1 0\n"
+    "POLYGONS 1 4\n3 0 1 2\nPOINT_DATA 3\nNORMALS Normals float\n0 0 1 0 0\n");
+  const std::string pvtp = (folder / "out.pvtp").string();
+  const Result result = shadelabOn(2, "shade " + truncated + " -s " + goodScene() + " -o " + pvtp);
+  EXPECT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_EQ(result.err,
+    "shadelab: warning: " + truncated +
+      ": Error reading ascii data. Possible mismatch of datasize with declaration.\n");
+  EXPECT_EQ(occurrences(slurp(pvtp), "<Piece "), 1u);
+  EXPECT_EQ(read<vtkXMLPPolyDataReader>(pvtp)->GetNumberOfPoints(), 3);
+}
+
 // A failure says why once, on the first process, whichever process met it; nothing is written.
 TEST_F(CliUnderMpiexec, AFailureIsSaidOnceAndNothingIsWritten)
 {
