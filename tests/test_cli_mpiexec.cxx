@@ -2,6 +2,7 @@
 // .pvtp, whose arrays must be the single process's, bit for bit, at every point of every piece.
 #include "ArrayComparison.h"
 #include "CliFixture.h"
+#include "TestScenes.h"
 
 #include "vtkIdList.h"
 #include "vtkNew.h"
@@ -121,14 +122,8 @@ protected:
 // process's, and so is the report's every line about the whole mesh.
 TEST_F(CliUnderMpiexec, ThePiecesHoldWhatOneProcessComputes)
 {
-  // interreflection.json's scene with fewer rays, for the test's time.
-  const std::string bounces = file("bounces.json",
-    R"({ "material": { "kd": [0.8, 0.62, 0.45], "ks": [0.35, 0.35, 0.35], "shininess": 40 },
-         "viewer": { "position": [0.0, 0.12, 0.45], "focal_point": [-0.017, 0.11, 0.0] },
-         "interreflection": { "bounces": 3, "samples": 32 },
-         "lights": [ { "name": "studio", "type": "environment", "file": ")" +
-      sourcePath("data/envmaps/studio_small_03_1k.hdr") +
-      R"(", "estimator": "sh", "directions": "mis", "samples": 16, "intensity": 0.04, "shadows": true } ] })");
+  const std::string bounces =
+    file("bounces.json", bouncesUnderAMapScene(sourcePath("data/envmaps/studio_small_03_1k.hdr")));
   for (const auto& [scene, processes] :
     { std::make_pair(sourcePath("data/scenes/shadows_occlusion.json"), 2), std::make_pair(bounces, 3) })
   {

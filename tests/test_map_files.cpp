@@ -264,6 +264,18 @@ void writeRadiance(const std::string& path, const std::vector<unsigned char>& by
   }
 }
 
+/// Every vertex's Kd is its part's MTL Kd alone (green 0.8 in part 1, 0.2 in the other): the
+/// texture was not applied.
+void expectUntexturedKd(vtkPolyData* mesh)
+{
+  vtkDataArray* kd = mesh->GetPointData()->GetArray(materialKdArrayName);
+  vtkDataArray* part = mesh->GetPointData()->GetArray(partArrayName);
+  for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)
+  {
+    EXPECT_EQ(kd->GetComponent(p, 1), double(part->GetComponent(p, 0) == 1 ? 0.8f : 0.2f));
+  }
+}
+
 /// The textured part's kd at each of its vertices, each at a texel's centre, against the MTL's
 /// Kd times expected(column, row, channel), rows from the bottom; returns the vertices seen.
 int expectTexturedKd(vtkPolyData* mesh, const std::function<double(int, int, int)>& expected)
@@ -424,12 +436,7 @@ TEST_F(TextureFiles, ATextureLargerThanTheBoundOrItsFileIsRefused)
                 " texels, which ShadeLab does not take (at most 8192 x 8192, and no more than the file can hold)"),
       std::string::npos)
       << said[0];
-    vtkDataArray* kd = mesh->GetPointData()->GetArray(materialKdArrayName);
-    vtkDataArray* part = mesh->GetPointData()->GetArray(partArrayName);
-    for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)
-    {
-      EXPECT_EQ(kd->GetComponent(p, 1), double(part->GetComponent(p, 0) == 1 ? 0.8f : 0.2f));
-    }
+    expectUntexturedKd(mesh);
   }
 }
 
@@ -444,11 +451,6 @@ TEST_F(TextureFiles, ATextureNeitherReaderTakesLeavesTheDiffuseColour)
   EXPECT_EQ(said[0].substr(0, start.size()), start) << said[0];
   const std::string end = "): shaded with its diffuse colour alone";
   EXPECT_EQ(said[0].substr(said[0].size() - end.size()), end) << said[0];
-  vtkDataArray* kd = mesh->GetPointData()->GetArray(materialKdArrayName);
-  vtkDataArray* part = mesh->GetPointData()->GetArray(partArrayName);
-  for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)
-  {
-    EXPECT_EQ(kd->GetComponent(p, 1), double(part->GetComponent(p, 0) == 1 ? 0.8f : 0.2f));
-  }
+  expectUntexturedKd(mesh);
 }
 }

@@ -86,7 +86,7 @@ TEST_P(RealMesh, DefaultLightKitLightsItWell)
 
   // The normals point out of the mesh: the flux through it is positive (NormalOrientation.h).
   const MeshExtent extent = meshExtentOf(output);
-  NormalOrientationAccumulator orientation(extent.centre);
+  NormalOrientationAccumulator orientation(extent.centre, extent.radius);
   auto cell = vtk::TakeSmartPointer(output->GetPolys()->NewIterator());
   for (cell->GoToFirstCell(); !cell->IsDoneWithTraversal(); cell->GoToNextCell())
   {

@@ -10,20 +10,25 @@
 #include "ShadeLabWholeMesh.h"
 #include "ShadingFlags.h"
 #include "TestPaths.h"
+#include "TestScenes.h"
+#include "VtkErrorCapture.h"
 #include "vtkInterreflectionFilter.h"
 #include "vtkLocalReflectanceFilter.h"
 #include "vtkMeshVisibilityFilter.h"
 #include "vtkShadingNormalsFilter.h"
 
+#include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
+#include "vtkIdList.h"
 #include "vtkMPICommunicator.h"
 #include "vtkMPIController.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
+#include "vtkStringArray.h"
 #include "vtkUnsignedCharArray.h"
 #include "vtkXMLPPolyDataReader.h"
 #include "vtkXMLPPolyDataWriter.h"
@@ -238,19 +243,62 @@ TEST_P(SplitMesh, DrawsSoftShadowsToATargetAsTheWholeMesh)
   EXPECT_EQ(shadelab::testing::methodsNote(piece), plan);
 }
 
-// The normals filter alone, computed and flipped outward on the whole mesh.
-TEST_P(SplitMesh, NormalsAreTheWholeMeshs)
+/// The normals filter's output and report on `piece` through every process, and whether this
+/// process put the whole mesh together meanwhile.
+struct PieceNormalsRun
 {
-  vtkNew<vtkShadingNormalsFilter> whole, split;
+  vtkSmartPointer<vtkPolyData> output;
+  std::string report;
+  bool putTogether = false;
+};
+
+PieceNormalsRun normalsOnPiece(vtkPolyData* piece, bool keepInputNormals = true)
+{
+  vtkNew<vtkShadingNormalsFilter> split;
+  split->SetInputData(piece);
+  split->SetKeepInputNormals(keepInputNormals);
+  const std::size_t before = shadelab::wholeMeshesPutTogetherHere();
+  split->Update();
+  PieceNormalsRun run{ split->GetOutput(), split->GetReport(), shadelab::wholeMeshesPutTogetherHere() > before };
+  return run;
+}
+
+vtkSmartPointer<vtkPolyData> normalsOfWhole(vtkPolyData* mesh, bool keepInputNormals = true)
+{
+  vtkNew<vtkShadingNormalsFilter> whole;
   whole->SetController(nullptr);
+  whole->SetKeepInputNormals(keepInputNormals);
   whole->SetInputData(mesh);
   whole->Update();
-  split->SetInputData(myPiece(mesh));
-  split->Update();
-  EXPECT_EQ(split->GetReport(), whole->GetReport());
-  EXPECT_EQ(expectPieceOfWhole(whole->GetOutput(), split->GetOutput()),
-    whole->GetOutput()->GetPointData()->GetNumberOfArrays());
-  EXPECT_NE(split->GetOutput()->GetPointData()->GetNormals(), nullptr);
+  auto output = vtkSmartPointer<vtkPolyData>::New();
+  output->ShallowCopy(whole->GetOutput());
+  return output;
+}
+
+std::string normalsReport(vtkPolyData* output)
+{
+  return vtkStringArray::SafeDownCast(output->GetFieldData()->GetAbstractArray("shadelab_normals"))->GetValue(0);
+}
+
+// The normals filter alone, computed and flipped outward on the whole mesh: piece by piece, with
+// a layer of ghost cells and without, except where copies of a point at one position are welded
+// (the OBJ files' seams) or windings reordered (the owl scan's), for which the first process puts
+// the mesh together.
+TEST_P(SplitMesh, NormalsAreTheWholeMeshs)
+{
+  const vtkSmartPointer<vtkPolyData> whole = normalsOfWhole(mesh);
+  const std::string report = normalsReport(whole);
+  const bool wholeMeshNeeded =
+    report.find("positions are shared") != std::string::npos || report.find("turning round") != std::string::npos;
+  for (int ghostLevels : { 1, 0 })
+  {
+    const PieceNormalsRun split = normalsOnPiece(myPiece(mesh, ghostLevels));
+    EXPECT_EQ(split.report, report);
+    EXPECT_EQ(expectPieceOfWhole(whole, split.output), whole->GetPointData()->GetNumberOfArrays());
+    EXPECT_NE(split.output->GetPointData()->GetNormals(), nullptr);
+    EXPECT_EQ(split.putTogether, wholeMeshNeeded && processes()->GetLocalProcessId() == 0)
+      << ghostLevels << " ghost levels; " << report;
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(BundledMeshes, SplitMesh,
@@ -432,17 +480,61 @@ TEST(SplitMeshMemory, NormalsGatherOnTheFirstProcessOnly)
   }
 }
 
-/// interreflection.json with fewer rays (32 gather rays a vertex, 16 of the map's): the same
-/// exchanges between the processes, at an eighth of the bundled scene's gather.
+// A scene without shadows is shaded with no process putting the mesh together: each holds its
+// piece, and what the exchanges of the normals bring it (the points it shares, and the points
+// whose edges do not pair up, with their polygons). Shadows gather it on every process.
+TEST(SplitMeshMemory, NoProcessPutsTheMeshTogetherWithoutShadows)
+{
+  const vtkSmartPointer<vtkPolyData> mesh = bunny();
+  const std::size_t before = shadelab::wholeMeshesPutTogetherHere();
+  const vtkSmartPointer<vtkPolyData> piece = shaded(myPiece(mesh), "studio.json", { "all" }, processes());
+  EXPECT_EQ(shadelab::wholeMeshesPutTogetherHere(), before);
+  EXPECT_GT(expectPieceOfWhole(shadedWhole(mesh, "studio.json", { "all" }), piece), 40);
+  shaded(myPiece(mesh), withFewerRays("shadows_occlusion"), { "totals" }, processes());
+  EXPECT_GT(shadelab::wholeMeshesPutTogetherHere(), before);
+}
+
+// Windings to reorder (one polygon turned round) are reordered on the whole mesh, which the
+// first process puts together; stored normals that point in are found so on the pieces, and
+// flipped; computed normals replace stored ones where asked.
+TEST(SplitMeshNormals, WhatOnlyTheWholeMeshSettlesAndStoredNormals)
+{
+  const vtkSmartPointer<vtkPolyData> turned = bunny();
+  vtkNew<vtkIdList> corners;
+  turned->GetPolys()->GetCellAtId(100, corners);
+  std::reverse(corners->GetPointer(0), corners->GetPointer(0) + corners->GetNumberOfIds());
+  turned->GetPolys()->ReplaceCellAtId(100, corners);
+  const vtkSmartPointer<vtkPolyData> reordered = normalsOfWhole(turned);
+  ASSERT_NE(normalsReport(reordered).find("after turning round"), std::string::npos) << normalsReport(reordered);
+  const PieceNormalsRun split = normalsOnPiece(myPiece(turned));
+  EXPECT_EQ(split.report, normalsReport(reordered));
+  EXPECT_EQ(expectPieceOfWhole(reordered, split.output), reordered->GetPointData()->GetNumberOfArrays());
+  EXPECT_EQ(split.putTogether, processes()->GetLocalProcessId() == 0);
+
+  // The bunny's computed normals point in: stored, they are flipped, and replaced where asked.
+  const vtkSmartPointer<vtkPolyData> inward = bunny();
+  vtkNew<vtkShadingNormalsFilter> stored;
+  stored->SetController(nullptr);
+  stored->OrientOutwardOff();
+  stored->SetInputData(inward);
+  stored->Update();
+  inward->GetPointData()->SetNormals(stored->GetOutput()->GetPointData()->GetNormals());
+  for (bool keep : { true, false })
+  {
+    const vtkSmartPointer<vtkPolyData> whole = normalsOfWhole(inward, keep);
+    ASSERT_NE(normalsReport(whole).find("flipped them outward"), std::string::npos) << normalsReport(whole);
+    const PieceNormalsRun piece = normalsOnPiece(myPiece(inward), keep);
+    EXPECT_EQ(piece.report, normalsReport(whole));
+    EXPECT_EQ(expectPieceOfWhole(whole, piece.output), whole->GetPointData()->GetNumberOfArrays());
+    EXPECT_FALSE(piece.putTogether);
+  }
+}
+
+/// interreflection.json with fewer rays, written as sceneFile does; its path.
 std::string bouncesUnderAMap()
 {
-  return sceneFile("bounces_under_a_map",
-    R"({ "material": { "kd": [0.8, 0.62, 0.45], "ks": [0.35, 0.35, 0.35], "shininess": 40 },
-         "viewer": { "position": [0.0, 0.12, 0.45], "focal_point": [-0.017, 0.11, 0.0] },
-         "interreflection": { "bounces": 3, "samples": 32 },
-         "lights": [ { "name": "studio", "type": "environment", "file": ")" +
-      dataPath("envmaps/studio_small_03_1k.hdr") +
-      R"(", "estimator": "sh", "directions": "mis", "samples": 16, "intensity": 0.04, "shadows": true } ] })");
+  return sceneFile(
+    "bounces_under_a_map", shadelab::testing::bouncesUnderAMapScene(dataPath("envmaps/studio_small_03_1k.hdr")));
 }
 
 // Pieces written as a .pvtp (each process its own) and read back whole in one process: the
@@ -802,6 +894,50 @@ TEST(SplitMeshErrors, CellOnTwoPieces)
     whole.problem.find(" is on two pieces' polygons: mark the copies as ghost cells (vtkGhostType)"), std::string::npos)
     << whole.problem;
 }
+}
+// Pieces that give a point they share two positions, or two stored normals, are refused by the
+// normals computed piece by piece, with the message the whole mesh's gathering gives; the second
+// process's copy is moved by a part in a million.
+TEST(SplitMeshErrors, PiecesThatDisagreeOnASharedPoint)
+{
+  if (processes()->GetNumberOfProcesses() == 1)
+  {
+    GTEST_SKIP() << "one piece shares no point";
+  }
+  for (const std::string what : { "positions", "normals" })
+  {
+    const vtkSmartPointer<vtkPolyData> mesh = what == "normals" ? normalsOfWhole(bunny()) : bunny();
+    vtkSmartPointer<vtkPolyData> piece = myPiece(mesh, 0);
+    if (processes()->GetLocalProcessId() == 1)
+    {
+      vtkDataArray* values = what == "normals" ? piece->GetPointData()->GetNormals() : piece->GetPoints()->GetData();
+      vtkSmartPointer<vtkDataArray> moved = vtk::TakeSmartPointer(values->NewInstance());
+      moved->DeepCopy(values);
+      for (vtkIdType p = 0; p < moved->GetNumberOfTuples(); ++p)
+      {
+        moved->SetComponent(p, 0, moved->GetComponent(p, 0) * (1 + 1e-6) + 1e-6);
+      }
+      if (what == "normals")
+      {
+        piece->GetPointData()->SetNormals(moved);
+      }
+      else
+      {
+        piece->GetPoints()->SetData(moved);
+      }
+    }
+    vtkNew<vtkShadingNormalsFilter> normals;
+    vtkNew<shadelab::app::VtkErrorCapture> errors;
+    errors->watch(normals);
+    normals->SetInputData(piece);
+    normals->Update();
+    EXPECT_EQ(normals->GetOutput()->GetNumberOfPoints(), 0) << what;
+    EXPECT_EQ(errors->message().rfind("the point with global id ", 0), 0u) << errors->message();
+    EXPECT_NE(errors->message().find(" has two different " + what +
+                " in two pieces: the pieces are not of one mesh, or their global ids are wrong"),
+      std::string::npos)
+      << errors->message();
+  }
 }
 
 int main(int argc, char** argv)

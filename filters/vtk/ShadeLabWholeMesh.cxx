@@ -24,6 +24,7 @@
 #include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cstring>
 #include <limits>
 #include <numeric>
@@ -34,6 +35,8 @@ namespace shadelab
 {
 namespace
 {
+std::atomic<std::size_t> wholeMeshCount{ 0 };
+
 /// The raw bytes of an array's tuples (its components interleaved, as VTK stores them).
 std::vector<char> bytesOf(vtkDataArray* values)
 {
@@ -695,6 +698,7 @@ WholeMesh gatherPieces(vtkMultiProcessController* controller, vtkPolyData* piece
     mesh->SetStrips(wholeStrips);
   }
   whole.mesh = mesh;
+  ++wholeMeshCount;
   if (where == WholeMeshOn::FirstProcess)
   {
     whole.everyPieceIds = std::move(layout.allGlobalIds);
@@ -783,6 +787,11 @@ int computeOnPiece(vtkMultiProcessController* controller, vtkAlgorithm* filter, 
       return true;
     });
   return agreedOutcome(controller, filter, output, succeeded);
+}
+
+std::size_t wholeMeshesPutTogetherHere()
+{
+  return wholeMeshCount;
 }
 
 vtkSmartPointer<vtkDataArray> tuplesAt(vtkDataArray* values, const std::vector<vtkIdType>& ids)

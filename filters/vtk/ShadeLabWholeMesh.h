@@ -6,10 +6,11 @@
 // around it, welded with copies at its position and turned by the winding and the outward
 // test of the whole surface; the scene's placement and the tolerance's plan on the mesh's
 // extent; its shadows and occlusion on every triangle. So a filter given a piece gathers the
-// whole mesh's geometry (points by global id, polygons by global cell id) and computes on it
-// exactly as one process would:
-// - what every point needs of the whole mesh once, its normal, is computed on the first process
-//   alone, which sends each piece its points' values;
+// whole mesh's geometry (points by global id, polygons by global cell id) where it must, and
+// computes on it exactly as one process would:
+// - the normals are computed piece by piece (ShadeLabPieceNormals.h); only a mesh with copies to
+//   weld, windings to reorder or strips is gathered on the first process alone, which computes
+//   its normals and sends each piece its points' values;
 // - the rays, which meet every triangle, are cast by each process from its own points, against
 //   the whole mesh gathered on every process;
 // - the mesh's extent is reduced from the pieces' (ShadeLabMeshExtent.h), and each process
@@ -20,6 +21,7 @@
 #include "vtkSmartPointer.h"
 #include "vtkType.h"
 
+#include <cstddef>
 #include <functional>
 #include <string>
 #include <vector>
@@ -90,6 +92,10 @@ using PieceComputation =
 /// collective call.
 SHADELABFILTERS_EXPORT int computeOnPiece(vtkMultiProcessController* controller, vtkAlgorithm* filter,
   vtkPolyData* piece, vtkPolyData* output, bool withNormals, WholeMeshOn where, const PieceComputation& compute);
+
+/// How many times gatherWholeMesh has put a whole mesh together on this process: a step that
+/// leaves it unchanged held no more of the mesh than the pieces' exchanges brought it.
+SHADELABFILTERS_EXPORT std::size_t wholeMeshesPutTogetherHere();
 
 /// values' tuples at ids, in a new array of the same type and name.
 SHADELABFILTERS_EXPORT vtkSmartPointer<vtkDataArray> tuplesAt(vtkDataArray* values, const std::vector<vtkIdType>& ids);

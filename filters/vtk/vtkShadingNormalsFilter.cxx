@@ -5,7 +5,9 @@
 #include "ShadeLabFieldNotes.h"
 #include "ShadeLabLargeArrays.h"
 #include "ShadeLabMeshChecks.h"
+#include "ShadeLabMeshExtent.h"
 #include "ShadeLabMeshPolygons.h"
+#include "ShadeLabPieceNormals.h"
 #include "ShadeLabWholeMesh.h"
 
 #include "vtkArrayDispatch.h"
@@ -27,6 +29,7 @@
 #include <numeric>
 #include <optional>
 #include <sstream>
+#include <stdexcept>
 #include <type_traits>
 
 vtkStandardNewMacro(vtkShadingNormalsFilter);
@@ -160,62 +163,6 @@ std::vector<T> foundInBlocks(std::size_t count, Find find)
   return joined;
 }
 
-/// Feeds every triangle of the mesh's polygons (split into fans) to the orientation test, in
-/// fixed blocks of polygons summed in order, so that the result is the same on any number of
-/// threads. A worker for vtkArrayDispatch, so that points and normals are read from raw
-/// memory. Winding does not matter here: the test uses the stored normals, not the triangles'
-/// own orientation.
-struct OrientationWorker
-{
-  vtkPolyData* mesh;
-  const shadelab::PolygonList& polygons;
-  shadelab::NormalOrientation result;
-
-  template<typename PointArray, typename NormalArray>
-  void operator()(PointArray* pointArray, NormalArray* normalArray)
-  {
-    const auto points = vtk::DataArrayTupleRange<3>(pointArray);
-    const auto normals = vtk::DataArrayTupleRange<3>(normalArray);
-    auto vec = [](const auto& tuple) { return glm::dvec3(tuple[0], tuple[1], tuple[2]); };
-    double centre[3];
-    mesh->GetCenter(centre); // of the bounding box
-    const shadelab::NormalOrientationAccumulator empty({ centre[0], centre[1], centre[2] });
-    std::vector<shadelab::NormalOrientationAccumulator> blocks(blockCount(polygons.count), empty);
-    forEachBlock(polygons.count,
-      [&](std::size_t b, std::size_t first, std::size_t last)
-      {
-        for (std::size_t k = first; k < last; ++k)
-        {
-          const shadelab::PointId* ids = polygons.ids(k);
-          for (std::size_t i = 2; i < polygons.size(k); ++i)
-          {
-            blocks[b].addTriangle(vec(points[ids[0]]), vec(points[ids[i - 1]]), vec(points[ids[i]]),
-              vec(normals[ids[0]]), vec(normals[ids[i - 1]]), vec(normals[ids[i]]));
-          }
-        }
-      });
-    shadelab::NormalOrientationAccumulator total = empty;
-    for (const auto& block : blocks)
-    {
-      total.add(block);
-    }
-    result = total.result();
-  }
-};
-
-shadelab::NormalOrientation assessOrientation(
-  vtkPolyData* mesh, const shadelab::PolygonList& polygons, vtkDataArray* normals)
-{
-  OrientationWorker worker{ mesh, polygons, {} };
-  vtkDataArray* points = mesh->GetPoints()->GetData();
-  using Reals = vtkArrayDispatch::Reals;
-  if (!vtkArrayDispatch::Dispatch2ByValueType<Reals, Reals>::Execute(points, normals, worker))
-  {
-    worker(points, normals); // other value types, through the generic vtkDataArray API
-  }
-  return worker.result;
-}
-
 /// Computed point normals: what was found and done, for the report.
 struct ComputedNormals
 {
@@ -231,9 +178,9 @@ struct ComputedNormals
 /// scattering into two sets of sums ran no faster here.
 template<typename Real>
 shadelab::CornerSums sumAtCorners(const shadelab::PolygonList& list, const std::vector<bool>& flipped,
-  std::size_t pointCount, const glm::dvec3& centre, shadelab::PackedPoints<Real> points)
+  std::size_t pointCount, const shadelab::MeshExtent& extent, shadelab::PackedPoints<Real> points)
 {
-  shadelab::CornerSums sums(pointCount, centre);
+  shadelab::CornerSums sums(pointCount, extent.centre, extent.radius);
   shadelab::sumAtCorners(list, 0, list.count, flipped, points, sums);
   return sums;
 }
@@ -283,9 +230,8 @@ struct NormalsWorker
   {
     const shadelab::PolygonList& list = polygons.list();
     const std::size_t pointCount = static_cast<std::size_t>(mesh->GetNumberOfPoints());
-    double centre[3];
-    mesh->GetCenter(centre); // of the bounding box
-    shadelab::CornerSums sums = sumAtCorners(list, {}, pointCount, { centre[0], centre[1], centre[2] }, pointAt);
+    const shadelab::MeshExtent extent = shadelab::meshExtentOf(mesh);
+    shadelab::CornerSums sums = sumAtCorners(list, {}, pointCount, extent, pointAt);
     // Only points whose edges do not pair up can be copies on a seam or on an inconsistent
     // edge: the rest of the mesh needs nothing more.
     const std::vector<shadelab::PointId> candidates = foundInBlocks<shadelab::PointId>(pointCount,
@@ -300,7 +246,7 @@ struct NormalsWorker
     {
       // The rare, slow case: reorder the windings over the whole mesh, and sum again.
       flipped = polygonsToTurn(mesh, polygons, mergeMap);
-      sums = sumAtCorners(list, flipped, pointCount, { centre[0], centre[1], centre[2] }, pointAt);
+      sums = sumAtCorners(list, flipped, pointCount, extent, pointAt);
     }
     if (!mergeMap.empty())
     {
@@ -367,6 +313,62 @@ bool usableNormals(vtkDataArray* normals, vtkIdType pointCount)
 {
   return normals && normals->GetNumberOfComponents() == 3 && normals->GetNumberOfTuples() == pointCount;
 }
+
+/// The report's sentence on computed normals (named `name`).
+std::string computedNormalsSentence(bool hadNormals, const std::string& name, std::size_t inconsistentEdges,
+  const shadelab::WeldSummary& weld, double featureAngle)
+{
+  std::ostringstream sentence;
+  sentence << (hadNormals ? "Replaced the mesh's point normals" : "The mesh has no point normals")
+           << ": computed area-weighted ones and added them as '" << name << "'";
+  if (inconsistentEdges > 0)
+  {
+    sentence << ", after turning round the polygons wound against their neighbours (" << inconsistentEdges
+             << " edges were traversed twice in one direction)";
+  }
+  if (weld.sharedPositions > 0)
+  {
+    sentence << "; " << weld.sharedPositions << " positions are shared by several points: averaged "
+             << weld.pointsAveraged << " points with their copies";
+    if (weld.pointsKeptApart > 0)
+    {
+      sentence << ", kept " << weld.pointsKeptApart << " apart at edges sharper than " << featureAngle << " degrees";
+    }
+  }
+  sentence << ".";
+  return sentence.str();
+}
+
+/// The report's sentence on normals that point into the mesh ("" for others), having flipped the
+/// output's normals outward where orientOutward asks and they were not computed so
+/// (turnedOutward); the input's own (inputNormals) are flipped in a copy.
+std::string orientationSentence(const shadelab::NormalOrientation& orientation, bool orientOutward, vtkPolyData* output,
+  vtkDataArray* inputNormals, bool turnedOutward)
+{
+  if (!orientation.pointsInward())
+  {
+    return "";
+  }
+  std::ostringstream sentence;
+  sentence << " They point into the mesh (closure " << orientation.closure << ", flux " << orientation.flux << ")";
+  if (!orientOutward)
+  {
+    sentence << "; kept as they are, because orienting them outward is off.";
+    return sentence.str();
+  }
+  vtkDataArray* normals = output->GetPointData()->GetNormals();
+  if (normals && normals == inputNormals)
+  {
+    output->GetPointData()->SetNormals(flippedCopy(normals)); // the input's own pass through
+  }
+  else if (normals && !turnedOutward)
+  {
+    flipInPlace(normals);
+  }
+  sentence << "; flipped them outward.";
+  return sentence.str();
+}
+
 }
 
 vtkShadingNormalsFilter::vtkShadingNormalsFilter()
@@ -392,14 +394,92 @@ int vtkShadingNormalsFilter::RequestData(
                   "share: split them before the mesh is split");
     return 0;
   }
-  // Computed once, on the first process, which sends each piece its points' normals.
-  const int succeeded = shadelab::computeOnPiece(this->Controller, this, input, output, this->KeepInputNormals,
-    shadelab::WholeMeshOn::FirstProcess,
-    [this](vtkPolyData* mesh, vtkPolyData* result, const std::vector<vtkIdType>*)
-    { return this->ComputeNormals(mesh, result) == 1; });
+  const int onPieces = this->ComputeOnPieces(input, output);
+  if (onPieces != needsWholeMesh)
+  {
+    return onPieces;
+  }
+  // Computed once, on the first process, which sends each piece its points' normals. The
+  // pieces' own normals come too, so that the report says they were replaced where they are.
+  const int succeeded =
+    shadelab::computeOnPiece(this->Controller, this, input, output, true, shadelab::WholeMeshOn::FirstProcess,
+      [this](vtkPolyData* mesh, vtkPolyData* result, const std::vector<vtkIdType>*)
+      { return this->ComputeNormals(mesh, result) == 1; });
   auto* note = vtkStringArray::SafeDownCast(output->GetFieldData()->GetAbstractArray(shadelab::normalsNoteName));
   this->Report = succeeded && note && note->GetNumberOfValues() > 0 ? note->GetValue(0) : "";
   return succeeded;
+}
+
+int vtkShadingNormalsFilter::ComputeOnPieces(vtkPolyData* piece, vtkPolyData* output)
+{
+  const shadelab::PieceLayout layout = shadelab::pieceLayout(this->Controller, piece);
+  if (!layout.problem.empty() || !layout.putTogether || (this->WeldCoincidentPoints && this->WeldTolerance > 0.0) ||
+    !shadelab::everyProcessHolds(this->Controller, piece->GetNumberOfStrips() == 0))
+  {
+    return needsWholeMesh; // which says what is wrong, or is one process's piece, or welds by distance, or has strips
+  }
+  const bool empty = piece->GetNumberOfPoints() == 0;
+  vtkDataArray* inputNormals = piece->GetPointData()->GetNormals();
+  const bool keepNormals = this->KeepInputNormals &&
+    shadelab::everyProcessHolds(this->Controller, empty || usableNormals(inputNormals, piece->GetNumberOfPoints()));
+  bool succeeded = true;
+  std::ostringstream report;
+  shadelab::NormalOrientation orientation;
+  bool turnedOutward = false;
+  output->ShallowCopy(piece);
+  try
+  {
+    const shadelab::SharedPoints shared = shadelab::sharedPointsOf(this->Controller, layout.pieceIds);
+    std::string problem = shadelab::differingSharedValues(
+      this->Controller, shared, empty ? nullptr : piece->GetPoints()->GetData(), "positions");
+    if (problem.empty() && keepNormals)
+    {
+      problem = shadelab::differingSharedValues(this->Controller, shared, inputNormals, "normals");
+    }
+    if (!problem.empty()) // the same on every process
+    {
+      throw std::runtime_error(problem);
+    }
+    if (keepNormals)
+    {
+      // The name the single process would see: the first piece's, as the whole mesh's gathering takes it.
+      const std::string name =
+        shadelab::firstText(this->Controller, inputNormals && inputNormals->GetName() ? inputNormals->GetName() : "");
+      report << "Using the mesh's point normals '" << name << "'.";
+      orientation = shadelab::storedNormalsOrientation(piece, inputNormals, this->Controller);
+    }
+    else
+    {
+      const shadelab::PieceNormals computed = shadelab::computePieceNormals(
+        this->Controller, piece, layout, shared, this->WeldCoincidentPoints, this->OrientOutward);
+      if (!computed.computed)
+      {
+        return needsWholeMesh;
+      }
+      const bool anyNormals = !shadelab::everyProcessHolds(this->Controller, !inputNormals);
+      computed.normals->SetName(this->NormalsName.c_str());
+      output->GetPointData()->SetNormals(computed.normals);
+      report << computedNormalsSentence(anyNormals, this->NormalsName, 0, {}, this->FeatureAngle);
+      orientation = computed.orientation;
+      turnedOutward = computed.turnedOutward;
+    }
+  }
+  catch (const std::exception& error) // thrown on every process alike
+  {
+    vtkErrorMacro(<< error.what());
+    succeeded = false;
+  }
+  if (succeeded)
+  {
+    report << orientationSentence(orientation, this->OrientOutward, output, inputNormals, turnedOutward);
+    this->Report = report.str();
+    shadelab::addFieldNote(output, shadelab::normalsNoteName, { this->Report });
+  }
+  else
+  {
+    output->Initialize();
+  }
+  return succeeded ? 1 : 0;
 }
 
 int vtkShadingNormalsFilter::ComputeNormals(vtkPolyData* input, vtkPolyData* output)
@@ -447,56 +527,18 @@ int vtkShadingNormalsFilter::ComputeNormals(vtkPolyData* input, vtkPolyData* out
     const ComputedNormals computed = computeNormals(input, shadelab::MeshPolygons(input), this->WeldCoincidentPoints,
       this->WeldTolerance, this->FeatureAngle, this->OrientOutward);
     computed.normals->SetName(this->NormalsName.c_str());
-    const std::size_t inconsistent = computed.inconsistentEdges;
-    const shadelab::WeldSummary& weld = computed.weld;
     orientation = computed.orientation;
     turnedOutward = computed.turnedOutward;
     normals = computed.normals;
     output->GetPointData()->SetNormals(computed.normals);
-    report << (inputNormals ? "Replaced the mesh's point normals" : "The mesh has no point normals")
-           << ": computed area-weighted ones and added them as '" << this->NormalsName << "'";
-    if (inconsistent > 0)
-    {
-      report << ", after turning round the polygons wound against their neighbours (" << inconsistent
-             << " edges were traversed twice in one direction)";
-    }
-    if (weld.sharedPositions > 0)
-    {
-      report << "; " << weld.sharedPositions << " positions are shared by several points: averaged "
-             << weld.pointsAveraged << " points with their copies";
-      if (weld.pointsKeptApart > 0)
-      {
-        report << ", kept " << weld.pointsKeptApart << " apart at edges sharper than " << this->FeatureAngle
-               << " degrees";
-      }
-    }
-    report << ".";
+    report << computedNormalsSentence(
+      inputNormals != nullptr, this->NormalsName, computed.inconsistentEdges, computed.weld, this->FeatureAngle);
   }
-
   if (!orientation)
   {
-    orientation = assessOrientation(output, shadelab::MeshPolygons(output).list(), normals);
+    orientation = shadelab::storedNormalsOrientation(output, normals);
   }
-  if (orientation->pointsInward())
-  {
-    report << " They point into the mesh (closure " << orientation->closure << ", flux " << orientation->flux << ")";
-    if (this->OrientOutward)
-    {
-      if (normals == inputNormals)
-      {
-        output->GetPointData()->SetNormals(flippedCopy(normals)); // the input's own pass through
-      }
-      else if (!turnedOutward)
-      {
-        flipInPlace(normals);
-      }
-      report << "; flipped them outward.";
-    }
-    else
-    {
-      report << "; kept as they are, because orienting them outward is off.";
-    }
-  }
+  report << orientationSentence(*orientation, this->OrientOutward, output, inputNormals, turnedOutward);
   this->Report = report.str();
   shadelab::addFieldNote(output, shadelab::normalsNoteName, { this->Report });
   return 1;

@@ -21,8 +21,12 @@
  * "shadelab_normals". Every other array passes through.
  *
  * A piece of a mesh split over processes (see SetController) gets the normals the whole mesh
- * has at its points: the whole mesh is gathered on the first process, which computes its
- * normals as one process would and sends each piece its points' (ShadeLabWholeMesh.h).
+ * has at its points, bit for bit. Each piece computes its own from its polygons and the vector
+ * areas of the other pieces' polygons at the points they share (ShadeLabPieceNormals.h). Only a
+ * mesh whose copies at one position must be welded, whose windings must be reordered, which
+ * has strips, or which welds within a tolerance is gathered on the first process, which
+ * computes its normals as one process would and sends each piece its points'
+ * (ShadeLabWholeMesh.h).
  */
 #ifndef vtkShadingNormalsFilter_h
 #define vtkShadingNormalsFilter_h
@@ -109,6 +113,11 @@ protected:
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   /// The normals of `input` taken as a whole mesh, in `output`.
   int ComputeNormals(vtkPolyData* input, vtkPolyData* output);
+  /// What ComputeOnPieces returns where the mesh must be put together first.
+  static constexpr int needsWholeMesh = -1;
+  /// The normals of a piece of a split mesh computed piece by piece (ShadeLabPieceNormals.h), a
+  /// collective call: 1 or 0 as RequestData, or needsWholeMesh on every process alike.
+  int ComputeOnPieces(vtkPolyData* piece, vtkPolyData* output);
 
 private:
   vtkShadingNormalsFilter(const vtkShadingNormalsFilter&) = delete;

@@ -144,10 +144,11 @@ using CornerSumArray = std::vector<CornerSum, LargeAllocator<CornerSum>>; // in 
 /// What a pass over the polygons gathers at each point, and about the mesh.
 struct CornerSums
 {
-  /// Zero sums for pointCount points; the winding's orientation is taken about centre.
-  CornerSums(std::size_t pointCount, const glm::dvec3& centre)
+  /// Zero sums for pointCount points; the winding's orientation is taken about centre, for a
+  /// mesh within radius of it.
+  CornerSums(std::size_t pointCount, const glm::dvec3& centre, double radius)
     : points(pointCount)
-    , winding(centre)
+    , winding(centre, radius)
   {
   }
 
@@ -158,16 +159,23 @@ struct CornerSums
   NormalOrientationAccumulator winding;
 };
 
+/// A point's signature in the edge balance (CornerSum): that of its id.
+struct IdSignature
+{
+  std::uint64_t operator()(PointId id) const { return idSignature(id); }
+};
+
 /// Adds polygons first..last-1 (turned round where flipped[k] is set; flipped may be empty)
-/// to sums.
+/// to sums; signatureOf(id) is the edge balance's signature of the point `id` (its id's, or in a
+/// piece of a split mesh its global id's).
 ///
 /// The pass is bound by memory: each corner updates a point's sums, which are seldom in cache,
 /// and reads a point, which seldom is either. So both are fetched some polygons ahead of their
 /// use (16: 2 to 16 were tried, on 2.2M vertices; 16 took 13% less time than 2), and nothing
 /// here divides (a division's latency showed as much as the misses).
-template<typename Real>
+template<typename Real, typename Signature = IdSignature>
 void sumAtCorners(const PolygonList& polygons, std::size_t first, std::size_t last, const std::vector<bool>& flipped,
-  PackedPoints<Real> points, CornerSums& sums)
+  PackedPoints<Real> points, CornerSums& sums, Signature signatureOf = {})
 {
   constexpr std::size_t lookAhead = 16;
   for (std::size_t k = first; k < last; ++k)
@@ -189,11 +197,11 @@ void sumAtCorners(const PolygonList& polygons, std::size_t first, std::size_t la
     }
     const glm::dvec3 area = orientedAreaVector(polygons, k, flipped, points);
     // Walks the corners with the previous and next ids at hand (no modulo).
-    std::uint64_t previous = idSignature(ids[size - 1]), current = idSignature(ids[0]);
+    std::uint64_t previous = signatureOf(ids[size - 1]), current = signatureOf(ids[0]);
     glm::dvec3 cornerSum(0.0);
     for (std::size_t i = 0; i < size; ++i)
     {
-      const std::uint64_t next = idSignature(ids[i + 1 < size ? i + 1 : 0]);
+      const std::uint64_t next = signatureOf(ids[i + 1 < size ? i + 1 : 0]);
       CornerSum& sum = sums.points[static_cast<std::size_t>(ids[i])];
       sum.area += area;
       sum.edgeBalance += next - previous;
