@@ -511,6 +511,16 @@ TEST(SplitMeshNormals, WhatOnlyTheWholeMeshSettlesAndStoredNormals)
   EXPECT_EQ(expectPieceOfWhole(reordered, split.output), reordered->GetPointData()->GetNumberOfArrays());
   EXPECT_EQ(split.putTogether, processes()->GetLocalProcessId() == 0);
 
+  // Stored normals replaced on a mesh whose seams are welded on the whole mesh, which is put
+  // together without them: the report says they were replaced, as one process's does.
+  const vtkSmartPointer<vtkPolyData> seams = normalsOfWhole(shadelab::app::readMesh(dataPath("meshes/spot.obj")));
+  const vtkSmartPointer<vtkPolyData> replaced = normalsOfWhole(seams, false);
+  const PieceNormalsRun welded = normalsOnPiece(myPiece(seams), false);
+  EXPECT_EQ(welded.report.rfind("Replaced the mesh's point normals", 0), 0u) << welded.report;
+  EXPECT_EQ(welded.report, normalsReport(replaced));
+  EXPECT_EQ(expectPieceOfWhole(replaced, welded.output), replaced->GetPointData()->GetNumberOfArrays());
+  EXPECT_EQ(welded.putTogether, processes()->GetLocalProcessId() == 0);
+
   // The bunny's computed normals point in: stored, they are flipped, and replaced where asked.
   const vtkSmartPointer<vtkPolyData> inward = bunny();
   vtkNew<vtkShadingNormalsFilter> stored;

@@ -15,6 +15,11 @@
 
 namespace shadelab
 {
+namespace
+{
+constexpr int firstCopiesTag = 7351;
+}
+
 const char* const anotherProcessFailed = "another process failed on its piece (see its error), so this one stops too";
 
 bool saysAnotherProcessFailed(const std::string& error)
@@ -101,34 +106,52 @@ std::vector<double> valuesAtEveryPoint(vtkMultiProcessController* controller, co
 
 std::vector<bool> firstCopies(vtkMultiProcessController* controller, const std::vector<vtkIdType>& ids)
 {
-  std::vector<vtkIdType> counts;
-  const std::vector<vtkIdType> all = allGather(controller, ids, &counts);
-  // In id order, each id's copies keep their order (process, then index): the first is first.
-  std::vector<std::size_t> order;
-  bool allocated = true;
-  try
+  const int processes = processCount(controller);
+  // Each id's first place in the piece, sent to the process that owns the id (ownerOf).
+  std::vector<std::size_t> byId(ids.size());
+  std::iota(byId.begin(), byId.end(), std::size_t(0));
+  std::stable_sort(byId.begin(), byId.end(), [&](std::size_t a, std::size_t b) { return ids[a] < ids[b]; });
+  std::vector<std::vector<vtkIdType>> sent(static_cast<std::size_t>(processes));
+  std::vector<std::vector<std::size_t>> places(static_cast<std::size_t>(processes));
+  for (std::size_t k = 0; k < byId.size(); ++k)
   {
-    order.resize(all.size());
-  }
-  catch (const std::bad_alloc&)
-  {
-    allocated = false;
-  }
-  if (!everyProcessHolds(controller, allocated)) // so that every process stops alike
-  {
-    throw std::runtime_error("out of memory ordering the pieces' " + std::to_string(all.size()) + " point ids");
-  }
-  std::iota(order.begin(), order.end(), std::size_t(0));
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return all[a] < all[b]; });
-  const int me = controller ? controller->GetLocalProcessId() : 0;
-  const std::size_t mine = static_cast<std::size_t>(std::accumulate(counts.begin(), counts.begin() + me, vtkIdType(0)));
-  std::vector<bool> first(ids.size(), false);
-  for (std::size_t k = 0; k < order.size(); ++k)
-  {
-    const bool firstOfItsId = k == 0 || all[order[k]] != all[order[k - 1]];
-    if (firstOfItsId && order[k] >= mine && order[k] < mine + ids.size())
+    if (k == 0 || ids[byId[k]] != ids[byId[k - 1]])
     {
-      first[order[k] - mine] = true;
+      const std::size_t owner = ownerOf(ids[byId[k]], processes);
+      sent[owner].push_back(ids[byId[k]]);
+      places[owner].push_back(byId[k]);
+    }
+  }
+  const std::vector<std::vector<vtkIdType>> received = swapWithEvery(controller, std::move(sent), firstCopiesTag);
+  // The owner answers each process, for each id it sent, whether no earlier process sent it.
+  struct Sent
+  {
+    vtkIdType id;
+    std::size_t process, place;
+  };
+  std::vector<Sent> all;
+  std::vector<std::vector<int>> answers(received.size());
+  for (std::size_t p = 0; p < received.size(); ++p)
+  {
+    answers[p].assign(received[p].size(), 0);
+    for (std::size_t k = 0; k < received[p].size(); ++k)
+    {
+      all.push_back({ received[p][k], p, k });
+    }
+  }
+  std::sort(all.begin(), all.end(),
+    [](const Sent& a, const Sent& b) { return a.id != b.id ? a.id < b.id : a.process < b.process; });
+  for (std::size_t k = 0; k < all.size(); ++k)
+  {
+    answers[all[k].process][all[k].place] = k == 0 || all[k].id != all[k - 1].id ? 1 : 0;
+  }
+  const std::vector<std::vector<int>> answered = swapWithEvery(controller, std::move(answers), firstCopiesTag + 2);
+  std::vector<bool> first(ids.size(), false);
+  for (std::size_t p = 0; p < answered.size(); ++p)
+  {
+    for (std::size_t k = 0; k < answered[p].size() && k < places[p].size(); ++k)
+    {
+      first[places[p][k]] = answered[p][k] != 0;
     }
   }
   return first;

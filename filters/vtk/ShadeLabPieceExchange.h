@@ -5,12 +5,14 @@
 #include "ShadeLabWholeMesh.h"
 
 #include "vtkMultiProcessController.h"
+#include "vtkType.h"
 
 #include <limits>
 #include <new>
 #include <numeric>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace shadelab
@@ -91,5 +93,82 @@ std::vector<T> allGather(
   vtkMultiProcessController* controller, const std::vector<T>& mine, std::vector<vtkIdType>* counts = nullptr)
 {
   return gathered(controller, mine, WholeMeshOn::EveryProcess, counts);
+}
+
+/// Sends `mine` to process `other` and returns what it sent back: both call it at the same step.
+/// The lower process sends first, so that two blocking sends never wait for each other; and
+/// every process meets the others in the order of their ranks, so that no chain of waits closes.
+template<typename T>
+std::vector<T> swapWith(vtkMultiProcessController* controller, int other, const std::vector<T>& mine, int tag)
+{
+  const vtkIdType myLength = static_cast<vtkIdType>(mine.size());
+  vtkIdType theirLength = 0;
+  std::vector<T> theirs;
+  bool exchanged = true;
+  auto send = [&]
+  {
+    exchanged = exchanged && controller->Send(&myLength, 1, other, tag) != 0 &&
+      (myLength == 0 || controller->Send(mine.data(), myLength, other, tag + 1) != 0);
+  };
+  auto receive = [&]
+  {
+    exchanged = exchanged && controller->Receive(&theirLength, 1, other, tag) != 0;
+    theirs.resize(static_cast<std::size_t>(exchanged ? theirLength : 0));
+    exchanged = exchanged && (theirs.empty() || controller->Receive(theirs.data(), theirLength, other, tag + 1) != 0);
+  };
+  if (controller->GetLocalProcessId() < other)
+  {
+    send();
+    receive();
+  }
+  else
+  {
+    receive();
+    send();
+  }
+  if (!exchanged)
+  {
+    throw std::runtime_error("exchanging values between two processes failed (MPI's send or receive)");
+  }
+  return theirs;
+}
+
+/// Calls exchange(other) for every other process, in the order swapWith needs.
+template<typename Exchange>
+void forEveryOtherProcess(vtkMultiProcessController* controller, Exchange exchange)
+{
+  if (processCount(controller) == 1)
+  {
+    return;
+  }
+  for (int other = 0; other < processCount(controller); ++other)
+  {
+    if (other != controller->GetLocalProcessId())
+    {
+      exchange(other);
+    }
+  }
+}
+
+/// For each process, what `sent` had for it (sent[p] for process p) and it had for this one: each
+/// pair of processes swaps its lists (swapWith), and this process's own list stays (a collective
+/// call).
+template<typename T>
+std::vector<std::vector<T>> swapWithEvery(
+  vtkMultiProcessController* controller, std::vector<std::vector<T>> sent, int tag)
+{
+  std::vector<std::vector<T>> received(sent.size());
+  const std::size_t me = static_cast<std::size_t>(controller ? controller->GetLocalProcessId() : 0);
+  received[me] = std::move(sent[me]);
+  forEveryOtherProcess(controller,
+    [&](int other)
+    { received[static_cast<std::size_t>(other)] = swapWith(controller, other, sent[std::size_t(other)], tag); });
+  return received;
+}
+
+/// The process that owns a global id in the exchanges that split the ids among the processes.
+inline std::size_t ownerOf(vtkIdType id, int processes)
+{
+  return static_cast<std::size_t>((id % processes + processes) % processes);
 }
 }

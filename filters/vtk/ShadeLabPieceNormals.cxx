@@ -111,61 +111,6 @@ struct GlobalIdSignature
   std::uint64_t operator()(PointId id) const { return idSignature(globalIds[id]); }
 };
 
-/// Sends `mine` to process `other` and returns what it sent back: both call it at the same step.
-/// The lower process sends first, so that two blocking sends never wait for each other; and
-/// every process meets the others in the order of their ranks, so that no chain of waits closes.
-template<typename T>
-std::vector<T> swapWith(vtkMultiProcessController* controller, int other, const std::vector<T>& mine, int tag)
-{
-  const vtkIdType myLength = static_cast<vtkIdType>(mine.size());
-  vtkIdType theirLength = 0;
-  std::vector<T> theirs;
-  bool exchanged = true;
-  auto send = [&]
-  {
-    exchanged = exchanged && controller->Send(&myLength, 1, other, tag) != 0 &&
-      (myLength == 0 || controller->Send(mine.data(), myLength, other, tag + 1) != 0);
-  };
-  auto receive = [&]
-  {
-    exchanged = exchanged && controller->Receive(&theirLength, 1, other, tag) != 0;
-    theirs.resize(static_cast<std::size_t>(exchanged ? theirLength : 0));
-    exchanged = exchanged && (theirs.empty() || controller->Receive(theirs.data(), theirLength, other, tag + 1) != 0);
-  };
-  if (controller->GetLocalProcessId() < other)
-  {
-    send();
-    receive();
-  }
-  else
-  {
-    receive();
-    send();
-  }
-  if (!exchanged)
-  {
-    throw std::runtime_error("exchanging the pieces' shared points failed (MPI's send or receive)");
-  }
-  return theirs;
-}
-
-/// Calls exchange(other) for every other process, in the order swapWith needs.
-template<typename Exchange>
-void forEveryOtherProcess(vtkMultiProcessController* controller, Exchange exchange)
-{
-  if (processCount(controller) == 1)
-  {
-    return;
-  }
-  for (int other = 0; other < processCount(controller); ++other)
-  {
-    if (other != controller->GetLocalProcessId())
-    {
-      exchange(other);
-    }
-  }
-}
-
 constexpr int sharedIdsTag = 7311;
 constexpr int cornerRecordsTag = 7313;
 constexpr int cornerAreasTag = 7315;
@@ -367,36 +312,45 @@ struct PieceNormalsWorker
   template<typename Real>
   bool noMeshChangeNeeded(const PolygonList& list, const std::vector<vtkIdType>& keys, PackedPoints<Real> pointAt)
   {
-    std::vector<std::uint8_t> unbalanced(globalIds.size(), 0);
+    std::vector<std::uint8_t> unbalanced;
     std::vector<vtkIdType> candidateIds;
     std::vector<double> candidatePositions;
-    for (std::size_t i = 0; i < globalIds.size(); ++i)
-    {
-      if (sums[i].edgeBalance != 0)
+    agreedStep(controller,
+      [&]
       {
-        unbalanced[i] = 1;
-        candidateIds.push_back(globalIds[i]);
-        const glm::dvec3 p = pointAt(static_cast<PointId>(i));
-        candidatePositions.insert(candidatePositions.end(), { p.x, p.y, p.z });
-      }
-    }
+        unbalanced.assign(globalIds.size(), 0);
+        for (std::size_t i = 0; i < globalIds.size(); ++i)
+        {
+          if (sums[i].edgeBalance != 0)
+          {
+            unbalanced[i] = 1;
+            candidateIds.push_back(globalIds[i]);
+            const glm::dvec3 p = pointAt(static_cast<PointId>(i));
+            candidatePositions.insert(candidatePositions.end(), { p.x, p.y, p.z });
+          }
+        }
+      });
     if (weld && sharePositions(allGather(controller, candidateIds), allGather(controller, candidatePositions)))
     {
       return false; // copies to weld
     }
     std::vector<vtkIdType> polygonKeys, sizes, corners;
-    for (std::size_t k = 0; k < list.count; ++k)
-    {
-      if (hasEdgeBetween(list, k, unbalanced))
+    agreedStep(controller,
+      [&]
       {
-        polygonKeys.push_back(keys[k]);
-        sizes.push_back(static_cast<vtkIdType>(list.size(k)));
-        for (std::size_t i = 0; i < list.size(k); ++i)
+        for (std::size_t k = 0; k < list.count; ++k)
         {
-          corners.push_back(globalIds[static_cast<std::size_t>(list.ids(k)[i])]);
+          if (hasEdgeBetween(list, k, unbalanced))
+          {
+            polygonKeys.push_back(keys[k]);
+            sizes.push_back(static_cast<vtkIdType>(list.size(k)));
+            for (std::size_t i = 0; i < list.size(k); ++i)
+            {
+              corners.push_back(globalIds[static_cast<std::size_t>(list.ids(k)[i])]);
+            }
+          }
         }
-      }
-    }
+      });
     return !inconsistentlyWound(
       allGather(controller, polygonKeys), allGather(controller, sizes), allGather(controller, corners));
   }
@@ -489,20 +443,24 @@ struct OrientationWorker
 SharedPoints sharedPointsOf(vtkMultiProcessController* controller, const std::vector<vtkIdType>& globalIds)
 {
   SharedPoints shared;
-  for (std::size_t i = 0; i < globalIds.size(); ++i)
-  {
-    shared.byGlobalId.emplace_back(globalIds[i], static_cast<vtkIdType>(i));
-  }
-  std::sort(shared.byGlobalId.begin(), shared.byGlobalId.end());
   const auto& sorted = shared.byGlobalId;
-  for (std::size_t k = 1; k < sorted.size(); ++k)
-  {
-    if (sorted[k].first == sorted[k - 1].first &&
-      (shared.repeated.empty() || shared.repeated.back() != sorted[k].first))
+  agreedStep(controller,
+    [&]
     {
-      shared.repeated.push_back(sorted[k].first);
-    }
-  }
+      for (std::size_t i = 0; i < globalIds.size(); ++i)
+      {
+        shared.byGlobalId.emplace_back(globalIds[i], static_cast<vtkIdType>(i));
+      }
+      std::sort(shared.byGlobalId.begin(), shared.byGlobalId.end());
+      for (std::size_t k = 1; k < sorted.size(); ++k)
+      {
+        if (sorted[k].first == sorted[k - 1].first &&
+          (shared.repeated.empty() || shared.repeated.back() != sorted[k].first))
+        {
+          shared.repeated.push_back(sorted[k].first);
+        }
+      }
+    });
   shared.withProcess.resize(static_cast<std::size_t>(processCount(controller)));
   forEveryOtherProcess(controller,
     [&](int other)
@@ -626,16 +584,28 @@ PieceNormals computePieceNormals(vtkMultiProcessController* controller, vtkPolyD
   return result;
 }
 
+/// The orientation sums of the stored normals over the mesh's polygons (its own, leaving out
+/// ghost cells, where leaveOutGhosts), added to `sums`.
+NormalOrientationAccumulator ownPolygonsOrientation(
+  vtkPolyData* mesh, vtkDataArray* normals, bool leaveOutGhosts, NormalOrientationAccumulator sums);
+
 NormalOrientation storedNormalsOrientation(
   vtkPolyData* mesh, vtkDataArray* normals, vtkMultiProcessController* piecesOver)
 {
   const MeshExtent extent = piecesOver ? wholeMeshExtent(piecesOver, mesh) : meshExtentOf(mesh);
   NormalOrientationAccumulator sums(extent.centre, extent.radius);
+  agreedStep(piecesOver, [&] { sums = ownPolygonsOrientation(mesh, normals, piecesOver != nullptr, sums); });
+  return piecesOver ? wholeMeshWinding(piecesOver, sums, extent) : sums.result();
+}
+
+NormalOrientationAccumulator ownPolygonsOrientation(
+  vtkPolyData* mesh, vtkDataArray* normals, bool leaveOutGhosts, NormalOrientationAccumulator sums)
+{
   if (mesh->GetNumberOfPoints() > 0)
   {
     const MeshPolygons polygons(mesh);
     // A whole mesh sums every polygon, in any order: the sums are exact.
-    const std::unique_ptr<ChosenPolygons> own = piecesOver
+    const std::unique_ptr<ChosenPolygons> own = leaveOutGhosts
       ? std::make_unique<ChosenPolygons>(polygons.list(), ownPolygons(mesh, polygons.list().count).indices)
       : nullptr;
     OrientationWorker worker{ own ? own->list() : polygons.list(), sums };
@@ -647,6 +617,6 @@ NormalOrientation storedNormalsOrientation(
     }
     sums = worker.sums;
   }
-  return piecesOver ? wholeMeshWinding(piecesOver, sums, extent) : sums.result();
+  return sums;
 }
 }

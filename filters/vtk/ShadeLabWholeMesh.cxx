@@ -36,6 +36,7 @@ namespace shadelab
 namespace
 {
 std::atomic<std::size_t> wholeMeshCount{ 0 };
+constexpr int numberingTag = 7341;
 
 /// The raw bytes of an array's tuples (its components interleaved, as VTK stores them).
 std::vector<char> bytesOf(vtkDataArray* values)
@@ -574,19 +575,63 @@ bool numberZeroToLargest(const std::vector<vtkIdType>& ids, vtkIdType smallest, 
   return !present.empty() && std::find(present.begin(), present.end(), false) == present.end();
 }
 
-/// Every piece's point ids, gathered into layout (a collective call), and what they say of how
-/// the pieces lie: put together where they number the mesh's points 0 to n-1.
-void numberPoints(vtkMultiProcessController* controller, vtkDataArray* pointGlobalIds, Layout& layout)
+/// Whether every number 0 to largest is among the processes' ids (a collective call): each
+/// process marks the numbers it owns (ownerOf) that the others send it, so that none holds more
+/// than its own ids and a bit for each number it owns.
+bool everyNumberUpTo(vtkMultiProcessController* controller, const std::vector<vtkIdType>& ids, vtkIdType largest)
+{
+  const int processes = processCount(controller);
+  std::vector<std::vector<vtkIdType>> sent(static_cast<std::size_t>(processes));
+  for (vtkIdType id : ids)
+  {
+    sent[ownerOf(id, processes)].push_back(id);
+  }
+  const std::size_t me = static_cast<std::size_t>(controller ? controller->GetLocalProcessId() : 0);
+  const vtkIdType owned =
+    largest >= static_cast<vtkIdType>(me) ? (largest - static_cast<vtkIdType>(me)) / processes + 1 : 0;
+  std::vector<bool> present(static_cast<std::size_t>(owned), false);
+  for (const std::vector<vtkIdType>& from : swapWithEvery(controller, std::move(sent), numberingTag))
+  {
+    for (vtkIdType id : from)
+    {
+      present[static_cast<std::size_t>(id / processes)] = true;
+    }
+  }
+  return everyProcessHolds(controller, std::find(present.begin(), present.end(), false) == present.end());
+}
+
+/// Every piece's point ids, into layout (a collective call), and what they say of how the pieces
+/// lie: put together where they number the mesh's points 0 to n-1. Where keepEveryId, every
+/// piece's ids are gathered on every process (for gathering the whole mesh); otherwise each
+/// process holds its own.
+void numberPoints(vtkMultiProcessController* controller, vtkDataArray* pointGlobalIds, Layout& layout, bool keepEveryId)
 {
   layout.pieceIds = idsOf(pointGlobalIds);
-  layout.allGlobalIds = allGather(controller, layout.pieceIds);
-  const std::vector<vtkIdType>& allGlobalIds = layout.allGlobalIds;
+  const std::vector<vtkIdType>& ids = layout.pieceIds;
+  const vtkIdType smallest =
+    ids.empty() ? std::numeric_limits<vtkIdType>::max() : *std::min_element(ids.begin(), ids.end());
+  const vtkIdType largest =
+    ids.empty() ? std::numeric_limits<vtkIdType>::min() : *std::max_element(ids.begin(), ids.end());
+  const std::vector<vtkIdType> smallests = allGather(controller, std::vector<vtkIdType>{ smallest });
+  const std::vector<vtkIdType> largests = allGather(controller, std::vector<vtkIdType>{ largest });
+  const vtkIdType wholeSmallest = *std::min_element(smallests.begin(), smallests.end());
+  const vtkIdType wholeLargest = *std::max_element(largests.begin(), largests.end());
   // The ids must number the mesh's points 0 to n-1: each point's id is its index in the whole
   // mesh, and seeds its samples as its index does in one process.
-  const vtkIdType largest = allGlobalIds.empty() ? 0 : *std::max_element(allGlobalIds.begin(), allGlobalIds.end());
-  const vtkIdType smallest = allGlobalIds.empty() ? 0 : *std::min_element(allGlobalIds.begin(), allGlobalIds.end());
-  layout.wholeCount = largest + 1;
-  const bool numbered = numberZeroToLargest(allGlobalIds, smallest, largest);
+  layout.wholeCount = wholeLargest + 1;
+  bool numbered = false;
+  if (keepEveryId)
+  {
+    layout.allGlobalIds = allGather(controller, ids);
+    numbered = numberZeroToLargest(layout.allGlobalIds, wholeSmallest, wholeLargest);
+  }
+  else
+  {
+    const std::vector<vtkIdType> sizes = allGather(controller, std::vector<vtkIdType>{ vtkIdType(ids.size()) });
+    const vtkIdType total = std::accumulate(sizes.begin(), sizes.end(), vtkIdType(0));
+    // Fewer ids than numbers cannot hold them all (and a number far past them is not marked).
+    numbered = wholeSmallest >= 0 && wholeLargest < total && everyNumberUpTo(controller, ids, wholeLargest);
+  }
   if (!numbered && processCount(controller) == 1)
   {
     // Ids of some other numbering (one piece's file, read alone): the piece is the mesh.
@@ -595,7 +640,7 @@ void numberPoints(vtkMultiProcessController* controller, vtkDataArray* pointGlob
   else if (!numbered)
   {
     std::ostringstream text;
-    text << "the pieces' global point ids run from " << smallest << " to " << largest
+    text << "the pieces' global point ids run from " << wholeSmallest << " to " << wholeLargest
          << " but do not number the points 0 to n-1, each at least once: give the points global ids that do";
     layout.problem = text.str(); // every process finds the same
   }
@@ -605,7 +650,7 @@ void numberPoints(vtkMultiProcessController* controller, vtkDataArray* pointGlob
   }
 }
 
-Layout layoutOf(vtkMultiProcessController* controller, vtkPolyData* piece, bool withNormals)
+Layout layoutOf(vtkMultiProcessController* controller, vtkPolyData* piece, bool withNormals, bool keepEveryId)
 {
   Layout layout;
   vtkDataArray* pointGlobalIds = piece->GetPointData()->GetGlobalIds();
@@ -627,14 +672,14 @@ Layout layoutOf(vtkMultiProcessController* controller, vtkPolyData* piece, bool 
     firstText(controller, pieceProblem(controller, piece, withNormals, piecesWithPoints, globalIdsState, layout));
   if (layout.problem.empty())
   {
-    numberPoints(controller, pointGlobalIds, layout);
+    numberPoints(controller, pointGlobalIds, layout, keepEveryId);
   }
   return layout;
 }
 
 WholeMesh gatherPieces(vtkMultiProcessController* controller, vtkPolyData* piece, bool withNormals, WholeMeshOn where)
 {
-  Layout layout = layoutOf(controller, piece, withNormals);
+  Layout layout = layoutOf(controller, piece, withNormals, true);
   WholeMesh whole;
   whole.problem = layout.problem;
   if (!layout.problem.empty() || !layout.putTogether)
@@ -732,7 +777,7 @@ PieceLayout pieceLayout(vtkMultiProcessController* controller, vtkPolyData* piec
 {
   try
   {
-    return layoutOf(controller, piece, true); // its PieceLayout part
+    return layoutOf(controller, piece, true, false); // its PieceLayout part
   }
   catch (const std::exception& error) // the pieces' point ids too many for MPI, or no memory for them: alike everywhere
   {

@@ -314,6 +314,14 @@ bool usableNormals(vtkDataArray* normals, vtkIdType pointCount)
   return normals && normals->GetNumberOfComponents() == 3 && normals->GetNumberOfTuples() == pointCount;
 }
 
+/// Whether some piece with points has normals of its own (a collective call), as the whole mesh
+/// put together would.
+bool piecesHaveNormals(vtkMultiProcessController* controller, vtkPolyData* piece)
+{
+  return !shadelab::everyProcessHolds(
+    controller, piece->GetNumberOfPoints() == 0 || !piece->GetPointData()->GetNormals());
+}
+
 /// The report's sentence on computed normals (named `name`).
 std::string computedNormalsSentence(bool hadNormals, const std::string& name, std::size_t inconsistentEdges,
   const shadelab::WeldSummary& weld, double featureAngle)
@@ -454,9 +462,10 @@ int vtkShadingNormalsFilter::ComputeOnPieces(vtkPolyData* piece, vtkPolyData* ou
         this->Controller, piece, layout, shared, this->WeldCoincidentPoints, this->OrientOutward);
       if (!computed.computed)
       {
+        output->Initialize(); // for the whole mesh's computation to fill, or leave empty where it fails
         return needsWholeMesh;
       }
-      const bool anyNormals = !shadelab::everyProcessHolds(this->Controller, !inputNormals);
+      const bool anyNormals = piecesHaveNormals(this->Controller, piece);
       computed.normals->SetName(this->NormalsName.c_str());
       output->GetPointData()->SetNormals(computed.normals);
       report << computedNormalsSentence(anyNormals, this->NormalsName, 0, {}, this->FeatureAngle);
@@ -482,7 +491,7 @@ int vtkShadingNormalsFilter::ComputeOnPieces(vtkPolyData* piece, vtkPolyData* ou
   return succeeded ? 1 : 0;
 }
 
-int vtkShadingNormalsFilter::ComputeNormals(vtkPolyData* input, vtkPolyData* output)
+int vtkShadingNormalsFilter::ComputeNormals(vtkPolyData* input, vtkPolyData* output, std::optional<bool> hadNormals)
 {
   if (input->GetNumberOfPoints() == 0)
   {
@@ -531,8 +540,8 @@ int vtkShadingNormalsFilter::ComputeNormals(vtkPolyData* input, vtkPolyData* out
     turnedOutward = computed.turnedOutward;
     normals = computed.normals;
     output->GetPointData()->SetNormals(computed.normals);
-    report << computedNormalsSentence(
-      inputNormals != nullptr, this->NormalsName, computed.inconsistentEdges, computed.weld, this->FeatureAngle);
+    report << computedNormalsSentence(hadNormals.value_or(inputNormals != nullptr), this->NormalsName,
+      computed.inconsistentEdges, computed.weld, this->FeatureAngle);
   }
   if (!orientation)
   {

@@ -36,6 +36,7 @@
 #include "vtkPolyDataAlgorithm.h"
 #include "vtkSmartPointer.h"
 
+#include <optional>
 #include <string>
 
 class SHADELABFILTERS_EXPORT vtkShadingNormalsFilter : public vtkPolyDataAlgorithm
@@ -111,8 +112,9 @@ protected:
   ~vtkShadingNormalsFilter() override = default;
 
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
-  /// The normals of `input` taken as a whole mesh, in `output`.
-  int ComputeNormals(vtkPolyData* input, vtkPolyData* output);
+  /// The normals of `input` taken as a whole mesh, in `output`. hadNormals: whether the mesh had
+  /// normals of its own, where `input` was put together without them (default: whether it has).
+  int ComputeNormals(vtkPolyData* input, vtkPolyData* output, std::optional<bool> hadNormals = {});
   /// What ComputeOnPieces returns where the mesh must be put together first.
   static constexpr int needsWholeMesh = -1;
   /// The normals of a piece of a split mesh computed piece by piece (ShadeLabPieceNormals.h), a
