@@ -107,51 +107,47 @@ std::vector<double> valuesAtEveryPoint(vtkMultiProcessController* controller, co
 std::vector<bool> firstCopies(vtkMultiProcessController* controller, const std::vector<vtkIdType>& ids)
 {
   const int processes = processCount(controller);
-  // Each id's first place in the piece, sent to the process that owns the id (ownerOf).
+  // Each id's first place in the piece; each id, once, in ascending order, to the process that
+  // owns it (ownerOf).
   std::vector<std::size_t> byId(ids.size());
   std::iota(byId.begin(), byId.end(), std::size_t(0));
   std::stable_sort(byId.begin(), byId.end(), [&](std::size_t a, std::size_t b) { return ids[a] < ids[b]; });
+  auto firstOfItsId = [&](std::size_t k) { return k == 0 || ids[byId[k]] != ids[byId[k - 1]]; };
   std::vector<std::vector<vtkIdType>> sent(static_cast<std::size_t>(processes));
-  std::vector<std::vector<std::size_t>> places(static_cast<std::size_t>(processes));
   for (std::size_t k = 0; k < byId.size(); ++k)
   {
-    if (k == 0 || ids[byId[k]] != ids[byId[k - 1]])
+    if (firstOfItsId(k))
     {
-      const std::size_t owner = ownerOf(ids[byId[k]], processes);
-      sent[owner].push_back(ids[byId[k]]);
-      places[owner].push_back(byId[k]);
+      sent[ownerOf(ids[byId[k]], processes)].push_back(ids[byId[k]]);
     }
   }
   const std::vector<std::vector<vtkIdType>> received = swapWithEvery(controller, std::move(sent), firstCopiesTag);
-  // The owner answers each process, for each id it sent, whether no earlier process sent it.
-  struct Sent
-  {
-    vtkIdType id;
-    std::size_t process, place;
-  };
-  std::vector<Sent> all;
-  std::vector<std::vector<int>> answers(received.size());
+  // The owner answers each process, for each id it sent, whether no earlier process sent it
+  // (each list is ascending: a binary search in each earlier one).
+  std::vector<std::vector<unsigned char>> answers(received.size());
   for (std::size_t p = 0; p < received.size(); ++p)
   {
-    answers[p].assign(received[p].size(), 0);
-    for (std::size_t k = 0; k < received[p].size(); ++k)
+    for (vtkIdType id : received[p])
     {
-      all.push_back({ received[p][k], p, k });
+      bool first = true;
+      for (std::size_t q = 0; first && q < p; ++q)
+      {
+        first = !std::binary_search(received[q].begin(), received[q].end(), id);
+      }
+      answers[p].push_back(first ? 1 : 0);
     }
   }
-  std::sort(all.begin(), all.end(),
-    [](const Sent& a, const Sent& b) { return a.id != b.id ? a.id < b.id : a.process < b.process; });
-  for (std::size_t k = 0; k < all.size(); ++k)
-  {
-    answers[all[k].process][all[k].place] = k == 0 || all[k].id != all[k - 1].id ? 1 : 0;
-  }
-  const std::vector<std::vector<int>> answered = swapWithEvery(controller, std::move(answers), firstCopiesTag + 2);
+  const std::vector<std::vector<unsigned char>> answered =
+    swapWithEvery(controller, std::move(answers), firstCopiesTag + 2);
+  // The answers come in the order the ids went: walked again, each owner's in turn.
+  std::vector<std::size_t> next(answered.size(), 0);
   std::vector<bool> first(ids.size(), false);
-  for (std::size_t p = 0; p < answered.size(); ++p)
+  for (std::size_t k = 0; k < byId.size(); ++k)
   {
-    for (std::size_t k = 0; k < answered[p].size() && k < places[p].size(); ++k)
+    if (firstOfItsId(k))
     {
-      first[places[p][k]] = answered[p][k] != 0;
+      const std::size_t owner = ownerOf(ids[byId[k]], processes);
+      first[byId[k]] = next[owner] < answered[owner].size() && answered[owner][next[owner]++] != 0;
     }
   }
   return first;

@@ -28,41 +28,58 @@ namespace shadelab
 {
 namespace
 {
-/// The polygons of a mesh or piece that it sums, as indices into its polygon list, in the order
-/// of their global cell ids (their order in the whole mesh); a piece's ghost cells are left out,
-/// since the piece that owns them sums them.
+/// The polygons of a mesh or piece that it sums, in the order of their global cell ids (their
+/// order in the whole mesh); a piece's ghost cells are left out, since the piece that owns them
+/// sums them.
 struct OwnPolygons
 {
+  /// Their indices in the mesh's polygon list; empty where they are every polygon, in order.
   std::vector<std::size_t> indices;
-  std::vector<vtkIdType> keys; // each one's global cell id, or its cell id where there are none
+  vtkDataArray* cellIds = nullptr; // the global cell ids, if any
+  vtkIdType firstPolygon = 0;      // the polygons' first cell id
+
+  /// Own polygon k's global cell id, or its cell id where there are none.
+  vtkIdType keyOf(std::size_t k) const
+  {
+    const vtkIdType cell = firstPolygon + static_cast<vtkIdType>(indices.empty() ? k : indices[k]);
+    return cellIds ? static_cast<vtkIdType>(cellIds->GetTuple1(cell)) : cell;
+  }
 };
 
 OwnPolygons ownPolygons(vtkPolyData* mesh, std::size_t polygonCount)
 {
-  const vtkIdType firstPolygon = mesh->GetNumberOfVerts() + mesh->GetNumberOfLines();
-  vtkDataArray* cellIds = mesh->GetCellData()->GetGlobalIds();
+  OwnPolygons own;
+  own.firstPolygon = mesh->GetNumberOfVerts() + mesh->GetNumberOfLines();
+  own.cellIds = mesh->GetCellData()->GetGlobalIds();
   auto* ghosts =
     vtkUnsignedCharArray::SafeDownCast(mesh->GetCellData()->GetArray(vtkDataSetAttributes::GhostArrayName()));
-  OwnPolygons own;
+  auto isGhost = [&](std::size_t k)
+  {
+    return ghosts &&
+      (ghosts->GetValue(own.firstPolygon + static_cast<vtkIdType>(k)) & vtkDataSetAttributes::DUPLICATECELL);
+  };
+  // Usually every polygon is the piece's own and in order: then nothing is kept.
+  bool everyOneInOrder = true;
+  for (std::size_t k = 0; everyOneInOrder && k < polygonCount; ++k)
+  {
+    everyOneInOrder = !isGhost(k) && (k == 0 || own.keyOf(k - 1) < own.keyOf(k));
+  }
+  if (everyOneInOrder)
+  {
+    return own;
+  }
   std::vector<std::pair<vtkIdType, std::size_t>> keyed;
   for (std::size_t k = 0; k < polygonCount; ++k)
   {
-    const vtkIdType cell = firstPolygon + static_cast<vtkIdType>(k);
-    if (ghosts && (ghosts->GetValue(cell) & vtkDataSetAttributes::DUPLICATECELL))
+    if (!isGhost(k))
     {
-      continue;
+      keyed.emplace_back(own.keyOf(k), k);
     }
-    keyed.emplace_back(cellIds ? static_cast<vtkIdType>(cellIds->GetTuple1(cell)) : cell, k);
   }
-  auto byKey = [](const auto& a, const auto& b) { return a.first < b.first; };
-  if (!std::is_sorted(keyed.begin(), keyed.end(), byKey))
+  std::stable_sort(keyed.begin(), keyed.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (const auto& entry : keyed)
   {
-    std::stable_sort(keyed.begin(), keyed.end(), byKey);
-  }
-  for (const auto& [key, k] : keyed)
-  {
-    own.keys.push_back(key);
-    own.indices.push_back(k);
+    own.indices.push_back(entry.second);
   }
   return own;
 }
@@ -87,14 +104,9 @@ NormalOrientation wholeMeshWinding(
 class ChosenPolygons
 {
 public:
-  ChosenPolygons(const PolygonList& all, const std::vector<std::size_t>& chosen)
+  ChosenPolygons(const PolygonList& all, const OwnPolygons& own)
   {
-    bool everyOneInOrder = chosen.size() == all.count;
-    for (std::size_t k = 0; everyOneInOrder && k < chosen.size(); ++k)
-    {
-      everyOneInOrder = chosen[k] == k;
-    }
-    subset_ = everyOneInOrder ? nullptr : std::make_unique<PolygonSubset>(all, chosen);
+    subset_ = own.indices.empty() ? nullptr : std::make_unique<PolygonSubset>(all, own.indices);
     list_ = subset_ ? subset_->list() : all;
   }
   const PolygonList& list() const { return list_; }
@@ -192,15 +204,15 @@ struct PieceNormalsWorker
       {
         polygons = std::make_unique<MeshPolygons>(piece);
         own = ownPolygons(piece, polygons->list().count);
-        ownList = std::make_unique<ChosenPolygons>(polygons->list(), own.indices);
+        ownList = std::make_unique<ChosenPolygons>(polygons->list(), own);
         pieceSums = std::make_unique<CornerSums>(globalIds.size(), extent.centre, extent.radius);
         sumAtCorners(
           ownList->list(), 0, ownList->list().count, {}, pointAt, *pieceSums, GlobalIdSignature{ globalIds.data() });
         sums = std::move(pieceSums->points);
-        records = cornersAt(sharedMarks(), ownList->list(), own.keys, pointAt);
+        records = cornersAt(sharedMarks(), ownList->list(), own, pointAt);
       });
     // A polygon on two pieces: the whole mesh's gathering says which.
-    if (completeSharedPoints(std::move(records)) && noMeshChangeNeeded(ownList->list(), own.keys, pointAt))
+    if (completeSharedPoints(std::move(records)) && noMeshChangeNeeded(ownList->list(), own, pointAt))
     {
       result.computed = true;
       result.orientation = wholeMeshWinding(controller, pieceSums->winding, extent);
@@ -274,7 +286,7 @@ struct PieceNormalsWorker
   /// What each polygon adds at its corners where isShared is set, as sumAtCorners adds it.
   template<typename Real>
   std::vector<CornerRecord> cornersAt(const std::vector<std::uint8_t>& isShared, const PolygonList& list,
-    const std::vector<vtkIdType>& keys, PackedPoints<Real> pointAt) const
+    const OwnPolygons& own, PackedPoints<Real> pointAt) const
   {
     const GlobalIdSignature signatureOf{ globalIds.data() };
     std::vector<CornerRecord> records;
@@ -298,7 +310,7 @@ struct PieceNormalsWorker
         {
           const std::uint64_t next = signatureOf(ids[(i + 1) % size]);
           const std::uint64_t previous = signatureOf(ids[(i + size - 1) % size]);
-          records.push_back({ globalIds[static_cast<std::size_t>(ids[i])], keys[k], next - previous, area });
+          records.push_back({ globalIds[static_cast<std::size_t>(ids[i])], own.keyOf(k), next - previous, area });
         }
       }
     }
@@ -310,7 +322,7 @@ struct PieceNormalsWorker
   /// them that two polygons traverse in one direction. Every process gathers those points and
   /// their polygons, and finds the same.
   template<typename Real>
-  bool noMeshChangeNeeded(const PolygonList& list, const std::vector<vtkIdType>& keys, PackedPoints<Real> pointAt)
+  bool noMeshChangeNeeded(const PolygonList& list, const OwnPolygons& own, PackedPoints<Real> pointAt)
   {
     std::vector<std::uint8_t> unbalanced;
     std::vector<vtkIdType> candidateIds;
@@ -342,7 +354,7 @@ struct PieceNormalsWorker
         {
           if (hasEdgeBetween(list, k, unbalanced))
           {
-            polygonKeys.push_back(keys[k]);
+            polygonKeys.push_back(own.keyOf(k));
             sizes.push_back(static_cast<vtkIdType>(list.size(k)));
             for (std::size_t i = 0; i < list.size(k); ++i)
             {
@@ -606,7 +618,7 @@ NormalOrientationAccumulator ownPolygonsOrientation(
     const MeshPolygons polygons(mesh);
     // A whole mesh sums every polygon, in any order: the sums are exact.
     const std::unique_ptr<ChosenPolygons> own = leaveOutGhosts
-      ? std::make_unique<ChosenPolygons>(polygons.list(), ownPolygons(mesh, polygons.list().count).indices)
+      ? std::make_unique<ChosenPolygons>(polygons.list(), ownPolygons(mesh, polygons.list().count))
       : nullptr;
     OrientationWorker worker{ own ? own->list() : polygons.list(), sums };
     vtkDataArray* points = mesh->GetPoints()->GetData();
