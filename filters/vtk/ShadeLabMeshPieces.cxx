@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <new>
 #include <numeric>
+#include <queue>
 #include <stdexcept>
 
 namespace shadelab
@@ -109,34 +110,56 @@ std::vector<bool> firstCopies(vtkMultiProcessController* controller, const std::
   const int processes = processCount(controller);
   // Each id's first place in the piece; each id, once, in ascending order, to the process that
   // owns it (ownerOf).
-  std::vector<std::size_t> byId(ids.size());
-  std::iota(byId.begin(), byId.end(), std::size_t(0));
-  std::stable_sort(byId.begin(), byId.end(), [&](std::size_t a, std::size_t b) { return ids[a] < ids[b]; });
-  auto firstOfItsId = [&](std::size_t k) { return k == 0 || ids[byId[k]] != ids[byId[k - 1]]; };
+  std::vector<std::size_t> byId;
   std::vector<std::vector<vtkIdType>> sent(static_cast<std::size_t>(processes));
-  for (std::size_t k = 0; k < byId.size(); ++k)
-  {
-    if (firstOfItsId(k))
+  auto firstOfItsId = [&](std::size_t k) { return k == 0 || ids[byId[k]] != ids[byId[k - 1]]; };
+  agreedStep(controller,
+    [&]
     {
-      sent[ownerOf(ids[byId[k]], processes)].push_back(ids[byId[k]]);
-    }
-  }
-  const std::vector<std::vector<vtkIdType>> received = swapWithEvery(controller, std::move(sent), firstCopiesTag);
-  // The owner answers each process, for each id it sent, whether no earlier process sent it
-  // (each list is ascending: a binary search in each earlier one).
-  std::vector<std::vector<unsigned char>> answers(received.size());
-  for (std::size_t p = 0; p < received.size(); ++p)
-  {
-    for (vtkIdType id : received[p])
-    {
-      bool first = true;
-      for (std::size_t q = 0; first && q < p; ++q)
+      byId.resize(ids.size());
+      std::iota(byId.begin(), byId.end(), std::size_t(0));
+      std::stable_sort(byId.begin(), byId.end(), [&](std::size_t a, std::size_t b) { return ids[a] < ids[b]; });
+      for (std::size_t k = 0; k < byId.size(); ++k)
       {
-        first = !std::binary_search(received[q].begin(), received[q].end(), id);
+        if (firstOfItsId(k))
+        {
+          sent[ownerOf(ids[byId[k]], processes)].push_back(ids[byId[k]]);
+        }
       }
-      answers[p].push_back(first ? 1 : 0);
-    }
-  }
+    });
+  const std::vector<std::vector<vtkIdType>> received = swapWithEvery(controller, std::move(sent), firstCopiesTag);
+  // The owner answers each process, for each id it sent, whether no earlier process sent it:
+  // the ascending lists merged, ties taken in process order.
+  std::vector<std::vector<unsigned char>> answers(received.size());
+  agreedStep(controller,
+    [&]
+    {
+      using Cursor = std::pair<vtkIdType, std::size_t>; // (id, process)
+      std::priority_queue<Cursor, std::vector<Cursor>, std::greater<Cursor>> heads;
+      std::vector<std::size_t> at(received.size(), 0);
+      for (std::size_t p = 0; p < received.size(); ++p)
+      {
+        answers[p].resize(received[p].size());
+        if (!received[p].empty())
+        {
+          heads.push({ received[p][0], p });
+        }
+      }
+      bool any = false;
+      vtkIdType last = 0;
+      while (!heads.empty())
+      {
+        const auto [id, p] = heads.top();
+        heads.pop();
+        answers[p][at[p]] = !any || id != last ? 1 : 0;
+        any = true;
+        last = id;
+        if (++at[p] < received[p].size())
+        {
+          heads.push({ received[p][at[p]], p });
+        }
+      }
+    });
   const std::vector<std::vector<unsigned char>> answered =
     swapWithEvery(controller, std::move(answers), firstCopiesTag + 2);
   // The answers come in the order the ids went: walked again, each owner's in turn.

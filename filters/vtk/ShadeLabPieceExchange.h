@@ -95,6 +95,27 @@ std::vector<T> allGather(
   return gathered(controller, mine, WholeMeshOn::EveryProcess, counts);
 }
 
+/// Runs a step that holds no exchange; where it fails on any process, throws on every process:
+/// its own message where it failed, anotherProcessFailed elsewhere. So no process waits in the
+/// next exchange for one that has left.
+template<typename Step>
+void agreedStep(vtkMultiProcessController* controller, Step step)
+{
+  std::string failure;
+  try
+  {
+    step();
+  }
+  catch (const std::exception& error)
+  {
+    failure = *error.what() ? error.what() : "computing the piece's normals failed";
+  }
+  if (!everyProcessHolds(controller, failure.empty()))
+  {
+    throw std::runtime_error(failure.empty() ? anotherProcessFailed : failure);
+  }
+}
+
 /// Sends `mine` to process `other` and returns what it sent back: both call it at the same step.
 /// The lower process sends first, so that two blocking sends never wait for each other; and
 /// every process meets the others in the order of their ranks, so that no chain of waits closes.

@@ -33,15 +33,18 @@ namespace
 /// sums them.
 struct OwnPolygons
 {
-  /// Their indices in the mesh's polygon list; empty where they are every polygon, in order.
+  /// Whether they are every polygon, in order; otherwise, their indices in the polygon list.
+  bool everyPolygon = true;
   std::vector<std::size_t> indices;
   vtkDataArray* cellIds = nullptr; // the global cell ids, if any
   vtkIdType firstPolygon = 0;      // the polygons' first cell id
 
   /// Own polygon k's global cell id, or its cell id where there are none.
-  vtkIdType keyOf(std::size_t k) const
+  vtkIdType keyOf(std::size_t k) const { return keyOfPolygon(everyPolygon ? k : indices[k]); }
+  /// The same of the polygon at this index in the polygon list.
+  vtkIdType keyOfPolygon(std::size_t index) const
   {
-    const vtkIdType cell = firstPolygon + static_cast<vtkIdType>(indices.empty() ? k : indices[k]);
+    const vtkIdType cell = firstPolygon + static_cast<vtkIdType>(index);
     return cellIds ? static_cast<vtkIdType>(cellIds->GetTuple1(cell)) : cell;
   }
 };
@@ -59,12 +62,14 @@ OwnPolygons ownPolygons(vtkPolyData* mesh, std::size_t polygonCount)
       (ghosts->GetValue(own.firstPolygon + static_cast<vtkIdType>(k)) & vtkDataSetAttributes::DUPLICATECELL);
   };
   // Usually every polygon is the piece's own and in order: then nothing is kept.
-  bool everyOneInOrder = true;
-  for (std::size_t k = 0; everyOneInOrder && k < polygonCount; ++k)
+  vtkIdType previous = 0;
+  for (std::size_t k = 0; own.everyPolygon && k < polygonCount; ++k)
   {
-    everyOneInOrder = !isGhost(k) && (k == 0 || own.keyOf(k - 1) < own.keyOf(k));
+    const vtkIdType key = own.keyOfPolygon(k);
+    own.everyPolygon = !isGhost(k) && (k == 0 || previous < key);
+    previous = key;
   }
-  if (everyOneInOrder)
+  if (own.everyPolygon)
   {
     return own;
   }
@@ -73,7 +78,7 @@ OwnPolygons ownPolygons(vtkPolyData* mesh, std::size_t polygonCount)
   {
     if (!isGhost(k))
     {
-      keyed.emplace_back(own.keyOf(k), k);
+      keyed.emplace_back(own.keyOfPolygon(k), k);
     }
   }
   std::stable_sort(keyed.begin(), keyed.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
@@ -106,7 +111,7 @@ class ChosenPolygons
 public:
   ChosenPolygons(const PolygonList& all, const OwnPolygons& own)
   {
-    subset_ = own.indices.empty() ? nullptr : std::make_unique<PolygonSubset>(all, own.indices);
+    subset_ = own.everyPolygon ? nullptr : std::make_unique<PolygonSubset>(all, own.indices);
     list_ = subset_ ? subset_->list() : all;
   }
   const PolygonList& list() const { return list_; }
@@ -153,27 +158,6 @@ void forEachPointWith(const SharedPoints& shared, vtkIdType globalId, Visit visi
        found != sorted.end() && found->first == globalId; ++found)
   {
     visit(found->second);
-  }
-}
-
-/// Runs a step that holds no exchange; where it fails on any process, throws on every process:
-/// its own message where it failed, anotherProcessFailed elsewhere. So no process waits in the
-/// next exchange for one that has left.
-template<typename Step>
-void agreedStep(vtkMultiProcessController* controller, Step step)
-{
-  std::string failure;
-  try
-  {
-    step();
-  }
-  catch (const std::exception& error)
-  {
-    failure = *error.what() ? error.what() : "computing the piece's normals failed";
-  }
-  if (!everyProcessHolds(controller, failure.empty()))
-  {
-    throw std::runtime_error(failure.empty() ? anotherProcessFailed : failure);
   }
 }
 

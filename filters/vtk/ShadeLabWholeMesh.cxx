@@ -582,10 +582,14 @@ bool everyNumberUpTo(vtkMultiProcessController* controller, const std::vector<vt
 {
   const int processes = processCount(controller);
   std::vector<std::vector<vtkIdType>> sent(static_cast<std::size_t>(processes));
-  for (vtkIdType id : ids)
-  {
-    sent[ownerOf(id, processes)].push_back(id);
-  }
+  agreedStep(controller,
+    [&]
+    {
+      for (vtkIdType id : ids)
+      {
+        sent[ownerOf(id, processes)].push_back(id);
+      }
+    });
   const std::size_t me = static_cast<std::size_t>(controller ? controller->GetLocalProcessId() : 0);
   const vtkIdType owned =
     largest >= static_cast<vtkIdType>(me) ? (largest - static_cast<vtkIdType>(me)) / processes + 1 : 0;

@@ -408,11 +408,12 @@ int vtkShadingNormalsFilter::RequestData(
     return onPieces;
   }
   // Computed once, on the first process, which sends each piece its points' normals. The
-  // pieces' own normals come too, so that the report says they were replaced where they are.
-  const int succeeded =
-    shadelab::computeOnPiece(this->Controller, this, input, output, true, shadelab::WholeMeshOn::FirstProcess,
-      [this](vtkPolyData* mesh, vtkPolyData* result, const std::vector<vtkIdType>*)
-      { return this->ComputeNormals(mesh, result) == 1; });
+  // pieces' own normals come only where they are kept; the report says whether there were any.
+  const bool hadNormals = piecesHaveNormals(this->Controller, input);
+  const int succeeded = shadelab::computeOnPiece(this->Controller, this, input, output, this->KeepInputNormals,
+    shadelab::WholeMeshOn::FirstProcess,
+    [this, hadNormals](vtkPolyData* mesh, vtkPolyData* result, const std::vector<vtkIdType>*)
+    { return this->ComputeNormals(mesh, result, hadNormals) == 1; });
   auto* note = vtkStringArray::SafeDownCast(output->GetFieldData()->GetAbstractArray(shadelab::normalsNoteName));
   this->Report = succeeded && note && note->GetNumberOfValues() > 0 ? note->GetValue(0) : "";
   return succeeded;
