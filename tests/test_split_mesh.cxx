@@ -417,13 +417,10 @@ TEST(SplitMeshVisibility, AProcessWithAnEmptyPiece)
     GTEST_SKIP() << "one process holds the only piece";
   }
   const vtkSmartPointer<vtkPolyData> plain = bunny();
-  vtkNew<vtkShadingNormalsFilter> normals;
-  normals->SetController(nullptr);
-  normals->SetInputData(plain);
-  normals->Update();
+  const vtkSmartPointer<vtkPolyData> withNormals = normalsOfWhole(plain);
   const int rank = processes()->GetLocalProcessId();
   const bool holdsNone = rank == count - 1;
-  for (vtkPolyData* mesh : { plain.Get(), normals->GetOutput() })
+  for (vtkPolyData* mesh : { plain.Get(), withNormals.Get() })
   {
     vtkSmartPointer<vtkPolyData> piece =
       holdsNone ? vtkSmartPointer<vtkPolyData>::New() : shadelab::app::meshPiece(mesh, rank, count - 1, 1);
@@ -444,10 +441,10 @@ TEST(SplitMeshVisibility, AProcessWithAnEmptyPiece)
   }
   // Drawn to a target, the vertices short of it are counted over the pieces, the empty one too.
   const std::string drawn = withFewerRays("soft_shadows_to_a_tolerance");
-  vtkSmartPointer<vtkPolyData> piece = holdsNone ? vtkSmartPointer<vtkPolyData>::New()
-                                                 : shadelab::app::meshPiece(normals->GetOutput(), rank, count - 1, 1);
+  vtkSmartPointer<vtkPolyData> piece =
+    holdsNone ? vtkSmartPointer<vtkPolyData>::New() : shadelab::app::meshPiece(withNormals, rank, count - 1, 1);
   const vtkSmartPointer<vtkPolyData> shadedPiece = shaded(piece, drawn, { "totals" }, processes(), 0.02);
-  const vtkSmartPointer<vtkPolyData> whole = shadedWhole(normals->GetOutput(), drawn, { "totals" }, 0.02);
+  const vtkSmartPointer<vtkPolyData> whole = shadedWhole(withNormals, drawn, { "totals" }, 0.02);
   if (!holdsNone)
   {
     EXPECT_GT(expectPieceOfWhole(whole, shadedPiece), 3);
@@ -790,12 +787,7 @@ TEST(SplitMeshInterreflection, AProcessWithAnEmptyPiece)
 /// filter alone.
 vtkSmartPointer<vtkPolyData> glowingBunny()
 {
-  vtkNew<vtkShadingNormalsFilter> normals;
-  normals->SetController(nullptr);
-  normals->SetInputData(bunny());
-  normals->Update();
-  auto mesh = vtkSmartPointer<vtkPolyData>::New();
-  mesh->ShallowCopy(normals->GetOutput());
+  const vtkSmartPointer<vtkPolyData> mesh = normalsOfWhole(bunny());
   vtkNew<vtkDoubleArray> glow;
   glow->SetName("glow");
   glow->SetNumberOfComponents(3);

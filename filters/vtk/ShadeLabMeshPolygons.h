@@ -10,8 +10,10 @@
 #include "vtkCellArray.h"
 #include "vtkDoubleArray.h"
 #include "vtkNew.h"
+#include "vtkSMPTools.h"
 #include "vtkSmartPointer.h"
 
+#include <algorithm>
 #include <memory>
 #include <vector>
 
@@ -62,6 +64,31 @@ void visitPackedPoints(vtkDataArray* points, Visit&& visit)
     asDoubles->DeepCopy(points);
     worker(asDoubles.Get());
   }
+}
+
+/// Polygons and points are visited in fixed blocks of this many: the blocks do not depend on
+/// the number of threads, so results kept per block and joined in block order are the same on
+/// any number.
+constexpr std::size_t blockSize = 1 << 16;
+
+inline std::size_t blockCount(std::size_t count)
+{
+  return (count + blockSize - 1) / blockSize;
+}
+
+/// Calls visit(b, first, last) for each block b of count items (items first..last-1), in a
+/// vtkSMPTools loop.
+template<typename Visit>
+void forEachBlock(std::size_t count, Visit visit)
+{
+  vtkSMPTools::For(0, static_cast<vtkIdType>(blockCount(count)),
+    [&](vtkIdType firstBlock, vtkIdType endBlock)
+    {
+      for (std::size_t b = static_cast<std::size_t>(firstBlock); b < static_cast<std::size_t>(endBlock); ++b)
+      {
+        visit(b, b * blockSize, std::min(count, (b + 1) * blockSize));
+      }
+    });
 }
 
 /// The mesh's polygons and strips as an Embree BVH over its points (in their own precision).

@@ -190,10 +190,18 @@ struct PieceNormalsWorker
         own = ownPolygons(piece, polygons->list().count);
         ownList = std::make_unique<ChosenPolygons>(polygons->list(), own);
         pieceSums = std::make_unique<CornerSums>(globalIds.size(), extent.centre, extent.radius);
-        sumAtCorners(
-          ownList->list(), 0, ownList->list().count, {}, pointAt, *pieceSums, GlobalIdSignature{ globalIds.data() });
+        // What each polygon adds at a shared point, for the pieces that share it.
+        const std::vector<std::uint8_t> isShared = sharedMarks();
+        auto keepShared = [&](std::size_t k, PointId id, std::uint64_t balance, const glm::dvec3& area)
+        {
+          if (isShared[static_cast<std::size_t>(id)] != 0)
+          {
+            records.push_back({ globalIds[static_cast<std::size_t>(id)], own.keyOf(k), balance, area });
+          }
+        };
+        sumAtCorners(ownList->list(), 0, ownList->list().count, {}, pointAt, *pieceSums,
+          GlobalIdSignature{ globalIds.data() }, keepShared);
         sums = std::move(pieceSums->points);
-        records = cornersAt(sharedMarks(), ownList->list(), own, pointAt);
       });
     // A polygon on two pieces: the whole mesh's gathering says which.
     if (completeSharedPoints(std::move(records)) && noMeshChangeNeeded(ownList->list(), own, pointAt))
@@ -265,40 +273,6 @@ struct PieceNormalsWorker
         }
       });
     return everyProcessHolds(controller, eachPolygonOnce);
-  }
-
-  /// What each polygon adds at its corners where isShared is set, as sumAtCorners adds it.
-  template<typename Real>
-  std::vector<CornerRecord> cornersAt(const std::vector<std::uint8_t>& isShared, const PolygonList& list,
-    const OwnPolygons& own, PackedPoints<Real> pointAt) const
-  {
-    const GlobalIdSignature signatureOf{ globalIds.data() };
-    std::vector<CornerRecord> records;
-    for (std::size_t k = 0; k < list.count; ++k)
-    {
-      const std::size_t size = list.size(k);
-      const PointId* ids = list.ids(k);
-      bool touches = false;
-      for (std::size_t i = 0; i < size; ++i)
-      {
-        touches = touches || isShared[static_cast<std::size_t>(ids[i])] != 0;
-      }
-      if (!touches || size < 3)
-      {
-        continue;
-      }
-      const glm::dvec3 area = orientedAreaVector(list, k, {}, pointAt);
-      for (std::size_t i = 0; i < size; ++i)
-      {
-        if (isShared[static_cast<std::size_t>(ids[i])] != 0)
-        {
-          const std::uint64_t next = signatureOf(ids[(i + 1) % size]);
-          const std::uint64_t previous = signatureOf(ids[(i + size - 1) % size]);
-          records.push_back({ globalIds[static_cast<std::size_t>(ids[i])], own.keyOf(k), next - previous, area });
-        }
-      }
-    }
-    return records;
   }
 
   /// Whether the whole mesh needs no change that only it can settle: copies at one position
@@ -407,24 +381,17 @@ struct OrientationWorker
     const auto points = vtk::DataArrayTupleRange<3>(pointArray);
     const auto normals = vtk::DataArrayTupleRange<3>(normalArray);
     auto vec = [](const auto& tuple) { return glm::dvec3(tuple[0], tuple[1], tuple[2]); };
-    // Exact sums: any grouping gives the same, so each thread sums its own range.
-    constexpr vtkIdType grain = 1 << 16;
-    const vtkIdType blocks = (static_cast<vtkIdType>(polygons.count) + grain - 1) / grain;
-    std::vector<NormalOrientationAccumulator> blockSums(static_cast<std::size_t>(blocks), sums);
-    vtkSMPTools::For(0, blocks,
-      [&](vtkIdType first, vtkIdType end)
+    std::vector<NormalOrientationAccumulator> blockSums(blockCount(polygons.count), sums);
+    forEachBlock(polygons.count,
+      [&](std::size_t b, std::size_t first, std::size_t last)
       {
-        for (vtkIdType b = first; b < end; ++b)
+        for (std::size_t k = first; k < last; ++k)
         {
-          const std::size_t last = std::min(polygons.count, static_cast<std::size_t>((b + 1) * grain));
-          for (std::size_t k = static_cast<std::size_t>(b * grain); k < last; ++k)
+          const PointId* ids = polygons.ids(k);
+          for (std::size_t i = 2; i < polygons.size(k); ++i)
           {
-            const PointId* ids = polygons.ids(k);
-            for (std::size_t i = 2; i < polygons.size(k); ++i)
-            {
-              blockSums[static_cast<std::size_t>(b)].addTriangle(vec(points[ids[0]]), vec(points[ids[i - 1]]),
-                vec(points[ids[i]]), vec(normals[ids[0]]), vec(normals[ids[i - 1]]), vec(normals[ids[i]]));
-            }
+            blockSums[b].addTriangle(vec(points[ids[0]]), vec(points[ids[i - 1]]), vec(points[ids[i]]),
+              vec(normals[ids[0]]), vec(normals[ids[i - 1]]), vec(normals[ids[i]]));
           }
         }
       });

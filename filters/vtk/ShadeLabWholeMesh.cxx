@@ -564,17 +564,6 @@ std::string pieceProblem(vtkMultiProcessController* controller, vtkPolyData* pie
   return pieceCellsProblem(piece);
 }
 
-/// Whether ids, whose smallest and largest are given, hold every number 0 to largest.
-bool numberZeroToLargest(const std::vector<vtkIdType>& ids, vtkIdType smallest, vtkIdType largest)
-{
-  std::vector<bool> present(smallest >= 0 && largest < static_cast<vtkIdType>(ids.size()) ? largest + 1 : 0, false);
-  for (std::size_t i = 0; !present.empty() && i < ids.size(); ++i)
-  {
-    present[static_cast<std::size_t>(ids[i])] = true;
-  }
-  return !present.empty() && std::find(present.begin(), present.end(), false) == present.end();
-}
-
 /// Whether every number 0 to largest is among the processes' ids (a collective call): each
 /// process marks the numbers it owns (ownerOf) that the others send it, so that none holds more
 /// than its own ids and a bit for each number it owns.
@@ -606,35 +595,34 @@ bool everyNumberUpTo(vtkMultiProcessController* controller, const std::vector<vt
 
 /// Every piece's point ids, into layout (a collective call), and what they say of how the pieces
 /// lie: put together where they number the mesh's points 0 to n-1. Where keepEveryId, every
-/// piece's ids are gathered on every process (for gathering the whole mesh); otherwise each
-/// process holds its own.
+/// piece's ids are also gathered on every process (for gathering the whole mesh); otherwise
+/// each process holds its own.
 void numberPoints(vtkMultiProcessController* controller, vtkDataArray* pointGlobalIds, Layout& layout, bool keepEveryId)
 {
   layout.pieceIds = idsOf(pointGlobalIds);
   const std::vector<vtkIdType>& ids = layout.pieceIds;
-  const vtkIdType smallest =
-    ids.empty() ? std::numeric_limits<vtkIdType>::max() : *std::min_element(ids.begin(), ids.end());
-  const vtkIdType largest =
-    ids.empty() ? std::numeric_limits<vtkIdType>::min() : *std::max_element(ids.begin(), ids.end());
-  const std::vector<vtkIdType> smallests = allGather(controller, std::vector<vtkIdType>{ smallest });
-  const std::vector<vtkIdType> largests = allGather(controller, std::vector<vtkIdType>{ largest });
-  const vtkIdType wholeSmallest = *std::min_element(smallests.begin(), smallests.end());
-  const vtkIdType wholeLargest = *std::max_element(largests.begin(), largests.end());
+  // Each process's smallest and largest id and its count, in one exchange.
+  const std::vector<vtkIdType> summaries = allGather(controller,
+    std::vector<vtkIdType>{
+      ids.empty() ? std::numeric_limits<vtkIdType>::max() : *std::min_element(ids.begin(), ids.end()),
+      ids.empty() ? std::numeric_limits<vtkIdType>::min() : *std::max_element(ids.begin(), ids.end()),
+      static_cast<vtkIdType>(ids.size()) });
+  vtkIdType wholeSmallest = std::numeric_limits<vtkIdType>::max(), wholeLargest = std::numeric_limits<vtkIdType>::min();
+  vtkIdType total = 0;
+  for (std::size_t p = 0; p + 2 < summaries.size(); p += 3)
+  {
+    wholeSmallest = std::min(wholeSmallest, summaries[p]);
+    wholeLargest = std::max(wholeLargest, summaries[p + 1]);
+    total += summaries[p + 2];
+  }
   // The ids must number the mesh's points 0 to n-1: each point's id is its index in the whole
-  // mesh, and seeds its samples as its index does in one process.
+  // mesh, and seeds its samples as its index does in one process. Fewer ids than numbers cannot
+  // hold them all (and a number far past them is not marked).
   layout.wholeCount = wholeLargest + 1;
-  bool numbered = false;
+  const bool numbered = wholeSmallest >= 0 && wholeLargest < total && everyNumberUpTo(controller, ids, wholeLargest);
   if (keepEveryId)
   {
     layout.allGlobalIds = allGather(controller, ids);
-    numbered = numberZeroToLargest(layout.allGlobalIds, wholeSmallest, wholeLargest);
-  }
-  else
-  {
-    const std::vector<vtkIdType> sizes = allGather(controller, std::vector<vtkIdType>{ vtkIdType(ids.size()) });
-    const vtkIdType total = std::accumulate(sizes.begin(), sizes.end(), vtkIdType(0));
-    // Fewer ids than numbers cannot hold them all (and a number far past them is not marked).
-    numbered = wholeSmallest >= 0 && wholeLargest < total && everyNumberUpTo(controller, ids, wholeLargest);
   }
   if (!numbered && processCount(controller) == 1)
   {

@@ -124,37 +124,13 @@ std::vector<bool> polygonsToTurn(
   return flipped;
 }
 
-/// Polygons and points are visited in fixed blocks of this many: the blocks do not depend on
-/// the number of threads, so results kept per block and joined in block order are the same on
-/// any number.
-constexpr std::size_t blockSize = 1 << 16;
-
-std::size_t blockCount(std::size_t count)
-{
-  return (count + blockSize - 1) / blockSize;
-}
-
-/// Calls visit(b, first, last) for each block b of count items (items first..last-1), in a
-/// vtkSMPTools loop.
-template<typename Visit>
-void forEachBlock(std::size_t count, Visit visit)
-{
-  vtkSMPTools::For(0, static_cast<vtkIdType>(blockCount(count)),
-    [&](vtkIdType firstBlock, vtkIdType endBlock)
-    {
-      for (std::size_t b = static_cast<std::size_t>(firstBlock); b < static_cast<std::size_t>(endBlock); ++b)
-      {
-        visit(b, b * blockSize, std::min(count, (b + 1) * blockSize));
-      }
-    });
-}
-
 /// What find(first, last) returns for each block of count items, joined in block order.
 template<typename T, typename Find>
 std::vector<T> foundInBlocks(std::size_t count, Find find)
 {
-  std::vector<std::vector<T>> found(blockCount(count));
-  forEachBlock(count, [&](std::size_t b, std::size_t first, std::size_t last) { found[b] = find(first, last); });
+  std::vector<std::vector<T>> found(shadelab::blockCount(count));
+  shadelab::forEachBlock(
+    count, [&](std::size_t b, std::size_t first, std::size_t last) { found[b] = find(first, last); });
   std::vector<T> joined;
   for (const std::vector<T>& block : found)
   {

@@ -165,17 +165,25 @@ struct IdSignature
   std::uint64_t operator()(PointId id) const { return idSignature(id); }
 };
 
+/// A corner watch that watches nothing (sumAtCorners' default).
+struct NoCornerWatch
+{
+  void operator()(std::size_t, PointId, std::uint64_t, const glm::dvec3&) const {}
+};
+
 /// Adds polygons first..last-1 (turned round where flipped[k] is set; flipped may be empty)
 /// to sums; signatureOf(id) is the edge balance's signature of the point `id` (its id's, or in a
-/// piece of a split mesh its global id's).
+/// piece of a split mesh its global id's). watch(k, id, balance, area) is told, at each corner,
+/// what polygon k adds at the point `id`: what a piece of a split mesh sends the pieces that
+/// share the point.
 ///
 /// The pass is bound by memory: each corner updates a point's sums, which are seldom in cache,
 /// and reads a point, which seldom is either. So both are fetched some polygons ahead of their
 /// use (16: 2 to 16 were tried, on 2.2M vertices; 16 took 13% less time than 2), and nothing
 /// here divides (a division's latency showed as much as the misses).
-template<typename Real, typename Signature = IdSignature>
+template<typename Real, typename Signature = IdSignature, typename CornerWatch = NoCornerWatch>
 void sumAtCorners(const PolygonList& polygons, std::size_t first, std::size_t last, const std::vector<bool>& flipped,
-  PackedPoints<Real> points, CornerSums& sums, Signature signatureOf = {})
+  PackedPoints<Real> points, CornerSums& sums, Signature signatureOf = {}, CornerWatch watch = {})
 {
   constexpr std::size_t lookAhead = 16;
   for (std::size_t k = first; k < last; ++k)
@@ -205,6 +213,7 @@ void sumAtCorners(const PolygonList& polygons, std::size_t first, std::size_t la
       CornerSum& sum = sums.points[static_cast<std::size_t>(ids[i])];
       sum.area += area;
       sum.edgeBalance += next - previous;
+      watch(k, ids[i], next - previous, area);
       previous = current;
       current = next;
       cornerSum += points(ids[i]);
