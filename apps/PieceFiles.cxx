@@ -248,6 +248,20 @@ std::string pvtpPlaceProblem(const std::string& fileName)
     return "its name has a character that the .pvtp's own lines cannot hold (a quote, <, >, & or a byte that is "
            "not printable ASCII): name it otherwise";
   }
+  // VTK's writer names the pieces' folder after the name up to its first dot: a.b.pvtp's would be
+  // a/, which a.c.pvtp would share and silently replace.
+  const std::string name = target.filename().string();
+  const std::size_t firstDot = name.find('.');
+  const std::size_t extensionDot = name.size() - std::string(".pvtp").size();
+  if (firstDot != extensionDot)
+  {
+    std::string dotless = name.substr(0, extensionDot);
+    std::replace(dotless.begin(), dotless.end(), '.', '_');
+    return "its name has a dot before .pvtp, and VTK's writer names the folder of the pieces after what comes "
+           "before the first (" +
+      name.substr(0, firstDot) + "/), which other names share: name it without (" + dotless +
+      name.substr(extensionDot) + ", say)";
+  }
   std::error_code error;
   if (fs::is_directory(target, error))
   {

@@ -269,6 +269,18 @@ TEST_F(CliUnderMpiexec, APvtpReplacesOnlyItsOwnPieces)
     ampersand +
       ": cannot be written: its name has a character that the .pvtp's own lines cannot hold (a quote, <, "
       ">, & or a byte that is not printable ASCII): name it otherwise");
+  // VTK's writer names the pieces' folder after the name up to its first dot, which other names
+  // share: such a name is refused before any work, and nothing is written.
+  const std::string dotted = (folder / "bunny.shaded.pvtp").string();
+  const std::string dottedMessage = dotted +
+    ": cannot be written: its name has a dot before .pvtp, and VTK's writer names the folder of the pieces "
+    "after what comes before the first (bunny/), which other names share: name it without (bunny_shaded.pvtp, say)";
+  expectError("shade " + goodMesh() + " -o " + dotted, dottedMessage);
+  const Result onTwo = shadelabOn(2, "shade " + goodMesh() + " -o " + dotted);
+  EXPECT_NE(onTwo.exitCode, 0);
+  EXPECT_EQ(onTwo.err.substr(0, dottedMessage.size() + 11), "shadelab: " + dottedMessage + "\n");
+  EXPECT_EQ(occurrences(onTwo.err, "shadelab:"), 1u) << onTwo.err;
+  EXPECT_FALSE(fs::exists(folder / "bunny"));
   fs::create_directories(folder / "taken.pvtp");
   expectError("shade " + goodMesh() + " -o " + (folder / "taken.pvtp").string(),
     (folder / "taken.pvtp").string() + ": cannot be written: " + (folder / "taken.pvtp").string() + " is a folder");
