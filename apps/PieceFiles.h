@@ -29,8 +29,9 @@ vtkSmartPointer<vtkAlgorithm> pvtpReader(const std::string& fileName);
 std::uintmax_t pieceFileBytes(const std::string& fileName);
 
 /// Why a .pvtp and its pieces cannot be written at fileName ("" where they can), found without
-/// writing: a name its summary cannot hold, a folder in its place, or a folder of its pieces'
-/// name that holds anything but an earlier run's pieces.
+/// writing: a name its summary cannot hold or with a dot before its extension, a folder in its
+/// place, or a folder of its pieces' name that holds anything but an earlier run's pieces.
+/// fileName ends in .pvtp (in any case).
 std::string pvtpPlaceProblem(const std::string& fileName);
 
 /// Writes every process's piece of a mesh as one .pvtp (a collective call): the summary file,

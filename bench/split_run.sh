@@ -6,8 +6,11 @@
 # RUNNER pvbatch (the default): Local Reflectance under pvbatch, read from the mesh cut into 4
 # pieces with global ids and written as a .pvtp (needs .ci/paraview to have run: ParaView
 # unpacked, the plugin built). RUNNER shadelab: `mpiexec shadelab shade` on the mesh's .ply,
-# split on read, written as a .pvtp.
-#   bash bench/split_run.sh [LEVELS] [COPIES] [WORK] [ARRAYS] [RUNNER]
+# split on read, written as a .pvtp. RUNNER shadelab-pieces: `mpiexec shadelab shade` on the
+# same 4 pieces as pvbatch's (cut by VTK's own Python, no ParaView needed), each rank reading
+# only its own; then the first piece shaded alone, a rank's share to compare with.
+# With a shadelab runner, any further arguments go to `shadelab shade` (--shadows, say).
+#   bash bench/split_run.sh [LEVELS] [COPIES] [WORK] [ARRAYS] [RUNNER] [SHADE OPTIONS...]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 levels=${1:-4}
@@ -16,12 +19,12 @@ work=${3:-/tmp/shadelab-split-run}
 arrays=$([ "${4:-default}" = all ] || echo default) # the check script's "default", or nothing for all
 runner=${5:-pvbatch}
 case "$runner" in
-  pvbatch | shadelab) ;;
-  *) echo "split_run: RUNNER is pvbatch or shadelab, not '$runner'"; exit 1 ;;
+  pvbatch | shadelab | shadelab-pieces) ;;
+  *) echo "split_run: RUNNER is pvbatch, shadelab or shadelab-pieces, not '$runner'"; exit 1 ;;
 esac
 paraview=$PWD/build/paraview-5.11
 plugin=build/paraview-plugin/lib/paraview-5.11/plugins/ShadeLab/ShadeLab.so
-if [ "$runner" != shadelab ] && ! { [ -x "$paraview/usr/bin/pvbatch" ] && [ -f "$plugin" ]; }; then
+if [ "$runner" = pvbatch ] && ! { [ -x "$paraview/usr/bin/pvbatch" ] && [ -f "$plugin" ]; }; then
   echo "split_run: run bash .ci/paraview first"
   exit 1
 fi
@@ -65,15 +68,19 @@ print(f"{output}: {append.GetOutput().GetNumberOfPoints()} points, {append.GetOu
 PYTHON
 fi
 environment=() # what mpiexec passes on to the ranks
-if [ "$runner" = shadelab ]; then
-  shade=(build/bin/shadelab shade "$mesh" --scene data/scenes/studio.json -o "$work/shaded.pvtp")
+# The 4 pieces with global ids, for every runner but shadelab's split on read.
+pieces="$work/pieces_${copies}_loop$levels.pvtp" # named after the mesh: a folder may hold several
+[ "$runner" = shadelab ] || [ -f "$pieces" ] ||
+  /usr/bin/python3 tests/paraview_split_check.py pieces "$mesh" "$pieces" 4
+if [ "$runner" != pvbatch ]; then
+  input=$([ "$runner" = shadelab ] && echo "$mesh" || echo "$pieces")
+  shade=(build/bin/shadelab shade "$input" --scene data/scenes/studio.json -o "$work/shaded.pvtp" "${@:6}")
   [ "${4:-default}" = all ] && shade+=(--arrays all --precision float64)
 else
   export LD_LIBRARY_PATH="$paraview/usr/lib/x86_64-linux-gnu"
   environment=(-x LD_LIBRARY_PATH)
-  [ -f "$work/pieces.pvtp" ] ||
-    "$paraview/usr/bin/pvpython" tests/paraview_split_check.py pieces "$mesh" "$work/pieces.pvtp" 4
-  shade=("$paraview/usr/bin/pvbatch" tests/paraview_split_check.py shade "$plugin" "$work/pieces.pvtp"
+  (($# <= 5)) || { echo "split_run: shade options are for the shadelab runners"; exit 1; }
+  shade=("$paraview/usr/bin/pvbatch" tests/paraview_split_check.py shade "$plugin" "$pieces"
     data/scenes/studio.json "$work/shaded.pvtp" $arrays)
 fi
 echo "| processes | wall time per rank | peak memory per rank |"
@@ -90,3 +97,13 @@ for processes in 1 2 4; do
   echo "| $processes | $(cat "$work"/rank_*.time | awk '{printf "%s%.1f s", (NR > 1 ? ", " : ""), $1}') | $(cat "$work"/rank_*.time | awk '{printf "%s%.2f GB", (NR > 1 ? ", " : ""), $2 / 1048576}') |"
   rm -f "$work"/rank_*.time
 done
+if [ "$runner" = shadelab-pieces ]; then
+  alone=("${shade[@]}")
+  alone[2]="${pieces%.pvtp}_0.vtp"
+  alone[6]="$work/alone.vtp"
+  /usr/bin/time -o "$work/alone.time" -f "%e %M" "${alone[@]}" > "$work/alone.log" 2>&1 ||
+    { echo "split_run: the first piece alone failed:"; tail -20 "$work/alone.log"; exit 1; }
+  echo
+  echo "The first piece shaded alone in one process: $(awk '{printf "%.1f s, %.2f GB", $1, $2 / 1048576}' "$work/alone.time")"
+  rm -f "$work/alone.vtp" "$work/alone.time"
+fi

@@ -1,6 +1,6 @@
 """The ParaView plugin on a mesh split over MPI processes, in three steps run by .ci/paraview:
 
-  pvpython paraview_split_check.py pieces MESH.ply|obj|vtp PIECES.pvtp COUNT
+  pvpython (or /usr/bin/python3) paraview_split_check.py pieces MESH.ply|obj|vtp PIECES.pvtp COUNT
       the mesh in COUNT pieces with global point and cell ids (each one's index in the mesh);
   mpiexec -np N pvbatch paraview_split_check.py shade PLUGIN PIECES.pvtp SCENE SHADED.pvtp [default]
       Local Reflectance on the pieces, each process shading those it reads, written as a .pvtp:

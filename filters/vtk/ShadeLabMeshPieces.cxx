@@ -11,7 +11,6 @@
 #include <algorithm>
 #include <new>
 #include <numeric>
-#include <queue>
 #include <stdexcept>
 
 namespace shadelab
@@ -134,45 +133,37 @@ std::vector<bool> firstCopies(vtkMultiProcessController* controller, const std::
   agreedStep(controller,
     [&]
     {
-      using Cursor = std::pair<vtkIdType, std::size_t>; // (id, process)
-      std::priority_queue<Cursor, std::vector<Cursor>, std::greater<Cursor>> heads;
-      std::vector<std::size_t> at(received.size(), 0);
       for (std::size_t p = 0; p < received.size(); ++p)
       {
         answers[p].resize(received[p].size());
-        if (!received[p].empty())
-        {
-          heads.push({ received[p][0], p });
-        }
       }
-      bool any = false;
-      vtkIdType last = 0;
-      while (!heads.empty())
-      {
-        const auto [id, p] = heads.top();
-        heads.pop();
-        answers[p][at[p]] = !any || id != last ? 1 : 0;
-        any = true;
-        last = id;
-        if (++at[p] < received[p].size())
+      forEachIdReceived(received,
+        [&](vtkIdType, const std::vector<std::pair<std::size_t, std::size_t>>& holders)
         {
-          heads.push({ received[p][at[p]], p });
-        }
-      }
+          for (const auto& [p, index] : holders)
+          {
+            answers[p][index] = p == holders.front().first ? 1 : 0; // the first process to hold it
+          }
+        });
     });
   const std::vector<std::vector<unsigned char>> answered =
     swapWithEvery(controller, std::move(answers), firstCopiesTag + 2);
   // The answers come in the order the ids went: walked again, each owner's in turn.
-  std::vector<std::size_t> next(answered.size(), 0);
-  std::vector<bool> first(ids.size(), false);
-  for (std::size_t k = 0; k < byId.size(); ++k)
-  {
-    if (firstOfItsId(k))
+  std::vector<bool> first;
+  agreedStep(controller,
+    [&]
     {
-      const std::size_t owner = ownerOf(ids[byId[k]], processes);
-      first[byId[k]] = next[owner] < answered[owner].size() && answered[owner][next[owner]++] != 0;
-    }
-  }
+      std::vector<std::size_t> next(answered.size(), 0);
+      first.assign(ids.size(), false);
+      for (std::size_t k = 0; k < byId.size(); ++k)
+      {
+        if (firstOfItsId(k))
+        {
+          const std::size_t owner = ownerOf(ids[byId[k]], processes);
+          first[byId[k]] = next[owner] < answered[owner].size() && answered[owner][next[owner]++] != 0;
+        }
+      }
+    });
   return first;
 }
 

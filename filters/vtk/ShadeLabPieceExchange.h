@@ -1,15 +1,18 @@
 #pragma once
-// What ShadeLabWholeMesh.cxx and ShadeLabMeshPieces.cxx exchange with: every process's values
-// gathered, on every process or on the first only.
+// What the pieces of a split mesh exchange with (ShadeLabWholeMesh.cxx, ShadeLabMeshPieces.cxx,
+// ShadeLabPieceNormals.cxx): every process's values gathered, on every process or on the first
+// only; lists swapped pairwise; ids sent to the process that owns them.
 #include "ShadeLabMeshPieces.h"
 #include "ShadeLabWholeMesh.h"
 
 #include "vtkMultiProcessController.h"
 #include "vtkType.h"
 
+#include <functional>
 #include <limits>
 #include <new>
 #include <numeric>
+#include <queue>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -183,7 +186,11 @@ std::vector<std::vector<T>> swapWithEvery(
   received[me] = std::move(sent[me]);
   forEveryOtherProcess(controller,
     [&](int other)
-    { received[static_cast<std::size_t>(other)] = swapWith(controller, other, sent[std::size_t(other)], tag); });
+    {
+      const std::size_t p = static_cast<std::size_t>(other);
+      received[p] = swapWith(controller, other, sent[p], tag);
+      std::vector<T>().swap(sent[p]); // sent: no longer held beside what comes in
+    });
   return received;
 }
 
@@ -191,5 +198,40 @@ std::vector<std::vector<T>> swapWithEvery(
 inline std::size_t ownerOf(vtkIdType id, int processes)
 {
   return static_cast<std::size_t>((id % processes + processes) % processes);
+}
+
+/// Merges the ids the processes sent their owner (received[p] from process p, each id once, in
+/// strictly ascending order, which the callers guarantee): calls visit(id, holders) for each id, ascending, with the
+/// processes that sent it and where it is in each one's list ((process, index) pairs, in process order).
+template<typename Visit>
+void forEachIdReceived(const std::vector<std::vector<vtkIdType>>& received, Visit visit)
+{
+  using Cursor = std::pair<vtkIdType, std::size_t>; // (id, process)
+  std::priority_queue<Cursor, std::vector<Cursor>, std::greater<Cursor>> heads;
+  std::vector<std::size_t> at(received.size(), 0);
+  for (std::size_t p = 0; p < received.size(); ++p)
+  {
+    if (!received[p].empty())
+    {
+      heads.push({ received[p][0], p });
+    }
+  }
+  std::vector<std::pair<std::size_t, std::size_t>> holders;
+  while (!heads.empty())
+  {
+    const vtkIdType id = heads.top().first;
+    holders.clear();
+    while (!heads.empty() && heads.top().first == id)
+    {
+      const std::size_t p = heads.top().second;
+      heads.pop();
+      holders.emplace_back(p, at[p]);
+      if (++at[p] < received[p].size())
+      {
+        heads.push({ received[p][at[p]], p }); // a later id: it pops after this one's holders
+      }
+    }
+    visit(id, holders);
+  }
 }
 }

@@ -132,6 +132,7 @@ constexpr int sharedIdsTag = 7311;
 constexpr int cornerRecordsTag = 7313;
 constexpr int cornerAreasTag = 7315;
 constexpr int sharedValuesTag = 7317;
+constexpr int sharedHoldersTag = 7319;
 
 /// One polygon's corner at a point that other pieces hold (or that the piece holds twice): what
 /// the polygon adds to the point's sums (CornerSum), and the polygon's place in the whole mesh's
@@ -153,9 +154,7 @@ struct CornerRecord
 template<typename Visit>
 void forEachPointWith(const SharedPoints& shared, vtkIdType globalId, Visit visit)
 {
-  const auto& sorted = shared.byGlobalId;
-  for (auto found = std::lower_bound(sorted.begin(), sorted.end(), std::make_pair(globalId, vtkIdType(0)));
-       found != sorted.end() && found->first == globalId; ++found)
+  for (auto found = shared.firstWith(globalId); found != shared.byGlobalId.end() && found->first == globalId; ++found)
   {
     visit(found->second);
   }
@@ -407,6 +406,11 @@ SharedPoints sharedPointsOf(vtkMultiProcessController* controller, const std::ve
 {
   SharedPoints shared;
   const auto& sorted = shared.byGlobalId;
+  // Each id goes, once, to the process that owns it (ownerOf), which tells each process that
+  // holds it which others do: a process receives about its share of the ids, and for each point
+  // it shares the processes that share it, on any number of processes.
+  const int processes = processCount(controller);
+  std::vector<std::vector<vtkIdType>> toOwners(static_cast<std::size_t>(processes));
   agreedStep(controller,
     [&]
     {
@@ -415,30 +419,55 @@ SharedPoints sharedPointsOf(vtkMultiProcessController* controller, const std::ve
         shared.byGlobalId.emplace_back(globalIds[i], static_cast<vtkIdType>(i));
       }
       std::sort(shared.byGlobalId.begin(), shared.byGlobalId.end());
-      for (std::size_t k = 1; k < sorted.size(); ++k)
+      for (std::size_t k = 0; k < sorted.size(); ++k)
       {
-        if (sorted[k].first == sorted[k - 1].first &&
-          (shared.repeated.empty() || shared.repeated.back() != sorted[k].first))
+        if (k == 0 || sorted[k].first != sorted[k - 1].first)
+        {
+          toOwners[ownerOf(sorted[k].first, processes)].push_back(sorted[k].first);
+        }
+        else if (shared.repeated.empty() || shared.repeated.back() != sorted[k].first)
         {
           shared.repeated.push_back(sorted[k].first);
         }
       }
     });
-  shared.withProcess.resize(static_cast<std::size_t>(processCount(controller)));
-  forEveryOtherProcess(controller,
-    [&](int other)
+  std::vector<std::vector<vtkIdType>> received = swapWithEvery(controller, std::move(toOwners), sharedIdsTag);
+  std::vector<std::vector<vtkIdType>> holdersTold(received.size()); // (id, another holder) pairs
+  agreedStep(controller,
+    [&]
     {
-      std::vector<vtkIdType>& with = shared.withProcess[static_cast<std::size_t>(other)];
-      for (vtkIdType id : swapWith(controller, other, globalIds, sharedIdsTag))
-      {
-        const auto at = std::lower_bound(sorted.begin(), sorted.end(), std::make_pair(id, vtkIdType(0)));
-        if (at != sorted.end() && at->first == id)
+      forEachIdReceived(received,
+        [&](vtkIdType id, const std::vector<std::pair<std::size_t, std::size_t>>& holders)
         {
-          with.push_back(id);
+          for (const auto& told : holders)
+          {
+            for (const auto& other : holders)
+            {
+              if (other.first != told.first)
+              {
+                holdersTold[told.first].insert(holdersTold[told.first].end(), { id, vtkIdType(other.first) });
+              }
+            }
+          }
+        });
+      received = {}; // before the answers come in
+    });
+  const std::vector<std::vector<vtkIdType>> told = swapWithEvery(controller, std::move(holdersTold), sharedHoldersTag);
+  agreedStep(controller,
+    [&]
+    {
+      shared.withProcess.resize(static_cast<std::size_t>(processes));
+      for (const std::vector<vtkIdType>& pairs : told)
+      {
+        for (std::size_t k = 0; k + 1 < pairs.size(); k += 2)
+        {
+          shared.withProcess[static_cast<std::size_t>(pairs[k + 1])].push_back(pairs[k]);
         }
       }
-      std::sort(with.begin(), with.end());
-      with.erase(std::unique(with.begin(), with.end()), with.end());
+      for (std::vector<vtkIdType>& with : shared.withProcess)
+      {
+        std::sort(with.begin(), with.end());
+      }
     });
   return shared;
 }
@@ -454,8 +483,7 @@ std::string differingSharedValues(
     std::vector<double> tuples;
     for (vtkIdType id : ids)
     {
-      const auto at =
-        std::lower_bound(shared.byGlobalId.begin(), shared.byGlobalId.end(), std::make_pair(id, vtkIdType(0)));
+      const auto at = shared.firstWith(id); // every id given is the piece's
       for (int c = 0; c < components; ++c)
       {
         tuples.push_back(values->GetComponent(at->second, c));

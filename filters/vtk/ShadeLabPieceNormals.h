@@ -2,8 +2,9 @@
 #define ShadeLabPieceNormals_h
 // Point normals of a mesh split over processes, computed piece by piece, bit for bit as one
 // process computes them on the whole mesh (vtkShadingNormalsFilter), with no process holding
-// the whole mesh: each holds its piece, one other piece's point ids at a time while it finds
-// the points they share, and every piece's points whose edges do not pair up.
+// the whole mesh: each holds its piece, about its share of the point ids (sent to their owners)
+// while the pieces find the points they share, and every piece's points whose edges do not pair
+// up.
 //
 // One process sums each point's polygons' vector areas in the polygons' order (PointNormals.h).
 // A piece sums its own polygons (ghost cells left out) in the order of their global ids; a point
@@ -20,6 +21,7 @@
 #include "vtkFloatArray.h"
 #include "vtkSmartPointer.h"
 
+#include <algorithm>
 #include <string>
 #include <utility>
 #include <vector>
@@ -40,10 +42,18 @@ struct SharedPoints
   std::vector<std::vector<vtkIdType>> withProcess;
   /// The global ids that several of the piece's points have, ascending.
   std::vector<vtkIdType> repeated;
+
+  /// The first of byGlobalId's entries with this global id, or its end where the piece has none.
+  std::vector<std::pair<vtkIdType, vtkIdType>>::const_iterator firstWith(vtkIdType globalId) const
+  {
+    const auto at = std::lower_bound(byGlobalId.begin(), byGlobalId.end(), std::make_pair(globalId, vtkIdType(0)));
+    return at != byGlobalId.end() && at->first == globalId ? at : byGlobalId.end();
+  }
 };
 
-/// The piece's shared points, found by swapping global ids with each other process in turn (a
-/// collective call): each process holds its own ids and one other piece's at a time.
+/// The piece's shared points (a collective call): each process sends each of its global ids to
+/// the id's owner (ownerOf), which answers each holder with the other processes that hold it,
+/// so that a process receives about its share of the ids on any number of processes.
 SHADELABFILTERS_EXPORT SharedPoints sharedPointsOf(
   vtkMultiProcessController* controller, const std::vector<vtkIdType>& globalIds);
 
