@@ -28,6 +28,7 @@
 #include <cstring>
 #include <limits>
 #include <numeric>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -453,7 +454,7 @@ bool guarded(vtkAlgorithm* filter, const Work& work)
 struct Layout : PieceLayout
 {
   bool wholeIsPiece = false;
-  std::vector<vtkIdType> allGlobalIds; // every piece's, piece after piece
+  std::vector<vtkIdType> allGlobalIds; // every piece's, piece after piece, where the mesh is gathered
   vtkIdType wholeCount = 0;
   int pointType = 0;
   int normalsState = 0; // the normals' shared type, or `absent`
@@ -594,10 +595,11 @@ bool everyNumberUpTo(vtkMultiProcessController* controller, const std::vector<vt
 }
 
 /// Every piece's point ids, into layout (a collective call), and what they say of how the pieces
-/// lie: put together where they number the mesh's points 0 to n-1. Where keepEveryId, every
-/// piece's ids are also gathered on every process (for gathering the whole mesh); otherwise
-/// each process holds its own.
-void numberPoints(vtkMultiProcessController* controller, vtkDataArray* pointGlobalIds, Layout& layout, bool keepEveryId)
+/// lie: put together where they number the mesh's points 0 to n-1. Where idsOn is given, every
+/// piece's ids are also gathered there (for gathering the whole mesh there); otherwise each
+/// process holds its own.
+void numberPoints(
+  vtkMultiProcessController* controller, vtkDataArray* pointGlobalIds, Layout& layout, std::optional<WholeMeshOn> idsOn)
 {
   layout.pieceIds = idsOf(pointGlobalIds);
   const std::vector<vtkIdType>& ids = layout.pieceIds;
@@ -620,9 +622,9 @@ void numberPoints(vtkMultiProcessController* controller, vtkDataArray* pointGlob
   // hold them all (and a number far past them is not marked).
   layout.wholeCount = wholeLargest + 1;
   const bool numbered = wholeSmallest >= 0 && wholeLargest < total && everyNumberUpTo(controller, ids, wholeLargest);
-  if (keepEveryId)
+  if (idsOn)
   {
-    layout.allGlobalIds = allGather(controller, ids);
+    layout.allGlobalIds = gathered(controller, ids, *idsOn);
   }
   if (!numbered && processCount(controller) == 1)
   {
@@ -642,7 +644,8 @@ void numberPoints(vtkMultiProcessController* controller, vtkDataArray* pointGlob
   }
 }
 
-Layout layoutOf(vtkMultiProcessController* controller, vtkPolyData* piece, bool withNormals, bool keepEveryId)
+Layout layoutOf(
+  vtkMultiProcessController* controller, vtkPolyData* piece, bool withNormals, std::optional<WholeMeshOn> idsOn)
 {
   Layout layout;
   vtkDataArray* pointGlobalIds = piece->GetPointData()->GetGlobalIds();
@@ -664,14 +667,14 @@ Layout layoutOf(vtkMultiProcessController* controller, vtkPolyData* piece, bool 
     firstText(controller, pieceProblem(controller, piece, withNormals, piecesWithPoints, globalIdsState, layout));
   if (layout.problem.empty())
   {
-    numberPoints(controller, pointGlobalIds, layout, keepEveryId);
+    numberPoints(controller, pointGlobalIds, layout, idsOn);
   }
   return layout;
 }
 
 WholeMesh gatherPieces(vtkMultiProcessController* controller, vtkPolyData* piece, bool withNormals, WholeMeshOn where)
 {
-  Layout layout = layoutOf(controller, piece, withNormals, true);
+  Layout layout = layoutOf(controller, piece, withNormals, where);
   WholeMesh whole;
   whole.problem = layout.problem;
   if (!layout.problem.empty() || !layout.putTogether)
@@ -769,7 +772,7 @@ PieceLayout pieceLayout(vtkMultiProcessController* controller, vtkPolyData* piec
 {
   try
   {
-    return layoutOf(controller, piece, true, false); // its PieceLayout part
+    return layoutOf(controller, piece, true, std::nullopt); // its PieceLayout part
   }
   catch (const std::exception& error) // the pieces' point ids too many for MPI, or no memory for them: alike everywhere
   {
