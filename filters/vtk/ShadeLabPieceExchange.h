@@ -111,7 +111,7 @@ void agreedStep(vtkMultiProcessController* controller, Step step)
   }
   catch (const std::exception& error)
   {
-    failure = *error.what() ? error.what() : "computing the piece's normals failed";
+    failure = *error.what() ? error.what() : "a step of the split mesh's work failed";
   }
   if (!everyProcessHolds(controller, failure.empty()))
   {
@@ -201,8 +201,9 @@ inline std::size_t ownerOf(vtkIdType id, int processes)
 }
 
 /// Merges the ids the processes sent their owner (received[p] from process p, each id once, in
-/// strictly ascending order, which the callers guarantee): calls visit(id, holders) for each id, ascending, with the
-/// processes that sent it and where it is in each one's list ((process, index) pairs, in process order).
+/// strictly ascending order, which the callers guarantee): calls visit(id, holders) for each id,
+/// ascending, with the processes that sent it and where it is in each one's list ((process,
+/// index) pairs, in process order).
 template<typename Visit>
 void forEachIdReceived(const std::vector<std::vector<vtkIdType>>& received, Visit visit)
 {
