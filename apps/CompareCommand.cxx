@@ -3,6 +3,7 @@
 #include "CompareMatching.h"
 #include "CompareReports.h"
 #include "ComparedArrays.h"
+#include "ComparedPieces.h"
 #include "MeshFiles.h"
 #include "RunWarnings.h"
 
@@ -133,10 +134,14 @@ bool isSelected(const CompareOptions& options, const std::string& name)
 ComparedFiles readFiles(const CompareOptions& options, RunWarnings& warnings)
 {
   ComparedFiles files;
-  files.baselineData = readDataSet(options.baseline);
+  OrderedDataSet baseline = inGlobalIdOrder(readDataSet(options.baseline), options.baseline);
   warnings.collect(options.baseline);
-  files.resultData = readDataSet(options.result);
+  OrderedDataSet result = inGlobalIdOrder(readDataSet(options.result), options.result);
   warnings.collect(options.result);
+  files.baselineData = baseline.data;
+  files.baselineOrder = baseline.description;
+  files.resultData = result.data;
+  files.resultOrder = result.description;
   files.baseline = arraysOf(files.baselineData, !options.noPoints, files.skippedBaseline);
   files.result = arraysOf(files.resultData, !options.noPoints, files.skippedResult);
   if (options.nearest)
@@ -292,7 +297,8 @@ CLI::App* addCompareCommand(CLI::App& cli, CompareOptions& options)
     "when they differ, 2 when a file cannot be read or an option is wrong.");
   command
     ->add_option("baseline", options.baseline,
-      "the file to compare against (.vtp, .vtu, .vti, .vts, .vtr, .vtk, .ply, .obj, .stl)")
+      "the file to compare against (.vtp, .pvtp, .vtu, .vti, .vts, .vtr, .vtk, .ply, .obj, .stl); a mesh whose "
+      "points have global ids (a .pvtp's pieces) is compared in their order, each point once")
     ->required();
   command->add_option("result", options.result, "the file to judge")->required();
   // One value to each occurrence (repeat the option for more), so that an option before the

@@ -234,10 +234,11 @@ void printReport(
   }
 }
 
-/// "N points, M cells".
-std::string datasetText(vtkDataSet* data)
+/// "N points, M cells", and how they were put in the order compared.
+std::string datasetText(vtkDataSet* data, const std::string& order)
 {
-  return std::to_string(data->GetNumberOfPoints()) + " points, " + std::to_string(data->GetNumberOfCells()) + " cells";
+  return std::to_string(data->GetNumberOfPoints()) + " points, " + std::to_string(data->GetNumberOfCells()) + " cells" +
+    (order.empty() ? "" : ", " + order);
 }
 }
 
@@ -245,9 +246,9 @@ bool printReports(const std::vector<ArrayReport>& reports, const ComparedFiles& 
 {
   const std::size_t differing = static_cast<std::size_t>(
     std::count_if(reports.begin(), reports.end(), [](const ArrayReport& r) { return !r.passes(); }));
-  std::cout << "shadelab compare: the result " << options.result << " (" << datasetText(files.resultData)
-            << ") against the baseline " << options.baseline << " (" << datasetText(files.baselineData) << "); "
-            << files.matching.description << "\n";
+  std::cout << "shadelab compare: the result " << options.result << " ("
+            << datasetText(files.resultData, files.resultOrder) << ") against the baseline " << options.baseline << " ("
+            << datasetText(files.baselineData, files.baselineOrder) << "); " << files.matching.description << "\n";
   printHeading();
   for (const ArrayReport& report : reports)
   {

@@ -75,6 +75,8 @@ struct Matching
 struct ComparedFiles
 {
   vtkSmartPointer<vtkDataSet> baselineData, resultData;
+  /// How each was put in the order compared (ComparedPieces.h): "" where as read.
+  std::string baselineOrder, resultOrder;
   std::vector<FileArray> baseline, result;
   std::vector<SkippedArray> skippedBaseline, skippedResult;
   Matching matching;

@@ -428,7 +428,7 @@ vtkSmartPointer<vtkAlgorithm> datasetReaderFor(const std::string& fileName, cons
 }
 }
 
-const char* const readableDataSetExtensions = ".vtp, .vtu, .vti, .vts, .vtr, .vtk (legacy), .ply, .obj, .stl";
+const char* const readableDataSetExtensions = ".vtp, .pvtp, .vtu, .vti, .vts, .vtr, .vtk (legacy), .ply, .obj, .stl";
 
 vtkSmartPointer<vtkDataSet> readDataSet(const std::string& fileName)
 {
@@ -437,7 +437,8 @@ vtkSmartPointer<vtkDataSet> readDataSet(const std::string& fileName)
   const bool generic = extension == ".vtk" || std::find(xml.begin(), xml.end(), extension) != xml.end();
   if (!generic)
   {
-    if (extension != ".vtp" && extension != ".ply" && extension != ".obj" && extension != ".stl")
+    if (extension != ".vtp" && extension != ".pvtp" && extension != ".ply" && extension != ".obj" &&
+      extension != ".stl")
     {
       throw UserError(
         fileName + ": unknown dataset format '" + extension + "'; ShadeLab reads " + readableDataSetExtensions);

@@ -63,7 +63,7 @@ vtkSmartPointer<vtkPolyData> readMesh(
 extern const char* const readableDataSetExtensions;
 
 /// Reads any VTK dataset (.vtu, .vti, .vts, .vtr, legacy .vtk of any type) as readMesh reads a
-/// mesh, in a reading process of its own; .vtp, .ply, .obj and .stl through readMesh. Throws
+/// mesh, in a reading process of its own; .vtp, .pvtp (every piece), .ply, .obj and .stl through readMesh. Throws
 /// UserError.
 vtkSmartPointer<vtkDataSet> readDataSet(const std::string& fileName);
 

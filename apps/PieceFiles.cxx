@@ -253,6 +253,11 @@ std::string pvtpPlaceProblem(const std::string& fileName)
   const std::string name = target.filename().string();
   const std::size_t firstDot = name.find('.');
   const std::size_t extensionDot = name.size() - std::string(".pvtp").size();
+  if (firstDot == 0)
+  {
+    return "its name starts with a dot, and VTK's writer names the folder of the pieces after what comes before the "
+           "first, which is nothing: name it otherwise (shaded.pvtp, say)";
+  }
   if (firstDot != extensionDot)
   {
     std::string dotless = name.substr(0, extensionDot);

@@ -4,14 +4,17 @@
 #include "CliFixture.h"
 #include "TestScenes.h"
 
+#include "vtkCellData.h"
 #include "vtkIdList.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkXMLPPolyDataReader.h"
 #include "vtkXMLPolyDataReader.h"
+#include "vtkXMLPolyDataWriter.h"
 
 #include <algorithm>
+#include <functional>
 #include <regex>
 #include <set>
 #include <sstream>
@@ -167,6 +170,101 @@ TEST_F(CliUnderMpiexec, APvtpIsReadAPiecePerProcess)
   }
 }
 
+// shadelab compare reads a .pvtp's pieces as the mesh they were cut from, each point once in
+// the order of its global id, so that what two processes wrote compares with what one wrote. A
+// difference is placed at the whole mesh's point; copies of a point that differ, and a cell on
+// two pieces, are each said.
+TEST_F(CliUnderMpiexec, CompareReadsThePiecesAsOneMesh)
+{
+  const std::string alone = (folder / "alone.vtp").string(), split = (folder / "split.pvtp").string();
+  ASSERT_EQ(shadelab("shade " + goodMesh() + " --arrays totals -o " + alone).exitCode, 0);
+  ASSERT_EQ(shadelabOn(2, "shade " + goodMesh() + " --arrays totals -o " + split).exitCode, 0);
+  const vtkIdType copies = read<vtkXMLPPolyDataReader>(split)->GetNumberOfPoints() - 35947;
+  ASSERT_GT(copies, 0);
+  Result compared = shadelab("compare " + alone + " " + split);
+  EXPECT_EQ(compared.exitCode, 0) << compared.out << compared.err;
+  EXPECT_EQ(compared.out.substr(0, compared.out.find('\n') + 1),
+    "shadelab compare: the result " + split +
+      " (35947 points, 69451 cells, put in the order of their global ids, which are not themselves compared; " +
+      std::to_string(copies) + " copies of points that pieces share left out) against the baseline " + alone +
+      " (35947 points, 69451 cells); points and cells matched by id\n");
+  EXPECT_NE(compared.out.find("\nPASS: 6 arrays agree\n"), std::string::npos) << compared.out;
+
+  // A point only the second piece holds, and one both hold.
+  const fs::path second = folder / "split" / "split_1.vtp";
+  const vtkSmartPointer<vtkPolyData> first = read<vtkXMLPolyDataReader>((folder / "split" / "split_0.vtp").string());
+  const vtkSmartPointer<vtkPolyData> original = read<vtkXMLPolyDataReader>(second.string());
+  auto idsOf = [](vtkDataSetAttributes* attributes)
+  {
+    std::vector<vtkIdType> ids;
+    vtkDataArray* globalIds = attributes->GetGlobalIds();
+    EXPECT_NE(globalIds, nullptr);
+    for (vtkIdType k = 0; globalIds && k < globalIds->GetNumberOfTuples(); ++k)
+    {
+      ids.push_back(static_cast<vtkIdType>(globalIds->GetTuple1(k)));
+    }
+    return ids;
+  };
+  const std::vector<vtkIdType> firstIds = idsOf(first->GetPointData());
+  const std::vector<vtkIdType> secondIds = idsOf(original->GetPointData());
+  const std::set<vtkIdType> inFirst(firstIds.begin(), firstIds.end());
+  auto inSecond = [&](bool shared)
+  {
+    return static_cast<vtkIdType>(std::find_if(secondIds.begin(), secondIds.end(),
+                                    [&](vtkIdType id) { return inFirst.count(id) == (shared ? 1u : 0u); }) -
+      secondIds.begin());
+  };
+  const vtkIdType own = inSecond(false), shared = inSecond(true);
+  ASSERT_LT(std::max(own, shared), original->GetNumberOfPoints());
+  auto compareWithSecond = [&](const std::function<void(vtkPolyData*)>& edit)
+  {
+    vtkNew<vtkPolyData> piece;
+    piece->DeepCopy(original);
+    edit(piece);
+    vtkNew<vtkXMLPolyDataWriter> writer;
+    writer->SetInputData(piece);
+    writer->SetFileName(second.c_str());
+    EXPECT_EQ(writer->Write(), 1);
+    return shadelab("compare " + alone + " " + split);
+  };
+  auto raiseTotal = [](vtkIdType point)
+  {
+    return [point](vtkPolyData* piece)
+    {
+      vtkDataArray* total = piece->GetPointData()->GetArray("total");
+      total->SetComponent(point, 0, total->GetComponent(point, 0) + 0.25);
+    };
+  };
+  compared = compareWithSecond(raiseTotal(own));
+  EXPECT_EQ(compared.exitCode, 1) << compared.out << compared.err;
+  EXPECT_NE(compared.out.find("  DIFFER total "), std::string::npos) << compared.out;
+  EXPECT_NE(
+    compared.out.find("point " + std::to_string(secondIds[static_cast<std::size_t>(own)]) + " ("), std::string::npos)
+    << compared.out;
+
+  compared = compareWithSecond(raiseTotal(shared));
+  EXPECT_EQ(compared.exitCode, 2);
+  const vtkIdType sharedId = secondIds[static_cast<std::size_t>(shared)];
+  const auto inFirstPiece = std::find(firstIds.begin(), firstIds.end(), sharedId) - firstIds.begin();
+  EXPECT_EQ(compared.err,
+    "shadelab compare: " + split + ": the point with global id " + std::to_string(sharedId) +
+      " has different values of 'total' in two of its pieces (points " + std::to_string(inFirstPiece) + " and " +
+      std::to_string(first->GetNumberOfPoints() + shared) +
+      " as read): the pieces are not of one mesh, or each computed the point alone; compare its pieces' files one "
+      "at a time\n");
+
+  const std::vector<vtkIdType> firstCellIds = idsOf(first->GetCellData());
+  ASSERT_FALSE(firstCellIds.empty());
+  const vtkIdType firstCellId = firstCellIds.front();
+  compared = compareWithSecond(
+    [&](vtkPolyData* piece) { piece->GetCellData()->GetGlobalIds()->SetTuple1(0, static_cast<double>(firstCellId)); });
+  EXPECT_EQ(compared.exitCode, 2);
+  EXPECT_EQ(compared.err,
+    "shadelab compare: " + split + ": the global cell id " + std::to_string(firstCellId) +
+      " is on two of its pieces' polygons: the pieces are not of one mesh, or their copies of a cell are not marked "
+      "as ghost cells (vtkGhostType)\n");
+}
+
 // A warning that every process meets (each reads the file) is said once; the second process's
 // piece of a one-triangle mesh is empty, and the .pvtp names only the first's.
 TEST_F(CliUnderMpiexec, AWarningIsSaidOnce)
@@ -281,6 +379,11 @@ TEST_F(CliUnderMpiexec, APvtpReplacesOnlyItsOwnPieces)
   EXPECT_EQ(onTwo.err.substr(0, dottedMessage.size() + 11), "shadelab: " + dottedMessage + "\n");
   EXPECT_EQ(occurrences(onTwo.err, "shadelab:"), 1u) << onTwo.err;
   EXPECT_FALSE(fs::exists(folder / "bunny"));
+  const std::string hidden = (folder / ".shaded.pvtp").string();
+  expectError("shade " + goodMesh() + " -o " + hidden,
+    hidden +
+      ": cannot be written: its name starts with a dot, and VTK's writer names the folder of the pieces after what "
+      "comes before the first, which is nothing: name it otherwise (shaded.pvtp, say)");
   fs::create_directories(folder / "taken.pvtp");
   expectError("shade " + goodMesh() + " -o " + (folder / "taken.pvtp").string(),
     (folder / "taken.pvtp").string() + ": cannot be written: " + (folder / "taken.pvtp").string() + " is a folder");

@@ -6,6 +6,7 @@
 #include "vtkCellData.h"
 #include "vtkDoubleArray.h"
 #include "vtkFloatArray.h"
+#include "vtkIdTypeArray.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
@@ -26,6 +27,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <iomanip>
@@ -536,8 +538,8 @@ TEST_F(Compare, UnreadableFilesAndBadOptionsExitWithTwo)
   const std::string unknown = file("data.xyz", "1 2 3\n");
   EXPECT_EQ(shadelab("compare " + unknown + " " + a).err,
     "shadelab compare: " + unknown +
-      ": unknown dataset format '.xyz'; ShadeLab reads .vtp, .vtu, .vti, .vts, .vtr, .vtk (legacy), .ply, .obj, "
-      ".stl\n");
+      ": unknown dataset format '.xyz'; ShadeLab reads .vtp, .pvtp, .vtu, .vti, .vts, .vtr, .vtk (legacy), .ply, "
+      ".obj, .stl\n");
   const Result tolerance = shadelab("compare " + a + " " + a + " --atol total:lots");
   EXPECT_EQ(tolerance.exitCode, 2);
   EXPECT_EQ(tolerance.err,
@@ -657,6 +659,137 @@ vtkSmartPointer<vtkPolyData> reversedSquare(double shift)
   area->InsertNextValue(1.0f);
   reversed->GetCellData()->AddArray(area);
   return reversed;
+}
+
+/// A cell of the mesh that CompareInPieces cuts: its kind (1 a vertex, 2 a line, 3 a triangle),
+/// its global id, its points' global ids, and whether the piece holds it as a duplicate.
+struct PieceCell
+{
+  int kind;
+  vtkIdType id;
+  std::vector<vtkIdType> points;
+  bool ghost = false;
+};
+
+/// A mesh, or a piece of one, of these points and cells (by global id), with the point array
+/// value (id + 0.5) and the cell array cell_value (10 id, -1 where a duplicate); with global ids
+/// and ghost flags where asked.
+vtkSmartPointer<vtkPolyData> meshOfIds(
+  const std::vector<vtkIdType>& pointIds, std::vector<PieceCell> cells, bool withIds)
+{
+  auto mesh = vtkSmartPointer<vtkPolyData>::New();
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkFloatArray> value;
+  vtkNew<vtkIdTypeArray> pointGlobalIds, cellGlobalIds;
+  for (vtkIdType id : pointIds)
+  {
+    points->InsertNextPoint(static_cast<double>(id % 3), static_cast<double>(id / 3), 0.25 * static_cast<double>(id));
+    value->InsertNextValue(static_cast<float>(id) + 0.5f);
+    pointGlobalIds->InsertNextValue(id);
+  }
+  mesh->SetPoints(points);
+  // A mesh keeps its vertices, then its lines, then its polygons: so do their cell arrays.
+  std::stable_sort(cells.begin(), cells.end(), [](const PieceCell& a, const PieceCell& b) { return a.kind < b.kind; });
+  vtkNew<vtkCellArray> vertices, lines, triangles;
+  vtkNew<vtkFloatArray> cellValue;
+  vtkNew<vtkUnsignedCharArray> ghosts;
+  for (const PieceCell& cell : cells)
+  {
+    std::vector<vtkIdType> corners;
+    for (vtkIdType id : cell.points)
+    {
+      corners.push_back(std::find(pointIds.begin(), pointIds.end(), id) - pointIds.begin());
+    }
+    (cell.kind == 1      ? vertices
+        : cell.kind == 2 ? lines
+                         : triangles)
+      ->InsertNextCell(static_cast<vtkIdType>(corners.size()), corners.data());
+    cellValue->InsertNextValue(cell.ghost ? -1.0f : 10.0f * static_cast<float>(cell.id));
+    ghosts->InsertNextValue(cell.ghost ? vtkDataSetAttributes::DUPLICATECELL : 0);
+    cellGlobalIds->InsertNextValue(cell.id);
+  }
+  mesh->SetVerts(vertices);
+  mesh->SetLines(lines);
+  mesh->SetPolys(triangles);
+  value->SetName("value");
+  mesh->GetPointData()->AddArray(value);
+  cellValue->SetName("cell_value");
+  mesh->GetCellData()->AddArray(cellValue);
+  if (withIds)
+  {
+    pointGlobalIds->SetName("GlobalIds");
+    mesh->GetPointData()->SetGlobalIds(pointGlobalIds);
+    cellGlobalIds->SetName("GlobalIds");
+    mesh->GetCellData()->SetGlobalIds(cellGlobalIds);
+    ghosts->SetName(vtkDataSetAttributes::GhostArrayName());
+    mesh->GetCellData()->AddArray(ghosts);
+  }
+  return mesh;
+}
+
+// A .pvtp's pieces are compared as the mesh they were cut from: its points once each in the
+// order of their global ids, its vertices, lines and polygons each in the order of theirs, the
+// duplicates of cells (ghost cells) left out. Pieces here hold their points and cells in
+// another order than the mesh, and each holds a duplicate of a triangle of the other's.
+TEST_F(Compare, APvtpIsComparedAsTheMeshItsPiecesWereCutFrom)
+{
+  const std::vector<PieceCell> cells = { { 1, 0, { 5 } }, { 2, 1, { 4, 5 } }, { 3, 2, { 0, 1, 3 } },
+    { 3, 3, { 1, 4, 3 } }, { 3, 4, { 1, 2, 4 } } };
+  const std::string whole = write("whole.vtp", meshOfIds({ 0, 1, 2, 3, 4, 5 }, cells, false));
+  std::filesystem::create_directories(folder / "pieces");
+  auto writePieces = [&](bool secondMarksItsDuplicate)
+  {
+    write("pieces/pieces_0.vtp",
+      meshOfIds({ 4, 3, 1, 0, 5, 2 },
+        { { 3, 4, { 1, 2, 4 } }, { 3, 3, { 1, 4, 3 }, true }, { 2, 1, { 4, 5 } }, { 3, 2, { 0, 1, 3 } } }, true));
+    write("pieces/pieces_1.vtp",
+      meshOfIds({ 3, 5, 1, 4, 2 },
+        { { 3, 3, { 1, 4, 3 } }, { 1, 0, { 5 } }, { 3, 4, { 1, 2, 4 }, secondMarksItsDuplicate } }, true));
+  };
+  writePieces(true);
+  const std::string pvtp = file("pieces.pvtp",
+    "<?xml version=\"1.0\"?>\n"
+    "<VTKFile type=\"PPolyData\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
+    "  <PPolyData GhostLevel=\"1\">\n"
+    "    <PPointData GlobalIds=\"GlobalIds\">\n"
+    "      <PDataArray type=\"Float32\" Name=\"value\"/>\n"
+    "      <PDataArray type=\"Int64\" Name=\"GlobalIds\"/>\n"
+    "    </PPointData>\n"
+    "    <PCellData GlobalIds=\"GlobalIds\">\n"
+    "      <PDataArray type=\"Float32\" Name=\"cell_value\"/>\n"
+    "      <PDataArray type=\"Int64\" Name=\"GlobalIds\"/>\n"
+    "      <PDataArray type=\"UInt8\" Name=\"vtkGhostType\"/>\n"
+    "    </PCellData>\n"
+    "    <PPoints>\n"
+    "      <PDataArray type=\"Float32\" Name=\"Points\" NumberOfComponents=\"3\"/>\n"
+    "    </PPoints>\n"
+    "    <Piece Source=\"pieces/pieces_0.vtp\"/>\n"
+    "    <Piece Source=\"pieces/pieces_1.vtp\"/>\n"
+    "  </PPolyData>\n"
+    "</VTKFile>\n");
+  Result result = shadelab("compare " + whole + " " + pvtp);
+  EXPECT_EQ(result.exitCode, 0) << result.out << result.err;
+  EXPECT_EQ(result.out.substr(0, result.out.find('\n') + 1),
+    "shadelab compare: the result " + pvtp +
+      " (6 points, 5 cells, put in the order of their global ids, which are not themselves compared; 5 copies of "
+      "points that pieces share left out; 2 ghost cells left out) against the baseline " +
+      whole + " (6 points, 5 cells); points and cells matched by id\n");
+  EXPECT_NE(result.out.find("\nPASS: 3 arrays agree\n"), std::string::npos) << result.out;
+  // A piece alone: its ids do not number its points 0 to n-1.
+  result = shadelab("compare " + whole + " " + (folder / "pieces" / "pieces_1.vtp").string());
+  EXPECT_EQ(result.exitCode, 1);
+  EXPECT_NE(result.out.find(" (5 points, 3 cells, compared as read: its points' global ids do not number them 0 to "
+                            "n-1) against"),
+    std::string::npos)
+    << result.out;
+  // A triangle on both pieces that neither marks as a duplicate.
+  writePieces(false);
+  result = shadelab("compare " + whole + " " + pvtp);
+  EXPECT_EQ(result.exitCode, 2);
+  EXPECT_EQ(result.err,
+    "shadelab compare: " + pvtp +
+      ": the global cell id 4 is on two of its pieces' polygons: the pieces are not of one mesh, or their copies of "
+      "a cell are not marked as ghost cells (vtkGhostType)\n");
 }
 
 TEST_F(Compare, ReorderedMeshesMatchByNearestPoint)
