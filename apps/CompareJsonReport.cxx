@@ -102,7 +102,10 @@ nlohmann::json jsonOf(
 std::string jsonReport(
   const std::vector<ArrayReport>& reports, bool passed, const ComparedFiles& files, const CompareOptions& options)
 {
+  // How each file's points and cells were put in the order compared (ComparedPieces.h).
+  auto order = [](const std::string& description) { return description.empty() ? "as read" : description; };
   nlohmann::json report = { { "baseline", options.baseline }, { "result", options.result }, { "passed", passed },
+    { "baseline_order", order(files.baselineOrder) }, { "result_order", order(files.resultOrder) },
     { "arrays", nlohmann::json::array() }, { "not_compared", nlohmann::json::array() },
     { "not_compared_in_result", nlohmann::json::array() } };
   for (const ArrayReport& r : reports)

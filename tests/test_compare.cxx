@@ -767,8 +767,14 @@ TEST_F(Compare, APvtpIsComparedAsTheMeshItsPiecesWereCutFrom)
     "    <Piece Source=\"pieces/pieces_1.vtp\"/>\n"
     "  </PPolyData>\n"
     "</VTKFile>\n");
-  Result result = shadelab("compare " + whole + " " + pvtp);
+  const std::string report = (folder / "report.json").string();
+  Result result = shadelab("compare " + whole + " " + pvtp + " --json " + report);
   EXPECT_EQ(result.exitCode, 0) << result.out << result.err;
+  const nlohmann::json json = nlohmann::json::parse(slurp(report));
+  EXPECT_EQ(json["baseline_order"], "as read");
+  EXPECT_EQ(json["result_order"],
+    "put in the order of their global ids, which are not themselves compared; 5 copies of points that pieces share "
+    "left out; 2 ghost cells left out");
   EXPECT_EQ(result.out.substr(0, result.out.find('\n') + 1),
     "shadelab compare: the result " + pvtp +
       " (6 points, 5 cells, put in the order of their global ids, which are not themselves compared; 5 copies of "
