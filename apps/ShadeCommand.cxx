@@ -98,9 +98,10 @@ void addOutputOptions(CLI::App* command, ShadeOptions& options)
     "Debian 12's ParaView 5.11 reads it as empty since its Expat security update (docs/guide/command-line.md, 'Files "
     "ParaView opens')");
   CLI::Option* colorBy = command->add_option("--color-by", options.colorBy,
-    "colour the material (kd, and ka with it) by this point array of the mesh instead of the scene's kd: RGB or "
-    "RGBA colours as they are (8-bit ones decoded from sRGB, except in the vtk model, which reads them as VTK "
-    "does), a 1-component field through --colormap over its range (docs/guide/scene-files.md, 'A material from "
+    "colour the material (kd, and ka with it; the vtk_pbr model's base colour) by this point array of the mesh "
+    "instead of the scene's: RGB or RGBA colours as they are (8-bit ones decoded from sRGB, except in the vtk and "
+    "vtk_pbr models, which read them as VTK does), a 1-component field through --colormap over its range "
+    "(docs/guide/scene-files.md, 'A material from "
     "the mesh's arrays')");
   command->add_option("--colormap", options.colorMap, "the colour map of a --color-by field")
     ->check(CLI::IsMember(colorMapNames()))

@@ -1351,11 +1351,34 @@ TEST_F(Cli, TheVtkPbrModelShadesAndSaysWhatItCannotDo)
   EXPECT_EQ(tolerance.err,
     "shadelab: --tolerance 0.001: the vtk_pbr model has no tolerance plan yet (its bounds are the lecture model's): "
     "use --precision\n");
-  const Result colored = shadelab("shade " + goodMesh() + " -s " + scene + " --color-by Normals -o " + out);
-  EXPECT_EQ(colored.exitCode, 1);
-  EXPECT_EQ(colored.err,
-    "shadelab: --color-by Normals: the vtk_pbr model takes its material from the scene: per-vertex colours (VTK's "
-    "scalar colouring) are not reproduced yet\n");
+  // --color-by: each vertex's colour times the base colour's grey (0.9) is its base colour, which
+  // for a metal is F0: F = F0 + (F90 - F0)(1 - h.s)^5 with F90 the edge tint (white).
+  const std::string head = shadelab::testing::sourcePath("data/meshes/head_scan.ply");
+  const Result colored = shadelab("shade " + head + " -s " + scene + " --color-by RGB -a all -o " + out);
+  ASSERT_EQ(colored.exitCode, 0) << colored.err;
+  vtkNew<vtkXMLPolyDataReader> reader;
+  reader->SetFileName(out.c_str());
+  reader->Update();
+  vtkPointData* data = reader->GetOutput()->GetPointData();
+  vtkDataArray *rgb = data->GetArray("RGB"), *fresnel = data->GetArray("key_schlick_f");
+  vtkDataArray *half = data->GetArray("key_half_vector"), *toLight = data->GetArray("key_to_light");
+  ASSERT_TRUE(rgb && fresnel && half && toLight);
+  double largestSpread = 0;
+  for (vtkIdType i = 0; i < reader->GetOutput()->GetNumberOfPoints(); i += 97)
+  {
+    double h[3], s[3];
+    half->GetTuple(i, h);
+    toLight->GetTuple(i, s);
+    const double hDotS = std::clamp(h[0] * s[0] + h[1] * s[1] + h[2] * s[2], 1e-5, 1.0);
+    for (int c = 0; c < 3; ++c)
+    {
+      const double f0 = 0.9 * rgb->GetComponent(i, c) / 255.0;
+      EXPECT_NEAR(fresnel->GetComponent(i, c), f0 + (1.0 - f0) * std::pow(1.0 - hDotS, 5.0), 2e-6)
+        << "vertex " << i << " channel " << c;
+    }
+    largestSpread = std::max(largestSpread, std::abs(fresnel->GetComponent(i, 0) - fresnel->GetComponent(i, 2)));
+  }
+  EXPECT_GT(largestSpread, 0.05); // the colours really differ by channel
   const Result occlusion = shadelab("shade " + goodMesh() + " -s " + scene + " --ambient-occlusion 16 -o " + out);
   EXPECT_EQ(occlusion.exitCode, 1);
   EXPECT_EQ(occlusion.err,

@@ -230,6 +230,36 @@ TEST(Microfacet, SceneFileGivesVtksPbrMaterialAndRefusesWhatItsShaderLacks)
     "viewer)");
 }
 
+// A base colour from an array is VTK's scalar colouring under PBR: kd's array in the material,
+// its scale (the property's Diffuse) the base colour's bound. The model has no other coefficient
+// to take from an array.
+TEST(Microfacet, ABaseColourFromAnArrayIsKdsArray)
+{
+  const Scene scene = parseScene("{ " + pbrViewer +
+      R"(, "material": { "base_color": { "array": "RGB", "scale": 0.7 }, "metallic": 0.5 }, "lights": [] })",
+    "scene.json");
+  const std::optional<ArrayCoefficient>& source = scene.material.arrays[MaterialCoefficient::Diffuse];
+  ASSERT_TRUE(source.has_value());
+  EXPECT_EQ(source->array, "RGB");
+  EXPECT_EQ(source->scale, 0.7);
+  EXPECT_EQ(scene.material.microfacet.baseColor, Rgb(0.7));
+  EXPECT_FALSE(scene.material.arrays[MaterialCoefficient::Ambient].has_value());
+  EXPECT_EQ(sceneFileErrorOf(
+              "{ " + pbrViewer + R"(, "material": { "base_color": { "array": "RGB", "scale": -1 } }, "lights": [] })"),
+    "scene.json: /material/base_color/scale: must be a number >= 0");
+  EXPECT_EQ(sceneFileErrorOf(
+              "{ " + pbrViewer + R"(, "material": { "base_color": { "array": "RGB", "scale": 1.5 } }, "lights": [] })"),
+    "scene.json: /material/base_color/scale: must be a number from 0 to 1 (the property's Diffuse)");
+  Scene withSpecularArray = scene;
+  withSpecularArray.material.arrays[MaterialCoefficient::Specular] = ArrayCoefficient{ "RGB" };
+  const std::vector<SceneProblem> problems = sceneProblems(withSpecularArray);
+  ASSERT_EQ(problems.size(), 1u);
+  EXPECT_EQ(problems[0].path, "/material");
+  EXPECT_EQ(problems[0].message,
+    "the vtk_pbr model takes only its base colour from an array (VTK's scalar colouring): it has no ka, ks or "
+    "shininess");
+}
+
 TEST(Microfacet, AHeadlightShinesFromTheCameraWhereVtksPbrShaderPutsIt)
 {
   // Alone (lighting complexity 1) and beside a point light (complexity 3), VTK's PBR shader

@@ -5,6 +5,7 @@
 #include "TestMeshes.h"
 #include "VtkLightSets.h"
 
+#include "ShadeLabMaterialArrays.h"
 #include "ShadeLabVtkScene.h"
 #include "vtkLocalReflectanceFilter.h"
 
@@ -15,6 +16,7 @@
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkProperty.h"
+#include "vtkUnsignedCharArray.h"
 
 #include <gtest/gtest.h>
 
@@ -191,19 +193,35 @@ public:
     , view_(camera)
     , lights_(shaderLightsOf(lights, camera, view_))
   {
-    albedo_ = property->GetDiffuse() * toGlm(property->GetDiffuseColor());
+    diffuse_ = property->GetDiffuse();
+    albedo_ = diffuse_ * toGlm(property->GetDiffuseColor());
     metallic_ = property->GetMetallic();
     roughness_ = property->GetRoughness();
     const double ior = property->GetBaseIOR();
-    const double baseF0 = (ior - 1) * (ior - 1) / ((ior + 1) * (ior + 1));
-    f0_ = (1 - metallic_) * dvec3(baseF0) + metallic_ * albedo_;
-    const double f90 = std::clamp(glm::dot(f0_, dvec3(50.0 * 0.33)), 0.0, 1.0);
-    f90_ = (1 - metallic_) * dvec3(f90) + metallic_ * toGlm(property->GetEdgeTint());
+    baseF0_ = (ior - 1) * (ior - 1) / ((ior + 1) * (ior + 1));
+    edgeTint_ = toGlm(property->GetEdgeTint());
   }
 
   /// Each light's terms at the vertex, in the order of the lights that are on.
   std::vector<PbrLightTerms> terms(const dvec3& worldPoint, const dvec3& worldNormal) const
   {
+    return terms(worldPoint, worldNormal, albedo_);
+  }
+
+  /// The same where the vertex has a scalar colour (bytes over 255): the shader's diffuseColor,
+  /// and so its albedo, is Diffuse x the colour.
+  std::vector<PbrLightTerms> termsWithColour(
+    const dvec3& worldPoint, const dvec3& worldNormal, const unsigned char colour[3]) const
+  {
+    return terms(worldPoint, worldNormal, diffuse_ * dvec3(colour[0], colour[1], colour[2]) / 255.0);
+  }
+
+private:
+  std::vector<PbrLightTerms> terms(const dvec3& worldPoint, const dvec3& worldNormal, const dvec3& albedo) const
+  {
+    const dvec3 f0 = (1 - metallic_) * dvec3(baseF0_) + metallic_ * albedo;
+    const double f90 = std::clamp(glm::dot(f0, dvec3(50.0 * 0.33)), 0.0, 1.0);
+    const dvec3 grazing = (1 - metallic_) * dvec3(f90) + metallic_ * edgeTint_;
     const dvec3 vertexVC = view_.point(worldPoint);
     dvec3 n = glm::normalize(view_.direction(worldNormal));
     n = glm::dot(n, -vertexVC) < 0 ? -n : n; // gl_FrontFacing, per vertex
@@ -247,21 +265,20 @@ public:
       const double r2 = roughness_ * roughness_;
       t.v = 0.5 /
         (nDotL * std::sqrt(r2 + nDotV * (nDotV - r2 * nDotV)) + nDotV * std::sqrt(r2 + nDotL * (nDotL - r2 * nDotL)));
-      t.f = f0_ + (f90_ - f0_) * std::pow(1.0 - hDotL, 5.0);
+      t.f = f0 + (grazing - f0) * std::pow(1.0 - hDotL, 5.0);
       const dvec3 radiance = light.color * attenuation;
-      t.diffuse = radiance * ((1.0 - metallic_) * (1.0 - t.f) * albedo_ * 0.31830988618) * nDotL;
+      t.diffuse = radiance * ((1.0 - metallic_) * (1.0 - t.f) * albedo * 0.31830988618) * nDotL;
       t.specular = radiance * (t.d * t.v * t.f) * nDotL;
       result.push_back(t);
     }
     return result;
   }
 
-private:
   int complexity_;
   ViewTransform view_;
   std::vector<ShaderLight> lights_;
-  dvec3 albedo_, f0_, f90_;
-  double metallic_, roughness_;
+  dvec3 albedo_, edgeTint_;
+  double diffuse_, metallic_, roughness_, baseF0_;
 };
 
 class VtkRendererMode : public shadelab::testing::VtkLightSets
@@ -338,17 +355,47 @@ protected:
   /// A PBR property (a metal-dielectric mix with an edge tint and a base IOR of 1.8) on the
   /// off-centre sphere: every light's D, V, F, diffuse and specular arrays and the total against
   /// the shader's formulas, evaluated by hand in view coordinates.
-  void expectShaderTerms(int complexity)
+  /// With colours: each vertex's scalar colour (8-bit RGB, VTK's scalar colouring) is its base
+  /// colour, times the property's Diffuse (0.9 here), as `shadelab shade --color-by` takes it.
+  /// Bright colours vary each channel on its own; dark ones on a nearly clear dielectric (base
+  /// IOR 1.05, metallic 0.3) put F0's sum below 1/16.5 at most vertices, so that F90 too is each
+  /// vertex's own.
+  enum class Colours
+  {
+    None,
+    Bright,
+    Dark
+  };
+  void expectShaderTerms(int complexity, Colours withColours = Colours::None)
   {
     property->SetInterpolationToPBR();
-    property->SetMetallic(0.4);
+    property->SetMetallic(withColours == Colours::Dark ? 0.3 : 0.4);
     property->SetRoughness(0.35);
-    property->SetBaseIOR(1.8);
+    property->SetBaseIOR(withColours == Colours::Dark ? 1.05 : 1.8);
     property->SetEdgeTint(0.9, 0.6, 0.3);
-    const shadelab::Scene scene = shadelab::sceneFromVtk(lights, property, camera);
+    shadelab::Scene scene = shadelab::sceneFromVtk(lights, property, camera);
     ASSERT_EQ(scene.model, shadelab::ShadingModel::VtkPbr);
     vtkSmartPointer<vtkPolyData> sphere =
       shadelab::testing::exactSphere(60, shadelab::testing::litSphereCentre, shadelab::testing::litSphereRadius);
+    if (withColours != Colours::None)
+    {
+      // Under scalar colouring the shader ignores DiffuseColor; the scene's base colour, a grey
+      // here, stands for Diffuse (colorMaterialBy takes its largest component).
+      property->SetDiffuse(0.9);
+      property->SetDiffuseColor(1.0, 1.0, 1.0);
+      scene = shadelab::sceneFromVtk(lights, property, camera);
+      vtkNew<vtkUnsignedCharArray> colours;
+      colours->SetName("colours");
+      colours->SetNumberOfComponents(3);
+      for (vtkIdType i = 0; i < sphere->GetNumberOfPoints(); ++i)
+      {
+        withColours == Colours::Bright
+          ? colours->InsertNextTuple3(double((37 * i) % 256), double((91 * i + 40) % 256), double((13 * i) % 17))
+          : colours->InsertNextTuple3(double(i % 21), double((3 * i) % 21), double((7 * i) % 21));
+      }
+      sphere->GetPointData()->AddArray(colours);
+      shadelab::colorMaterialBy(scene, "colours", "");
+    }
     vtkSmartPointer<vtkPolyData> shaded = shadelab::testing::shadeWithFilter(sphere, scene, { "all" });
     const PbrShaderReference shader(lights, property, camera, complexity);
     vtkPointData* arrays = shaded->GetPointData();
@@ -358,7 +405,11 @@ protected:
     double largest = 0;
     for (vtkIdType i = 0; i < shaded->GetNumberOfPoints(); ++i)
     {
-      const std::vector<PbrLightTerms> want = shader.terms(toGlm(shaded->GetPoint(i)), toGlm(normals->GetTuple3(i)));
+      const dvec3 point = toGlm(shaded->GetPoint(i)), normal = toGlm(normals->GetTuple3(i));
+      auto* colours = vtkUnsignedCharArray::SafeDownCast(arrays->GetArray("colours")); // passed through
+      const std::vector<PbrLightTerms> want = withColours == Colours::None
+        ? shader.terms(point, normal)
+        : shader.termsWithColour(point, normal, colours->GetPointer(3 * i));
       ASSERT_EQ(want.size(), scene.lights.size());
       dvec3 total(0);
       for (std::size_t l = 0; l < want.size(); ++l)
@@ -386,7 +437,7 @@ protected:
         largest = std::max(largest, total[c]);
       }
     }
-    EXPECT_GT(largest, 0.3); // the light set really lights the sphere
+    EXPECT_GT(largest, withColours == Colours::Dark ? 0.05 : 0.3); // the light set really lights the sphere
   }
 };
 
@@ -415,6 +466,22 @@ TEST_F(VtkPbrMode, AHeadlightBesideAPointLightShinesFromTheCamera)
   bulb->PositionalOn();
   bulb->SetConeAngle(90);
   expectShaderTerms(3);
+}
+
+// VTK's scalar colouring under PBR: each vertex's colour is its albedo (times Diffuse), and so
+// moves its F0, F90 and diffuse part, under every kind of light at once.
+TEST_F(VtkPbrMode, ScalarColoursAreEachVertexsBaseColour)
+{
+  addPositionalLights();
+  expectShaderTerms(3, Colours::Bright);
+}
+
+// Dark colours on a nearly clear dielectric: F0's channels sum below 1/16.5, where VTK's F90
+// falls below 1 ("specular occlusion"), vertex by vertex.
+TEST_F(VtkPbrMode, DarkScalarColoursDarkenEachVertexsGrazingReflectance)
+{
+  addLightKit();
+  expectShaderTerms(2, Colours::Dark);
 }
 
 TEST_F(VtkPbrMode, NoLightSwitchedOnMeansVtksHeadlightAtTheCamera)

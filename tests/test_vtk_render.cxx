@@ -288,6 +288,28 @@ TEST_F(RealRender, FieldThroughAColorTransferFunction)
     });
 }
 
+/// Random 8-bit colours at the sphere's vertices, as a "Colors" point array.
+void addRandomColors(vtkPolyData* sphere)
+{
+  std::mt19937 random(7);
+  vtkNew<vtkUnsignedCharArray> colors;
+  colors->SetName("Colors");
+  colors->SetNumberOfComponents(3);
+  for (vtkIdType i = 0; i < 3 * sphere->GetNumberOfPoints(); ++i)
+  {
+    colors->InsertNextValue(static_cast<unsigned char>(random() % 256));
+  }
+  sphere->GetPointData()->AddArray(colors);
+}
+
+/// The mapper drawing the "Colors" array's bytes as they are.
+void mapDirectColors(vtkPolyDataMapper* mapper)
+{
+  mapper->SetScalarModeToUsePointFieldData();
+  mapper->SelectColorArray("Colors");
+  mapper->SetColorModeToDirectScalars();
+}
+
 TEST_F(RealRender, DirectEightBitColors)
 {
   addLoneHeadlight();
@@ -295,24 +317,30 @@ TEST_F(RealRender, DirectEightBitColors)
     true,
     [&](vtkPolyData* sphere, shadelab::Scene& scene)
     {
-      std::mt19937 random(7);
-      vtkNew<vtkUnsignedCharArray> colors;
-      colors->SetName("Colors");
-      colors->SetNumberOfComponents(3);
-      for (vtkIdType i = 0; i < 3 * sphere->GetNumberOfPoints(); ++i)
-      {
-        colors->InsertNextValue(static_cast<unsigned char>(random() % 256));
-      }
-      sphere->GetPointData()->AddArray(colors);
+      addRandomColors(sphere);
       colorFromArray(scene, property, { "Colors" });
     },
-    [](vtkPolyDataMapper* mapper)
-    {
-      mapper->SetScalarModeToUsePointFieldData();
-      mapper->SelectColorArray("Colors");
-      mapper->SetColorModeToDirectScalars();
-    });
+    mapDirectColors);
 }
+// VTK's scalar colouring under PBR: each vertex's colour, times Diffuse, is its albedo (and
+// moves its F0 and F90); the scene's base colour, a grey, stands for Diffuse.
+TEST_F(RealRender, PbrDirectEightBitColors)
+{
+  makePbr(property);
+  property->SetEdgeTint(0.9, 0.6, 0.3);
+  property->SetDiffuse(0.85);
+  property->SetDiffuseColor(1.0, 1.0, 1.0);
+  addPositionalLights();
+  expectPixelsMatch(
+    false,
+    [&](vtkPolyData* sphere, shadelab::Scene& scene)
+    {
+      addRandomColors(sphere);
+      shadelab::colorMaterialBy(scene, "Colors", "");
+    },
+    mapDirectColors);
+}
+
 /// The vtk_pbr model against VTK's own render of an imported scene: the bundled lamps' ball
 /// (metallic 0.6, roughness 0.35, no texture) with its property as vtkGLTFImporter makes it,
 /// under the file's three lights as the importer makes them (a point light whose range becomes

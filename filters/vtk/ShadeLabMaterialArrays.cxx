@@ -239,6 +239,14 @@ void colorMaterialBy(Scene& scene, const std::string& name, const std::string& c
   source.array = name;
   source.colorMap = colorMap;
   source.colorMapForFieldsOnly = true;
+  if (scene.model == ShadingModel::VtkPbr)
+  {
+    // The base colour, as a grey, scales the colour as the PBR property's Diffuse does.
+    source.scale = largestComponent(m.microfacet.baseColor);
+    m.arrays[MaterialCoefficient::Diffuse] = source;
+    m.microfacet.baseColor = Rgb(source.scale);
+    return;
+  }
   const bool vtk = scene.model == ShadingModel::VtkOpenGL2;
   source.scale = vtk ? largestComponent(m.kd) : 1.0;
   m.arrays[MaterialCoefficient::Diffuse] = source;
@@ -275,7 +283,7 @@ ArrayEncoding encodingOf(
   const bool eightBit = array->GetDataType() == VTK_UNSIGNED_CHAR || mapped;
   return coefficient == MaterialCoefficient::Shininess
     ? ArrayEncoding::Linear
-    : source.encoding.value_or(defaultEncoding(eightBit, model == ShadingModel::VtkOpenGL2));
+    : source.encoding.value_or(defaultEncoding(eightBit, reproducesVtkRenderer(model)));
 }
 }
 
@@ -303,7 +311,7 @@ MaterialReading readVertexMaterial(vtkPolyData* piece, const Scene& scene, Preci
     // Where the coefficient was asked for: the scene's material, or the filter's colour array.
     const std::string at = source->colorMapForFieldsOnly
       ? std::string("the material's colour array (MaterialColorArray, --color-by): ")
-      : std::string("scene /material/") + coefficientKey(coefficient) + ": ";
+      : std::string("scene /material/") + materialKey(coefficient, scene.model) + ": ";
     vtkDataArray* array = piece->GetPointData()->GetArray(source->array.c_str());
     // Collective, so before anything that may stop this process.
     const std::array<double, 2> range =

@@ -82,7 +82,9 @@ public:
   vtkGetMacro(NumberOfThreads, int);
 
   /// With ColorByArray on, the material's colour comes from the input's point array
-  /// MaterialColorArray instead of the scene's kd (and ka, which follows it): 3- or 4-component
+  /// MaterialColorArray instead of the scene's kd (and ka, which follows it; in the vtk_pbr
+  /// model the base colour, scaled by its largest component, which stands for the PBR
+  /// property's Diffuse): 3- or 4-component
   /// colours as they are, a 1-component field through MaterialColorMap
   /// (shadelab::colorMaterialBy; docs/guide/scene-files.md). Off (the default): the scene's
   /// material. (Two properties, so that ParaView's panel can switch back to the scene's.)

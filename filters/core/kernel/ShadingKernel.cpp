@@ -129,6 +129,19 @@ typename ShadingKernel<T>::DistributedLightSlot ShadingKernel<T>::prepareDistrib
 }
 
 template<typename T>
+void ShadingKernel<T>::prepareMicrofacet(const Scene& scene)
+{
+  microfacet_ = scene.model == ShadingModel::VtkPbr;
+  microfacetMaterial_ = scene.material.microfacet;
+  dielectricReflectance_ = dielectricReflectance(microfacetMaterial_.baseIor);
+  roughness_ = T(microfacetMaterial_.roughness);
+  const Rgb f0 = reflectanceAtNormalIncidence(microfacetMaterial_);
+  const Rgb f90 = reflectanceAtGrazingIncidence(microfacetMaterial_, f0);
+  normalFresnel_ = { T(f0.x), T(f0.y), T(f0.z) };
+  grazingFresnel_ = { T(f90.x), T(f90.y), T(f90.z) };
+}
+
+template<typename T>
 ShadingKernel<T>::ShadingKernel(
   const Scene& scene, ShadingOutputs<T> outputs, const std::vector<LightMethod>& methods, ShadingInputs inputs)
   : outputs_(std::move(outputs))
@@ -144,18 +157,15 @@ ShadingKernel<T>::ShadingKernel(
   m.ka = perVertex(MaterialCoefficient::Ambient) ? Rgb(1.0) : m.ka;
   m.kd = perVertex(MaterialCoefficient::Diffuse) ? Rgb(1.0) : m.kd;
   m.ks = perVertex(MaterialCoefficient::Specular) ? Rgb(1.0) : m.ks;
+  // The microfacet model's base colour from kd's array is VTK's scalar colouring under PBR.
+  m.microfacet.baseColor = perVertex(MaterialCoefficient::Diffuse) ? Rgb(1.0) : m.microfacet.baseColor;
   const bool vtk = scene.model == ShadingModel::VtkOpenGL2;
   // docs/vtk-renderer.md sections 1, 2 and 5: VTK's shader always flips back faces, and its
   // ambient term is Ka*Ca from the property alone. In its lone-headlight shader the specular
   // viewer is the light.
   specularModel_ = evaluatedSpecularModel(scene);
   specularViewerIsLight_ = vtk && scene.vtkLoneHeadlight;
-  microfacet_ = scene.model == ShadingModel::VtkPbr;
-  roughness_ = T(scene.material.microfacet.roughness);
-  const Rgb f0 = reflectanceAtNormalIncidence(scene.material.microfacet);
-  const Rgb f90 = reflectanceAtGrazingIncidence(scene.material.microfacet, f0);
-  normalFresnel_ = { T(f0.x), T(f0.y), T(f0.z) };
-  grazingFresnel_ = { T(f90.x), T(f90.y), T(f90.z) };
+  prepareMicrofacet(scene);
   twoSided_ = shadesBothSides(scene);
   shadedSide_ = scene.shadedSide;
   shininess_ = T(m.shininess);
@@ -477,10 +487,21 @@ void ShadingKernel<T>::addMicrofacetTerms(const PreparedLight& light, const Vert
   // docs/vtk-renderer.md section 11.2, VTK's PBR light loop: every cosine clamped to [1e-5, 1],
   // diffuse (1 - m)(1 - F) base / pi and specular D V F, each times the light's radiance and n.s.
   // The light's diffuse colour holds its radiance x (1 - m) base / pi, its specular colour the
-  // radiance; the lanes hold the rest, channel by channel.
+  // radiance; the lanes hold the rest, channel by channel. A base colour per vertex (kd's
+  // lanes) multiplies the diffuse part, and gives the vertex its own F0 and F90 (section 11.1).
   const std::size_t count = b.count;
+  const bool perVertexBase = perVertex(MaterialCoefficient::Diffuse);
+  std::array<T, 3> normalFresnel = normalFresnel_, grazingFresnel = grazingFresnel_;
   for (std::size_t k = 0; k < count; ++k)
   {
+    if (perVertexBase)
+    {
+      const Rgb base(coefficientAt(w.kd, k));
+      const Rgb f0 = reflectanceAtNormalIncidence(dielectricReflectance_, microfacetMaterial_.metallic, base);
+      const Rgb f90 = reflectanceAtGrazingIncidence(microfacetMaterial_, f0);
+      normalFresnel = { T(f0.x), T(f0.y), T(f0.z) };
+      grazingFresnel = { T(f90.x), T(f90.y), T(f90.z) };
+    }
     const T nDotV = vtkClampedCosine(w.nx[k] * w.vx[k] + w.ny[k] * w.vy[k] + w.nz[k] * w.vz[k]);
     const T nDotL = vtkClampedCosine(w.cosIncidence[k]);
     const T hDotL = vtkClampedCosine(w.hx[k] * w.sx[k] + w.hy[k] * w.sy[k] + w.hz[k] * w.sz[k]);
@@ -493,9 +514,9 @@ void ShadingKernel<T>::addMicrofacetTerms(const PreparedLight& light, const Vert
     const T specular = w.ggxDistribution[k] * w.smithVisibility[k] * radiance;
     for (int c = 0; c < 3; ++c)
     {
-      const T fresnel = schlickFresnel(normalFresnel_[c], grazingFresnel_[c], hDotL);
+      const T fresnel = schlickFresnel(normalFresnel[c], grazingFresnel[c], hDotL);
       w.fresnel[c][k] = fresnel;
-      w.diffuseRgb[c][k] = (T(1) - fresnel) * radiance;
+      w.diffuseRgb[c][k] = (T(1) - fresnel) * radiance * (perVertexBase ? w.kd[c][k] : T(1));
       w.specularRgb[c][k] = fresnel * specular;
     }
   }

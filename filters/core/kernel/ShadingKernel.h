@@ -179,6 +179,8 @@ private:
     const std::array<T*, LightTermCount>& out, const Material& m, bool needsSpecular,
     const std::uint64_t* hiddenSamples, const double* shadowedTerms) const;
 
+  /// The vtk_pbr model's material, roughness, F0 and F90 (docs/vtk-renderer.md section 11.1).
+  void prepareMicrofacet(const Scene& scene);
   void prepareNormals(const VertexBlock<T>& block, Workspace& w) const;
   void loadMaterial(const VertexBlock<T>& block, Workspace& w) const;
   bool perVertex(MaterialCoefficient c) const { return vertexMaterial_[int(c)] != nullptr; }
@@ -210,8 +212,11 @@ private:
   Vec3<T> towardViewer_{ 0 }; // viewer at infinity: the constant v
   /// VTK's lone headlight: the specular viewer is the light itself, so h = s and n.h = n.s.
   bool specularViewerIsLight_ = false;
-  /// The vtk_pbr model (Microfacet.h): its roughness, and F0 and F90 per channel.
+  /// The vtk_pbr model (Microfacet.h): its material, its roughness, and F0 and F90 per channel
+  /// (a vertex's own where its base colour is per vertex).
   bool microfacet_ = false;
+  MicrofacetMaterial microfacetMaterial_{};
+  double dielectricReflectance_ = 0; // the dielectric's F0, for a base colour per vertex
   T roughness_ = 0;
   std::array<T, 3> normalFresnel_{}, grazingFresnel_{};
 };

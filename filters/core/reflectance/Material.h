@@ -70,6 +70,14 @@ inline bool reproducesVtkRenderer(ShadingModel model)
   return model == ShadingModel::VtkOpenGL2 || model == ShadingModel::VtkPbr;
 }
 
+/// A coefficient's key in the model's material in a scene file: the vtk_pbr model's base colour
+/// is its kd (an array's colour, VTK's scalar colouring).
+inline const char* materialKey(MaterialCoefficient coefficient, ShadingModel model)
+{
+  return model == ShadingModel::VtkPbr && coefficient == MaterialCoefficient::Diffuse ? "base_color"
+                                                                                      : coefficientKey(coefficient);
+}
+
 /// The model's name in a scene file ("model").
 inline const char* modelName(ShadingModel model)
 {

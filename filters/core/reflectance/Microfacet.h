@@ -70,10 +70,21 @@ T schlickFresnel(T f0, T f90, T hDotL)
 /// F0, the reflectance at normal incidence: the base layer's ((ior - 1) / (ior + 1))^2 (0.04 at
 /// ior 1.5; vtkProperty::ComputeReflectanceOfBaseLayer, with no coat), mixed toward the base
 /// colour by the metallic factor.
+inline double dielectricReflectance(double baseIor)
+{
+  return std::pow((baseIor - 1.0) / (baseIor + 1.0), 2.0);
+}
+
+/// The same for a base colour of its own (a vertex's, VTK's scalar colouring), the dielectric's
+/// dielectricReflectance(baseIor) given.
+inline Rgb reflectanceAtNormalIncidence(double dielectric, double metallic, const Rgb& baseColor)
+{
+  return (1.0 - metallic) * Rgb(dielectric) + metallic * baseColor;
+}
+
 inline Rgb reflectanceAtNormalIncidence(const MicrofacetMaterial& m)
 {
-  const double dielectric = std::pow((m.baseIor - 1.0) / (m.baseIor + 1.0), 2.0);
-  return (1.0 - m.metallic) * Rgb(dielectric) + m.metallic * m.baseColor;
+  return reflectanceAtNormalIncidence(dielectricReflectance(m.baseIor), m.metallic, m.baseColor);
 }
 
 /// F90, the reflectance at grazing incidence: 1 for any F0 whose channels sum to 1/16.5 or more

@@ -92,7 +92,7 @@ void checkMaterialArrays(const Scene& scene, ProblemList& list)
     if (const auto& source = m.arrays[coefficient])
     {
       list.check(std::isfinite(source->scale) && source->scale >= 0,
-        std::string("/material/") + coefficientKey(coefficient) + "/scale", "must be a number >= 0");
+        std::string("/material/") + materialKey(coefficient, scene.model) + "/scale", "must be a number >= 0");
     }
   }
   // VTK's mapper colours the ambient term with the scalars' colour as well as the diffuse one.
@@ -134,7 +134,16 @@ void checkMicrofacetModel(const Scene& scene, Precision precision, ProblemList& 
   }
   const MicrofacetMaterial& m = scene.material.microfacet;
   auto isReflectance = [](const Rgb& c) { return isNonNegative(c) && largestComponent(c) <= 1; };
-  list.check(isReflectance(m.baseColor), "/material/base_color", "components must be numbers from 0 to 1");
+  if (scene.material.arrays[MaterialCoefficient::Diffuse])
+  {
+    // A base colour from an array: its scale is the property's Diffuse, which VTK clamps to 1.
+    list.check(scene.material.arrays[MaterialCoefficient::Diffuse]->scale <= 1, "/material/base_color/scale",
+      "must be a number from 0 to 1 (the property's Diffuse)");
+  }
+  else
+  {
+    list.check(isReflectance(m.baseColor), "/material/base_color", "components must be numbers from 0 to 1");
+  }
   list.check(m.metallic >= 0 && m.metallic <= 1, "/material/metallic", "must be a number from 0 to 1");
   list.check(m.roughness > 0 && m.roughness <= 1, "/material/roughness",
     "must be a number above 0 and at most 1 (at 0, VTK's GGX distribution is 0/0 in the mirror direction)");
@@ -147,9 +156,12 @@ void checkMicrofacetModel(const Scene& scene, Precision precision, ProblemList& 
       " at the highlight's peak (D needs 1 - n.h finer than float32 holds): use float64, or a roughness of at "
       "least 0.07");
   list.check(isReflectance(m.edgeTint), "/material/edge_tint", "components must be numbers from 0 to 1");
-  list.check(!scene.material.arrays.any(), "/material",
-    "the vtk_pbr model takes its material from the scene: per-vertex colours (VTK's scalar colouring) are not "
-    "reproduced yet");
+  const MaterialArrays& arrays = scene.material.arrays;
+  list.check(!arrays[MaterialCoefficient::Ambient] && !arrays[MaterialCoefficient::Specular] &&
+      !arrays[MaterialCoefficient::Shininess],
+    "/material",
+    "the vtk_pbr model takes only its base colour from an array (VTK's scalar colouring): it has no ka, ks or "
+    "shininess");
   // VTK's PBR shader takes a light's direction from its position where any light is positional,
   // which a distant light in a scene file has not (headlights sit at the camera:
   // placeHeadlightsAtTheCamera).

@@ -150,17 +150,27 @@ void readColorCoefficient(const JsonNode& material, MaterialCoefficient coeffici
   }
 }
 
-/// The vtk_pbr model's material: vtkProperty's PBR parameters, with its defaults.
-MicrofacetMaterial readMicrofacetMaterial(const JsonNode& node)
+/// The vtk_pbr model's material: vtkProperty's PBR parameters, with its defaults; a base colour
+/// from an array ({"array": ...}: VTK's scalar colouring, kd's array in Material) scaled by its
+/// "scale", the property's Diffuse.
+void readMicrofacetMaterial(const JsonNode& node, Material& material)
 {
   node.expectObject({ "base_color", "metallic", "roughness", "base_ior", "edge_tint" });
-  MicrofacetMaterial m;
-  m.baseColor = rgbOr(node, "base_color", m.baseColor);
+  MicrofacetMaterial& m = material.microfacet;
+  if (node.has("base_color") && node.at("base_color").isObject())
+  {
+    material.arrays[MaterialCoefficient::Diffuse] =
+      readArrayCoefficient(node.at("base_color"), MaterialCoefficient::Diffuse);
+    m.baseColor = Rgb(material.arrays[MaterialCoefficient::Diffuse]->scale);
+  }
+  else
+  {
+    m.baseColor = rgbOr(node, "base_color", m.baseColor);
+  }
   m.metallic = numberOr(node, "metallic", m.metallic);
   m.roughness = numberOr(node, "roughness", m.roughness);
   m.baseIor = numberOr(node, "base_ior", m.baseIor);
   m.edgeTint = rgbOr(node, "edge_tint", m.edgeTint);
-  return m;
 }
 
 Material readMaterial(const JsonNode& node, ShadingModel model)
@@ -168,8 +178,8 @@ Material readMaterial(const JsonNode& node, ShadingModel model)
   Material m;
   if (model == ShadingModel::VtkPbr)
   {
-    m.microfacet = readMicrofacetMaterial(node);
     m.ka = m.kd = m.ks = Rgb(0.0); // the lecture's coefficients, which the microfacet model has none of
+    readMicrofacetMaterial(node, m);
     return m;
   }
   if (model == ShadingModel::VtkOpenGL2)
