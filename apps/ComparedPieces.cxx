@@ -131,9 +131,13 @@ void checkCopies(vtkPolyData* mesh, const std::vector<vtkIdType>& ids, const std
   {
     const vtkIdType id = ids[static_cast<std::size_t>(k)];
     const vtkIdType original = first[static_cast<std::size_t>(id)];
+    if (original == k)
+    {
+      continue; // the first copy itself
+    }
     for (const auto& [what, values] : compared)
     {
-      if (original != k && !sameTuple(values, original, k))
+      if (!sameTuple(values, original, k))
       {
         throw UserError(fileName + ": the point with global id " + std::to_string(id) + " has different " + what +
           " in two of its pieces (points " + std::to_string(original) + " and " + std::to_string(k) +
@@ -144,22 +148,33 @@ void checkCopies(vtkPolyData* mesh, const std::vector<vtkIdType>& ids, const std
   }
 }
 
-/// The mesh's cells of one kind (those from firstCell on, in the mesh's numbering of cells) in
-/// the order of their global ids (their order as read without), ghost cells left out, their
-/// points numbered by global id (pointIds). Each kept cell's index in mesh is appended to kept.
-vtkSmartPointer<vtkCellArray> cellsInIdOrder(vtkPolyData* mesh, vtkCellArray* cells, vtkIdType firstCell,
-  const std::vector<vtkIdType>& pointIds, const char* kind, const std::string& fileName, vtkIdList* kept)
+/// What orders a mesh's cells: their global ids (empty: their order as read), and the ghost
+/// flags that mark the duplicates (nullptr: none), both by the mesh's numbering of cells.
+struct CellKeys
+{
+  std::vector<vtkIdType> ids;
+  vtkUnsignedCharArray* ghosts = nullptr;
+};
+
+CellKeys cellKeysOf(vtkPolyData* mesh)
 {
   vtkCellData* cellData = mesh->GetCellData();
-  const std::vector<vtkIdType> cellIds =
-    cellData->GetGlobalIds() ? idsOf(cellData->GetGlobalIds()) : std::vector<vtkIdType>{};
-  auto* ghosts = vtkUnsignedCharArray::SafeDownCast(cellData->GetArray(vtkDataSetAttributes::GhostArrayName()));
+  return { cellData->GetGlobalIds() ? idsOf(cellData->GetGlobalIds()) : std::vector<vtkIdType>{},
+    vtkUnsignedCharArray::SafeDownCast(cellData->GetArray(vtkDataSetAttributes::GhostArrayName())) };
+}
+
+/// The cells of one kind (those from firstCell on, in the mesh's numbering of cells) in the
+/// order of their keys, ghost cells left out, their points numbered by global id (pointIds).
+/// Each kept cell's index in the mesh is appended to kept.
+vtkSmartPointer<vtkCellArray> cellsInIdOrder(vtkCellArray* cells, vtkIdType firstCell, const CellKeys& keys,
+  const std::vector<vtkIdType>& pointIds, const char* kind, const std::string& fileName, vtkIdList* kept)
+{
   std::vector<std::pair<vtkIdType, vtkIdType>> order; // (global id, index in mesh)
   for (vtkIdType cell = firstCell; cell < firstCell + cells->GetNumberOfCells(); ++cell)
   {
-    if (!ghosts || !(ghosts->GetValue(cell) & vtkDataSetAttributes::DUPLICATECELL))
+    if (!keys.ghosts || !(keys.ghosts->GetValue(cell) & vtkDataSetAttributes::DUPLICATECELL))
     {
-      const vtkIdType key = cellIds.empty() ? cell : cellIds[static_cast<std::size_t>(cell)];
+      const vtkIdType key = keys.ids.empty() ? cell : keys.ids[static_cast<std::size_t>(cell)];
       if (key < 0)
       {
         throw UserError(fileName + ": the global id of its cell " + std::to_string(cell) +
@@ -248,10 +263,11 @@ OrderedDataSet inGlobalIdOrder(vtkSmartPointer<vtkDataSet> data, const std::stri
   const vtkIdType lines = mesh->GetNumberOfVerts();
   const vtkIdType polygons = lines + mesh->GetNumberOfLines();
   const vtkIdType strips = polygons + mesh->GetNumberOfPolys();
-  whole->SetVerts(cellsInIdOrder(mesh, mesh->GetVerts(), 0, pointIds, "vertices", fileName, kept));
-  whole->SetLines(cellsInIdOrder(mesh, mesh->GetLines(), lines, pointIds, "lines", fileName, kept));
-  whole->SetPolys(cellsInIdOrder(mesh, mesh->GetPolys(), polygons, pointIds, "polygons", fileName, kept));
-  whole->SetStrips(cellsInIdOrder(mesh, mesh->GetStrips(), strips, pointIds, "strips", fileName, kept));
+  const CellKeys keys = cellKeysOf(mesh);
+  whole->SetVerts(cellsInIdOrder(mesh->GetVerts(), 0, keys, pointIds, "vertices", fileName, kept));
+  whole->SetLines(cellsInIdOrder(mesh->GetLines(), lines, keys, pointIds, "lines", fileName, kept));
+  whole->SetPolys(cellsInIdOrder(mesh->GetPolys(), polygons, keys, pointIds, "polygons", fileName, kept));
+  whole->SetStrips(cellsInIdOrder(mesh->GetStrips(), strips, keys, pointIds, "strips", fileName, kept));
   copyTuples(mesh->GetCellData(), kept, whole->GetCellData());
   whole->GetFieldData()->PassData(mesh->GetFieldData());
   // Read after "N points, M cells" in the report's first line.

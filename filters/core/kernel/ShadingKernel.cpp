@@ -51,7 +51,9 @@ struct ShadingKernel<T>::Workspace
   Lane<T> shininess;
   Lane<T> ggxDistribution, smithVisibility; // the microfacet model's D and V
   std::array<Lane<T>, 3> fresnel;           // and its F, channel by channel
-  Lane<T> halfVectorDefined;                // 1 or 0: a lane of T, so that its loops vectorise with the rest
+  /// The microfacet model's F0 and F90 at each vertex, where its base colour is the vertex's own.
+  std::array<Lane<T>, 3> normalFresnel, grazingFresnel;
+  Lane<T> halfVectorDefined; // 1 or 0: a lane of T, so that its loops vectorise with the rest
   std::size_t nonFinite = 0;
 };
 
@@ -300,6 +302,22 @@ void ShadingKernel<T>::loadMaterial(const VertexBlock<T>& b, Workspace& w) const
   load(MaterialCoefficient::Ambient, w.ka);
   load(MaterialCoefficient::Diffuse, w.kd);
   load(MaterialCoefficient::Specular, w.ks);
+  if (microfacet_ && perVertex(MaterialCoefficient::Diffuse))
+  {
+    // A base colour per vertex gives the vertex its own F0 and F90 (docs/vtk-renderer.md
+    // section 11.1), the same for every light.
+    for (std::size_t k = 0; k < b.count; ++k)
+    {
+      const Rgb f0 =
+        reflectanceAtNormalIncidence(dielectricReflectance_, microfacetMaterial_.metallic, Rgb(coefficientAt(w.kd, k)));
+      const Rgb f90 = reflectanceAtGrazingIncidence(microfacetMaterial_, f0);
+      for (int c = 0; c < 3; ++c)
+      {
+        w.normalFresnel[c][k] = T(f0[c]);
+        w.grazingFresnel[c][k] = T(f90[c]);
+      }
+    }
+  }
   if (const T* eta = vertexMaterial_[int(MaterialCoefficient::Shininess)])
   {
     std::copy_n(eta + b.first, b.count, w.shininess.begin());
@@ -488,20 +506,11 @@ void ShadingKernel<T>::addMicrofacetTerms(const PreparedLight& light, const Vert
   // diffuse (1 - m)(1 - F) base / pi and specular D V F, each times the light's radiance and n.s.
   // The light's diffuse colour holds its radiance x (1 - m) base / pi, its specular colour the
   // radiance; the lanes hold the rest, channel by channel. A base colour per vertex (kd's
-  // lanes) multiplies the diffuse part, and gives the vertex its own F0 and F90 (section 11.1).
+  // lanes) multiplies the diffuse part, and gives the vertex its own F0 and F90 (loadMaterial).
   const std::size_t count = b.count;
   const bool perVertexBase = perVertex(MaterialCoefficient::Diffuse);
-  std::array<T, 3> normalFresnel = normalFresnel_, grazingFresnel = grazingFresnel_;
   for (std::size_t k = 0; k < count; ++k)
   {
-    if (perVertexBase)
-    {
-      const Rgb base(coefficientAt(w.kd, k));
-      const Rgb f0 = reflectanceAtNormalIncidence(dielectricReflectance_, microfacetMaterial_.metallic, base);
-      const Rgb f90 = reflectanceAtGrazingIncidence(microfacetMaterial_, f0);
-      normalFresnel = { T(f0.x), T(f0.y), T(f0.z) };
-      grazingFresnel = { T(f90.x), T(f90.y), T(f90.z) };
-    }
     const T nDotV = vtkClampedCosine(w.nx[k] * w.vx[k] + w.ny[k] * w.vy[k] + w.nz[k] * w.vz[k]);
     const T nDotL = vtkClampedCosine(w.cosIncidence[k]);
     const T hDotL = vtkClampedCosine(w.hx[k] * w.sx[k] + w.hy[k] * w.sy[k] + w.hz[k] * w.sz[k]);
@@ -514,7 +523,8 @@ void ShadingKernel<T>::addMicrofacetTerms(const PreparedLight& light, const Vert
     const T specular = w.ggxDistribution[k] * w.smithVisibility[k] * radiance;
     for (int c = 0; c < 3; ++c)
     {
-      const T fresnel = schlickFresnel(normalFresnel[c], grazingFresnel[c], hDotL);
+      const T fresnel = perVertexBase ? schlickFresnel(w.normalFresnel[c][k], w.grazingFresnel[c][k], hDotL)
+                                      : schlickFresnel(normalFresnel_[c], grazingFresnel_[c], hDotL);
       w.fresnel[c][k] = fresnel;
       w.diffuseRgb[c][k] = (T(1) - fresnel) * radiance * (perVertexBase ? w.kd[c][k] : T(1));
       w.specularRgb[c][k] = fresnel * specular;

@@ -67,21 +67,22 @@ T schlickFresnel(T f0, T f90, T hDotL)
   return f0 + (f90 - f0) * (m2 * m2 * m);
 }
 
-/// F0, the reflectance at normal incidence: the base layer's ((ior - 1) / (ior + 1))^2 (0.04 at
-/// ior 1.5; vtkProperty::ComputeReflectanceOfBaseLayer, with no coat), mixed toward the base
-/// colour by the metallic factor.
+/// The base layer's reflectance at normal incidence, ((ior - 1) / (ior + 1))^2 (0.04 at ior 1.5;
+/// vtkProperty::ComputeReflectanceOfBaseLayer, with no coat).
 inline double dielectricReflectance(double baseIor)
 {
   return std::pow((baseIor - 1.0) / (baseIor + 1.0), 2.0);
 }
 
-/// The same for a base colour of its own (a vertex's, VTK's scalar colouring), the dielectric's
-/// dielectricReflectance(baseIor) given.
+/// F0, the reflectance at normal incidence: the dielectric's (dielectricReflectance) mixed
+/// toward the base colour by the metallic factor. This form takes a base colour of its own (a
+/// vertex's, VTK's scalar colouring).
 inline Rgb reflectanceAtNormalIncidence(double dielectric, double metallic, const Rgb& baseColor)
 {
   return (1.0 - metallic) * Rgb(dielectric) + metallic * baseColor;
 }
 
+/// F0 of the material's own base colour.
 inline Rgb reflectanceAtNormalIncidence(const MicrofacetMaterial& m)
 {
   return reflectanceAtNormalIncidence(dielectricReflectance(m.baseIor), m.metallic, m.baseColor);
