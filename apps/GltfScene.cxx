@@ -331,17 +331,21 @@ void noteDoubleSidedNotBoolean(const Json& gltf, std::vector<std::string>& notes
   }
 }
 
-/// The part's material from its PBR property (glTF's pbrMetallicRoughness), in the lecture's
-/// coefficients, and its sides: vtkGLTFImporter culls the back faces of a material that is not
-/// doubleSided. A primitive without a material keeps vtkProperty's defaults (no culling, nor
-/// the PBR interpolation that the importer gives every material it applies), and glTF's default
-/// material is one-sided.
+/// The part's material from its PBR property (glTF's pbrMetallicRoughness): as VTK's PBR
+/// shader reads it, and in the lecture's coefficients; and its sides: vtkGLTFImporter culls the
+/// back faces of a material that is not doubleSided. A primitive without a material keeps
+/// vtkProperty's defaults (no culling, nor the PBR interpolation that the importer gives every
+/// material it applies), and glTF's default material is one-sided.
 PartMaterial materialOf(vtkProperty* property)
 {
   const double* base = property->GetColor();
-  const LectureCoefficients c =
-    lectureCoefficients(Rgb(base[0], base[1], base[2]), property->GetMetallic(), property->GetRoughness());
   PartMaterial material;
+  material.microfacet = MicrofacetMaterial{};
+  material.microfacet->baseColor = Rgb(base[0], base[1], base[2]);
+  material.microfacet->metallic = property->GetMetallic();
+  material.microfacet->roughness = property->GetRoughness();
+  const LectureCoefficients c =
+    lectureCoefficients(material.microfacet->baseColor, material.microfacet->metallic, material.microfacet->roughness);
   material.ka = material.kd = c.kd;
   material.ks = c.ks;
   material.shininess = c.shininess;

@@ -156,13 +156,14 @@ std::string ownMaterialsText(vtkPolyData* mesh, const Scene& scene, const ShadeO
   if (shadesWithOwnMaterials(scene, mesh, !options.colorBy.empty()))
   {
     return "the mesh's own, part by part (" + partsText + ")" +
-      (everyPartTwoSided(mesh) ? ", two-sided (every part is)" : "");
+      (scene.model == ShadingModel::Lecture && everyPartTwoSided(mesh) ? ", two-sided (every part is)" : "");
   }
   const std::string instead = scene.materialGiven ? "the scene's"
     : !options.colorBy.empty()                    ? "--color-by's"
     : scene.model == ShadingModel::VtkOpenGL2
     ? "the vtk model's (it reproduces VTK's renderer, not the file's materials)"
-    : "the vtk_pbr model's defaults (it does not read a file's own materials yet)";
+    : "the vtk_pbr model's defaults (the file's materials are not metallic-roughness ones: an MTL file's are the "
+      "lecture model's)";
   return instead + ", in place of the mesh's own (" + partsText + ")";
 }
 

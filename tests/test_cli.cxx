@@ -1009,6 +1009,50 @@ TEST_F(Cli, TheOpenBoxIsLitInsideByItsOwnWalls)
   EXPECT_GT(besideRed.r / besideRed.g, 1.5 * besideGreen.r / besideGreen.g);
 }
 
+TEST_F(Cli, AGltfFilesMaterialsShadeTheVtkPbrModelPartByPart)
+{
+  const std::string scene = file("pbr.json", R"({ "model": "vtk_pbr",
+    "viewer": { "position": [0.5, 1.3, 1.8], "focal_point": [0, 0.5, 0] },
+    "lights": [ { "name": "bulb", "type": "point", "position": [-1.2, 1.6, 0.8], "intensity": 4,
+      "attenuation": { "model": "vtk", "constant": 1, "linear": 0, "quadratic": 0 } } ] })");
+  const std::string output = (folder / "lamps.vtp").string();
+  const Result lamps = shadelab("shade " + shadelab::testing::sourcePath("data/scenes/lamps/lamps.gltf") + " -s " +
+    scene + " -o " + output + " --arrays all");
+  ASSERT_EQ(lamps.exitCode, 0) << lamps.err;
+  EXPECT_NE(lamps.out.find("  material: the mesh's own, part by part (2 parts: ball, floor)\n"), std::string::npos)
+    << lamps.out;
+  // Each vertex's D is GGX's at its own part's roughness (the ball's 0.35, the floor's 0.9).
+  vtkNew<vtkXMLPolyDataReader> reader;
+  reader->SetFileName(output.c_str());
+  reader->Update();
+  vtkPointData* arrays = reader->GetOutput()->GetPointData();
+  vtkDataArray* roughness = arrays->GetArray("material_roughness");
+  vtkDataArray* d = arrays->GetArray("bulb_ggx_d");
+  vtkDataArray* nDotH = arrays->GetArray("bulb_n_dot_h");
+  ASSERT_TRUE(roughness && d && nDotH);
+  std::set<float> seen;
+  for (vtkIdType i = 0; i < d->GetNumberOfTuples(); ++i)
+  {
+    const double r = roughness->GetComponent(i, 0), alpha2 = std::pow(r, 4.0);
+    const double cosine = std::clamp(nDotH->GetComponent(i, 0), 1e-5, 1.0);
+    const double denominator = cosine * cosine * (alpha2 - 1) + 1;
+    EXPECT_NEAR(d->GetComponent(i, 0), alpha2 / (M_PI * denominator * denominator), 1e-3 * d->GetComponent(i, 0))
+      << "vertex " << i;
+    seen.insert(float(r));
+  }
+  EXPECT_EQ(seen, (std::set<float>{ 0.35f, 0.9f }));
+
+  // An OBJ's materials are the lecture model's: the vtk_pbr model shades it with its defaults, and says so.
+  const std::string stillLife = shadelab::testing::sourcePath("data/scenes/still_life/still_life.obj");
+  const Result obj = shadelab("shade " + stillLife + " -s " + scene + " -o " + (folder / "obj.vtp").string());
+  ASSERT_EQ(obj.exitCode, 0) << obj.err;
+  EXPECT_NE(obj.out.find("  material: the vtk_pbr model's defaults (the file's materials are not metallic-roughness "
+                         "ones: an MTL file's are the lecture model's), in place of the mesh's own (3 parts: floor, "
+                         "ball, box)\n"),
+    std::string::npos)
+    << obj.out;
+}
+
 TEST_F(Cli, AGltfIsLitByItsOwnLightsAndABrokenOneIsRefused)
 {
   const Result lamps = shadelab("shade " + shadelab::testing::sourcePath("data/scenes/lamps/lamps.gltf") + " -o " +

@@ -308,6 +308,28 @@ TEST(MaterialArrays, TheArraysAreReadAgainOnlyWhenTheyChange)
   EXPECT_DOUBLE_EQ(ambientAtVertex0(), 0.2);
 }
 
+TEST(MaterialArrays, AMetallicFactorOrRoughnessThatCannotBeUsedIsRefusedByNameAndVertex)
+{
+  using shadelab::testing::filterError;
+  const std::string both = R"({ "metallic": { "array": "values" }, "roughness": { "array": "values" } })";
+  EXPECT_EQ(filterError(sphereWithValues("values", { 0.5, 0.25, 0.0, 0.75 }), sceneWithMaterial(both, "vtk_pbr")),
+    "scene /material/roughness: array 'values', vertex 2: it is 0, outside (0, 1] (at 0, VTK's GGX distribution is "
+    "0/0 in the mirror direction)");
+  EXPECT_EQ(filterError(sphereWithValues("values", { 0.5, 1.25 }), sceneWithMaterial(both, "vtk_pbr")),
+    "scene /material/metallic: array 'values', vertex 1: it is 1.25, outside [0, 1]");
+  EXPECT_EQ(filterError(sphereWithValues("values", { 0.5, 0.25 }),
+              sceneWithMaterial(R"({ "metallic": { "array": "Normals" } })", "vtk_pbr")),
+    "scene /material/metallic: array 'Normals' has 3 components; a metallic factor takes 1");
+  // In float32 (the filter's default), D's peak needs a roughness of about 0.07 or more: the
+  // smallest that the array gives is named, with its vertex.
+  vtkSmartPointer<vtkPolyData> smooth = sphereWithValues("values", { 0.5, 0.25, 0.05, 0.06 });
+  EXPECT_EQ(filterError(smooth, sceneWithMaterial(both, "vtk_pbr")),
+    "scene /material/roughness: array 'values', vertex 2: at roughness 0.05 float32 arithmetic errs by up to 3.8% at "
+    "the highlight's peak (D needs 1 - n.h finer than float32 holds): use float64, or a roughness of at least 0.07");
+  vtkSmartPointer<vtkPolyData> shaded = shadeWithFilter(smooth, sceneWithMaterial(both, "vtk_pbr"), { "sun_ggx_d" });
+  ASSERT_NE(shaded->GetPointData()->GetArray("sun_ggx_d"), nullptr); // float64 shades it
+}
+
 TEST(MaterialArrays, ArraysThatCannotBeUsedAreRefusedByNameAndVertex)
 {
   using shadelab::testing::filterError;

@@ -8,6 +8,8 @@
 
 #include <gtest/gtest.h>
 
+#include <tuple>
+
 namespace
 {
 using namespace shadelab;
@@ -256,8 +258,39 @@ TEST(Microfacet, ABaseColourFromAnArrayIsKdsArray)
   ASSERT_EQ(problems.size(), 1u);
   EXPECT_EQ(problems[0].path, "/material");
   EXPECT_EQ(problems[0].message,
-    "the vtk_pbr model takes only its base colour from an array (VTK's scalar colouring): it has no ka, ks or "
-    "shininess");
+    "the vtk_pbr model takes its base colour, metallic factor and roughness from arrays (VTK's scalar colouring, a "
+    "glTF file's parts): it has no ka, ks or shininess");
+}
+
+TEST(Microfacet, TheMetallicFactorAndRoughnessFromArraysAreScaledByTheirNumbers)
+{
+  const Scene scene = parseScene("{ " + pbrViewer +
+      R"(, "material": { "metallic": { "array": "m", "scale": 0.5 }, "roughness": { "array": "r" } }, "lights": [] })",
+    "scene.json");
+  for (const auto& [coefficient, name, scale] :
+    { std::tuple{ MaterialCoefficient::Metallic, "m", 0.5 }, std::tuple{ MaterialCoefficient::Roughness, "r", 1.0 } })
+  {
+    const std::optional<ArrayCoefficient>& source = scene.material.arrays[coefficient];
+    ASSERT_TRUE(source.has_value()) << name;
+    EXPECT_EQ(source->array, name);
+    EXPECT_EQ(source->scale, scale);
+  }
+  EXPECT_EQ(scene.material.microfacet.metallic, 0.5);
+  EXPECT_EQ(scene.material.microfacet.roughness, 1.0);
+  EXPECT_FALSE(scene.material.arrays[MaterialCoefficient::Diffuse].has_value());
+  auto errorOf = [](const std::string& material)
+  { return sceneFileErrorOf("{ " + pbrViewer + R"(, "material": )" + material + R"(, "lights": [] })"); };
+  EXPECT_EQ(errorOf(R"({ "metallic": { "array": "m", "scale": 1.5 } })"),
+    "scene.json: /material/metallic/scale: must be a number from 0 to 1");
+  EXPECT_EQ(errorOf(R"({ "roughness": { "array": "r", "scale": 0 } })"),
+    "scene.json: /material/roughness/scale: must be a number above 0 and at most 1 (at 0, VTK's GGX distribution is "
+    "0/0 in the mirror direction)");
+  EXPECT_EQ(errorOf(R"({ "roughness": { "array": "r", "clamp": true } })"),
+    "scene.json: /material/roughness/clamp: a roughness cannot be clamped: (0, 1] has no value nearest to 0 or below; "
+    "correct the array's values");
+  // One number per vertex: no encoding nor colour map.
+  EXPECT_EQ(errorOf(R"({ "metallic": { "array": "m", "colormap": "rainbow" } })"),
+    "scene.json: /material/metallic/colormap: unknown field; allowed here: array, scale, clamp");
 }
 
 TEST(Microfacet, AHeadlightShinesFromTheCameraWhereVtksPbrShaderPutsIt)

@@ -378,7 +378,7 @@ TEST_F(SceneFiles, AGltfsDoubleSidedMaterialIsShadedOnBothSides)
       gltf.erase(gltf.find(itsMaterial), itsMaterial.size());
     }
     vtkSmartPointer<vtkPolyData> mesh = app::readMesh(file("square.gltf", gltf));
-    EXPECT_EQ(ownMaterial(Material{}, mesh).twoSided, doubleSided) << material;
+    EXPECT_EQ(ownMaterial(Scene{}, mesh).twoSided, doubleSided) << material;
     vtkSmartPointer<vtkPolyData> shaded =
       shadelab::testing::shadeWithFilter(mesh, below, arrays, vtkAlgorithm::DOUBLE_PRECISION);
     vtkDataArray* kd = mesh->GetPointData()->GetArray(materialKdArrayName);

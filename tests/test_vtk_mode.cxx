@@ -10,6 +10,7 @@
 #include "vtkLocalReflectanceFilter.h"
 
 #include "vtkCamera.h"
+#include "vtkDoubleArray.h"
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
 #include "vtkMatrix4x4.h"
@@ -21,6 +22,8 @@
 #include <gtest/gtest.h>
 
 #include <glm/geometric.hpp>
+
+#include <tuple>
 
 namespace
 {
@@ -216,12 +219,27 @@ public:
     return terms(worldPoint, worldNormal, diffuse_ * dvec3(colour[0], colour[1], colour[2]) / 255.0);
   }
 
+  /// The same with the vertex's own metallic factor and roughness as well, as the shader of a
+  /// part whose property has them (a glTF file's parts) computes its terms.
+  std::vector<PbrLightTerms> termsWithColour(const dvec3& worldPoint, const dvec3& worldNormal,
+    const unsigned char colour[3], double metallic, double roughness) const
+  {
+    return terms(
+      worldPoint, worldNormal, diffuse_ * dvec3(colour[0], colour[1], colour[2]) / 255.0, metallic, roughness);
+  }
+
 private:
   std::vector<PbrLightTerms> terms(const dvec3& worldPoint, const dvec3& worldNormal, const dvec3& albedo) const
   {
-    const dvec3 f0 = (1 - metallic_) * dvec3(baseF0_) + metallic_ * albedo;
+    return terms(worldPoint, worldNormal, albedo, metallic_, roughness_);
+  }
+
+  std::vector<PbrLightTerms> terms(
+    const dvec3& worldPoint, const dvec3& worldNormal, const dvec3& albedo, double metallic, double roughness) const
+  {
+    const dvec3 f0 = (1 - metallic) * dvec3(baseF0_) + metallic * albedo;
     const double f90 = std::clamp(glm::dot(f0, dvec3(50.0 * 0.33)), 0.0, 1.0);
-    const dvec3 grazing = (1 - metallic_) * dvec3(f90) + metallic_ * edgeTint_;
+    const dvec3 grazing = (1 - metallic) * dvec3(f90) + metallic * edgeTint_;
     const dvec3 vertexVC = view_.point(worldPoint);
     dvec3 n = glm::normalize(view_.direction(worldNormal));
     n = glm::dot(n, -vertexVC) < 0 ? -n : n; // gl_FrontFacing, per vertex
@@ -258,16 +276,16 @@ private:
       const double nDotL = std::clamp(glm::dot(n, l), 1e-5, 1.0);
       const double nDotH = std::clamp(glm::dot(n, h), 1e-5, 1.0);
       const double pi = 3.14159265359;
-      const double a = roughness_ * roughness_, a2 = a * a;
+      const double a = roughness * roughness, a2 = a * a;
       const double d = (nDotH * a2 - nDotH) * nDotH + 1.0;
       PbrLightTerms t;
       t.d = a2 / (pi * d * d);
-      const double r2 = roughness_ * roughness_;
+      const double r2 = roughness * roughness;
       t.v = 0.5 /
         (nDotL * std::sqrt(r2 + nDotV * (nDotV - r2 * nDotV)) + nDotV * std::sqrt(r2 + nDotL * (nDotL - r2 * nDotL)));
       t.f = f0 + (grazing - f0) * std::pow(1.0 - hDotL, 5.0);
       const dvec3 radiance = light.color * attenuation;
-      t.diffuse = radiance * ((1.0 - metallic_) * (1.0 - t.f) * albedo * 0.31830988618) * nDotL;
+      t.diffuse = radiance * ((1.0 - metallic) * (1.0 - t.f) * albedo * 0.31830988618) * nDotL;
       t.specular = radiance * (t.d * t.v * t.f) * nDotL;
       result.push_back(t);
     }
@@ -360,11 +378,14 @@ protected:
   /// Bright colours vary each channel on its own; dark ones on a nearly clear dielectric (base
   /// IOR 1.05, metallic 0.3) put F0's sum below 1/16.5 at most vertices, so that F90 too is each
   /// vertex's own.
+  /// With OwnMetallicAndRoughness, bright colours, and each vertex's metallic factor (0 to 1)
+  /// and roughness (0.1 to 1) from float arrays too, as a glTF file's parts give them.
   enum class Colours
   {
     None,
     Bright,
-    Dark
+    Dark,
+    OwnMetallicAndRoughness
   };
   void expectShaderTerms(int complexity, Colours withColours = Colours::None)
   {
@@ -389,12 +410,30 @@ protected:
       colours->SetNumberOfComponents(3);
       for (vtkIdType i = 0; i < sphere->GetNumberOfPoints(); ++i)
       {
-        withColours == Colours::Bright
+        withColours != Colours::Dark
           ? colours->InsertNextTuple3(double((37 * i) % 256), double((91 * i + 40) % 256), double((13 * i) % 17))
           : colours->InsertNextTuple3(double(i % 21), double((3 * i) % 21), double((7 * i) % 21));
       }
       sphere->GetPointData()->AddArray(colours);
       shadelab::colorMaterialBy(scene, "colours", "");
+    }
+    if (withColours == Colours::OwnMetallicAndRoughness)
+    {
+      for (const auto& [name, coefficient, low] : { std::tuple{ "metal", shadelab::MaterialCoefficient::Metallic, 0.0 },
+             std::tuple{ "rough", shadelab::MaterialCoefficient::Roughness, 0.1 } })
+      {
+        vtkNew<vtkDoubleArray> values;
+        values->SetName(name);
+        for (vtkIdType i = 0; i < sphere->GetNumberOfPoints(); ++i)
+        {
+          values->InsertNextValue(low + (1 - low) * double((29 * i + (low > 0 ? 11 : 0)) % 97) / 96.0);
+        }
+        sphere->GetPointData()->AddArray(values);
+        shadelab::ArrayCoefficient source;
+        source.array = name;
+        scene.material.arrays[coefficient] = source;
+      }
+      scene.material.microfacet.metallic = scene.material.microfacet.roughness = 1.0; // the arrays' scales
     }
     vtkSmartPointer<vtkPolyData> shaded = shadelab::testing::shadeWithFilter(sphere, scene, { "all" });
     const PbrShaderReference shader(lights, property, camera, complexity);
@@ -407,8 +446,10 @@ protected:
     {
       const dvec3 point = toGlm(shaded->GetPoint(i)), normal = toGlm(normals->GetTuple3(i));
       auto* colours = vtkUnsignedCharArray::SafeDownCast(arrays->GetArray("colours")); // passed through
-      const std::vector<PbrLightTerms> want = withColours == Colours::None
-        ? shader.terms(point, normal)
+      const std::vector<PbrLightTerms> want = withColours == Colours::None ? shader.terms(point, normal)
+        : withColours == Colours::OwnMetallicAndRoughness
+        ? shader.termsWithColour(point, normal, colours->GetPointer(3 * i),
+            arrays->GetArray("metal")->GetComponent(i, 0), arrays->GetArray("rough")->GetComponent(i, 0))
         : shader.termsWithColour(point, normal, colours->GetPointer(3 * i));
       ASSERT_EQ(want.size(), scene.lights.size());
       dvec3 total(0);
@@ -482,6 +523,14 @@ TEST_F(VtkPbrMode, DarkScalarColoursDarkenEachVertexsGrazingReflectance)
 {
   addLightKit();
   expectShaderTerms(2, Colours::Dark);
+}
+
+// A glTF file's parts: each vertex's metallic factor and roughness are its own, as well as its
+// colour, and move D, V, F and the diffuse part's 1 - m, under every kind of light at once.
+TEST_F(VtkPbrMode, MetallicAndRoughnessFromArraysAreEachVertexsOwn)
+{
+  addPositionalLights();
+  expectShaderTerms(3, Colours::OwnMetallicAndRoughness);
 }
 
 TEST_F(VtkPbrMode, NoLightSwitchedOnMeansVtksHeadlightAtTheCamera)

@@ -247,10 +247,22 @@ vtkSmartPointer<vtkPolyData> placedPart(vtkActor* actor, vtkPolyData* polygons)
   return part;
 }
 
-/// The part with its index and material as point arrays; a texture that cannot be used is
-/// added to skipped.
+/// Multiplies each point's colour in the array by colors' (a texture's at the point).
+void multiplyColors(vtkFloatArray* array, const std::vector<Rgb>& colors)
+{
+  for (vtkIdType p = 0; p < array->GetNumberOfTuples(); ++p)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      array->SetComponent(p, c, array->GetComponent(p, c) * colors[std::size_t(p)][c]);
+    }
+  }
+}
+
+/// The part with its index and material as point arrays, the metallic-roughness ones too where
+/// withMicrofacet; a texture that cannot be used is added to skipped.
 vtkSmartPointer<vtkPolyData> partWithMaterial(
-  const ImportedPart& part, vtkPolyData* polygons, int index, std::vector<std::string>& skipped)
+  const ImportedPart& part, vtkPolyData* polygons, int index, bool withMicrofacet, std::vector<std::string>& skipped)
 {
   vtkSmartPointer<vtkPolyData> copy = placedPart(part.actor, polygons);
   vtkPointData* pointData = copy->GetPointData();
@@ -269,6 +281,15 @@ vtkSmartPointer<vtkPolyData> partWithMaterial(
   pointData->AddArray(constantArray(materialKsArrayName, points, { m.ks.x, m.ks.y, m.ks.z }));
   pointData->AddArray(constantArray(materialShininessArrayName, points, { m.shininess }));
   vtkSmartPointer<vtkFloatArray> kd = constantArray(materialKdArrayName, points, { m.kd.x, m.kd.y, m.kd.z });
+  vtkSmartPointer<vtkFloatArray> baseColor;
+  if (withMicrofacet)
+  {
+    const MicrofacetMaterial& pbr = *m.microfacet;
+    baseColor =
+      constantArray(materialBaseColorArrayName, points, { pbr.baseColor.x, pbr.baseColor.y, pbr.baseColor.z });
+    pointData->AddArray(constantArray(materialMetallicArrayName, points, { pbr.metallic }));
+    pointData->AddArray(constantArray(materialRoughnessArrayName, points, { pbr.roughness }));
+  }
   // A texture VTK's readers did not take is read through OpenImageIO.
   std::string unread;
   RgbImage image = part.kdTexture ? linearImage(part.kdTexture)
@@ -295,16 +316,18 @@ vtkSmartPointer<vtkPolyData> partWithMaterial(
     {
       clampIntoReflectance(image, part.name, skipped);
       const std::vector<Rgb> colors = textureColors(copy, image, tcoords);
-      for (vtkIdType p = 0; p < points; ++p)
+      multiplyColors(kd, colors);
+      if (baseColor)
       {
-        for (int c = 0; c < 3; ++c)
-        {
-          kd->SetComponent(p, c, kd->GetComponent(p, c) * colors[std::size_t(p)][c]);
-        }
+        multiplyColors(baseColor, colors);
       }
     }
   }
   pointData->AddArray(kd);
+  if (baseColor)
+  {
+    pointData->AddArray(baseColor);
+  }
   return copy;
 }
 
@@ -339,6 +362,9 @@ vtkSmartPointer<vtkPolyData> meshOfParts(const std::vector<ImportedPart>& parts,
   names->SetName(partNamesArrayName);
   auto twoSided = vtkSmartPointer<vtkUnsignedCharArray>::New();
   twoSided->SetName(partTwoSidedArrayName);
+  // The parts' arrays are appended, so each part needs them all.
+  const bool withMicrofacet = !parts.empty() &&
+    std::all_of(parts.begin(), parts.end(), [](const ImportedPart& part) { return part.material.microfacet; });
   for (const ImportedPart& part : parts)
   {
     vtkMapper* mapper = part.actor->GetMapper();
@@ -351,7 +377,7 @@ vtkSmartPointer<vtkPolyData> meshOfParts(const std::vector<ImportedPart>& parts,
     {
       continue;
     }
-    withMaterials.push_back(partWithMaterial(part, polygons, int(names->GetNumberOfValues()), skipped));
+    withMaterials.push_back(partWithMaterial(part, polygons, int(names->GetNumberOfValues()), withMicrofacet, skipped));
     names->InsertNextValue(part.name);
     twoSided->InsertNextValue(part.material.twoSided ? 1 : 0);
   }
@@ -388,9 +414,18 @@ bool hasOwnMaterials(vtkPolyData* mesh)
     pointData->HasArray(materialShininessArrayName);
 }
 
+bool hasOwnMicrofacetMaterials(vtkPolyData* mesh)
+{
+  vtkPointData* pointData = mesh->GetPointData();
+  return hasOwnMaterials(mesh) && pointData->HasArray(materialBaseColorArrayName) &&
+    pointData->HasArray(materialMetallicArrayName) && pointData->HasArray(materialRoughnessArrayName);
+}
+
 bool shadesWithOwnMaterials(const Scene& scene, vtkPolyData* mesh, bool colorByArray)
 {
-  return !scene.materialGiven && !colorByArray && scene.model == ShadingModel::Lecture && hasOwnMaterials(mesh);
+  const bool modelsArrays = (scene.model == ShadingModel::Lecture && hasOwnMaterials(mesh)) ||
+    (scene.model == ShadingModel::VtkPbr && hasOwnMicrofacetMaterials(mesh));
+  return !scene.materialGiven && !colorByArray && modelsArrays;
 }
 
 bool everyPartTwoSided(vtkPolyData* mesh)
@@ -400,9 +435,9 @@ bool everyPartTwoSided(vtkPolyData* mesh)
     std::all_of(twoSided->Begin(), twoSided->End(), [](unsigned char value) { return value != 0; });
 }
 
-Material ownMaterial(const Material& scenes, vtkPolyData* mesh)
+Material ownMaterial(const Scene& scene, vtkPolyData* mesh)
 {
-  Material material = scenes;
+  Material material = scene.material;
   material.spectra = {};
   material.twoSided = everyPartTwoSided(mesh);
   auto fromArray = [&](MaterialCoefficient coefficient, const char* name)
@@ -412,6 +447,16 @@ Material ownMaterial(const Material& scenes, vtkPolyData* mesh)
     array.encoding = ArrayEncoding::Linear;
     material.arrays[coefficient] = array;
   };
+  if (scene.model == ShadingModel::VtkPbr)
+  {
+    fromArray(MaterialCoefficient::Diffuse, materialBaseColorArrayName);
+    fromArray(MaterialCoefficient::Metallic, materialMetallicArrayName);
+    fromArray(MaterialCoefficient::Roughness, materialRoughnessArrayName);
+    // An array's number in the material is its scale, 1 (Material).
+    material.microfacet.baseColor = Rgb(1.0);
+    material.microfacet.metallic = material.microfacet.roughness = 1.0;
+    return material;
+  }
   fromArray(MaterialCoefficient::Ambient, materialKaArrayName);
   fromArray(MaterialCoefficient::Diffuse, materialKdArrayName);
   fromArray(MaterialCoefficient::Specular, materialKsArrayName);

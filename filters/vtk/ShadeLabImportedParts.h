@@ -12,6 +12,7 @@
 
 #include "Scene.h"
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -29,17 +30,25 @@ constexpr const char* materialKaArrayName = "material_ka";
 constexpr const char* materialKdArrayName = "material_kd";
 constexpr const char* materialKsArrayName = "material_ks";
 constexpr const char* materialShininessArrayName = "material_shininess";
+/// And where the file's materials are glTF's metallic-roughness ones, as VTK's PBR shader reads
+/// them (the vtk_pbr model): the base colour (linear RGB, its texture's colour included), the
+/// metallic factor and the roughness.
+constexpr const char* materialBaseColorArrayName = "material_base_color";
+constexpr const char* materialMetallicArrayName = "material_metallic";
+constexpr const char* materialRoughnessArrayName = "material_roughness";
 /// The field-data array of the parts' names, indexed by the part array's values.
 constexpr const char* partNamesArrayName = "part_names";
 /// The field-data array that says, part by part as partNamesArrayName, which parts are shaded on
 /// both sides (1) and which on the side of their normals (0).
 constexpr const char* partTwoSidedArrayName = "part_two_sided";
 
-/// A part's coefficients in the lecture model, linear, and its sides.
+/// A part's coefficients in the lecture model, linear, its sides, and where the file gives one,
+/// its metallic-roughness material as VTK's PBR property holds it.
 struct PartMaterial
 {
   Rgb ka{ 0.0 }, kd{ 0.0 }, ks{ 0.0 };
   double shininess = 0;
+  std::optional<MicrofacetMaterial> microfacet;
   /// glTF's doubleSided (an MTL file has no such statement: one-sided).
   bool twoSided = false;
 };
@@ -57,8 +66,9 @@ struct ImportedPart
 };
 
 /// The parts' polygons, lines and vertices as one mesh (the parts with none are left out), with
-/// each point's part, the parts' materials per point (kd times the texture's colour averaged
-/// over the texels the point stands for, sRGB-decoded where the texture is 8- or 16-bit), their
+/// each point's part, the parts' materials per point (kd, and the base colour where every part
+/// has a metallic-roughness material, times the texture's colour averaged over the texels the
+/// point stands for, sRGB-decoded where the texture is 8- or 16-bit), their
 /// sides per part, their normals where every part has them, and their texture coordinates. What
 /// could not be used is added to `skipped`, one line each.
 SHADELABFILTERS_EXPORT vtkSmartPointer<vtkPolyData> meshOfParts(
@@ -67,19 +77,24 @@ SHADELABFILTERS_EXPORT vtkSmartPointer<vtkPolyData> meshOfParts(
 /// Whether a mesh carries the arrays of its own materials (meshOfParts').
 SHADELABFILTERS_EXPORT bool hasOwnMaterials(vtkPolyData* mesh);
 
-/// Whether the mesh is shaded with its own materials: it has their arrays, and the scene, in the
-/// lecture model, gives no material (nor does a colouring by an array, colorByArray).
+/// Whether a mesh carries the arrays of its own metallic-roughness materials as well.
+SHADELABFILTERS_EXPORT bool hasOwnMicrofacetMaterials(vtkPolyData* mesh);
+
+/// Whether the mesh is shaded with its own materials: the scene gives no material (nor does a
+/// colouring by an array, colorByArray), and the mesh has the arrays of the scene's model: the
+/// lecture's coefficients, or for the vtk_pbr model the metallic-roughness ones.
 SHADELABFILTERS_EXPORT bool shadesWithOwnMaterials(const Scene& scene, vtkPolyData* mesh, bool colorByArray);
 
 /// Whether every part of the mesh is shaded on both sides (partTwoSidedArrayName; false for a
 /// mesh without it).
 SHADELABFILTERS_EXPORT bool everyPartTwoSided(vtkPolyData* mesh);
 
-/// The scene's material made to read those arrays: the MTL's Ka, Kd, Ks and Ns are the lecture's
-/// ka, kd, ks and shininess. The specular model stays the scene's; the surface is two-sided
-/// where every part of the mesh is (glTF's doubleSided), since a mesh is shaded on one side or
-/// on both, not part by part.
-SHADELABFILTERS_EXPORT Material ownMaterial(const Material& scenes, vtkPolyData* mesh);
+/// The scene's material made to read those arrays. In the lecture model the MTL's Ka, Kd, Ks
+/// and Ns are the lecture's ka, kd, ks and shininess; the specular model stays the scene's; the
+/// surface is two-sided where every part of the mesh is (glTF's doubleSided), since a mesh is
+/// shaded on one side or on both, not part by part. In the vtk_pbr model the base colour,
+/// metallic factor and roughness are read, VTK's PBR property's base IOR and edge tint kept.
+SHADELABFILTERS_EXPORT Material ownMaterial(const Scene& scene, vtkPolyData* mesh);
 }
 
 #endif

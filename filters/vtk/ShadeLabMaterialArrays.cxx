@@ -12,6 +12,7 @@
 #include "vtkSMPTools.h"
 #include "vtkUnsignedCharArray.h"
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <type_traits>
@@ -52,7 +53,7 @@ struct ChannelDecoding
   MaterialCoefficient coefficient;
   const ArrayCoefficient& source;
   ArrayEncoding encoding;
-  int width; // 3 for a colour, 1 for the shininess
+  int width; // 3 for a colour, 1 for a number (isColorCoefficient)
   std::vector<Stored>& values;
   std::vector<std::uint8_t>& clamped;
   vtkIdType firstUnusable = -1;
@@ -186,10 +187,13 @@ std::string arrayProblem(vtkDataArray* array, vtkPolyData* piece, MaterialCoeffi
       "divided by 65535 into a float array, say)";
   }
   const int components = array->GetNumberOfComponents();
-  if ((coefficient == MaterialCoefficient::Shininess || mapsColors(source, array)) && components != 1)
+  if ((!isColorCoefficient(coefficient) || mapsColors(source, array)) && components != 1)
   {
     return named + "has " + std::to_string(components) + " components; " +
-      (source.colorMap.empty() ? "a shininess takes 1" : "a colour map takes a field of 1");
+      (!source.colorMap.empty() ? "a colour map takes a field of 1"
+          : coefficient == MaterialCoefficient::Metallic
+          ? "a metallic factor takes 1"
+          : "a " + std::string(coefficientKey(coefficient)) + " takes 1");
   }
   if (components != 1 && components != 3 && components != 4)
   {
@@ -274,16 +278,36 @@ std::array<double, 2> colorMapRange(
   return range;
 }
 
-/// How a coefficient's channels are decoded: a shininess as it is; a colour as its source says,
-/// or else as defaultEncoding reads its kind (8-bit values and colours from a colour map are
-/// 8-bit).
+/// How a coefficient's channels are decoded: a number (a shininess, metallic factor or
+/// roughness) as it is; a colour as its source says, or else as defaultEncoding reads its kind
+/// (8-bit values and colours from a colour map are 8-bit).
 ArrayEncoding encodingOf(
   MaterialCoefficient coefficient, const ArrayCoefficient& source, vtkDataArray* array, bool mapped, ShadingModel model)
 {
   const bool eightBit = array->GetDataType() == VTK_UNSIGNED_CHAR || mapped;
-  return coefficient == MaterialCoefficient::Shininess
+  return !isColorCoefficient(coefficient)
     ? ArrayEncoding::Linear
     : source.encoding.value_or(defaultEncoding(eightBit, reproducesVtkRenderer(model)));
+}
+
+/// Why the smallest roughness that the array gave cannot be shaded in this precision (the
+/// scene's own roughnessPrecisionProblem, at that vertex), or "".
+template<typename VertexId>
+std::string arrayRoughnessProblem(
+  const VertexMaterial& material, const ArrayCoefficient& source, Precision storage, VertexId&& idOf)
+{
+  const int c = int(MaterialCoefficient::Roughness);
+  const auto smallestAt = [&](const auto& values)
+  { return vtkIdType(std::min_element(values.begin(), values.end()) - values.begin()); };
+  const bool narrow = storage == Precision::Float32;
+  if (narrow ? material.floatValues[c].empty() : material.values[c].empty())
+  {
+    return "";
+  }
+  const vtkIdType vertex = narrow ? smallestAt(material.floatValues[c]) : smallestAt(material.values[c]);
+  const double roughness = narrow ? material.floatValues[c][vertex] : material.values[c][vertex];
+  const std::string why = roughnessPrecisionProblem(roughness, storage);
+  return why.empty() ? "" : "scene /material/roughness: " + vertexValueProblem(source, idOf(vertex), why);
 }
 }
 
@@ -299,8 +323,9 @@ MaterialReading readVertexMaterial(vtkPolyData* piece, const Scene& scene, Preci
   reading.material.ambientIsDiffuse = arrays[MaterialCoefficient::Ambient] && arrays[MaterialCoefficient::Diffuse] &&
     *arrays[MaterialCoefficient::Ambient] == *arrays[MaterialCoefficient::Diffuse];
   // In the scene file's order, so that a problem of kd's array is kd's where ka follows it.
-  for (const MaterialCoefficient coefficient : { MaterialCoefficient::Diffuse, MaterialCoefficient::Ambient,
-         MaterialCoefficient::Specular, MaterialCoefficient::Shininess })
+  for (const MaterialCoefficient coefficient :
+    { MaterialCoefficient::Diffuse, MaterialCoefficient::Ambient, MaterialCoefficient::Specular,
+      MaterialCoefficient::Shininess, MaterialCoefficient::Metallic, MaterialCoefficient::Roughness })
   {
     const int c = int(coefficient);
     const std::optional<ArrayCoefficient>& source = arrays[coefficient];
@@ -332,7 +357,7 @@ MaterialReading readVertexMaterial(vtkPolyData* piece, const Scene& scene, Preci
       continue;
     }
     const ArrayEncoding encoding = encodingOf(coefficient, *source, array, mapped, scene.model);
-    const int width = coefficient == MaterialCoefficient::Shininess ? 1 : 3;
+    const int width = isColorCoefficient(coefficient) ? 3 : 1;
     const std::size_t size = std::size_t(width) * count;
     vtkSmartPointer<vtkDataArray> channels = array;
     if (mapped)
@@ -366,6 +391,10 @@ MaterialReading readVertexMaterial(vtkPolyData* piece, const Scene& scene, Preci
       reading.problem = at +
         vertexValueProblem(*source, idOf(firstUnusable), unusableVertex(channels, firstUnusable, coefficient, width));
     }
+  }
+  if (reading.problem.empty() && arrays[MaterialCoefficient::Roughness])
+  {
+    reading.problem = arrayRoughnessProblem(reading.material, *arrays[MaterialCoefficient::Roughness], storage, idOf);
   }
   if (!reading.problem.empty())
   {

@@ -524,7 +524,7 @@ bool vtkLocalReflectanceFilter::PlaceScene(vtkPolyData* input, const shadelab::M
                     "mode, which takes spectra or numbers: give the scene a \"material\"");
       return false;
     }
-    plan.scene.material = shadelab::ownMaterial(plan.scene.material, input);
+    plan.scene.material = shadelab::ownMaterial(plan.scene, input);
   }
   plan.scene.material.twoSided = pieces.holdAnywhere(plan.scene.material.twoSided);
   if (this->ColorByArray)

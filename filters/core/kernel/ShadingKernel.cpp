@@ -48,10 +48,11 @@ struct ShadingKernel<T>::Workspace
   // A material from arrays: the vertices' own coefficients, and the current light's diffuse and
   // specular factors times them (the light's colour holds the rest).
   std::array<Lane<T>, 3> ka, kd, ks, diffuseRgb, specularRgb;
-  Lane<T> shininess;
+  Lane<T> shininess, metallic, roughness;
   Lane<T> ggxDistribution, smithVisibility; // the microfacet model's D and V
   std::array<Lane<T>, 3> fresnel;           // and its F, channel by channel
-  /// The microfacet model's F0 and F90 at each vertex, where its base colour is the vertex's own.
+  /// The microfacet model's F0 and F90 at each vertex, where its base colour or metallic factor
+  /// is the vertex's own.
   std::array<Lane<T>, 3> normalFresnel, grazingFresnel;
   Lane<T> halfVectorDefined; // 1 or 0: a lane of T, so that its loops vectorise with the rest
   std::size_t nonFinite = 0;
@@ -159,8 +160,10 @@ ShadingKernel<T>::ShadingKernel(
   m.ka = perVertex(MaterialCoefficient::Ambient) ? Rgb(1.0) : m.ka;
   m.kd = perVertex(MaterialCoefficient::Diffuse) ? Rgb(1.0) : m.kd;
   m.ks = perVertex(MaterialCoefficient::Specular) ? Rgb(1.0) : m.ks;
-  // The microfacet model's base colour from kd's array is VTK's scalar colouring under PBR.
+  // The microfacet model's base colour from kd's array is VTK's scalar colouring under PBR; its
+  // metallic factor from an array multiplies the diffuse part vertex by vertex (1 - m).
   m.microfacet.baseColor = perVertex(MaterialCoefficient::Diffuse) ? Rgb(1.0) : m.microfacet.baseColor;
+  m.microfacet.metallic = perVertex(MaterialCoefficient::Metallic) ? 0.0 : m.microfacet.metallic;
   const bool vtk = scene.model == ShadingModel::VtkOpenGL2;
   // docs/vtk-renderer.md sections 1, 2 and 5: VTK's shader always flips back faces, and its
   // ambient term is Ka*Ca from the property alone. In its lone-headlight shader the specular
@@ -302,15 +305,26 @@ void ShadingKernel<T>::loadMaterial(const VertexBlock<T>& b, Workspace& w) const
   load(MaterialCoefficient::Ambient, w.ka);
   load(MaterialCoefficient::Diffuse, w.kd);
   load(MaterialCoefficient::Specular, w.ks);
-  if (microfacet_ && perVertex(MaterialCoefficient::Diffuse))
+  for (const auto& [c, lane] : { std::pair{ MaterialCoefficient::Metallic, &w.metallic },
+         std::pair{ MaterialCoefficient::Roughness, &w.roughness } })
   {
-    // A base colour per vertex gives the vertex its own F0 and F90 (docs/vtk-renderer.md
-    // section 11.1), the same for every light.
+    if (const T* values = vertexMaterial_[int(c)])
+    {
+      std::copy_n(values + b.first, b.count, lane->begin());
+    }
+  }
+  if (microfacet_ && perVertexFresnel())
+  {
+    // A base colour or metallic factor per vertex gives the vertex its own F0 and F90
+    // (docs/vtk-renderer.md section 11.1), the same for every light.
+    const bool ownBase = perVertex(MaterialCoefficient::Diffuse),
+               ownMetallic = perVertex(MaterialCoefficient::Metallic);
     for (std::size_t k = 0; k < b.count; ++k)
     {
-      const Rgb f0 =
-        reflectanceAtNormalIncidence(dielectricReflectance_, microfacetMaterial_.metallic, Rgb(coefficientAt(w.kd, k)));
-      const Rgb f90 = reflectanceAtGrazingIncidence(microfacetMaterial_, f0);
+      const double metallic = ownMetallic ? double(w.metallic[k]) : microfacetMaterial_.metallic;
+      const Rgb f0 = reflectanceAtNormalIncidence(
+        dielectricReflectance_, metallic, ownBase ? Rgb(coefficientAt(w.kd, k)) : microfacetMaterial_.baseColor);
+      const Rgb f90 = reflectanceAtGrazingIncidence(metallic, microfacetMaterial_.edgeTint, f0);
       for (int c = 0; c < 3; ++c)
       {
         w.normalFresnel[c][k] = T(f0[c]);
@@ -506,27 +520,33 @@ void ShadingKernel<T>::addMicrofacetTerms(const PreparedLight& light, const Vert
   // diffuse (1 - m)(1 - F) base / pi and specular D V F, each times the light's radiance and n.s.
   // The light's diffuse colour holds its radiance x (1 - m) base / pi, its specular colour the
   // radiance; the lanes hold the rest, channel by channel. A base colour per vertex (kd's
-  // lanes) multiplies the diffuse part, and gives the vertex its own F0 and F90 (loadMaterial).
+  // lanes) multiplies the diffuse part, as 1 - m does for a metallic factor per vertex; either
+  // gives the vertex its own F0 and F90 (loadMaterial). A roughness per vertex is D's and V's.
   const std::size_t count = b.count;
   const bool perVertexBase = perVertex(MaterialCoefficient::Diffuse);
+  const bool perVertexMetallic = perVertex(MaterialCoefficient::Metallic);
+  const bool perVertexRoughness = perVertex(MaterialCoefficient::Roughness);
+  const bool ownFresnel = perVertexFresnel();
   for (std::size_t k = 0; k < count; ++k)
   {
     const T nDotV = vtkClampedCosine(w.nx[k] * w.vx[k] + w.ny[k] * w.vy[k] + w.nz[k] * w.vz[k]);
     const T nDotL = vtkClampedCosine(w.cosIncidence[k]);
     const T hDotL = vtkClampedCosine(w.hx[k] * w.sx[k] + w.hy[k] * w.sy[k] + w.hz[k] * w.sz[k]);
-    w.ggxDistribution[k] = ggxDistribution(vtkClampedCosine(w.nDotH[k]), roughness_);
-    w.smithVisibility[k] = smithCorrelatedVisibility(nDotV, nDotL, roughness_);
+    const T roughness = perVertexRoughness ? w.roughness[k] : roughness_;
+    w.ggxDistribution[k] = ggxDistribution(vtkClampedCosine(w.nDotH[k]), roughness);
+    w.smithVisibility[k] = smithCorrelatedVisibility(nDotV, nDotL, roughness);
     // A degenerate normal faces nothing (docs/formulas.md section 16.6), though VTK's clamps
     // would light it at n.s = 1e-5.
     const T facing = (w.flags[k] & FlagDegenerateNormal) ? T(0) : T(1);
     const T radiance = facing * nDotL * (w.attenuation[k] * w.spotFactor[k]);
     const T specular = w.ggxDistribution[k] * w.smithVisibility[k] * radiance;
+    const T dielectricShare = perVertexMetallic ? T(1) - w.metallic[k] : T(1);
     for (int c = 0; c < 3; ++c)
     {
-      const T fresnel = perVertexBase ? schlickFresnel(w.normalFresnel[c][k], w.grazingFresnel[c][k], hDotL)
-                                      : schlickFresnel(normalFresnel_[c], grazingFresnel_[c], hDotL);
+      const T fresnel = ownFresnel ? schlickFresnel(w.normalFresnel[c][k], w.grazingFresnel[c][k], hDotL)
+                                   : schlickFresnel(normalFresnel_[c], grazingFresnel_[c], hDotL);
       w.fresnel[c][k] = fresnel;
-      w.diffuseRgb[c][k] = (T(1) - fresnel) * radiance * (perVertexBase ? w.kd[c][k] : T(1));
+      w.diffuseRgb[c][k] = (T(1) - fresnel) * radiance * ((perVertexBase ? w.kd[c][k] : T(1)) * dielectricShare);
       w.specularRgb[c][k] = fresnel * specular;
     }
   }

@@ -184,6 +184,11 @@ private:
   void prepareNormals(const VertexBlock<T>& block, Workspace& w) const;
   void loadMaterial(const VertexBlock<T>& block, Workspace& w) const;
   bool perVertex(MaterialCoefficient c) const { return vertexMaterial_[int(c)] != nullptr; }
+  /// Whether each vertex has its own F0 and F90: its base colour or metallic factor is its own.
+  bool perVertexFresnel() const
+  {
+    return perVertex(MaterialCoefficient::Diffuse) || perVertex(MaterialCoefficient::Metallic);
+  }
   void prepareViewer(const VertexBlock<T>& block, Workspace& w) const;
   void sampleLight(const PreparedLight& light, const VertexBlock<T>& block, Workspace& w) const;
   void addLight(const PreparedLight& light, const VertexBlock<T>& block, Workspace& w) const;
@@ -213,7 +218,7 @@ private:
   /// VTK's lone headlight: the specular viewer is the light itself, so h = s and n.h = n.s.
   bool specularViewerIsLight_ = false;
   /// The vtk_pbr model (Microfacet.h): its material, its roughness, and F0 and F90 per channel
-  /// (a vertex's own where its base colour is per vertex).
+  /// (a vertex's own where its base colour or metallic factor is per vertex).
   bool microfacet_ = false;
   MicrofacetMaterial microfacetMaterial_{};
   double dielectricReflectance_ = 0; // the dielectric's F0, for a base colour per vertex

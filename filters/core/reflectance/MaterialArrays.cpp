@@ -16,6 +16,8 @@ const char* coefficientKey(MaterialCoefficient coefficient)
     case MaterialCoefficient::Diffuse: return "kd";
     case MaterialCoefficient::Specular: return "ks";
     case MaterialCoefficient::Shininess: return "shininess";
+    case MaterialCoefficient::Metallic: return "metallic";
+    case MaterialCoefficient::Roughness: return "roughness";
   }
   return "";
 }
@@ -87,7 +89,12 @@ double decodeByte(std::uint8_t byte, ArrayEncoding encoding, double scale)
 
 bool isUsableValue(double raw, MaterialCoefficient coefficient)
 {
-  return coefficient == MaterialCoefficient::Shininess ? (std::isfinite(raw) && raw >= 0) : (raw >= 0 && raw <= 1);
+  switch (coefficient)
+  {
+    case MaterialCoefficient::Shininess: return std::isfinite(raw) && raw >= 0;
+    case MaterialCoefficient::Roughness: return raw > 0 && raw <= 1;
+    default: return raw >= 0 && raw <= 1;
+  }
 }
 
 std::string unusableValueReason(double raw, MaterialCoefficient coefficient)
@@ -97,7 +104,10 @@ std::string unusableValueReason(double raw, MaterialCoefficient coefficient)
     return std::string("it is ") + (std::isnan(raw) ? "NaN" : "infinite");
   }
   return "it is " + withDigits(raw, 6) +
-    (coefficient == MaterialCoefficient::Shininess ? ", below 0" : ", outside [0, 1]");
+    (coefficient == MaterialCoefficient::Shininess      ? ", below 0"
+        : coefficient == MaterialCoefficient::Roughness ? ", outside (0, 1] (at 0, VTK's GGX distribution is 0/0 in "
+                                                          "the mirror direction)"
+                                                        : ", outside [0, 1]");
 }
 
 double decodeReal(double raw, MaterialCoefficient coefficient, ArrayEncoding encoding, double scale)

@@ -25,7 +25,8 @@ enum class ArrayEncoding
   Linear,
 };
 
-/// One coefficient (ka, kd, ks or shininess) read from a point-data array.
+/// One coefficient (ka, kd, ks, shininess, or the vtk_pbr model's base colour, metallic factor
+/// or roughness) read from a point-data array.
 struct ArrayCoefficient
 {
   std::string array;
@@ -49,11 +50,20 @@ struct ArrayCoefficient
 enum class MaterialCoefficient
 {
   Ambient,
-  Diffuse,
+  Diffuse, // also the vtk_pbr model's base colour
   Specular,
   Shininess,
+  Metallic,  // the vtk_pbr model's metallic factor
+  Roughness, // the vtk_pbr model's roughness
 };
-constexpr int MaterialCoefficientCount = 4;
+constexpr int MaterialCoefficientCount = 6;
+
+/// Whether the coefficient is a colour (3 channels per vertex: ka, kd, ks) rather than one
+/// number (the shininess, the metallic factor, the roughness).
+constexpr bool isColorCoefficient(MaterialCoefficient c)
+{
+  return c == MaterialCoefficient::Ambient || c == MaterialCoefficient::Diffuse || c == MaterialCoefficient::Specular;
+}
 
 /// The bit of material_clamped (VertexMaterial::clamped) that marks coefficient c.
 constexpr std::uint8_t clampedBit(MaterialCoefficient c)
@@ -61,7 +71,8 @@ constexpr std::uint8_t clampedBit(MaterialCoefficient c)
   return std::uint8_t(1u << int(c));
 }
 
-/// The scene file's key for each coefficient ("ka", "kd", "ks", "shininess").
+/// The scene file's key for each coefficient ("ka", "kd", "ks", "shininess", "metallic",
+/// "roughness").
 const char* coefficientKey(MaterialCoefficient coefficient);
 
 /// Per coefficient, the array it comes from, if any.
@@ -95,7 +106,7 @@ ArrayEncoding defaultEncoding(bool eightBit, bool vtkModel);
 bool operator==(const ArrayCoefficient& a, const ArrayCoefficient& b);
 
 /// Each vertex's coefficient, decoded and scaled: 3 values per vertex (r g b) for ka, kd and
-/// ks, 1 for the shininess; empty where the coefficient is the Material's number, or (ka) where
+/// ks, 1 for the others; empty where the coefficient is the Material's number, or (ka) where
 /// ambientIsDiffuse. values holds them in float64, floatValues in float32 for the float32 kernel
 /// (which then reads half the bytes): either, or both once withFloat32 has run.
 struct VertexMaterial
@@ -132,8 +143,9 @@ struct VertexMaterial
 /// encoding (by table), times the scale. Always usable.
 double decodeByte(std::uint8_t byte, ArrayEncoding encoding, double scale);
 
-/// Whether a floating-point array's value can be used: finite, and in [0, 1] for ka, kd and ks
-/// (reflectances) or >= 0 for the shininess.
+/// Whether a floating-point array's value can be used: finite, and in [0, 1] for ka, kd, ks
+/// (reflectances) and the metallic factor, in (0, 1] for the roughness (VTK's GGX distribution
+/// is 0/0 at 0), >= 0 for the shininess.
 bool isUsableValue(double raw, MaterialCoefficient coefficient);
 /// Why it cannot: "it is NaN", "it is 1.5, outside [0, 1]", ...
 std::string unusableValueReason(double raw, MaterialCoefficient coefficient);

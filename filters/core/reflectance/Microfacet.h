@@ -91,10 +91,16 @@ inline Rgb reflectanceAtNormalIncidence(const MicrofacetMaterial& m)
 /// F90, the reflectance at grazing incidence: 1 for any F0 whose channels sum to 1/16.5 or more
 /// (VTK's "specular occlusion", which darkens only an F0 below about 0.02), mixed toward the edge
 /// tint by the metallic factor.
-inline Rgb reflectanceAtGrazingIncidence(const MicrofacetMaterial& m, const Rgb& f0)
+inline Rgb reflectanceAtGrazingIncidence(double metallic, const Rgb& edgeTint, const Rgb& f0)
 {
   const double f90 = std::clamp(50.0 * 0.33 * (f0.x + f0.y + f0.z), 0.0, 1.0);
-  return (1.0 - m.metallic) * Rgb(f90) + m.metallic * m.edgeTint;
+  return (1.0 - metallic) * Rgb(f90) + metallic * edgeTint;
+}
+
+/// F90 of the material's own metallic factor.
+inline Rgb reflectanceAtGrazingIncidence(const MicrofacetMaterial& m, const Rgb& f0)
+{
+  return reflectanceAtGrazingIncidence(m.metallic, m.edgeTint, f0);
 }
 
 /// D's relative error in float32 at its peak: n.h carries about one rounding, 2^-24, and the
@@ -105,6 +111,10 @@ inline double float32DistributionError(double roughness)
 {
   return 4.0 * 0x1p-24 / std::pow(roughness, 4.0);
 }
+
+/// Just below the smallest roughness float32 shades to 1% (float32DistributionError is 0.01 at
+/// 0.06988): where a scene's checks need a bound on the roughnesses that an array may give.
+constexpr double smallestFloat32Roughness = 0.0698;
 
 /// The largest value the specular factor D V F (n.s) can take for a roughness in (0, 1]: D is
 /// at most 1 / (pi r^4), V (n.s) at most 1 / (4 n.v) <= 1 / (4e-5) with the clamps, and F at

@@ -64,6 +64,20 @@ std::string meshCoordinateProblem(double reach, Precision precision)
     (precision == Precision::Float32 ? ": use double precision (shadelab shade --precision float64)" : "");
 }
 
+std::string roughnessPrecisionProblem(double roughness, Precision precision)
+{
+  // A percent of D at the highlight's peak: float32 cannot resolve 1 - n.h below that roughness.
+  const double float32Error = float32DistributionError(roughness);
+  if (precision != Precision::Float32 || float32Error <= 0.01)
+  {
+    return "";
+  }
+  return "at roughness " + withDigits(roughness, 3) + " float32 arithmetic errs by " +
+    (float32Error >= 1 ? std::string("100% or more") : "up to " + withDigits(100 * float32Error, 2) + "%") +
+    " at the highlight's peak (D needs 1 - n.h finer than float32 holds): use float64, or a roughness of at least "
+    "0.07";
+}
+
 namespace
 {
 Material peakMaterial(const Scene& scene)
@@ -77,7 +91,10 @@ Material peakMaterial(const Scene& scene)
   const MicrofacetMaterial& microfacet = scene.material.microfacet;
   Material bound;
   bound.kd = microfacet.baseColor * vtkReciprocalPi;
-  bound.ks = Rgb(microfacetSpecularBound(microfacet.roughness));
+  // A roughness from an array is bounded where float32, whose limit the check is for, admits it
+  // (roughnessPrecisionProblem, checked as the array is read).
+  bound.ks = Rgb(microfacetSpecularBound(
+    scene.material.arrays[MaterialCoefficient::Roughness] ? smallestFloat32Roughness : microfacet.roughness));
   return bound;
 }
 
@@ -134,34 +151,39 @@ void checkMicrofacetModel(const Scene& scene, Precision precision, ProblemList& 
   }
   const MicrofacetMaterial& m = scene.material.microfacet;
   auto isReflectance = [](const Rgb& c) { return isNonNegative(c) && largestComponent(c) <= 1; };
-  if (scene.material.arrays[MaterialCoefficient::Diffuse])
+  const MaterialArrays& arrays = scene.material.arrays;
+  // A coefficient from an array has its scale (the property's factor, which VTK clamps to 1)
+  // checked here, and its values as they are read.
+  if (arrays[MaterialCoefficient::Diffuse])
   {
-    // A base colour from an array: its scale is the property's Diffuse, which VTK clamps to 1.
-    list.check(scene.material.arrays[MaterialCoefficient::Diffuse]->scale <= 1, "/material/base_color/scale",
+    list.check(arrays[MaterialCoefficient::Diffuse]->scale <= 1, "/material/base_color/scale",
       "must be a number from 0 to 1 (the property's Diffuse)");
   }
   else
   {
     list.check(isReflectance(m.baseColor), "/material/base_color", "components must be numbers from 0 to 1");
   }
-  list.check(m.metallic >= 0 && m.metallic <= 1, "/material/metallic", "must be a number from 0 to 1");
-  list.check(m.roughness > 0 && m.roughness <= 1, "/material/roughness",
+  list.check(m.metallic >= 0 && m.metallic <= 1,
+    arrays[MaterialCoefficient::Metallic] ? "/material/metallic/scale" : "/material/metallic",
+    "must be a number from 0 to 1");
+  list.check(m.roughness > 0 && m.roughness <= 1,
+    arrays[MaterialCoefficient::Roughness] ? "/material/roughness/scale" : "/material/roughness",
     "must be a number above 0 and at most 1 (at 0, VTK's GGX distribution is 0/0 in the mirror direction)");
+  list.check(!arrays[MaterialCoefficient::Roughness] || !arrays[MaterialCoefficient::Roughness]->clamp,
+    "/material/roughness/clamp",
+    "a roughness cannot be clamped: (0, 1] has no value nearest to 0 or below; correct the array's values");
   list.check(std::isfinite(m.baseIor) && m.baseIor >= 1, "/material/base_ior", "must be a number >= 1");
-  // A percent of D at the highlight's peak: float32 cannot resolve 1 - n.h below that roughness.
-  const double float32Error = float32DistributionError(m.roughness);
-  list.check(precision != Precision::Float32 || !(m.roughness > 0) || float32Error <= 0.01, "/material/roughness",
-    "at roughness " + withDigits(m.roughness, 3) + " float32 arithmetic errs by " +
-      (float32Error >= 1 ? std::string("100% or more") : "up to " + withDigits(100 * float32Error, 2) + "%") +
-      " at the highlight's peak (D needs 1 - n.h finer than float32 holds): use float64, or a roughness of at "
-      "least 0.07");
+  if (!arrays[MaterialCoefficient::Roughness] && m.roughness > 0)
+  {
+    const std::string problem = roughnessPrecisionProblem(m.roughness, precision);
+    list.check(problem.empty(), "/material/roughness", problem);
+  }
   list.check(isReflectance(m.edgeTint), "/material/edge_tint", "components must be numbers from 0 to 1");
-  const MaterialArrays& arrays = scene.material.arrays;
   list.check(!arrays[MaterialCoefficient::Ambient] && !arrays[MaterialCoefficient::Specular] &&
       !arrays[MaterialCoefficient::Shininess],
     "/material",
-    "the vtk_pbr model takes only its base colour from an array (VTK's scalar colouring): it has no ka, ks or "
-    "shininess");
+    "the vtk_pbr model takes its base colour, metallic factor and roughness from arrays (VTK's scalar colouring, a "
+    "glTF file's parts): it has no ka, ks or shininess");
   // VTK's PBR shader takes a light's direction from its position where any light is positional,
   // which a distant light in a scene file has not (headlights sit at the camera:
   // placeHeadlightsAtTheCamera).

@@ -136,6 +136,10 @@ constexpr std::size_t maxLightNameLength = 64;
 /// when it can.
 std::string meshCoordinateProblem(double reach, Precision precision);
 
+/// Why the vtk_pbr model cannot shade this roughness in this precision (float32 cannot resolve
+/// D's peak below about 0.07), or "" when it can.
+std::string roughnessPrecisionProblem(double roughness, Precision precision);
+
 /// Everything that would make the scene unusable in this precision, in file order; empty
 /// when it is valid. Besides values out of their domain, this refuses scenes whose terms
 /// could overflow the precision (a light's colour x intensity x k x attenuation at its

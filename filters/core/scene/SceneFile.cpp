@@ -89,9 +89,10 @@ Interreflection readInterreflection(const JsonNode& node)
 /// A coefficient read from a point-data array: {"array": "Colors", ...}.
 ArrayCoefficient readArrayCoefficient(const JsonNode& node, MaterialCoefficient coefficient)
 {
-  const bool shininess = coefficient == MaterialCoefficient::Shininess;
-  node.expectObject(shininess ? std::vector<const char*>{ "array", "scale", "clamp" }
-                              : std::vector<const char*>{ "array", "encoding", "scale", "colormap", "range", "clamp" });
+  // One number per vertex (a shininess, a metallic factor, a roughness) is read as it is.
+  node.expectObject(isColorCoefficient(coefficient)
+      ? std::vector<const char*>{ "array", "encoding", "scale", "colormap", "range", "clamp" }
+      : std::vector<const char*>{ "array", "scale", "clamp" });
   ArrayCoefficient c;
   c.array = node.at("array").text();
   if (c.array.empty())
@@ -150,25 +151,32 @@ void readColorCoefficient(const JsonNode& material, MaterialCoefficient coeffici
   }
 }
 
-/// The vtk_pbr model's material: vtkProperty's PBR parameters, with its defaults; a base colour
-/// from an array ({"array": ...}: VTK's scalar colouring, kd's array in Material) scaled by its
-/// "scale", the property's Diffuse.
+/// The vtk_pbr model's material: vtkProperty's PBR parameters, with its defaults. The base
+/// colour, metallic factor and roughness may each come from an array ({"array": ...}; the base
+/// colour's is VTK's scalar colouring, kd's array in Material), scaled by its "scale" (the
+/// property's Diffuse, Metallic or Roughness), which then stands as the material's number.
 void readMicrofacetMaterial(const JsonNode& node, Material& material)
 {
   node.expectObject({ "base_color", "metallic", "roughness", "base_ior", "edge_tint" });
   MicrofacetMaterial& m = material.microfacet;
-  if (node.has("base_color") && node.at("base_color").isObject())
+  auto fromArray = [&](const char* key, MaterialCoefficient coefficient)
   {
-    material.arrays[MaterialCoefficient::Diffuse] =
-      readArrayCoefficient(node.at("base_color"), MaterialCoefficient::Diffuse);
-    m.baseColor = Rgb(material.arrays[MaterialCoefficient::Diffuse]->scale);
-  }
-  else
-  {
-    m.baseColor = rgbOr(node, "base_color", m.baseColor);
-  }
-  m.metallic = numberOr(node, "metallic", m.metallic);
-  m.roughness = numberOr(node, "roughness", m.roughness);
+    if (!node.has(key) || !node.at(key).isObject())
+    {
+      return false;
+    }
+    material.arrays[coefficient] = readArrayCoefficient(node.at(key), coefficient);
+    return true;
+  };
+  m.baseColor = fromArray("base_color", MaterialCoefficient::Diffuse)
+    ? Rgb(material.arrays[MaterialCoefficient::Diffuse]->scale)
+    : rgbOr(node, "base_color", m.baseColor);
+  m.metallic = fromArray("metallic", MaterialCoefficient::Metallic)
+    ? material.arrays[MaterialCoefficient::Metallic]->scale
+    : numberOr(node, "metallic", m.metallic);
+  m.roughness = fromArray("roughness", MaterialCoefficient::Roughness)
+    ? material.arrays[MaterialCoefficient::Roughness]->scale
+    : numberOr(node, "roughness", m.roughness);
   m.baseIor = numberOr(node, "base_ior", m.baseIor);
   m.edgeTint = rgbOr(node, "edge_tint", m.edgeTint);
 }
