@@ -331,6 +331,39 @@ void noteDoubleSidedNotBoolean(const Json& gltf, std::vector<std::string>& notes
   }
 }
 
+/// What the vtk_pbr model cannot take from a material, said where the file is read: a roughness
+/// of 0, which VTK's GGX distribution divides by (0/0 in the mirror direction), and the textures
+/// other than the base colour's, which ShadeLab does not read.
+void noteMaterialsShadedOtherwise(const Json& gltf, std::vector<std::string>& notes)
+{
+  const Json* materials = member(&gltf, "materials");
+  for (std::size_t m = 0; materials && materials->is_array() && m < materials->size(); ++m)
+  {
+    const Json* material = &(*materials)[m];
+    std::string name = textOr(material, "name");
+    name = name.size() > 60 ? name.substr(0, 57) + "..." : name;
+    const std::string named = "material " + (name.empty() ? std::to_string(m) : "'" + name + "'");
+    const Json* pbr = member(material, "pbrMetallicRoughness");
+    if (numberOr(pbr, "roughnessFactor", 1) == 0)
+    {
+      notes.push_back(named +
+        " has roughnessFactor 0, which the vtk_pbr model refuses (VTK's GGX distribution is 0/0 in the mirror "
+        "direction): shade it in the lecture model, or give the scene a material");
+    }
+    std::string unread;
+    for (const auto& [owner, key] :
+      { std::pair{ pbr, "metallicRoughnessTexture" }, std::pair{ material, "normalTexture" },
+        std::pair{ material, "occlusionTexture" }, std::pair{ material, "emissiveTexture" } })
+    {
+      unread += member(owner, key) ? (unread.empty() ? "" : ", ") + std::string(key) : "";
+    }
+    if (!unread.empty())
+    {
+      notes.push_back(named + " has " + unread + ", which ShadeLab does not read: shaded without them");
+    }
+  }
+}
+
 /// The part's material from its PBR property (glTF's pbrMetallicRoughness): as VTK's PBR
 /// shader reads it, and in the lecture's coefficients; and its sides: vtkGLTFImporter culls the
 /// back faces of a material that is not doubleSided. A primitive without a material keeps
@@ -393,6 +426,7 @@ vtkSmartPointer<vtkPolyData> importGltfScene(const std::string& fileName, std::v
   }
   noteUnreadExtensions(gltf, notes);
   noteDoubleSidedNotBoolean(gltf, notes);
+  noteMaterialsShadedOtherwise(gltf, notes);
   const std::string lights = lightsScene(renderer, gltf, notes);
   if (!lights.empty())
   {

@@ -26,6 +26,8 @@
 #include <regex>
 #include <set>
 
+#include <nlohmann/json.hpp>
+
 namespace
 {
 using shadelab::testing::Cli;
@@ -1042,6 +1044,34 @@ TEST_F(Cli, AGltfFilesMaterialsShadeTheVtkPbrModelPartByPart)
   }
   EXPECT_EQ(seen, (std::set<float>{ 0.35f, 0.9f }));
 
+  // A ball of roughness 0 and a floor with a normal texture: both said as the file is read, and
+  // the roughness refused by the vtk_pbr model, as the mesh's own material.
+  for (const char* resource : { "lamps.bin", "checker.png" })
+  {
+    fs::copy_file(shadelab::testing::sourcePath(std::string("data/scenes/lamps/") + resource), folder / resource);
+  }
+  nlohmann::json gltf = nlohmann::json::parse(slurp(shadelab::testing::sourcePath("data/scenes/lamps/lamps.gltf")));
+  gltf["materials"][1]["pbrMetallicRoughness"]["roughnessFactor"] = 0;
+  gltf["materials"][0]["normalTexture"] = { { "index", 0 } };
+  const std::string mirror = file("mirror.gltf", gltf.dump(1));
+  const Result refused = shadelab("shade " + mirror + " -s " + scene + " -o " + (folder / "mirror.vtp").string());
+  EXPECT_EQ(refused.exitCode, 1);
+  EXPECT_EQ(refused.err,
+    "shadelab: " + mirror +
+      ": the mesh's own materials, part 'ball': array 'material_roughness', vertex 0: it is 0, outside (0, 1] (at 0, "
+      "VTK's GGX distribution is 0/0 in the mirror direction)\n");
+  EXPECT_FALSE(fs::exists(folder / "mirror.vtp"));
+  // In the lecture model it shades, and the file's reading says what the other model refuses.
+  const Result lecture = shadelab("shade " + mirror + " -o " + (folder / "lecture.vtp").string());
+  ASSERT_EQ(lecture.exitCode, 0) << lecture.err;
+  EXPECT_EQ(lecture.err,
+    "shadelab: warning: " + mirror +
+      ": material 'floor' has normalTexture, which ShadeLab does not read: shaded without them\n"
+      "shadelab: warning: " +
+      mirror +
+      ": material 'ball' has roughnessFactor 0, which the vtk_pbr model refuses (VTK's GGX distribution is 0/0 in "
+      "the mirror direction): shade it in the lecture model, or give the scene a material\n");
+
   // An OBJ's materials are the lecture model's: the vtk_pbr model shades it with its defaults, and says so.
   const std::string stillLife = shadelab::testing::sourcePath("data/scenes/still_life/still_life.obj");
   const Result obj = shadelab("shade " + stillLife + " -s " + scene + " -o " + (folder / "obj.vtp").string());
@@ -1107,7 +1137,8 @@ TEST_F(Cli, AGltfIsLitByItsOwnLightsAndABrokenOneIsRefused)
     "shadelab: warning: " + mixed +
       ": part 'ball' is double-sided and the others are not: a mesh is shaded on one side or on both, not part by "
       "part, so its own materials shade every part on the side of its normals (a scene's material with "
-      "\"two_sided\": true shades all on both, in its own colours)\n");
+      "\"two_sided\": true shades all on both, in its own colours; the vtk_pbr model shades all on both, as VTK's PBR "
+      "shader does)\n");
   EXPECT_NE(oneSide.out.find("  material: the mesh's own, part by part (2 parts: ball, floor)\n"), std::string::npos)
     << oneSide.out;
   // A doubleSided that is not a boolean, which VTK's importer takes for false, is said.

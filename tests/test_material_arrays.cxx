@@ -328,6 +328,34 @@ TEST(MaterialArrays, AMetallicFactorOrRoughnessThatCannotBeUsedIsRefusedByNameAn
     "the highlight's peak (D needs 1 - n.h finer than float32 holds): use float64, or a roughness of at least 0.07");
   vtkSmartPointer<vtkPolyData> shaded = shadeWithFilter(smooth, sceneWithMaterial(both, "vtk_pbr"), { "sun_ggx_d" });
   ASSERT_NE(shaded->GetPointData()->GetArray("sun_ggx_d"), nullptr); // float64 shades it
+  // Even float64 bounds D's peak: a roughness from an array must be at least 1e-6 there.
+  vtkNew<vtkLocalReflectanceFilter> filter;
+  vtkNew<app::VtkErrorCapture> errors;
+  errors->watch(filter);
+  filter->SetInputData(sphereWithValues("values", { 0.5, 1e-7 }));
+  filter->SetScene(sceneWithMaterial(both, "vtk_pbr"));
+  filter->SetOutputPrecision(vtkAlgorithm::DOUBLE_PRECISION);
+  filter->Update();
+  EXPECT_EQ(errors->message(),
+    "scene /material/roughness: array 'values', vertex 1: at roughness 1e-07 D's peak, 1/(pi r^4), is beyond what the "
+    "run's overflow checks bound: a roughness from an array must be at least 1e-06");
+  // A byte is over 255: 0 is a roughness of 0.
+  vtkSmartPointer<vtkPolyData> bytes = sphereWithValues("values", { 0.5 });
+  vtkNew<vtkUnsignedCharArray> roughness;
+  roughness->SetName("bytes");
+  for (vtkIdType i = 0; i < bytes->GetNumberOfPoints(); ++i)
+  {
+    roughness->InsertNextValue(i == 3 ? 0 : 200);
+  }
+  bytes->GetPointData()->AddArray(roughness);
+  EXPECT_EQ(filterError(bytes, sceneWithMaterial(R"({ "roughness": { "array": "bytes" } })", "vtk_pbr")),
+    "scene /material/roughness: array 'bytes', vertex 3: it is 0, outside (0, 1] (at 0, VTK's GGX distribution is 0/0 "
+    "in the mirror direction)");
+  // Only the vtk_pbr model has them.
+  Scene lecture = sceneWithMaterial(R"({ "kd": 0.5 })");
+  lecture.material.arrays[MaterialCoefficient::Metallic] = ArrayCoefficient{ "values" };
+  EXPECT_EQ(
+    filterError(smooth, lecture), "scene /material: only the vtk_pbr model has a metallic factor and a roughness");
 }
 
 TEST(MaterialArrays, ArraysThatCannotBeUsedAreRefusedByNameAndVertex)

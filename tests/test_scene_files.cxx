@@ -6,6 +6,7 @@
 // read back with its actors' properties.
 #include "FilterRun.h"
 #include "TestFolder.h"
+#include "TestPaths.h"
 #include "TwoPartObj.h"
 
 #include "GltfScene.h"
@@ -540,6 +541,45 @@ TEST_F(SceneFiles, AGltfExportedByVtkComesBackWithTheMaterialItWrote)
   }
   EXPECT_GT(seen[0], 0);
   EXPECT_EQ(seen[0], seen[1]);
+}
+
+TEST_F(SceneFiles, AGltfFilesPartsKeepTheirMetallicRoughnessMaterialsForTheVtkPbrModel)
+{
+  // The bundled lamps: the floor white, metallic 0, roughness 0.9, with the checker texture;
+  // the ball (0.9, 0.55, 0.2), metallic 0.6, roughness 0.35, untextured. The base colour carries
+  // the texture as kd does: on the floor, whose metallic factor is 0, kd is the base colour.
+  vtkSmartPointer<vtkPolyData> mesh = app::readMesh(shadelab::testing::sourcePath("data/scenes/lamps/lamps.gltf"));
+  ASSERT_TRUE(hasOwnMicrofacetMaterials(mesh));
+  vtkPointData* points = mesh->GetPointData();
+  vtkDataArray* part = points->GetArray(partArrayName);
+  vtkDataArray* base = points->GetArray(materialBaseColorArrayName);
+  vtkDataArray* kd = points->GetArray(materialKdArrayName);
+  std::set<double> floorReds;
+  for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)
+  {
+    const bool ball = part->GetComponent(p, 0) == 0; // the importer's order: the ball first
+    EXPECT_FLOAT_EQ(points->GetArray(materialMetallicArrayName)->GetComponent(p, 0), ball ? 0.6f : 0.0f) << p;
+    EXPECT_FLOAT_EQ(points->GetArray(materialRoughnessArrayName)->GetComponent(p, 0), ball ? 0.35f : 0.9f) << p;
+    const Rgb ballColor(0.9, 0.55, 0.2);
+    for (int c = 0; c < 3; ++c)
+    {
+      EXPECT_FLOAT_EQ(base->GetComponent(p, c), ball ? float(ballColor[c]) : float(kd->GetComponent(p, c))) << p;
+    }
+    if (!ball)
+    {
+      floorReds.insert(base->GetComponent(p, 0));
+    }
+  }
+  EXPECT_GE(floorReds.size(), 2u); // the checker's two colours at least: the texture is in the base colour
+  // Under the vtk_pbr model without a material, they are the material's arrays.
+  Scene scene;
+  scene.model = ShadingModel::VtkPbr;
+  EXPECT_TRUE(shadesWithOwnMaterials(scene, mesh, false));
+  const Material own = ownMaterial(scene, mesh);
+  EXPECT_EQ(own.arrays[MaterialCoefficient::Diffuse]->array, materialBaseColorArrayName);
+  EXPECT_EQ(own.arrays[MaterialCoefficient::Metallic]->array, materialMetallicArrayName);
+  EXPECT_EQ(own.arrays[MaterialCoefficient::Roughness]->array, materialRoughnessArrayName);
+  EXPECT_FALSE(own.arrays[MaterialCoefficient::Specular].has_value());
 }
 
 TEST_F(SceneFiles, AGltfFilesLightsKeepTheirOwnDefinitionsWhereverTheirNodesAre)

@@ -23,6 +23,7 @@
 
 #include <glm/geometric.hpp>
 
+#include <optional>
 #include <tuple>
 
 namespace
@@ -205,35 +206,19 @@ public:
     edgeTint_ = toGlm(property->GetEdgeTint());
   }
 
-  /// Each light's terms at the vertex, in the order of the lights that are on.
-  std::vector<PbrLightTerms> terms(const dvec3& worldPoint, const dvec3& worldNormal) const
+  /// Each light's terms at the vertex, in the order of the lights that are on. Where the vertex
+  /// has a scalar colour (bytes over 255), the shader's diffuseColor, and so its albedo, is
+  /// Diffuse x the colour; where it has its own metallic factor or roughness, they are the ones
+  /// the shader of a part whose property has them (a glTF file's parts) computes with.
+  std::vector<PbrLightTerms> termsOfVertex(const dvec3& worldPoint, const dvec3& worldNormal,
+    const unsigned char* colour = nullptr, std::optional<double> metallic = std::nullopt,
+    std::optional<double> roughness = std::nullopt) const
   {
-    return terms(worldPoint, worldNormal, albedo_);
-  }
-
-  /// The same where the vertex has a scalar colour (bytes over 255): the shader's diffuseColor,
-  /// and so its albedo, is Diffuse x the colour.
-  std::vector<PbrLightTerms> termsWithColour(
-    const dvec3& worldPoint, const dvec3& worldNormal, const unsigned char colour[3]) const
-  {
-    return terms(worldPoint, worldNormal, diffuse_ * dvec3(colour[0], colour[1], colour[2]) / 255.0);
-  }
-
-  /// The same with the vertex's own metallic factor and roughness as well, as the shader of a
-  /// part whose property has them (a glTF file's parts) computes its terms.
-  std::vector<PbrLightTerms> termsWithColour(const dvec3& worldPoint, const dvec3& worldNormal,
-    const unsigned char colour[3], double metallic, double roughness) const
-  {
-    return terms(
-      worldPoint, worldNormal, diffuse_ * dvec3(colour[0], colour[1], colour[2]) / 255.0, metallic, roughness);
+    return terms(worldPoint, worldNormal, colour ? diffuse_ * dvec3(colour[0], colour[1], colour[2]) / 255.0 : albedo_,
+      metallic.value_or(metallic_), roughness.value_or(roughness_));
   }
 
 private:
-  std::vector<PbrLightTerms> terms(const dvec3& worldPoint, const dvec3& worldNormal, const dvec3& albedo) const
-  {
-    return terms(worldPoint, worldNormal, albedo, metallic_, roughness_);
-  }
-
   std::vector<PbrLightTerms> terms(
     const dvec3& worldPoint, const dvec3& worldNormal, const dvec3& albedo, double metallic, double roughness) const
   {
@@ -379,13 +364,16 @@ protected:
   /// IOR 1.05, metallic 0.3) put F0's sum below 1/16.5 at most vertices, so that F90 too is each
   /// vertex's own.
   /// With OwnMetallicAndRoughness, bright colours, and each vertex's metallic factor (0 to 1)
-  /// and roughness (0.1 to 1) from float arrays too, as a glTF file's parts give them.
+  /// and roughness (0.1 to 1) from float arrays too, as a glTF file's parts give them; with
+  /// OwnMetallic or OwnRoughness, the property's colour and that one array alone.
   enum class Colours
   {
     None,
     Bright,
     Dark,
-    OwnMetallicAndRoughness
+    OwnMetallicAndRoughness,
+    OwnMetallic,
+    OwnRoughness
   };
   void expectShaderTerms(int complexity, Colours withColours = Colours::None)
   {
@@ -398,7 +386,11 @@ protected:
     ASSERT_EQ(scene.model, shadelab::ShadingModel::VtkPbr);
     vtkSmartPointer<vtkPolyData> sphere =
       shadelab::testing::exactSphere(60, shadelab::testing::litSphereCentre, shadelab::testing::litSphereRadius);
-    if (withColours != Colours::None)
+    const bool ownMetallic = withColours == Colours::OwnMetallicAndRoughness || withColours == Colours::OwnMetallic;
+    const bool ownRoughness = withColours == Colours::OwnMetallicAndRoughness || withColours == Colours::OwnRoughness;
+    const bool scalarColours =
+      withColours != Colours::None && withColours != Colours::OwnMetallic && withColours != Colours::OwnRoughness;
+    if (scalarColours)
     {
       // Under scalar colouring the shader ignores DiffuseColor; the scene's base colour, a grey
       // here, stands for Diffuse (colorMaterialBy takes its largest component).
@@ -417,10 +409,11 @@ protected:
       sphere->GetPointData()->AddArray(colours);
       shadelab::colorMaterialBy(scene, "colours", "");
     }
-    if (withColours == Colours::OwnMetallicAndRoughness)
+    for (const auto& [name, coefficient, low, wanted] :
+      { std::tuple{ "metal", shadelab::MaterialCoefficient::Metallic, 0.0, ownMetallic },
+        std::tuple{ "rough", shadelab::MaterialCoefficient::Roughness, 0.1, ownRoughness } })
     {
-      for (const auto& [name, coefficient, low] : { std::tuple{ "metal", shadelab::MaterialCoefficient::Metallic, 0.0 },
-             std::tuple{ "rough", shadelab::MaterialCoefficient::Roughness, 0.1 } })
+      if (wanted)
       {
         vtkNew<vtkDoubleArray> values;
         values->SetName(name);
@@ -432,8 +425,10 @@ protected:
         shadelab::ArrayCoefficient source;
         source.array = name;
         scene.material.arrays[coefficient] = source;
+        // The array's scale, 1.
+        (coefficient == shadelab::MaterialCoefficient::Metallic ? scene.material.microfacet.metallic
+                                                                : scene.material.microfacet.roughness) = 1.0;
       }
-      scene.material.microfacet.metallic = scene.material.microfacet.roughness = 1.0; // the arrays' scales
     }
     vtkSmartPointer<vtkPolyData> shaded = shadelab::testing::shadeWithFilter(sphere, scene, { "all" });
     const PbrShaderReference shader(lights, property, camera, complexity);
@@ -446,11 +441,10 @@ protected:
     {
       const dvec3 point = toGlm(shaded->GetPoint(i)), normal = toGlm(normals->GetTuple3(i));
       auto* colours = vtkUnsignedCharArray::SafeDownCast(arrays->GetArray("colours")); // passed through
-      const std::vector<PbrLightTerms> want = withColours == Colours::None ? shader.terms(point, normal)
-        : withColours == Colours::OwnMetallicAndRoughness
-        ? shader.termsWithColour(point, normal, colours->GetPointer(3 * i),
-            arrays->GetArray("metal")->GetComponent(i, 0), arrays->GetArray("rough")->GetComponent(i, 0))
-        : shader.termsWithColour(point, normal, colours->GetPointer(3 * i));
+      const std::vector<PbrLightTerms> want =
+        shader.termsOfVertex(point, normal, scalarColours ? colours->GetPointer(3 * i) : nullptr,
+          ownMetallic ? std::optional(arrays->GetArray("metal")->GetComponent(i, 0)) : std::nullopt,
+          ownRoughness ? std::optional(arrays->GetArray("rough")->GetComponent(i, 0)) : std::nullopt);
       ASSERT_EQ(want.size(), scene.lights.size());
       dvec3 total(0);
       for (std::size_t l = 0; l < want.size(); ++l)
@@ -531,6 +525,20 @@ TEST_F(VtkPbrMode, MetallicAndRoughnessFromArraysAreEachVertexsOwn)
 {
   addPositionalLights();
   expectShaderTerms(3, Colours::OwnMetallicAndRoughness);
+}
+
+// Each alone, with the property's colour: F0 from the property's base colour and the vertex's
+// metallic factor; D and V from the vertex's roughness.
+TEST_F(VtkPbrMode, AMetallicFactorFromAnArrayAlone)
+{
+  addLightKit();
+  expectShaderTerms(2, Colours::OwnMetallic);
+}
+
+TEST_F(VtkPbrMode, ARoughnessFromAnArrayAlone)
+{
+  addLoneHeadlight();
+  expectShaderTerms(1, Colours::OwnRoughness);
 }
 
 TEST_F(VtkPbrMode, NoLightSwitchedOnMeansVtksHeadlightAtTheCamera)

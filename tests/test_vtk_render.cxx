@@ -39,6 +39,8 @@
 #include <random>
 #include <set>
 
+#include <nlohmann/json.hpp>
+
 namespace
 {
 using shadelab::testing::litSphereCentre;
@@ -439,12 +441,10 @@ class RealRenderOfImportedParts : public shadelab::testing::TestFolder
 TEST_F(RealRenderOfImportedParts, EachPartOfAGltfFileAsVtkDrawsIt)
 {
   std::ifstream original(shadelab::testing::sourcePath("data/scenes/lamps/lamps.gltf"));
-  std::string gltf((std::istreambuf_iterator<char>(original)), std::istreambuf_iterator<char>());
-  const std::string texture = R"("baseColorTexture": {)";
-  ASSERT_NE(gltf.find(texture), std::string::npos);
-  const std::size_t start = gltf.find(texture), end = gltf.find(',', gltf.find('}', start)) + 1; // its comma too
-  gltf.erase(start, end - start);
-  const std::string path = file("lamps.gltf", gltf);
+  nlohmann::json gltf = nlohmann::json::parse(original);
+  ASSERT_EQ(gltf["materials"][0]["name"], "floor");
+  ASSERT_EQ(gltf["materials"][0]["pbrMetallicRoughness"].erase("baseColorTexture"), 1u);
+  const std::string path = file("lamps.gltf", gltf.dump(1));
   for (const char* resource : { "lamps.bin", "checker.png" }) // the image stays in the file, unused
   {
     std::filesystem::copy_file(
@@ -470,7 +470,9 @@ TEST_F(RealRenderOfImportedParts, EachPartOfAGltfFileAsVtkDrawsIt)
   actors->InitTraversal();
   // The first part's property, for the model and the lights; its material is the mesh's own.
   shadelab::Scene scene = shadelab::sceneFromVtk(imported->GetLights(), actors->GetNextActor()->GetProperty(), camera);
-  EXPECT_FALSE(scene.materialGiven);
+  EXPECT_TRUE(scene.materialGiven);
+  EXPECT_FALSE(shadelab::shadesWithOwnMaterials(scene, mesh, false)); // the property's material wins
+  scene.materialGiven = false;
   EXPECT_TRUE(shadelab::shadesWithOwnMaterials(scene, mesh, false));
   vtkSmartPointer<vtkPolyData> shaded = shadelab::testing::shadeWithFilter(mesh, scene, { "total" });
   std::set<std::pair<double, double>> metallicRoughness;

@@ -351,7 +351,7 @@ std::string mixedSidesNote(vtkStringArray* names, vtkUnsignedCharArray* twoSided
   return std::string(count == 1 ? "part " : "parts ") + list + (count == 1 ? " is" : " are") +
     " double-sided and the others are not: a mesh is shaded on one side or on both, not part by part, so its own "
     "materials shade every part on the side of its normals (a scene's material with \"two_sided\": true shades all "
-    "on both, in its own colours)";
+    "on both, in its own colours; the vtk_pbr model shades all on both, as VTK's PBR shader does)";
 }
 }
 
@@ -445,6 +445,7 @@ Material ownMaterial(const Scene& scene, vtkPolyData* mesh)
     ArrayCoefficient array;
     array.array = name;
     array.encoding = ArrayEncoding::Linear;
+    array.ownMaterial = true;
     material.arrays[coefficient] = array;
   };
   if (scene.model == ShadingModel::VtkPbr)

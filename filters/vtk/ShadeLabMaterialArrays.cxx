@@ -1,15 +1,21 @@
 #include "ShadeLabMaterialArrays.h"
 
+#include "Microfacet.h"
+#include "NumberText.h"
+#include "ShadeLabImportedParts.h"
+
 #include "vtkArrayDispatch.h"
 #include "vtkCommunicator.h"
 #include "vtkDataArray.h"
 #include "vtkDataArrayRange.h"
 #include "vtkDiscretizableColorTransferFunction.h"
+#include "vtkFieldData.h"
 #include "vtkLookupTable.h"
 #include "vtkMultiProcessController.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkSMPTools.h"
+#include "vtkStringArray.h"
 #include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
@@ -76,24 +82,26 @@ struct ChannelDecoding
             // A grey (1 component) gives all three channels; RGBA's alpha is not a reflectance.
             const Value raw = tuples[i][components == 1 ? 0 : channel];
             Stored& value = values[std::size_t(width) * i + channel];
-            if constexpr (std::is_same_v<Value, unsigned char>)
+            // A byte is over 255: only a roughness of 0 is then out of its domain.
+            constexpr bool byte = std::is_same_v<Value, unsigned char>;
+            if (!isUsableValue(byte ? double(raw) / 255.0 : double(raw), coefficient))
+            {
+              if (!source.clamp)
+              {
+                // Only this vertex's channels are left: the scan goes on, for the first such vertex.
+                for (vtkIdType known = first; i < known && !first.compare_exchange_weak(known, i);)
+                {
+                }
+                break;
+              }
+              clamped[i] |= bit;
+            }
+            if constexpr (byte)
             {
               value = Stored(decodeByte(raw, encoding, source.scale));
             }
             else
             {
-              if (!isUsableValue(double(raw), coefficient))
-              {
-                if (!source.clamp)
-                {
-                  // Only this vertex's channels are left: the scan goes on, for the first such vertex.
-                  for (vtkIdType known = first; i < known && !first.compare_exchange_weak(known, i);)
-                  {
-                  }
-                  break;
-                }
-                clamped[i] |= bit;
-              }
               value = Stored(decodeReal(double(raw), coefficient, encoding, source.scale));
             }
           }
@@ -290,11 +298,40 @@ ArrayEncoding encodingOf(
     : source.encoding.value_or(defaultEncoding(eightBit, reproducesVtkRenderer(model)));
 }
 
+/// Where the coefficient was asked for, as a message begins: the scene's material, the filter's
+/// colour array, or the mesh's own materials (naming the part, where one is given).
+std::string requestedAt(
+  const ArrayCoefficient& source, MaterialCoefficient coefficient, ShadingModel model, const std::string& part = "")
+{
+  return source.colorMapForFieldsOnly ? "the material's colour array (MaterialColorArray, --color-by): "
+    : source.ownMaterial ? "the mesh's own materials" + (part.empty() ? "" : ", part '" + part + "'") + ": "
+                         : std::string("scene /material/") + materialKey(coefficient, model) + ": ";
+}
+
+/// The name of the part that the piece's vertex belongs to (ShadeLabImportedParts.h), or "".
+std::string partNameAt(vtkPolyData* piece, vtkIdType vertex)
+{
+  vtkDataArray* parts = piece->GetPointData()->GetArray(partArrayName);
+  auto* names = vtkStringArray::SafeDownCast(piece->GetFieldData()->GetAbstractArray(partNamesArrayName));
+  const double part = parts && vertex < parts->GetNumberOfTuples() ? parts->GetComponent(vertex, 0) : -1;
+  return names && part >= 0 && part < double(names->GetNumberOfValues()) ? names->GetValue(vtkIdType(part)) : "";
+}
+
+/// The message for a vertex whose value cannot be used: where it was asked for, the array, the
+/// vertex (by its id) and why.
+std::string vertexProblem(vtkPolyData* piece, const ArrayCoefficient& source, MaterialCoefficient coefficient,
+  ShadingModel model, vtkIdType vertex, long long id, const std::string& why)
+{
+  const std::string part = source.ownMaterial ? partNameAt(piece, vertex) : "";
+  return requestedAt(source, coefficient, model, part) + vertexValueProblem(source, id, why);
+}
+
 /// Why the smallest roughness that the array gave cannot be shaded in this precision (the
-/// scene's own roughnessPrecisionProblem, at that vertex), or "".
+/// scene's own roughnessPrecisionProblem, at that vertex), or is below the smallest that the
+/// scene's overflow checks bound (smallestArrayRoughness); "" where it can be.
 template<typename VertexId>
-std::string arrayRoughnessProblem(
-  const VertexMaterial& material, const ArrayCoefficient& source, Precision storage, VertexId&& idOf)
+std::string arrayRoughnessProblem(vtkPolyData* piece, const VertexMaterial& material, const ArrayCoefficient& source,
+  Precision storage, ShadingModel model, VertexId&& idOf)
 {
   const int c = int(MaterialCoefficient::Roughness);
   const auto smallestAt = [&](const auto& values)
@@ -306,8 +343,14 @@ std::string arrayRoughnessProblem(
   }
   const vtkIdType vertex = narrow ? smallestAt(material.floatValues[c]) : smallestAt(material.values[c]);
   const double roughness = narrow ? material.floatValues[c][vertex] : material.values[c][vertex];
-  const std::string why = roughnessPrecisionProblem(roughness, storage);
-  return why.empty() ? "" : "scene /material/roughness: " + vertexValueProblem(source, idOf(vertex), why);
+  std::string why = roughnessPrecisionProblem(roughness, storage);
+  if (why.empty() && roughness < smallestArrayRoughness(storage))
+  {
+    why = "at roughness " + withDigits(roughness, 3) + " D's peak, 1/(pi r^4), is beyond what the run's overflow " +
+      "checks bound: a roughness from an array must be at least " + withDigits(smallestArrayRoughness(storage), 3);
+  }
+  return why.empty() ? ""
+                     : vertexProblem(piece, source, MaterialCoefficient::Roughness, model, vertex, idOf(vertex), why);
 }
 }
 
@@ -333,10 +376,7 @@ MaterialReading readVertexMaterial(vtkPolyData* piece, const Scene& scene, Preci
     {
       continue;
     }
-    // Where the coefficient was asked for: the scene's material, or the filter's colour array.
-    const std::string at = source->colorMapForFieldsOnly
-      ? std::string("the material's colour array (MaterialColorArray, --color-by): ")
-      : std::string("scene /material/") + materialKey(coefficient, scene.model) + ": ";
+    const std::string at = requestedAt(*source, coefficient, scene.model);
     vtkDataArray* array = piece->GetPointData()->GetArray(source->array.c_str());
     // Collective, so before anything that may stop this process.
     const std::array<double, 2> range =
@@ -388,13 +428,14 @@ MaterialReading readVertexMaterial(vtkPolyData* piece, const Scene& scene, Preci
       storage == Precision::Float32 ? decode(reading.material.floatValues[c]) : decode(reading.material.values[c]);
     if (firstUnusable >= 0)
     {
-      reading.problem = at +
-        vertexValueProblem(*source, idOf(firstUnusable), unusableVertex(channels, firstUnusable, coefficient, width));
+      reading.problem = vertexProblem(piece, *source, coefficient, scene.model, firstUnusable, idOf(firstUnusable),
+        unusableVertex(channels, firstUnusable, coefficient, width));
     }
   }
   if (reading.problem.empty() && arrays[MaterialCoefficient::Roughness])
   {
-    reading.problem = arrayRoughnessProblem(reading.material, *arrays[MaterialCoefficient::Roughness], storage, idOf);
+    reading.problem = arrayRoughnessProblem(
+      piece, reading.material, *arrays[MaterialCoefficient::Roughness], storage, scene.model, idOf);
   }
   if (!reading.problem.empty())
   {

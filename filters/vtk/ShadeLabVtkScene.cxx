@@ -188,6 +188,7 @@ Scene sceneFromVtk(vtkLightCollection* lights, vtkProperty* property, vtkCamera*
   scene.viewer.position = toGlm(camera->GetPosition());
   scene.viewer.focalPoint = toGlm(camera->GetFocalPoint());
   scene.material = pbr ? microfacetMaterial(property) : phongMaterial(property);
+  scene.materialGiven = true; // the property's, which a mesh's own materials do not replace
 
   const int complexity = lightingComplexity(lights);
 

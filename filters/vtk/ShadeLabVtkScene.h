@@ -20,7 +20,9 @@ namespace shadelab
 /// keeps d = 0 finite. A property with PBR interpolation gives the vtk_pbr model; with a
 /// positional light among the lights, its directional ones become unattenuated point lights at
 /// their positions (a headlight at the camera, as also when it is the lone light), as VTK's PBR
-/// shader treats them. A coat, anisotropy or textures throw std::invalid_argument.
+/// shader treats them. A coat, anisotropy or textures throw std::invalid_argument. The
+/// property's material is the scene's (Scene::materialGiven): a mesh's own materials (a glTF
+/// file's parts) do not replace it.
 ///
 /// Assumed, as VTK's defaults: the renderer's LightFollowCamera and AutomaticLightCreation
 /// are on, no UserLightTransform, no image-based lighting, and the actor is a lit surface with

@@ -126,7 +126,8 @@ std::string vertexValueProblem(const ArrayCoefficient& source, long long vertex,
 bool operator==(const ArrayCoefficient& a, const ArrayCoefficient& b)
 {
   return a.array == b.array && a.encoding == b.encoding && a.scale == b.scale && a.colorMap == b.colorMap &&
-    a.range == b.range && a.clamp == b.clamp && a.colorMapForFieldsOnly == b.colorMapForFieldsOnly;
+    a.range == b.range && a.clamp == b.clamp && a.colorMapForFieldsOnly == b.colorMapForFieldsOnly &&
+    a.ownMaterial == b.ownMaterial;
 }
 
 double VertexMaterial::largest(MaterialCoefficient c) const

@@ -44,6 +44,9 @@ struct ArrayCoefficient
   /// Values that cannot be used (NaN, or outside [0, 1] once decoded) are clamped into [0, 1],
   /// NaN to 0, and marked in the material_clamped array, rather than refused.
   bool clamp = false;
+  /// An array of the mesh's own materials (a scene file's parts), which the scene did not ask
+  /// for: messages say so.
+  bool ownMaterial = false;
 };
 
 /// Which of the material's coefficients come from arrays; the others are the Material's numbers.

@@ -8,6 +8,7 @@
 // for Physically-based Rendering", Eurographics 1994), as Karis ("Real Shading in Unreal
 // Engine 4", SIGGRAPH 2013) and Filament's documentation arrange them.
 #include "Material.h"
+#include "Precision.h"
 #include "Vec3.h"
 
 #include <algorithm>
@@ -112,9 +113,14 @@ inline double float32DistributionError(double roughness)
   return 4.0 * 0x1p-24 / std::pow(roughness, 4.0);
 }
 
-/// Just below the smallest roughness float32 shades to 1% (float32DistributionError is 0.01 at
-/// 0.06988): where a scene's checks need a bound on the roughnesses that an array may give.
-constexpr double smallestFloat32Roughness = 0.0698;
+/// The smallest roughness an array may give in each precision, which the scene's overflow
+/// checks bound D's peak with: in float32, just below the smallest that float32 shades to 1%
+/// (float32DistributionError is 0.01 at 0.06988); in float64, where r^4 would underflow long
+/// before, one whose peak 1/(pi r^4), 3e23, leaves the check its range.
+inline double smallestArrayRoughness(Precision precision)
+{
+  return precision == Precision::Float32 ? 0.0698 : 1e-6;
+}
 
 /// The largest value the specular factor D V F (n.s) can take for a roughness in (0, 1]: D is
 /// at most 1 / (pi r^4), V (n.s) at most 1 / (4 n.v) <= 1 / (4e-5) with the clamps, and F at

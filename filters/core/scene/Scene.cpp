@@ -80,7 +80,7 @@ std::string roughnessPrecisionProblem(double roughness, Precision precision)
 
 namespace
 {
-Material peakMaterial(const Scene& scene)
+Material peakMaterial(const Scene& scene, Precision precision)
 {
   if (scene.model != ShadingModel::VtkPbr)
   {
@@ -91,10 +91,10 @@ Material peakMaterial(const Scene& scene)
   const MicrofacetMaterial& microfacet = scene.material.microfacet;
   Material bound;
   bound.kd = microfacet.baseColor * vtkReciprocalPi;
-  // A roughness from an array is bounded where float32, whose limit the check is for, admits it
-  // (roughnessPrecisionProblem, checked as the array is read).
+  // A roughness from an array is bounded by the smallest one it may give (roughnessPrecisionProblem,
+  // checked as the array is read).
   bound.ks = Rgb(microfacetSpecularBound(
-    scene.material.arrays[MaterialCoefficient::Roughness] ? smallestFloat32Roughness : microfacet.roughness));
+    scene.material.arrays[MaterialCoefficient::Roughness] ? smallestArrayRoughness(precision) : microfacet.roughness));
   return bound;
 }
 
@@ -119,6 +119,9 @@ void checkMaterialArrays(const Scene& scene, ProblemList& list)
     "with kd from an array, VTK's mapper takes the ambient colour from the array too: give ka as {\"array\": \"" +
       (m.arrays[MaterialCoefficient::Diffuse] ? m.arrays[MaterialCoefficient::Diffuse]->array : std::string()) +
       "\", \"scale\": <the property's Ambient>}");
+  list.check(scene.model == ShadingModel::VtkPbr ||
+      (!m.arrays[MaterialCoefficient::Metallic] && !m.arrays[MaterialCoefficient::Roughness]),
+    "/material", "only the vtk_pbr model has a metallic factor and a roughness");
   if (m.arrays[MaterialCoefficient::Shininess] && hasSpecularTerm(scene))
   {
     for (std::size_t i = 0; i < scene.lights.size(); ++i)
@@ -318,7 +321,7 @@ std::vector<SceneProblem> sceneProblems(const Scene& scene, Precision precision)
         precisionName(precision) + " holds: use " + (precision == Precision::Float32 ? "float64 or " : "");
     };
     double sum = 0;
-    const Material bounding = peakMaterial(scene);
+    const Material bounding = peakMaterial(scene, precision);
     for (std::size_t i = 0; i < scene.lights.size(); ++i)
     {
       const double peak = peakContribution(scene.lights[i].source, bounding);
