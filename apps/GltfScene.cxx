@@ -344,22 +344,32 @@ void noteMaterialsShadedOtherwise(const Json& gltf, std::vector<std::string>& no
     name = name.size() > 60 ? name.substr(0, 57) + "..." : name;
     const std::string named = "material " + (name.empty() ? std::to_string(m) : "'" + name + "'");
     const Json* pbr = member(material, "pbrMetallicRoughness");
-    if (numberOr(pbr, "roughnessFactor", 1) == 0)
+    // VTK's property clamps a negative roughness to 0.
+    if (numberOr(pbr, "roughnessFactor", 1) <= 0)
     {
       notes.push_back(named +
-        " has roughnessFactor 0, which the vtk_pbr model refuses (VTK's GGX distribution is 0/0 in the mirror "
-        "direction): shade it in the lecture model, or give the scene a material");
+        " has roughnessFactor 0, which the vtk_pbr model would refuse (VTK's GGX distribution is 0/0 in the mirror "
+        "direction): a vtk_pbr scene needs a material of its own for this file");
     }
-    std::string unread;
+    std::vector<std::string> unread;
     for (const auto& [owner, key] :
       { std::pair{ pbr, "metallicRoughnessTexture" }, std::pair{ material, "normalTexture" },
         std::pair{ material, "occlusionTexture" }, std::pair{ material, "emissiveTexture" } })
     {
-      unread += member(owner, key) ? (unread.empty() ? "" : ", ") + std::string(key) : "";
+      if (member(owner, key))
+      {
+        unread.push_back(key);
+      }
+    }
+    std::string list;
+    for (std::size_t t = 0; t < unread.size(); ++t)
+    {
+      list += (t == 0 ? "" : t + 1 == unread.size() ? " and " : ", ") + unread[t];
     }
     if (!unread.empty())
     {
-      notes.push_back(named + " has " + unread + ", which ShadeLab does not read: shaded without them");
+      notes.push_back(named + " has " + list + ", which ShadeLab does not read: shaded without " +
+        (unread.size() == 1 ? "it" : "them"));
     }
   }
 }

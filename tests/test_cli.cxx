@@ -1053,6 +1053,7 @@ TEST_F(Cli, AGltfFilesMaterialsShadeTheVtkPbrModelPartByPart)
   nlohmann::json gltf = nlohmann::json::parse(slurp(shadelab::testing::sourcePath("data/scenes/lamps/lamps.gltf")));
   gltf["materials"][1]["pbrMetallicRoughness"]["roughnessFactor"] = 0;
   gltf["materials"][0]["normalTexture"] = { { "index", 0 } };
+  gltf["materials"][0]["emissiveTexture"] = { { "index", 0 } };
   const std::string mirror = file("mirror.gltf", gltf.dump(1));
   const Result refused = shadelab("shade " + mirror + " -s " + scene + " -o " + (folder / "mirror.vtp").string());
   EXPECT_EQ(refused.exitCode, 1);
@@ -1066,11 +1067,11 @@ TEST_F(Cli, AGltfFilesMaterialsShadeTheVtkPbrModelPartByPart)
   ASSERT_EQ(lecture.exitCode, 0) << lecture.err;
   EXPECT_EQ(lecture.err,
     "shadelab: warning: " + mirror +
-      ": material 'floor' has normalTexture, which ShadeLab does not read: shaded without them\n"
+      ": material 'floor' has normalTexture and emissiveTexture, which ShadeLab does not read: shaded without them\n"
       "shadelab: warning: " +
       mirror +
-      ": material 'ball' has roughnessFactor 0, which the vtk_pbr model refuses (VTK's GGX distribution is 0/0 in "
-      "the mirror direction): shade it in the lecture model, or give the scene a material\n");
+      ": material 'ball' has roughnessFactor 0, which the vtk_pbr model would refuse (VTK's GGX distribution is 0/0 "
+      "in the mirror direction): a vtk_pbr scene needs a material of its own for this file\n");
 
   // An OBJ's materials are the lecture model's: the vtk_pbr model shades it with its defaults, and says so.
   const std::string stillLife = shadelab::testing::sourcePath("data/scenes/still_life/still_life.obj");
