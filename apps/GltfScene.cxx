@@ -333,7 +333,7 @@ void noteDoubleSidedNotBoolean(const Json& gltf, std::vector<std::string>& notes
 
 /// What the vtk_pbr model cannot take from a material, said where the file is read: a roughness
 /// of 0, which VTK's GGX distribution divides by (0/0 in the mirror direction), and the textures
-/// other than the base colour's, which ShadeLab does not read.
+/// other than the base colour's and the metallic-roughness one, which ShadeLab does not read.
 void noteMaterialsShadedOtherwise(const Json& gltf, std::vector<std::string>& notes)
 {
   const Json* materials = member(&gltf, "materials");
@@ -351,12 +351,18 @@ void noteMaterialsShadedOtherwise(const Json& gltf, std::vector<std::string>& no
         " has roughnessFactor 0, which the vtk_pbr model would refuse (VTK's GGX distribution is 0/0 in the mirror "
         "direction): a vtk_pbr scene needs a material of its own for this file");
     }
-    std::vector<std::string> unread;
-    for (const auto& [owner, key] :
-      { std::pair{ pbr, "metallicRoughnessTexture" }, std::pair{ material, "normalTexture" },
-        std::pair{ material, "occlusionTexture" }, std::pair{ material, "emissiveTexture" } })
+    // VTK 9.1's importer applies it beside a base colour texture only (and warns of "multiple
+    // texture coordinates" otherwise), and ShadeLab shades what it applies.
+    if (member(pbr, "metallicRoughnessTexture") && !member(pbr, "baseColorTexture"))
     {
-      if (member(owner, key))
+      notes.push_back(named +
+        " has a metallicRoughnessTexture but no baseColorTexture, without which VTK's importer does not apply it: "
+        "shaded with its metallic and roughness factors alone");
+    }
+    std::vector<std::string> unread;
+    for (const char* key : { "normalTexture", "occlusionTexture", "emissiveTexture" })
+    {
+      if (member(material, key))
       {
         unread.push_back(key);
       }
@@ -425,7 +431,8 @@ vtkSmartPointer<vtkPolyData> importGltfScene(const std::string& fileName, std::v
     vtkActor* actor = actors->GetNextActor();
     vtkProperty* property = actor->GetProperty();
     const std::string name = named && !fileNames[i].empty() ? fileNames[i] : "part" + std::to_string(i);
-    parts.push_back({ actor, uniqueName(name, taken), materialOf(property), property->GetTexture("albedoTex"), "" });
+    parts.push_back({ actor, uniqueName(name, taken), materialOf(property), property->GetTexture("albedoTex"), "",
+      property->GetTexture("materialTex") });
   }
   std::vector<std::string> skipped;
   vtkSmartPointer<vtkPolyData> mesh = meshOfParts(parts, skipped);

@@ -33,6 +33,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -40,6 +42,8 @@
 #include <map>
 #include <set>
 #include <unistd.h>
+
+#include <nlohmann/json.hpp>
 
 namespace
 {
@@ -580,6 +584,81 @@ TEST_F(SceneFiles, AGltfFilesPartsKeepTheirMetallicRoughnessMaterialsForTheVtkPb
   EXPECT_EQ(own.arrays[MaterialCoefficient::Metallic]->array, materialMetallicArrayName);
   EXPECT_EQ(own.arrays[MaterialCoefficient::Roughness]->array, materialRoughnessArrayName);
   EXPECT_FALSE(own.arrays[MaterialCoefficient::Specular].has_value());
+}
+
+TEST_F(SceneFiles, AGltfFilesMetallicRoughnessTextureScalesItsFactorsAtEachVertex)
+{
+  // The lamps' floor with a constant metallic-roughness texture (green 160 and blue 96 of 255,
+  // read linearly) beside a white base colour texture, which VTK's importer needs to apply it,
+  // under factors metallic 0.8 and roughness 1: each vertex's metallic factor 0.8 x 96/255 and
+  // roughness 160/255, and its lecture coefficients made from them.
+  for (const char* resource : { "lamps.bin", "checker.png" })
+  {
+    fs::copy_file(shadelab::testing::sourcePath(std::string("data/scenes/lamps/") + resource), folder / resource);
+  }
+  for (const auto& [name, color] : { std::pair{ "orm.png", std::array<unsigned char, 3>{ 255, 160, 96 } },
+         std::pair{ "white.png", std::array<unsigned char, 3>{ 255, 255, 255 } } })
+  {
+    vtkNew<vtkImageData> image;
+    image->SetDimensions(4, 4, 1);
+    image->AllocateScalars(VTK_UNSIGNED_CHAR, 3);
+    for (int c = 0; c < 3; ++c)
+    {
+      image->GetPointData()->GetScalars()->FillComponent(c, color[c]);
+    }
+    vtkNew<vtkPNGWriter> writer;
+    writer->SetInputData(image);
+    writer->SetFileName((folder / name).string().c_str());
+    writer->Write();
+  }
+  std::ifstream original(shadelab::testing::sourcePath("data/scenes/lamps/lamps.gltf"));
+  nlohmann::json gltf = nlohmann::json::parse(original);
+  gltf["images"].push_back({ { "uri", "orm.png" } });
+  gltf["images"].push_back({ { "uri", "white.png" } });
+  gltf["textures"].push_back({ { "source", 1 } });
+  gltf["textures"].push_back({ { "source", 2 } });
+  nlohmann::json& floor = gltf["materials"][0]["pbrMetallicRoughness"];
+  floor["metallicRoughnessTexture"] = { { "index", 1 } };
+  floor["baseColorTexture"] = { { "index", 2 } };
+  floor["metallicFactor"] = 0.8;
+  floor["roughnessFactor"] = 1.0;
+  vtkSmartPointer<vtkPolyData> mesh = app::readMesh(file("orm.gltf", gltf.dump(1)));
+  vtkPointData* points = mesh->GetPointData();
+  const double metallic = 0.8 * 96 / 255.0, roughness = 160 / 255.0;
+  const LectureCoefficients lecture = lectureCoefficients(Rgb(1.0), metallic, roughness);
+  int floorPoints = 0;
+  for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)
+  {
+    if (points->GetArray(partArrayName)->GetComponent(p, 0) != 1) // the ball, part 0, has no texture
+    {
+      continue;
+    }
+    ++floorPoints;
+    EXPECT_FLOAT_EQ(points->GetArray(materialMetallicArrayName)->GetComponent(p, 0), float(metallic)) << p;
+    EXPECT_FLOAT_EQ(points->GetArray(materialRoughnessArrayName)->GetComponent(p, 0), float(roughness)) << p;
+    for (int c = 0; c < 3; ++c)
+    {
+      EXPECT_FLOAT_EQ(points->GetArray(materialBaseColorArrayName)->GetComponent(p, c), 1.0f) << p;
+      EXPECT_FLOAT_EQ(points->GetArray(materialKdArrayName)->GetComponent(p, c), float(lecture.kd[c])) << p;
+      EXPECT_FLOAT_EQ(points->GetArray(materialKaArrayName)->GetComponent(p, c), float(lecture.kd[c])) << p;
+      EXPECT_FLOAT_EQ(points->GetArray(materialKsArrayName)->GetComponent(p, c), float(lecture.ks[c])) << p;
+    }
+    EXPECT_NEAR(
+      points->GetArray(materialShininessArrayName)->GetComponent(p, 0), lecture.shininess, 1e-6 * lecture.shininess)
+      << p;
+  }
+  EXPECT_GT(floorPoints, 1000);
+  // Without the base colour texture VTK's importer leaves it out, and so does ShadeLab, saying so.
+  floor.erase("baseColorTexture");
+  std::vector<std::string> notes;
+  vtkSmartPointer<vtkPolyData> alone = app::importGltfScene(file("alone.gltf", gltf.dump(1)), notes);
+  vtkDataArray* aloneRoughness = alone->GetPointData()->GetArray(materialRoughnessArrayName);
+  EXPECT_EQ(aloneRoughness->GetRange()[0], 0.35f); // the ball's
+  EXPECT_EQ(aloneRoughness->GetRange()[1], 1.0f);  // the floor's factor alone
+  EXPECT_NE(std::find(notes.begin(), notes.end(),
+              "material 'floor' has a metallicRoughnessTexture but no baseColorTexture, without which VTK's importer "
+              "does not apply it: shaded with its metallic and roughness factors alone"),
+    notes.end());
 }
 
 TEST_F(SceneFiles, AGltfFilesLightsKeepTheirOwnDefinitionsWhereverTheirNodesAre)

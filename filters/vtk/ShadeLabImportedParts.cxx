@@ -21,6 +21,7 @@
 
 #include "ImageFile.h"
 #include "MaterialArrays.h"
+#include "MetallicRoughness.h"
 #include "NumberText.h"
 #include "ShadeLabMeshPolygons.h"
 #include "TextureFootprint.h"
@@ -35,10 +36,11 @@ namespace shadelab
 {
 namespace
 {
-/// The texture's image as linear RGB: 8- and 16-bit channels sRGB-decoded (a colour texture's
-/// encoding, MTL's convention for map_Kd), floating-point ones taken as linear; one or two
-/// channels are a grey. An empty image where it has none.
-RgbImage linearImage(vtkTexture* texture)
+/// The texture's image as linear RGB: 8- and 16-bit channels over their largest value, and for a
+/// colour texture sRGB-decoded (its encoding, MTL's and glTF's convention for a base colour);
+/// floating-point ones taken as linear; one or two channels are a grey. An empty image where it
+/// has none.
+RgbImage linearImage(vtkTexture* texture, bool colors = true)
 {
   RgbImage image;
   if (vtkAlgorithm* source = texture->GetInputAlgorithm())
@@ -62,7 +64,7 @@ RgbImage linearImage(vtkTexture* texture)
   auto channel = [&](vtkIdType texel, int c)
   {
     const double value = scalars->GetComponent(texel, components < 3 ? 0 : c) / scale;
-    return encoded ? srgbToLinear(value) : value;
+    return encoded && colors ? srgbToLinear(value) : value;
   };
   image.width = dimensions[0];
   image.height = dimensions[1];
@@ -135,8 +137,10 @@ RgbImage imageFileTexture(const std::string& fileName, std::string& problem)
 }
 
 /// Clamps each texel value outside [0, 1] (a floating-point texture's HDR value, a negative or
-/// NaN one) into it, since the texture multiplies kd, a reflectance; says so in skipped.
-void clampIntoReflectance(RgbImage& image, const std::string& partName, std::vector<std::string>& skipped)
+/// NaN one) into it, since the texture multiplies what must stay in [0, 1] (`multiplies`: "kd,
+/// a reflectance"); says so in skipped, naming the texture (`texture`: "its texture").
+void clampIntoUnitRange(RgbImage& image, const std::string& partName, const std::string& texture,
+  const std::string& multiplies, std::vector<std::string>& skipped)
 {
   std::size_t clamped = 0, notANumber = 0;
   double lowest = 0, highest = 1;
@@ -157,8 +161,8 @@ void clampIntoReflectance(RgbImage& image, const std::string& partName, std::vec
     std::string range = lowest < 0 ? "as low as " + withDigits(lowest, 4) : "";
     range += highest > 1 ? (range.empty() ? "" : ", ") + std::string("as high as ") + withDigits(highest, 4) : "";
     range += notANumber > 0 ? (range.empty() ? "" : ", ") + countOf(notANumber, "NaN") : "";
-    skipped.push_back("part '" + partName + "': its texture has " + countOf(clamped, "texel value") +
-      " outside [0, 1] (" + range + "): clamped into it, since the texture multiplies kd, a reflectance");
+    skipped.push_back("part '" + partName + "': " + texture + " has " + countOf(clamped, "texel value") +
+      " outside [0, 1] (" + range + "): clamped into it, since the texture multiplies " + multiplies);
   }
 }
 
@@ -259,6 +263,43 @@ void multiplyColors(vtkFloatArray* array, const std::vector<Rgb>& colors)
   }
 }
 
+/// glTF's metallic-roughness texture as VTK's importer gives it (its ORM texture: roughness in
+/// green, metallic in blue, linear): each point's metallic factor and roughness multiplied by
+/// the texture's averaged over the texels the point stands for, and its lecture coefficients
+/// made again from them (docs/formulas.md section 7.3). What cannot be used is added to skipped.
+void applyMetallicRoughnessTexture(const ImportedPart& part, vtkPolyData* copy, std::vector<std::string>& skipped)
+{
+  vtkPointData* pointData = copy->GetPointData();
+  vtkDataArray* tcoords = pointData->GetTCoords();
+  RgbImage image = linearImage(part.metallicRoughnessTexture, false);
+  if (image.texels.empty() || !tcoords || tcoords->GetNumberOfComponents() < 2)
+  {
+    skipped.push_back("part '" + part.name + "': its metallic-roughness texture has " +
+      (image.texels.empty() ? "no image" : "no texture coordinates to be read at") +
+      ": shaded with its metallic and roughness factors alone");
+    return;
+  }
+  clampIntoUnitRange(image, part.name, "its metallic-roughness texture", "the metallic factor and roughness", skipped);
+  const std::vector<Rgb> means = textureColors(copy, image, tcoords);
+  vtkDataArray* metallic = pointData->GetArray(materialMetallicArrayName);
+  vtkDataArray* roughness = pointData->GetArray(materialRoughnessArrayName);
+  vtkDataArray* base = pointData->GetArray(materialBaseColorArrayName);
+  for (vtkIdType p = 0; p < copy->GetNumberOfPoints(); ++p)
+  {
+    metallic->SetComponent(p, 0, metallic->GetComponent(p, 0) * means[std::size_t(p)].z);
+    roughness->SetComponent(p, 0, roughness->GetComponent(p, 0) * means[std::size_t(p)].y);
+    // kd from the textured base colour, ks (F0) from the part's own (docs/formulas.md section 7.3).
+    const double* textured = base->GetTuple3(p);
+    const LectureCoefficients c = lectureCoefficients(
+      part.material.microfacet->baseColor, metallic->GetComponent(p, 0), roughness->GetComponent(p, 0));
+    const Rgb kd = Rgb(textured[0], textured[1], textured[2]) * (1.0 - metallic->GetComponent(p, 0));
+    pointData->GetArray(materialKaArrayName)->SetTuple3(p, kd.x, kd.y, kd.z);
+    pointData->GetArray(materialKdArrayName)->SetTuple3(p, kd.x, kd.y, kd.z);
+    pointData->GetArray(materialKsArrayName)->SetTuple3(p, c.ks.x, c.ks.y, c.ks.z);
+    pointData->GetArray(materialShininessArrayName)->SetComponent(p, 0, c.shininess);
+  }
+}
+
 /// The part with its index and material as point arrays, the metallic-roughness ones too where
 /// withMicrofacet; a texture that cannot be used is added to skipped.
 vtkSmartPointer<vtkPolyData> partWithMaterial(
@@ -314,7 +355,7 @@ vtkSmartPointer<vtkPolyData> partWithMaterial(
     }
     else
     {
-      clampIntoReflectance(image, part.name, skipped);
+      clampIntoUnitRange(image, part.name, "its texture", "kd, a reflectance", skipped);
       const std::vector<Rgb> colors = textureColors(copy, image, tcoords);
       multiplyColors(kd, colors);
       if (baseColor)
@@ -327,6 +368,10 @@ vtkSmartPointer<vtkPolyData> partWithMaterial(
   if (baseColor)
   {
     pointData->AddArray(baseColor);
+    if (part.metallicRoughnessTexture)
+    {
+      applyMetallicRoughnessTexture(part, copy, skipped);
+    }
   }
   return copy;
 }

@@ -63,6 +63,9 @@ struct ImportedPart
   PartMaterial material;
   vtkTexture* kdTexture = nullptr;
   std::string textureFile;
+  /// glTF's metallic-roughness texture, as VTK's importer gives it (its ORM texture, roughness in
+  /// green and metallic in blue), which multiplies the microfacet material's factors.
+  vtkTexture* metallicRoughnessTexture = nullptr;
 };
 
 /// The parts' polygons, lines and vertices as one mesh (the parts with none are left out), with
