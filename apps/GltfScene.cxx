@@ -351,8 +351,8 @@ void noteMaterialsShadedOtherwise(const Json& gltf, std::vector<std::string>& no
         " has roughnessFactor 0, which the vtk_pbr model would refuse (VTK's GGX distribution is 0/0 in the mirror "
         "direction): a vtk_pbr scene needs a material of its own for this file");
     }
-    // VTK 9.1's importer applies it beside a base colour texture only (and warns of "multiple
-    // texture coordinates" otherwise), and ShadeLab shades what it applies.
+    // VTK 9.1's importer applies it beside a base colour texture only, and ShadeLab shades what
+    // it applies.
     if (member(pbr, "metallicRoughnessTexture") && !member(pbr, "baseColorTexture"))
     {
       notes.push_back(named +

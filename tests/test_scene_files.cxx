@@ -41,6 +41,7 @@
 #include <fstream>
 #include <map>
 #include <set>
+#include <tuple>
 #include <unistd.h>
 
 #include <nlohmann/json.hpp>
@@ -588,23 +589,28 @@ TEST_F(SceneFiles, AGltfFilesPartsKeepTheirMetallicRoughnessMaterialsForTheVtkPb
 
 TEST_F(SceneFiles, AGltfFilesMetallicRoughnessTextureScalesItsFactorsAtEachVertex)
 {
-  // The lamps' floor with a constant metallic-roughness texture (green 160 and blue 96 of 255,
-  // read linearly) beside a white base colour texture, which VTK's importer needs to apply it,
-  // under factors metallic 0.8 and roughness 1: each vertex's metallic factor 0.8 x 96/255 and
-  // roughness 160/255, and its lecture coefficients made from them.
+  // The lamps' floor alone, with a metallic-roughness texture (read linearly: green the
+  // roughness, blue the metallic factor) beside a base colour texture, which VTK's importer
+  // needs to apply it; each of two rows, so that the orientation shows. glTF's images start at
+  // their top row (texture coordinate v = 0), VTK's at their bottom one (vtkPNGWriter writes row
+  // 1 first), and vtkGLTFImporter samples at v -> 1 - v: a vertex at v in (0.1, 0.4) takes the
+  // top row, at (0.6, 0.9) the bottom one.
   for (const char* resource : { "lamps.bin", "checker.png" })
   {
     fs::copy_file(shadelab::testing::sourcePath(std::string("data/scenes/lamps/") + resource), folder / resource);
   }
-  for (const auto& [name, color] : { std::pair{ "orm.png", std::array<unsigned char, 3>{ 255, 160, 96 } },
-         std::pair{ "white.png", std::array<unsigned char, 3>{ 255, 255, 255 } } })
+  using Texel = std::array<unsigned char, 3>;
+  const Texel ormTop{ 255, 60, 30 }, ormBottom{ 255, 200, 240 }, baseTop{ 255, 128, 64 }, baseBottom{ 64, 255, 128 };
+  for (const auto& [name, top, bottom] :
+    { std::tuple{ "orm.png", ormTop, ormBottom }, std::tuple{ "base.png", baseTop, baseBottom } })
   {
     vtkNew<vtkImageData> image;
-    image->SetDimensions(4, 4, 1);
+    image->SetDimensions(1, 2, 1);
     image->AllocateScalars(VTK_UNSIGNED_CHAR, 3);
     for (int c = 0; c < 3; ++c)
     {
-      image->GetPointData()->GetScalars()->FillComponent(c, color[c]);
+      static_cast<unsigned char*>(image->GetScalarPointer(0, 0, 0))[c] = bottom[c];
+      static_cast<unsigned char*>(image->GetScalarPointer(0, 1, 0))[c] = top[c];
     }
     vtkNew<vtkPNGWriter> writer;
     writer->SetInputData(image);
@@ -613,48 +619,64 @@ TEST_F(SceneFiles, AGltfFilesMetallicRoughnessTextureScalesItsFactorsAtEachVerte
   }
   std::ifstream original(shadelab::testing::sourcePath("data/scenes/lamps/lamps.gltf"));
   nlohmann::json gltf = nlohmann::json::parse(original);
+  ASSERT_EQ(gltf["nodes"][1]["name"], "ball");
+  gltf["scenes"][0]["nodes"] = { 0, 2, 3, 4 }; // the floor alone, with its texture coordinates
   gltf["images"].push_back({ { "uri", "orm.png" } });
-  gltf["images"].push_back({ { "uri", "white.png" } });
+  gltf["images"].push_back({ { "uri", "base.png" } });
   gltf["textures"].push_back({ { "source", 1 } });
   gltf["textures"].push_back({ { "source", 2 } });
   nlohmann::json& floor = gltf["materials"][0]["pbrMetallicRoughness"];
   floor["metallicRoughnessTexture"] = { { "index", 1 } };
   floor["baseColorTexture"] = { { "index", 2 } };
+  floor["baseColorFactor"] = { 1.0, 0.5, 0.25, 1.0 };
   floor["metallicFactor"] = 0.8;
   floor["roughnessFactor"] = 1.0;
   vtkSmartPointer<vtkPolyData> mesh = app::readMesh(file("orm.gltf", gltf.dump(1)));
   vtkPointData* points = mesh->GetPointData();
-  const double metallic = 0.8 * 96 / 255.0, roughness = 160 / 255.0;
-  const LectureCoefficients lecture = lectureCoefficients(Rgb(1.0), metallic, roughness);
-  int floorPoints = 0;
+  vtkDataArray* tcoords = points->GetTCoords();
+  ASSERT_NE(tcoords, nullptr);
+  const Rgb factor(1.0, 0.5, 0.25);
+  int checked[2] = { 0, 0 };
   for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)
   {
-    if (points->GetArray(partArrayName)->GetComponent(p, 0) != 1) // the ball, part 0, has no texture
+    const double v = tcoords->GetComponent(p, 1) - std::floor(tcoords->GetComponent(p, 1)); // the texture repeats
+    const bool top = v > 0.1 && v<0.4, bottom = v> 0.6 && v < 0.9;
+    if (!top && !bottom)
     {
       continue;
     }
-    ++floorPoints;
+    ++checked[top ? 0 : 1];
+    const Texel& orm = top ? ormTop : ormBottom;
+    const Texel& texel = top ? baseTop : baseBottom;
+    const double metallic = 0.8 * orm[2] / 255.0, roughness = orm[1] / 255.0;
+    Rgb textured;
+    for (int c = 0; c < 3; ++c)
+    {
+      textured[c] = factor[c] * srgbToLinear(texel[c] / 255.0);
+    }
+    const LectureCoefficients own = lectureCoefficients(factor, metallic, roughness);
+    const LectureCoefficients withTexture = lectureCoefficients(textured, metallic, roughness);
     EXPECT_FLOAT_EQ(points->GetArray(materialMetallicArrayName)->GetComponent(p, 0), float(metallic)) << p;
     EXPECT_FLOAT_EQ(points->GetArray(materialRoughnessArrayName)->GetComponent(p, 0), float(roughness)) << p;
     for (int c = 0; c < 3; ++c)
     {
-      EXPECT_FLOAT_EQ(points->GetArray(materialBaseColorArrayName)->GetComponent(p, c), 1.0f) << p;
-      EXPECT_FLOAT_EQ(points->GetArray(materialKdArrayName)->GetComponent(p, c), float(lecture.kd[c])) << p;
-      EXPECT_FLOAT_EQ(points->GetArray(materialKaArrayName)->GetComponent(p, c), float(lecture.kd[c])) << p;
-      EXPECT_FLOAT_EQ(points->GetArray(materialKsArrayName)->GetComponent(p, c), float(lecture.ks[c])) << p;
+      EXPECT_NEAR(points->GetArray(materialBaseColorArrayName)->GetComponent(p, c), textured[c], 1e-6) << p;
+      EXPECT_NEAR(points->GetArray(materialKdArrayName)->GetComponent(p, c), withTexture.kd[c], 1e-6) << p;
+      EXPECT_NEAR(points->GetArray(materialKaArrayName)->GetComponent(p, c), own.kd[c], 1e-6) << p;
+      EXPECT_NEAR(points->GetArray(materialKsArrayName)->GetComponent(p, c), own.ks[c], 1e-6) << p;
     }
-    EXPECT_NEAR(
-      points->GetArray(materialShininessArrayName)->GetComponent(p, 0), lecture.shininess, 1e-6 * lecture.shininess)
+    EXPECT_NEAR(points->GetArray(materialShininessArrayName)->GetComponent(p, 0), own.shininess, 1e-6 * own.shininess)
       << p;
   }
-  EXPECT_GT(floorPoints, 1000);
+  EXPECT_GT(checked[0], 100);
+  EXPECT_GT(checked[1], 100);
   // Without the base colour texture VTK's importer leaves it out, and so does ShadeLab, saying so.
   floor.erase("baseColorTexture");
   std::vector<std::string> notes;
   vtkSmartPointer<vtkPolyData> alone = app::importGltfScene(file("alone.gltf", gltf.dump(1)), notes);
   vtkDataArray* aloneRoughness = alone->GetPointData()->GetArray(materialRoughnessArrayName);
-  EXPECT_EQ(aloneRoughness->GetRange()[0], 0.35f); // the ball's
-  EXPECT_EQ(aloneRoughness->GetRange()[1], 1.0f);  // the floor's factor alone
+  EXPECT_EQ(aloneRoughness->GetRange()[0], 1.0); // the factor alone
+  EXPECT_EQ(aloneRoughness->GetRange()[1], 1.0);
   EXPECT_NE(std::find(notes.begin(), notes.end(),
               "material 'floor' has a metallicRoughnessTexture but no baseColorTexture, without which VTK's importer "
               "does not apply it: shaded with its metallic and roughness factors alone"),

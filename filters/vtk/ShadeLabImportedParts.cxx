@@ -9,10 +9,13 @@
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationDoubleVectorKey.h"
 #include "vtkMapper.h"
 #include "vtkMatrix4x4.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
+#include "vtkProp.h"
 #include "vtkStringArray.h"
 #include "vtkTexture.h"
 #include "vtkTransform.h"
@@ -36,11 +39,18 @@ namespace shadelab
 {
 namespace
 {
-/// The texture's image as linear RGB: 8- and 16-bit channels over their largest value, and for a
-/// colour texture sRGB-decoded (its encoding, MTL's and glTF's convention for a base colour);
-/// floating-point ones taken as linear; one or two channels are a grey. An empty image where it
-/// has none.
-RgbImage linearImage(vtkTexture* texture, bool colors = true)
+/// How a texture's integer texels encode their values: a colour's in sRGB (MTL's and glTF's
+/// convention for a base colour), a metallic-roughness texture's linearly.
+enum class TexelEncoding
+{
+  Srgb,
+  Linear,
+};
+
+/// The texture's image as linear RGB: 8- and 16-bit channels over their largest value, decoded
+/// as `encoding` says; floating-point ones taken as linear; one or two channels are a grey (as
+/// VTK's renderer draws them). An empty image where it has none.
+RgbImage linearImage(vtkTexture* texture, TexelEncoding encoding)
 {
   RgbImage image;
   if (vtkAlgorithm* source = texture->GetInputAlgorithm())
@@ -64,7 +74,7 @@ RgbImage linearImage(vtkTexture* texture, bool colors = true)
   auto channel = [&](vtkIdType texel, int c)
   {
     const double value = scalars->GetComponent(texel, components < 3 ? 0 : c) / scale;
-    return encoded && colors ? srgbToLinear(value) : value;
+    return encoded && encoding == TexelEncoding::Srgb ? srgbToLinear(value) : value;
   };
   image.width = dimensions[0];
   image.height = dimensions[1];
@@ -81,8 +91,8 @@ constexpr std::size_t maxTextureTexels = std::size_t(8192) * 8192;
 
 /// A texture file that VTK's importer does not read (OpenEXR, Radiance .hdr, ...), read through
 /// OpenImageIO (ImageFile.h) as linear RGB: floating-point channels as they are, integer ones
-/// sRGB-decoded as linearImage decodes them, one or two channels a grey. Empty, with problem set
-/// to why, where it cannot be read.
+/// sRGB-decoded as linearImage decodes a colour's (an MTL's map_Kd), one or two channels a grey. Empty, with problem
+/// set to why, where it cannot be read.
 RgbImage imageFileTexture(const std::string& fileName, std::string& problem)
 {
   RgbImage image;
@@ -166,8 +176,24 @@ void clampIntoUnitRange(RgbImage& image, const std::string& partName, const std:
   }
 }
 
-/// The texture's colour at each point, averaged over the texels it stands for (TextureFootprint.h).
-std::vector<Rgb> textureColors(vtkPolyData* part, const RgbImage& image, vtkDataArray* tcoords)
+/// The texture coordinates at which VTK's renderer samples the part's textures: through the
+/// actor's GeneralTextureTransform where it has one (vtkGLTFImporter's v -> 1 - v, since glTF's
+/// images start at their top row and VTK's at their bottom one), a row-major 4 x 4 matrix.
+std::array<double, 2> sampledCoordinates(vtkActor* actor, double u, double v)
+{
+  vtkInformation* keys = actor->GetPropertyKeys();
+  if (!keys || !keys->Has(vtkProp::GeneralTextureTransform()) || keys->Length(vtkProp::GeneralTextureTransform()) != 16)
+  {
+    return { u, v };
+  }
+  const double* m = keys->Get(vtkProp::GeneralTextureTransform());
+  const double w = m[12] * u + m[13] * v + m[15];
+  return { (m[0] * u + m[1] * v + m[3]) / w, (m[4] * u + m[5] * v + m[7]) / w };
+}
+
+/// The texture's colour at each point, averaged over the texels it stands for (TextureFootprint.h),
+/// where the actor's renderer samples it (sampledCoordinates).
+std::vector<Rgb> textureColors(vtkActor* actor, vtkPolyData* part, const RgbImage& image, vtkDataArray* tcoords)
 {
   const vtkIdType points = part->GetNumberOfPoints();
   std::vector<std::array<double, 3>> positions(std::size_t(points), std::array<double, 3>{});
@@ -175,7 +201,7 @@ std::vector<Rgb> textureColors(vtkPolyData* part, const RgbImage& image, vtkData
   for (vtkIdType p = 0; p < points; ++p)
   {
     part->GetPoint(p, positions[std::size_t(p)].data());
-    uv[std::size_t(p)] = { tcoords->GetComponent(p, 0), tcoords->GetComponent(p, 1) };
+    uv[std::size_t(p)] = sampledCoordinates(actor, tcoords->GetComponent(p, 0), tcoords->GetComponent(p, 1));
   }
   const std::vector<double> sides =
     texelFootprints(positions, uv, MeshPolygons(part).list(), image.width, image.height);
@@ -271,32 +297,45 @@ void applyMetallicRoughnessTexture(const ImportedPart& part, vtkPolyData* copy, 
 {
   vtkPointData* pointData = copy->GetPointData();
   vtkDataArray* tcoords = pointData->GetTCoords();
-  RgbImage image = linearImage(part.metallicRoughnessTexture, false);
+  RgbImage image = linearImage(part.metallicRoughnessTexture, TexelEncoding::Linear);
   if (image.texels.empty() || !tcoords || tcoords->GetNumberOfComponents() < 2)
   {
-    skipped.push_back("part '" + part.name + "': its metallic-roughness texture has " +
-      (image.texels.empty() ? "no image" : "no texture coordinates to be read at") +
-      ": shaded with its metallic and roughness factors alone");
+    skipped.push_back("part '" + part.name + "': its metallic-roughness texture cannot be read: " +
+      (image.texels.empty() ? "it has no image" : "the part has no texture coordinates") +
+      "; shaded with its metallic and roughness factors alone");
     return;
   }
   clampIntoUnitRange(image, part.name, "its metallic-roughness texture", "the metallic factor and roughness", skipped);
-  const std::vector<Rgb> means = textureColors(copy, image, tcoords);
+  const std::vector<Rgb> means = textureColors(part.actor, copy, image, tcoords);
   vtkDataArray* metallic = pointData->GetArray(materialMetallicArrayName);
   vtkDataArray* roughness = pointData->GetArray(materialRoughnessArrayName);
   vtkDataArray* base = pointData->GetArray(materialBaseColorArrayName);
+  std::size_t smooth = 0;
   for (vtkIdType p = 0; p < copy->GetNumberOfPoints(); ++p)
   {
-    metallic->SetComponent(p, 0, metallic->GetComponent(p, 0) * means[std::size_t(p)].z);
-    roughness->SetComponent(p, 0, roughness->GetComponent(p, 0) * means[std::size_t(p)].y);
-    // kd from the textured base colour, ks (F0) from the part's own (docs/formulas.md section 7.3).
+    // A mean of texels in [0, 1] may round just outside (a summed-area table's differences).
+    const Rgb& mean = means[std::size_t(p)];
+    const double m = metallic->GetComponent(p, 0) * std::clamp(mean.z, 0.0, 1.0);
+    const double r = roughness->GetComponent(p, 0) * std::clamp(mean.y, 0.0, 1.0);
+    metallic->SetComponent(p, 0, m);
+    roughness->SetComponent(p, 0, r);
+    smooth += r == 0 ? 1 : 0;
+    // As without the texture (partWithMaterial, docs/formulas.md section 7.3): kd from the
+    // textured base colour, ka, ks (F0) and the shininess from the part's own.
     const double* textured = base->GetTuple3(p);
-    const LectureCoefficients c = lectureCoefficients(
-      part.material.microfacet->baseColor, metallic->GetComponent(p, 0), roughness->GetComponent(p, 0));
-    const Rgb kd = Rgb(textured[0], textured[1], textured[2]) * (1.0 - metallic->GetComponent(p, 0));
-    pointData->GetArray(materialKaArrayName)->SetTuple3(p, kd.x, kd.y, kd.z);
+    const LectureCoefficients own = lectureCoefficients(part.material.microfacet->baseColor, m, r);
+    const Rgb kd = lectureCoefficients(Rgb(textured[0], textured[1], textured[2]), m, r).kd;
+    pointData->GetArray(materialKaArrayName)->SetTuple3(p, own.kd.x, own.kd.y, own.kd.z);
     pointData->GetArray(materialKdArrayName)->SetTuple3(p, kd.x, kd.y, kd.z);
-    pointData->GetArray(materialKsArrayName)->SetTuple3(p, c.ks.x, c.ks.y, c.ks.z);
-    pointData->GetArray(materialShininessArrayName)->SetComponent(p, 0, c.shininess);
+    pointData->GetArray(materialKsArrayName)->SetTuple3(p, own.ks.x, own.ks.y, own.ks.z);
+    pointData->GetArray(materialShininessArrayName)->SetComponent(p, 0, own.shininess);
+  }
+  if (smooth > 0)
+  {
+    skipped.push_back("part '" + part.name + "': its metallic-roughness texture makes the roughness 0 at " +
+      (smooth == 1 ? std::string("1 vertex") : std::to_string(smooth) + " vertices") +
+      ", which the vtk_pbr model refuses (VTK's GGX distribution is 0/0 "
+      "in the mirror direction)");
   }
 }
 
@@ -333,7 +372,7 @@ vtkSmartPointer<vtkPolyData> partWithMaterial(
   }
   // A texture VTK's readers did not take is read through OpenImageIO.
   std::string unread;
-  RgbImage image = part.kdTexture ? linearImage(part.kdTexture)
+  RgbImage image = part.kdTexture ? linearImage(part.kdTexture, TexelEncoding::Srgb)
     : part.textureFile.empty()    ? RgbImage{}
                                   : imageFileTexture(part.textureFile, unread);
   if (!unread.empty())
@@ -356,7 +395,7 @@ vtkSmartPointer<vtkPolyData> partWithMaterial(
     else
     {
       clampIntoUnitRange(image, part.name, "its texture", "kd, a reflectance", skipped);
-      const std::vector<Rgb> colors = textureColors(copy, image, tcoords);
+      const std::vector<Rgb> colors = textureColors(part.actor, copy, image, tcoords);
       multiplyColors(kd, colors);
       if (baseColor)
       {
