@@ -141,6 +141,39 @@ TEST_F(SceneFiles, EachPartIsShadedWithItsOwnMaterialAndTexture)
   EXPECT_EQ(texelsSeen, 18); // the 6 triangles' corners, as the importer keeps them
 }
 
+// `map_Kd -s 0.5 1 1`: VTK's importer puts the scale in the texture's transform and its
+// renderer samples at (0.5 u, v); so does ShadeLab. Each texel's triangles then fall in the
+// texel at half their column.
+TEST_F(SceneFiles, AnMtlTexturesScaleIsWhereVtkSamplesIt)
+{
+  writeTexture((folder / "texture.png").string());
+  std::string mtl = partsMtl;
+  mtl.replace(mtl.find("map_Kd texture.png"), 18, "map_Kd -s 0.5 1 1 texture.png");
+  file("parts.mtl", mtl);
+  vtkSmartPointer<vtkPolyData> mesh = app::readMesh(file("parts.obj", twoPartObj));
+  vtkPointData* points = mesh->GetPointData();
+  vtkDataArray* uv = points->GetTCoords();
+  int texelsSeen = 0;
+  for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)
+  {
+    if (points->GetArray(partArrayName)->GetComponent(p, 0) != 1)
+    {
+      continue;
+    }
+    const int column = int(std::floor(0.5 * uv->GetComponent(p, 0) * 4)),
+              row = int(std::floor(uv->GetComponent(p, 1) * 2));
+    const double kd[3] = { 0.9, 0.8, 0.6 };
+    for (int c = 0; c < 3; ++c)
+    {
+      EXPECT_NEAR(
+        points->GetArray(materialKdArrayName)->GetComponent(p, c), float(kd[c]) * decoded(texels[row][column][c]), 1e-6)
+        << "vertex " << p << ", texel " << column << ", " << row;
+    }
+    ++texelsSeen;
+  }
+  EXPECT_EQ(texelsSeen, 18);
+}
+
 TEST_F(SceneFiles, AScenesMaterialWinsOverTheFiles)
 {
   writeTexture((folder / "texture.png").string());

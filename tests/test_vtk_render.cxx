@@ -518,7 +518,7 @@ TEST_F(RealRenderOfImportedParts, EachPartOfAGltfFileAsVtkDrawsIt)
 /// ShadeLab's per-vertex average agree: VTK's shader multiplies the roughness by its green and
 /// the metallic factor by its blue, read linearly (green 160 and blue 96 of 255, under factors
 /// 1 and 0.8: roughness 0.627, metallic 0.301). VTK 9.1's importer applies it only beside a base
-/// colour texture (without one it warns of "multiple texture coordinates"): a white one.
+/// colour texture: a white one.
 TEST_F(RealRenderOfImportedParts, AMetallicRoughnessTextureAsVtkDrawsIt)
 {
   for (const auto& [name, color] : { std::pair{ "orm.png", std::array<double, 3>{ 255, 160, 96 } },

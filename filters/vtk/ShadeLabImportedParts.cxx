@@ -177,18 +177,30 @@ void clampIntoUnitRange(RgbImage& image, const std::string& partName, const std:
 }
 
 /// The texture coordinates at which VTK's renderer samples the part's textures: through the
-/// actor's GeneralTextureTransform where it has one (vtkGLTFImporter's v -> 1 - v, since glTF's
-/// images start at their top row and VTK's at their bottom one), a row-major 4 x 4 matrix.
+/// transform of the actor's texture where it has one (vtkOBJImporter's `map_Kd -s`, which
+/// vtkActor puts in place of the other at render time), else the actor's GeneralTextureTransform
+/// (vtkGLTFImporter's v -> 1 - v, since glTF's images start at their top row and VTK's at their
+/// bottom one): a row-major 4 x 4 matrix times (u, v, 0, 1), as VTK's mapper applies it.
 std::array<double, 2> sampledCoordinates(vtkActor* actor, double u, double v)
 {
+  std::array<double, 16> m{};
   vtkInformation* keys = actor->GetPropertyKeys();
-  if (!keys || !keys->Has(vtkProp::GeneralTextureTransform()) || keys->Length(vtkProp::GeneralTextureTransform()) != 16)
+  if (vtkTexture* texture = actor->GetTexture(); texture && texture->GetTransform())
+  {
+    vtkMatrix4x4::DeepCopy(m.data(), texture->GetTransform()->GetMatrix());
+  }
+  else if (keys && keys->Has(vtkProp::GeneralTextureTransform()) &&
+    keys->Length(vtkProp::GeneralTextureTransform()) == 16)
+  {
+    std::copy_n(keys->Get(vtkProp::GeneralTextureTransform()), 16, m.begin());
+  }
+  else
   {
     return { u, v };
   }
-  const double* m = keys->Get(vtkProp::GeneralTextureTransform());
   const double w = m[12] * u + m[13] * v + m[15];
-  return { (m[0] * u + m[1] * v + m[3]) / w, (m[4] * u + m[5] * v + m[7]) / w };
+  return w == 0 ? std::array<double, 2>{ u, v }
+                : std::array<double, 2>{ (m[0] * u + m[1] * v + m[3]) / w, (m[4] * u + m[5] * v + m[7]) / w };
 }
 
 /// The texture's colour at each point, averaged over the texels it stands for (TextureFootprint.h),
@@ -316,10 +328,11 @@ void applyMetallicRoughnessTexture(const ImportedPart& part, vtkPolyData* copy, 
     // A mean of texels in [0, 1] may round just outside (a summed-area table's differences).
     const Rgb& mean = means[std::size_t(p)];
     const double m = metallic->GetComponent(p, 0) * std::clamp(mean.z, 0.0, 1.0);
-    const double r = roughness->GetComponent(p, 0) * std::clamp(mean.y, 0.0, 1.0);
+    const double factor = roughness->GetComponent(p, 0);
+    const double r = factor * std::clamp(mean.y, 0.0, 1.0);
     metallic->SetComponent(p, 0, m);
     roughness->SetComponent(p, 0, r);
-    smooth += r == 0 ? 1 : 0;
+    smooth += r == 0 && factor > 0 ? 1 : 0; // a factor of 0 has the file's own note
     // As without the texture (partWithMaterial, docs/formulas.md section 7.3): kd from the
     // textured base colour, ka, ks (F0) and the shininess from the part's own.
     const double* textured = base->GetTuple3(p);
