@@ -34,6 +34,7 @@
 #include <cmath>
 #include <filesystem>
 #include <memory>
+#include <optional>
 
 namespace shadelab
 {
@@ -176,44 +177,49 @@ void clampIntoUnitRange(RgbImage& image, const std::string& partName, const std:
   }
 }
 
-/// The texture coordinates at which VTK's renderer samples the part's textures: through the
-/// transform of the actor's texture where it has one (vtkOBJImporter's `map_Kd -s`, which
-/// vtkActor puts in place of the other at render time), else the actor's GeneralTextureTransform
-/// (vtkGLTFImporter's v -> 1 - v, since glTF's images start at their top row and VTK's at their
-/// bottom one): a row-major 4 x 4 matrix times (u, v, 0, 1), as VTK's mapper applies it.
-std::array<double, 2> sampledCoordinates(vtkActor* actor, double u, double v)
+/// The transform through which VTK's renderer samples the part's textures: the transform of the
+/// actor's texture where it has one (vtkOBJImporter's `map_Kd -s`, which vtkActor puts in place
+/// of the other at render time), else the actor's GeneralTextureTransform (vtkGLTFImporter's
+/// v -> 1 - v, since glTF's images start at their top row and VTK's at their bottom one): a
+/// row-major 4 x 4 matrix, which VTK's mapper multiplies (u, v, 0, 1) by. None where it has neither.
+std::optional<std::array<double, 16>> textureTransform(vtkActor* actor)
 {
   std::array<double, 16> m{};
   vtkInformation* keys = actor->GetPropertyKeys();
   if (vtkTexture* texture = actor->GetTexture(); texture && texture->GetTransform())
   {
     vtkMatrix4x4::DeepCopy(m.data(), texture->GetTransform()->GetMatrix());
+    return m;
   }
-  else if (keys && keys->Has(vtkProp::GeneralTextureTransform()) &&
-    keys->Length(vtkProp::GeneralTextureTransform()) == 16)
+  if (keys && keys->Has(vtkProp::GeneralTextureTransform()) && keys->Length(vtkProp::GeneralTextureTransform()) == 16)
   {
     std::copy_n(keys->Get(vtkProp::GeneralTextureTransform()), 16, m.begin());
+    return m;
   }
-  else
-  {
-    return { u, v };
-  }
-  const double w = m[12] * u + m[13] * v + m[15];
-  return w == 0 ? std::array<double, 2>{ u, v }
-                : std::array<double, 2>{ (m[0] * u + m[1] * v + m[3]) / w, (m[4] * u + m[5] * v + m[7]) / w };
+  return std::nullopt;
+}
+
+/// The texture coordinates (u, v) through the transform m, where VTK samples the texture.
+std::array<double, 2> sampledCoordinates(const std::optional<std::array<double, 16>>& m, double u, double v)
+{
+  const double w = m ? (*m)[12] * u + (*m)[13] * v + (*m)[15] : 0.0;
+  return w == 0
+    ? std::array<double, 2>{ u, v }
+    : std::array<double, 2>{ ((*m)[0] * u + (*m)[1] * v + (*m)[3]) / w, ((*m)[4] * u + (*m)[5] * v + (*m)[7]) / w };
 }
 
 /// The texture's colour at each point, averaged over the texels it stands for (TextureFootprint.h),
-/// where the actor's renderer samples it (sampledCoordinates).
+/// where the actor's renderer samples it (textureTransform).
 std::vector<Rgb> textureColors(vtkActor* actor, vtkPolyData* part, const RgbImage& image, vtkDataArray* tcoords)
 {
+  const std::optional<std::array<double, 16>> transform = textureTransform(actor);
   const vtkIdType points = part->GetNumberOfPoints();
   std::vector<std::array<double, 3>> positions(std::size_t(points), std::array<double, 3>{});
   std::vector<std::array<double, 2>> uv(std::size_t(points), std::array<double, 2>{});
   for (vtkIdType p = 0; p < points; ++p)
   {
     part->GetPoint(p, positions[std::size_t(p)].data());
-    uv[std::size_t(p)] = sampledCoordinates(actor, tcoords->GetComponent(p, 0), tcoords->GetComponent(p, 1));
+    uv[std::size_t(p)] = sampledCoordinates(transform, tcoords->GetComponent(p, 0), tcoords->GetComponent(p, 1));
   }
   const std::vector<double> sides =
     texelFootprints(positions, uv, MeshPolygons(part).list(), image.width, image.height);

@@ -151,6 +151,20 @@ void readColorCoefficient(const JsonNode& material, MaterialCoefficient coeffici
   }
 }
 
+/// A coefficient that is one number, or an array's ({"array": ...}: the shininess, the metallic
+/// factor, the roughness): the array's scale, which then stands as the material's number, or
+/// the number given, or else `fallback`.
+double readNumberCoefficient(const JsonNode& node, MaterialCoefficient coefficient, Material& material, double fallback)
+{
+  const char* key = coefficientKey(coefficient);
+  if (node.has(key) && node.at(key).isObject())
+  {
+    material.arrays[coefficient] = readArrayCoefficient(node.at(key), coefficient);
+    return material.arrays[coefficient]->scale;
+  }
+  return numberOr(node, key, fallback);
+}
+
 /// The vtk_pbr model's material: vtkProperty's PBR parameters, with its defaults. The base
 /// colour, metallic factor and roughness may each come from an array ({"array": ...}; the base
 /// colour's is VTK's scalar colouring, kd's array in Material), scaled by its "scale" (the
@@ -159,24 +173,18 @@ void readMicrofacetMaterial(const JsonNode& node, Material& material)
 {
   node.expectObject({ "base_color", "metallic", "roughness", "base_ior", "edge_tint" });
   MicrofacetMaterial& m = material.microfacet;
-  auto fromArray = [&](const char* key, MaterialCoefficient coefficient)
+  if (node.has("base_color") && node.at("base_color").isObject())
   {
-    if (!node.has(key) || !node.at(key).isObject())
-    {
-      return false;
-    }
-    material.arrays[coefficient] = readArrayCoefficient(node.at(key), coefficient);
-    return true;
-  };
-  m.baseColor = fromArray("base_color", MaterialCoefficient::Diffuse)
-    ? Rgb(material.arrays[MaterialCoefficient::Diffuse]->scale)
-    : rgbOr(node, "base_color", m.baseColor);
-  m.metallic = fromArray("metallic", MaterialCoefficient::Metallic)
-    ? material.arrays[MaterialCoefficient::Metallic]->scale
-    : numberOr(node, "metallic", m.metallic);
-  m.roughness = fromArray("roughness", MaterialCoefficient::Roughness)
-    ? material.arrays[MaterialCoefficient::Roughness]->scale
-    : numberOr(node, "roughness", m.roughness);
+    material.arrays[MaterialCoefficient::Diffuse] =
+      readArrayCoefficient(node.at("base_color"), MaterialCoefficient::Diffuse);
+    m.baseColor = Rgb(material.arrays[MaterialCoefficient::Diffuse]->scale);
+  }
+  else
+  {
+    m.baseColor = rgbOr(node, "base_color", m.baseColor);
+  }
+  m.metallic = readNumberCoefficient(node, MaterialCoefficient::Metallic, material, m.metallic);
+  m.roughness = readNumberCoefficient(node, MaterialCoefficient::Roughness, material, m.roughness);
   m.baseIor = numberOr(node, "base_ior", m.baseIor);
   m.edgeTint = rgbOr(node, "edge_tint", m.edgeTint);
 }
@@ -216,16 +224,7 @@ Material readMaterial(const JsonNode& node, ShadingModel model)
     readColorCoefficient(node, MaterialCoefficient::Ambient, m, m.ka);
   }
   readColorCoefficient(node, MaterialCoefficient::Specular, m, m.ks);
-  if (node.has("shininess") && node.at("shininess").isObject())
-  {
-    m.arrays[MaterialCoefficient::Shininess] =
-      readArrayCoefficient(node.at("shininess"), MaterialCoefficient::Shininess);
-    m.shininess = m.arrays[MaterialCoefficient::Shininess]->scale;
-  }
-  else
-  {
-    m.shininess = numberOr(node, "shininess", m.shininess);
-  }
+  m.shininess = readNumberCoefficient(node, MaterialCoefficient::Shininess, m, m.shininess);
   if (node.has("specular"))
   {
     m.specular = node.at("specular")
